@@ -1,0 +1,194 @@
+r"""Level sets: the interface Γ as the zero set of a function ψ.
+
+The one sign convention of skxfem
+---------------------------------
+Every module, chapter and test uses the convention stated here and nowhere else.
+
+* Ω⁻ = {ψ < 0} is the paper's body Ω¹ ("below" the interface) and
+  Ω⁺ = {ψ > 0} is Ω² ("above").  Γ = {ψ = 0}.
+* The unit normal of Γ is n = ∇ψ/|∇ψ|: it points from Ω⁻ into Ω⁺ and is the
+  paper's n = n¹, the outward normal of Γ¹ = ∂Ω⁻ ∩ Γ.
+* The generalised Heaviside function is H = -1 in Ω⁻ and H = +1 in Ω⁺
+  (paper §4.1), so the X-FEM field is u = Σ aᵢφᵢ + Σ bⱼφⱼH (eq. 11).
+* The jump is [[u]] = u(p¹) - u(p²) = u⁻ - u⁺ (eq. 3), hence
+  [[u]] = -2 Σⱼ φⱼ bⱼ on Γ, and the normal gap is d_n = [[u]]·n ≤ 0 (eq. 3):
+  a negative d_n opens the interface, a positive one would mean interpenetration.
+* The interface traction is r = σ(u⁻)·n = λn + r_τ (eq. 4); λ ≤ 0 in contact
+  (eq. 5).  Results report the contact *pressure* p = -λ, positive in compression.
+
+A level set is any callable ``psi(x)`` taking coordinates ``x`` of shape
+``(dim, ...)`` (scikit-fem's layout: ``x[0]`` is the first coordinate) and
+returning an array of shape ``(...)``.  The helpers below build signed-distance
+functions and combine them; :func:`nodal_values` evaluates one on a mesh and
+checks what comes back.
+
+>>> import numpy as np
+>>> psi = plane(point=(0.0, 0.5), normal=(0.0, 1.0))
+>>> psi(np.array([[0.2, 0.2], [0.0, 1.0]]))
+array([-0.5,  0.5])
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+__all__ = ["LevelSet", "plane", "circle", "sphere", "union", "intersection",
+           "complement", "nodal_values"]
+
+
+@dataclass(frozen=True)
+class LevelSet:
+    """A named level set function ψ with its spatial dimension.
+
+    Parameters
+    ----------
+    fun
+        ``fun(x) -> ψ(x)`` for ``x`` of shape ``(dim, ...)``.
+    dim
+        Number of coordinates ``fun`` reads (2 or 3).
+    name
+        Human-readable description, used in error messages and plots.
+    """
+
+    fun: Callable[[np.ndarray], np.ndarray]
+    dim: int
+    name: str = "psi"
+
+    def __call__(self, x: ArrayLike) -> np.ndarray:
+        x = np.asarray(x, dtype=float)
+        if x.shape[0] != self.dim:
+            raise ValueError(
+                f"level set {self.name!r} is {self.dim}D but got points with "
+                f"{x.shape[0]} coordinates; use a {x.shape[0]}D level set")
+        return self.fun(x)
+
+
+def _vector(name: str, v: ArrayLike) -> np.ndarray:
+    a = np.asarray(v, dtype=float)
+    if a.ndim != 1 or a.size not in (2, 3):
+        raise ValueError(f"{name} must be a 2- or 3-vector, got {v!r}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name} must be finite, got {v!r}")
+    return a
+
+
+def plane(point: ArrayLike, normal: ArrayLike) -> LevelSet:
+    """Signed distance to the plane (a line in 2D) through ``point``.
+
+    ψ(x) = (x - point)·n̂ with n̂ = normal/|normal|, so ``normal`` points into Ω⁺.
+
+    >>> psi = plane((0, 0, 0.5), (0, 0, 2))
+    >>> float(psi(np.array([0.1, 0.2, 1.0])))
+    0.5
+    """
+    x0 = _vector("point", point)
+    n = _vector("normal", normal)
+    if x0.size != n.size:
+        raise ValueError("point and normal must have the same dimension")
+    norm = np.linalg.norm(n)
+    if norm == 0.0:
+        raise ValueError("normal must be non-zero")
+    n = n / norm
+    d = n.size
+
+    def fun(x):
+        return sum(n[i] * (x[i] - x0[i]) for i in range(d))
+
+    return LevelSet(fun, d, f"plane(point={x0.tolist()}, normal={n.tolist()})")
+
+
+def _ball(center: ArrayLike, radius: float, dim: int, kind: str) -> LevelSet:
+    c = _vector("center", center)
+    if c.size != dim:
+        raise ValueError(f"{kind} center must have {dim} coordinates, got {center!r}")
+    if not (np.isfinite(radius) and radius > 0):
+        raise ValueError(f"{kind} radius must be a positive number, got {radius!r}")
+
+    def fun(x):
+        return np.sqrt(sum((x[i] - c[i]) ** 2 for i in range(dim))) - radius
+
+    return LevelSet(fun, dim, f"{kind}(center={c.tolist()}, radius={radius})")
+
+
+def circle(center: ArrayLike, radius: float) -> LevelSet:
+    """Signed distance to a circle: Ω⁻ is the disc inside.
+
+    >>> float(circle((0, 0), 1.0)(np.array([2.0, 0.0])))
+    1.0
+    """
+    return _ball(center, radius, 2, "circle")
+
+
+def sphere(center: ArrayLike, radius: float) -> LevelSet:
+    """Signed distance to a sphere: Ω⁻ is the ball inside.
+
+    >>> float(sphere((0, 0, 0), 1.0)(np.array([0.0, 0.0, 0.5])))
+    -0.5
+    """
+    return _ball(center, radius, 3, "sphere")
+
+
+def _same_dim(a: LevelSet, b: LevelSet) -> int:
+    if a.dim != b.dim:
+        raise ValueError(f"cannot combine a {a.dim}D and a {b.dim}D level set")
+    return a.dim
+
+
+def union(a: LevelSet, b: LevelSet) -> LevelSet:
+    """Ω⁻ = Ω⁻(a) ∪ Ω⁻(b), via ψ = min(ψ_a, ψ_b)."""
+    return LevelSet(lambda x: np.minimum(a(x), b(x)), _same_dim(a, b),
+                    f"union({a.name}, {b.name})")
+
+
+def intersection(a: LevelSet, b: LevelSet) -> LevelSet:
+    """Ω⁻ = Ω⁻(a) ∩ Ω⁻(b), via ψ = max(ψ_a, ψ_b)."""
+    return LevelSet(lambda x: np.maximum(a(x), b(x)), _same_dim(a, b),
+                    f"intersection({a.name}, {b.name})")
+
+
+def complement(a: LevelSet) -> LevelSet:
+    """Swap the sides: ψ → -ψ (so n flips too)."""
+    return LevelSet(lambda x: -a(x), a.dim, f"complement({a.name})")
+
+
+def nodal_values(psi: Callable, mesh) -> np.ndarray:
+    """Evaluate ψ at the vertices of a scikit-fem mesh and check the result.
+
+    Parameters
+    ----------
+    psi
+        A :class:`LevelSet` or any callable on ``(dim, npoints)`` arrays.
+    mesh
+        A scikit-fem mesh; ``mesh.p`` has shape ``(dim, nverts)``.
+
+    Returns
+    -------
+    ndarray
+        ψ at every vertex, shape ``(nverts,)``.
+
+    Raises
+    ------
+    ValueError
+        If the dimensions differ, or ψ returns the wrong shape or non-finite values.
+
+    >>> from skfem import MeshTri1
+    >>> nodal_values(plane((0.5, 0), (1, 0)), MeshTri1()).tolist()
+    [-0.5, 0.5, -0.5, 0.5]
+    """
+    dim = getattr(psi, "dim", None)
+    if dim is not None and dim != mesh.dim():
+        raise ValueError(
+            f"psi is a {dim}D level set but the mesh is {mesh.dim()}D; "
+            f"build the level set with {mesh.dim()} coordinates")
+    values = np.asarray(psi(mesh.p), dtype=float)
+    if values.shape != (mesh.p.shape[1],):
+        raise ValueError(
+            f"psi must return one value per point: expected shape "
+            f"({mesh.p.shape[1]},), got {values.shape}")
+    if not np.all(np.isfinite(values)):
+        raise ValueError("psi returned NaN or inf at some mesh vertices; "
+                         "check the level set and the mesh coordinates")
+    return values
