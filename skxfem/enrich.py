@@ -1,0 +1,177 @@
+r"""The X-FEM displacement space: standard plus Heaviside-enriched dofs (eq. 11).
+
+The paper's approximation is u_h = Σᵢ aᵢ φᵢ + Σⱼ bⱼ φⱼ H, with j over the
+enriched nodes (the nodes of cut cells).  We use the *shifted* form
+
+.. math:: u_h = \sum_i a_i \varphi_i + \sum_j b_j \varphi_j (H - H_j),
+          \qquad H_j = H(x_j),
+
+which spans exactly the same space (φⱼH and φⱼ are both in it), so every
+result of the paper is unchanged, while aᵢ is now the displacement *at node i*:
+Dirichlet conditions are imposed on aᵢ alone.  The jump is the paper's:
+
+.. math:: [[u_h]] = u_h^- - u_h^+ = -2 \sum_j \varphi_j b_j .
+
+Assembly uses scikit-fem throughout.  With K the standard stiffness
+∫ σ(φᵢ):ε(φⱼ), K_H the signed stiffness ∫ H σ(φᵢ):ε(φⱼ) and D = diag(H_j),
+
+.. math:: K_{ab} = K_H[:, E] - K[:, E] D, \qquad
+          K_{bb} = K[E,E] + D K[E,E] D - D K_H[E,E] - K_H[E,E] D,
+
+because H² = 1.  Only K_H needs the sub-cell quadrature of :mod:`skxfem.cut`;
+on uncut cells H is the cell's constant side.
+
+>>> from skfem import MeshTri1
+>>> from skxfem.levelset import plane
+>>> from skxfem.cut import cut
+>>> m = MeshTri1().refined(2)
+>>> V = space(m, cut(m, plane((0, 0.3), (0, 1))))
+>>> V.n_std, V.n_enr
+(50, 20)
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from skfem import Basis, ElementVector, MeshHex1, MeshQuad1, MeshWedge1
+from skfem.assembly import CellBasis
+
+from .cut import Cut
+from .material import Material, signed_stiffness_form, stiffness_form
+from .quadrature import cell_rule, subcell_rule
+
+__all__ = ["XSpace", "space", "stiffness", "enriched_load", "evaluation_matrix",
+           "jump_matrix", "split_fields"]
+
+
+def _orders(mesh) -> tuple[int, int]:
+    """Quadrature orders that integrate the P1/Q1 stiffness exactly on affine cells.
+
+    The second is the order on sub-simplices, in reference coordinates: a
+    product of two gradients is of degree 0 (simplices), 2 (quad, prism) or
+    4 (hexahedron, trilinear functions).
+    """
+    if isinstance(mesh, MeshHex1):
+        return 2, 4
+    if isinstance(mesh, (MeshQuad1, MeshWedge1)):
+        return 2, 2
+    return 1, 1
+
+
+@dataclass(frozen=True)
+class XSpace:
+    """An X-FEM vector displacement space on a cut mesh.
+
+    Attributes
+    ----------
+    mesh, cut
+        The mesh and its :class:`skxfem.cut.Cut`.
+    basis
+        The standard vector ``skfem.Basis`` (quadrature chosen explicitly).
+    enr_dofs : (n_enr,) standard dofs of the enriched nodes, ordered node by
+        node (component fastest); unknown ``n_std + k`` is the enriched dof of
+        ``enr_dofs[k]``.
+    H_node : (n_enr,) H(x_j) of the node of each enriched dof.
+    """
+
+    mesh: object
+    cut: Cut
+    basis: CellBasis
+    enr_dofs: np.ndarray
+    H_node: np.ndarray
+
+    @property
+    def n_std(self) -> int:
+        return int(self.basis.N)
+
+    @property
+    def n_enr(self) -> int:
+        return self.enr_dofs.size
+
+    @property
+    def N(self) -> int:
+        return self.n_std + self.n_enr
+
+
+def space(mesh, cut: Cut, order: int | None = None) -> XSpace:
+    """Build the X-FEM space of ``mesh`` cut by ``cut``."""
+    elem = ElementVector(mesh.elem())
+    basis = Basis(mesh, elem, quadrature=cell_rule(mesh, order or _orders(mesh)[0]))
+    enr = basis.nodal_dofs[:, cut.enriched].T  # (nenr_nodes, dim)
+    H_node = np.repeat(np.sign(cut.psi[cut.enriched]), mesh.dim())
+    return XSpace(mesh, cut, basis, enr.ravel(), H_node)
+
+
+def signed_stiffness(V: XSpace, material: Material) -> sp.csr_matrix:
+    """K_H = ∫ H σ(φᵢ):ε(φⱼ), with sub-cell quadrature on the cut cells."""
+    mesh, c, dim = V.mesh, V.cut, V.mesh.dim()
+    form = signed_stiffness_form(material, dim)
+    uncut = np.flatnonzero(c.side != 0)
+    B_uncut = V.basis.with_elements(uncut)
+    H_uncut = np.broadcast_to(c.side[uncut, None].astype(float), B_uncut.dx.shape)
+    K = form.assemble(B_uncut, H=np.array(H_uncut))
+    rule = subcell_rule(c.sub_ref, c.sub_cell, _orders(mesh)[1], values=c.sub_side)
+    B_cut = Basis(mesh, V.basis.elem, elements=rule.cells, quadrature=(rule.X, rule.W))
+    return (K + form.assemble(B_cut, H=rule.V)).tocsr()
+
+
+def stiffness(V: XSpace, material: Material) -> sp.csr_matrix:
+    """The full X-FEM stiffness on the unknowns [a, b] (see the module notes)."""
+    K = stiffness_form(material, V.mesh.dim()).assemble(V.basis).tocsr()
+    KH = signed_stiffness(V, material)
+    E = V.enr_dofs
+    D = sp.diags(V.H_node)
+    Kab = KH[:, E] - K[:, E] @ D
+    KEE, KHEE = K[E][:, E], KH[E][:, E]
+    Kbb = KEE + D @ KEE @ D - D @ KHEE - KHEE @ D
+    return sp.bmat([[K, Kab], [Kab.T, Kbb]], format="csr")
+
+
+def enriched_load(V: XSpace, f: np.ndarray, f_H: np.ndarray) -> np.ndarray:
+    """Load on [a, b] from f = ∫ t·φ and f_H = ∫ H t·φ (standard dofs)."""
+    E = V.enr_dofs
+    return np.concatenate([f, f_H[E] - V.H_node * f[E]])
+
+
+def evaluation_matrix(basis: CellBasis, cells: np.ndarray, ref: np.ndarray) -> sp.csr_matrix:
+    """Values of a vector basis at points given in reference coordinates.
+
+    Returns the matrix mapping the dof vector of ``basis`` to the field at the
+    points, rows ordered component-major (all x values, then all y, ...).
+
+    ``cells`` (npts,) holds the cell of each point and ``ref`` (dim, npts)
+    its reference coordinates; scikit-fem evaluates the shape functions.
+    """
+    npts = cells.size
+    B = CellBasis(basis.mesh, basis.elem, elements=cells,
+                  quadrature=(ref[:, :, None], np.ones((npts, 1))))
+    dim = basis.mesh.dim()
+    rows, cols, vals = [], [], []
+    for k in range(B.Nbfun):
+        value = B.basis[k][0].value[:, :, 0]  # (dim, npts)
+        for c in range(dim):
+            rows.append(c * npts + np.arange(npts))
+            cols.append(B.element_dofs[k])
+            vals.append(value[c])
+    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                         shape=(dim * npts, basis.N))
+
+
+def jump_matrix(V: XSpace, cells: np.ndarray, ref: np.ndarray) -> sp.csr_matrix:
+    """The operator U ↦ [[u_h]] = -2 Σⱼ φⱼ bⱼ at points on Γ (component-major rows)."""
+    Phi = evaluation_matrix(V.basis, cells, ref)
+    return sp.hstack([sp.csr_matrix((Phi.shape[0], V.n_std)),
+                      -2.0 * Phi[:, V.enr_dofs]], format="csr")
+
+
+def split_fields(V: XSpace, U: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Nodal values (dim, nverts) of the Ω⁻ and Ω⁺ fields, u± = a + b(±1 - H_j)."""
+    a = U[:V.n_std].copy()
+    minus, plus = a.copy(), a.copy()
+    b = U[V.n_std:]
+    minus[V.enr_dofs] += b * (-1.0 - V.H_node)
+    plus[V.enr_dofs] += b * (1.0 - V.H_node)
+    nd = V.basis.nodal_dofs
+    return minus[nd], plus[nd]
