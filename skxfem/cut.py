@@ -36,14 +36,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from skfem import MeshHex1, MeshQuad1, MeshTet1, MeshTri1, MeshWedge1
+from skfem import MeshQuad1, MeshTet1, MeshTri1, MeshWedge1
 
 from .levelset import nodal_values
+from .meshes import cell_name
 from .simplex import split
 
 __all__ = ["Cut", "cut", "cell_edges", "reference_simplices"]
-
-SUPPORTED = (MeshTri1, MeshQuad1, MeshTet1, MeshHex1, MeshWedge1)
 
 
 def reference_simplices(mesh) -> np.ndarray:
@@ -134,10 +133,7 @@ class Cut:
 
 
 def _check(mesh, psi_nodes):
-    if not isinstance(mesh, SUPPORTED):
-        raise TypeError(
-            f"mesh must be one of {[m.__name__ for m in SUPPORTED]}, got "
-            f"{type(mesh).__name__}")
+    cell_name(mesh)  # TypeError for an unsupported mesh type
     scale = np.ptp(mesh.p, axis=1).max()
     on = np.flatnonzero(np.abs(psi_nodes) <= 1e-12 * scale)
     if on.size:

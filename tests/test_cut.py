@@ -1,0 +1,142 @@
+"""Tests for skxfem/cut.py: volumes sum exactly, interface areas are exact."""
+import itertools
+
+import numpy as np
+import pytest
+from skfem import Basis, MeshLine1, MeshTri2
+
+from skxfem.cut import cut
+from skxfem.levelset import circle, plane, sphere
+from skxfem.meshes import box
+from skxfem.quadrature import cell_rule, subcell_rule
+
+CELLS = ["tri", "quad", "tet", "hex", "prism"]
+
+
+def dim_of(cell):
+    return 2 if cell in ("tri", "quad") else 3
+
+
+def mesh_of(cell, n=4):
+    return box(n, cell)
+
+
+def random_levelsets(dim, rng, k=4):
+    out = []
+    for _ in range(k):
+        out.append(plane(rng.uniform(0.3, 0.7, dim), rng.standard_normal(dim)))
+    c = rng.uniform(0.4, 0.6, dim)
+    out.append(circle(c, 0.33) if dim == 2 else sphere(c, 0.33))
+    return out
+
+
+@pytest.mark.parametrize("cell", CELLS)
+def test_subcell_volumes_sum_to_cell_volume(cell):
+    """Each cut cell's sub-cells (both sides) add up to the cell, to 1e-12."""
+    rng = np.random.default_rng(0)
+    m = mesh_of(cell)
+    full = Basis(m, m.elem(), quadrature=cell_rule(m, 2)).dx.sum(axis=1)
+    for psi in random_levelsets(m.dim(), rng):
+        c = cut(m, psi)
+        rule = subcell_rule(c.sub_ref, c.sub_cell, 2, values=c.sub_side)
+        b = Basis(m, m.elem(), elements=rule.cells, quadrature=(rule.X, rule.W))
+        assert np.array_equal(rule.cells, c.cells)
+        assert np.abs(b.dx.sum(axis=1) - full[c.cells]).max() < 1e-12
+        # every sub-simplex lies on one side: the sides split the volume
+        minus = (b.dx * (rule.V < 0)).sum()
+        plus = (b.dx * (rule.V > 0)).sum()
+        assert minus > 0 and plus > 0
+        assert abs(minus + plus - full[c.cells].sum()) < 1e-12
+
+
+def exact_cube_section_area(n, t):
+    """Area of {x in [0,1]^3 : n·x = t}, n a unit vector with no zero entry.
+
+    Independent of the cut algorithm: the volume of the cube below the plane is
+    Σ_v (-1)^|v| max(t - n·v, 0)^3 / (6 n1 n2 n3) over the cube vertices v
+    (after reflecting so that n > 0), and the area is its derivative in t.
+    """
+    n = np.asarray(n, float)
+    flip = n < 0
+    t = t - np.sum(n[flip])  # reflect x_i -> 1 - x_i where n_i < 0
+    n = np.abs(n)
+    area = 0.0
+    for v in itertools.product((0, 1), repeat=3):
+        area += (-1) ** sum(v) * max(t - n @ np.array(v), 0.0) ** 2
+    return area / (2 * np.prod(n))
+
+
+@pytest.mark.parametrize("cell", ["tet", "hex", "prism"])
+def test_plane_section_area_is_exact(cell):
+    rng = np.random.default_rng(1)
+    m = mesh_of(cell, 3)
+    for _ in range(5):
+        n = rng.standard_normal(3)
+        n /= np.linalg.norm(n)
+        x0 = rng.uniform(0.35, 0.65, 3)
+        c = cut(m, plane(x0, n))
+        assert abs(c.measures.sum() - exact_cube_section_area(n, n @ x0)) < 1e-12
+        # normals all equal n (pointing into Ω⁺)
+        assert np.abs(c.normals - n[:, None]).max() < 1e-12
+
+
+@pytest.mark.parametrize("cell", ["tri", "quad"])
+def test_line_section_length_2d(cell):
+    m = mesh_of(cell, 5)
+    theta = 0.3
+    n = np.array([np.sin(theta), np.cos(theta)])
+    c = cut(m, plane((0.5, 0.5), n))
+    # the line through the centre at angle θ from horizontal crosses x = 0 and x = 1
+    assert abs(c.measures.sum() - 1 / np.cos(theta)) < 1e-12
+    assert np.abs(c.normals - n[:, None]).max() < 1e-12
+
+
+@pytest.mark.parametrize("cell", CELLS)
+def test_cut_edges_and_points(cell):
+    """S_e: strictly cut edges; the points lie on Γ and on their edges."""
+    m = mesh_of(cell, 3)
+    d = m.dim()
+    n = np.ones(d) / np.sqrt(d)
+    psi = plane(np.full(d, 0.52), n)
+    c = cut(m, psi)
+    v = psi(m.p)
+    assert np.all(v[c.edges[0]] * v[c.edges[1]] < 0)
+    assert np.abs(psi(c.points)).max() < 1e-14
+    # every enriched node belongs to a cut cell, every cut cell has a cut edge
+    assert set(np.unique(m.t[:, c.cells])) == set(c.enriched)
+    assert np.all(c.side[c.cells] == 0)
+    uncut = c.side != 0
+    assert np.all(np.sign(v[m.t[:, uncut]]) == c.side[uncut])
+
+
+def test_sphere_volume_converges():
+    """Ω⁻ of a sphere: the discrete volume tends to 4/3 π r³ at second order."""
+    r, errs = 0.3, []
+    for n in (6, 12):
+        m = mesh_of("hex", n)
+        c = cut(m, sphere((0.5, 0.5, 0.5), r))
+        rule = subcell_rule(c.sub_ref, c.sub_cell, 2, values=c.sub_side)
+        b = Basis(m, m.elem(), elements=rule.cells, quadrature=(rule.X, rule.W))
+        full = Basis(m, m.elem(), quadrature=cell_rule(m, 2)).dx.sum(axis=1)
+        vol = (b.dx * (rule.V < 0)).sum() + full[c.side < 0].sum()
+        errs.append(abs(vol - 4 / 3 * np.pi * r ** 3))
+    assert errs[1] < errs[0] / 3  # rate close to 2
+
+
+def test_errors_are_clear():
+    m = mesh_of("quad", 4)
+    with pytest.raises(ValueError, match="cuts no cell"):
+        cut(m, plane((0, 5.0), (0, 1)))
+    with pytest.raises(ValueError, match="vanishes at"):
+        cut(m, plane((0, 0.5), (0, 1)))  # through a row of nodes
+    with pytest.raises(ValueError, match="2D level set but the mesh is 3D|is 2D"):
+        cut(mesh_of("hex", 3), circle((0.5, 0.5), 0.3))
+    with pytest.raises(ValueError, match="NaN"):
+        cut(m, lambda x: np.full(x.shape[1], np.nan))
+    with pytest.raises(TypeError, match="mesh must be one of"):
+        cut(MeshTri2(), lambda x: x[0] - 0.3)
+    with pytest.raises(TypeError, match="mesh must be one of"):
+        cut(MeshLine1(), lambda x: x[0] - 0.3)
+    # a saddle: the four edges of a quad are cut, the cut is ambiguous
+    with pytest.raises(ValueError, match="more than one piece"):
+        cut(mesh_of("quad", 1), lambda x: (x[0] - 0.5) * (x[1] - 0.5))
