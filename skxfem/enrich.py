@@ -35,7 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import Basis, ElementVector, MeshHex1, MeshQuad1, MeshWedge1
+from skfem import Basis, ElementVector, LinearForm, MeshHex1, MeshQuad1, MeshWedge1
 from skfem.assembly import CellBasis
 
 from .cut import Cut
@@ -95,26 +95,69 @@ class XSpace:
         return self.n_std + self.n_enr
 
 
-def space(mesh, cut: Cut, order: int | None = None) -> XSpace:
-    """Build the X-FEM space of ``mesh`` cut by ``cut``."""
+def _signed_basis(mesh, cut: Cut, elem, quadrature=None):
+    """Two bases covering the mesh and the H value at their quadrature points.
+
+    Uncut cells use the cell rule and their constant side; cut cells use the
+    sub-cell rule, with H = ±1 on each sub-simplex.
+    """
+    uncut = np.flatnonzero(cut.side != 0)
+    b_uncut = Basis(mesh, elem, elements=uncut,
+                    quadrature=quadrature or cell_rule(mesh, _orders(mesh)[0]))
+    H_uncut = np.broadcast_to(cut.side[uncut, None].astype(float), b_uncut.dx.shape).copy()
+    rule = subcell_rule(cut.sub_ref, cut.sub_cell, _orders(mesh)[1], values=cut.sub_side)
+    b_cut = Basis(mesh, elem, elements=rule.cells, quadrature=(rule.X, rule.W))
+    return (b_uncut, H_uncut), (b_cut, rule.V)
+
+
+@LinearForm
+def _signed_mass(v, w):
+    return w["H"] * v
+
+
+def far_side_fraction(mesh, cut: Cut) -> np.ndarray:
+    """For each node j: ∫ φⱼ over the side of Γ opposite to the node, / ∫ φⱼ.
+
+    The shifted enrichment φⱼ(H - Hⱼ) lives on that far side only; where it is
+    a sliver the enriched dof carries no information but spoils the
+    conditioning (see :func:`space`).
+    """
+    elem = mesh.elem()
+    total = np.zeros(mesh.p.shape[1])
+    signed = np.zeros(mesh.p.shape[1])
+    for b, H in _signed_basis(mesh, cut, elem):
+        total += _signed_mass.assemble(b, H=np.ones_like(H))
+        signed += _signed_mass.assemble(b, H=H)
+    Hj = np.sign(cut.psi)
+    return np.clip(0.5 * (total - Hj * signed) / total, 0.0, 1.0)
+
+
+def space(mesh, cut: Cut, order: int | None = None, sliver: float = 1e-8) -> XSpace:
+    """Build the X-FEM space of ``mesh`` cut by ``cut``.
+
+    Nodes of cut cells are enriched, except those whose far-side fraction
+    (:func:`far_side_fraction`) is below ``sliver``: Γ only grazes a corner of
+    their support (a plane a tiny distance from a node), the enriched
+    function is numerically zero and the other nodes' enrichment carries the
+    jump there.
+    """
+    if not sliver >= 0:
+        raise ValueError(f"sliver must be a non-negative fraction, got {sliver!r}")
     elem = ElementVector(mesh.elem())
     basis = Basis(mesh, elem, quadrature=cell_rule(mesh, order or _orders(mesh)[0]))
-    enr = basis.nodal_dofs[:, cut.enriched].T  # (nenr_nodes, dim)
-    H_node = np.repeat(np.sign(cut.psi[cut.enriched]), mesh.dim())
+    nodes = cut.enriched[far_side_fraction(mesh, cut)[cut.enriched] >= sliver]
+    enr = basis.nodal_dofs[:, nodes].T  # (nenr_nodes, dim)
+    H_node = np.repeat(np.sign(cut.psi[nodes]), mesh.dim())
     return XSpace(mesh, cut, basis, enr.ravel(), H_node)
 
 
 def signed_stiffness(V: XSpace, material: Material) -> sp.csr_matrix:
     """K_H = ∫ H σ(φᵢ):ε(φⱼ), with sub-cell quadrature on the cut cells."""
-    mesh, c, dim = V.mesh, V.cut, V.mesh.dim()
-    form = signed_stiffness_form(material, dim)
-    uncut = np.flatnonzero(c.side != 0)
-    B_uncut = V.basis.with_elements(uncut)
-    H_uncut = np.broadcast_to(c.side[uncut, None].astype(float), B_uncut.dx.shape)
-    K = form.assemble(B_uncut, H=np.array(H_uncut))
-    rule = subcell_rule(c.sub_ref, c.sub_cell, _orders(mesh)[1], values=c.sub_side)
-    B_cut = Basis(mesh, V.basis.elem, elements=rule.cells, quadrature=(rule.X, rule.W))
-    return (K + form.assemble(B_cut, H=rule.V)).tocsr()
+    form = signed_stiffness_form(material, V.mesh.dim())
+    K = 0
+    for b, H in _signed_basis(V.mesh, V.cut, V.basis.elem, V.basis.quadrature):
+        K = K + form.assemble(b, H=H)
+    return K.tocsr()
 
 
 def stiffness(V: XSpace, material: Material) -> sp.csr_matrix:

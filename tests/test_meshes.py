@@ -1,0 +1,178 @@
+"""Tests for skxfem.meshes: boxes of five cell types, mesh checks, file input."""
+import meshio
+import numpy as np
+import pytest
+from skfem import Basis, MeshHex1, MeshLine1, MeshQuad1, MeshTet1, MeshTri1, MeshTri2, MeshWedge1
+from skfem.io.meshio import to_meshio
+
+from skxfem.meshes import CELLS, box, cell_name, check_mesh, read
+from skxfem.quadrature import cell_rule, wedge_rule
+
+N3, SIZE3 = (2, 3, 5), (1.5, 2.0, 0.5)
+N2, SIZE2 = (3, 4), (1.5, 2.0)
+
+
+def shape(cell):
+    return (N2, SIZE2) if cell in ("tri", "quad") else (N3, SIZE3)
+
+
+def volume(mesh):
+    return Basis(mesh, mesh.elem(), quadrature=cell_rule(mesh)).dx.sum()
+
+
+# cells per box, and facets per named face, for n = (nx, ny[, nz])
+NCELLS = {"tri": lambda n: 2 * n[0] * n[1], "quad": lambda n: n[0] * n[1],
+          "tet": lambda n: 6 * np.prod(n), "hex": lambda n: np.prod(n),
+          "prism": lambda n: 2 * np.prod(n)}
+
+
+def faces_per_square(cell, axis):
+    """Boundary facets per grid square of the face normal to ``axis``."""
+    if cell in ("tri", "quad", "hex"):
+        return 1
+    if cell == "tet":
+        return 2
+    return 2 if axis == 0 else 1     # prism: triangles on x = const, quads elsewhere
+
+
+@pytest.mark.parametrize("cell", list(CELLS))
+def test_box_counts_volume_and_name(cell):
+    n, size = shape(cell)
+    mesh = box(n, cell, size=size)
+    assert type(mesh) is CELLS[cell] and cell_name(mesh) == cell
+    assert mesh.nelements == NCELLS[cell](n)
+    assert abs(volume(mesh) - np.prod(size)) < 1e-12
+    assert np.allclose(mesh.p.min(axis=1), 0) and np.allclose(mesh.p.max(axis=1), size)
+    assert check_mesh(mesh, dim=len(n)) is mesh
+
+
+@pytest.mark.parametrize("cell", list(CELLS))
+def test_box_named_boundaries(cell):
+    n, size = shape(cell)
+    mesh = box(n, cell, size=size)
+    dim = len(n)
+    names = [a + e for a in "xyz"[:dim] for e in ("min", "max")]
+    assert sorted(mesh.boundaries) == sorted(names)
+    bnd = mesh.boundary_facets()
+    tagged = np.concatenate([mesh.boundaries[k] for k in names])
+    assert np.array_equal(np.sort(tagged), np.sort(bnd)), \
+        "every boundary facet must be on exactly one face of the box"
+    for d in range(dim):
+        squares = np.prod([n[k] for k in range(dim) if k != d])
+        for end, value in (("min", 0.0), ("max", size[d])):
+            facets = mesh.boundaries["xyz"[d] + end]
+            assert len(facets) == squares * faces_per_square(cell, d)
+            assert np.allclose(mesh.p[d, mesh.facets[:, facets]], value)
+
+
+def test_box_accepts_one_number_for_all_directions():
+    mesh = box(2, "hex", size=3.0)
+    assert mesh.nelements == 8 and abs(volume(mesh) - 27.0) < 1e-12
+
+
+def test_prism_box_follows_the_paper():
+    nx, ny, nz = 2, 3, 3
+    mesh = box((nx, ny, nz), "prism")
+    p, t = mesh.p, mesh.t
+    # bottom (0, 1, 2) and top (3, 4, 5) triangles each lie in a plane x = const ...
+    assert np.all(np.ptp(p[0, t[:3]], axis=0) == 0)
+    assert np.all(np.ptp(p[0, t[3:]], axis=0) == 0)
+    # ... and the prism edges 0-3, 1-4, 2-5 run along +x
+    assert np.allclose(p[1:, t[3:]], p[1:, t[:3]])
+    assert np.all(p[0, t[3:]] - p[0, t[:3]] > 0)
+    # 2 * ny * nz triangles per x-layer
+    assert mesh.nelements == nx * 2 * ny * nz
+    # positive orientation at every quadrature point of the prism rule
+    X, _ = wedge_rule(2)
+    assert np.all(mesh.mapping().detDF(X) > 0)
+    # the plane z = 0.5 (odd nz) cuts edges, some of them diagonals of (y, z) squares
+    e = p[:, mesh.edges]                                # (3, 2, nedges)
+    cut = (e[2, 0] - 0.5) * (e[2, 1] - 0.5) < 0
+    assert np.any(cut)
+    assert np.any(cut & (e[1, 0] != e[1, 1])), "some cut edges must be diagonals"
+    assert np.all(e[0, 0, cut] == e[0, 1, cut]), "no cut edge runs along x"
+
+
+def test_box_rejects_bad_input():
+    with pytest.raises(ValueError, match="cell"):
+        box(2, "wedge")
+    with pytest.raises(ValueError, match="n must"):
+        box((2, 2), "hex")
+    with pytest.raises(ValueError, match="n must"):
+        box(0, "tri")
+    with pytest.raises(ValueError, match="size must"):
+        box(2, "quad", size=(1.0, -1.0))
+
+
+# check_mesh --------------------------------------------------------------------
+
+def test_check_mesh_rejects_unsupported_types():
+    for mesh in (MeshTri2(), MeshLine1()):
+        with pytest.raises(TypeError, match="MeshTri1, MeshQuad1, MeshTet1"):
+            check_mesh(mesh)
+
+
+def test_check_mesh_rejects_nan_and_wrong_dimension():
+    p = MeshTri1().p.copy()
+    p[0, 1] = np.nan
+    with pytest.raises(ValueError, match="NaN"):
+        check_mesh(MeshTri1(p, MeshTri1().t))
+    with pytest.raises(ValueError, match="3D"):
+        check_mesh(box(1, "quad"), dim=3)
+
+
+def test_check_mesh_accepts_skfem_node_orders():
+    # scikit-fem's own meshes mix orientations (MeshTri1 sorts its cells):
+    # they are valid and must pass
+    x = np.linspace(0, 1, 3)
+    for mesh in (MeshTri1.init_tensor(x, x), MeshQuad1.init_tensor(x, x),
+                 MeshTet1.init_tensor(x, x, x), MeshHex1.init_tensor(x, x, x),
+                 MeshWedge1()):
+        check_mesh(mesh)
+
+
+def test_check_mesh_rejects_folded_and_flat_cells():
+    hex_ = MeshHex1()
+    p = hex_.p.copy()
+    corner = np.argmax(p.sum(axis=0))                  # vertex (1, 1, 1)
+    p[:, corner] = [-0.5, -0.5, -0.5]                  # pulled through the cell
+    with pytest.raises(ValueError, match="inverted"):
+        check_mesh(MeshHex1(p, hex_.t))
+    wedge = box(1, "prism")
+    p = wedge.p.copy()
+    p[0, wedge.t[3, 0]] = -1.0                          # a top vertex behind the bottom
+    with pytest.raises(ValueError, match="inverted"):
+        check_mesh(MeshWedge1(p, wedge.t))
+    flat = MeshTri1(np.array([[0.0, 1.0, 2.0, 0.0], [0.0, 0.0, 0.0, 1.0]]),
+                    np.array([[0, 1, 2], [0, 1, 3]]).T)
+    with pytest.raises(ValueError, match="degenerate"):
+        check_mesh(flat)
+
+
+# read ---------------------------------------------------------------------------
+
+@pytest.mark.parametrize("cell, meshio_type", [("tri", "triangle"), ("quad", "quad"),
+                                               ("tet", "tetra"), ("hex", "hexahedron"),
+                                               ("prism", "wedge")])
+def test_read_gmsh_file(tmp_path, cell, meshio_type):
+    n, size = shape(cell)
+    mesh = box(n, cell, size=size)
+    written = to_meshio(mesh)          # scikit-fem knows meshio's node orders
+    points = np.c_[written.points, np.zeros((mesh.nvertices, 3 - mesh.dim()))]
+    assert written.cells[0].type == meshio_type
+    tags = {"gmsh:physical": [np.ones(mesh.nelements, int)],
+            "gmsh:geometrical": [np.ones(mesh.nelements, int)]}
+    path = str(tmp_path / "box.msh")
+    meshio.write(path, meshio.Mesh(points, written.cells, cell_data=tags),
+                 file_format="gmsh22", binary=False)
+    back = read(path)
+    assert type(back) is CELLS[cell] and back.nelements == mesh.nelements
+    assert back.dim() == mesh.dim()
+    assert abs(volume(back) - np.prod(size)) < 1e-12
+
+
+def test_read_rejects_files_without_supported_cells(tmp_path):
+    path = str(tmp_path / "lines.vtu")
+    meshio.write(path, meshio.Mesh(np.eye(3), [("line", np.array([[0, 1], [1, 2]]))]))
+    with pytest.raises(ValueError, match="no supported cells"):
+        read(path)

@@ -1,0 +1,115 @@
+"""Patch tests: states the discrete space reproduces exactly give exact tractions.
+
+Uniaxial compression (bottom on rollers, rigid motions removed at two or
+three nodes, lateral faces free, pressure p on the top): σ = -p e_z ⊗ e_z, so
+on an interface tilted by θ the traction is r = σn = -p cosθ e_z, whose normal
+part gives the contact pressure p cos²θ and whose tangential part has
+magnitude p cosθ sinθ.
+
+A frictionless (``bilateral``) tie carries no tangential traction, so on a
+tilted interface uniaxial compression is *not* an equilibrium state of the
+tied body (the upper part slides).  Its patch test is hydrostatic
+compression, σ = -p I: pressure p on every face, traction -p n on any plane.
+"""
+import numpy as np
+import pytest
+
+from skxfem.levelset import plane
+from skxfem.material import Material
+from skxfem.scene import Box, Displacement, Scene, SurfaceLoad, rollers
+from skxfem.solver import solve
+
+CELLS = ["tri", "quad", "tet", "hex", "prism"]
+P = 1.0
+
+
+def at(*coords):
+    """A selection of the node(s) at the given coordinates."""
+    return lambda x: np.all([np.abs(x[i] - c) < 1e-12 for i, c in enumerate(coords)], axis=0)
+
+
+def geometry(cell, theta, delta):
+    """Mesh with 4 cells per side, interface at ``delta``·h above the node row
+    through the centre, tilted by ``theta`` about the out-of-plane axis."""
+    dim = 2 if cell in ("tri", "quad") else 3
+    h = 0.25
+    if dim == 2:
+        normal = (np.sin(theta), np.cos(theta))
+        point = (0.5, 0.5 + delta * h)
+    else:
+        normal = (np.sin(theta), 0.0, np.cos(theta))
+        point = (0.5, 0.5, 0.5 + delta * h)
+    return dim, Box(4, cell), plane(point, normal), np.array(normal)
+
+
+def uniaxial(cell, theta, delta, law):
+    dim, mesh, psi, n = geometry(cell, theta, delta)
+    up = "xyz"[dim - 1]
+    origin = (0.0,) * dim
+    if dim == 2:
+        fix = (Displacement(at(*origin), {"x": 0.0}),)
+    else:
+        fix = (Displacement(at(*origin), {"x": 0.0, "y": 0.0}),
+               Displacement(at(1.0, 0.0, 0.0), {"y": 0.0}))
+    scene = Scene(mesh, psi, Material(1.0, 0.3), (rollers(up + "min"),) + fix,
+                  (SurfaceLoad(up + "max", pressure=P),), law)
+    return scene, n
+
+
+def hydrostatic(cell, theta, delta, law):
+    dim, mesh, psi, n = geometry(cell, theta, delta)
+    faces = [a + s for a in "xyz"[:dim] for s in ("min", "max")]
+    if dim == 2:
+        fix = (Displacement(at(0.0, 0.0), {"x": 0.0, "y": 0.0}),
+               Displacement(at(1.0, 0.0), {"y": 0.0}))
+    else:
+        fix = (Displacement(at(0.0, 0.0, 0.0), {"x": 0.0, "y": 0.0, "z": 0.0}),
+               Displacement(at(1.0, 0.0, 0.0), {"y": 0.0, "z": 0.0}),
+               Displacement(at(0.0, 1.0, 0.0), {"z": 0.0}))
+    scene = Scene(mesh, psi, Material(1.0, 0.3), fix,
+                  tuple(SurfaceLoad(f, pressure=P) for f in faces), law)
+    return scene, n
+
+
+def tractions(result, n):
+    """(normal pressure, tangential traction vectors) at the multiplier points."""
+    r = result.traction
+    pn = -(r * n[:, None]).sum(0)
+    tangential = r + pn[None, :] * n[:, None]
+    return pn, tangential
+
+
+@pytest.mark.parametrize("cell", CELLS)
+@pytest.mark.parametrize("delta", [0.5, 0.1, 1e-3])
+@pytest.mark.parametrize("theta", [0.0, np.deg2rad(20)])
+def test_bonded_uniaxial(cell, delta, theta):
+    result = solve(uniaxial(cell, theta, delta, "bonded")[0])
+    _, n = uniaxial(cell, theta, delta, "bonded")
+    pn, tang = tractions(result, n)
+    assert np.abs(result.pressure - P * np.cos(theta) ** 2).max() < 1e-9 * P
+    assert np.abs(pn - P * np.cos(theta) ** 2).max() < 1e-9 * P
+    # tangential traction: magnitude p cosθ sinθ, along -e_z's tangential part
+    expected = -P * np.cos(theta) * (np.eye(len(n))[-1] - np.cos(theta) * n)
+    assert np.abs(tang - expected[:, None]).max() < 1e-9 * P
+    assert abs(np.linalg.norm(expected) - P * np.cos(theta) * np.sin(theta)) < 1e-14
+    assert result.max_jump < 1e-10
+
+
+@pytest.mark.parametrize("cell", CELLS)
+@pytest.mark.parametrize("delta", [0.5, 0.1, 1e-3])
+def test_bilateral_uniaxial_horizontal(cell, delta):
+    result = solve(uniaxial(cell, 0.0, delta, "bilateral")[0])
+    assert np.abs(result.pressure - P).max() < 1e-9 * P
+    assert result.max_jump < 1e-10
+
+
+@pytest.mark.parametrize("cell", CELLS)
+@pytest.mark.parametrize("delta", [0.5, 0.1, 1e-3])
+@pytest.mark.parametrize("law", ["bonded", "bilateral"])
+def test_hydrostatic_tilted(cell, delta, law):
+    scene, n = hydrostatic(cell, np.deg2rad(20), delta, law)
+    result = solve(scene)
+    pn, tang = tractions(result, n)
+    assert np.abs(result.pressure - P).max() < 1e-9 * P
+    assert np.abs(tang).max() < 1e-9 * P
+    assert result.max_jump < 1e-10
