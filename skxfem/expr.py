@@ -1,0 +1,251 @@
+r"""A safe expression language for scene files.
+
+Scene files describe level sets, imposed displacements and loads as short
+formulas such as ``"z - 0.5 - 0.2*x"`` or ``"4*y*(1 - y)"``.  A scene file must
+never run code, so the formula is *not* handed to :func:`eval`: it is parsed with
+:func:`ast.parse` and the syntax tree is checked against a whitelist, then
+evaluated by walking the tree over numpy arrays.
+
+Allowed in every expression
+
+* numbers (``1``, ``0.5``, ``1e-9``), the coordinates ``x``, ``y``, ``z`` and ``pi``;
+* ``+ - * / **``, unary ``-`` and ``+``, parentheses.
+
+Allowed only in selections (``boolean=True``, e.g. ``where = "x < 1e-9"``)
+
+* comparisons ``< <= > >= == !=`` (chains such as ``0 < x < 1`` too);
+* ``and``, ``or``, ``not``.
+
+Everything else (function calls, attribute access, subscripts, strings, lambdas,
+comprehensions, other names ...) is refused with a :class:`ValueError` naming the
+construct.  Coordinates follow scikit-fem: ``x`` has shape ``(dim, ...)`` and
+``x[0]``, ``x[1]``, ``x[2]`` are called ``x``, ``y``, ``z``.
+
+>>> import numpy as np
+>>> f = Expression("4*x*(1 - x)", dim=2)
+>>> f(np.array([[0.0, 0.5], [0.0, 0.0]]))
+array([0., 1.])
+>>> Expression("sin(x)", dim=2)  # doctest: +ELLIPSIS
+Traceback (most recent call last):
+...
+ValueError: function call 'sin(x)' is not allowed in expression 'sin(x)'; allowed: ...
+"""
+from __future__ import annotations
+
+import ast
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+__all__ = ["MAX_DEPTH", "MAX_LENGTH", "Expression", "compile_expression"]
+
+MAX_LENGTH = 1000
+"""Longest expression text accepted, in characters."""
+MAX_DEPTH = 100
+"""Deepest syntax tree accepted (nested operations)."""
+
+_COORDS = ("x", "y", "z")
+_ARITH = {ast.Add: np.add, ast.Sub: np.subtract, ast.Mult: np.multiply,
+          ast.Div: np.divide, ast.Pow: np.power}
+_COMPARE = {ast.Lt: np.less, ast.LtE: np.less_equal, ast.Gt: np.greater,
+            ast.GtE: np.greater_equal, ast.Eq: np.equal, ast.NotEq: np.not_equal}
+_NAMES = {ast.Call: "function call", ast.Attribute: "attribute access",
+          ast.Subscript: "subscript", ast.Lambda: "lambda", ast.IfExp: "if-else",
+          ast.ListComp: "comprehension", ast.SetComp: "comprehension",
+          ast.DictComp: "comprehension", ast.GeneratorExp: "comprehension",
+          ast.List: "list", ast.Tuple: "tuple", ast.Dict: "dict", ast.Set: "set",
+          ast.NamedExpr: "assignment (:=)", ast.JoinedStr: "string",
+          ast.Starred: "starred expression", ast.Slice: "slice",
+          ast.Await: "await", ast.Yield: "yield", ast.YieldFrom: "yield"}
+
+
+@dataclass(frozen=True)
+class Expression:
+    """A checked formula in ``x, y, z`` that evaluates on numpy arrays.
+
+    Parameters
+    ----------
+    text
+        The formula, at most :data:`MAX_LENGTH` characters.
+    dim
+        Number of coordinates (2 or 3); ``z`` is refused when ``dim == 2``.
+    boolean
+        ``True`` for a selection (comparisons, ``and``/``or``/``not``) that
+        returns a boolean array; ``False`` for a number-valued formula.
+
+    Raises
+    ------
+    ValueError
+        If the text is not a valid formula of the requested kind.
+
+    >>> import numpy as np
+    >>> where = Expression("x < 0.5 and not y > 0.5", dim=2, boolean=True)
+    >>> where(np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0]]))
+    array([ True, False, False])
+    """
+
+    text: str
+    dim: int
+    boolean: bool = False
+    _tree: ast.expr = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        if not isinstance(self.text, str):
+            raise TypeError(f"expression must be a string, got {self.text!r}")
+        if self.dim not in (2, 3):
+            raise ValueError(f"expression dim must be 2 or 3, got {self.dim!r}")
+        if not self.text.strip():
+            raise ValueError("expression is empty")
+        if len(self.text) > MAX_LENGTH:
+            raise ValueError(f"expression is {len(self.text)} characters long; "
+                             f"at most {MAX_LENGTH} are allowed")
+        try:
+            tree = ast.parse(self.text.strip(), mode="eval").body
+        except SyntaxError as e:
+            raise ValueError(f"expression {_short(self.text)} is not valid: {e.msg}") from None
+        except (RecursionError, MemoryError):
+            raise ValueError(f"expression {_short(self.text)} is nested too deeply") from None
+        kind = _check(tree, self, 0)
+        wanted = "bool" if self.boolean else "num"
+        if kind != wanted:
+            raise ValueError(
+                f"expression {_short(self.text)} must be a "
+                + ("condition such as 'x < 0.5'" if self.boolean else "number-valued formula"))
+        object.__setattr__(self, "_tree", tree)
+
+    def __call__(self, x: ArrayLike) -> np.ndarray:
+        """Evaluate at points ``x`` of shape ``(dim, ...)``; return shape ``(...)``.
+
+        Raises :class:`ValueError` if a number-valued result is NaN or infinite.
+        """
+        x = np.asarray(x, dtype=float)
+        if x.ndim == 0 or x.shape[0] != self.dim:
+            raise ValueError(f"expression {_short(self.text)} is {self.dim}D but got points of "
+                             f"shape {x.shape}; expected ({self.dim}, ...)")
+        with np.errstate(all="ignore"):
+            value = _evaluate(self._tree, x)
+        value = np.broadcast_to(value, x.shape[1:])
+        if self.boolean:
+            return value.astype(bool)
+        value = value.astype(float)
+        if not np.all(np.isfinite(value)):
+            raise ValueError(f"expression {_short(self.text)} gives NaN or inf at some points")
+        return value
+
+
+def compile_expression(text: str, dim: int, boolean: bool = False) -> Expression:
+    """Check ``text`` and return it as a callable :class:`Expression`.
+
+    >>> import numpy as np
+    >>> compile_expression("2*pi", 3)(np.zeros((3, 2)))
+    array([6.28318531, 6.28318531])
+    """
+    return Expression(text, dim, boolean)
+
+
+def _short(text: str, limit: int = 60) -> str:
+    """``text`` quoted, cut to ``limit`` characters for error messages."""
+    return repr(text) if len(text) <= limit else repr(text[:limit]) + "..."
+
+
+def _allowed(expr: Expression) -> str:
+    names = ", ".join(_COORDS[:expr.dim] + ("pi",))
+    text = f"numbers, {names}, + - * / ** and parentheses"
+    return text + (", comparisons, and, or, not" if expr.boolean else "")
+
+
+def _refuse(node: ast.AST, expr: Expression, what: str | None = None):
+    what = what or _NAMES.get(type(node), type(node).__name__)
+    snippet = ast.get_source_segment(expr.text.strip(), node) or ""
+    raise ValueError(f"{what} {_short(snippet)} is not allowed in expression {_short(expr.text)}; "
+                     f"allowed: {_allowed(expr)}")
+
+
+def _check(node: ast.AST, expr: Expression, depth: int) -> str:
+    """Return ``"num"`` or ``"bool"`` for ``node``, or raise ValueError."""
+    if depth > MAX_DEPTH:
+        raise ValueError(f"expression {_short(expr.text)} is nested more than "
+                         f"{MAX_DEPTH} levels deep")
+    sub = [_check(c, expr, depth + 1) for c in _children(node, expr)]
+    if isinstance(node, ast.Constant):
+        if isinstance(node.value, str):
+            _refuse(node, expr, "string")
+        if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
+            _refuse(node, expr, "constant")
+        return "num"
+    if isinstance(node, ast.Name):
+        if node.id == "z" and expr.dim == 2:
+            raise ValueError(f"expression {_short(expr.text)} uses z but the mesh is 2D")
+        if node.id not in _COORDS and node.id != "pi":
+            _refuse(node, expr, "name")
+        return "num"
+    if isinstance(node, ast.BinOp) and sub == ["num", "num"]:
+        return "num"
+    if (isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd))
+            and sub == ["num"]):
+        return "num"
+    if expr.boolean:
+        if isinstance(node, ast.Compare) and set(sub) == {"num"}:
+            return "bool"
+        if isinstance(node, ast.BoolOp) and set(sub) == {"bool"}:
+            return "bool"
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not) and sub == ["bool"]:
+            return "bool"
+    is_condition = isinstance(node, (ast.Compare, ast.BoolOp)) or (
+        isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not))
+    if is_condition and not expr.boolean:
+        _refuse(node, expr, "condition (comparisons, and, or, not: only in selections)")
+    if isinstance(node, (ast.BinOp, ast.UnaryOp, ast.Compare, ast.BoolOp)):
+        _refuse(node, expr, "mixing numbers and conditions in")
+    _refuse(node, expr)
+
+
+def _children(node: ast.AST, expr: Expression) -> list[ast.AST]:
+    """The operands of an allowed node; refuse disallowed operators early."""
+    if isinstance(node, ast.BinOp):
+        if type(node.op) not in _ARITH:
+            _refuse(node, expr, f"operator {type(node.op).__name__}")
+        return [node.left, node.right]
+    if isinstance(node, ast.UnaryOp):
+        if not isinstance(node.op, (ast.USub, ast.UAdd, ast.Not)):
+            _refuse(node, expr, f"operator {type(node.op).__name__}")
+        return [node.operand]
+    if isinstance(node, ast.Compare):
+        for op in node.ops:
+            if type(op) not in _COMPARE:
+                _refuse(node, expr, f"comparison {type(op).__name__}")
+        return [node.left, *node.comparators]
+    if isinstance(node, ast.BoolOp):
+        return list(node.values)
+    return []
+
+
+def _evaluate(node: ast.AST, x: np.ndarray):
+    """Walk a checked tree; numbers become floats so ``9**9**9`` overflows to inf."""
+    if isinstance(node, ast.Constant):
+        return np.float64(node.value)
+    if isinstance(node, ast.Name):
+        return np.pi if node.id == "pi" else x[_COORDS.index(node.id)]
+    if isinstance(node, ast.BinOp):
+        return _ARITH[type(node.op)](_evaluate(node.left, x), _evaluate(node.right, x))
+    if isinstance(node, ast.UnaryOp):
+        value = _evaluate(node.operand, x)
+        if isinstance(node.op, ast.Not):
+            return np.logical_not(value)
+        return -value if isinstance(node.op, ast.USub) else +value
+    if isinstance(node, ast.Compare):
+        result, left = True, _evaluate(node.left, x)
+        for op, comparator in zip(node.ops, node.comparators, strict=True):
+            right = _evaluate(comparator, x)
+            result = np.logical_and(result, _COMPARE[type(op)](left, right))
+            left = right
+        return result
+    if isinstance(node, ast.BoolOp):
+        combine = np.logical_and if isinstance(node.op, ast.And) else np.logical_or
+        values = [_evaluate(v, x) for v in node.values]
+        result = values[0]
+        for v in values[1:]:
+            result = combine(result, v)
+        return result
+    raise AssertionError(f"unchecked node {type(node).__name__}")  # _check prevents this

@@ -1,0 +1,119 @@
+r"""Built-in benchmark scenes.
+
+* :func:`paper_plate`: the 3D plate of Géniaut, Massin & Moës (2007), §5;
+* :func:`strip`: its 2D plane-strain analogue.
+
+Both are plain :class:`~skxfem.scene.Scene` objects: change a field with
+``dataclasses.replace(scene, space=...)``.  ``examples/plate.toml`` and
+``examples/strip.toml`` describe the same set-ups as scene files.
+
+>>> scene = paper_plate(n=2)
+>>> scene.mesh
+Box(n=(2, 2, 3), cell='hex', size=(1.0, 1.0, 1.0))
+"""
+from __future__ import annotations
+
+from .expr import Expression
+from .levelset import plane
+from .material import Material
+from .scene import Box, Scene, SurfaceLoad, clamped, rollers
+
+__all__ = ["paper_plate", "strip", "P_MAX"]
+
+P_MAX = 1.0
+"""Peak of the parabolic pressure, P_max = 1 Pa as in the paper."""
+
+
+def _odd_cells(n: int, nz: int | None, key: str) -> int:
+    if not (isinstance(n, int) and not isinstance(n, bool) and n >= 1):
+        raise ValueError(f"n must be a positive integer, got {n!r}")
+    if nz is None:
+        return n if n % 2 == 1 else n + 1
+    if not (isinstance(nz, int) and not isinstance(nz, bool) and nz >= 1 and nz % 2 == 1):
+        raise ValueError(f"{key} must be an odd positive integer so that the interface "
+                         f"at 0.5 cuts a layer of cells, got {nz!r}")
+    return nz
+
+
+def paper_plate(n: int = 4, cell: str = "hex", nz: int | None = None,
+                law: str = "bonded", space: str = "naive") -> Scene:
+    """The plate under non-uniform compression of the paper, §5 (Figures 4, 5, 7-10).
+
+    From the paper: a 3D elastic plate whose bottom face is clamped, a parabolic
+    pressure p(y) on the top face with P_max = 1 Pa, an interface Γ crossing the
+    whole plate at z = 0.5 m, regular meshes of hexahedra or of prisms
+    ("pentahedrons") with an *odd* number of cells in z so that Γ cuts cells,
+    and 1/h cells in y and z; frictional contact with a Coulomb coefficient
+    "high enough to have adherence", i.e. the interface sticks: ``law="bonded"``.
+
+    Assumed here, because the paper does not state it:
+
+    * Ω = [0, 1]³ (Γ at z = 0.5 m suggests a unit height; the pressure
+      reference curve 4 P_max y (1 - y) needs y ∈ [0, 1]);
+    * p(y) = 4 P_max y (1 - y), the parabola vanishing at y = 0 and y = 1;
+    * E = 1 Pa, ν = 0.3 (the contact pressure of this test does not depend on E);
+    * rollers u_x = 0 on the faces x = 0 and x = 1, so that the solution does
+      not depend on x and is the plane-strain solution of :func:`strip`;
+    * the paper's reference contact pressure is p(y) itself ("the analytical
+      solution ... equal to the prescribed pressure p(y)").  For an elastic
+      block this is an approximation: only the resultant, ∫ σ_zz dy = ∫ p dy on
+      every plane z = const, is exact;
+    * n cells in x as in y (the paper does not give the count along x).
+
+    Parameters
+    ----------
+    n
+        Cells in x and y (for prisms: n squares in y, each cut into 2 triangles).
+    cell
+        ``"hex"`` or ``"prism"`` (prisms: triangles in the (y, z) plane extruded
+        along x, as in the paper's Figure 4).
+    nz
+        Cells in z, odd; default ``n`` if odd else ``n + 1``.
+    law, space
+        Interface law and multiplier space (see :data:`skxfem.scene.LAWS`).
+    """
+    if cell not in ("hex", "prism"):
+        raise ValueError(f"cell must be 'hex' or 'prism' for the paper plate, got {cell!r}")
+    nz = _odd_cells(n, nz, "nz")
+    return Scene(
+        mesh=Box((n, n, nz), cell, (1.0, 1.0, 1.0)),
+        levelset=plane(point=(0.0, 0.0, 0.5), normal=(0.0, 0.0, 1.0)),
+        material=Material(E=1.0, nu=0.3, plane="strain"),
+        displacements=(clamped("zmin"), rollers("xmin"), rollers("xmax")),
+        loads=(SurfaceLoad("zmax", pressure=Expression(f"4*{P_MAX}*y*(1 - y)", 3)),),
+        law=law, space=space, name=f"paper_plate_{cell}_{n}x{n}x{nz}")
+
+
+def strip(n: int = 4, cell: str = "quad", ny: int | None = None,
+          law: str = "bonded", space: str = "naive") -> Scene:
+    """The 2D plane-strain analogue of :func:`paper_plate` on [0, 1]².
+
+    The plate's coordinates (y, z) become (x, y): the bottom y = 0 is clamped,
+    the pressure p(x) = 4 P_max x (1 - x) acts on the top y = 1, Γ is the line
+    y = 0.5 (Ω⁻ below) and the sides x = 0, x = 1 are free.  Same material
+    assumptions as :func:`paper_plate` (E = 1, ν = 0.3, plane strain).
+
+    Parameters
+    ----------
+    n
+        Cells in x.
+    cell
+        ``"quad"`` or ``"tri"``.
+    ny
+        Cells in y, odd; default ``n`` if odd else ``n + 1``.
+    law, space
+        Interface law and multiplier space.
+
+    >>> strip(n=2, cell="tri").mesh
+    Box(n=(2, 3), cell='tri', size=(1.0, 1.0))
+    """
+    if cell not in ("quad", "tri"):
+        raise ValueError(f"cell must be 'quad' or 'tri' for the strip, got {cell!r}")
+    ny = _odd_cells(n, ny, "ny")
+    return Scene(
+        mesh=Box((n, ny), cell, (1.0, 1.0)),
+        levelset=plane(point=(0.0, 0.5), normal=(0.0, 1.0)),
+        material=Material(E=1.0, nu=0.3, plane="strain"),
+        displacements=(clamped("ymin"),),
+        loads=(SurfaceLoad("ymax", pressure=Expression(f"4*{P_MAX}*x*(1 - x)", 2)),),
+        law=law, space=space, name=f"strip_{cell}_{n}x{ny}")

@@ -1,0 +1,289 @@
+"""Scenes in Python: validation, boundary conditions on all five cells, benchmarks."""
+import dataclasses
+
+import meshio
+import numpy as np
+import pytest
+from skfem import Basis, ElementVector, MeshTri1
+
+from skxfem import scene as sc
+from skxfem.expr import Expression
+from skxfem.levelset import circle, nodal_values, plane, sphere
+from skxfem.material import Material
+from skxfem.meshes import box
+from skxfem.scene import (Box, Displacement, Scene, SurfaceLoad, clamped, dirichlet,
+                          load_facets, resolve_mesh, rollers, traction)
+from skxfem.scenes import paper_plate, strip
+
+CELLS = ["tri", "quad", "tet", "hex", "prism"]
+DIM = {"tri": 2, "quad": 2, "tet": 3, "hex": 3, "prism": 3}
+
+
+def small(cell):
+    """A 2 x 3 (x 2) box, its vector basis and a level set cutting it."""
+    mesh = box((2, 3) if DIM[cell] == 2 else (2, 3, 2), cell)
+    basis = Basis(mesh, ElementVector(mesh.elem()))
+    psi = plane((0.0,) * DIM[cell], (1.0,) + (0.0,) * (DIM[cell] - 1))
+    return mesh, basis, psi
+
+
+# --- 1. the dataclasses check their fields --------------------------------------
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(n=2, cell="hexa"), "cell must be one of"),
+    (dict(n=0, cell="quad"), "Box n"),
+    (dict(n=(2, 2), cell="hex"), "3 of them"),
+    (dict(n="four", cell="quad"), "Box n"),
+    (dict(n=2.5, cell="quad"), "Box n"),
+    (dict(n=2, cell="quad", size=(1.0, -1.0)), "Box size"),
+    (dict(n=2, cell="quad", size=(1.0, 1.0, 1.0)), "Box size"),
+])
+def test_01_box_refuses_bad_fields(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        Box(**kwargs)
+
+
+def test_02_box_normalises_n_and_size():
+    assert Box(3, "hex").n == (3, 3, 3)
+    assert Box([2, 1], "tri", [2, 1]).size == (2.0, 1.0)
+
+
+@pytest.mark.parametrize("make, error, message", [
+    (lambda: Displacement("xmin", {"w": 0.0}), ValueError, "component 'w'"),
+    (lambda: Displacement("xmin", {3: 0.0}), ValueError, "component 3"),
+    (lambda: Displacement("xmin", {}), TypeError, "non-empty mapping"),
+    (lambda: Displacement("xmin", [0.0]), TypeError, "mapping"),
+    (lambda: Displacement("xmin", {"x": float("nan")}), ValueError, "finite"),
+    (lambda: Displacement("xmin", {"x": "0.1*y"}), TypeError, "number or a callable"),
+    (lambda: Displacement("xmin", {"all": 0.0, "x": 1.0}), ValueError, "either 'all'"),
+    (lambda: Displacement(3, {"x": 0.0}), TypeError, "boundary must be a name"),
+    (lambda: SurfaceLoad("ymax"), ValueError, "exactly one of"),
+    (lambda: SurfaceLoad("ymax", pressure=1.0, traction=(0, 1)), ValueError, "exactly one"),
+    (lambda: SurfaceLoad("ymax", traction=(1.0,)), TypeError, "2 or 3 components"),
+    (lambda: SurfaceLoad("ymax", pressure=True), TypeError, "pressure"),
+    (lambda: rollers("left"), ValueError, "axis-aligned face"),
+])
+def test_03_conditions_refuse_bad_fields(make, error, message):
+    with pytest.raises(error, match=message):
+        make()
+
+
+def test_04_components_are_stored_by_name():
+    assert Displacement("ymin", {0: 1, 2: 0.5}).components == {"x": 1.0, "z": 0.5}
+    assert clamped("zmin").components == {"all": 0.0}
+    assert rollers("ymax").components == {"y": 0.0}
+
+
+QUAD = Box(2, "quad")
+LINE = plane((0.0, 0.5), (0.0, 1.0))
+
+
+@pytest.mark.parametrize("kwargs, error, message", [
+    (dict(mesh=1.0), TypeError, "Scene mesh"),
+    (dict(levelset=lambda x: x[0]), TypeError, "Scene levelset"),
+    (dict(levelset=sphere((0, 0, 0), 1.0)), ValueError, "is 3D but the mesh is 2D"),
+    (dict(material={"E": 1}), TypeError, "Scene material"),
+    (dict(displacements=(clamped("xmin"), 1)), TypeError, "Scene displacements"),
+    (dict(loads=clamped("xmin")), TypeError, "Scene loads"),
+    (dict(law="glued"), ValueError, "Scene law must be one of"),
+    (dict(space="fancy"), ValueError, "Scene space must be one of"),
+    (dict(quadrature_order=0), ValueError, "quadrature_order"),
+    (dict(quadrature_order=2.0), ValueError, "quadrature_order"),
+    (dict(name=""), ValueError, "Scene name"),
+    (dict(displacements=(Displacement("xmin", {"z": 0.0}),)), ValueError,
+     r"displacements\[0\]: component 'z' does not exist on a 2D mesh"),
+    (dict(loads=(SurfaceLoad("ymax", traction=(0, 0, 1)),)), ValueError,
+     r"loads\[0\]: traction has 3 components but the mesh is 2D"),
+])
+def test_05_scene_refuses_bad_fields(kwargs, error, message):
+    with pytest.raises(error, match=message):
+        Scene(**{"mesh": QUAD, "levelset": LINE, **kwargs})
+
+
+def test_06_scenes_are_frozen_and_replace_makes_variants(monkeypatch):
+    s = Scene(QUAD, LINE, displacements=[clamped("ymin")])
+    assert s.displacements == (clamped("ymin"),)             # lists become tuples
+    assert dataclasses.replace(s, law="bilateral").law == "bilateral"
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        s.law = "bilateral"
+    with pytest.raises(ValueError, match="space"):
+        dataclasses.replace(s, space="vital")
+    monkeypatch.setattr(sc, "SPACES", sc.SPACES + ("vital",))  # another module extends it
+    assert dataclasses.replace(s, space="vital").space == "vital"
+
+
+# --- 2. meshes ------------------------------------------------------------------
+
+def test_07_resolve_mesh_builds_checks_or_reads(tmp_path):
+    m = resolve_mesh(Scene(Box((2, 3), "tri"), LINE))
+    assert type(m).__name__ == "MeshTri1" and m.nelements == 12
+    given = box(2, "hex")
+    assert resolve_mesh(Scene(given, plane((0, 0, .5), (0, 0, 1)))) is given
+    tets = box(1, "tet")
+    meshio.write(tmp_path / "m.vtu", meshio.Mesh(tets.p.T, [("tetra", tets.t.T)]))
+    assert resolve_mesh(Scene(tmp_path / "m.vtu", plane((0, 0, .5), (0, 0, 1)))).nelements == 6
+
+
+def test_08_resolve_mesh_refuses_nan_coordinates_and_dimension_mismatch(tmp_path):
+    bad = MeshTri1()
+    bad.doflocs[0, 0] = np.nan          # skfem meshes are frozen; this edits p in place
+    with pytest.raises(ValueError, match="NaN"):
+        resolve_mesh(Scene(bad, LINE))
+    box(1, "hex").save(tmp_path / "m.vtu")          # scikit-fem's writer orders the nodes
+    with pytest.raises(ValueError, match="is 2D but the mesh is 3D"):
+        resolve_mesh(Scene(tmp_path / "m.vtu", LINE))
+
+
+# --- 3. imposed displacements on the five cell types ----------------------------
+
+@pytest.mark.parametrize("cell", CELLS)
+def test_09_clamped_face_imposes_every_component_of_its_nodes(cell):
+    mesh, basis, psi = small(cell)
+    dofs, values = dirichlet(Scene(mesh, psi, displacements=(clamped("xmin"),)), mesh, basis)
+    nodes = np.flatnonzero(np.isclose(mesh.p[0], 0.0))
+    assert nodes.size == (4 if DIM[cell] == 2 else 12)
+    np.testing.assert_array_equal(dofs, np.sort(basis.nodal_dofs[:, nodes].ravel()))
+    assert values.shape == dofs.shape and np.all(values == 0.0)
+
+
+@pytest.mark.parametrize("cell", CELLS)
+def test_10_values_selections_and_later_conditions_win(cell):
+    mesh, basis, psi = small(cell)
+    corner = Expression(" and ".join(f"{c} < 1e-9" for c in "xyz"[:DIM[cell]]),
+                        DIM[cell], boolean=True)
+    scene = Scene(mesh, psi, displacements=(
+        clamped("xmin"),
+        Displacement("xmin", {"y": lambda x: 2.0 * x[1]}),   # overrides u_y on xmin
+        Displacement(corner, {0: 7.0}),                       # one node, u_x
+        rollers("ymax")))
+    dofs, values = dirichlet(scene, mesh, basis)
+    u = dict(zip(dofs.tolist(), values.tolist(), strict=True))
+    xmin = np.flatnonzero(np.isclose(mesh.p[0], 0.0))
+    ymax = np.flatnonzero(np.isclose(mesh.p[1], 1.0))
+    for i in np.setdiff1d(xmin, ymax):
+        assert u[basis.nodal_dofs[1, i]] == pytest.approx(2.0 * mesh.p[1, i])
+        assert u[basis.nodal_dofs[0, i]] == (7.0 if i == 0 else 0.0)
+    assert np.allclose(mesh.p[:, 0], 0.0) and sum(values == 7.0) == 1
+    assert all(u[basis.nodal_dofs[1, i]] == 0.0 for i in ymax)      # rollers come last
+    expected = DIM[cell] * xmin.size + np.setdiff1d(ymax, xmin).size
+    assert dofs.size == expected
+
+
+@pytest.mark.parametrize("condition, message", [
+    (clamped("left"), "unknown boundary 'left'; available: xmax, xmin, ymax, ymin"),
+    (clamped(lambda x: x[0] > 5.0), "selects no node"),
+    (clamped(lambda x: x[0]), "one bool per point"),
+    (Displacement("xmin", {"x": lambda x: np.nan * x[0]}), "NaN"),
+    (Displacement("xmin", {"x": lambda x: np.zeros(2)}), "one value per point"),
+])
+def test_11_bad_conditions_are_refused_on_the_mesh(condition, message):
+    mesh, basis, psi = small("quad")
+    with pytest.raises(ValueError, match=message):
+        dirichlet(Scene(mesh, psi, displacements=(condition,)), mesh, basis)
+
+
+def test_12_a_z_component_on_a_2d_mesh_is_refused_by_dirichlet():
+    mesh, basis, _ = small("tri")
+    scene = Scene(Box(2, "hex"), sphere((0, 0, 0), 0.5),
+                  displacements=(Displacement("xmin", {"z": 0.0}),))
+    with pytest.raises(ValueError, match="component 'z' does not exist on a 2D mesh"):
+        dirichlet(scene, mesh, basis)
+
+
+def test_13_named_faces_work_on_meshes_without_boundaries():
+    mesh = MeshTri1.init_tensor(np.linspace(0, 2, 3), np.linspace(-1, 1, 3))
+    assert mesh.boundaries is None
+    basis = Basis(mesh, ElementVector(mesh.elem()))
+    dofs, _ = dirichlet(Scene(mesh, circle((1, 0), .5), displacements=(rollers("ymin"),)),
+                        mesh, basis)
+    np.testing.assert_array_equal(dofs, np.sort(basis.nodal_dofs[1, mesh.p[1] == -1]))
+
+
+# --- 4. loaded facets on the five cell types ------------------------------------
+
+@pytest.mark.parametrize("cell", CELLS)
+def test_14_load_facets_resolve_names_and_selections(cell):
+    mesh, _, psi = small(cell)
+    top = "ymax" if DIM[cell] == 2 else "zmax"
+    scene = Scene(mesh, psi, loads=(
+        SurfaceLoad(top, pressure=2.0),
+        SurfaceLoad(lambda x: x[0] > 1 - 1e-9, traction=(1.0,) + (0.0,) * (DIM[cell] - 1))))
+    (f1, t1), (f2, t2) = load_facets(scene, mesh)
+    np.testing.assert_array_equal(np.sort(f1), np.sort(mesh.boundaries[top]))
+    np.testing.assert_array_equal(np.sort(f2), np.sort(mesh.boundaries["xmax"]))
+    x = mesh.p[:, :3]
+    n = np.zeros_like(x)
+    n[-1] = 1.0
+    np.testing.assert_array_equal(t1(x, n), -2.0 * n)            # t = -p n
+    np.testing.assert_array_equal(t2(x, n)[0], [1.0, 1.0, 1.0])
+
+
+def test_15_traction_evaluates_callables_and_refuses_nan():
+    x = np.array([[0.0, 0.5], [1.0, 1.0]])
+    n = np.array([[0.0, 0.0], [1.0, 1.0]])
+    p = SurfaceLoad("ymax", pressure=Expression("4*x*(1 - x)", 2))
+    np.testing.assert_allclose(traction(p, x, n), [[0.0, 0.0], [0.0, -1.0]])
+    with pytest.raises(ValueError, match="NaN"):
+        traction(SurfaceLoad("ymax", pressure=lambda x: np.full(x.shape[1:], np.nan)), x, n)
+
+
+def test_16_a_load_selecting_no_facet_is_refused():
+    mesh, _, psi = small("hex")
+    scene = Scene(mesh, psi, loads=(SurfaceLoad(lambda x: x[2] > 2.0, pressure=1.0),))
+    with pytest.raises(ValueError, match=r"loads\[0\].*selects no facet"):
+        load_facets(scene, mesh)
+
+
+# --- 5. the benchmark scenes ------------------------------------------------------
+
+@pytest.mark.parametrize("cell", ["hex", "prism"])
+def test_17_paper_plate_is_the_set_up_of_section_5(cell):
+    s = paper_plate(n=4, cell=cell)
+    assert s.mesh == Box((4, 4, 5), cell, (1.0, 1.0, 1.0))
+    assert paper_plate(n=3).mesh.n == (3, 3, 3) and paper_plate(2, nz=7).mesh.n[2] == 7
+    assert s.material == Material(1.0, 0.3, "strain") and s.law == "bonded"
+    mesh = resolve_mesh(s)
+    psi = nodal_values(s.levelset, mesh)
+    assert np.all(np.abs(psi) > 0.05), "no node on Γ: the plane cuts a layer of cells"
+    np.testing.assert_allclose(psi, mesh.p[2] - 0.5)
+    basis = Basis(mesh, ElementVector(mesh.elem()))
+    dofs, values = dirichlet(s, mesh, basis)
+    bottom = np.flatnonzero(mesh.p[2] == 0.0)
+    sides = np.flatnonzero((mesh.p[0] == 0.0) | (mesh.p[0] == 1.0))
+    assert dofs.size == 3 * bottom.size + np.setdiff1d(sides, bottom).size
+    assert np.all(values == 0.0)
+    [(facets, t)] = load_facets(s, mesh)
+    np.testing.assert_array_equal(np.sort(facets), np.sort(mesh.boundaries["zmax"]))
+    y = np.array([[0.5, 0.5], [0.0, 0.5], [1.0, 1.0]])
+    np.testing.assert_allclose(t(y, np.array([[0, 0], [0, 0], [1.0, 1.0]]))[2], [0, -1.0])
+
+
+def test_18_strip_is_the_plate_in_the_y_z_plane():
+    s = strip(n=4, cell="tri")
+    assert s.mesh == Box((4, 5), "tri", (1.0, 1.0))
+    mesh = resolve_mesh(s)
+    assert np.all(np.abs(nodal_values(s.levelset, mesh)) > 0.05)
+    x = np.array([[0.0, 0.25, 0.5], [1.0, 1.0, 1.0]])
+    n = np.array([[0.0] * 3, [1.0] * 3])
+    np.testing.assert_allclose(traction(s.loads[0], x, n)[1], [0.0, -0.75, -1.0])
+
+
+@pytest.mark.parametrize("make, message", [
+    (lambda: paper_plate(4, nz=4), "nz must be an odd"),
+    (lambda: paper_plate(4, cell="tet"), "'hex' or 'prism'"),
+    (lambda: paper_plate(0), "n must be a positive"),
+    (lambda: strip(4, ny=2), "ny must be an odd"),
+    (lambda: strip(4, cell="hex"), "'quad' or 'tri'"),
+    (lambda: paper_plate(2, law="sticky"), "law"),
+])
+def test_19_benchmarks_refuse_bad_arguments(make, message):
+    with pytest.raises(ValueError, match=message):
+        make()
+
+
+def test_20_a_level_set_that_cuts_no_cell_is_refused_by_the_solver():
+    from skxfem.solver import solve
+
+    s = dataclasses.replace(strip(n=2), levelset=plane((0.0, 5.25), (0.0, 1.0)))
+    with pytest.raises(ValueError, match="cuts no cell"):
+        solve(s)

@@ -1,0 +1,200 @@
+"""Scene files (TOML): the examples parse, bad files are refused naming the key."""
+from pathlib import Path
+
+import meshio
+import numpy as np
+import pytest
+
+from skxfem.expr import Expression
+from skxfem.material import Material
+from skxfem.meshes import box
+from skxfem.scene import Box, Scene, clamped, load_scene, resolve_mesh, rollers
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+MINIMAL = '''
+[mesh]
+box = {n = 3, cell = "quad"}
+[levelset]
+expr = "y - 0.5"
+'''
+
+
+def write(tmp_path, text, name="scene.toml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def test_01_plate_example_is_the_paper_plate():
+    s = load_scene(EXAMPLES / "plate.toml")
+    assert isinstance(s, Scene) and s.name == "plate"
+    assert s.mesh == Box((4, 4, 5), "hex", (1.0, 1.0, 1.0))
+    assert s.levelset.dim == 3
+    np.testing.assert_allclose(s.levelset(np.array([[0.3], [0.7], [0.9]])), [0.4])
+    assert s.material == Material(1.0, 0.3, "strain")
+    assert s.displacements == (clamped("zmin"), rollers("xmin"), rollers("xmax"))
+    [load] = s.loads
+    assert load.boundary == "zmax" and load.pressure == Expression("4*y*(1 - y)", 3)
+    assert (s.law, s.space, s.quadrature_order) == ("bonded", "naive", None)
+
+
+def test_02_strip_and_inclusion_examples_parse():
+    s = load_scene(EXAMPLES / "strip.toml")
+    assert s.mesh == Box((4, 5), "quad") and s.levelset.dim == 2
+    np.testing.assert_allclose(s.levelset(np.array([[0.0], [0.2]])), [-0.3])
+    i = load_scene(EXAMPLES / "inclusion.toml")
+    assert i.material == Material(10.0, 0.25, "stress") and i.quadrature_order == 2
+    pin = i.displacements[0]
+    assert pin.boundary == Expression("x < 1e-9 and y < 1e-9", 2, boolean=True)
+    assert pin.components == {"x": 0.0, "y": 0.0}
+    assert i.loads[0].traction == (0.0, Expression("-0.5 - 0.5*x", 2))
+
+
+def test_03_defaults_come_from_the_dataclasses(tmp_path):
+    s = load_scene(write(tmp_path, MINIMAL, "my_strip.toml"))
+    assert s.name == "my_strip" and s.material == Material()
+    assert (s.displacements, s.loads, s.law, s.space) == ((), (), "bonded", "naive")
+
+
+def test_04_a_mesh_file_is_read_relative_to_the_scene_file(tmp_path):
+    (tmp_path / "meshes").mkdir()
+    box((2, 2, 3), "prism").save(tmp_path / "meshes" / "plate.vtu")
+    s = load_scene(write(tmp_path, '''
+[mesh]
+file = "meshes/plate.vtu"
+[levelset]
+expr = "z - 0.5 - 0.2*x"
+[[displacement]]
+where = "z < 1e-9"
+kind = "clamped"
+'''))
+    assert s.mesh == (tmp_path / "meshes" / "plate.vtu").resolve()
+    assert s.levelset.dim == 3                      # an expr takes the mesh's dimension
+    assert resolve_mesh(s).nelements == 2 * 2 * 2 * 3
+
+
+BAD = [
+    # (text appended to / replacing the minimal file, exception, words the message must hold)
+    ("nmae = 'x'" + MINIMAL, ValueError, ["top level", "unknown key 'nmae'", "allowed keys"]),
+    (MINIMAL.replace("cell =", "cells ="), ValueError, ["[mesh] box", "unknown key 'cells'"]),
+    (MINIMAL.replace("n = 3", 'n = "four"'), TypeError, ["[mesh] box.n", "'four'"]),
+    (MINIMAL.replace("n = 3", "n = [3, 3, 3]"), ValueError, ["[mesh] box", "Box n"]),
+    (MINIMAL.replace('"quad"', '"hexa"'), ValueError, ["[mesh] box.cell", "hexa"]),
+    (MINIMAL.replace('box = {n = 3, cell = "quad"}', 'box = {n = 3, cell = "quad"}\n'
+                                                    'file = "m.msh"'),
+     ValueError, ["[mesh] needs exactly one of box, file"]),
+    (MINIMAL.replace('box = {n = 3, cell = "quad"}', 'file = "missing.msh"'),
+     ValueError, ["[mesh] file 'missing.msh' not found"]),
+    (MINIMAL.replace("[mesh]\nbox", "[meshx]\nbox"), ValueError, ["unknown key 'meshx'"]),
+    (MINIMAL + "[material]\nE = 'abc'", TypeError, ["[material] E", "'abc'"]),
+    (MINIMAL + "[material]\nE = -1.0", ValueError, ["[material]", "E must be a positive"]),
+    (MINIMAL + "[material]\nnu = 0.3\nplane = 'strian'", ValueError, ["[material]", "plane"]),
+    (MINIMAL + "[material]\nG = 1.0", ValueError, ["[material]", "unknown key 'G'"]),
+    (MINIMAL.replace('expr = "y - 0.5"', 'expr = "sin(y)"'), ValueError,
+     ["[levelset] expr", "function call"]),
+    (MINIMAL.replace('expr = "y - 0.5"', 'expr = "y.real"'), ValueError,
+     ["[levelset] expr", "attribute access"]),
+    (MINIMAL.replace('expr = "y - 0.5"', 'expr = "z - 0.5"'), ValueError,
+     ["[levelset] expr", "uses z but the mesh is 2D"]),
+    (MINIMAL.replace('expr = "y - 0.5"', 'expr = 0.5'), TypeError, ["[levelset] expr"]),
+    (MINIMAL.replace('expr = "y - 0.5"', 'sphere = {center = [0, 0, 0], radius = 1}'),
+     ValueError, ["[levelset] sphere", "3D shape but the mesh is 2D"]),
+    (MINIMAL.replace('expr = "y - 0.5"', 'plane = {point = [0, 0.5], normal = [0, 1, 0]}'),
+     ValueError, ["[levelset] plane.normal", "2 numbers"]),
+    (MINIMAL.replace('expr = "y - 0.5"', 'plane = {point = [0, 0.5]}'),
+     ValueError, ["[levelset] plane needs normal"]),
+    (MINIMAL.replace('expr = "y - 0.5"', 'circle = {center = [0, 0], radius = -1}'),
+     ValueError, ["[levelset] circle", "radius"]),
+    (MINIMAL.replace('expr = "y - 0.5"', 'circle = {center = [0, 0], radius = "r"}'),
+     TypeError, ["[levelset] circle.radius"]),
+    (MINIMAL.replace('[levelset]\nexpr = "y - 0.5"', ''), ValueError, ["missing", "[levelset]"]),
+    (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nz = 0.0", ValueError,
+     ["[[displacement]] #1 z", "2D mesh"]),
+    (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nx = 'exp(y)'", ValueError,
+     ["[[displacement]] #1 x", "function call"]),
+    (MINIMAL + "[[displacement]]\nwhere = 'x + 1'\nx = 0", ValueError,
+     ["[[displacement]] #1 where", "condition"]),
+    (MINIMAL + "[[displacement]]\nwhere = 1\nx = 0", TypeError, ["[[displacement]] #1 where"]),
+    (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nwhere = 'x < 1'\nx = 0", ValueError,
+     ["[[displacement]] #1 needs exactly one of boundary, where"]),
+    (MINIMAL + "[[displacement]]\nboundary = 'ymin'", ValueError,
+     ["[[displacement]] #1 needs kind or"]),
+    (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nkind = 'fixed'", ValueError,
+     ["[[displacement]] #1 kind", "clamped, rollers"]),
+    (MINIMAL + "[[displacement]]\nwhere = 'x < 1'\nkind = 'rollers'", ValueError,
+     ["[[displacement]] #1 kind", "named boundary"]),
+    (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nkind = 'clamped'\nx = 1", ValueError,
+     ["[[displacement]] #1", "either kind or components"]),
+    (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nkind = 'clamped'\n"
+               "[[displacement]]\nboundary = 'ymax'\nu = 1", ValueError,
+     ["[[displacement]] #2", "unknown key 'u'"]),
+    (MINIMAL + "[displacement]\nboundary = 'ymin'\nkind = 'clamped'", TypeError,
+     ["[[displacement]]"]),
+    (MINIMAL + "[[load]]\nboundary = 'ymax'\npressure = 'x.__class__'", ValueError,
+     ["[[load]] #1 pressure", "attribute access"]),
+    (MINIMAL + "[[load]]\nboundary = 'ymax'\npressure = '__import__(\"os\")'", ValueError,
+     ["[[load]] #1 pressure", "function call"]),
+    (MINIMAL + "[[load]]\nboundary = 'ymax'\npressure = 1\ntraction = [0, 1]", ValueError,
+     ["[[load]] #1 needs exactly one of pressure, traction"]),
+    (MINIMAL + "[[load]]\nboundary = 'ymax'\ntraction = [0, 0, 1]", ValueError,
+     ["[[load]] #1 traction", "2 numbers"]),
+    (MINIMAL + "[[load]]\nboundary = 'ymax'\ntraction = [0, true]", TypeError,
+     ["[[load]] #1 traction[1]"]),
+    (MINIMAL + "[[load]]\nboundary = 7\npressure = 1", TypeError, ["[[load]] #1 boundary"]),
+    (MINIMAL + "[interface]\nlaw = 'glued'", ValueError, ["[interface] law", "bonded"]),
+    (MINIMAL + "[interface]\nspace = 'vital'", ValueError, ["[interface] space", "naive"]),
+    (MINIMAL + "[interface]\nfriction = 0.3", ValueError, ["[interface]", "'friction'"]),
+    (MINIMAL + "[solver]\nquadrature_order = 0", ValueError, ["[solver] quadrature_order"]),
+    (MINIMAL + "[solver]\nquadrature_order = '2'", ValueError, ["[solver] quadrature_order"]),
+    (MINIMAL + "[solver]\ntol = 1e-9", ValueError, ["[solver]", "unknown key 'tol'"]),
+    ("name = 3" + MINIMAL, TypeError, ["name must be a non-empty string"]),
+    ("interface = 3" + MINIMAL, TypeError, ["[interface] must be a table"]),
+    ("[mesh\nbox = 1", ValueError, ["invalid TOML"]),
+]
+
+
+@pytest.mark.parametrize("text, error, words", BAD)
+def test_05_bad_files_are_refused_naming_the_key(tmp_path, text, error, words):
+    with pytest.raises(error) as info:
+        load_scene(write(tmp_path, text, "bad.toml"))
+    message = str(info.value)
+    assert message.startswith("bad.toml: "), message
+    for w in words:
+        assert w in message, f"{w!r} not in {message!r}"
+
+
+def test_06_a_circle_on_a_3d_mesh_names_the_levelset_table(tmp_path):
+    text = MINIMAL.replace('"quad"', '"hex"').replace(
+        'expr = "y - 0.5"', 'circle = {center = [0.5, 0.5], radius = 0.3}')
+    with pytest.raises(ValueError, match=r"\[levelset\] circle is a 2D shape but the mesh "
+                                         r"is 3D; use sphere or expr"):
+        load_scene(write(tmp_path, text))
+
+
+def test_07_nan_coordinates_in_a_mesh_file_are_refused(tmp_path):
+    m = box(2, "tri")
+    p = m.p.T.copy()
+    p[3, 1] = np.nan
+    meshio.write(tmp_path / "nan.vtu", meshio.Mesh(p, [("triangle", m.t.T)]))
+    text = MINIMAL.replace('box = {n = 3, cell = "quad"}', 'file = "nan.vtu"')
+    with pytest.raises(ValueError, match=r"\[mesh\] file 'nan.vtu': mesh has NaN"):
+        load_scene(write(tmp_path, text))
+
+
+def test_08_an_unreadable_mesh_file_is_refused(tmp_path):
+    (tmp_path / "junk.msh").write_text("not a mesh")
+    text = MINIMAL.replace('box = {n = 3, cell = "quad"}', 'file = "junk.msh"')
+    with pytest.raises(ValueError, match=r"\[mesh\] file 'junk.msh'"):
+        load_scene(write(tmp_path, text))
+
+
+def test_09_a_scene_file_never_runs_code(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    attack = "__import__('os').system('touch PWNED')"
+    for key in ('[levelset]\nexpr', '[[load]]\nboundary = "ymax"\npressure'):
+        text = MINIMAL.replace('[levelset]\nexpr = "y - 0.5"', '[levelset]\nexpr = "y"') \
+            if key.startswith("[[") else MINIMAL.replace('[levelset]\nexpr = "y - 0.5"', '')
+        with pytest.raises(ValueError, match="function call"):
+            load_scene(write(tmp_path, f'{text}\n{key} = "{attack}"'))
+    assert not (tmp_path / "PWNED").exists()
