@@ -34,24 +34,32 @@ from skfem.refdom import RefLine, RefTri
 from .cut import Cut
 from .enrich import XSpace, jump_matrix
 
-__all__ = ["Space", "naive", "InterfaceRule", "interface_rule", "coupling",
+__all__ = ["Space", "naive", "multiplier_space", "SPACES", "InterfaceRule", "interface_rule", "coupling",
            "interface_mass", "LAWS"]
 
 LAWS = ("bonded", "bilateral")
+SPACES = ("naive", "winner", "vital")
 
 
 @dataclass(frozen=True)
 class Space:
-    """A multiplier space: λ_edges = P μ.
+    """A multiplier space: λ (one per cut edge) = P μ (the independent multipliers).
 
     Attributes
     ----------
-    name : "naive", "winner" or "vital".
-    P : (n_edges, n_independent) sparse prolongation.
+    name : one of :data:`SPACES`.
+    P : (n_edges, n_μ) CSR prolongation.
+    vital : (n_edges,) bool, algo2's S_ve.  ``groups`` : (n_edges,) the column
+        of μ of each vital edge, -1 elsewhere.
+    winners : (n_μ,) algo1's winner nodes in the order picked: column j is
+        the multiplier of node ``winners[j]``.
     """
 
     name: str
     P: sp.csr_matrix
+    vital: np.ndarray | None = None
+    groups: np.ndarray | None = None
+    winners: np.ndarray | None = None
 
     @property
     def size(self) -> int:
@@ -61,6 +69,19 @@ class Space:
 def naive(cut: Cut) -> Space:
     """One free multiplier per cut edge: P = I."""
     return Space("naive", sp.identity(cut.edge_ids.size, format="csr"))
+
+
+def multiplier_space(name: str, mesh, cut: Cut) -> Space:
+    """The space ``name``: "naive", "winner" (algo1) or "vital" (algo2, §5)."""
+    if name == "naive":
+        return naive(cut)
+    from .stabilised import vital_edges, winner_nodes  # they build on Space
+
+    if name == "winner":
+        return winner_nodes(cut.edges, cut.psi, cut.points, mesh.p)
+    if name == "vital":
+        return vital_edges(cut.edges, cut.psi, cut.points, mesh.p)
+    raise ValueError(f"space must be one of {SPACES}, got {name!r}")
 
 
 @dataclass(frozen=True)

@@ -30,15 +30,12 @@ from skfem import Mesh
 from .boundary import COMPONENTS, FACES, dirichlet, load_facets, traction
 from .levelset import LevelSet
 from .material import Material
+from .multipliers import LAWS, SPACES
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Scene", "clamped", "rollers",
            "resolve_mesh", "dirichlet", "load_facets", "traction", "load_scene",
            "LAWS", "SPACES", "CELLS"]
 
-LAWS = ("bonded", "bilateral")
-"""Interface laws a scene may ask for (other modules may extend this tuple)."""
-SPACES = ("naive",)
-"""Multiplier spaces a scene may ask for (other modules may extend this tuple)."""
 CELLS = {"tri": 2, "quad": 2, "tet": 3, "hex": 3, "prism": 3}
 """Cell types of :class:`Box` and their dimension."""
 

@@ -32,10 +32,10 @@ from . import saddle
 from .cut import cut as cut_mesh
 from .enrich import XSpace, enriched_load, jump_matrix, space, split_fields, stiffness
 from .loads import boundary_quadrature, surface_load
-from .multipliers import coupling, interface_rule, naive
+from .multipliers import coupling, interface_rule, multiplier_space
 from .scene import Scene, dirichlet, load_facets, resolve_mesh
 
-__all__ = ["Result", "solve", "multiplier_space"]
+__all__ = ["Result", "solve"]
 
 
 @dataclass(frozen=True)
@@ -66,14 +66,6 @@ class Result:
     timings: dict = field(default_factory=dict)
     U: np.ndarray | None = field(default=None, repr=False)
     space: XSpace | None = field(default=None, repr=False)
-
-
-def multiplier_space(name: str, cut):
-    """The multiplier space ``name`` for a cut (naive, or the stabilised ones)."""
-    if name == "naive":
-        return naive(cut)
-    from . import stabilised  # the restricted spaces of §5
-    return stabilised.space(name, cut)
 
 
 def _point_normals(c) -> np.ndarray:
@@ -135,7 +127,7 @@ def solve(scene: Scene, dependent: str = "remove", quadrature_order: int | None 
     t0 = time.perf_counter()
     mesh = resolve_mesh(scene)
     c = cut_mesh(mesh, scene.levelset)
-    S = multiplier_space(scene.space, c)
+    S = multiplier_space(scene.space, mesh, c)
     timings["cut"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()

@@ -143,7 +143,7 @@ BAD = [
      ["[[load]] #1 traction[1]"]),
     (MINIMAL + "[[load]]\nboundary = 7\npressure = 1", TypeError, ["[[load]] #1 boundary"]),
     (MINIMAL + "[interface]\nlaw = 'glued'", ValueError, ["[interface] law", "bonded"]),
-    (MINIMAL + "[interface]\nspace = 'vital'", ValueError, ["[interface] space", "naive"]),
+    (MINIMAL + "[interface]\nspace = 'stable'", ValueError, ["[interface] space", "naive"]),
     (MINIMAL + "[interface]\nfriction = 0.3", ValueError, ["[interface]", "'friction'"]),
     (MINIMAL + "[solver]\nquadrature_order = 0", ValueError, ["[solver] quadrature_order"]),
     (MINIMAL + "[solver]\nquadrature_order = '2'", ValueError, ["[solver] quadrature_order"]),

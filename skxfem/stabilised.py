@@ -1,0 +1,279 @@
+r"""Restricted multiplier spaces (paper §5): algo2 (vital edges), algo1 (winner nodes).
+
+One λ_e per strictly cut edge e ∈ S_e is too rich for the LBB condition.  Both
+algorithms keep fewer multipliers μ, λ = P μ, P sparse with rows summing to 1
+(a constant pressure is kept exactly), by graph work on the bipartite graph
+whose vertices N_e = N_e⁻ ∪ N_e⁺ are the ends of the cut edges S_e.
+
+>>> import numpy as np
+>>> nodes = np.array([[0., 1., 2.], [0., 1., 0.]])   # nodes 0, 2 below Γ, 1 above
+>>> psi = nodes[1] - 0.5
+>>> edges, points = [[0, 2], [1, 1]], [[0.5, 1.5], [0.5, 0.5]]
+>>> vital_edges(edges, psi, points, nodes).P.toarray()   # one star: one μ
+array([[1.],
+       [1.]])
+"""
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components, min_weight_full_bipartite_matching
+
+from .multipliers import Space
+
+__all__ = ["Space", "vital_edges", "winner_nodes"]
+
+
+def _check(edges, psi, points, nodes):
+    nodes, psi, edges = np.asarray(nodes, float), np.asarray(psi, float), np.asarray(edges)
+    points = np.asarray(points, float)
+    if nodes.ndim != 2 or nodes.shape[0] not in (2, 3) or not np.isfinite(nodes).all():
+        raise ValueError(f"nodes must be finite, shape (dim, nnodes); got {nodes.shape}")
+    if psi.shape != nodes.shape[1:] or not np.isfinite(psi).all():
+        raise ValueError(f"psi must be finite, shape ({nodes.shape[1]},); got {psi.shape}")
+    if edges.ndim != 2 or edges.shape[0] != 2 or (edges.size and edges.dtype.kind not in "iu"):
+        raise ValueError(f"edges must be node indices, shape (2, ne); got {edges.dtype} "
+                         f"{edges.shape}")
+    edges = edges.astype(np.int64)
+    if points.shape != (nodes.shape[0], edges.shape[1]) or not np.isfinite(points).all():
+        raise ValueError(f"points must be finite, shape ({nodes.shape[0]}, {edges.shape[1]});"
+                         f" got {points.shape}")
+    if edges.size and (edges.min() < 0 or edges.max() >= psi.size):
+        raise ValueError(f"edges refer to nodes outside 0..{psi.size - 1}")
+    for e in np.flatnonzero(psi[edges[0]] * psi[edges[1]] >= 0)[:1]:
+        raise ValueError(f"edges must be strictly cut, psi(v1) psi(v2) < 0; edge {e} = "
+                         f"{edges[:, e].tolist()} has psi {psi[edges[:, e]].tolist()}")
+    if np.unique(np.sort(edges, axis=0), axis=1).shape[1] < edges.shape[1]:
+        raise ValueError("edges lists the same edge twice")
+    for e in np.flatnonzero(np.all(nodes[:, edges[0]] == nodes[:, edges[1]], axis=0))[:1]:
+        raise ValueError(f"nodes: the two ends of edge {e} coincide")
+    return edges, psi, points, nodes
+
+
+def _incidence(edges, nnodes, keep):
+    """(nnodes, ne) CSR with an entry (v, e) for each kept edge e and end v."""
+    k = np.flatnonzero(keep)
+    return sp.csr_matrix((np.ones(2 * k.size), (edges[:, k].ravel(), np.tile(k, 2))),
+                         shape=(nnodes, edges.shape[1]))
+
+
+def _edges_at(inc, v):
+    """The rows ``v`` of ``inc`` laid end to end: (row position, edge) pairs."""
+    start = inc.indptr[v]
+    count = inc.indptr[v + 1] - start
+    at = np.repeat(start - np.cumsum(count) + count, count) + np.arange(count.sum())
+    return np.repeat(np.arange(v.size), count), inc.indices[at]
+
+
+def _nearest(points, query, ends, inc):
+    """For each edge q = query[i]: the edge of ``inc`` at node ends[i] whose point
+    is nearest to q's (ties: lowest index), -1 if there is none."""
+    i, k = _edges_at(inc, ends)
+    dist = np.linalg.norm(points[:, query[i]] - points[:, k], axis=0)
+    order = np.lexsort((k, dist, i))
+    first = order[np.r_[True, i[order][1:] != i[order][:-1]]] if i.size else order
+    best = np.full(ends.size, -1)
+    best[i[first]] = k[first]
+    return best
+
+
+def _interpolate(points, query, k1, k2, col1, col2):
+    """COO rows of λ_e = d2/(d1+d2) λ_k1 + d1/(d1+d2) λ_k2, d_i = |x_e - x_ki| (§5)."""
+    d1 = np.linalg.norm(points[:, query] - points[:, k1], axis=0)
+    d2 = np.linalg.norm(points[:, query] - points[:, k2], axis=0)
+    same = d1 + d2 == 0                                     # coincident points: halves
+    d1[same] = d2[same] = 1.0
+    return np.r_[query, query], np.r_[col1, col2], np.r_[d2, d1] / np.tile(d1 + d2, 2)
+
+
+def _minimum_edge_cover(edges, psi, length):
+    """S_ve: the fewest edges touching every node of N_e, then the shortest.
+
+    Gallai: a minimum edge cover is a maximum matching M plus, for each node
+    left unmatched, one edge at it (its shortest, of length m(v)).  Its length
+    is Σ_v m(v) - Σ_{uv∈M} s(uv), with the saving s(uv) = m(u) + m(v) - |uv|:
+    we want the maximum matching of largest saving.  That is exact: a minimum
+    cover is a set of stars, and one edge per star is such a matching, with
+    the other edges no shorter than the m(v) counted for them.  One sparse
+    assignment solves it (LAPJVsp: the N_e graph of a plane cut is one large
+    component, too big for the dense linear_sum_assignment): rows N_e⁻,
+    columns N_e⁺ plus one private "unmatched" column per row, which costs
+    more than any total saving, so that the matching is maximum first.
+    """
+    ne = edges.shape[1]
+    ell = length / length.mean()
+    m = np.full(psi.size, np.inf)
+    np.minimum.at(m, edges.ravel(), np.tile(ell, 2))
+    cost = ell - m[edges[0]] - m[edges[1]]                  # minus the saving
+    minus = np.where(psi[edges[0]] < 0, edges[0], edges[1])
+    rows, ri = np.unique(minus, return_inverse=True)
+    cols, ci = np.unique(edges[0] + edges[1] - minus, return_inverse=True)
+    alone = cols.size + np.arange(rows.size)
+    shift, big = np.abs(cost).max() + 1.0, 2.0 * np.abs(cost).sum() + 1.0   # weights > 0
+    A = sp.csr_matrix((np.r_[cost + shift, np.full(rows.size, big + shift)],
+                       (np.r_[ri, np.arange(rows.size)], np.r_[ci, alone])),
+                      shape=(rows.size, alone[-1] + 1))
+    r, c = min_weight_full_bipartite_matching(A)
+    edge_of = sp.csr_matrix((np.arange(1, ne + 1), (ri, ci)), shape=A.shape)
+    vital = np.zeros(ne, dtype=bool)
+    vital[np.asarray(edge_of[r[c < cols.size], c[c < cols.size]]).ravel() - 1] = True
+    covered = np.zeros(psi.size, dtype=bool)               # then each unmatched node
+    covered[edges[:, vital]] = True                          # takes its shortest edge
+    ends, ids = edges.ravel(), np.tile(np.arange(ne), 2)
+    order = np.lexsort((ids, length[ids]))                   # (ties: lowest index)
+    node, first = np.unique(ends[order], return_index=True)
+    vital[ids[order[first]][~covered[node]]] = True
+    return vital
+
+
+def vital_edges(edges, psi, points, nodes) -> Space:
+    """Algo2 (paper §5): vital edges, star groups, distance-weighted relations.
+
+    Parameters
+    ----------
+    edges : (2, ne) int, S_e: the strictly cut edges, ψ(v1) ψ(v2) < 0.
+    psi : (nnodes,) nodal level set; its sign splits N_e into N_e⁻ and N_e⁺.
+    points : (dim, ne) the intersection point x_e of each edge (λ_e lives there).
+    nodes : (dim, nnodes) node coordinates, for the edge lengths.
+
+    Returns
+    -------
+    Space
+        ``name="vital"``, ``vital`` (S_ve), ``groups``; one column per group.
+
+    Notes
+    -----
+    1. S_ve is a minimum edge cover of (N_e, S_e): the fewest edges touching
+       every node, among those the least total length (the paper's "we keep
+       the shortest one").  Between covers of equal length only the matching
+       solver decides: deterministic, but not specified further.  (code_aster's
+       ``xrell2`` removes edges greedily instead: minimal, not always minimum.)
+    2. A minimum cover is a union of stars (an edge whose two ends are covered
+       twice would be superfluous).  The groups G^i_cve are its connected
+       components, numbered in the order of their lowest edge index.  All λ of
+       a group are equal, one μ; a lone vital edge is a group of one.
+    3. A non-vital edge e = (v1, v2) takes at each end v_i the vital edge k_i
+       at v_i (never none: S_ve covers v_i) whose point is nearest to x_e
+       (ties: lowest index) and λ_e = d2/(d1+d2) λ_k1 + d1/(d1+d2) λ_k2,
+       d_i = |x_e - x_ki|.
+
+    Raises
+    ------
+    ValueError
+        If an argument has the wrong shape, an edge is not strictly cut, is
+        listed twice or has length zero.
+    """
+    edges, psi, points, nodes = _check(edges, psi, points, nodes)
+    ne = edges.shape[1]
+    if ne == 0:
+        return Space("vital", sp.csr_matrix((0, 0)), np.zeros(0, bool), np.zeros(0, int))
+    length = np.linalg.norm(nodes[:, edges[0]] - nodes[:, edges[1]], axis=0)
+    vital = _minimum_edge_cover(edges, psi, length)
+
+    iv = np.flatnonzero(vital)
+    star = sp.coo_matrix((np.ones(iv.size), tuple(edges[:, iv])), shape=(psi.size,) * 2)
+    label = connected_components(star, directed=False)[1][edges[0, iv]]
+    _, first, inverse = np.unique(label, return_index=True, return_inverse=True)
+    rank = np.empty_like(first)
+    rank[np.argsort(first)] = np.arange(first.size)          # order of lowest edge
+    groups = np.full(ne, -1)
+    groups[iv] = rank[inverse]
+
+    nv = np.flatnonzero(~vital)
+    inc = _incidence(edges, psi.size, vital)
+    k1, k2 = (_nearest(points, nv, edges[i, nv], inc) for i in (0, 1))
+    r, c, w = _interpolate(points, nv, k1, k2, groups[k1], groups[k2])
+    P = sp.csr_matrix((np.r_[np.ones(iv.size), w], (np.r_[iv, r], np.r_[groups[iv], c])),
+                      shape=(ne, first.size))
+    return Space("vital", P, vital=vital, groups=groups)
+
+
+def _pick_winners(edges, psi):
+    """Algo1's greedy loop (rules 1-3 of :func:`winner_nodes`): the winners in
+    the order picked and, for each edge, the position of the winner that broke it."""
+    a, b = edges
+    apsi = np.abs(psi)
+    deg = np.bincount(edges.ravel(), minlength=psi.size)    # unbroken edges at a node
+    inc = _incidence(edges, psi.size, np.ones(a.size, dtype=bool))
+    diff, ratio = np.empty(a.size, dtype=np.int64), np.empty(a.size)
+
+    def score(e):                                            # rule 1's two keys
+        da, db, la, lb = deg[a[e]], deg[b[e]], apsi[a[e]], apsi[b[e]]
+        diff[e] = np.abs(da - db)
+        ratio[e] = np.where(da > db, la, np.where(da < db, lb, np.minimum(la, lb))) / (la + lb)
+
+    score(np.arange(a.size))
+    broken_by = np.empty(a.size, dtype=np.int64)
+    winners = []
+    while (top := diff.max()) >= 0:                          # broken edges: diff = -1
+        best = np.flatnonzero(diff == top)
+        e = best[np.argmax(ratio[best])]                    # argmax: lowest index on ties
+        u, v = a[e], b[e]
+        w = v if deg[v] > deg[u] or (deg[v] == deg[u] and apsi[v] < apsi[u]) else u
+        broken = _edges_at(inc, np.array([w]))[1]
+        broken = broken[diff[broken] >= 0]
+        diff[broken] = -1
+        broken_by[broken] = len(winners)
+        np.subtract.at(deg, edges[:, broken].ravel(), 1)
+        near = _edges_at(inc, edges[:, broken].ravel())[1]  # only their keys changed
+        score(near[diff[near] >= 0])
+        winners.append(w)
+    return np.array(winners, dtype=np.int64), broken_by
+
+
+def winner_nodes(edges, psi, points, nodes) -> Space:
+    """Algo1 (Moës, Béchet & Tourbier 2006): one multiplier per winner node.
+
+    Parameters and errors as :func:`vital_edges` (``nodes`` is only checked).
+
+    Notes
+    -----
+    The rules are those of code_aster's ``xsella`` (winners) and 2006
+    ``xrell1`` (relations), S. Géniaut's implementation of algo1 for this
+    paper.  With deg(v) the number of unbroken cut edges at v, repeat until
+    every edge is broken:
+
+    1. take the edge of largest |deg(v1) - deg(v2)|; ties: largest
+       ρ = |ψ(w)| / (|ψ(v1)| + |ψ(v2)|), w its end of larger deg (of smaller
+       |ψ| if the degrees are equal); then the lowest edge index (code_aster
+       takes the last of its list);
+    2. its winner is its end of larger deg; ties: smaller |ψ| (nearer Γ),
+       then v1;
+    3. break every edge at the winner.
+
+    The winners cover S_e.  An edge with one winner end takes that winner's
+    multiplier (a P0 patch per winner).  An edge whose two ends won is
+    interpolated like algo2's non-vital edges, between the single-winner
+    edges at each end whose points are nearest (ties: lowest index); if an
+    end has none, the edge takes the multiplier of the winner that broke it.
+
+    Returns
+    -------
+    Space
+        ``name="winner"``; ``winners`` (in the order picked) labels the columns.
+
+    >>> import numpy as np
+    >>> nodes = np.array([[0., 1., 2.], [0., 1., 0.]])
+    >>> space = winner_nodes([[0, 2], [1, 1]], nodes[1] - 0.5, [[0.5, 1.5], [0.5, 0.5]], nodes)
+    >>> space.winners.tolist(), space.P.toarray().ravel().tolist()
+    ([1], [1.0, 1.0])
+    """
+    edges, psi, points, nodes = _check(edges, psi, points, nodes)
+    ne = edges.shape[1]
+    if ne == 0:
+        return Space("winner", sp.csr_matrix((0, 0)), winners=np.zeros(0, int))
+    winners, broken_by = _pick_winners(edges, psi)
+    column = np.full(psi.size, -1)
+    column[winners] = np.arange(winners.size)
+    c0, c1 = column[edges]
+    single = (c0 < 0) | (c1 < 0)
+    one, two = np.flatnonzero(single), np.flatnonzero(~single)
+    inc = _incidence(edges, psi.size, single)
+    k1, k2 = (_nearest(points, two, edges[i, two], inc) for i in (0, 1))
+    ok = (k1 >= 0) & (k2 >= 0)
+    r, c, w = _interpolate(points, two[ok], k1[ok], k2[ok], c0[two[ok]], c1[two[ok]])
+    lone = two[~ok]
+    P = sp.csr_matrix((np.r_[np.ones(one.size + lone.size), w],
+                       (np.r_[one, lone, r], np.r_[np.maximum(c0, c1)[one], broken_by[lone], c])),
+                      shape=(ne, winners.size))
+    return Space("winner", P, winners=winners)
