@@ -35,14 +35,17 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import Basis, ElementVector, LinearForm, MeshHex1, MeshQuad1, MeshWedge1
+from skfem import (Basis, BilinearForm, ElementVector, LinearForm, MeshHex1, MeshQuad1,
+                   MeshWedge1)
+from skfem.helpers import dot
 from skfem.assembly import CellBasis
 
 from .cut import Cut
-from .material import Material, signed_stiffness_form, stiffness_form
+from .material import Material, signed_stiffness_form
 from .quadrature import cell_rule, subcell_rule
 
-__all__ = ["XSpace", "space", "stiffness", "enriched_load", "evaluation_matrix",
+__all__ = ["XSpace", "space", "stiffness", "mass", "enriched_matrix", "signed_bases",
+           "far_side_fraction", "enriched_load", "evaluation_matrix",
            "jump_matrix", "split_fields"]
 
 
@@ -151,25 +154,43 @@ def space(mesh, cut: Cut, order: int | None = None, sliver: float = 1e-8) -> XSp
     return XSpace(mesh, cut, basis, enr.ravel(), H_node)
 
 
-def signed_stiffness(V: XSpace, material: Material) -> sp.csr_matrix:
-    """K_H = ∫ H σ(φᵢ):ε(φⱼ), with sub-cell quadrature on the cut cells."""
-    form = signed_stiffness_form(material, V.mesh.dim())
-    K = 0
-    for b, H in _signed_basis(V.mesh, V.cut, V.basis.elem, V.basis.quadrature):
-        K = K + form.assemble(b, H=H)
-    return K.tocsr()
+def signed_bases(V: XSpace):
+    """The pairs (basis, H) covering the mesh: see :func:`_signed_basis`."""
+    return _signed_basis(V.mesh, V.cut, V.basis.elem, V.basis.quadrature)
+
+
+def enriched_matrix(V: XSpace, form) -> sp.csr_matrix:
+    """The X-FEM matrix on [a, b] of a form that reads the Heaviside value w["H"].
+
+    With A = the form at H = 1 (standard) and A_H its signed version, and
+    D = diag(Hⱼ), the blocks follow from H² = 1 (see the module notes).
+    """
+    A = AH = 0
+    for b, H in signed_bases(V):
+        A = A + form.assemble(b, H=np.ones_like(H))
+        AH = AH + form.assemble(b, H=H)
+    A, AH = A.tocsr(), AH.tocsr()
+    E = V.enr_dofs
+    D = sp.diags(V.H_node)
+    Aab = AH[:, E] - A[:, E] @ D
+    AEE, AHEE = A[E][:, E], AH[E][:, E]
+    Abb = AEE + D @ AEE @ D - D @ AHEE - AHEE @ D
+    return sp.bmat([[A, Aab], [Aab.T, Abb]], format="csr")
 
 
 def stiffness(V: XSpace, material: Material) -> sp.csr_matrix:
-    """The full X-FEM stiffness on the unknowns [a, b] (see the module notes)."""
-    K = stiffness_form(material, V.mesh.dim()).assemble(V.basis).tocsr()
-    KH = signed_stiffness(V, material)
-    E = V.enr_dofs
-    D = sp.diags(V.H_node)
-    Kab = KH[:, E] - K[:, E] @ D
-    KEE, KHEE = K[E][:, E], KH[E][:, E]
-    Kbb = KEE + D @ KEE @ D - D @ KHEE - KHEE @ D
-    return sp.bmat([[K, Kab], [Kab.T, Kbb]], format="csr")
+    """The X-FEM stiffness on the unknowns [a, b]: ∫ σ(u):ε(v)."""
+    return enriched_matrix(V, signed_stiffness_form(material, V.mesh.dim()))
+
+
+@BilinearForm
+def _signed_vector_mass(u, v, w):
+    return w["H"] * dot(u, v)
+
+
+def mass(V: XSpace) -> sp.csr_matrix:
+    """The X-FEM mass matrix on the unknowns [a, b]: ∫ u·v."""
+    return enriched_matrix(V, _signed_vector_mass)
 
 
 def enriched_load(V: XSpace, f: np.ndarray, f_H: np.ndarray) -> np.ndarray:

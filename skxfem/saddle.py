@@ -86,7 +86,7 @@ def smoothest_multipliers(B, r, G, alpha: float = 1e-4) -> np.ndarray:
     return sla.lstsq(lhs, rhs, lapack_driver="gelsy")[0]
 
 
-def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8):
+def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float = 1e-11):
     """Solve the saddle-point system; see the module notes.
 
     Parameters
@@ -101,6 +101,9 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8):
         returned (zero for the removed ones).
     tol
         Largest accepted relative residual.
+    pivot_tol
+        Smallest accepted ratio of LU pivots (after Jacobi scaling): below it
+        the system is declared singular.
 
     Returns
     -------
@@ -110,7 +113,7 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8):
     Raises
     ------
     RuntimeError
-        If the solve fails or its residual exceeds ``tol``.
+        If the system is singular (a tiny LU pivot) or the residual exceeds ``tol``.
     """
     N, m = K.shape[0], B.shape[0]
     D = np.zeros(0, int) if D is None else np.asarray(D, int)
@@ -131,6 +134,13 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8):
     rhs = np.concatenate([s * (F - K @ U)[free], -r * (B @ U)[keep]])
     A = sp.bmat([[Kf, Bk.T], [Bk, None]], format="csc")
     lu = spla.splu(A, permc_spec="MMD_AT_PLUS_A")
+    pivots = np.abs(lu.U.diagonal())
+    if pivots.min() < pivot_tol * pivots.max():
+        raise RuntimeError(
+            f"the saddle-point system is singular (smallest LU pivot "
+            f"{pivots.min() / pivots.max():.1e} of the largest): a part of the body "
+            f"can move freely — e.g. a frictionless (bilateral) tie lets the part "
+            f"above Γ slide; add supports that remove every rigid motion of each side")
     x = lu.solve(rhs)
     for _ in range(3):  # iterative refinement: X-FEM slivers cost digits in the LU
         x += lu.solve(rhs - A @ x)

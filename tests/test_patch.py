@@ -10,7 +10,13 @@ A frictionless (``bilateral``) tie carries no tangential traction, so on a
 tilted interface uniaxial compression is *not* an equilibrium state of the
 tied body (the upper part slides).  Its patch test is hydrostatic
 compression, σ = -p I: pressure p on every face, traction -p n on any plane.
+A frictionless tie also leaves the upper part free to slide along Γ: the
+bilateral scenes hold one or two nodes of the top face at their exact
+(zero) tangential displacement, otherwise the system is singular (and the
+solver says so, see test_floating_part_is_reported).
 """
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -42,6 +48,16 @@ def geometry(cell, theta, delta):
     return dim, Box(4, cell), plane(point, normal), np.array(normal)
 
 
+def upper_supports(dim, law):
+    """Tangential supports of the top face for a sliding (bilateral) tie."""
+    if law != "bilateral":
+        return ()
+    if dim == 2:
+        return (Displacement(at(0.0, 1.0), {"x": 0.0}),)
+    return (Displacement(at(0.0, 0.0, 1.0), {"x": 0.0, "y": 0.0}),
+            Displacement(at(1.0, 0.0, 1.0), {"y": 0.0}))
+
+
 def uniaxial(cell, theta, delta, law):
     dim, mesh, psi, n = geometry(cell, theta, delta)
     up = "xyz"[dim - 1]
@@ -51,7 +67,8 @@ def uniaxial(cell, theta, delta, law):
     else:
         fix = (Displacement(at(*origin), {"x": 0.0, "y": 0.0}),
                Displacement(at(1.0, 0.0, 0.0), {"y": 0.0}))
-    scene = Scene(mesh, psi, Material(1.0, 0.3), (rollers(up + "min"),) + fix,
+    scene = Scene(mesh, psi, Material(1.0, 0.3),
+                  (rollers(up + "min"),) + fix + upper_supports(dim, law),
                   (SurfaceLoad(up + "max", pressure=P),), law)
     return scene, n
 
@@ -66,7 +83,7 @@ def hydrostatic(cell, theta, delta, law):
         fix = (Displacement(at(0.0, 0.0, 0.0), {"x": 0.0, "y": 0.0, "z": 0.0}),
                Displacement(at(1.0, 0.0, 0.0), {"y": 0.0, "z": 0.0}),
                Displacement(at(0.0, 1.0, 0.0), {"z": 0.0}))
-    scene = Scene(mesh, psi, Material(1.0, 0.3), fix,
+    scene = Scene(mesh, psi, Material(1.0, 0.3), fix + upper_supports(dim, law),
                   tuple(SurfaceLoad(f, pressure=P) for f in faces), law)
     return scene, n
 
@@ -113,3 +130,13 @@ def test_hydrostatic_tilted(cell, delta, law):
     assert np.abs(result.pressure - P).max() < 1e-9 * P
     assert np.abs(tang).max() < 1e-9 * P
     assert result.max_jump < 1e-10
+
+
+@pytest.mark.parametrize("cell", ["quad", "hex"])
+def test_floating_part_is_reported(cell):
+    """Without supports on the upper part a frictionless tie lets it slide:
+    the solver refuses the singular system instead of returning garbage."""
+    scene, _ = uniaxial(cell, 0.0, 0.5, "bilateral")
+    scene = dataclasses.replace(scene, displacements=scene.displacements[:-1 - (cell == "hex")])
+    with pytest.raises(RuntimeError, match="singular"):
+        solve(scene)
