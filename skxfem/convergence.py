@@ -23,7 +23,7 @@ from skfem.helpers import ddot
 
 from .multipliers import interface_rule
 
-__all__ = ["PressureError", "pressure_error", "energy_error", "observed_rates"]
+__all__ = ["PressureError", "pressure_error", "energy_error", "observed_rates", "StudyRow", "study"]
 
 
 @dataclass(frozen=True)
@@ -76,3 +76,55 @@ def observed_rates(h, errors) -> np.ndarray:
     """Slopes log(eᵢ/eᵢ₊₁) / log(hᵢ/hᵢ₊₁) between successive meshes."""
     h, e = np.asarray(h, float), np.asarray(errors, float)
     return np.log(e[:-1] / e[1:]) / np.log(h[:-1] / h[1:])
+
+
+@dataclass(frozen=True)
+class StudyRow:
+    """One mesh of a convergence study (see :func:`study`)."""
+
+    n: int
+    h: float
+    space: str
+    beta: float
+    n_zero: int
+    pressure_l2: float
+    pressure_max: float
+    energy: float
+    n_dofs: int
+    n_multipliers: int
+    seconds: float
+
+
+def study(make_scene: Callable, ns, spaces=("naive", "winner", "vital"),
+          exact=None, with_inf_sup: bool = True) -> list[StudyRow]:
+    """Solve ``make_scene(n, space)`` for every n and space and measure it.
+
+    ``exact`` is an :class:`skxfem.exact.ExactPlate` (default: built for the
+    scene's material and dimension).  h = 1/n.
+
+    >>> from skxfem.scenes import exact_strip
+    >>> rows = study(lambda n, s: exact_strip(n, "quad", space=s), [4], ["naive"])
+    >>> rows[0].n, rows[0].pressure_l2 < 0.05
+    (4, True)
+    """
+    import time
+
+    from .exact import ExactPlate
+    from .lbb import inf_sup
+    from .solver import solve
+
+    rows = []
+    for space in spaces:
+        for n in ns:
+            scene = make_scene(n, space)
+            sol = exact or ExactPlate(scene.material, scene.dim)
+            t0 = time.perf_counter()
+            result = solve(scene)
+            p = pressure_error(result, sol.pressure)
+            e = energy_error(result, sol.strain)
+            seconds = time.perf_counter() - t0
+            I = inf_sup(scene) if with_inf_sup else None
+            rows.append(StudyRow(n, 1.0 / n, space, I.beta if I else float("nan"),
+                                 I.n_zero if I else -1, p.l2, p.max, e, result.n_dofs,
+                                 result.n_multipliers, seconds))
+    return rows

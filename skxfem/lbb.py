@@ -102,7 +102,8 @@ def inf_sup(scene, scaling: str = "h", law: str = "bilateral") -> InfSup:
     M = sp.kron(sp.identity(ncomp), interface_mass(rule))
     dofs, _ = dirichlet(scene, mesh, V.basis)
     free = np.setdiff1d(np.arange(V.N), dofs)
-    # mesh size: the edge of a cube of the mean cell volume
-    h = float((np.prod(np.ptp(mesh.p, axis=1)) / mesh.t.shape[1]) ** (1.0 / mesh.dim()))
+    # mesh size across Γ: the mean length of the cut edges (anisotropic
+    # meshes, such as one layer of prisms along x, are measured where it matters)
+    h = float(np.mean(np.linalg.norm(mesh.p[:, c.edges[0]] - mesh.p[:, c.edges[1]], axis=0)))
     Mr = P.T @ M @ P * (h if scaling == "h" else 1.0)
     return inf_sup_constant(A[free][:, free], (P.T @ B)[:, free], Mr, h=h)

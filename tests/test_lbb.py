@@ -1,0 +1,76 @@
+"""Inf-sup test (skxfem/lbb.py): the naive space is not LBB-stable on
+triangles/prisms, the stabilised spaces are; on quads/hexes all coincide."""
+import dataclasses
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from skxfem.convergence import observed_rates
+from skxfem.lbb import inf_sup, inf_sup_constant
+from skxfem.scenes import exact_plate, exact_strip
+
+NS = [8, 16, 32, 64]
+
+
+def test_constant_of_known_matrices():
+    """β² are the generalised eigenvalues of B A⁻¹ Bᵀ x = β² M x; zero modes counted."""
+    A = sp.diags([1.0, 4.0, 9.0])
+    B = sp.csr_matrix([[1.0, 0, 0], [0, 0, 3.0], [0, 0, 3.0]])  # rows 2, 3 equal
+    r = inf_sup_constant(A, B, np.eye(3))
+    assert r.n_zero == 1 and r.rank == 2
+    assert np.allclose(np.sort(r.eigenvalues)[1:], [1.0, 2.0])  # 1/1 and (9+9)/9
+    assert abs(r.beta - 1.0) < 1e-12
+
+
+@pytest.fixture(scope="module")
+def strip_betas():
+    return {(cell, space): [inf_sup(exact_strip(n, cell, space=space)) for n in NS]
+            for cell in ("tri", "quad") for space in ("naive", "winner", "vital")}
+
+
+def test_naive_triangles_beta_falls_like_h(strip_betas):
+    beta = [r.beta for r in strip_betas["tri", "naive"]]
+    rates = observed_rates(1.0 / np.array(NS), beta)
+    assert np.all(rates > 0.9), rates  # β_h ~ h
+
+
+@pytest.mark.parametrize("space", ["winner", "vital"])
+def test_stabilised_triangles_beta_bounded(strip_betas, space):
+    beta = np.array([r.beta for r in strip_betas["tri", space]])
+    assert np.all(beta >= 0.2), beta
+    assert beta[-1] > 0.8 * beta[0]  # no drift towards zero
+
+
+def test_quads_all_spaces_coincide_and_are_stable(strip_betas):
+    for k in range(len(NS)):
+        b = [strip_betas["quad", s][k].beta for s in ("naive", "winner", "vital")]
+        assert np.ptp(b) < 1e-10 and min(b) >= 0.2
+
+
+def test_l2_scaling_cannot_separate(strip_betas):
+    """With the plain L² norm on the multipliers every space tends to zero."""
+    for space in ("naive", "vital"):
+        beta = [inf_sup(exact_strip(n, "tri", space=space), scaling="l2").beta for n in (8, 32)]
+        assert beta[1] < 0.6 * beta[0]
+
+
+def test_prisms_naive_unstable_vital_stable():
+    """3D plate, one layer of prisms along x (the solution does not depend on x)."""
+    naive = [inf_sup(exact_plate(n, "prism", nx=1)).beta for n in (8, 16, 32)]
+    assert np.all(observed_rates([1 / 8, 1 / 16, 1 / 32], naive) > 0.9)
+    for space in ("winner", "vital"):
+        beta = [inf_sup(exact_plate(n, "prism", nx=1, space=space)).beta for n in (8, 16, 32)]
+        assert min(beta) >= 0.2, (space, beta)
+
+
+def test_naive_tetrahedra_zero_modes():
+    """On tetrahedra the naive space has spurious multipliers B_r cannot see."""
+    from skxfem.levelset import plane
+    from skxfem.scene import Box, Scene, clamped
+
+    scene = Scene(Box(3, "tet"), plane((0.5, 0.5, 0.52), (0.1, 0.2, 1.0)),
+                  displacements=(clamped("zmin"),), space="naive")
+    r = inf_sup(scene)
+    assert r.n_zero > 0 and r.rank == r.size - r.n_zero
+    assert inf_sup(dataclasses.replace(scene, space="vital")).n_zero == 0
