@@ -14,12 +14,13 @@ singular matrix, we
 1. find a maximal set of independent rows with a rank-revealing (pivoted) QR
    of the dense interface block of Bᵀ,
 2. solve the reduced, non-singular saddle system with SuperLU,
-3. recover the multipliers from U: among those that balance it (Bᵀμ = KU - F
-   on the free unknowns) take the *smoothest*, minimising ‖G μ‖ with G the
+3. recover the multipliers from U: they balance it (Bᵀμ = KU - F on the free
+   unknowns); where that does not fix them — dependent multipliers, or
+   multipliers so nearly dependent (Γ a tiny distance from a node) that
+   round-off would decide — take the *smoothest*, minimising ‖G μ‖ with G the
    differences between neighbouring multipliers (:func:`smoothest_multipliers`).
    A constant traction has G μ = 0, so it is recovered exactly whenever it
-   balances U (the patch test), even where multipliers nearly depend on each
-   other because Γ passes very close to a node.
+   balances U (the patch test).
 
 >>> import numpy as np, scipy.sparse as sp
 >>> K = sp.identity(2, format="csr"); B = sp.csr_matrix([[1.0, -1.0], [2.0, -2.0]])
@@ -63,27 +64,30 @@ def independent_rows(B: sp.spmatrix, tol: float = 1e-10) -> np.ndarray:
     return np.sort(piv[:int(np.sum(d > tol * d.max()))])
 
 
-def smoothest_multipliers(B, r, G, alpha: float = 1e-4) -> np.ndarray:
-    """μ minimising ‖Bᵀμ - r‖² + (α‖B‖/‖G‖)² ‖Gμ‖² (dense least squares).
+def smoothest_multipliers(B, r, G, tol: float = 1e-6) -> np.ndarray:
+    """The smoothest μ with Bᵀμ = r: a truncated SVD, then least squares.
 
-    Directions of μ that the equilibrium Bᵀμ = r fixes with a singular value
-    above about α‖B‖ come from it; the (nearly) undetermined rest — exact
-    dependencies, or a node within a tiny fraction of h of Γ, whose
-    multipliers B barely tells apart — is chosen as smooth as possible.  A
-    constant traction that balances U is thus recovered exactly.  The
-    spurious modes of an unstable space have singular values of order
-    β_h‖B‖ ≫ α‖B‖ on the meshes used here, so their oscillations are not
-    smoothed away (:mod:`skxfem.lbb` measures β_h separately).  B and r are
-    used unscaled: rows whose data are mostly round-off carry little weight.
+    With B = U S Vᵀ, the components of Uᵀμ whose singular value exceeds
+    ``tol`` times the largest are fixed by the equilibrium, (Uᵀμ)_k =
+    V_kᵀ r / s_k, exactly as the saddle solve would; the rest — exact
+    dependencies, or a node within a tiny fraction of h of Γ whose
+    multipliers B barely tells apart, where round-off in r would be
+    amplified by 1/s_k — are chosen to minimise ‖Gμ‖.  A constant traction
+    that balances U is thus recovered exactly.  The spurious modes of an
+    unstable space have singular values of order β_h ≫ ``tol`` on the meshes
+    used here, so their oscillations are reported as they are.
     """
     B = sp.csr_matrix(B)
     cols = np.unique(B.indices)
-    Bt = B[:, cols].toarray().T
-    Gd = G.toarray() if sp.issparse(G) else np.asarray(G)
-    a = alpha * np.linalg.norm(Bt) / max(np.linalg.norm(Gd), 1e-300)
-    lhs = np.vstack([Bt, a * Gd])
-    rhs = np.concatenate([r[cols], np.zeros(Gd.shape[0])])
-    return sla.lstsq(lhs, rhs, lapack_driver="gelsy")[0]
+    U, sv, Vt = sla.svd(B[:, cols].toarray(), full_matrices=True)
+    k = int(np.sum(sv > tol * sv[0])) if sv.size else 0
+    mu = U[:, :k] @ ((Vt[:k] @ r[cols]) / sv[:k])
+    N = U[:, k:]
+    if N.shape[1]:
+        GN = G @ N
+        c = np.linalg.lstsq(GN, -(G @ mu), rcond=None)[0]
+        mu = mu + N @ c
+    return mu
 
 
 def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float = 1e-11):
