@@ -31,11 +31,11 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.sparse import coo_matrix
 from skfem.element import ElementVector
 from skfem.quadrature import get_quadrature
 from skfem.refdom import RefLine, RefTri
 
+from .evaluate import evaluation_matrix
 from .meshes import cell_name
 
 __all__ = ["BoundaryQuadrature", "boundary_quadrature", "pressure", "surface_load"]
@@ -269,14 +269,7 @@ def surface_load(basis, quad: BoundaryQuadrature,
         raise ValueError(f"traction must return shape {quad.points.shape} "
                          f"(dim, nq), got {t.shape}")
 
-    # A[dof, q] = t(x_q)·φ_dof(x_q): basis values from scikit-fem, point by point
-    X, nq = quad.ref[:, :, None], quad.cells.size
-    rows, vals = [], []
-    for i in range(basis.Nbfun):
-        phi = np.asarray(elem.gbasis(basis.mapping, X, i, tind=quad.cells)[0])[:, :, 0]
-        rows.append(basis.dofs.element_dofs[i, quad.cells])
-        vals.append(np.sum(t * phi, axis=0))
-    cols = np.tile(np.arange(nq), basis.Nbfun)
-    A = coo_matrix((np.concatenate(vals), (np.concatenate(rows), cols)),
-                   shape=(basis.N, nq)).tocsr()
-    return A @ quad.weights, A @ (quad.weights * quad.side)
+    # f = Σ_c Φ_cᵀ (w t_c), Φ_c the values of the basis' c-components at the points
+    Phi = evaluation_matrix(basis, quad.cells, quad.ref)
+    wt = (t * quad.weights).ravel()
+    return Phi.T @ wt, Phi.T @ (wt * np.tile(quad.side, dim))
