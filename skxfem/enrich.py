@@ -18,8 +18,9 @@ Assembly uses scikit-fem throughout.  With K the standard stiffness
 .. math:: K_{ab} = K_H[:, E] - K[:, E] D, \qquad
           K_{bb} = K[E,E] + D K[E,E] D - D K_H[E,E] - K_H[E,E] D,
 
-because H² = 1.  Only K_H needs the sub-cell quadrature of :mod:`skxfem.cut`;
-on uncut cells H is the cell's constant side.
+because H² = 1.  K_H needs the sub-cell quadrature of :mod:`skxfem.cut`; on
+uncut cells H is the cell's constant side.  Both come from one pass over the
+quadrature points: with K^± the stiffness of Ω^±, K = K⁺ + K⁻ and K_H = K⁺ - K⁻.
 
 >>> from skfem import MeshTri1
 >>> from skxfem.levelset import plane
@@ -41,11 +42,12 @@ from skfem.helpers import dot
 from skfem.assembly import CellBasis
 
 from .cut import Cut
+from .evaluate import evaluation_matrix
 from .material import Material, signed_stiffness_form
 from .quadrature import cell_rule, subcell_rule
 
 __all__ = ["XSpace", "space", "stiffness", "mass", "enriched_matrix", "signed_bases",
-           "far_side_fraction", "enriched_load", "evaluation_matrix",
+           "far_side_fraction", "enriched_load",
            "jump_matrix", "split_fields"]
 
 
@@ -98,19 +100,32 @@ class XSpace:
         return self.n_std + self.n_enr
 
 
-def _signed_basis(mesh, cut: Cut, elem, quadrature=None):
-    """Two bases covering the mesh and the H value at their quadrature points.
+def _side_bases(mesh, cut: Cut, elem, quadrature=None):
+    """Bases covering the mesh, each lying on one side of Γ: pairs (basis, ±1).
 
-    Uncut cells use the cell rule and their constant side; cut cells use the
-    sub-cell rule, with H = ±1 on each sub-simplex.
+    Uncut cells of Ω⁻ and of Ω⁺ use the cell rule.  The sub-simplices of the
+    cut cells, grouped by side, use the simplex rule mapped into their parent;
+    each sub-simplex is one element of its basis (its parent cell, repeated),
+    so no quadrature point is spent on padding.
     """
-    uncut = np.flatnonzero(cut.side != 0)
-    b_uncut = Basis(mesh, elem, elements=uncut,
-                    quadrature=quadrature or cell_rule(mesh, _orders(mesh)[0]))
-    H_uncut = np.broadcast_to(cut.side[uncut, None].astype(float), b_uncut.dx.shape).copy()
-    rule = subcell_rule(cut.sub_ref, cut.sub_cell, _orders(mesh)[1], values=cut.sub_side)
-    b_cut = Basis(mesh, elem, elements=rule.cells, quadrature=(rule.X, rule.W))
-    return (b_uncut, H_uncut), (b_cut, rule.V)
+    cell_q = quadrature or cell_rule(mesh, _orders(mesh)[0])
+    pairs = []
+    for s in (-1, 1):
+        cells = np.flatnonzero(cut.side == s)
+        if cells.size:
+            pairs.append((Basis(mesh, elem, elements=cells, quadrature=cell_q), s))
+        sub = np.flatnonzero(cut.sub_side == s)
+        if sub.size:
+            rule = subcell_rule(cut.sub_ref[sub], np.arange(sub.size), _orders(mesh)[1])
+            pairs.append((Basis(mesh, elem, elements=cut.sub_cell[sub],
+                                quadrature=(rule.X, rule.W)), s))
+    return pairs
+
+
+def _signed_basis(mesh, cut: Cut, elem, quadrature=None):
+    """Bases covering the mesh and the value of H at their quadrature points."""
+    return [(b, np.full(b.dx.shape, float(s)))
+            for b, s in _side_bases(mesh, cut, elem, quadrature)]
 
 
 @LinearForm
@@ -128,9 +143,9 @@ def far_side_fraction(mesh, cut: Cut) -> np.ndarray:
     elem = mesh.elem()
     total = np.zeros(mesh.p.shape[1])
     signed = np.zeros(mesh.p.shape[1])
-    for b, H in _signed_basis(mesh, cut, elem):
-        total += _signed_mass.assemble(b, H=np.ones_like(H))
-        signed += _signed_mass.assemble(b, H=H)
+    for b, s in _side_bases(mesh, cut, elem):
+        part = _signed_mass.assemble(b, H=np.ones(b.dx.shape))
+        total, signed = total + part, signed + s * part
     Hj = np.sign(cut.psi)
     return np.clip(0.5 * (total - Hj * signed) / total, 0.0, 1.0)
 
@@ -163,12 +178,14 @@ def enriched_matrix(V: XSpace, form) -> sp.csr_matrix:
     """The X-FEM matrix on [a, b] of a form that reads the Heaviside value w["H"].
 
     With A = the form at H = 1 (standard) and A_H its signed version, and
-    D = diag(Hⱼ), the blocks follow from H² = 1 (see the module notes).
+    D = diag(Hⱼ), the blocks follow from H² = 1 (see the module notes).  Both
+    come from one pass over the quadrature points: with A^± the form over Ω^±,
+    A = A⁺ + A⁻ and A_H = A⁺ - A⁻.
     """
     A = AH = 0
-    for b, H in signed_bases(V):
-        A = A + form.assemble(b, H=np.ones_like(H))
-        AH = AH + form.assemble(b, H=H)
+    for b, s in _side_bases(V.mesh, V.cut, V.basis.elem, V.basis.quadrature):
+        part = form.assemble(b, H=np.ones(b.dx.shape))  # ∫ over one side only
+        A, AH = A + part, AH + s * part
     A, AH = A.tocsr(), AH.tocsr()
     E = V.enr_dofs
     D = sp.diags(V.H_node)
@@ -197,30 +214,6 @@ def enriched_load(V: XSpace, f: np.ndarray, f_H: np.ndarray) -> np.ndarray:
     """Load on [a, b] from f = ∫ t·φ and f_H = ∫ H t·φ (standard dofs)."""
     E = V.enr_dofs
     return np.concatenate([f, f_H[E] - V.H_node * f[E]])
-
-
-def evaluation_matrix(basis: CellBasis, cells: np.ndarray, ref: np.ndarray) -> sp.csr_matrix:
-    """Values of a vector basis at points given in reference coordinates.
-
-    Returns the matrix mapping the dof vector of ``basis`` to the field at the
-    points, rows ordered component-major (all x values, then all y, ...).
-
-    ``cells`` (npts,) holds the cell of each point and ``ref`` (dim, npts)
-    its reference coordinates; scikit-fem evaluates the shape functions.
-    """
-    npts = cells.size
-    B = CellBasis(basis.mesh, basis.elem, elements=cells,
-                  quadrature=(ref[:, :, None], np.ones((npts, 1))))
-    dim = basis.mesh.dim()
-    rows, cols, vals = [], [], []
-    for k in range(B.Nbfun):
-        value = B.basis[k][0].value[:, :, 0]  # (dim, npts)
-        for c in range(dim):
-            rows.append(c * npts + np.arange(npts))
-            cols.append(B.element_dofs[k])
-            vals.append(value[c])
-    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                         shape=(dim * npts, basis.N))
 
 
 def jump_matrix(V: XSpace, cells: np.ndarray, ref: np.ndarray) -> sp.csr_matrix:

@@ -45,7 +45,7 @@ def evaluation_matrix(basis: CellBasis, cells: np.ndarray, ref: np.ndarray) -> s
     dim = basis.mesh.dim()
     rows, cols, vals = [], [], []
     for k in range(B.Nbfun):
-        value = B.basis[k][0].value[:, :, 0]  # (dim, npts)
+        value = np.asarray(B.basis[k][0])[:, :, 0]  # (dim, npts)
         for c in range(dim):
             rows.append(c * npts + np.arange(npts))
             cols.append(B.element_dofs[k])

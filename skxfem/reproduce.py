@@ -1,0 +1,204 @@
+r"""Reproduce the paper's figures and numbers: ``python -m skxfem.reproduce``.
+
+``make figures`` runs ``python -m skxfem.reproduce --quick --out out/``.  It
+writes into ``--out``
+
+* ``fig5.png`` ... ``fig10.png``: the paper's Figures 5-10 (see
+  :mod:`skxfem.figures`), and ``inf_sup.png``: β_h vs h (our addition);
+* ``summary.json``: the measured numbers — per cell and space, for every n:
+  the inf-sup constant β_h (both norms of :func:`skxfem.lbb.inf_sup`), the
+  number of zero modes, the relative L² error of the contact pressure and the
+  relative energy error with their observed rates, sizes and timings;
+
+and prints a short table.  Errors are measured against the exact solution of
+:mod:`skxfem.exact` (scenes :func:`~skxfem.scenes.exact_strip` and
+:func:`~skxfem.scenes.exact_plate` with one layer of cells along x), under
+which the paper's reference p(y) = 4y(1 - y) is the exact contact pressure.
+3D uses prisms (all three spaces) and hexahedra (the naive space: on this
+structured mesh cut by a plane every space is the naive one), 2D triangles and
+quadrilaterals (all three spaces).
+
+``--quick`` takes about a minute (2D up to 1/h = 64, 3D up to 32); the default
+goes one mesh further in each.  ``--sizes`` replaces every list of meshes (for
+tests).
+
+>>> parser().parse_args(["--quick", "--sizes", "8", "16"]).sizes
+[8, 16]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["main", "parser", "plan"]
+
+SETS = {
+    "quick": {"d2": (8, 16, 32, 64), "d3": (8, 16, 32), "fig5": 8, "fig7": (4, 8, 16, 32),
+              "fig8": (8, 16)},
+    "full": {"d2": (8, 16, 32, 64, 128), "d3": (8, 16, 32, 64), "fig5": 16,
+             "fig7": (4, 8, 16, 32, 64), "fig8": (16, 32)},
+}
+CELLS = {"tri": ("naive", "winner", "vital"), "quad": ("naive", "winner", "vital"),
+         "prism": ("naive", "winner", "vital"), "hex": ("naive",)}
+
+
+def parser() -> argparse.ArgumentParser:
+    """The command line of ``python -m skxfem.reproduce``."""
+    p = argparse.ArgumentParser(prog="python -m skxfem.reproduce",
+                                description="Reproduce Figures 5-10 of Géniaut, Massin & "
+                                            "Moës (2007) and write summary.json.")
+    p.add_argument("--out", type=Path, default=Path("out"), help="output folder (created)")
+    p.add_argument("--quick", action="store_true", help="coarser meshes, about a minute")
+    p.add_argument("--sizes", type=int, nargs="+", metavar="N",
+                   help="1/h of every study and of Figures 5, 7, 8 (e.g. 8 16, for tests)")
+    return p
+
+
+def plan(quick: bool, sizes=None) -> dict:
+    """The meshes of each part: ``d2``/``d3`` study sizes, ``fig5`` n, ``fig7``/``fig8`` ns.
+
+    >>> plan(True, [8, 16])
+    {'d2': (8, 16), 'd3': (8, 16), 'fig5': 8, 'fig7': (8, 16), 'fig8': (8, 16)}
+    """
+    if not sizes:
+        return dict(SETS["quick" if quick else "full"])
+    sizes = tuple(sorted(set(sizes)))
+    return {"d2": sizes, "d3": sizes, "fig5": min(8, sizes[-1]), "fig7": sizes,
+            "fig8": sizes[-2:]}
+
+
+def _scene(cell, n, space):
+    from .scenes import exact_plate, exact_strip
+
+    if cell in ("tri", "quad"):
+        return exact_strip(n, cell, space=space)
+    return exact_plate(n, cell, nx=1, space=space)
+
+
+def _measure(cell, ns):
+    """Study rows and inf-sup results (both norms) of ``cell`` for its spaces."""
+    from .convergence import study
+    from .lbb import inf_sup
+
+    rows = study(lambda n, s: _scene(cell, n, s), ns, CELLS[cell], with_inf_sup=False)
+    betas = {(scaling, space): [inf_sup(_scene(cell, n, space), scaling) for n in ns]
+             for scaling in ("h", "l2") for space in CELLS[cell]}
+    return rows, betas
+
+
+def _rates(h, e):
+    from .convergence import observed_rates
+
+    return [round(float(r), 4) for r in observed_rates(h, e)] if len(h) > 1 else []
+
+
+def _table(cell, rows, betas) -> dict:
+    out = {}
+    for space in CELLS[cell]:
+        mine = [r for r in rows if r.space == space]
+        h = [r.h for r in mine]
+        out[space] = {
+            "n": [r.n for r in mine], "h": h,
+            "beta_h": [r.beta for r in betas["h", space]],
+            "beta_l2": [r.beta for r in betas["l2", space]],
+            "h_cut_edges": [r.h for r in betas["h", space]],
+            "n_zero": [r.n_zero for r in betas["h", space]],
+            "pressure_l2": [r.pressure_l2 for r in mine],
+            "pressure_l2_rates": _rates(h, [r.pressure_l2 for r in mine]),
+            "pressure_max": [r.pressure_max for r in mine],
+            "energy": [r.energy for r in mine],
+            "energy_rates": _rates(h, [r.energy for r in mine]),
+            "n_dofs": [r.n_dofs for r in mine],
+            "n_multipliers": [r.n_multipliers for r in mine],
+            "seconds_solve": [round(r.seconds, 3) for r in mine],
+        }
+    return out
+
+
+def _print_table(studies: dict) -> None:
+    print(f"{'cell':6} {'space':7} {'1/h':>4} {'beta_h':>8} {'L2(p)':>9} {'rate':>5} "
+          f"{'W(u)':>9} {'rate':>5}")
+    for cell, spaces in studies.items():
+        for space, t in spaces.items():
+            for k, n in enumerate(t["n"]):
+                pr = f"{t['pressure_l2_rates'][k - 1]:5.2f}" if k else "     "
+                er = f"{t['energy_rates'][k - 1]:5.2f}" if k else "     "
+                print(f"{cell:6} {space:7} {n:4d} {t['beta_h'][k]:8.4f} "
+                      f"{t['pressure_l2'][k]:9.2e} {pr} {t['energy'][k]:9.2e} {er}")
+
+
+def main(argv=None) -> int:
+    """Compute, draw and write everything; returns the exit code 0."""
+    from . import figures
+    from .stabilised import vital_edges, winner_nodes
+
+    args = parser().parse_args(argv)
+    sizes = plan(args.quick, args.sizes)
+    out = args.out
+    out.mkdir(parents=True, exist_ok=True)
+    timings = {}
+    start = time.perf_counter()
+
+    def save(fig, name):
+        fig.savefig(out / f"{name}.png", dpi=120, bbox_inches="tight")
+
+    def timed(name, make):
+        t0 = time.perf_counter()
+        value = make()
+        timings[name] = round(time.perf_counter() - t0, 2)
+        print(f"{name}: {timings[name]:.1f} s", flush=True)
+        return value
+
+    save(timed("fig5", lambda: figures.fig5(sizes["fig5"])), "fig5")
+    save(timed("fig6", figures.fig6), "fig6")
+    graph = figures.figure6_graph()
+    algo1, algo2 = winner_nodes(*graph), vital_edges(*graph)
+    save(timed("fig7", lambda: figures.fig7(sizes["fig7"])), "fig7")
+    save(timed("fig8", lambda: figures.fig8(sizes["fig8"])), "fig8")
+
+    measured = {}
+    for cell in ("tri", "quad", "prism", "hex"):
+        ns = sizes["d2"] if cell in ("tri", "quad") else sizes["d3"]
+        measured[cell] = timed(f"study_{cell}", lambda c=cell, ns=ns: _measure(c, ns))
+    studies = {cell: _table(cell, *m) for cell, m in measured.items()}
+    rows = {cell: m[0] for cell, m in measured.items()}
+    shown = {"tri": ("naive", "winner", "vital"), "prism": ("naive", "winner", "vital"),
+             "quad": ("naive",), "hex": ("naive",)}
+    save(figures.fig9({c: [r for r in rows[c] if r.space in shown[c]] for c in rows}), "fig9")
+    save(figures.fig10({c: [r for r in rows[c] if r.space in shown[c]] for c in rows}), "fig10")
+    inf_sup = [{(c, s): measured[c][1][scaling, s] for c in ("tri", "quad", "prism")
+                for s in shown[c]} for scaling in ("h", "l2")]
+    save(figures.fig_inf_sup(*inf_sup), "inf_sup")
+
+    quad = studies["quad"]
+    summary = {
+        "paper": "Géniaut, Massin & Moës (2007), §5, Figures 5-10",
+        "quick": bool(args.quick), "sizes": sizes,
+        "reference": "exact: skxfem.exact.ExactPlate, contact pressure p = 4 s (1 - s) on Γ",
+        "scenes": {"tri": "exact_strip(n, 'tri')", "quad": "exact_strip(n, 'quad')",
+                   "prism": "exact_plate(n, 'prism', nx=1)", "hex": "exact_plate(n, 'hex', nx=1)"},
+        "figure6": {"winner": {"multipliers": algo1.size, "winner_nodes": algo1.winners.tolist()},
+                    "vital": {"multipliers": algo2.size,
+                              "vital_edges": [list(figures.FIG6_EDGES[e]) for e in
+                                              np.flatnonzero(algo2.vital)]}},
+        "quad_spaces_coincide": float(max(
+            np.ptp([quad[s][k][i] for s in quad]) for k in ("beta_h", "pressure_l2")
+            for i in range(len(quad["naive"]["n"])))),
+        "studies": studies,
+        "timings": timings,
+    }
+    timings["total"] = round(time.perf_counter() - start, 2)
+    (out / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
+    _print_table(studies)
+    print(f"wrote {len(list(out.glob('*.png')))} figures and summary.json to {out}/ "
+          f"in {timings['total']:.0f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

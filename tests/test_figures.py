@@ -1,0 +1,146 @@
+"""Tests for skxfem.figures: one function per paper figure, each a returned Figure.
+
+What is drawn is checked (axes, lines, labels, colours and the data of the
+curves), not pixels.  Figure 6 is also checked against the paper's numbers.
+"""
+import re
+
+import numpy as np
+import pytest
+from matplotlib.colors import to_rgba
+from matplotlib.figure import Figure
+
+from skxfem.convergence import StudyRow
+from skxfem.cut import cut
+from skxfem.figures import (FIG6_EDGES, fig5, fig6, fig7, fig8, fig9, fig10, fig_inf_sup,
+                            figure6_graph, plot_space_2d)
+from skxfem.lbb import InfSup
+from skxfem.levelset import plane
+from skxfem.meshes import box
+from skxfem.multipliers import multiplier_space
+from skxfem.plotting import COLORS
+from skxfem.stabilised import vital_edges, winner_nodes
+
+
+def same_colour(a, b):
+    return to_rgba(a) == to_rgba(b)
+
+
+def curves(ax):
+    """The lines of an axes that carry a legend label (the data curves)."""
+    return [ln for ln in ax.lines if not ln.get_label().startswith("_")]
+
+
+# 1. Figure 6: the paper's example, its numbers and its drawing
+def test_figure6_graph_is_the_papers():
+    edges, psi, points, nodes = figure6_graph()
+    assert np.all(psi[1:8] < 0) and np.all(psi[8:] > 0), "nodes 1-7 in Ω⁻, 8-13 in Ω⁺"
+    assert np.all(np.diff(points[0]) > 0), "A, B, ..., K must follow each other along Γ"
+    assert np.allclose(points[1], 0.0), "the points lie on Γ: y = 0"
+    vital = vital_edges(edges, psi, points, nodes)
+    winner = winner_nodes(edges, psi, points, nodes)
+    assert {FIG6_EDGES[e] for e in np.flatnonzero(~vital.vital)} == {(2, 8), (3, 10), (7, 12)}
+    assert set(winner.winners.tolist()) == {8, 2, 3, 12, 7}
+    assert vital.size == winner.size == 5, "both algorithms keep 5 multipliers"
+
+
+def test_fig6_panels_and_p1_share():
+    fig = fig6()
+    assert isinstance(fig, Figure) and len(fig.axes) == 3
+    top, algo1, algo2 = fig.axes
+    edges = [ln for ln in top.lines if same_colour(ln.get_color(), COLORS["vital"])]
+    solid = [ln for ln in edges if ln.get_linestyle() == "-"]
+    dotted = [ln for ln in edges if ln.get_linestyle() == ":"]
+    assert len(solid) == 8 and len(dotted) == 3, "8 vital edges solid, 3 non-vital dotted"
+    assert len(top.patches) == 2, "two groups of connected vital edges are circled"
+    share = [float(re.search(r"P1 on (\d+)%", ax.get_title()).group(1)) for ax in (algo1, algo2)]
+    assert "5 multipliers" in algo1.get_title() and "5 multipliers" in algo2.get_title()
+    assert share[1] > share[0], "the P1 region is larger for algo2 (the paper's point)"
+
+
+# 2. pressure curves: Figures 5, 7, 8
+def test_fig5_naive_hex_smooth_prism_oscillates():
+    fig = fig5(n=8, nx=1)
+    assert len(fig.axes) == 2
+    for ax, ref in zip(fig.axes, ("paper's reference", "exact")):
+        labels = [ln.get_label() for ln in ax.lines]
+        assert len(labels) == 3 and ref in labels[2], labels
+        assert all(same_colour(ln.get_color(), COLORS["naive"]) for ln in ax.lines[:2])
+    for ax in fig.axes:
+        smooth, wavy = (np.abs(np.diff(ln.get_ydata(), 2)).max() for ln in ax.lines[:2])
+        assert wavy > 10 * smooth, "prisms/triangles oscillate, hexahedra/quads do not"
+
+
+def test_fig7_converges_to_the_exact_pressure():
+    fig = fig7(ns=(4, 8, 16))
+    lines = fig.axes[0].lines
+    assert len(lines) == 4 and "exact" in lines[-1].get_label()
+    errors = [np.abs(ln.get_ydata() - 4 * ln.get_xdata() * (1 - ln.get_xdata())).mean()
+              for ln in lines[:3]]
+    assert errors[2] < errors[1] < errors[0], errors
+
+
+def test_fig8_half_length_two_algorithms():
+    fig = fig8(ns=(4, 8))
+    assert len(fig.axes) == 2
+    for ax in fig.axes:
+        winner, vital, _ = ax.lines
+        assert same_colour(winner.get_color(), COLORS["winner"])
+        assert same_colour(vital.get_color(), COLORS["vital"])
+        assert winner.get_xdata().max() == pytest.approx(0.5), "only y ≤ 0.5 is drawn"
+
+
+# 3. convergence and inf-sup plots from data
+def rows(space, errors, ns=(4, 8, 16)):
+    return [StudyRow(n, 1 / n, space, 0.5, 0, e, e, e, 0, 0, 0.0) for n, e in zip(ns, errors)]
+
+
+def test_fig9_fig10_one_panel_per_dimension_with_slopes():
+    data = {"prism": rows("vital", [0.4, 0.2, 0.1]) + rows("naive", [2.0, 2.0, 2.0]),
+            "tri": rows("winner", [0.16, 0.04, 0.01])}
+    for make in (fig9, fig10):
+        fig = make(data)
+        assert [ax.get_title()[-4:] for ax in fig.axes] == ["(3D)", "(2D)"]
+        assert all(ax.get_xscale() == ax.get_yscale() == "log" for ax in fig.axes)
+        labels = [ln.get_label() for ln in fig.axes[0].lines]
+        assert labels == ["naive, prism, slope 0.00", "vital, prism, slope -1.00"]
+        assert fig.axes[1].lines[0].get_label() == "winner, tri, slope -2.00"
+        assert np.allclose(fig.axes[1].lines[0].get_xdata(), [4, 8, 16]), "abscissa 1/h"
+
+
+def test_inf_sup_plot_two_norms():
+    res = [InfSup(b, np.array([b * b]), 0, 1, 1, h) for b, h in ((0.6, 0.2), (0.6, 0.1))]
+    fig = fig_inf_sup({("tri", "vital"): res}, {("tri", "vital"): res[:1]})
+    assert len(fig.axes) == 2
+    assert fig.axes[0].lines[0].get_label() == "vital, tri, slope 0.00"
+    assert same_colour(fig.axes[1].lines[0].get_color(), COLORS["vital"])
+
+
+# 4. a space on a 2D mesh
+@pytest.mark.parametrize("name", ["naive", "winner", "vital"])
+def test_plot_space_2d_solid_and_dotted_edges(name):
+    m = box(6, "tri")
+    c = cut(m, plane((0, 0.52), (0.25, 1)))
+    space = multiplier_space(name, m, c)
+    ax = plot_space_2d(m, c, space).axes[0]
+    edges = [ln for ln in ax.lines if len(ln.get_xdata()) == 2
+             and same_colour(ln.get_color(), COLORS[name])
+             and ln.get_linestyle() in ("-", ":")]
+    solid = sum(ln.get_linestyle() == "-" for ln in edges)
+    assert len(edges) == c.edges.shape[1], "one line per cut edge"
+    if name == "naive":
+        assert solid == len(edges), "every naive multiplier is free"
+    if name == "vital":
+        assert solid == space.vital.sum(), "vital edges solid, the others dotted"
+    if name == "winner":
+        dots = [ln for ln in ax.lines if ln.get_marker() == "o" and ln.get_alpha() == 0.45]
+        assert len(dots) == 1 and len(dots[0].get_xdata()) == space.size
+    assert str(space.size) in ax.get_title()
+
+
+def test_plot_space_2d_into_given_axes():
+    m = box(4, "quad")
+    c = cut(m, plane((0, 0.55), (0, 1)))
+    fig = Figure()
+    ax = fig.add_subplot(121)
+    assert plot_space_2d(m, c, multiplier_space("vital", m, c), ax=ax) is fig

@@ -1,0 +1,130 @@
+"""Plotting: figures are returned (never shown), with one colour scheme.
+
+The tests check what is drawn (numbers of axes, polygons, segments, lines and
+their colours) and the data helpers, not pixels.
+"""
+import numpy as np
+import pytest
+from matplotlib.colors import to_rgba
+from matplotlib.figure import Figure
+
+from skxfem.cut import cut
+from skxfem.levelset import circle, nodal_values, plane
+from skxfem.meshes import box
+from skxfem.multipliers import SPACES
+from skxfem.plotting import (
+    COLORS,
+    plot_cut_2d,
+    plot_cut_3d,
+    plot_levelset_2d,
+    plot_pressure,
+    pressure_along,
+)
+from skxfem.scenes import paper_plate, strip
+from skxfem.solver import solve
+
+
+# 1. one colour scheme
+def test_colours_cover_sides_interface_and_every_space():
+    for key in ("minus", "plus", "gamma") + SPACES:
+        assert key in COLORS, f"COLORS must name a colour for {key!r}"
+    used = [to_rgba(COLORS[k]) for k in ("minus", "plus", "gamma") + SPACES]
+    assert len(set(used)) == len(used), "each side, Γ and each space needs its own colour"
+
+
+# 2. the 2D cut figure
+@pytest.mark.parametrize("cell", ["tri", "quad"])
+def test_cut_2d_draws_every_cell_subcell_and_facet(cell):
+    m = box(6, cell)
+    c = cut(m, circle((0.5, 0.5), 0.3))
+    fig = plot_cut_2d(m, c)
+    assert isinstance(fig, Figure) and len(fig.axes) == 1
+    cells, subcells, edges, gamma = fig.axes[0].collections
+    assert len(cells.get_paths()) == np.count_nonzero(c.side), "one polygon per uncut cell"
+    assert len(subcells.get_paths()) == c.sub_ref.shape[0], "one polygon per sub-cell"
+    assert len(edges.get_segments()) == m.facets.shape[1], "one segment per mesh edge"
+    assert len(gamma.get_segments()) == c.facets.shape[1], "one segment per Γ facet"
+    assert to_rgba(gamma.get_colors()[0]) == to_rgba(COLORS["gamma"])
+
+
+def test_cut_2d_subcells_fill_the_cut_cells():
+    m = box(5, "quad")
+    c = cut(m, circle((0.5, 0.5), 0.3))
+    subcells = plot_cut_2d(m, c).axes[0].collections[1]
+    area = 0.0
+    for path in subcells.get_paths():
+        (x0, y0), (x1, y1), (x2, y2) = path.vertices[:3]
+        area += abs((x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)) / 2
+    assert abs(area - c.cells.size * 0.2 ** 2) < 1e-12, \
+        "the sub-cells, mapped to physical coordinates, must tile the cut cells"
+
+
+def test_draw_into_given_axes():
+    m = box(4, "tri")
+    fig = Figure()
+    ax = fig.add_subplot(121)
+    assert plot_cut_2d(m, cut(m, plane((0, 0.3), (0, 1))), ax=ax) is fig
+    assert len(fig.axes) == 1
+
+
+def test_cut_2d_refuses_3d():
+    m = box(2, "hex")
+    with pytest.raises(ValueError, match="plot_cut_3d"):
+        plot_cut_2d(m, cut(m, plane((0, 0, 0.3), (0, 0, 1))))
+
+
+def test_levelset_figure_has_plot_and_colorbar():
+    m = box(6, "quad")
+    fig = plot_levelset_2d(m, nodal_values(circle((0.5, 0.5), 0.3), m))
+    assert len(fig.axes) == 2
+    with pytest.raises(ValueError, match="one value per vertex"):
+        plot_levelset_2d(m, np.zeros(3))
+
+
+# 3. pressure along a line
+def test_pressure_along_2d_takes_every_point_sorted():
+    r = solve(strip(4, "tri"))
+    s, p = pressure_along(r, "x")
+    assert s.size == r.points.shape[1]
+    assert np.all(np.diff(s) > 0)
+    k = np.argmin(np.abs(r.points[0] - s[2]))
+    assert p[2] == r.pressure[k]
+
+
+def test_pressure_along_3d_picks_the_middle_node_plane():
+    r = solve(paper_plate(2, "hex"))        # 3 x 3 intersection points on z = 0.5
+    s, p = pressure_along(r, "y")
+    assert s.tolist() == [0.0, 0.5, 1.0], "3 points on the line x = 0.5"
+    s_all, _ = pressure_along(r, "y", where={})
+    assert s_all.size == r.points.shape[1]
+    _, p0 = pressure_along(r, "y", where={"x": 0.0})
+    assert np.allclose(p0, p, atol=1e-8), "the plate solution does not depend on x"
+    with pytest.raises(ValueError, match="no multiplier point"):
+        pressure_along(r, "y", where={"x": 0.3})
+    with pytest.raises(ValueError, match="axis"):
+        pressure_along(r, "w")
+
+
+def test_plot_pressure_lines_and_colours():
+    s = np.linspace(0, 1, 5)
+    fig = plot_pressure({"hex": (s, s), "vital": (s, 1 - s)}, reference=(s, s ** 2))
+    lines = fig.axes[0].lines
+    assert [ln.get_label() for ln in lines] == ["hex", "vital", "reference"]
+    assert to_rgba(lines[1].get_color()) == to_rgba(COLORS["vital"])
+    assert to_rgba(lines[2].get_color()) == to_rgba(COLORS["reference"])
+    with pytest.raises(ValueError, match="at least one"):
+        plot_pressure({})
+    with pytest.raises(ValueError, match="same length"):
+        plot_pressure({"bad": (s, s[:3])})
+
+
+# 4. the 3D cut, rendered off-screen
+def test_cut_3d_renders_the_interface():
+    pytest.importorskip("pyvista")
+    m = box(2, "hex")
+    fig = plot_cut_3d(m, cut(m, plane((0.5, 0.5, 0.6), (1, 1, 1))), window_size=(320, 240))
+    image = fig.axes[0].images[0].get_array()
+    assert image.shape == (240, 320, 3)
+    gamma = np.array(to_rgba(COLORS["gamma"])[:3]) * 255
+    near = np.abs(image.astype(float) - gamma).max(axis=2) < 40
+    assert near.mean() > 0.02, "the interface (drawn in COLORS['gamma']) must be visible"

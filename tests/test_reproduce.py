@@ -1,0 +1,59 @@
+"""Tests for skxfem.reproduce: the main job writes every figure and sane numbers.
+
+One reduced run (meshes 1/h = 8 and 16) is shared by the tests of this file.
+"""
+import json
+
+import pytest
+
+from skxfem.reproduce import main
+
+FIGURES = ["fig5", "fig6", "fig7", "fig8", "fig9", "fig10", "inf_sup"]
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("out")
+    code = main(["--quick", "--sizes", "8", "16", "--out", str(out)])
+    return code, out, json.loads((out / "summary.json").read_text())
+
+
+def test_exit_code_and_files(run):
+    code, out, _ = run
+    assert code == 0
+    for name in FIGURES:
+        path = out / f"{name}.png"
+        assert path.exists() and path.stat().st_size > 10_000, f"{name}.png missing or empty"
+
+
+def test_summary_layout(run):
+    _, _, summary = run
+    assert summary["sizes"]["d2"] == [8, 16] and summary["sizes"]["d3"] == [8, 16]
+    assert set(summary["studies"]) == {"tri", "quad", "prism", "hex"}
+    for cell, spaces in summary["studies"].items():
+        for space, t in spaces.items():
+            assert t["n"] == [8, 16], (cell, space)
+            assert len(t["beta_h"]) == len(t["pressure_l2"]) == len(t["energy"]) == 2
+            assert len(t["pressure_l2_rates"]) == len(t["energy_rates"]) == 1
+    assert summary["timings"]["total"] > 0
+    assert summary["figure6"]["vital"]["multipliers"] == 5
+    assert summary["figure6"]["winner"]["multipliers"] == 5
+
+
+@pytest.mark.parametrize("cell", ["tri", "prism"])
+def test_summary_values_are_the_papers_findings(run, cell):
+    _, _, summary = run
+    t = summary["studies"][cell]
+    naive = t["naive"]["beta_h"]
+    assert naive[1] < 0.6 * naive[0], f"naive β_h must fall with h on {cell}: {naive}"
+    assert t["naive"]["pressure_l2"][1] > 0.5, "naive pressure must not converge"
+    for space in ("winner", "vital"):
+        assert min(t[space]["beta_h"]) >= 0.2, (cell, space, t[space]["beta_h"])
+        assert t[space]["pressure_l2_rates"][0] >= 1.0, (cell, space)
+        assert t[space]["energy_rates"][0] > 0.8, (cell, space)
+    assert t["vital"]["pressure_l2"][1] < t["winner"]["pressure_l2"][1], "algo2 more accurate"
+
+
+def test_quad_spaces_coincide(run):
+    _, _, summary = run
+    assert summary["quad_spaces_coincide"] < 1e-8
