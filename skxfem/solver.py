@@ -91,20 +91,30 @@ def _differences(c, ncomp: int) -> sp.csr_matrix:
 
 
 def _dirichlet(V: XSpace, scene: Scene, mesh):
-    """Constrained unknowns and values: nodal a-dofs, plus b = 0 where a
-    constrained node lies on a boundary facet that Γ cuts (both sides fixed)."""
+    """Constrained unknowns and their values.
+
+    The shifted enrichment φⱼ(H - Hⱼ) vanishes on a boundary facet that Γ
+    does not cut, so there imposing aᵢ imposes u.  On a facet of the
+    constrained boundary that Γ cuts, u = a + b(H - Hⱼ) takes both signs of
+    H, so the enriched dofs of that component at the facet's nodes are set to
+    zero as well.  A facet belongs to the constrained boundary of component c
+    when c is imposed at all its vertices.
+    """
     dofs, values = dirichlet(scene, mesh, V.basis)
     psi = V.cut.psi
     bf = mesh.facets[:, mesh.boundary_facets()]
-    cut_bf = (psi[bf] < 0).any(axis=0) & (psi[bf] > 0).any(axis=0)
-    on_cut_boundary = np.zeros(mesh.p.shape[1], bool)
-    on_cut_boundary[bf[:, cut_bf].ravel()] = True
+    cut_bf = bf[:, (psi[bf] < 0).any(axis=0) & (psi[bf] > 0).any(axis=0)]
+    imposed = np.zeros(V.n_std, bool)
+    imposed[dofs] = True
     pos = np.full(V.n_std, -1)
     pos[V.enr_dofs] = np.arange(V.n_enr)
-    node_of_dof = np.zeros(V.n_std, int)
-    node_of_dof[V.basis.nodal_dofs] = np.arange(mesh.p.shape[1])[None, :]
-    sel = (pos[dofs] >= 0) & on_cut_boundary[node_of_dof[dofs]]
-    enr = V.n_std + pos[dofs[sel]]
+    enr = []
+    for c in range(mesh.dim()):
+        nd = V.basis.nodal_dofs[c]
+        facets = cut_bf[:, imposed[nd[cut_bf]].all(axis=0)]
+        k = pos[nd[np.unique(facets)]]
+        enr.append(V.n_std + k[k >= 0])
+    enr = np.concatenate(enr)
     return (np.concatenate([dofs, enr]),
             np.concatenate([values, np.zeros(enr.size)]))
 
