@@ -29,6 +29,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from pathlib import Path
+
 import numpy as np
 from skfem import Mesh, MeshHex1, MeshQuad1, MeshTet1, MeshTri1, MeshWedge1
 
@@ -215,7 +217,16 @@ def read(path) -> Mesh:
     import meshio
     from skfem.io.meshio import from_meshio
 
-    m = meshio.read(path)
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"mesh file {str(path)!r} does not exist; give the path of a "
+                         f"mesh file meshio reads (e.g. a Gmsh .msh)")
+    try:
+        m = meshio.read(path)
+    except (Exception, SystemExit) as e:  # meshio's errors (some call sys.exit)
+        raise ValueError(f"mesh file {str(path)!r} could not be read by meshio "
+                         f"({type(e).__name__}: {e}); give a mesh file meshio reads "
+                         f"(e.g. a Gmsh .msh)") from e
     found = [k for k in _MESHIO_CELLS if k in m.cells_dict]
     if not found:
         raise ValueError(

@@ -37,7 +37,13 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-__all__ = ["SaddleInfo", "independent_rows", "solve"]
+__all__ = ["SaddleInfo", "SingularSystemError", "independent_rows", "solve"]
+
+
+class SingularSystemError(ValueError):
+    """The saddle-point system has no unique solution: the scene's supports
+    leave a rigid motion of one side of Γ free.  A ValueError, since the fix
+    is in the input (the scene's displacements or its interface law)."""
 
 
 @dataclass(frozen=True)
@@ -116,7 +122,7 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float =
 
     Raises
     ------
-    RuntimeError
+    SingularSystemError
         If the system is singular (a tiny LU pivot) or the residual exceeds ``tol``.
     """
     N, m = K.shape[0], B.shape[0]
@@ -140,20 +146,21 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float =
     lu = spla.splu(A, permc_spec="MMD_AT_PLUS_A")
     pivots = np.abs(lu.U.diagonal())
     if pivots.min() < pivot_tol * pivots.max():
-        raise RuntimeError(
+        raise SingularSystemError(
             f"the saddle-point system is singular (smallest LU pivot "
             f"{pivots.min() / pivots.max():.1e} of the largest): a part of the body "
-            f"can move freely — e.g. a frictionless (bilateral) tie lets the part "
-            f"above Γ slide; add supports that remove every rigid motion of each side")
+            f"can move freely.  Either the displacements do not remove every rigid "
+            f"motion of the body, or a frictionless (bilateral) tie lets the part on "
+            f"the other side of Γ slide; add displacements (supports) on each side")
     x = lu.solve(rhs)
     for _ in range(3):  # iterative refinement: X-FEM slivers cost digits in the LU
         x += lu.solve(rhs - A @ x)
     residual = np.linalg.norm(A @ x - rhs) / max(np.linalg.norm(rhs), 1e-300)
     if not np.all(np.isfinite(x)) or residual > tol:
-        raise RuntimeError(
+        raise SingularSystemError(
             f"the saddle-point solve failed (relative residual {residual:.2e}): the "
-            f"displacement problem is singular; check that the supports remove every "
-            f"rigid motion of each side of the interface")
+            f"displacement problem is singular; check that the displacements (supports) "
+            f"remove every rigid motion of each side of the interface")
     U[free] = s * x[:free.size]
     mu = np.zeros(m)
     mu[keep] = -r * x[free.size:]

@@ -58,6 +58,9 @@ def test_03_interface_force_balances_the_load(tmp_path):
      ["[levelset] expr", "function call"]),
     ("[mesh]\nbox = {n = 2, cell = 'quad'}\n[levelset]\nexpr = 'y - 5.25'",
      ["cuts no cell"]),                       # refused by the solver's cut step
+    ("[mesh]\nbox = {n = [2, 3], cell = 'quad'}\n[levelset]\nexpr = 'y - 0.5'\n"
+     "[[load]]\nboundary = 'ymax'\npressure = 1.0",
+     ["singular", "displacements"]),          # no support: the body floats
 ])
 def test_04_bad_scenes_exit_2_with_one_line(tmp_path, capsys, text, words):
     path = tmp_path / "bad.toml"

@@ -11,6 +11,7 @@ from skfem import (
     ElementWedge1,
     FacetBasis,
     LinearForm,
+    MeshTri1,
     asm,
     condense,
     solve,
@@ -121,6 +122,65 @@ def test_load_vector_equals_skfem_facetbasis(cell):
     fb = FacetBasis(mesh, basis.elem, facets=top, intorder=5)
     f_skfem = asm(load, fb)
     assert np.abs(f - f_skfem).max() < 1e-12
+
+
+def _by_coordinates(mesh_a, f_a, basis_a, mesh_b, f_b, basis_b, nodes_a):
+    """Largest difference of two load vectors at the nodes ``nodes_a`` of mesh a,
+    matched to mesh b's nodes by their coordinates."""
+    d = np.linalg.norm(mesh_a.p[:, nodes_a, None] - mesh_b.p[:, None, :], axis=0)
+    assert d.min(axis=1).max() < 1e-12, "every node has a twin"
+    nodes_b = d.argmin(axis=1)
+    return np.abs(f_a[basis_a.nodal_dofs[:, nodes_a]]
+                  - f_b[basis_b.nodal_dofs[:, nodes_b]]).max()
+
+
+def test_prism_load_node_by_node():
+    """FacetBasis cannot load prisms, so check skxfem's prism load dof by dof.
+
+    The quadrilateral faces of a prism carry the bilinear trace of its shape
+    functions: on the top face z = 1 the load equals the hexahedral one on the
+    same grid.  The triangular faces carry the linear trace: on x = 0 it equals
+    the plain P1 load of the face's triangles, assembled by scikit-fem in 2D.
+    """
+    prism, hexa = box((2, 3, 3), "prism"), box((2, 3, 3), "hex")
+    bp, bh = vector_basis(prism, "prism"), vector_basis(hexa, "hex")
+
+    def t3(x, n):
+        return np.array([x[1] * x[2], 1 + x[0] * x[1], parabola(x)])
+
+    top_p, top_h = (m.boundaries["zmax"] for m in (prism, hexa))
+    fp, _ = surface_load(bp, boundary_quadrature(prism, top_p, order=5), t3)
+    fh, _ = surface_load(bh, boundary_quadrature(hexa, top_h, order=5), t3)
+    top_nodes = np.unique(prism.facets[:, top_p])
+    assert np.abs(fp[bp.nodal_dofs[:, top_nodes]]).max() > 0.01
+    assert _by_coordinates(prism, fp, bp, hexa, fh, bh, top_nodes) < 1e-13
+
+    side = prism.boundaries["xmin"]
+    fs, _ = surface_load(bp, boundary_quadrature(prism, side, order=5), t3)
+    tri_nodes = np.unique(prism.facets[:, side])
+    local = np.full(prism.p.shape[1], -1)
+    local[tri_nodes] = np.arange(tri_nodes.size)
+    tris = prism.facets[:, side]
+    assert np.all(tris[0] == tris[1]), "scikit-fem stores a triangular facet with a repeated node"
+    face = MeshTri1(prism.p[1:, tri_nodes], local[tris[1:]])
+    bt = Basis(face, ElementVector(ElementTriP1()), intorder=5)
+
+    @LinearForm
+    def load(v, w):
+        x = np.array([0 * w.x[0], w.x[0], w.x[1]])    # (y, z) -> (0, y, z)
+        t = t3(x, None)
+        return t[1] * v[0] + t[2] * v[1]               # the y, z components; x below
+
+    @LinearForm
+    def load_x(v, w):
+        return w.x[0] * w.x[1] * v
+
+    ft = asm(load, bt)
+    fx = asm(load_x, Basis(face, ElementTriP1(), intorder=5))
+    sp_dofs = bp.nodal_dofs[:, tri_nodes]
+    assert np.abs(fs[sp_dofs[0]] - fx).max() < 1e-13
+    assert np.abs(fs[sp_dofs[1]] - ft[bt.nodal_dofs[0]]).max() < 1e-13
+    assert np.abs(fs[sp_dofs[2]] - ft[bt.nodal_dofs[1]]).max() < 1e-13
 
 
 # 3. facets cut by a level set --------------------------------------------------

@@ -176,3 +176,12 @@ def test_read_rejects_files_without_supported_cells(tmp_path):
     meshio.write(path, meshio.Mesh(np.eye(3), [("line", np.array([[0, 1], [1, 2]]))]))
     with pytest.raises(ValueError, match="no supported cells"):
         read(path)
+
+
+def test_read_names_a_missing_or_unreadable_file(tmp_path):
+    with pytest.raises(ValueError, match="does not exist"):
+        read(tmp_path / "nope.msh")
+    garbled = tmp_path / "garbled.msh"
+    garbled.write_text("this is not a mesh\n")
+    with pytest.raises(ValueError, match="could not be read by meshio"):
+        read(garbled)
