@@ -96,6 +96,14 @@ def smoothest_multipliers(B, r, G, tol: float = 1e-6) -> np.ndarray:
     return mu
 
 
+def _floating(detail: str) -> SingularSystemError:
+    return SingularSystemError(
+        f"the saddle-point system is singular ({detail}): a part of the body can move "
+        f"freely.  Either the displacements do not remove every rigid motion of the "
+        f"body, or a frictionless (bilateral) tie lets the part on the other side of "
+        f"Γ slide; add displacements (supports) on each side")
+
+
 def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float = 1e-11):
     """Solve the saddle-point system; see the module notes.
 
@@ -134,7 +142,13 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float =
     U[D] = g
     # symmetric diagonal (Jacobi) scaling: an enriched function whose support
     # Γ barely cuts has a tiny stiffness; scaling restores the conditioning
-    s = 1.0 / np.sqrt(np.abs(K.diagonal()[free]))
+    diag = np.abs(K.diagonal()[free])
+    if np.any(diag == 0):
+        raise SingularSystemError(
+            f"{int(np.sum(diag == 0))} unknown(s) have no stiffness at all (a node that "
+            f"no cell uses, or an enriched function with an empty support): remove "
+            f"unused nodes from the mesh or impose those unknowns")
+    s = 1.0 / np.sqrt(diag)
     S = sp.diags(s)
     Kf = S @ K[free][:, free] @ S
     Bf = B[:, free] @ S
@@ -143,15 +157,14 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float =
     Bk = sp.diags(r) @ Bf[keep]
     rhs = np.concatenate([s * (F - K @ U)[free], -r * (B @ U)[keep]])
     A = sp.bmat([[Kf, Bk.T], [Bk, None]], format="csc")
-    lu = spla.splu(A, permc_spec="MMD_AT_PLUS_A")
+    try:
+        lu = spla.splu(A, permc_spec="MMD_AT_PLUS_A")
+    except RuntimeError as e:  # SuperLU: "Factor is exactly singular"
+        raise _floating(str(e)) from e
     pivots = np.abs(lu.U.diagonal())
     if pivots.min() < pivot_tol * pivots.max():
-        raise SingularSystemError(
-            f"the saddle-point system is singular (smallest LU pivot "
-            f"{pivots.min() / pivots.max():.1e} of the largest): a part of the body "
-            f"can move freely.  Either the displacements do not remove every rigid "
-            f"motion of the body, or a frictionless (bilateral) tie lets the part on "
-            f"the other side of Γ slide; add displacements (supports) on each side")
+        raise _floating(f"smallest LU pivot {pivots.min() / pivots.max():.1e} "
+                        f"of the largest")
     x = lu.solve(rhs)
     for _ in range(3):  # iterative refinement: X-FEM slivers cost digits in the LU
         x += lu.solve(rhs - A @ x)

@@ -1,0 +1,240 @@
+"""Tests for skxfem/multipliers.py: the naive space, the interface rule, M and B.
+
+What is checked, on all five cell types, with a tilted plane Γ through the
+unit square/cube (so that the normal is not a mesh direction):
+
+1. The naive space: one multiplier per strictly cut edge, P = I.
+2. The interface rule integrates exactly: Σ weights = |Γ|, a linear function
+   gives |Γ| times its value at the centroid of Γ, and a polynomial of degree 4
+   (the documented order) matches an independent tensor Gauss rule on Γ.
+   The multiplier functions N are P1 on the facets: they sum to one and
+   reproduce the coordinates of the quadrature points.
+3. The interface mass M is symmetric positive definite, 1ᵀM1 = |Γ| and
+   fᵀMf = ∫_Γ f² for a linear f sampled at the edge points.
+4. The coupling B: for a field whose jump [[u]] = g is known (constant, or
+   linear), B·U = ∫_Γ N_e g_c (bonded, component-major) and
+   B·U = ∫_Γ N_e g·n (bilateral).
+5. Unknown law or space names are refused with a ValueError naming the choices.
+"""
+import numpy as np
+import pytest
+
+from skxfem.cut import cell_edges, cut
+from skxfem.enrich import space
+from skxfem.levelset import plane
+from skxfem.meshes import box
+from skxfem.multipliers import (
+    LAWS,
+    SPACES,
+    coupling,
+    interface_mass,
+    interface_rule,
+    multiplier_space,
+    naive,
+)
+
+CELLS = ["tri", "quad", "tet", "hex", "prism"]
+SLOPES = (0.1, 0.07)  # Γ: last coordinate = 0.5 + a (x - 0.5) [+ b (y - 0.5)]
+
+
+def dim_of(cell):
+    return 2 if cell in ("tri", "quad") else 3
+
+
+def tilted(dim):
+    """The tilted plane Γ through the centre and its exact length/area in the box.
+
+    With slopes this small Γ leaves the box through its vertical faces only, so
+    it is the graph of z(x, y) over the whole unit square: |Γ| = sqrt(1 + a² + b²).
+    """
+    a = np.array(SLOPES[:dim - 1])
+    normal = np.append(-a, 1.0)
+    return plane(np.full(dim, 0.5), normal), normal / np.linalg.norm(normal), \
+        float(np.sqrt(1.0 + a @ a))
+
+
+def on_gamma(f, dim, k=6):
+    """∫_Γ f by a tensor Gauss–Legendre rule on the parameter square (exact to degree 2k-1)."""
+    t, w = np.polynomial.legendre.leggauss(k)
+    t, w = (t + 1) / 2, w / 2
+    a = np.array(SLOPES[:dim - 1])
+    jac = np.sqrt(1.0 + a @ a)
+    if dim == 2:
+        x = t
+        pts = np.vstack([x, 0.5 + a[0] * (x - 0.5)])
+        return jac * (w @ f(pts))
+    X, Y = np.meshgrid(t, t, indexing="ij")
+    W = np.outer(w, w)
+    pts = np.stack([X, Y, 0.5 + a[0] * (X - 0.5) + a[1] * (Y - 0.5)])
+    return jac * np.sum(W * f(pts))
+
+
+def setup(cell, n=3):
+    mesh = box(n, cell)
+    psi, normal, area = tilted(mesh.dim())
+    c = cut(mesh, psi)
+    return mesh, psi, normal, area, c
+
+
+# 1. the naive space ------------------------------------------------------------
+
+@pytest.mark.parametrize("cell", CELLS)
+def test_naive_space_is_one_multiplier_per_strictly_cut_edge(cell):
+    mesh, psi, _, _, c = setup(cell)
+    _, _, edges = cell_edges(mesh)
+    v = psi(mesh.p)
+    n_cut = int(np.sum(v[edges[0]] * v[edges[1]] < 0))
+    S = naive(c)
+    assert S.name == "naive"
+    assert S.P.shape == (n_cut, n_cut) and S.size == n_cut, (
+        f"the naive space should have one multiplier per strictly cut edge ({n_cut}), "
+        f"got P of shape {S.P.shape}")
+    assert abs(S.P - np.eye(n_cut)).max() == 0, "the naive prolongation must be P = I"
+    assert abs(multiplier_space("naive", mesh, c).P - S.P).max() == 0
+
+
+# 2. the interface rule ------------------------------------------------------------
+
+@pytest.mark.parametrize("cell", CELLS)
+def test_interface_weights_sum_to_the_measure_of_gamma(cell):
+    mesh, psi, normal, area, c = setup(cell)
+    rule = interface_rule(mesh, c)
+    assert abs(rule.weights.sum() - area) < 1e-12, (
+        f"Σ weights = {rule.weights.sum():.15f} should be |Γ| = {area:.15f}")
+    assert np.all(rule.weights > 0)
+    assert np.abs(psi(rule.points)).max() < 1e-13, "the quadrature points must lie on Γ"
+    assert np.abs(rule.normals - normal[:, None]).max() < 1e-13, \
+        "the normals of a plane Γ must all be its unit normal, pointing into Ω⁺"
+
+
+@pytest.mark.parametrize("cell", CELLS)
+def test_interface_rule_integrates_polynomials_exactly(cell):
+    mesh, _, _, area, c = setup(cell)
+    dim = mesh.dim()
+    rule = interface_rule(mesh, c)
+
+    def linear(x):
+        return 1.0 + 2.0 * x[0] - 3.0 * x[1] + (0.5 * x[2] if dim == 3 else 0.0)
+
+    # Γ is symmetric about the centre of the box: ∫ linear = |Γ| linear(centre)
+    exact = area * linear(np.full((dim, 1), 0.5))[0]
+    got = rule.weights @ linear(rule.points)
+    assert abs(got - exact) < 1e-12, f"∫_Γ of a linear function: got {got}, exact {exact}"
+
+    def quartic(x):
+        z = x[-1]
+        return x[0] ** 4 - 2.0 * x[0] * x[1] * z ** 2 + 3.0 * x[1] ** 3 + z
+
+    got, exact = rule.weights @ quartic(rule.points), on_gamma(quartic, dim)
+    assert abs(got - exact) < 1e-12, (
+        f"the default order 4 should integrate a quartic exactly on a planar Γ: "
+        f"got {got}, exact {exact}")
+
+
+@pytest.mark.parametrize("cell", CELLS)
+def test_multiplier_functions_are_p1_on_the_facets(cell):
+    """N_k: a partition of unity that interpolates linear functions exactly."""
+    mesh, _, _, _, c = setup(cell)
+    rule = interface_rule(mesh, c)
+    N = rule.N.toarray()
+    assert N.shape == (rule.weights.size, c.edge_ids.size)
+    assert np.all(N >= -1e-14), "P1 facet functions are non-negative inside a facet"
+    assert np.abs(N.sum(axis=1) - 1).max() < 1e-13, "the N_k must sum to one"
+    assert np.abs(N @ c.points.T - rule.points.T).max() < 1e-13, \
+        "Σ_k N_k(x) x_k must give back x: the N_k are linear on each facet"
+
+
+# 3. the interface mass ----------------------------------------------------------------
+
+@pytest.mark.parametrize("cell", CELLS)
+def test_interface_mass_is_spd_and_integrates_exactly(cell):
+    mesh, _, _, area, c = setup(cell)
+    dim = mesh.dim()
+    M = interface_mass(interface_rule(mesh, c)).toarray()
+    assert M.shape == (c.edge_ids.size,) * 2
+    assert np.abs(M - M.T).max() < 1e-15, "M = ∫ N_e N_f must be symmetric"
+    eig = np.linalg.eigvalsh(M)
+    assert eig.min() > 1e-8 * eig.max(), \
+        f"M must be positive definite, smallest eigenvalue {eig.min():.2e}"
+    one = np.ones(M.shape[0])
+    assert abs(one @ M @ one - area) < 1e-12, "1ᵀM1 must be |Γ|"
+
+    def f(x):
+        return 0.3 + x[0] - 2.0 * x[-1]
+
+    fe = f(c.points)  # a linear λ sampled at the multiplier points is λ itself on Γ_h
+    assert abs(fe @ M @ fe - on_gamma(lambda x: f(x) ** 2, dim)) < 1e-12, \
+        "fᵀMf should be ∫_Γ f² for a linear f"
+
+
+# 4. the coupling ----------------------------------------------------------------------
+
+def field_with_jump(V, g, rng):
+    """U with random standard dofs and b_j = -g(x_j)/2, so [[u]] = Σ φ_j g(x_j).
+
+    Every node of a cut cell is enriched, so on Γ the jump is the finite element
+    interpolant of g: exactly g when g is linear (all five cells reproduce
+    linear functions on these affine meshes).
+    """
+    nd = V.basis.nodal_dofs  # (dim, nverts)
+    comp = np.empty(V.n_std, int)
+    node = np.empty(V.n_std, int)
+    for k in range(nd.shape[0]):
+        comp[nd[k]] = k
+        node[nd[k]] = np.arange(nd.shape[1])
+    E = V.enr_dofs
+    gx = g(V.mesh.p)  # (dim, nverts)
+    U = np.empty(V.N)
+    U[:V.n_std] = rng.standard_normal(V.n_std)
+    U[V.n_std:] = -0.5 * gx[comp[E], node[E]]
+    return U
+
+
+JUMPS = {
+    "constant": lambda x: np.array([0.3, -0.7, 1.1][:x.shape[0]])[:, None] + 0 * x,
+    "linear": lambda x: np.array([0.2 + x[0] - x[-1], -0.5 + 2 * x[1], 0.4 * x[0] + x[1]]
+                                 [:x.shape[0]]),
+}
+
+
+@pytest.mark.parametrize("jump", JUMPS)
+@pytest.mark.parametrize("cell", CELLS)
+def test_coupling_of_a_known_jump(cell, jump):
+    mesh, _, normal, _, c = setup(cell)
+    dim = mesh.dim()
+    rng = np.random.default_rng(3)
+    V = space(mesh, c)
+    assert V.n_enr == dim * c.enriched.size, "no node should be dropped as a sliver here"
+    rule = interface_rule(mesh, c)
+    M = interface_mass(rule)
+    g = JUMPS[jump]
+    U = field_with_jump(V, g, rng)
+    ne = c.edge_ids.size
+    gp = g(c.points)  # (dim, ne): g at the multiplier points; λ_h of g is g on Γ_h
+
+    B = coupling(V, rule, "bonded")
+    assert B.shape == (dim * ne, V.N), "bonded: one row per (component, edge)"
+    expected = np.concatenate([M @ gp[k] for k in range(dim)])  # component-major
+    err = np.abs(B @ U - expected).max()
+    assert err < 1e-12, (f"bonded B·U must be ∫_Γ N_e [[u]]_c for a {jump} jump "
+                         f"(component-major rows); max error {err:.2e}")
+
+    B = coupling(V, rule, "bilateral")
+    assert B.shape == (ne, V.N), "bilateral: one row per edge"
+    err = np.abs(B @ U - M @ (normal @ gp)).max()
+    assert err < 1e-12, (f"bilateral B·U must be ∫_Γ N_e [[u]]·n for a {jump} jump; "
+                         f"max error {err:.2e}")
+
+
+# 5. clear errors ----------------------------------------------------------------------
+
+def test_unknown_law_or_space_is_refused():
+    mesh, _, _, _, c = setup("quad")
+    V = space(mesh, c)
+    rule = interface_rule(mesh, c)
+    with pytest.raises(ValueError, match="law must be one of") as err:
+        coupling(V, rule, "sticky")
+    assert all(law in str(err.value) for law in LAWS), "the message should list the laws"
+    with pytest.raises(ValueError, match="space must be one of") as err:
+        multiplier_space("clever", mesh, c)
+    assert all(s in str(err.value) for s in SPACES), "the message should list the spaces"
