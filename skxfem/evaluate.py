@@ -50,5 +50,7 @@ def evaluation_matrix(basis: CellBasis, cells: np.ndarray, ref: np.ndarray) -> s
             rows.append(c * npts + np.arange(npts))
             cols.append(B.element_dofs[k])
             vals.append(value[c])
-    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                         shape=(dim * npts, basis.N))
+    Phi = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                        shape=(dim * npts, basis.N))
+    Phi.eliminate_zeros()  # a vector function has one non-zero component
+    return Phi
