@@ -74,3 +74,27 @@ def test_naive_tetrahedra_zero_modes():
     r = inf_sup(scene)
     assert r.n_zero > 0 and r.rank == r.size - r.n_zero
     assert inf_sup(dataclasses.replace(scene, space="vital")).n_zero == 0
+
+
+def test_winner_nodes_lose_stability_on_tetrahedra_as_gamma_nears_a_node_row():
+    """A measured limit of algo1, kept as a test so that it stays documented.
+
+    Γ: z = 0.5 + d·h/4 on 4³ tetrahedra, just above the node row z = 0.5.
+    algo1's winners are the nodes of largest degree, here mostly those of the
+    row z = 0.75, far from Γ: their P0 patches reach points a distance ~d·h
+    from the row's nodes, whose enrichment alone moves them, and β_h falls
+    with d.  algo2's vital edges do not depend on that contest: β_h stays put.
+    """
+    from skxfem.levelset import plane
+    from skxfem.scene import Box, Scene, clamped
+
+    def beta(d, space):
+        scene = Scene(Box(4, "tet"), plane((0.5, 0.5, 0.5 + d / 4), (0.0, 0.0, 1.0)),
+                      displacements=(clamped("zmin"),), space=space)
+        return inf_sup(scene).beta
+
+    winner = [beta(d, "winner") for d in (0.5, 1e-2, 1e-3)]
+    vital = [beta(d, "vital") for d in (0.5, 1e-2, 1e-3)]
+    assert min(vital) > 0.4, f"vital edges stay stable: {vital}"
+    assert winner[0] > 0.3 and winner[1] < 0.1 and winner[2] < 0.02, \
+        f"winner nodes: β_h = {winner} for d = 0.5, 1e-2, 1e-3"
