@@ -41,6 +41,16 @@ def test_stabilised_pressure_converges(table, space):
     assert np.all(r >= 1.0), r
 
 
+def test_oscillation_amplitude(table):
+    """The largest pointwise error (relative to max p): O(1) and growing for
+    the naive space, the oscillation; falling for the stabilised ones."""
+    naive = [r.pressure_max for r in table["naive"]]
+    assert min(naive) > 1.0 and naive[-1] >= naive[0], naive
+    for space in ("winner", "vital"):
+        err = [r.pressure_max for r in table[space]]
+        assert np.all(np.diff(err) < 0) and err[-1] < 0.5 * err[0], (space, err)
+
+
 def test_vital_more_accurate_than_winner(table):
     for w, v in zip(table["winner"], table["vital"]):
         assert v.pressure_l2 < w.pressure_l2

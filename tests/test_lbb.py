@@ -55,13 +55,31 @@ def test_l2_scaling_cannot_separate(strip_betas):
         assert beta[1] < 0.6 * beta[0]
 
 
-def test_prisms_naive_unstable_vital_stable():
-    """3D plate, one layer of prisms along x (the solution does not depend on x)."""
-    naive = [inf_sup(exact_plate(n, "prism", nx=1)).beta for n in (8, 16, 32)]
-    assert np.all(observed_rates([1 / 8, 1 / 16, 1 / 32], naive) > 0.9)
-    for space in ("winner", "vital"):
-        beta = [inf_sup(exact_plate(n, "prism", nx=1, space=space)).beta for n in (8, 16, 32)]
-        assert min(beta) >= 0.2, (space, beta)
+@pytest.fixture(scope="module")
+def plate_betas():
+    """3D plate, one layer of cells along x (the solution does not depend on x)."""
+    return {(cell, space): [inf_sup(exact_plate(n, cell, nx=1, space=space)).beta
+                            for n in (NS if cell == "prism" else NS[:3])]
+            for cell in ("prism", "hex") for space in ("naive", "winner", "vital")}
+
+
+def test_naive_prisms_beta_falls_like_h(plate_betas):
+    rates = observed_rates(1.0 / np.array(NS), plate_betas["prism", "naive"])
+    assert np.all(rates > 0.9), rates  # β_h ~ h
+
+
+@pytest.mark.parametrize("space", ["winner", "vital"])
+def test_stabilised_prisms_beta_bounded(plate_betas, space):
+    beta = np.array(plate_betas["prism", space])
+    assert np.all(beta >= 0.2), beta
+    assert beta[-1] > 0.8 * beta[0]  # no drift towards zero
+
+
+def test_hexes_all_spaces_coincide_and_are_stable(plate_betas):
+    """Γ parallel to the faces cuts only the vertical edges: one per node
+    pair, so every space is the naive one."""
+    b = np.array([plate_betas["hex", s] for s in ("naive", "winner", "vital")])
+    assert np.ptp(b, axis=0).max() < 1e-10 and b.min() >= 0.2, b
 
 
 def test_naive_tetrahedra_zero_modes():

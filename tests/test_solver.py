@@ -27,7 +27,8 @@ from skxfem.enrich import stiffness
 from skxfem.levelset import plane
 from skxfem.loads import boundary_quadrature, surface_load
 from skxfem.material import Material, stiffness_form
-from skxfem.multipliers import interface_mass, interface_rule
+from skxfem.cut import cut as cut_mesh
+from skxfem.multipliers import interface_mass, interface_rule, multiplier_space
 from skxfem.quadrature import cell_rule
 from skxfem.scene import (
     Box,
@@ -510,3 +511,21 @@ def test_gamma_closing_in_on_a_node_row_is_stable(cell):
         f"the pressure does not settle as Γ → nodes: changes {change}"
     with pytest.raises(ValueError, match="shift it off the nodes"):
         solve(scene(0.0))
+
+
+@pytest.mark.parametrize("cell", ["tri", "prism"])
+@pytest.mark.parametrize("space", ["winner", "vital"])
+def test_bonded_restricts_every_traction_component_alike(cell, space):
+    """The paper: relations on λ are also imposed on the friction
+    multipliers.  Bonded: each component of the traction is P μ_c with the
+    same P, so dim·(size of the space) multipliers (less those a Dirichlet
+    condition makes dependent: the rollers fix the x-jump on the faces x = 0, 1)."""
+    make = strip if cell == "tri" else paper_plate
+    scene = dataclasses.replace(make(4, cell), space=space)
+    result = solve(scene)
+    mesh = result.mesh
+    P = multiplier_space(space, mesh, cut_mesh(mesh, scene.levelset)).P.toarray()
+    assert result.n_multipliers + result.removed == mesh.dim() * P.shape[1]
+    for component in result.traction:
+        in_range = P @ np.linalg.lstsq(P, component, rcond=None)[0]
+        assert np.abs(in_range - component).max() < 1e-12 * np.abs(component).max()
