@@ -285,52 +285,69 @@ def fig6() -> Figure:
 
 # -------------------------------------------------------------- Figures 7, 8
 def fig7(ns: Sequence[int] = (4, 8, 16, 32), cell: str = "prism") -> Figure:
-    """Figure 7: vital edges (algo2) on prisms, converging as the mesh is refined.
+    """Figure 7: vital edges (algo2), converging as the mesh is refined.
 
-    The plate of :func:`~skxfem.scenes.exact_plate` (one layer of cells along
-    x, which the solution does not depend on), where p(y) is the exact
-    contact pressure; darker curves are finer meshes.
+    The benchmark of :func:`~skxfem.scenes.exact_scene`: the plate (3D cells,
+    one layer along x, which the solution does not depend on) or the strip
+    (``"tri"``, ``"quad"``), where p is the exact contact pressure; darker
+    curves are finer meshes.
 
     >>> fig = fig7(ns=(4, 8))
     >>> len(fig.axes[0].lines)        # two meshes and the exact p(y)
     3
+    >>> fig7(ns=(4,), cell="tri").axes[0].get_xlabel()
+    'x'
     """
-    from .scenes import exact_plate
+    from .scenes import exact_scene
     from .solver import solve
 
+    axis = _interface_axis(cell)
     fig = Figure(figsize=(6, 4), layout="constrained")
     ax = fig.add_subplot()
     for n, shade in zip(ns, _shades(COLORS["vital"], len(ns))):
-        s, p = pressure_along(solve(exact_plate(n, cell, nx=1, space="vital")), "y")
+        s, p = pressure_along(solve(exact_scene(n, cell, "vital")), axis)
         _curve(ax, s, p, "vital", cell, f"vital, 1/h = {n}", color=shade)
-    _reference(ax, 0, 1, "exact p(y)")
-    _finish(ax, "y", f"vital edges on {cell}s, exact loads: the oscillations vanish")
+    _reference(ax, 0, 1, f"exact p({axis})")
+    _finish(ax, axis, f"vital edges on {_plural(cell)}, exact loads: the oscillations vanish")
     return fig
+
+
+def _interface_axis(cell: str) -> str:
+    """The coordinate along which the benchmarks' pressure varies."""
+    return "x" if cell in ("tri", "quad") else "y"
+
+
+def _plural(cell: str) -> str:
+    return {"tri": "triangles", "quad": "quadrilaterals", "tet": "tetrahedra",
+            "hex": "hexahedra", "prism": "prisms"}[cell]
 
 
 def fig8(ns: Sequence[int] = (8, 16), cell: str = "prism", half: bool = True) -> Figure:
     """Figure 8: algo1 (winner nodes) vs algo2 (vital edges), one panel per mesh.
 
-    Same plate as :func:`fig7` (p(y) exact); only y ≤ 1/2 is drawn when
-    ``half`` (the paper's "half-length of the structure").
+    Same benchmark as :func:`fig7`; only the first half of the interface is
+    drawn when ``half`` (the paper's "half-length of the structure").
 
     >>> fig = fig8(ns=(4,))
     >>> [line.get_label() for line in fig.axes[0].lines]
     ['winner (algo1)', 'vital (algo2)', 'exact p(y)']
+    >>> fig8(ns=(4,), cell="tri").axes[0].get_title()
+    'triangles, 1/h = 4'
     """
-    from .scenes import exact_plate
+    from .scenes import exact_scene
     from .solver import solve
 
+    axis = _interface_axis(cell)
     fig = Figure(figsize=(4.5 * len(ns), 3.8), layout="constrained")
     axes = np.atleast_1d(fig.subplots(1, len(ns)))
     stop = 0.5 if half else 1.0
     for ax, n in zip(axes, ns):
         for space, algo in (("winner", "algo1"), ("vital", "algo2")):
-            s, p = pressure_along(solve(exact_plate(n, cell, nx=1, space=space)), "y")
+            s, p = pressure_along(solve(exact_scene(n, cell, space)), axis)
             keep = s <= stop + 1e-12
             _curve(ax, s[keep], p[keep], space, cell, f"{space} ({algo})")
-        _reference(ax, 0, stop, "exact p(y)")
-        _finish(ax, "y", f"{cell}s, 1/h = {n}")
+        _reference(ax, 0, stop, f"exact p({axis})")
+        _finish(ax, axis, f"{_plural(cell)}, 1/h = {n}")
     return fig
 
 

@@ -51,8 +51,15 @@ class InfSup:
     h: float
 
 
-def inf_sup_constant(A, B, M, tol: float = 1e-10, h: float = 1.0) -> InfSup:
+def inf_sup_constant(A, B, M, tol: float = 1e-6, rank_tol: float = 1e-10,
+                     h: float = 1.0) -> InfSup:
     """β_h from matrices: A (N, N) SPD, B (m, N), M (m, m) SPD.
+
+    An eigenvalue counts as zero when its β is below ``tol`` times the
+    largest β: round-off leaves the zero modes near √ε ≈ 1e-8 of it, since
+    the eigenvalues are β².  The rank of B counts its singular values above
+    ``rank_tol`` times the largest (round-off: ε).  The two counts are
+    independent measurements of one thing, the multipliers B cannot see.
 
     >>> import numpy as np, scipy.sparse as sp
     >>> r = inf_sup_constant(sp.identity(3), sp.csr_matrix([[1., 0, 0], [0, 2., 0]]), np.eye(2))
@@ -66,9 +73,9 @@ def inf_sup_constant(A, B, M, tol: float = 1e-10, h: float = 1.0) -> InfSup:
     S = B @ X
     S = 0.5 * (S + S.T)
     ev = np.sort(np.abs(sla.eigh(S, M, eigvals_only=True)))
-    zero = ev <= tol * ev.max()
+    zero = ev <= tol ** 2 * ev.max()
     nz = ev[~zero]
-    rank = np.linalg.matrix_rank(B.toarray(), tol=tol * sla.norm(B.toarray(), 2))
+    rank = np.linalg.matrix_rank(B.toarray(), tol=rank_tol * sla.norm(B.toarray(), 2))
     return InfSup(float(np.sqrt(nz.min())) if nz.size else 0.0, ev, int(zero.sum()),
                   int(rank), B.shape[0], h)
 
@@ -85,7 +92,8 @@ def inf_sup(scene, scaling: str = "h", law: str = "bilateral") -> InfSup:
     from .cut import cut as cut_mesh
     from .enrich import mass, space, stiffness
     from .multipliers import coupling, interface_mass, interface_rule, multiplier_space
-    from .scene import dirichlet, resolve_mesh
+    from .scene import resolve_mesh
+    from .solver import constrained_dofs
 
     if scaling not in ("h", "l2"):
         raise ValueError(f"scaling must be 'h' or 'l2', got {scaling!r}")
@@ -100,7 +108,7 @@ def inf_sup(scene, scaling: str = "h", law: str = "bilateral") -> InfSup:
     ncomp = B.shape[0] // c.points.shape[1]
     P = sp.kron(sp.identity(ncomp), S.P, format="csr")
     M = sp.kron(sp.identity(ncomp), interface_mass(rule))
-    dofs, _ = dirichlet(scene, mesh, V.basis)
+    dofs, _ = constrained_dofs(V, scene, mesh)   # the solver's, enriched ones included
     free = np.setdiff1d(np.arange(V.N), dofs)
     # mesh size across Γ: the mean length of the cut edges (anisotropic
     # meshes, such as one layer of prisms along x, are measured where it matters)

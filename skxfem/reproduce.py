@@ -4,7 +4,9 @@ r"""Reproduce the paper's figures and numbers: ``python -m skxfem.reproduce``.
 writes into ``--out``
 
 * ``fig5.png`` ... ``fig10.png``: the paper's Figures 5-10 (see
-  :mod:`skxfem.figures`), and ``inf_sup.png``: β_h vs h (our addition);
+  :mod:`skxfem.figures`), ``fig7_2d.png`` and ``fig8_2d.png``: Figures 7
+  and 8 on the 2D strip of triangles, and ``inf_sup.png``: β_h vs h (our
+  addition);
 * ``summary.json``: the measured numbers — per cell and space, for every n:
   the inf-sup constant β_h (both norms of :func:`skxfem.lbb.inf_sup`), the
   number of zero modes, the relative L² error of the contact pressure and the
@@ -73,11 +75,9 @@ def plan(quick: bool, sizes=None) -> dict:
 
 
 def _scene(cell, n, space):
-    from .scenes import exact_plate, exact_strip
+    from .scenes import exact_scene
 
-    if cell in ("tri", "quad"):
-        return exact_strip(n, cell, space=space)
-    return exact_plate(n, cell, nx=1, space=space)
+    return exact_scene(n, cell, space)
 
 
 def _measure(cell, ns):
@@ -160,6 +160,8 @@ def main(argv=None) -> int:
     algo1, algo2 = winner_nodes(*graph), vital_edges(*graph)
     save(timed("fig7", lambda: figures.fig7(sizes["fig7"])), "fig7")
     save(timed("fig8", lambda: figures.fig8(sizes["fig8"])), "fig8")
+    save(timed("fig7_2d", lambda: figures.fig7(sizes["fig7"], cell="tri")), "fig7_2d")
+    save(timed("fig8_2d", lambda: figures.fig8(sizes["fig8"], cell="tri")), "fig8_2d")
 
     measured = {}
     for cell in ("tri", "quad", "prism", "hex"):

@@ -23,7 +23,7 @@ from .levelset import plane
 from .material import Material
 from .scene import Box, Displacement, Scene, SurfaceLoad, clamped, rollers
 
-__all__ = ["paper_plate", "strip", "exact_plate", "exact_strip", "P_MAX"]
+__all__ = ["paper_plate", "strip", "exact_plate", "exact_strip", "exact_scene", "P_MAX"]
 
 P_MAX = 1.0
 """Peak of the parabolic pressure, P_max = 1 Pa as in the paper."""
@@ -169,3 +169,17 @@ def exact_plate(n: int = 4, cell: str = "hex", nz: int | None = None, nx: int | 
     bottom_u, loads = _exact_bcs(sol, ("ymin", "ymax"), "zmin")
     return replace(base, displacements=(bottom_u, rollers("xmin"), rollers("xmax")),
                    loads=loads, name="exact_" + base.name)
+
+
+def exact_scene(n: int, cell: str, space: str = "naive") -> Scene:
+    """The exact benchmark of a cell type, cheapest form: :func:`exact_strip`
+    for ``"tri"``/``"quad"``, :func:`exact_plate` with one layer of cells
+    along x for ``"tet"``/``"hex"``/``"prism"``.  Its interface coordinate
+    (the paper's y) is x in 2D and y in 3D.
+
+    >>> exact_scene(8, "tri").dim, exact_scene(8, "prism").mesh.n
+    (2, (1, 8, 9))
+    """
+    if cell in ("tri", "quad"):
+        return exact_strip(n, cell, space=space)
+    return exact_plate(n, cell, nx=1, space=space)

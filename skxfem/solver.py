@@ -35,7 +35,7 @@ from .loads import boundary_quadrature, surface_load
 from .multipliers import coupling, interface_rule, multiplier_space
 from .scene import Scene, dirichlet, load_facets, resolve_mesh
 
-__all__ = ["Result", "solve"]
+__all__ = ["Result", "solve", "constrained_dofs"]
 
 
 @dataclass(frozen=True)
@@ -90,7 +90,7 @@ def _differences(c, ncomp: int) -> sp.csr_matrix:
     return sp.kron(sp.identity(ncomp), G, format="csr")
 
 
-def _dirichlet(V: XSpace, scene: Scene, mesh):
+def constrained_dofs(V: XSpace, scene: Scene, mesh):
     """Constrained unknowns and their values.
 
     The shifted enrichment φⱼ(H - Hⱼ) vanishes on a boundary facet that Γ
@@ -157,7 +157,7 @@ def solve(scene: Scene, dependent: str = "remove", quadrature_order: int | None 
     ncomp = B_edges.shape[0] // c.points.shape[1]
     P = sp.kron(sp.identity(ncomp), S.P, format="csr")  # component-major
     B = (P.T @ B_edges).tocsr()
-    D, g = _dirichlet(V, scene, mesh)
+    D, g = constrained_dofs(V, scene, mesh)
     timings["assemble"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()

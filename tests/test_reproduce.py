@@ -8,7 +8,7 @@ import pytest
 
 from skxfem.reproduce import main
 
-FIGURES = ["fig5", "fig6", "fig7", "fig8", "fig9", "fig10", "inf_sup"]
+FIGURES = ["fig5", "fig6", "fig7", "fig8", "fig7_2d", "fig8_2d", "fig9", "fig10", "inf_sup"]
 
 
 @pytest.fixture(scope="module")
