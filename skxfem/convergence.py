@@ -23,7 +23,8 @@ from skfem.helpers import ddot
 
 from .multipliers import interface_rule
 
-__all__ = ["PressureError", "pressure_error", "energy_error", "observed_rates", "StudyRow", "study"]
+__all__ = ["PressureError", "pressure_error", "energy_error", "observed_rates", "StudyRow",
+           "study"]
 
 
 @dataclass(frozen=True)

@@ -166,7 +166,6 @@ def cut(mesh, psi) -> Cut:
         raise ValueError(f"psi must hold one finite value per vertex, shape "
                          f"({mesh.p.shape[1]},); got shape {psi.shape}")
     _check(mesh, psi)
-    dim = mesh.dim()
     local, t2e, all_edges = cell_edges(mesh)
 
     # S_e and the intersection points
@@ -210,7 +209,6 @@ def _local_points(mesh, psi, local, cells):
 def _interface(mesh, psi, local, cut_ids, cells, share_face):
     """Order each cut cell's intersection points into a polygon and fan it."""
     dim = mesh.dim()
-    ncut = cells.size
     X = _local_points(mesh, psi, local, cells)  # reference coordinates
     k = (cut_ids >= 0).sum(axis=0)
     facets, facet_cell, facet_ref = [], [], []

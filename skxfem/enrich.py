@@ -36,10 +36,9 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import (Basis, BilinearForm, ElementVector, LinearForm, MeshHex1, MeshQuad1,
-                   MeshWedge1)
-from skfem.helpers import dot
+from skfem import Basis, BilinearForm, ElementVector, LinearForm, MeshHex1, MeshQuad1, MeshWedge1
 from skfem.assembly import CellBasis
+from skfem.helpers import dot
 
 from .cut import Cut
 from .evaluate import evaluation_matrix

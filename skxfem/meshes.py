@@ -28,7 +28,6 @@ index arrays in ``mesh.boundaries``.
 from __future__ import annotations
 
 from collections.abc import Sequence
-
 from pathlib import Path
 
 import numpy as np

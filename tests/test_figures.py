@@ -12,8 +12,18 @@ from matplotlib.figure import Figure
 
 from skxfem.convergence import StudyRow
 from skxfem.cut import cut
-from skxfem.figures import (FIG6_EDGES, fig5, fig6, fig7, fig8, fig9, fig10, fig_inf_sup,
-                            figure6_graph, plot_space_2d)
+from skxfem.figures import (
+    FIG6_EDGES,
+    fig5,
+    fig6,
+    fig7,
+    fig8,
+    fig9,
+    fig10,
+    fig_inf_sup,
+    figure6_graph,
+    plot_space_2d,
+)
 from skxfem.lbb import InfSup
 from skxfem.levelset import plane
 from skxfem.meshes import box

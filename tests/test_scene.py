@@ -6,13 +6,22 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementVector, MeshTri1
 
-from skxfem import scene as sc
 from skxfem.expr import Expression
 from skxfem.levelset import circle, nodal_values, plane, sphere
 from skxfem.material import Material
 from skxfem.meshes import box
-from skxfem.scene import (Box, Displacement, Scene, SurfaceLoad, clamped, dirichlet,
-                          load_facets, resolve_mesh, rollers, traction)
+from skxfem.scene import (
+    Box,
+    Displacement,
+    Scene,
+    SurfaceLoad,
+    clamped,
+    dirichlet,
+    load_facets,
+    resolve_mesh,
+    rollers,
+    traction,
+)
 from skxfem.scenes import paper_plate, strip
 
 CELLS = ["tri", "quad", "tet", "hex", "prism"]

@@ -23,11 +23,11 @@ from skfem import Basis, ElementVector, condense
 from skfem import solve as skfem_solve
 
 from skxfem import meshes
+from skxfem.cut import cut as cut_mesh
 from skxfem.enrich import stiffness
 from skxfem.levelset import plane
 from skxfem.loads import boundary_quadrature, surface_load
 from skxfem.material import Material, stiffness_form
-from skxfem.cut import cut as cut_mesh
 from skxfem.multipliers import interface_mass, interface_rule, multiplier_space
 from skxfem.quadrature import cell_rule
 from skxfem.scene import (

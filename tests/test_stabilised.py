@@ -154,7 +154,8 @@ def test_minimum_edge_cover_on_random_graphs_by_brute_force():
     rng = np.random.default_rng(0)
     for trial in range(400):
         n_minus, n_plus = rng.integers(1, 5, size=2)
-        pairs = np.array(np.meshgrid(np.arange(n_minus), n_minus + np.arange(n_plus))).reshape(2, -1)
+        pairs = np.array(np.meshgrid(np.arange(n_minus),
+                                     n_minus + np.arange(n_plus))).reshape(2, -1)
         edges = pairs[:, rng.permutation(pairs.shape[1])[:rng.integers(1, 10)]]
         if trial % 2:                                   # many equal lengths
             nodes = rng.integers(0, 3, size=(2, n_minus + n_plus)).astype(float)
@@ -176,7 +177,8 @@ def mesh_graph(kind, shape, seed):
     rng = np.random.default_rng(seed)
     x = np.linspace(0, 1, 7)
     mesh = {"tri": lambda: MeshTri1.init_tensor(x, x), "quad": lambda: MeshQuad1.init_tensor(x, x),
-            "tet": lambda: MeshTet1.init_tensor(x, x, x), "hex": lambda: MeshHex1.init_tensor(x, x, x),
+            "tet": lambda: MeshTet1.init_tensor(x, x, x),
+            "hex": lambda: MeshHex1.init_tensor(x, x, x),
             "wedge": lambda: MeshTri1.init_tensor(x, x) * MeshLine1(x[None])}[kind]()
     nodes = mesh.p + rng.uniform(-0.03, 0.03, mesh.p.shape)
     centre = 0.5 + rng.uniform(-0.1, 0.1, mesh.dim())
