@@ -1,7 +1,7 @@
 # skxfem: the whole set-up on a fresh machine is `make figures` and `make test`.
 #
 #   make figures   create .venv, install skxfem, reproduce the paper's figures in out/
-#   make test      create .venv, install skxfem, run pytest, then build the book
+#   make test      create .venv, install skxfem, lint, run pytest, then build the book
 #   make book      build the book (executes every chapter) into book/_build/html
 #   make install   only create .venv and install skxfem[viz,book,dev]
 #   make clean     remove the built book
@@ -47,6 +47,7 @@ figures: $(STAMP)
 	$(BIN)/python -m skxfem.reproduce --quick --out out/
 
 test: $(STAMP)
+	$(BIN)/ruff check skxfem tests
 	$(BIN)/pytest -q
 	$(MAKE) --no-print-directory book
 
