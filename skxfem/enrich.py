@@ -176,7 +176,8 @@ def signed_bases(V: XSpace):
 def enriched_matrix(V: XSpace, form) -> sp.csr_matrix:
     """The X-FEM matrix on [a, b] of a form that reads the Heaviside value w["H"].
 
-    With A = the form at H = 1 (standard) and A_H its signed version, and
+    The form must be linear in H, H·g(u, v) (as the stiffness and the mass
+    are).  With A = the form at H = 1 (standard) and A_H its signed version, and
     D = diag(Hⱼ), the blocks follow from H² = 1 (see the module notes).  Both
     come from one pass over the quadrature points: with A^± the form over Ω^±,
     A = A⁺ + A⁻ and A_H = A⁺ - A⁻.

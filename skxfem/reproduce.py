@@ -20,9 +20,9 @@ which the paper's reference p(y) = 4y(1 - y) is the exact contact pressure.
 structured mesh cut by a plane every space is the naive one), 2D triangles and
 quadrilaterals (all three spaces).
 
-``--quick`` takes about a minute (2D up to 1/h = 64, 3D up to 32); the default
-goes one mesh further in each.  ``--sizes`` replaces every list of meshes (for
-tests).
+``--quick`` takes about half a minute (2D up to 1/h = 64, 3D up to 32); the
+default goes one mesh further in each (about two minutes).  ``--sizes``
+replaces every list of meshes (for tests).
 
 >>> parser().parse_args(["--quick", "--sizes", "8", "16"]).sizes
 [8, 16]
@@ -55,7 +55,7 @@ def parser() -> argparse.ArgumentParser:
                                 description="Reproduce Figures 5-10 of Géniaut, Massin & "
                                             "Moës (2007) and write summary.json.")
     p.add_argument("--out", type=Path, default=Path("out"), help="output folder (created)")
-    p.add_argument("--quick", action="store_true", help="coarser meshes, about a minute")
+    p.add_argument("--quick", action="store_true", help="coarser meshes, about half a minute")
     p.add_argument("--sizes", type=int, nargs="+", metavar="N",
                    help="1/h of every study and of Figures 5, 7, 8 (e.g. 8 16, for tests)")
     return p

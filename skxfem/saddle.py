@@ -42,8 +42,9 @@ __all__ = ["SaddleInfo", "SingularSystemError", "independent_rows", "solve"]
 
 class SingularSystemError(ValueError):
     """The saddle-point system has no unique solution: the scene's supports
-    leave a rigid motion of one side of Γ free.  A ValueError, since the fix
-    is in the input (the scene's displacements or its interface law)."""
+    leave a rigid motion of one side of Γ free, or an unknown has no
+    stiffness at all (a node no cell uses).  A ValueError, since the fix is
+    in the input (the mesh, the scene's displacements or its interface law)."""
 
 
 @dataclass(frozen=True)
@@ -131,7 +132,9 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float =
     Raises
     ------
     SingularSystemError
-        If the system is singular (a tiny LU pivot) or the residual exceeds ``tol``.
+        If a free unknown has zero stiffness, the system is singular (SuperLU
+        finds an exactly zero pivot, or a pivot below ``pivot_tol``), or the
+        residual exceeds ``tol``.
     """
     N, m = K.shape[0], B.shape[0]
     D = np.zeros(0, int) if D is None else np.asarray(D, int)

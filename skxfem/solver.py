@@ -16,8 +16,9 @@ B that are combinations of others, e.g. the naive space on tetrahedra, where a
 quadrilateral cut carries four multipliers for a three-parameter linear jump)
 are found by a rank-revealing QR of B and, by default, removed from the space
 (``dependent="remove"``) — the displacement is then unique and the edge
-tractions reported are the minimum-norm ones that balance it; with
-``dependent="raise"`` a ValueError names them.  After the solve the residual
+tractions reported are the smoothest ones that balance it (see
+:func:`skxfem.saddle.smoothest_multipliers`); with
+``dependent="raise"`` a ValueError says how many there are.  After the solve the residual
 is checked.
 """
 from __future__ import annotations
@@ -29,6 +30,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from . import saddle
+from .boundary import COMPONENTS, select_nodes
 from .cut import cut as cut_mesh
 from .enrich import XSpace, enriched_load, jump_matrix, space, split_fields, stiffness
 from .loads import boundary_quadrature, surface_load
@@ -90,46 +92,69 @@ def _differences(c, ncomp: int) -> sp.csr_matrix:
     return sp.kron(sp.identity(ncomp), G, format="csr")
 
 
-def constrained_dofs(V: XSpace, scene: Scene, mesh):
-    """Constrained unknowns and their values.
+def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndarray]:
+    """Constrained unknowns of the X-FEM space and their values.
 
     The shifted enrichment φⱼ(H - Hⱼ) vanishes on a boundary facet that Γ
-    does not cut, so there imposing aᵢ imposes u.  On a facet of the
-    constrained boundary that Γ cuts, u = a + b(H - Hⱼ) takes both signs of
-    H, so the enriched dofs of that component at the facet's nodes are set to
-    zero as well.  A facet belongs to the constrained boundary of component c
-    when c is imposed at all its vertices.
+    does not cut, so there imposing aᵢ imposes u.  On a facet that Γ cuts,
+    u = a + b(H - Hⱼ) takes both signs of H, so where a displacement acts on
+    the whole facet (it selects all the facet's vertices) the enriched dofs
+    of its components at the facet's nodes are set to zero as well.  Each
+    displacement is taken on its own: two supports whose nodes together
+    cover a facet do not constrain it.
+
+    Parameters
+    ----------
+    V
+        The X-FEM space (:func:`skxfem.enrich.space`).
+    scene, mesh
+        The scene and its resolved mesh.
+
+    Returns
+    -------
+    dofs, values
+        Indices into the unknowns [a, b] (``V.N`` of them) and imposed values.
     """
     dofs, values = dirichlet(scene, mesh, V.basis)
     psi = V.cut.psi
     bf = mesh.facets[:, mesh.boundary_facets()]
     cut_bf = bf[:, (psi[bf] < 0).any(axis=0) & (psi[bf] > 0).any(axis=0)]
-    imposed = np.zeros(V.n_std, bool)
-    imposed[dofs] = True
     pos = np.full(V.n_std, -1)
     pos[V.enr_dofs] = np.arange(V.n_enr)
-    enr = []
-    for c in range(mesh.dim()):
-        nd = V.basis.nodal_dofs[c]
-        facets = cut_bf[:, imposed[nd[cut_bf]].all(axis=0)]
-        k = pos[nd[np.unique(facets)]]
-        enr.append(V.n_std + k[k >= 0])
-    enr = np.concatenate(enr)
+    enr = [np.zeros(0, dtype=np.int64)]
+    for k, d in enumerate(scene.displacements):
+        selected = np.zeros(mesh.p.shape[1], dtype=bool)
+        selected[select_nodes(mesh, d.boundary, f"displacements[{k}]")] = True
+        nodes = np.unique(cut_bf[:, selected[cut_bf].all(axis=0)])
+        names = COMPONENTS[:mesh.dim()] if "all" in d.components else tuple(d.components)
+        for name in names:
+            b = pos[V.basis.nodal_dofs[COMPONENTS.index(name), nodes]]
+            enr.append(V.n_std + b[b >= 0])
+    enr = np.unique(np.concatenate(enr))
     return (np.concatenate([dofs, enr]),
             np.concatenate([values, np.zeros(enr.size)]))
 
 
-def solve(scene: Scene, dependent: str = "remove", quadrature_order: int | None = None
-          ) -> Result:
+def solve(scene: Scene, dependent: str = "remove") -> Result:
     """Solve ``scene`` and return a :class:`Result`.
 
     Parameters
     ----------
     scene
-        A :class:`skxfem.scene.Scene`.
+        A :class:`skxfem.scene.Scene` (its ``quadrature_order`` sets the
+        cell rule of the stiffness; ``None``: exact on affine cells).
     dependent
         ``"remove"`` (default) drops linearly dependent multipliers,
         ``"raise"`` refuses a rank-deficient coupling with a ValueError.
+
+    Raises
+    ------
+    ValueError
+        A scene that does not fit its mesh, a level set that cuts no cell
+        or passes through nodes (from :func:`skxfem.cut.cut`), a rank
+        deficient space with ``dependent="raise"``.
+    skxfem.saddle.SingularSystemError
+        (a ValueError) The supports leave a rigid motion of a side free.
     """
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")

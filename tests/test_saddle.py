@@ -197,3 +197,14 @@ def test_an_exactly_singular_system_is_refused_with_the_documented_error():
     F[0], F[-1] = 1.0, -1.0
     with pytest.raises(SingularSystemError, match="singular"):
         solve(K.tocsr(), sp.csr_matrix((0, n)), F)
+
+
+def test_an_unknown_without_stiffness_is_refused():
+    """A node that no cell uses has an empty row in K: named, not divided by."""
+    K = sp.diags([2.0, 0.0, 3.0]).tocsr()
+    with np.errstate(all="raise"):  # no division by zero on the way
+        with pytest.raises(SingularSystemError, match="1 unknown.*no stiffness"):
+            solve(K, sp.csr_matrix((0, 3)), np.ones(3))
+    # imposed, the same unknown is harmless
+    U, _, _ = solve(K, sp.csr_matrix((0, 3)), np.ones(3), D=[1], g=[0.5])
+    assert np.allclose(U, [0.5, 0.5, 1 / 3])

@@ -24,7 +24,7 @@ from skfem import solve as skfem_solve
 
 from skxfem import meshes
 from skxfem.cut import cut as cut_mesh
-from skxfem.enrich import stiffness
+from skxfem.enrich import space, stiffness
 from skxfem.levelset import plane
 from skxfem.loads import boundary_quadrature, surface_load
 from skxfem.material import Material, stiffness_form
@@ -38,10 +38,11 @@ from skxfem.scene import (
     clamped,
     dirichlet,
     load_facets,
+    resolve_mesh,
     rollers,
 )
 from skxfem.scenes import P_MAX, paper_plate, strip
-from skxfem.solver import solve
+from skxfem.solver import constrained_dofs, solve
 
 DELTA = 0.01  # imposed shortening of the unit block (E = 1: |σ| = DELTA)
 THETA = np.deg2rad(30)
@@ -529,3 +530,33 @@ def test_bonded_restricts_every_traction_component_alike(cell, space):
     for component in result.traction:
         in_range = P @ np.linalg.lstsq(P, component, rcond=None)[0]
         assert np.abs(in_range - component).max() < 1e-12 * np.abs(component).max()
+
+
+def test_separate_supports_do_not_constrain_a_facet_they_share():
+    """One column of quads between rollers on x = 0 and x = 1, Γ nearly
+    vertical: both ends of the loaded top facet are held in x, but by two
+    different supports; the facet is not on a Dirichlet boundary, so its
+    enrichment stays free.  The faces x = 0 and x = 1 themselves are not cut."""
+    scene = Scene(Box((1, 3), "quad"), plane((0.5, 0.5), (1.0, 0.1)), Material(1.0, 0.3),
+                  (rollers("xmin"), rollers("xmax"), Displacement(at(0.0, 0.0), {"y": 0.0})),
+                  (SurfaceLoad("ymax", pressure=1.0),))
+    mesh = resolve_mesh(scene)
+    V = space(mesh, cut_mesh(mesh, scene.levelset))
+    dofs, _ = constrained_dofs(V, scene, mesh)
+    assert np.all(dofs < V.n_std), "no enriched dof is constrained"
+
+
+def test_a_selection_holding_one_side_of_a_cut_face_leaves_the_other_free():
+    """A support given as a selection of the nodes of x = 0 below Γ only: it
+    covers no whole cut facet, so b stays free; u⁻ is held at those nodes,
+    u⁺ is not."""
+    psi = plane((0.5, 0.53), (0.3, 1.0))
+    below = lambda x: (np.abs(x[0]) < 1e-12) & (psi(x) < 0)  # noqa: E731
+    scene = Scene(Box(4, "quad"), psi, Material(1.0, 0.3),
+                  (Displacement(below, {"all": 0.0}),),
+                  (SurfaceLoad("xmax", traction=(0.0, 1.0)),))
+    result = solve(scene)
+    held = below(result.mesh.p)
+    assert np.abs(result.u_minus[:, held]).max() == 0.0
+    cut_face = held & np.isin(np.arange(held.size), result.space.cut.enriched)
+    assert cut_face.any() and np.abs(result.u_plus[:, cut_face]).max() > 0.0
