@@ -88,6 +88,22 @@ def inf_sup(scene, scaling: str = "h", law: str = "bilateral") -> InfSup:
     float without the tie are still normed), restricted to the free unknowns;
     M is h·(interface mass) (``scaling="h"``, the discrete H^{-1/2} norm) or
     the plain interface mass (``"l2"``).
+
+    Parameters
+    ----------
+    scene
+        A :class:`skxfem.scene.Scene`; its mesh, level set, material,
+        displacements and ``space`` are used (its loads and law are not).
+    scaling
+        ``"h"`` or ``"l2"``, the norm of the multipliers (see the module notes).
+    law
+        ``"bilateral"`` (one multiplier per point) or ``"bonded"`` (dim of them).
+
+    Returns
+    -------
+    InfSup
+        β_h, all β², the zero modes, the rank of B_r and the h used in M
+        (the mean length of the cut edges).
     """
     from .cut import cut as cut_mesh
     from .enrich import mass, space, stiffness
