@@ -49,10 +49,13 @@ class SingularSystemError(ValueError):
 
 @dataclass(frozen=True)
 class SaddleInfo:
-    """Diagnostics: ``removed`` dependent multipliers, the relative ``residual``."""
+    """Diagnostics: ``removed`` dependent multipliers, the relative ``residual``
+    of the solve, and ``balance``, the relative error of the equilibrium
+    Bᵀμ = K U - F that the reported multipliers must satisfy."""
 
     removed: int
     residual: float
+    balance: float = 0.0
 
 
 def independent_rows(B: sp.spmatrix, tol: float = 1e-10) -> np.ndarray:
@@ -135,6 +138,9 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float =
         If a free unknown has zero stiffness, the system is singular (SuperLU
         finds an exactly zero pivot, or a pivot below ``pivot_tol``), or the
         residual exceeds ``tol``.
+    RuntimeError
+        If the multipliers do not balance U (Bᵀμ = K U - F within ``tol``):
+        a numerical failure, never observed, checked so it cannot pass silently.
     """
     N, m = K.shape[0], B.shape[0]
     D = np.zeros(0, int) if D is None else np.asarray(D, int)
@@ -180,6 +186,15 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float =
     U[free] = s * x[:free.size]
     mu = np.zeros(m)
     mu[keep] = -r * x[free.size:]
+    reaction = (K @ U - F)[free]
     if G is not None:
-        mu = smoothest_multipliers(B[:, free], (K @ U - F)[free], G)
-    return U, mu, SaddleInfo(int(m - keep.size), float(residual))
+        mu = smoothest_multipliers(B[:, free], reaction, G)
+    # the multipliers reported must balance U: huge or wrong ones would not
+    balance = np.linalg.norm(B[:, free].T @ mu - reaction) / max(
+        np.linalg.norm(reaction), np.linalg.norm(F[free]), 1e-300)
+    if not np.isfinite(balance) or balance > tol:
+        raise RuntimeError(
+            f"the multipliers do not balance the displacement (relative error "
+            f"{balance:.1e} > {tol:.0e}): the interface tractions would be wrong; "
+            f"please report this scene")
+    return U, mu, SaddleInfo(int(m - keep.size), float(residual), float(balance))

@@ -208,3 +208,20 @@ def test_an_unknown_without_stiffness_is_refused():
     # imposed, the same unknown is harmless
     U, _, _ = solve(K, sp.csr_matrix((0, 3)), np.ones(3), D=[1], g=[0.5])
     assert np.allclose(U, [0.5, 0.5, 1 / 3])
+
+
+def test_multipliers_that_do_not_balance_u_are_never_returned(monkeypatch):
+    """Bᵀμ = K U - F is checked after the recovery: reported multipliers that
+    did not balance the displacement (here a sabotaged recovery) stop the solve."""
+    import skxfem.saddle as saddle
+
+    K = spd(4, np.random.default_rng(3))
+    B = sp.csr_matrix([[1.0, -1.0, 0.0, 0.0]])
+    F = np.array([1.0, 0.0, 0.0, 0.0])
+    G = sp.csr_matrix((0, 1))
+    U, mu, info = solve(K, B, F, G=G)
+    assert info.balance < 1e-12
+    monkeypatch.setattr(saddle, "smoothest_multipliers",
+                        lambda B, r, G: np.full(B.shape[0], 1e6))
+    with pytest.raises(RuntimeError, match="do not balance"):
+        solve(K, B, F, G=G)
