@@ -27,7 +27,7 @@ if TYPE_CHECKING:  # scene.py imports this module
     from .scene import Scene, SurfaceLoad
 
 __all__ = ["FACES", "COMPONENTS", "named_facets", "select_nodes", "select_facets",
-           "dirichlet", "load_facets", "traction"]
+           "imposed", "dirichlet", "load_facets", "traction"]
 
 COMPONENTS = ("x", "y", "z")
 FACES = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
@@ -102,6 +102,30 @@ def _values(value, x: np.ndarray, what: str) -> np.ndarray:
     return v
 
 
+def imposed(scene: Scene, mesh: Mesh) -> list[tuple[np.ndarray, dict]]:
+    """For each displacement of the scene: its nodes and ``{component index: value}``.
+
+    ``"all"`` is expanded to every component of the mesh; a component the
+    mesh does not have is refused, naming the displacement.
+    """
+    dim = mesh.dim()
+    out = []
+    for k, d in enumerate(scene.displacements):
+        what = f"displacements[{k}]"
+        nodes = select_nodes(mesh, d.boundary, what)
+        components = dict.fromkeys(COMPONENTS[:dim], d.components["all"]) \
+            if "all" in d.components else d.components
+        values = {}
+        for name, value in components.items():
+            c = COMPONENTS.index(name)
+            if c >= dim:
+                raise ValueError(f"{what}: component {name!r} does not exist on a {dim}D "
+                                 f"mesh (allowed: {', '.join(COMPONENTS[:dim])})")
+            values[c] = (value, f"{what} component {name!r}")
+        out.append((nodes, values))
+    return out
+
+
 def dirichlet(scene: Scene, mesh: Mesh, basis) -> tuple[np.ndarray, np.ndarray]:
     """Imposed dofs and their values for a vector basis ``Basis(mesh, ElementVector(e))``.
 
@@ -113,23 +137,14 @@ def dirichlet(scene: Scene, mesh: Mesh, basis) -> tuple[np.ndarray, np.ndarray]:
     dofs, values
         Sorted dof indices (int array) and the imposed values (float array).
     """
-    dim = mesh.dim()
     values = np.zeros(basis.N)
-    imposed = np.zeros(basis.N, dtype=bool)
-    for k, d in enumerate(scene.displacements):
-        what = f"displacements[{k}]"
-        nodes = select_nodes(mesh, d.boundary, what)
-        components = dict.fromkeys(COMPONENTS[:dim], d.components["all"]) \
-            if "all" in d.components else d.components
-        for name, value in components.items():
-            c = COMPONENTS.index(name)
-            if c >= dim:
-                raise ValueError(f"{what}: component {name!r} does not exist on a {dim}D "
-                                 f"mesh (allowed: {', '.join(COMPONENTS[:dim])})")
+    is_imposed = np.zeros(basis.N, dtype=bool)
+    for nodes, components in imposed(scene, mesh):
+        for c, (value, what) in components.items():
             dofs = basis.nodal_dofs[c, nodes]
-            values[dofs] = _values(value, mesh.p[:, nodes], f"{what} component {name!r}")
-            imposed[dofs] = True
-    dofs = np.flatnonzero(imposed)
+            values[dofs] = _values(value, mesh.p[:, nodes], what)
+            is_imposed[dofs] = True
+    dofs = np.flatnonzero(is_imposed)
     return dofs, values[dofs]
 
 

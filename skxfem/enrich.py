@@ -121,12 +121,6 @@ def _side_bases(mesh, cut: Cut, elem, quadrature=None):
     return pairs
 
 
-def _signed_basis(mesh, cut: Cut, elem, quadrature=None):
-    """Bases covering the mesh and the value of H at their quadrature points."""
-    return [(b, np.full(b.dx.shape, float(s)))
-            for b, s in _side_bases(mesh, cut, elem, quadrature)]
-
-
 @LinearForm
 def _signed_mass(v, w):
     return w["H"] * v
@@ -169,8 +163,9 @@ def space(mesh, cut: Cut, order: int | None = None, sliver: float = 1e-8) -> XSp
 
 
 def signed_bases(V: XSpace):
-    """The pairs (basis, H) covering the mesh: see :func:`_signed_basis`."""
-    return _signed_basis(V.mesh, V.cut, V.basis.elem, V.basis.quadrature)
+    """The pairs (basis, H) covering the mesh, H = ±1 the constant value of
+    the Heaviside function on that basis: see :func:`_side_bases`."""
+    return _side_bases(V.mesh, V.cut, V.basis.elem, V.basis.quadrature)
 
 
 def enriched_matrix(V: XSpace, form) -> sp.csr_matrix:
@@ -183,7 +178,7 @@ def enriched_matrix(V: XSpace, form) -> sp.csr_matrix:
     A = A⁺ + A⁻ and A_H = A⁺ - A⁻.
     """
     A = AH = 0
-    for b, s in _side_bases(V.mesh, V.cut, V.basis.elem, V.basis.quadrature):
+    for b, s in signed_bases(V):
         part = form.assemble(b, H=np.ones(b.dx.shape))  # ∫ over one side only
         A, AH = A + part, AH + s * part
     A, AH = A.tocsr(), AH.tocsr()

@@ -74,19 +74,14 @@ def plan(quick: bool, sizes=None) -> dict:
             "fig8": sizes[-2:]}
 
 
-def _scene(cell, n, space):
-    from .scenes import exact_scene
-
-    return exact_scene(n, cell, space)
-
-
 def _measure(cell, ns):
     """Study rows and inf-sup results (both norms) of ``cell`` for its spaces."""
     from .convergence import study
     from .lbb import inf_sup
+    from .scenes import exact_scene
 
-    rows = study(lambda n, s: _scene(cell, n, s), ns, CELLS[cell], with_inf_sup=False)
-    betas = {(scaling, space): [inf_sup(_scene(cell, n, space), scaling) for n in ns]
+    rows = study(lambda n, s: exact_scene(n, cell, s), ns, CELLS[cell], with_inf_sup=False)
+    betas = {(scaling, space): [inf_sup(exact_scene(n, cell, space), scaling) for n in ns]
              for scaling in ("h", "l2") for space in CELLS[cell]}
     return rows, betas
 

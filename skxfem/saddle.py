@@ -179,10 +179,7 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float =
         x += lu.solve(rhs - A @ x)
     residual = np.linalg.norm(A @ x - rhs) / max(np.linalg.norm(rhs), 1e-300)
     if not np.all(np.isfinite(x)) or residual > tol:
-        raise SingularSystemError(
-            f"the saddle-point solve failed (relative residual {residual:.2e}): the "
-            f"displacement problem is singular; check that the displacements (supports) "
-            f"remove every rigid motion of each side of the interface")
+        raise _floating(f"the solve leaves a relative residual {residual:.2e}")
     U[free] = s * x[:free.size]
     mu = np.zeros(m)
     mu[keep] = -r * x[free.size:]

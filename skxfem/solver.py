@@ -30,7 +30,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from . import saddle
-from .boundary import COMPONENTS, select_nodes
+from .boundary import imposed
 from .cut import cut as cut_mesh
 from .enrich import XSpace, enriched_load, jump_matrix, space, split_fields, stiffness
 from .loads import boundary_quadrature, surface_load
@@ -122,13 +122,12 @@ def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndar
     pos = np.full(V.n_std, -1)
     pos[V.enr_dofs] = np.arange(V.n_enr)
     enr = [np.zeros(0, dtype=np.int64)]
-    for k, d in enumerate(scene.displacements):
+    for held, components in imposed(scene, mesh):
         selected = np.zeros(mesh.p.shape[1], dtype=bool)
-        selected[select_nodes(mesh, d.boundary, f"displacements[{k}]")] = True
+        selected[held] = True
         nodes = np.unique(cut_bf[:, selected[cut_bf].all(axis=0)])
-        names = COMPONENTS[:mesh.dim()] if "all" in d.components else tuple(d.components)
-        for name in names:
-            b = pos[V.basis.nodal_dofs[COMPONENTS.index(name), nodes]]
+        for c in components:
+            b = pos[V.basis.nodal_dofs[c, nodes]]
             enr.append(V.n_std + b[b >= 0])
     enr = np.unique(np.concatenate(enr))
     return (np.concatenate([dofs, enr]),
