@@ -31,6 +31,9 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .enrich import mass
+from .problem import assemble
+
 __all__ = ["InfSup", "inf_sup_constant", "inf_sup"]
 
 
@@ -105,29 +108,16 @@ def inf_sup(scene, scaling: str = "h", law: str = "bilateral") -> InfSup:
         β_h, all β², the zero modes, the rank of B_r and the h used in M
         (the mean length of the cut edges).
     """
-    from .cut import cut as cut_mesh
-    from .enrich import mass, space, stiffness
-    from .multipliers import coupling, interface_mass, interface_rule, multiplier_space
-    from .scene import resolve_mesh
-    from .solver import constrained_dofs
-
     if scaling not in ("h", "l2"):
         raise ValueError(f"scaling must be 'h' or 'l2', got {scaling!r}")
-    mesh = resolve_mesh(scene)
-    c = cut_mesh(mesh, scene.levelset)
-    V = space(mesh, c)
+    p = assemble(scene, law)
+    mesh, c, V = p.mesh, p.cut, p.V
     L = np.ptp(mesh.p, axis=1).max()
-    A = stiffness(V, scene.material) + (scene.material.E / L ** 2) * mass(V)
-    rule = interface_rule(mesh, c)
-    B = coupling(V, rule, law)
-    S = multiplier_space(scene.space, mesh, c)
-    ncomp = B.shape[0] // c.points.shape[1]
-    P = sp.kron(sp.identity(ncomp), S.P, format="csr")
-    M = sp.kron(sp.identity(ncomp), interface_mass(rule))
-    dofs, _ = constrained_dofs(V, scene, mesh)   # the solver's, enriched ones included
-    free = np.setdiff1d(np.arange(V.N), dofs)
+    A = p.K + (scene.material.E / L ** 2) * mass(V)
+    M = sp.kron(sp.identity(p.ncomp), p.M_edges)
+    free = np.setdiff1d(np.arange(V.N), p.D)   # the solver's, enriched ones included
     # mesh size across Γ: the mean length of the cut edges (anisotropic
     # meshes, such as one layer of prisms along x, are measured where it matters)
     h = float(np.mean(np.linalg.norm(mesh.p[:, c.edges[0]] - mesh.p[:, c.edges[1]], axis=0)))
-    Mr = P.T @ M @ P * (h if scaling == "h" else 1.0)
-    return inf_sup_constant(A[free][:, free], (P.T @ B)[:, free], Mr, h=h)
+    Mr = p.P.T @ M @ p.P * (h if scaling == "h" else 1.0)
+    return inf_sup_constant(A[free][:, free], p.B[:, free], Mr, h=h)

@@ -131,12 +131,17 @@ def interface_rule(mesh, cut: Cut, order: int = 4) -> InterfaceRule:
     return InterfaceRule(points, normals, weights, cells, ref, N)
 
 
-def coupling(V: XSpace, rule: InterfaceRule, law: str) -> sp.csr_matrix:
-    """B on the edge multipliers: ``(dim·n_edges, N)`` bonded, ``(n_edges, N)`` bilateral."""
+def coupling(V: XSpace, rule: InterfaceRule, law: str, J=None) -> sp.csr_matrix:
+    """B on the edge multipliers: ``(dim·n_edges, N)`` bonded, ``(n_edges, N)`` bilateral.
+
+    ``J`` is the jump operator at the rule's points (:func:`skxfem.enrich.jump_matrix`,
+    (dim·nq, N), component-major); built here if not given.
+    """
     if law not in LAWS:
         raise ValueError(f"law must be one of {LAWS}, got {law!r}")
     dim, nq = V.mesh.dim(), rule.weights.size
-    J = jump_matrix(V, rule.cells, rule.ref)  # (dim*nq, N), component-major
+    if J is None:
+        J = jump_matrix(V, rule.cells, rule.ref)
     NW = (rule.N.T @ sp.diags(rule.weights)).tocsr()  # (n_edges, nq)
     blocks = [NW @ J[c * nq:(c + 1) * nq] for c in range(dim)]
     if law == "bonded":
