@@ -9,6 +9,8 @@
 4. The paper's plate (§5) and its 2D strip: smooth pressure on quads and
    hexahedra, oscillating pressure with the naive space on triangles and prisms.
 5. A level set that cuts no cell is refused with a clear message.
+7. A naive space nearly dependent on a fine mesh is refused with a ValueError
+   (issue 7); the stable spaces solve the same scene.
 
 Conventions (see :mod:`skxfem.levelset`): Ω⁻ = {ψ < 0} below Γ, n points up
 into Ω⁺, the traction is r = σ(u⁻)·n and the pressure p = -r·n.
@@ -560,3 +562,28 @@ def test_a_selection_holding_one_side_of_a_cut_face_leaves_the_other_free():
     assert np.abs(result.u_minus[:, held]).max() == 0.0
     cut_face = held & np.isin(np.arange(held.size), result.space.cut.enriched)
     assert cut_face.any() and np.abs(result.u_plus[:, cut_face]).max() > 0.0
+
+
+# ---------------------------------------------------------------------------
+# 7. A nearly singular naive space is refused, not crashed on (issue 7)
+# ---------------------------------------------------------------------------
+
+def test_a_nearly_dependent_naive_space_is_refused_and_stable_spaces_solve_it():
+    """The 128 × 129 triangle strip cut by a slanted Γ through (0, 0.37) with
+    normal (-0.21, 1): Γ passes 1.6e-4 of an edge from a node near x = 0.047,
+    where two naive multipliers are nearly dependent (σ/σ_max = 8e-9).  The
+    multipliers that balance U there need a spike 3e5 times the typical
+    traction: the solve refuses with a ValueError naming the cause and the
+    remedy.  The stable spaces solve the same scene, and their traction on Γ
+    balances the top load: ∫_Γ r = (0, -∫ p) = (0, -2P/3)."""
+    from skxfem.saddle import NearlyDependentError
+
+    scene = dataclasses.replace(strip(128, "tri"), levelset=plane((0.0, 0.37), (-0.21, 1.0)))
+    with pytest.raises(NearlyDependentError, match=r"nearly dependent.*8\.1e-09.*space=\"vital\""):
+        solve(scene)
+    for name in ("vital", "winner"):
+        result = solve(dataclasses.replace(scene, space=name))
+        r = result.traction[:, result.facets].mean(axis=1)
+        force = (r * result.space.cut.measures).sum(axis=1)
+        assert np.abs(force - (0.0, -2 * P_MAX / 3)).max() < 1e-8, \
+            f"{name}: the traction on Γ must balance the top load, ∫_Γ r = {force}"
