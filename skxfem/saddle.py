@@ -27,8 +27,9 @@ singular matrix, we
    recovery's 1e-6 — and U's reaction really loads that combination: the
    multipliers that balance U then carry a spike of the size of the reaction
    over that singular value.  The unstable naive space does this where Γ
-   passes within about 1e-4 h of a node (a 128 × 129 triangle strip: σ_min/σ_max
-   = 8e-9, a multiplier 3e5 times the typical one).  Such a scene is refused
+   passes within about 1e-4 of an edge's length from a node (a 128 × 129
+   triangle strip, 1.6e-4: σ_min/σ_max = 8e-9, and the balance needs a
+   multiplier 3e5 times the typical one).  Such a scene is refused
    with a :class:`NearlyDependentError` (a ValueError: use a stable space);
    any other imbalance is a RuntimeError, an unexpected numerical failure.
 
