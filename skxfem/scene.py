@@ -11,6 +11,12 @@ stored in ``mesh.boundaries``) or given as a selection ``x -> bool``.  An impose
 acts on its boundary *facets*.  The pressure is positive in compression: the
 traction is t = -p n with n the outward unit normal.
 
+A value (a displacement component, a pressure, a traction component) is a
+number, a callable ``x -> array`` or a formula string such as
+``"4*x*(1 - x)"``: the same safe formulas as in scene files
+(:mod:`skxfem.expr`), checked when the value is made and compiled for the
+scene's dimension by :class:`Scene` (``z`` is refused in 2D).
+
 >>> from skxfem.levelset import plane
 >>> scene = Scene(Box(3, "quad"), plane((0, 0.5), (0, 1)),
 ...               displacements=(clamped("ymin"),),
@@ -28,6 +34,7 @@ import numpy as np
 from skfem import Mesh
 
 from .boundary import COMPONENTS, FACES, dirichlet, load_facets, traction
+from .expr import Expression
 from .levelset import LevelSet
 from .material import Material
 from .multipliers import LAWS, SPACES
@@ -39,7 +46,7 @@ __all__ = ["Box", "Displacement", "SurfaceLoad", "Scene", "clamped", "rollers",
 CELLS = {"tri": 2, "quad": 2, "tet": 3, "hex": 3, "prism": 3}
 """Cell types of :class:`Box` and their dimension."""
 
-Value = Union[float, Callable[[np.ndarray], np.ndarray]]
+Value = Union[float, str, Callable[[np.ndarray], np.ndarray]]
 
 
 def _is_number(v) -> bool:
@@ -47,11 +54,23 @@ def _is_number(v) -> bool:
 
 
 def _check_value(v, what: str) -> float | Callable:
-    """A finite number (returned as float) or a callable ``x -> array``."""
+    """A finite number (returned as float), a callable ``x -> array``, or a formula
+    string, returned as a 3D :class:`~skxfem.expr.Expression` (:class:`Scene`
+    compiles it again for its own dimension).
+
+    >>> _check_value("4*x*(1 - x)", "pressure").text
+    '4*x*(1 - x)'
+    """
+    if isinstance(v, str):
+        try:
+            return Expression(v, 3)
+        except ValueError as e:
+            raise ValueError(f"{what}: {e}") from None
     if callable(v):
         return v
     if not _is_number(v):
-        raise TypeError(f"{what} must be a number or a callable x -> array, got {v!r}")
+        raise TypeError(f"{what} must be a number, a formula string such as '4*x*(1 - x)' "
+                        f"or a callable x -> array, got {v!r}")
     if not np.isfinite(v):
         raise ValueError(f"{what} must be finite, got {v!r}")
     return float(v)
@@ -213,6 +232,11 @@ class Scene:
                              f"got {q!r}")
         if not (isinstance(self.name, str) and self.name):
             raise ValueError(f"Scene name must be a non-empty string, got {self.name!r}")
+        object.__setattr__(self, "displacements", tuple(
+            _for_dim(d, self.dim, f"displacements[{k}]")
+            for k, d in enumerate(self.displacements)))
+        object.__setattr__(self, "loads", tuple(
+            _for_dim(load, self.dim, f"loads[{k}]") for k, load in enumerate(self.loads)))
         if isinstance(self.mesh, (Box, Mesh)):
             _check_dims(self, self.mesh.dim if isinstance(self.mesh, Box) else self.mesh.dim())
 
@@ -220,6 +244,35 @@ class Scene:
     def dim(self) -> int:
         """The dimension of the problem (that of the level set)."""
         return self.levelset.dim
+
+
+def _formula_for_dim(v, dim: int, what: str):
+    """``v``, with a formula compiled for ``dim`` coordinates."""
+    if not isinstance(v, Expression) or v.dim == dim:
+        return v
+    try:
+        return Expression(v.text, dim, v.boolean)
+    except ValueError as e:
+        raise ValueError(f"{what}: {e}") from None
+
+
+def _for_dim(item: Displacement | SurfaceLoad, dim: int, where: str):
+    """A displacement or load whose formula strings evaluate on ``dim``-D points.
+
+    >>> load = SurfaceLoad("ymax", pressure="4*x*(1 - x)")
+    >>> load.pressure.dim, _for_dim(load, 2, "loads[0]").pressure.dim
+    (3, 2)
+    """
+    if isinstance(item, Displacement):
+        comps = {c: _formula_for_dim(v, dim, f"{where} component {c!r}")
+                 for c, v in item.components.items()}
+        return item if comps == item.components else Displacement(item.boundary, comps)
+    if item.pressure is not None:
+        p = _formula_for_dim(item.pressure, dim, f"{where} pressure")
+        return item if p is item.pressure else SurfaceLoad(item.boundary, pressure=p)
+    t = tuple(_formula_for_dim(v, dim, f"{where} traction[{i}]")
+              for i, v in enumerate(item.traction))
+    return item if t == item.traction else SurfaceLoad(item.boundary, traction=t)
 
 
 def _check_dims(scene: Scene, dim: int):
