@@ -11,11 +11,9 @@ stored in ``mesh.boundaries``) or given as a selection ``x -> bool``.  An impose
 acts on its boundary *facets*.  The pressure is positive in compression: the
 traction is t = -p n with n the outward unit normal.
 
-A value (a displacement component, a pressure, a traction component) is a
-number, a callable ``x -> array`` or a formula string such as
-``"4*x*(1 - x)"``: the same safe formulas as in scene files
-(:mod:`skxfem.expr`), checked when the value is made and compiled for the
-scene's dimension by :class:`Scene` (``z`` is refused in 2D).
+A value (displacement component, pressure, traction component) is a number, a
+callable ``x -> array`` or a formula string such as ``"4*x*(1 - x)"``, checked
+as in scene files (:mod:`skxfem.expr`) and compiled for the scene's dimension.
 
 >>> from skxfem.levelset import plane
 >>> scene = Scene(Box(3, "quad"), plane((0, 0.5), (0, 1)),
@@ -26,7 +24,7 @@ scene's dimension by :class:`Scene` (``z`` is refused in 2D).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable, Mapping, Union
 
@@ -54,13 +52,8 @@ def _is_number(v) -> bool:
 
 
 def _check_value(v, what: str) -> float | Callable:
-    """A finite number (returned as float), a callable ``x -> array``, or a formula
-    string, returned as a 3D :class:`~skxfem.expr.Expression` (:class:`Scene`
-    compiles it again for its own dimension).
-
-    >>> _check_value("4*x*(1 - x)", "pressure").text
-    '4*x*(1 - x)'
-    """
+    """A finite number (as float), a callable ``x -> array`` or a formula string
+    (as a 3D :class:`~skxfem.expr.Expression`; :class:`Scene` fits it to its dim)."""
     if isinstance(v, str):
         try:
             return Expression(v, 3)
@@ -246,16 +239,6 @@ class Scene:
         return self.levelset.dim
 
 
-def _formula_for_dim(v, dim: int, what: str):
-    """``v``, with a formula compiled for ``dim`` coordinates."""
-    if not isinstance(v, Expression) or v.dim == dim:
-        return v
-    try:
-        return Expression(v.text, dim, v.boolean)
-    except ValueError as e:
-        raise ValueError(f"{what}: {e}") from None
-
-
 def _for_dim(item: Displacement | SurfaceLoad, dim: int, where: str):
     """A displacement or load whose formula strings evaluate on ``dim``-D points.
 
@@ -263,16 +246,21 @@ def _for_dim(item: Displacement | SurfaceLoad, dim: int, where: str):
     >>> load.pressure.dim, _for_dim(load, 2, "loads[0]").pressure.dim
     (3, 2)
     """
+    def fit(v, what: str):
+        if not isinstance(v, Expression) or v.dim == dim:
+            return v
+        try:
+            return Expression(v.text, dim)
+        except ValueError as e:
+            raise ValueError(f"{where} {what}: {e}") from None
+
     if isinstance(item, Displacement):
-        comps = {c: _formula_for_dim(v, dim, f"{where} component {c!r}")
-                 for c, v in item.components.items()}
-        return item if comps == item.components else Displacement(item.boundary, comps)
+        return replace(item, components={c: fit(v, f"component {c!r}")
+                                         for c, v in item.components.items()})
     if item.pressure is not None:
-        p = _formula_for_dim(item.pressure, dim, f"{where} pressure")
-        return item if p is item.pressure else SurfaceLoad(item.boundary, pressure=p)
-    t = tuple(_formula_for_dim(v, dim, f"{where} traction[{i}]")
-              for i, v in enumerate(item.traction))
-    return item if t == item.traction else SurfaceLoad(item.boundary, traction=t)
+        return replace(item, pressure=fit(item.pressure, "pressure"))
+    return replace(item, traction=tuple(fit(v, f"traction[{i}]")
+                                        for i, v in enumerate(item.traction)))
 
 
 def _check_dims(scene: Scene, dim: int):

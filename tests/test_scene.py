@@ -335,5 +335,5 @@ def test_22_a_z_formula_is_refused_by_a_2d_scene_and_kept_by_a_3d_one():
         Scene(QUAD, LINE, loads=(load,))
     s3 = Scene(Box(2, "hex"), plane((0, 0, 0.5), (0, 0, 1)), loads=(load,),
                displacements=(Displacement("zmin", {"z": "0.5*z"}),))
-    assert s3.loads[0] is load and s3.loads[0].pressure(np.ones((3, 1))) == 2.0
+    assert s3.loads[0] == load and s3.loads[0].pressure(np.ones((3, 1))) == 2.0
     assert s3.displacements[0].components["z"].text == "0.5*z"
