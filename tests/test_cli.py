@@ -70,6 +70,8 @@ def test_03_interface_force_balances_the_load(tmp_path):
     ("[mesh]\nbox = {n = [2, 3], cell = 'quad'}\n[levelset]\nexpr = 'y - 0.5'\n"
      "[[load]]\nboundary = 'ymax'\npressure = 1.0",
      ["singular", "displacements"]),          # no support: the body floats
+    ("[mesh]\nfile = 'nope.msh'\n[levelset]\nexpr = 'y - 0.5'", ["nope.msh", "not found"]),
+    ("[mesh\nbox = 1", ["invalid TOML"]),
 ])
 def test_04_bad_scenes_exit_2_with_one_line(tmp_path, capsys, text, words):
     path = tmp_path / "bad.toml"
