@@ -240,7 +240,7 @@ def estimate(scene: Scene) -> Estimate:
 
 
 def check(scene: Scene, max_bytes: int = DEFAULT_MAX_BYTES,
-          option: str = "max_memory") -> Estimate:
+          option: str | None = None) -> Estimate:
     """:func:`estimate`, refusing a scene above ``max_bytes``.
 
     Parameters
@@ -250,8 +250,14 @@ def check(scene: Scene, max_bytes: int = DEFAULT_MAX_BYTES,
     max_bytes
         The limit in bytes.
     option
-        How the caller raises the limit, named in the message (the command line
-        passes ``--max-memory``).
+        The command-line option that raises the limit, named in the message
+        (``skxfem run`` passes ``"--max-memory"``); by default the message
+        names ``max_bytes=``.
+
+    Returns
+    -------
+    Estimate
+        The estimate of an accepted scene.
 
     Raises
     ------
@@ -262,8 +268,10 @@ def check(scene: Scene, max_bytes: int = DEFAULT_MAX_BYTES,
         raise ValueError(f"max_bytes must be a positive integer, got {max_bytes!r}")
     e = estimate(scene)
     if e.bytes > max_bytes:
+        more = 2 * e.bytes
+        hint = (f"max_bytes={more}" if option is None
+                else f"{option} {format_bytes(more).replace(' ', '')}")
         raise TooLargeError(
             f"the scene {scene.name!r} needs about {format_bytes(e.bytes)} ({e}); the limit is "
-            f"{format_bytes(max_bytes)}: use a coarser mesh, or raise the limit with "
-            f"{option} (e.g. {option} {format_bytes(2 * e.bytes).replace(' ', '')})")
+            f"{format_bytes(max_bytes)}: use a coarser mesh, or raise the limit (e.g. {hint})")
     return e
