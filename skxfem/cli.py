@@ -84,14 +84,15 @@ def _fail(error: BaseException, debug: bool) -> int:
     """One line on stderr and the exit code; the traceback with ``--debug``."""
     if debug:
         raise error
+    text = " ".join(str(error).split())                 # one line, whatever the message
     if isinstance(error, ANTICIPATED):
-        message = str(error) or type(error).__name__
+        message = text or type(error).__name__
         if isinstance(error, MemoryError):
-            message = ("out of memory" + (f" ({error})" if str(error) else "")
+            message = ("out of memory" + (f" ({text})" if text else "")
                        + "; lower --max-memory so that the size guard refuses such scenes")
         print(f"skxfem: error: {message}", file=sys.stderr)
         return 2
-    print(f"skxfem: unexpected error: {type(error).__name__}: {error} "
+    print(f"skxfem: unexpected error: {type(error).__name__}: {text} "
           f"(run with --debug for the traceback)", file=sys.stderr)
     return 1
 

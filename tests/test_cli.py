@@ -178,6 +178,7 @@ def test_12_usage_errors_are_one_line(capsys, argv):
 @pytest.mark.parametrize("error, code", [
     (RuntimeError("the multipliers do not balance"), 1),   # a numerical failure: a bug
     (KeyError("u"), 1),
+    (ZeroDivisionError("a message\nover two lines"), 1),
     (MemoryError(), 2),                                    # anticipated: lower the limit
 ])
 def test_13_unexpected_errors_are_one_line_and_debug_shows_them(
@@ -225,3 +226,12 @@ def test_15_reproduce_is_forwarded(tmp_path, capsys):
     (tmp_path / "taken").write_text("")
     assert main(["reproduce", "--out", str(tmp_path / "taken")]) == 2   # before computing
     assert "taken" in one_line(capsys)
+
+
+def test_16_interrupted(tmp_path, capsys, monkeypatch):
+    def solve(scene):
+        raise KeyboardInterrupt
+    monkeypatch.setattr(cli, "solve", solve)
+    assert main(["run", STRIP, "--out", str(tmp_path / "o")]) == 130
+    one_line(capsys, "skxfem: interrupted")
+    assert not (tmp_path / "o").exists()
