@@ -18,7 +18,12 @@ no cell, a singular system —, a bad output folder, a failed write, a problem
 over the size limit, running out of memory, a usage error), reported as ONE
 line ``skxfem: error: ...`` on stderr; 1 for an unexpected error (a bug or a
 numerical failure), reported as one line with its type and message and the
-hint to run again with ``--debug``, which shows the traceback instead.
+hint to run again with ``--debug``, which shows the traceback instead; 130
+after Ctrl-C.
+
+A module with ``main(argv) -> int`` becomes a subcommand with one entry in
+:data:`FORWARDED` (``skxfem reproduce`` is ``skxfem.reproduce.main``); its
+errors are reported in the same way.
 """
 from __future__ import annotations
 
