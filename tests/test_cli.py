@@ -235,3 +235,17 @@ def test_16_interrupted(tmp_path, capsys, monkeypatch):
     assert main(["run", STRIP, "--out", str(tmp_path / "o")]) == 130
     one_line(capsys, "skxfem: interrupted")
     assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root writes into read-only folders; "
+                                              "test_09 simulates the refusal instead")
+def test_17_a_read_only_folder(tmp_path, capsys, no_solve):
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    ro.chmod(0o500)
+    try:
+        assert main(["run", STRIP, "--out", str(ro / "out")]) == 2
+        assert "not writable" in one_line(capsys)
+        assert list(ro.iterdir()) == []
+    finally:
+        ro.chmod(0o700)
