@@ -15,7 +15,9 @@ P_B the projection on the unit ball (eq. 9b–c).  Both maps are piecewise
 smooth; their generalised (Clarke) Jacobians, used by the semi-smooth Newton
 method of :mod:`skxfem.contact`, are
 
-* d(χ(g) g)/dg = χ(g)  (at the kink g = 0 we take 0, the value of χ there);
+* d(χ(g) g)/dg = χ(g), and 1 at the kink g = 0 (any slope in [0, 1] is a
+  generalised derivative there; 1, the contact branch, makes the first Newton
+  iteration from an untouched interface, λ = d = 0, the bilateral solve);
 * D P_B(g) = I for |g| ≤ 1, (I - ĝ ĝᵀ)/|g| for |g| > 1 (ĝ = g/|g|).
 
 Arrays hold one law per row: ``g`` (n,) for the normal law and (n, k) for
@@ -49,7 +51,7 @@ def indicator(x: np.ndarray) -> np.ndarray:
 
 
 def normal_update(g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The contact update χ(g) g (eq. 6) and its generalised derivative χ(g).
+    """The contact update χ(g) g (eq. 6) and its generalised derivative.
 
     Parameters
     ----------
@@ -59,10 +61,10 @@ def normal_update(g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     Returns
     -------
     value, slope
-        (n,) χ(g) g and d(χ(g) g)/dg.
+        (n,) χ(g) g and d(χ(g) g)/dg: χ(g), and 1 at g = 0.
     """
-    chi = indicator(g)
-    return chi * g, chi
+    g = np.asarray(g, dtype=float)
+    return indicator(g) * g, (g <= 0).astype(float)
 
 
 def ball_projection(g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -1,0 +1,222 @@
+r"""One load step of unilateral contact with friction by a semi-smooth Newton method.
+
+Unknowns: the free displacement unknowns U, the contact pressure λ (one value
+per multiplier dof, λ ≤ 0 in contact) and a tangential unknown T (m, k):
+the semi-multiplier Λ of eq. 9 for ``coulomb`` (r_τ = μλΛ), the tangential
+traction r_τ itself for ``adhesive`` (no slip: the limit μ → ∞), none for
+``frictionless``.  The equations, all solved at once (paper §3):
+
+* equilibrium  K U - Bnᵀλ - Σ_a Bt_aᵀ r_τa - F = 0 on the free unknowns;
+* contact      λ - χ(g_n) g_n = 0, g_n = λ - ρ_n d  at every dof;
+* friction     Λ - χ(g_n) P_B(g_τ) = 0, g_τ = Λ + ρ_τ s  (``coulomb``), or
+  r_τ - χ(g_n)(r_τ + ρ_τ s) = 0 (``adhesive``),
+
+with d, s the weighted normal jump and tangential jump increment of
+:mod:`skxfem.contact_interface` (s = v_τ Δt: the increment over the step).
+The open points (χ = 0) get λ = 0 and Λ = 0: the term (1 - χ)Λ of the
+paper's third equation.
+
+Newton matrix: the exact generalised Jacobian (:mod:`skxfem.contact_laws`;
+χ is taken as 1 at g_n = 0 in every block, so the first iteration from an
+untouched interface is the bilateral, or bonded, solve), with one
+exception: at a point just closed with λ = 0 the unknown Λ has no
+coefficient (r_τ = μλΛ = 0), so that iteration keeps Λ there (ΔΛ = 0).
+Rows and columns are scaled (Jacobi on U, unit max on the others) before
+SuperLU.  Step control: backtracking on the scaled residual norm (halving up
+to 5 times; if no step decreases it the full step is taken, as the active
+set has to change).  Convergence: the status of every point (open, stick,
+slip) unchanged by the last step and every relative residual ≤ ``tol``
+(equilibrium relative to max(|F|, |KU|); contact relative to
+max(|λ|, ρ_n|d|); friction: |Λ| ≤ 1 is already unit-free, the adhesive
+traction relative to max(|r_τ|, ρ_τ|s|)).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from .contact_laws import ball_projection, normal_update, status
+
+__all__ = ["Law", "NewtonInfo", "ContactConvergenceError", "residual", "newton"]
+
+
+class ContactConvergenceError(RuntimeError):
+    """The contact iteration did not converge; the message says how far it got."""
+
+
+@dataclass(frozen=True)
+class Law:
+    """A unilateral law with its parameters (μ only for ``coulomb``)."""
+
+    name: str
+    mu: float
+    rho_n: float
+    rho_t: float
+
+    @property
+    def friction(self) -> bool:
+        return self.name in ("coulomb", "adhesive")
+
+
+@dataclass(frozen=True)
+class NewtonInfo:
+    """``iterations`` (linear solves) and ``residuals`` (iterations + 1, 3): the
+    relative residuals of equilibrium, contact and friction, first the start."""
+
+    iterations: int
+    residuals: np.ndarray
+
+
+def _jumps(ops, U, U_prev):
+    d = ops.Bn @ U / ops.w
+    s = np.stack([Bt @ (U - U_prev) for Bt in ops.Bt], axis=1) / ops.w[:, None]
+    return d, s
+
+
+def _tangential(law, lam, T):
+    """The tangential traction r_τ (m, k)."""
+    if law.name == "coulomb":
+        return law.mu * lam[:, None] * T
+    return T if law.name == "adhesive" else np.zeros_like(T)
+
+
+def residual(ops, law, K, F, free, U, lam, T, U_prev):
+    """Residuals (R_u, R_n, R_t), the augmented g_n, g_τ and their relative sizes."""
+    d, s = _jumps(ops, U, U_prev)
+    g_n = lam - law.rho_n * d
+    value, _ = normal_update(g_n)
+    R_n = lam - value
+    g_t = T + law.rho_t * s[:, :T.shape[1]]
+    chi = (g_n < 0)[:, None]
+    if law.name == "coulomb":
+        R_t = T - chi * ball_projection(g_t)[0]
+    elif law.name == "adhesive":
+        R_t = T - chi * g_t
+    else:
+        R_t = np.zeros((lam.size, 0))
+    tau = _tangential(law, lam, T)
+    KU = K @ U
+    R_u = (KU - ops.Bn.T @ lam - sum(ops.Bt[a].T @ tau[:, a] for a in range(tau.shape[1])) - F)
+    R_u = R_u[free]
+    tiny = 1e-300
+    r_u = _max(R_u) / max(_max(F[free]), _max(KU[free]), tiny)
+    r_n = _max(R_n) / max(_max(lam), law.rho_n * _max(d), tiny)
+    r_t = _max(R_t) if law.name != "adhesive" else _max(R_t) / max(
+        _max(T), law.rho_t * _max(s), tiny)
+    return (R_u, R_n, R_t.T.ravel()), g_n, g_t, np.array([r_u, r_n, r_t])
+
+
+def _max(a):
+    return float(np.abs(a).max()) if np.size(a) else 0.0
+
+
+def jacobian(ops, law, K, free, lam, T, g_n, g_t) -> sp.csr_matrix:
+    """The generalised Jacobian of (R_u, R_n, R_t) with respect to (U_free, λ, T)."""
+    m, k = T.shape
+    chi = normal_update(g_n)[1]  # χ, and 1 at g_n = 0 (the contact branch)
+    Bn = ops.Bn[:, free]
+    Bt = [B[:, free] for B in ops.Bt]
+    iw = 1.0 / ops.w
+    A_ul = -Bn.T
+    rows_u = [K[free][:, free], A_ul]
+    rows_n = [sp.diags(chi * law.rho_n * iw) @ Bn, sp.diags(1.0 - chi)]
+    if k == 0:
+        return sp.bmat([rows_u, rows_n], format="csr")
+    if law.name == "coulomb":
+        rows_u[1] = A_ul - sum(law.mu * Bt[a].T @ sp.diags(T[:, a]) for a in range(k))
+        rows_u.append(sp.hstack([-law.mu * Bt[a].T @ sp.diags(lam) for a in range(k)]))
+        DP = ball_projection(g_t)[1]
+        held = (chi > 0) & (np.abs(lam) <= 1e-12 * _max(lam))  # Λ has no coefficient
+        c = np.where(held, 0.0, chi)
+        t_u = [-sum(sp.diags(c * law.rho_t * iw * DP[:, a, b]) @ Bt[b] for b in range(k))
+               for a in range(k)]
+        t_t = [[sp.diags((a == b) - c * DP[:, a, b]) for b in range(k)] for a in range(k)]
+    else:
+        rows_u.append(sp.hstack([-Bt[a].T for a in range(k)]))
+        t_u = [-sp.diags(chi * law.rho_t * iw) @ Bt[a] for a in range(k)]
+        t_t = [[sp.diags(1.0 - chi) if a == b else None for b in range(k)] for a in range(k)]
+    rows_n.append(sp.csr_matrix((m, m * k)))
+    rows_t = [sp.vstack(t_u), sp.csr_matrix((m * k, m)), sp.bmat(t_t)]
+    return sp.bmat([rows_u, rows_n, rows_t], format="csr")
+
+
+def _scaled_solve(A, R, nu):
+    """Solve A x = -R, U rows and columns Jacobi-scaled, the others to unit max."""
+    A = sp.csr_matrix(A)
+    n = A.shape[0]
+    diag = np.abs(A.diagonal()[:nu])
+    c = np.ones(n)
+    c[:nu] = 1.0 / np.sqrt(np.where(diag > 0, diag, 1.0))
+    r = c.copy()
+    A1 = sp.diags(r) @ A @ sp.diags(c)
+    c[nu:] /= np.maximum(abs(A1[:, nu:]).max(axis=0).toarray().ravel(), 1e-300)
+    A1 = A @ sp.diags(c)
+    r[nu:] = 1.0 / np.maximum(abs(A1[nu:]).max(axis=1).toarray().ravel(), 1e-300)
+    As = sp.diags(r) @ A @ sp.diags(c)
+    try:
+        lu = spla.splu(As.tocsc(), permc_spec="COLAMD")
+    except RuntimeError as e:
+        raise ValueError(f"the contact Newton matrix is singular ({e}): a part of the body "
+                         f"can move freely, or the multiplier space has dependent "
+                         f"multipliers (use space='vital')") from e
+    pivots = np.abs(lu.U.diagonal())
+    if pivots.min() < 1e-11 * pivots.max():
+        raise ValueError(f"the contact Newton matrix is singular (smallest LU pivot "
+                         f"{pivots.min() / pivots.max():.1e} of the largest): a part of the "
+                         f"body can move freely (a frictionless or open interface leaves "
+                         f"a rigid motion of one side); add supports on each side")
+    x = lu.solve(-r * R)
+    return c * x, r
+
+
+def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30):
+    """Solve one load step from the start (U, λ, T); U must hold the imposed values.
+
+    Returns
+    -------
+    U, lam, T, g_n, g_t, NewtonInfo
+
+    Raises
+    ------
+    ContactConvergenceError
+        After ``max_iter`` iterations without convergence: the message gives
+        the iterations, the residual of each equation and the points whose
+        status kept changing.
+    """
+    U, lam, T = U.copy(), lam.copy(), T.copy()
+    m, k = T.shape
+    nu = len(free)
+    R, g_n, g_t, r = residual(ops, law, K, F, free, U, lam, T, U_prev)
+    history = [r]
+    st = status(g_n, g_t, law.name)
+    changes = np.zeros(m, int)
+    for it in range(1, max_iter + 1):
+        A = jacobian(ops, law, K, free, lam, T, g_n, g_t)
+        Rv = np.concatenate(R)
+        dx, rs = _scaled_solve(A, Rv, nu)
+        phi0 = np.linalg.norm(rs * Rv)
+        for alpha in (1.0, 0.5, 0.25, 0.125, 0.0625, 0.03125, 1.0):
+            U1, lam1, T1 = U.copy(), lam + alpha * dx[nu:nu + m], T + alpha * (
+                dx[nu + m:].reshape(k, m).T)
+            U1[free] += alpha * dx[:nu]
+            out = residual(ops, law, K, F, free, U1, lam1, T1, U_prev)
+            if np.linalg.norm(rs * np.concatenate(out[0])) <= (1 - 1e-4 * alpha) * phi0:
+                break
+        U, lam, T = U1, lam1, T1
+        R, g_n, g_t, r = out
+        history.append(r)
+        new = status(g_n, g_t, law.name)
+        changes += new != st
+        same, st = np.array_equal(new, st), new
+        if same and np.all(r <= tol):
+            return U, lam, T, g_n, g_t, NewtonInfo(it, np.array(history))
+    moving = np.flatnonzero(changes > 1)
+    raise ContactConvergenceError(
+        f"contact Newton did not converge in {max_iter} iterations: relative residuals "
+        f"equilibrium {r[0]:.1e}, contact {r[1]:.1e}, friction {r[2]:.1e} (tolerance "
+        f"{tol:.0e}); {moving.size} point(s) changed status more than once"
+        f"{': dofs ' + str(moving[:10].tolist()) if moving.size else ''}. Try more load "
+        f"steps, another rho_n/rho_t, or max_iter")
