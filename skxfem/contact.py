@@ -90,7 +90,15 @@ class ContactResult:
 
 
 def parameters(scene: Scene, h: float) -> Law:
-    """The :class:`~skxfem.contact_newton.Law` of ``scene`` with ρ defaults for mesh size h."""
+    """The :class:`~skxfem.contact_newton.Law` of ``scene`` with ρ defaults for mesh size h.
+
+    ``coulomb`` with μ = 0 is ``frictionless``.
+
+    >>> from skxfem.scenes import strip
+    >>> from dataclasses import replace
+    >>> parameters(replace(strip(), law="coulomb", friction=0.5), h=0.25)
+    Law(name='coulomb', mu=0.5, rho_n=4.0, rho_t=4.0)
+    """
     if scene.law not in CONTACT_LAWS:
         raise ValueError(f"scene law must be one of {CONTACT_LAWS} for a contact solve, "
                          f"got {scene.law!r} (ties are solved by skxfem.solver.solve)")
@@ -99,7 +107,8 @@ def parameters(scene: Scene, h: float) -> Law:
     rho_t = scene.rho_t
     if rho_t is None:
         rho_t = 1.0 / h if scene.law == "coulomb" else E / h
-    return Law(scene.law, float(scene.friction), float(rho_n), float(rho_t))
+    name = "frictionless" if scene.law == "coulomb" and scene.friction == 0 else scene.law
+    return Law(name, float(scene.friction), float(rho_n), float(rho_t))
 
 
 def _states(scene: Scene, pb: Problem, history):

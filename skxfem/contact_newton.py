@@ -19,8 +19,11 @@ paper's third equation.
 Newton matrix: the exact generalised Jacobian (:mod:`skxfem.contact_laws`;
 χ is taken as 1 at g_n = 0 in every block, so the first iteration from an
 untouched interface is the bilateral, or bonded, solve), with one
-exception: at a point just closed with λ = 0 the unknown Λ has no
-coefficient (r_τ = μλΛ = 0), so that iteration keeps Λ there (ΔΛ = 0).
+exception: at a point just closed with λ = 0 (:func:`just_closed`) Λ has
+no coefficient (r_τ = μλΛ = 0 for every Λ); that iteration takes the
+traction r_τ as the unknown there with the stick row ρ_τ s = 0, and sets
+Λ = P_B(r_τ/(μλ)) after the step (the first iteration of a first load step
+is thus the bonded solve).
 Rows and columns are scaled (Jacobi on U, unit max on the others) before
 SuperLU.  Step control: backtracking on the scaled residual norm (halving up
 to 5 times; if no step decreases it the full step is taken, as the active
@@ -113,8 +116,20 @@ def _max(a):
     return float(np.abs(a).max()) if np.size(a) else 0.0
 
 
+def just_closed(law, lam, g_n) -> np.ndarray:
+    """Closed points where λ = 0 (to 1e-12 of the largest |λ|): Λ has no coefficient."""
+    closed = normal_update(g_n)[1] > 0
+    if law.name != "coulomb":
+        return np.zeros(lam.size, bool)
+    return closed & (np.abs(lam) <= 1e-12 * _max(lam))
+
+
 def jacobian(ops, law, K, free, lam, T, g_n, g_t) -> sp.csr_matrix:
-    """The generalised Jacobian of (R_u, R_n, R_t) with respect to (U_free, λ, T)."""
+    """The generalised Jacobian of (R_u, R_n, R_t) with respect to (U_free, λ, T).
+
+    At :func:`just_closed` points (``coulomb``) the column of T is that of the
+    traction r_τ and the row is the stick condition ρ_τ s = 0; see the module notes.
+    """
     m, k = T.shape
     chi = normal_update(g_n)[1]  # χ, and 1 at g_n = 0 (the contact branch)
     Bn = ops.Bn[:, free]
@@ -126,14 +141,17 @@ def jacobian(ops, law, K, free, lam, T, g_n, g_t) -> sp.csr_matrix:
     if k == 0:
         return sp.bmat([rows_u, rows_n], format="csr")
     if law.name == "coulomb":
-        rows_u[1] = A_ul - sum(law.mu * Bt[a].T @ sp.diags(T[:, a]) for a in range(k))
-        rows_u.append(sp.hstack([-law.mu * Bt[a].T @ sp.diags(lam) for a in range(k)]))
+        new = just_closed(law, lam, g_n)
+        rows_u[1] = A_ul - sum(law.mu * Bt[a].T @ sp.diags(np.where(new, 0.0, T[:, a]))
+                               for a in range(k))
+        coef = np.where(new, 1.0, law.mu * lam)
+        rows_u.append(sp.hstack([-Bt[a].T @ sp.diags(coef) for a in range(k)]))
         DP = ball_projection(g_t)[1]
-        held = (chi > 0) & (np.abs(lam) <= 1e-12 * _max(lam))  # Λ has no coefficient
-        c = np.where(held, 0.0, chi)
-        t_u = [-sum(sp.diags(c * law.rho_t * iw * DP[:, a, b]) @ Bt[b] for b in range(k))
+        DP[new] = np.eye(k)  # the stick row
+        t_u = [-sum(sp.diags(chi * law.rho_t * iw * DP[:, a, b]) @ Bt[b] for b in range(k))
                for a in range(k)]
-        t_t = [[sp.diags((a == b) - c * DP[:, a, b]) for b in range(k)] for a in range(k)]
+        t_t = [[sp.diags(np.where(new, 0.0, (a == b) - chi * DP[:, a, b])) for b in range(k)]
+               for a in range(k)]
     else:
         rows_u.append(sp.hstack([-Bt[a].T for a in range(k)]))
         t_u = [-sp.diags(chi * law.rho_t * iw) @ Bt[a] for a in range(k)]
@@ -188,6 +206,8 @@ def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30):
     """
     U, lam, T = U.copy(), lam.copy(), T.copy()
     m, k = T.shape
+    if law.name == "coulomb" and law.mu == 0:
+        raise ValueError("coulomb with mu = 0 is frictionless: use law='frictionless'")
     nu = len(free)
     R, g_n, g_t, r = residual(ops, law, K, F, free, U, lam, T, U_prev)
     history = [r]
@@ -195,6 +215,10 @@ def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30):
     changes = np.zeros(m, int)
     for it in range(1, max_iter + 1):
         A = jacobian(ops, law, K, free, lam, T, g_n, g_t)
+        new = just_closed(law, lam, g_n)
+        if new.any():  # their rows are the stick condition -ρ_τ s = 0
+            s = _jumps(ops, U, U_prev)[1]
+            R = (R[0], R[1], np.where(np.tile(new, k), -law.rho_t * s.T.ravel(), R[2]))
         Rv = np.concatenate(R)
         dx, rs = _scaled_solve(A, Rv, nu)
         phi0 = np.linalg.norm(rs * Rv)
@@ -202,6 +226,11 @@ def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30):
             U1, lam1, T1 = U.copy(), lam + alpha * dx[nu:nu + m], T + alpha * (
                 dx[nu + m:].reshape(k, m).T)
             U1[free] += alpha * dx[:nu]
+            if new.any():  # the unknown was r_τ there: Λ = P_B(r_τ / (μλ))
+                Tn = np.zeros((m, k))
+                ok = new & (lam1 < 0)
+                Tn[ok] = ball_projection(T1[ok] / (law.mu * lam1[ok, None]))[0]
+                T1[new] = Tn[new]
             out = residual(ops, law, K, F, free, U1, lam1, T1, U_prev)
             if np.linalg.norm(rs * np.concatenate(out[0])) <= (1 - 1e-4 * alpha) * phi0:
                 break

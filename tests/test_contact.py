@@ -1,0 +1,211 @@
+"""Unilateral contact and Coulomb friction (skxfem.contact) against known answers."""
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from skxfem import contact, saddle, solver
+from skxfem.contact_newton import ContactConvergenceError
+from skxfem.enrich import split_fields
+from skxfem.levelset import plane
+from skxfem.material import Material
+from skxfem.scene import Box, Displacement, Scene, SurfaceLoad, clamped
+from skxfem.scenes import strip
+
+RHOS = (1e-3, 1.0, 1e6)  # × E/h
+
+
+def held_top(scene, comps=("x",)):
+    """``scene`` with the top held tangentially: a frictionless Γ would let it slide."""
+    top = "ymax" if scene.dim == 2 else "zmax"
+    return replace(scene, displacements=scene.displacements
+                   + (Displacement(top, {c: 0.0 for c in comps}),))
+
+
+def cube(n=(1, 2, 3), law="frictionless", top=None, loads=(), mu=0.0, nu=0.3, **kw):
+    """Unit cube, Γ at z = 0.5, bottom clamped, top displacement ``top``."""
+    disp = (clamped("zmin"),) + ((Displacement("zmax", top),) if top else ())
+    return Scene(Box(n, "hex"), plane((0, 0, 0.5), (0, 0, 1)), Material(E=1.0, nu=nu),
+                 displacements=disp, loads=tuple(loads), law=law, friction=mu, **kw)
+
+
+def compressed(dim):
+    if dim == 2:
+        return held_top(strip(n=4))
+    return cube(top={"x": 0.0, "y": 0.0},
+                loads=(SurfaceLoad("zmax", pressure=lambda x: 1.0 + x[1]),))
+
+
+def rel(a, b):
+    return np.abs(a - b).max() / np.abs(b).max()
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("law, tie", [("frictionless", "bilateral"), ("adhesive", "bonded")])
+def test_compression_equals_the_tie(dim, law, tie):
+    """Pressed everywhere, frictionless = bilateral and adhesive = bonded, for every ρ."""
+    base = compressed(dim)
+    ref = solver.solve(replace(base, law=tie))
+    h = contact.solve(replace(base, law=law)).ops.h
+    for rho in RHOS:
+        res = contact.solve(replace(base, law=law, rho_n=rho / h, rho_t=rho / h))
+        step = res.steps[-1]
+        assert np.all(step.status == (1 if law == "adhesive" else 2))
+        assert rel(step.U, ref.U) < 1e-8
+        assert rel(step.pressure, ref.pressure) < 1e-8  # naive space: dofs = edges
+        if law == "adhesive":
+            t = res.ops.tangents  # (k, dim): the traction's components
+            assert rel(step.traction, (t @ ref.traction).T) < 1e-8
+        assert step.newton.iterations <= 15
+
+
+@pytest.mark.parametrize("law", ["frictionless", "coulomb", "adhesive"])
+def test_tension_opens_the_interface(law):
+    """Pulled apart: λ = 0 everywhere and u is that of two bodies with a free cut."""
+    s = strip(n=3)
+    s = replace(s, law=law, friction=0.5, loads=(SurfaceLoad("xmax", traction=(0.1, 0.0)),),
+                displacements=(clamped("ymin"), Displacement("ymax", {"x": 0.0, "y": 0.1})))
+    res = contact.solve(s)
+    step = res.steps[-1]
+    assert np.all(step.pressure == 0) and np.all(step.status == 0)
+    assert np.all(step.gap < 0)
+    pb = res.problem
+    free_cut, _, _ = saddle.solve(pb.K, pb.B[:0], pb.F, pb.D, pb.g)
+    assert rel(step.U, free_cut) < 1e-10
+    u_minus, u_plus = split_fields(pb.V, step.U)
+    top = pb.mesh.p[1] > 0.99
+    assert np.allclose(u_plus[1, top], 0.1)
+
+
+def partial(rho=None, n=6, delta=0.01):
+    """Top rotated: pressed near x = 0, opened near x = 1."""
+    s = strip(n=n)
+    return replace(s, law="frictionless", loads=(), rho_n=rho, displacements=(
+        clamped("ymin"), Displacement("ymax", {"x": 0.0, "y": lambda x: -delta * (1 - 2 * x[0])})))
+
+
+def test_partial_contact_signorini_at_every_dof():
+    for rho in RHOS:
+        res = contact.solve(partial())
+        h = res.ops.h
+        res = contact.solve(partial(rho / h))
+        st = res.steps[-1]
+        scale = st.pressure.max() * np.abs(st.gap).max()
+        assert set(st.status) == {0, 2}  # open and (frictionless) sliding points
+        assert st.pressure.min() >= 0 and st.gap.max() <= 1e-12 * np.abs(st.gap).max()
+        assert np.abs(st.pressure * st.gap).max() <= 1e-12 * scale
+        assert st.newton.iterations <= 15
+
+
+def block(n=3, mu=0.5, p=1.0, delta=0.0, tau=0.0, law="coulomb", name="block"):
+    """ν = 0 block: bottom clamped, top moved by δ in x under a pressure p.  With ν = 0
+    the exact field is uniform shear τ and compression p in each body plus a slip s
+    on Γ (u_x(top) = τ/G + s = δ); the sides carry the shear τ of that field."""
+    loads = (SurfaceLoad("ymax", pressure=p), SurfaceLoad("xmax", traction=(0.0, tau)),
+             SurfaceLoad("xmin", traction=(0.0, -tau)))
+    return Scene(Box((n, n), "quad"), plane((0, 0.5), (0, 1)), Material(E=1.0, nu=0.0),
+                 displacements=(clamped("ymin"), Displacement("ymax", {"x": delta})),
+                 loads=loads, law=law, friction=mu, name=name)
+
+
+def test_block_sticks_then_slides():
+    """τ = Gδ (stick) while Gδ < μp; then τ = μp and s = δ - μp/G."""
+    G, mu, p = 0.5, 0.5, 1.0
+    for delta in (0.5, 0.9, 1.5, 3.0):
+        tau = min(G * delta, mu * p)
+        st = contact.solve(block(mu=mu, p=p, delta=delta, tau=tau)).steps[-1]
+        slip = delta - tau / G
+        assert np.all(st.status == (1 if slip == 0 else 2))
+        assert np.allclose(st.pressure, p, rtol=1e-10)
+        assert np.allclose(st.traction, tau, rtol=1e-10)
+        assert np.allclose(-st.slip, slip, atol=1e-10)  # [[u]] = u⁻ - u⁺
+
+
+def test_load_history_press_shear_unload():
+    """δ: 0 → 2.5 (slip) → 0 (elastic unloading, then reverse slip); by hand, μp = 0.5,
+    G = 0.5: slip while |τ| = μp, s = δ - τ/G; the retained slip is 1."""
+    G, mu, p = 0.5, 0.5, 1.0
+    path = [  # δ, τ, status, slip: stick, slip, elastic unloading, reverse slip
+        (0.0, 0.0, 1, 0.0), (0.5, 0.25, 1, 0.0), (1.5, 0.5, 2, 0.5), (2.5, 0.5, 2, 1.5),
+        (1.5, 0.0, 1, 1.5), (0.75, -0.375, 1, 1.5), (0.0, -0.5, 2, 1.0)]
+    for d, t, status, slip in path:  # the hand path is consistent
+        assert abs(t) <= mu * p and slip == d - t / G
+    states = [block(mu=mu, p=p, delta=d, tau=t, name=f"delta={d}") for d, t, _, _ in path]
+    res = contact.solve(states[0], history=states)
+    for (d, t, status, slip), st in zip(path, res.steps):
+        assert st.load == f"delta={d}"
+        assert np.all(st.status == status), (d, st.status)
+        assert np.allclose(st.traction, t, atol=1e-10)
+        assert np.allclose(-st.slip, slip, atol=1e-10)
+    assert np.allclose(-res.steps[-1].slip, 1.0, atol=1e-10)
+    assert max(st.newton.iterations for st in res.steps) <= 15
+
+
+@pytest.mark.parametrize("phi", [0.0, 0.6])
+def test_block_3d_slides_along_the_imposed_direction(phi):
+    """δ at angle φ to x: the slip and the traction μp point along δ."""
+    G, mu, p, delta = 0.5, 0.5, 1.0, 2.0
+    tau, d = mu * p, np.array([np.cos(phi), np.sin(phi)])
+    loads = [SurfaceLoad("zmax", pressure=p)]
+    for face, k in (("xmax", 0), ("ymax", 1)):
+        t = [0.0, 0.0, tau * d[k]]
+        loads += [SurfaceLoad(face, traction=tuple(t)),
+                  SurfaceLoad(face.replace("max", "min"), traction=(0.0, 0.0, -t[2]))]
+    s = cube(law="coulomb", mu=mu, nu=0.0, loads=loads,
+             top={"x": delta * d[0], "y": delta * d[1]})
+    res = contact.solve(s)
+    st = res.steps[-1]
+    t = res.ops.tangents[:, :2]  # tangents in the plane z = const
+    assert np.all(st.status == 2)
+    assert np.allclose(st.pressure, p, rtol=1e-9)
+    assert np.allclose(st.traction @ t, tau * d, atol=1e-9)
+    assert np.allclose(-st.slip @ t, (delta - tau / G) * d, atol=1e-9)
+
+
+@pytest.mark.parametrize("mu", [0.6, 1.0, 2.0])
+def test_slanted_interface_sticks(mu):
+    """Uniaxial σ across Γ at θ (tan θ < μ): p = σcos²θ, |r_τ| = σ cosθ sinθ,
+    |Λ| = tanθ/μ, no slip."""
+    theta, sigma = np.deg2rad(25.0), 1.0
+    c, s = np.cos(theta), np.sin(theta)
+    corner = lambda x: (x[0] < 1e-12) & (x[1] < 1e-12)  # noqa: E731
+    scene = Scene(Box((5, 5), "quad"), plane((0.5, 0.45), (-s, c)), Material(E=1.0, nu=0.3),
+                  displacements=(Displacement("ymin", {"y": 0.0}),
+                                 Displacement(corner, {"x": 0.0})),
+                  loads=(SurfaceLoad("ymax", pressure=sigma),), law="coulomb", friction=mu)
+    st = contact.solve(scene).steps[-1]
+    assert np.all(st.status == 1)
+    assert np.allclose(st.pressure, sigma * c**2, rtol=1e-9)
+    assert np.allclose(np.abs(st.traction), sigma * c * s, rtol=1e-9)
+    assert np.allclose(np.abs(st.Lambda), np.tan(theta) / mu, rtol=1e-9)
+    assert np.abs(st.slip).max() < 1e-12
+
+
+def test_bad_input_is_refused():
+    base = held_top(strip(n=3))
+    with pytest.raises(ValueError, match="friction"):
+        replace(base, law="coulomb", friction=-0.1)
+    for key in ("rho_n", "rho_t"):
+        with pytest.raises(ValueError, match=key):
+            replace(base, law="coulomb", **{key: 0.0})
+    with pytest.raises(ValueError, match="law must be one of"):
+        replace(base, law="glue")
+    with pytest.raises(ValueError, match="scene law must be one of"):
+        contact.solve(base)  # a tie law
+    with pytest.raises(ValueError, match="history must be a non-empty"):
+        contact.solve(replace(base, law="frictionless"), history=())
+    with pytest.raises(ValueError, match=r"history\[1\]"):
+        contact.solve(replace(base, law="frictionless"), history=(1.0, "x"))
+    with pytest.raises(ValueError, match="method"):
+        contact.solve(replace(base, law="frictionless"), method="penalty")
+
+
+def test_non_convergence_raises_a_clear_error():
+    with pytest.raises(ContactConvergenceError, match=r"did not converge in 1 iterations.*"
+                       r"equilibrium .* contact .* friction"):
+        contact.solve(partial(), max_iter=1)
+
+
+def test_a_floating_side_is_refused():
+    with pytest.raises(ValueError, match="singular"):
+        contact.solve(replace(strip(n=3), law="frictionless"))
