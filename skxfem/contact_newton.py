@@ -47,17 +47,27 @@ __all__ = ["Law", "NewtonInfo", "ContactConvergenceError", "residual", "newton"]
 
 
 class ContactConvergenceError(RuntimeError):
-    """The contact iteration did not converge; the message says how far it got."""
+    """The contact iteration did not converge; the message says how far it got.
+
+    ``last`` holds the last iterate (U, λ, T, g_n, g_t, info) and ``statuses``
+    the status of every point at every iteration, to show what went wrong.
+    """
 
 
 @dataclass(frozen=True)
 class Law:
-    """A unilateral law with its parameters (μ only for ``coulomb``)."""
+    """A unilateral law with its parameters (μ only for ``coulomb``).
+
+    ``threshold`` (m,), if given, freezes the friction threshold: r_τ =
+    threshold · Λ instead of μλΛ (the paper's fixed point,
+    :mod:`skxfem.contact_fixed_point`); where it is 0, Λ is held.
+    """
 
     name: str
     mu: float
     rho_n: float
     rho_t: float
+    threshold: np.ndarray | None = None
 
     @property
     def friction(self) -> bool:
@@ -79,10 +89,22 @@ def _jumps(ops, U, U_prev):
     return d, s
 
 
+def _coefficient(law, lam):
+    """The factor of Λ in r_τ: μλ, or the frozen threshold."""
+    return law.mu * lam if law.threshold is None else law.threshold
+
+
+def _held(law, g_n):
+    """Closed points whose frozen threshold is 0: r_τ = 0 whatever Λ, which is held."""
+    if law.threshold is None:
+        return np.zeros(g_n.size, bool)
+    return (normal_update(g_n)[1] > 0) & (law.threshold == 0)
+
+
 def _tangential(law, lam, T):
     """The tangential traction r_τ (m, k)."""
     if law.name == "coulomb":
-        return law.mu * lam[:, None] * T
+        return _coefficient(law, lam)[:, None] * T
     return T if law.name == "adhesive" else np.zeros_like(T)
 
 
@@ -95,7 +117,7 @@ def residual(ops, law, K, F, free, U, lam, T, U_prev):
     g_t = T + law.rho_t * s[:, :T.shape[1]]
     chi = (g_n < 0)[:, None]
     if law.name == "coulomb":
-        R_t = T - chi * ball_projection(g_t)[0]
+        R_t = np.where(_held(law, g_n)[:, None], 0.0, T - chi * ball_projection(g_t)[0])
     elif law.name == "adhesive":
         R_t = T - chi * g_t
     else:
@@ -119,7 +141,7 @@ def _max(a):
 def just_closed(law, lam, g_n) -> np.ndarray:
     """Closed points where λ = 0 (to 1e-12 of the largest |λ|): Λ has no coefficient."""
     closed = normal_update(g_n)[1] > 0
-    if law.name != "coulomb":
+    if law.name != "coulomb" or law.threshold is not None:
         return np.zeros(lam.size, bool)
     return closed & (np.abs(lam) <= 1e-12 * _max(lam))
 
@@ -142,12 +164,14 @@ def jacobian(ops, law, K, free, lam, T, g_n, g_t) -> sp.csr_matrix:
         return sp.bmat([rows_u, rows_n], format="csr")
     if law.name == "coulomb":
         new = just_closed(law, lam, g_n)
-        rows_u[1] = A_ul - sum(law.mu * Bt[a].T @ sp.diags(np.where(new, 0.0, T[:, a]))
+        mu = law.mu if law.threshold is None else 0.0  # a frozen threshold: no dλ
+        rows_u[1] = A_ul - sum(mu * Bt[a].T @ sp.diags(np.where(new, 0.0, T[:, a]))
                                for a in range(k))
-        coef = np.where(new, 1.0, law.mu * lam)
+        coef = np.where(new, 1.0, _coefficient(law, lam))
         rows_u.append(sp.hstack([-Bt[a].T @ sp.diags(coef) for a in range(k)]))
         DP = ball_projection(g_t)[1]
         DP[new] = np.eye(k)  # the stick row
+        chi = np.where(_held(law, g_n), 0.0, chi)  # held: the row ΔΛ = 0
         t_u = [-sum(sp.diags(chi * law.rho_t * iw * DP[:, a, b]) @ Bt[b] for b in range(k))
                for a in range(k)]
         t_t = [[sp.diags(np.where(new, 0.0, (a == b) - chi * DP[:, a, b])) for b in range(k)]
@@ -212,6 +236,7 @@ def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30):
     R, g_n, g_t, r = residual(ops, law, K, F, free, U, lam, T, U_prev)
     history = [r]
     st = status(g_n, g_t, law.name)
+    statuses = [st]
     changes = np.zeros(m, int)
     for it in range(1, max_iter + 1):
         A = jacobian(ops, law, K, free, lam, T, g_n, g_t)
@@ -240,12 +265,16 @@ def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30):
         new = status(g_n, g_t, law.name)
         changes += new != st
         same, st = np.array_equal(new, st), new
+        statuses.append(st)
         if same and np.all(r <= tol):
             return U, lam, T, g_n, g_t, NewtonInfo(it, np.array(history))
     moving = np.flatnonzero(changes > 1)
-    raise ContactConvergenceError(
+    err = ContactConvergenceError(
         f"contact Newton did not converge in {max_iter} iterations: relative residuals "
         f"equilibrium {r[0]:.1e}, contact {r[1]:.1e}, friction {r[2]:.1e} (tolerance "
         f"{tol:.0e}); {moving.size} point(s) changed status more than once"
         f"{': dofs ' + str(moving[:10].tolist()) if moving.size else ''}. Try more load "
         f"steps, another rho_n/rho_t, or max_iter")
+    err.last = (U, lam, T, g_n, g_t, NewtonInfo(max_iter, np.array(history)))
+    err.statuses = np.array(statuses)
+    raise err
