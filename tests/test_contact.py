@@ -209,3 +209,42 @@ def test_non_convergence_raises_a_clear_error():
 def test_a_floating_side_is_refused():
     with pytest.raises(ValueError, match="singular"):
         contact.solve(replace(strip(n=3), law="frictionless"))
+
+
+def tilted_block(mu, delta, n):
+    """Strip pressed by p = 1 whose top is moved by δ in x: friction tilts the pressure."""
+    return replace(strip(n=n), law="coulomb", friction=mu,
+                   loads=(SurfaceLoad("ymax", pressure=1.0),),
+                   displacements=(clamped("ymin"), Displacement("ymax", {"x": delta})))
+
+
+def test_fixed_point_agrees_with_newton_where_it_converges():
+    s = tilted_block(mu=0.5, delta=2.0, n=4)
+    a = contact.solve(s).steps[-1]
+    b = contact.solve(s, method="fixed_point").steps[-1]
+    assert set(a.status) == {0, 1, 2}  # open, stick and slip points
+    assert np.array_equal(a.status, b.status)
+    assert rel(b.U, a.U) < 1e-9 and rel(b.traction, a.traction) < 1e-9
+
+
+def test_fixed_point_alternates_and_stops_with_a_wrong_force():
+    """μ = 30: the frozen threshold μλ of the frictionless first pass makes the next pass
+    alternate between two states; Newton finds the stuck solution (= the bonded one)."""
+    s = tilted_block(mu=30.0, delta=0.5, n=2)
+    res = contact.solve(s)
+    st, w = res.steps[-1], res.ops.w
+    bonded = solver.solve(replace(s, law="bonded"))
+    assert np.all(st.status == 1) and rel(st.U, bonded.U) < 1e-10
+    assert np.all(np.abs(st.traction[:, 0]) < 30.0 * st.pressure)  # inside the cone
+    assert st.newton.iterations <= 3
+    force = w @ st.traction[:, 0]
+    assert abs(force - 0.0872116) < 1e-6
+    with pytest.raises(ContactConvergenceError, match="alternates between two states") as e:
+        contact.solve(s, method="fixed_point")
+    statuses = e.value.statuses
+    assert np.array_equal(statuses[-1], statuses[-3]) and np.array_equal(statuses[-2],
+                                                                         statuses[-4])
+    assert not np.array_equal(statuses[-1], statuses[-2])
+    _, lam, T = e.value.last[:3]
+    wrong = w @ (e.value.thresholds[-1] * T[:, 0])
+    assert abs(wrong - force) > 100 * abs(force)  # the force it would stop with
