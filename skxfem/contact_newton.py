@@ -200,16 +200,17 @@ def _scaled_solve(A, R, nu):
     As = sp.diags(r) @ A @ sp.diags(c)
     try:
         lu = spla.splu(As.tocsc(), permc_spec="COLAMD")
-    except RuntimeError as e:
-        raise ValueError(f"the contact Newton matrix is singular ({e}): a part of the body "
-                         f"can move freely, or the multiplier space has dependent "
-                         f"multipliers (use space='vital')") from e
-    pivots = np.abs(lu.U.diagonal())
-    if pivots.min() < 1e-11 * pivots.max():
-        raise ValueError(f"the contact Newton matrix is singular (smallest LU pivot "
-                         f"{pivots.min() / pivots.max():.1e} of the largest): a part of the "
-                         f"body can move freely (a frictionless or open interface leaves "
-                         f"a rigid motion of one side); add supports on each side")
+        pivots = np.abs(lu.U.diagonal())
+        if pivots.min() < 1e-11 * pivots.max():
+            raise RuntimeError(f"smallest LU pivot {pivots.min() / pivots.max():.1e} "
+                               f"of the largest")
+    except RuntimeError as e:  # SuperLU: "Factor is exactly singular"
+        raise ValueError(
+            f"the contact Newton matrix is singular ({e}): either a part of the body can "
+            f"move freely (a frictionless or open interface leaves a rigid motion of one "
+            f"side: add supports on each side), or some multipliers depend on the others "
+            f"(the naive space on tetrahedra, or a support acting on a face that Γ cuts: "
+            f"use space='vital' or move the support)") from e
     x = lu.solve(-r * R)
     return c * x, r
 

@@ -248,3 +248,23 @@ def test_fixed_point_alternates_and_stops_with_a_wrong_force():
     _, lam, T = e.value.last[:3]
     wrong = w @ (e.value.thresholds[-1] * T[:, 0])
     assert abs(wrong - force) > 100 * abs(force)  # the force it would stop with
+
+
+@pytest.mark.parametrize("cell, space", [("tri", "winner"), ("tri", "vital"),
+                                         ("tet", "vital")])
+def test_stabilised_spaces_give_the_tie(cell, space):
+    """The same prolongation P carries λ and Λ: contact on a stable space = its tie."""
+    base = compressed(2 if cell == "tri" else 3)
+    base = replace(base, mesh=replace(base.mesh, cell=cell), space=space)
+    for law, tie in (("frictionless", "bilateral"), ("adhesive", "bonded")):
+        ref = solver.solve(replace(base, law=tie))
+        res = contact.solve(replace(base, law=law))
+        st = res.steps[-1]
+        assert rel(st.U, ref.U) < 1e-8
+        assert rel(res.problem.P @ st.pressure, ref.pressure) < 1e-8
+
+
+def test_dependent_multipliers_are_refused():
+    base = replace(compressed(3), mesh=Box((1, 2, 3), "tet"), space="naive")
+    with pytest.raises(ValueError, match="space='vital'"):
+        contact.solve(replace(base, law="adhesive"))
