@@ -41,7 +41,7 @@ rate of eq. 9b is v_τ Δt = the increment of the tangential jump over a step.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -96,8 +96,9 @@ def parameters(scene: Scene, h: float) -> Law:
 
     >>> from skxfem.scenes import strip
     >>> from dataclasses import replace
-    >>> parameters(replace(strip(), law="coulomb", friction=0.5), h=0.25)
-    Law(name='coulomb', mu=0.5, rho_n=4.0, rho_t=4.0)
+    >>> law = parameters(replace(strip(), law="coulomb", friction=0.5), h=0.25)
+    >>> law.name, law.mu, law.rho_n, law.rho_t
+    ('coulomb', 0.5, 4.0, 4.0)
     """
     if scene.law not in CONTACT_LAWS:
         raise ValueError(f"scene law must be one of {CONTACT_LAWS} for a contact solve, "
@@ -120,7 +121,7 @@ def _states(scene: Scene, pb: Problem, history):
     out = []
     for i, item in enumerate(history):
         if isinstance(item, Scene):
-            state = assemble(replace(item, law="bilateral"), law="bilateral")
+            state = assemble(item, law="bilateral")
             if state.V.N != pb.V.N or not np.array_equal(state.D, pb.D):
                 raise ValueError(f"history[{i}]: a load state must keep the mesh, Γ and "
                                  f"the supported boundaries of the scene (same constrained "
@@ -166,7 +167,7 @@ def solve(scene: Scene, history=(1.0,), method: str = "newton", tol: float = 1e-
         raise ValueError(f"tol must be a float in (0, 1), got {tol!r}")
     if scene.law not in CONTACT_LAWS:
         parameters(scene, 1.0)  # raises the message naming the law
-    pb = assemble(replace(scene, law="bilateral"), law="bilateral")
+    pb = assemble(scene, law="bilateral")
     ops = operators(pb)
     law = parameters(scene, ops.h)
     states = _states(scene, pb, history)
