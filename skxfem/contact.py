@@ -137,7 +137,7 @@ def _states(scene: Scene, pb: Problem, history):
     return out
 
 
-def solve(scene: Scene, history=(1.0,), method: str = "newton", tol: float = 1e-10,
+def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10,
           max_iter: int = 30) -> ContactResult:
     """Solve the contact ``scene`` over the load ``history``.
 
@@ -146,7 +146,8 @@ def solve(scene: Scene, history=(1.0,), method: str = "newton", tol: float = 1e-
     scene
         A scene with ``law`` in ``CONTACT_LAWS`` (and ``friction`` μ for coulomb).
     history
-        Load factors (floats) and/or load states (scenes), applied in order.
+        Load factors (floats) and/or load states (scenes), applied in order;
+        ``None``: the scene's ``steps``.
     method
         ``"newton"`` (semi-smooth Newton on all equations) or ``"fixed_point"``.
     tol, max_iter
@@ -170,7 +171,7 @@ def solve(scene: Scene, history=(1.0,), method: str = "newton", tol: float = 1e-
     pb = assemble(scene, law="bilateral")
     ops = operators(pb)
     law = parameters(scene, ops.h)
-    states = _states(scene, pb, history)
+    states = _states(scene, pb, scene.steps if history is None else history)
     free = np.setdiff1d(np.arange(pb.V.N), pb.D)
     m, k = ops.w.size, len(ops.Bt)
     U, lam = np.zeros(pb.V.N), np.zeros(m)

@@ -180,7 +180,8 @@ class Scene:
     of ``SPACES``; ``quadrature_order`` ``None`` lets the solver choose.
     ``friction`` is Coulomb's μ (law ``coulomb``); ``rho_n``, ``rho_t`` the
     augmentation parameters of the contact laws (``None``: the defaults of
-    :func:`skxfem.contact.parameters`).
+    :func:`skxfem.contact.parameters`); ``steps`` the load factors of a
+    contact solve, in order.
     """
 
     mesh: Box | Mesh | str | Path
@@ -195,6 +196,7 @@ class Scene:
     friction: float = 0.0
     rho_n: float | None = None
     rho_t: float | None = None
+    steps: tuple[float, ...] = (1.0,)
 
     def __post_init__(self):
         if not isinstance(self.mesh, (Box, Mesh, str, Path)):
@@ -223,6 +225,11 @@ class Scene:
             if rho is not None and not (_is_number(rho) and np.isfinite(rho) and rho > 0):
                 raise ValueError(f"Scene {key} must be a positive number or None (default "
                                  f"scaled by E/h), got {rho!r}")
+        if (not isinstance(self.steps, (tuple, list)) or not self.steps
+                or not all(_is_number(f) and np.isfinite(f) for f in self.steps)):
+            raise ValueError(f"Scene steps must be a non-empty sequence of finite load "
+                             f"factors, got {self.steps!r}")
+        object.__setattr__(self, "steps", tuple(float(f) for f in self.steps))
         if self.space not in SPACES:
             raise ValueError(f"Scene space must be one of {SPACES}, got {self.space!r}")
         q = self.quadrature_order

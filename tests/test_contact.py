@@ -268,3 +268,41 @@ def test_dependent_multipliers_are_refused():
     base = replace(compressed(3), mesh=Box((1, 2, 3), "tet"), space="naive")
     with pytest.raises(ValueError, match="space='vital'"):
         contact.solve(replace(base, law="adhesive"))
+
+
+def test_scene_file_keys(tmp_path):
+    from skxfem.scenefile import load_scene
+
+    text = """
+[mesh]
+box = {n = [3, 3], cell = "quad"}
+[levelset]
+plane = {point = [0, 0.5], normal = [0, 1]}
+[[displacement]]
+boundary = "ymin"
+kind = "clamped"
+[[displacement]]
+boundary = "ymax"
+x = 0.0
+[[load]]
+boundary = "ymax"
+pressure = 1.0
+[interface]
+law = "coulomb"
+friction = 0.3
+rho_n = 5.0
+steps = [0.5, 1.0]
+"""
+    f = tmp_path / "press.toml"
+    f.write_text(text)
+    s = load_scene(f)
+    assert (s.law, s.friction, s.rho_n, s.rho_t, s.steps) == ("coulomb", 0.3, 5.0, None,
+                                                               (0.5, 1.0))
+    res = contact.solve(s)
+    assert [st.load for st in res.steps] == [0.5, 1.0]
+    assert np.allclose(res.steps[1].pressure, 2 * res.steps[0].pressure)
+    for old, bad in (("friction = 0.3", "friction = -0.1"), ("rho_n = 5.0", "rho_t = 0"),
+                     ("steps = [0.5, 1.0]", "steps = []"), ('law = "coulomb"', 'law = "glue"')):
+        f.write_text(text.replace(old, bad))
+        with pytest.raises(ValueError, match=r"\[interface\] " + bad.split()[0]):
+            load_scene(f)
