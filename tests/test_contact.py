@@ -334,3 +334,22 @@ def test_lbb_story_holds_through_the_contact_solver():
     for rho in RHOS:
         res = contact.solve(replace(s, law="adhesive", rho_n=rho / res.ops.h))
         assert res.steps[-1].newton.iterations <= 15
+
+
+def test_contact_zone_edge_converges():
+    """The edge of the contact zone lies between the last closed and the first open dof;
+    these brackets nest as the mesh is refined and hold the edge of a fine mesh (n = 64)."""
+    brackets = []
+    for n in (8, 16, 32, 64):
+        res = contact.solve(partial(n=n))
+        x = res.ops.points[0]
+        order = np.argsort(x)
+        closed = res.steps[-1].status[order] > 0
+        k = np.flatnonzero(closed).max()
+        assert closed[:k + 1].all() and not closed[k + 1:].any()  # one contact zone
+        brackets.append((x[order][k], x[order][k + 1]))
+    fine = np.mean(brackets[-1])
+    for (a, b), (c, d) in zip(brackets, brackets[1:]):
+        assert a - 1e-12 <= c and d <= b + 1e-12  # nested
+        assert a <= fine <= b
+    assert brackets[-1][1] - brackets[-1][0] < 0.02
