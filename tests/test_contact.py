@@ -59,13 +59,18 @@ def test_compression_equals_the_tie(dim, law, tie):
         assert step.newton.iterations <= 15
 
 
+@pytest.mark.parametrize("dim", [2, 3])
 @pytest.mark.parametrize("law", ["frictionless", "coulomb", "adhesive"])
-def test_tension_opens_the_interface(law):
+def test_tension_opens_the_interface(law, dim):
     """Pulled apart: λ = 0 everywhere and u is that of two bodies with a free cut."""
-    s = strip(n=3)
-    s = replace(s, law=law, friction=0.5, loads=(SurfaceLoad("xmax", traction=(0.1, 0.0)),),
-                displacements=(clamped("ymin"), Displacement("ymax", {"x": 0.0, "y": 0.1})))
-    res = contact.solve(s)
+    if dim == 2:
+        s = replace(strip(n=3), loads=(SurfaceLoad("xmax", traction=(0.1, 0.0)),),
+                    displacements=(clamped("ymin"),
+                                   Displacement("ymax", {"x": 0.0, "y": 0.1})))
+    else:
+        s = cube(top={"x": 0.0, "y": 0.0, "z": 0.1},
+                 loads=(SurfaceLoad("xmax", traction=(0.1, 0.0, 0.0)),))
+    res = contact.solve(replace(s, law=law, friction=0.5))
     step = res.steps[-1]
     assert np.all(step.pressure == 0) and np.all(step.status == 0)
     assert np.all(step.gap < 0)
@@ -73,23 +78,25 @@ def test_tension_opens_the_interface(law):
     free_cut, _, _ = saddle.solve(pb.K, pb.B[:0], pb.F, pb.D, pb.g)
     assert rel(step.U, free_cut) < 1e-10
     u_minus, u_plus = split_fields(pb.V, step.U)
-    top = pb.mesh.p[1] > 0.99
-    assert np.allclose(u_plus[1, top], 0.1)
+    top = pb.mesh.p[dim - 1] > 0.99
+    assert np.allclose(u_plus[dim - 1, top], 0.1)
 
 
-def partial(rho=None, n=6, delta=0.01):
-    """Top rotated: pressed near x = 0, opened near x = 1."""
+def partial(rho=None, n=6, delta=0.01, dim=2):
+    """Top turned: pressed near x = 0 (3D: y = 0), opened near x = 1."""
+    if dim == 3:
+        return cube(n=(1, 4, 5), rho_n=rho, top={
+            "x": 0.0, "y": 0.0, "z": lambda x: -delta * (1 - 2 * x[1])})
     s = strip(n=n)
     return replace(s, law="frictionless", loads=(), rho_n=rho, displacements=(
         clamped("ymin"), Displacement("ymax", {"x": 0.0, "y": lambda x: -delta * (1 - 2 * x[0])})))
 
 
-def test_partial_contact_signorini_at_every_dof():
+@pytest.mark.parametrize("dim", [2, 3])
+def test_partial_contact_signorini_at_every_dof(dim):
+    h = contact.solve(partial(dim=dim)).ops.h
     for rho in RHOS:
-        res = contact.solve(partial())
-        h = res.ops.h
-        res = contact.solve(partial(rho / h))
-        st = res.steps[-1]
+        st = contact.solve(partial(rho / h, dim=dim)).steps[-1]
         scale = st.pressure.max() * np.abs(st.gap).max()
         assert set(st.status) == {0, 2}  # open and (frictionless) sliding points
         assert st.pressure.min() >= 0 and st.gap.max() <= 1e-12 * np.abs(st.gap).max()
@@ -162,22 +169,37 @@ def test_block_3d_slides_along_the_imposed_direction(phi):
     assert np.allclose(-st.slip @ t, (delta - tau / G) * d, atol=1e-9)
 
 
+def slanted(theta, mu, dim):
+    """Uniaxial compression σ = 1 across a plane Γ at angle θ to the horizontal."""
+    c, s = np.cos(theta), np.sin(theta)
+    if dim == 2:
+        corner = lambda x: (x[0] < 1e-12) & (x[1] < 1e-12)  # noqa: E731
+        return Scene(Box((5, 5), "quad"), plane((0.5, 0.45), (-s, c)), Material(E=1.0, nu=0.3),
+                     displacements=(Displacement("ymin", {"y": 0.0}),
+                                    Displacement(corner, {"x": 0.0})),
+                     loads=(SurfaceLoad("ymax", pressure=1.0),), law="coulomb", friction=mu)
+    corner = lambda x: (x[0] < 1e-12) & (x[1] < 1e-12)  # noqa: E731
+    other = lambda x: (x[0] > 1 - 1e-12) & (x[1] < 1e-12) & (x[2] < 1e-12)  # noqa: E731
+    return Scene(Box((3, 1, 3), "hex"), plane((0.5, 0.5, 0.45), (-s, 0, c)),
+                 Material(E=1.0, nu=0.3),
+                 displacements=(Displacement("zmin", {"z": 0.0}),
+                                Displacement(corner, {"x": 0.0, "y": 0.0}),
+                                Displacement(other, {"y": 0.0})),
+                 loads=(SurfaceLoad("zmax", pressure=1.0),), law="coulomb", friction=mu)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
 @pytest.mark.parametrize("mu", [0.6, 1.0, 2.0])
-def test_slanted_interface_sticks(mu):
+def test_slanted_interface_sticks(mu, dim):
     """Uniaxial σ across Γ at θ (tan θ < μ): p = σcos²θ, |r_τ| = σ cosθ sinθ,
     |Λ| = tanθ/μ, no slip."""
     theta, sigma = np.deg2rad(25.0), 1.0
     c, s = np.cos(theta), np.sin(theta)
-    corner = lambda x: (x[0] < 1e-12) & (x[1] < 1e-12)  # noqa: E731
-    scene = Scene(Box((5, 5), "quad"), plane((0.5, 0.45), (-s, c)), Material(E=1.0, nu=0.3),
-                  displacements=(Displacement("ymin", {"y": 0.0}),
-                                 Displacement(corner, {"x": 0.0})),
-                  loads=(SurfaceLoad("ymax", pressure=sigma),), law="coulomb", friction=mu)
-    st = contact.solve(scene).steps[-1]
+    st = contact.solve(slanted(theta, mu, dim)).steps[-1]
     assert np.all(st.status == 1)
     assert np.allclose(st.pressure, sigma * c**2, rtol=1e-9)
-    assert np.allclose(np.abs(st.traction), sigma * c * s, rtol=1e-9)
-    assert np.allclose(np.abs(st.Lambda), np.tan(theta) / mu, rtol=1e-9)
+    assert np.allclose(np.linalg.norm(st.traction, axis=1), sigma * c * s, rtol=1e-9)
+    assert np.allclose(np.linalg.norm(st.Lambda, axis=1), np.tan(theta) / mu, rtol=1e-9)
     assert np.abs(st.slip).max() < 1e-12
 
 
