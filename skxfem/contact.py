@@ -45,6 +45,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .contact_fixed_point import fixed_point
 from .contact_interface import Operators, operators
 from .contact_laws import CONTACT_LAWS, status
 from .contact_newton import ContactConvergenceError, Law, NewtonInfo, newton
@@ -176,10 +177,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10
     m, k = ops.w.size, len(ops.Bt)
     U, lam = np.zeros(pb.V.N), np.zeros(m)
     T = np.zeros((m, k if law.friction else 0))
-    if method == "fixed_point":
-        from .contact_fixed_point import fixed_point as step_solver
-    else:
-        step_solver = newton
+    step_solver = fixed_point if method == "fixed_point" else newton
     steps = []
     for label, F, g in states:
         U_prev = U.copy()

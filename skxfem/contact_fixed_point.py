@@ -16,6 +16,16 @@ none, and it closes again.  The active-set iteration of the pass then
 alternates between these two states.  A code that stops after a fixed number of passes returns the
 last state, with a wrong force; here the error is raised, and the last state
 is kept on the exception (``error.last``) so that it can be shown.
+
+>>> from dataclasses import replace
+>>> from skxfem import contact
+>>> from skxfem.scene import Displacement, SurfaceLoad, clamped
+>>> from skxfem.scenes import strip
+>>> s = replace(strip(n=3), law="coulomb", friction=0.5,
+...             loads=(SurfaceLoad("ymax", pressure=1.0),),
+...             displacements=(clamped("ymin"), Displacement("ymax", {"x": 0.5})))
+>>> contact.solve(s, method="fixed_point").steps[-1].newton.iterations   # passes
+3
 """
 from __future__ import annotations
 

@@ -32,6 +32,10 @@ slip) unchanged by the last step and every relative residual ≤ ``tol``
 (equilibrium relative to max(|F|, |KU|); contact relative to
 max(|λ|, ρ_n|d|); friction: |Λ| ≤ 1 is already unit-free, the adhesive
 traction relative to max(|r_τ|, ρ_τ|s|)).
+
+>>> law = Law("coulomb", mu=0.5, rho_n=1.0, rho_t=1.0)
+>>> law.friction, law.threshold is None
+(True, True)
 """
 from __future__ import annotations
 
