@@ -375,3 +375,18 @@ def test_contact_zone_edge_converges():
         assert a - 1e-12 <= c and d <= b + 1e-12  # nested
         assert a <= fine <= b
     assert brackets[-1][1] - brackets[-1][0] < 0.02
+
+
+def test_coulomb_does_not_depend_on_rho():
+    """Open, stick and slip points at once: the same solution for ρ_n, ρ_τ over 1e-3..1e6
+    (× E/h, × 1/h), in at most 15 iterations."""
+    s = tilted_block(mu=0.5, delta=2.0, n=4)
+    first = contact.solve(s)
+    ref, h = first.steps[-1], first.ops.h
+    assert set(ref.status) == {0, 1, 2}
+    for rho_n in RHOS:
+        for rho_t in RHOS:
+            st = contact.solve(replace(s, rho_n=rho_n / h, rho_t=rho_t / h)).steps[-1]
+            assert np.array_equal(st.status, ref.status)
+            assert rel(st.U, ref.U) < 1e-8 and rel(st.traction, ref.traction) < 1e-8
+            assert st.newton.iterations <= 15
