@@ -5,6 +5,8 @@
 """
 from __future__ import annotations
 
+import os
+
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
@@ -12,7 +14,8 @@ from matplotlib.lines import Line2D
 from .contact_laws import STATUS_NAMES
 from .plotting import COLORS, CURVE_COLORS
 
-__all__ = ["STATUS_COLORS", "plot_status_2d", "plot_iterations"]
+__all__ = ["STATUS_COLORS", "edge_status", "plot_status_2d", "plot_status_3d",
+           "plot_iterations"]
 
 #: One colour per point status (skxfem.contact_laws.STATUS_NAMES).
 STATUS_COLORS = {"open": "#969696", "stick": "#1b9e77", "slip": "#d95f02"}
@@ -82,4 +85,59 @@ def plot_iterations(rhos, iterations: dict, title: str | None = None) -> Figure:
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     ax.set_title(title or "semi-smooth Newton iterations against ρ_n")
+    return fig
+
+
+def edge_status(result, step: int = -1) -> np.ndarray:
+    """Status (n_edges,) of every cut edge: that of the multiplier dof it depends on most."""
+    P = result.problem.P.tocsr()
+    st = result.steps[step].status
+    rows = np.repeat(np.arange(P.shape[0]), np.diff(P.indptr))
+    best = np.zeros(P.shape[0], int)
+    weight = np.full(P.shape[0], -np.inf)
+    for r, c, v in zip(rows, P.indices, np.abs(P.data)):  # nnz ~ n_edges
+        if v > weight[r]:
+            weight[r], best[r] = v, c
+    return st[best]
+
+
+def plot_status_3d(result, step: int = -1, window_size: tuple[int, int] = (800, 600),
+                   view: tuple = (0.6, -1.0, 0.9), title: str | None = None) -> Figure:
+    """Status map on a 3D Γ, rendered off-screen with pyvista (like
+    :func:`skxfem.plotting.plot_cut_3d`): the interface triangles, each vertex (a
+    cut edge) coloured by :func:`edge_status`, over the outline of the mesh.
+
+    pyvista (the ``viz`` extra) is imported here.
+    """
+    os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+    import pyvista as pv
+
+    pb = result.problem
+    if pb.mesh.dim() != 3:
+        raise ValueError("plot_status_3d needs a 3D result; use plot_status_2d")
+    c = pb.cut
+    faces = np.column_stack([np.full(c.facets.shape[1], 3), c.facets.T]).ravel()
+    surface = pv.PolyData(c.points.T, faces)
+    palette = np.array([[int(STATUS_COLORS[n][i:i + 2], 16) for i in (1, 3, 5)]
+                        for n in STATUS_NAMES], dtype=np.uint8)
+    surface.point_data["rgb"] = palette[edge_status(result, step)]
+    plotter = pv.Plotter(off_screen=True, window_size=list(window_size))
+    plotter.set_background("white")
+    plotter.add_mesh(pv.PolyData(pb.mesh.p.T).outline(), color=COLORS["mesh"], line_width=2)
+    plotter.add_mesh(surface, scalars="rgb", rgb=True, show_edges=True, edge_color="#ffffff",
+                     interpolate_before_map=False)
+    plotter.add_mesh(pv.PolyData(c.points.T), scalars=palette[edge_status(result, step)],
+                     rgb=True, point_size=10, render_points_as_spheres=True)
+    plotter.add_axes(color="black")
+    plotter.view_vector(view, viewup=(0.0, 0.0, 1.0))
+    image = plotter.screenshot(return_img=True)
+    plotter.close()
+    width, height = window_size
+    fig = Figure(figsize=(width / 100, height / 100 + 0.4), dpi=100)
+    ax = fig.add_axes((0.0, 0.0, 1.0, height / (height + 40)))
+    ax.imshow(image)
+    ax.set_axis_off()
+    fig.legend(handles=[Line2D([], [], ls="", marker="o", color=col, label=name)
+                        for name, col in STATUS_COLORS.items()], loc="upper right", ncol=3)
+    fig.suptitle(title or f"status on Γ, step {result.steps[step].load}", x=0.3)
     return fig
