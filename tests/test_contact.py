@@ -220,6 +220,10 @@ def test_bad_input_is_refused():
         contact.solve(replace(base, law="frictionless"), history=(1.0, "x"))
     with pytest.raises(ValueError, match="method"):
         contact.solve(replace(base, law="frictionless"), method="penalty")
+    moved = replace(base, law="frictionless", displacements=base.displacements
+                    + (Displacement("xmin", {"x": 0.0}),))
+    with pytest.raises(ValueError, match=r"history\[1\]: a load state must keep"):
+        contact.solve(replace(base, law="frictionless"), history=(1.0, moved))
 
 
 def test_non_convergence_raises_a_clear_error():
@@ -263,6 +267,7 @@ def test_fixed_point_alternates_and_stops_with_a_wrong_force():
     assert abs(force - 0.0872116) < 1e-6
     with pytest.raises(ContactConvergenceError, match="alternates between two states") as e:
         contact.solve(s, method="fixed_point")
+    assert "changed status more than once: dofs" in str(e.value.__cause__)
     statuses = e.value.statuses
     assert np.array_equal(statuses[-1], statuses[-3]) and np.array_equal(statuses[-2],
                                                                          statuses[-4])
