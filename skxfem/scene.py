@@ -32,6 +32,7 @@ import numpy as np
 from skfem import Mesh
 
 from .boundary import COMPONENTS, FACES, dirichlet, load_facets, traction
+from .contact_laws import CONTACT_LAWS
 from .expr import Expression
 from .levelset import LevelSet
 from .material import Material
@@ -39,7 +40,7 @@ from .multipliers import LAWS, SPACES
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Scene", "clamped", "rollers",
            "resolve_mesh", "dirichlet", "load_facets", "traction", "load_scene",
-           "LAWS", "SPACES", "CELLS"]
+           "LAWS", "CONTACT_LAWS", "SPACES", "CELLS"]
 
 CELLS = {"tri": 2, "quad": 2, "tet": 3, "hex": 3, "prism": 3}
 """Cell types of :class:`Box` and their dimension."""
@@ -186,8 +187,13 @@ class Scene:
     """One contact problem: what :func:`skxfem.solver.solve` takes.
 
     ``mesh`` is a :class:`Box`, a scikit-fem mesh or a mesh file path;
-    ``law`` is one of ``LAWS``, ``space`` one of ``SPACES``;
-    ``quadrature_order`` ``None`` lets the solver choose.
+    ``law`` is one of ``LAWS`` (ties, :func:`skxfem.solver.solve`) or
+    ``CONTACT_LAWS`` (unilateral, :func:`skxfem.contact.solve`), ``space`` one
+    of ``SPACES``; ``quadrature_order`` ``None`` lets the solver choose.
+    ``friction`` is Coulomb's μ (law ``coulomb``); ``rho_n``, ``rho_t`` the
+    augmentation parameters of the contact laws (``None``: the defaults of
+    :func:`skxfem.contact.parameters`); ``steps`` the load factors of a
+    contact solve, in order.
     """
 
     mesh: Box | Mesh | str | Path
@@ -199,6 +205,10 @@ class Scene:
     space: str = "naive"
     quadrature_order: int | None = None
     name: str = "scene"
+    friction: float = 0.0
+    rho_n: float | None = None
+    rho_t: float | None = None
+    steps: tuple[float, ...] = (1.0,)
 
     def __post_init__(self):
         if not isinstance(self.mesh, (Box, Mesh, str, Path)):
@@ -215,8 +225,23 @@ class Scene:
                     isinstance(i, kind) for i in items):
                 raise TypeError(f"Scene {field} must be a tuple of {kind.__name__}")
             object.__setattr__(self, field, tuple(items))
-        if self.law not in LAWS:
-            raise ValueError(f"Scene law must be one of {LAWS}, got {self.law!r}")
+        if self.law not in LAWS + CONTACT_LAWS:
+            raise ValueError(f"Scene law must be one of {LAWS + CONTACT_LAWS}, "
+                             f"got {self.law!r}")
+        if not (_is_number(self.friction) and np.isfinite(self.friction)
+                and self.friction >= 0):
+            raise ValueError(f"Scene friction (Coulomb's mu) must be a number >= 0, "
+                             f"got {self.friction!r}")
+        for key in ("rho_n", "rho_t"):
+            rho = getattr(self, key)
+            if rho is not None and not (_is_number(rho) and np.isfinite(rho) and rho > 0):
+                raise ValueError(f"Scene {key} must be a positive number or None (default "
+                                 f"scaled by E/h), got {rho!r}")
+        if (not isinstance(self.steps, (tuple, list)) or not self.steps
+                or not all(_is_number(f) and np.isfinite(f) for f in self.steps)):
+            raise ValueError(f"Scene steps must be a non-empty sequence of finite load "
+                             f"factors, got {self.steps!r}")
+        object.__setattr__(self, "steps", tuple(float(f) for f in self.steps))
         if self.space not in SPACES:
             raise ValueError(f"Scene space must be one of {SPACES}, got {self.space!r}")
         q = self.quadrature_order

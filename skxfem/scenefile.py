@@ -33,8 +33,12 @@ type is refused with an error naming the key.  The schema::
     # traction = [0, 0, "-1"]          # or a traction vector
 
     [interface]
-    law = "bonded"                     # one of skxfem.scene.LAWS
+    law = "bonded"                     # one of skxfem.scene.LAWS or CONTACT_LAWS
     space = "naive"                    # one of skxfem.scene.SPACES
+    # friction = 0.5                   # Coulomb's mu (law "coulomb"), >= 0
+    # rho_n = 10.0                     # contact augmentation, > 0 (default E/h)
+    # rho_t = 10.0                     # friction augmentation, > 0
+    # steps = [0.5, 1.0]               # load factors of a contact solve
 
     [solver]
     quadrature_order = 2               # optional
@@ -92,9 +96,27 @@ def _scene(data: dict, path: Path) -> sc.Scene:
         if key not in data:
             raise ValueError(f"missing table [{key}]")
     mesh, dim = _mesh(_table(data["mesh"], "[mesh]", ("box", "file")), path.parent)
-    interface = _table(data.get("interface", {}), "[interface]", ("law", "space"))
+    interface = _table(data.get("interface", {}), "[interface]",
+                       ("law", "space", "friction", "rho_n", "rho_t", "steps"))
     solver = _table(data.get("solver", {}), "[solver]", ("quadrature_order",))
-    law = _choice(interface.get("law", "bonded"), sc.LAWS, "[interface] law")
+    law = _choice(interface.get("law", "bonded"), sc.LAWS + sc.CONTACT_LAWS,
+                  "[interface] law")
+    contact = {k: interface[k] for k in ("friction", "rho_n", "rho_t") if k in interface}
+    for key, value in contact.items():
+        if not (isinstance(value, (int, float)) and not isinstance(value, bool)):
+            raise TypeError(f"[interface] {key} must be a number, got {value!r}")
+    if "friction" in contact and contact["friction"] < 0:
+        raise ValueError(f"[interface] friction must be >= 0, got {contact['friction']!r}")
+    for key in ("rho_n", "rho_t"):
+        if key in contact and not contact[key] > 0:
+            raise ValueError(f"[interface] {key} must be > 0, got {contact[key]!r}")
+    if "steps" in interface:
+        steps = interface["steps"]
+        if not (isinstance(steps, list) and steps and all(
+                isinstance(f, (int, float)) and not isinstance(f, bool) for f in steps)):
+            raise ValueError(f"[interface] steps must be a non-empty list of load "
+                             f"factors, got {steps!r}")
+        contact["steps"] = tuple(steps)
     space = _choice(interface.get("space", "naive"), sc.SPACES, "[interface] space")
     order = solver.get("quadrature_order")
     if order is not None and (type(order) is not int or order < 1):
@@ -111,7 +133,7 @@ def _scene(data: dict, path: Path) -> sc.Scene:
                             for i, t in enumerate(_array(data, "displacement"))),
         loads=tuple(_load(t, dim, f"[[load]] #{i + 1}")
                     for i, t in enumerate(_array(data, "load"))),
-        law=law, space=space, quadrature_order=order, name=name)
+        law=law, space=space, quadrature_order=order, name=name, **contact)
 
 
 def _table(t, where: str, allowed: tuple) -> dict:
