@@ -31,7 +31,8 @@ import argparse
 import sys
 from pathlib import Path
 
-from . import __version__, budget, io, reproduce, scene
+from . import __version__, budget, io, reproduce
+from .scenefile import load_scene
 from .solver import solve
 
 __all__ = ["main", "parser", "FORWARDED"]
@@ -103,7 +104,7 @@ def _fail(error: BaseException, debug: bool) -> int:
 
 
 def _run(args) -> int:
-    s = scene.load_scene(args.scene)
+    s = load_scene(args.scene)
     out = io.check_output(args.out if args.out is not None else Path(s.name))
     budget.check(s, args.max_memory, "--max-memory")
     result = solve(s)

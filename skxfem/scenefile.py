@@ -52,6 +52,7 @@ from . import levelset as ls
 from . import scene as sc
 from .expr import Expression
 from .material import Material
+from .scene_parts import COMPONENTS
 
 __all__ = ["load_scene"]
 
@@ -275,7 +276,7 @@ def _where(t: dict, dim: int, where: str):
 def _displacement(t: dict, dim: int, where: str) -> sc.Displacement:
     _keys(t, ("boundary", "where", "kind", "x", "y", "z"), where)
     boundary = _where(t, dim, where)
-    given = [c for c in sc.COMPONENTS if c in t]
+    given = [c for c in COMPONENTS if c in t]
     if "z" in given and dim == 2:
         raise ValueError(f"{where} z: component 'z' does not exist on a 2D mesh")
     if "kind" in t:
