@@ -34,9 +34,11 @@ from .multipliers import (
     InterfaceRule,
     Space,
     coupling,
+    fixed_jumps,
     interface_mass,
     interface_rule,
     multiplier_space,
+    normal_fixed,
 )
 from .scene import Scene, dirichlet, load_facets, resolve_mesh
 
@@ -84,11 +86,19 @@ class Problem:
     law : the tie law P and B are built for (``"bonded"`` or ``"bilateral"``).
     ncomp : multiplier components per edge: dim (bonded) or 1 (bilateral).
     P : (ncomp·n_edges, m) CSR, the prolongation λ = P μ of the law's
-        multipliers, component-major (eq. 12 and §5's linear relations).
+        multipliers, component-major (eq. 12 and §5's linear relations):
+        block-diagonal, one block per component, ``spaces[k].P``.
     B : (m, N) CSR, Pᵀ B_edges, the coupling ∫_Γ λ_h·[[v]] (or λ_h [[v]]·n)
         reduced to the space: the constraint of eq. 8.
     M_edges : (n_edges, n_edges) CSR, the interface mass ∫_Γ N_e N_f.
     timings : seconds per stage.
+    held : (ncomp, n_edges) bool, the (component, edge) pairs whose jump a
+        support holds: both ends of the edge are fixed for that component
+        (:func:`skxfem.multipliers.fixed_jumps`, from ``D``; bilateral: the
+        normal jump, :func:`skxfem.multipliers.normal_fixed`).  They carry
+        no multiplier: their rows of P are empty.
+    spaces : the ncomp spaces of the law's components, each built on the
+        edges it keeps (``space`` itself where a component has no fixed node).
     """
 
     scene: Scene
@@ -108,6 +118,8 @@ class Problem:
     B: sp.csr_matrix
     M_edges: sp.csr_matrix
     timings: dict = field(default_factory=dict)
+    held: np.ndarray | None = None
+    spaces: tuple = ()
 
 
 def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndarray]:
@@ -205,9 +217,25 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
     B_edges = coupling(V, rule, COUPLING[law], J=J)
     M_edges = interface_mass(rule)
     lap("interface")
-    ncomp = B_edges.shape[0] // c.points.shape[1]
-    P = sp.kron(sp.identity(ncomp), S.P, format="csr")  # component-major
+    fixed = fixed_jumps(V, D)
+    if COUPLING[law] == "bilateral":
+        fixed = normal_fixed(fixed, c)[None, :]
+    held = fixed[:, c.edges[0]] & fixed[:, c.edges[1]]
+    spaces = _component_spaces(scene.space, mesh, c, S, fixed)
+    P = sp.block_diag([s.P for s in spaces], format="csr")  # component-major
     B = (P.T @ B_edges).tocsr()
     lap("prolongation")
-    return Problem(scene, mesh, c, V, K, F, D, g, rule, J, S, law, ncomp, P, B, M_edges,
-                   timings)
+    return Problem(scene, mesh, c, V, K, F, D, g, rule, J, S, law, held.shape[0], P, B,
+                   M_edges, timings, held, spaces)
+
+
+def _component_spaces(name, mesh, c, S, fixed) -> tuple:
+    """The multiplier space of each component, built with that component's
+    fixed nodes (``S``, the space of all edges, where none is fixed; one
+    build per distinct set of fixed nodes)."""
+    built = {}
+    for row in fixed:
+        key = row.tobytes()
+        if key not in built:
+            built[key] = S if not row.any() else multiplier_space(name, mesh, c, fixed=row)
+    return tuple(built[row.tobytes()] for row in fixed)

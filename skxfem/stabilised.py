@@ -50,6 +50,20 @@ def _check(edges, psi, points, nodes):
     return edges, psi, points, nodes
 
 
+def _check_fixed(fixed, edges, nnodes):
+    """``fixed`` as an (nnodes,) bool array (default: no node fixed)."""
+    if fixed is None:
+        return np.zeros(nnodes, dtype=bool)
+    fixed = np.asarray(fixed)
+    if fixed.shape != (nnodes,) or fixed.dtype != bool:
+        raise ValueError(f"fixed must be one bool per node, shape ({nnodes},); "
+                         f"got {fixed.dtype} {fixed.shape}")
+    for e in np.flatnonzero(fixed[edges[0]] & fixed[edges[1]])[:1]:
+        raise ValueError(f"fixed: both ends of edge {e} = {edges[:, e].tolist()} are fixed; "
+                         f"leave such an edge out (it carries no multiplier)")
+    return fixed
+
+
 def _incidence(edges, nnodes, keep):
     """(nnodes, ne) CSR with an entry (v, e) for each kept edge e and end v."""
     k = np.flatnonzero(keep)
@@ -86,8 +100,8 @@ def _interpolate(points, query, k1, k2, col1, col2):
     return np.r_[query, query], np.r_[col1, col2], np.r_[d2, d1] / np.tile(d1 + d2, 2)
 
 
-def _minimum_edge_cover(edges, psi, length):
-    """S_ve: the fewest edges touching every node of N_e, then the shortest.
+def _minimum_edge_cover(edges, psi, length, fixed):
+    """S_ve: the fewest edges touching every node of N_e not ``fixed``, then the shortest.
 
     Gallai: a minimum edge cover is a maximum matching M plus, for each node
     left unmatched, one edge at it (its shortest, of length m(v)).  Its length
@@ -99,25 +113,30 @@ def _minimum_edge_cover(edges, psi, length):
     component, too big for the dense linear_sum_assignment): rows N_e⁻,
     columns N_e⁺ plus one private "unmatched" column per row, which costs
     more than any total saving, so that the matching is maximum first.
+    A fixed node needs no cover: an edge with a fixed end covers one node,
+    so only edges between two free nodes enter the matching.
     """
     ne = edges.shape[1]
     ell = length / length.mean()
     m = np.full(psi.size, np.inf)
     np.minimum.at(m, edges.ravel(), np.tile(ell, 2))
-    cost = ell - m[edges[0]] - m[edges[1]]                  # minus the saving
-    minus = np.where(psi[edges[0]] < 0, edges[0], edges[1])
-    rows, ri = np.unique(minus, return_inverse=True)
-    cols, ci = np.unique(edges[0] + edges[1] - minus, return_inverse=True)
-    alone = cols.size + np.arange(rows.size)
-    shift, big = np.abs(cost).max() + 1.0, 2.0 * np.abs(cost).sum() + 1.0   # weights > 0
-    A = sp.csr_matrix((np.r_[cost + shift, np.full(rows.size, big + shift)],
-                       (np.r_[ri, np.arange(rows.size)], np.r_[ci, alone])),
-                      shape=(rows.size, alone[-1] + 1))
-    r, c = min_weight_full_bipartite_matching(A)
-    edge_of = sp.csr_matrix((np.arange(1, ne + 1), (ri, ci)), shape=A.shape)
     vital = np.zeros(ne, dtype=bool)
-    vital[np.asarray(edge_of[r[c < cols.size], c[c < cols.size]]).ravel() - 1] = True
-    covered = np.zeros(psi.size, dtype=bool)               # then each unmatched node
+    pair = np.flatnonzero(~fixed[edges[0]] & ~fixed[edges[1]])
+    if pair.size:
+        e0, e1 = edges[:, pair]
+        cost = ell[pair] - m[e0] - m[e1]                     # minus the saving
+        minus = np.where(psi[e0] < 0, e0, e1)
+        rows, ri = np.unique(minus, return_inverse=True)
+        cols, ci = np.unique(e0 + e1 - minus, return_inverse=True)
+        alone = cols.size + np.arange(rows.size)
+        shift, big = np.abs(cost).max() + 1.0, 2.0 * np.abs(cost).sum() + 1.0  # weights > 0
+        A = sp.csr_matrix((np.r_[cost + shift, np.full(rows.size, big + shift)],
+                           (np.r_[ri, np.arange(rows.size)], np.r_[ci, alone])),
+                          shape=(rows.size, alone[-1] + 1))
+        r, c = min_weight_full_bipartite_matching(A)
+        edge_of = sp.csr_matrix((pair + 1, (ri, ci)), shape=A.shape)
+        vital[np.asarray(edge_of[r[c < cols.size], c[c < cols.size]]).ravel() - 1] = True
+    covered = fixed.copy()                                   # then each unmatched node
     covered[edges[:, vital]] = True                          # takes its shortest edge
     ends, ids = edges.ravel(), np.tile(np.arange(ne), 2)
     order = np.lexsort((ids, length[ids]))                   # (ties: lowest index)
@@ -126,7 +145,7 @@ def _minimum_edge_cover(edges, psi, length):
     return vital
 
 
-def vital_edges(edges, psi, points, nodes) -> Space:
+def vital_edges(edges, psi, points, nodes, fixed=None) -> Space:
     """Algo2 (paper §5): vital edges, star groups, distance-weighted relations.
 
     Parameters
@@ -135,6 +154,9 @@ def vital_edges(edges, psi, points, nodes) -> Space:
     psi : (nnodes,) nodal level set; its sign splits N_e into N_e⁻ and N_e⁺.
     points : (dim, ne) the intersection point x_e of each edge (λ_e lives there).
     nodes : (dim, nnodes) node coordinates, for the edge lengths.
+    fixed : (nnodes,) bool, optional: nodes whose jump a support holds
+        (:func:`skxfem.multipliers.multiplier_space`); no edge may have two
+        fixed ends.  Default: none.
 
     Returns
     -------
@@ -156,6 +178,9 @@ def vital_edges(edges, psi, points, nodes) -> Space:
        at v_i (never none: S_ve covers v_i) whose point is nearest to x_e
        (ties: lowest index) and λ_e = d2/(d1+d2) λ_k1 + d1/(d1+d2) λ_k2,
        d_i = |x_e - x_ki|.
+    4. With fixed nodes: S_ve covers the free nodes only (a fixed node has
+       no jump to control), the groups connect through free nodes only, and
+       a non-vital edge with a fixed end takes the λ of its other end's k_i.
 
     Raises
     ------
@@ -164,15 +189,20 @@ def vital_edges(edges, psi, points, nodes) -> Space:
         listed twice or has length zero.
     """
     edges, psi, points, nodes = _check(edges, psi, points, nodes)
+    fixed = _check_fixed(fixed, edges, psi.size)
     ne = edges.shape[1]
     if ne == 0:
         return Space("vital", sp.csr_matrix((0, 0)), np.zeros(0, bool), np.zeros(0, int))
     length = np.linalg.norm(nodes[:, edges[0]] - nodes[:, edges[1]], axis=0)
-    vital = _minimum_edge_cover(edges, psi, length)
+    vital = _minimum_edge_cover(edges, psi, length, fixed)
 
     iv = np.flatnonzero(vital)
-    star = sp.coo_matrix((np.ones(iv.size), tuple(edges[:, iv])), shape=(psi.size,) * 2)
-    label = connected_components(star, directed=False)[1][edges[0, iv]]
+    ends = edges[:, iv].copy()                               # a fixed end joins no star:
+    alone = fixed[ends]                                      # it becomes a node of its own
+    ends[alone] = psi.size + np.flatnonzero(alone.ravel())
+    nn = psi.size + 2 * iv.size
+    star = sp.coo_matrix((np.ones(iv.size), tuple(ends)), shape=(nn, nn))
+    label = connected_components(star, directed=False)[1][ends[0]]
     _, first, inverse = np.unique(label, return_index=True, return_inverse=True)
     rank = np.empty_like(first)
     rank[np.argsort(first)] = np.arange(first.size)          # order of lowest edge
@@ -182,18 +212,25 @@ def vital_edges(edges, psi, points, nodes) -> Space:
     nv = np.flatnonzero(~vital)
     inc = _incidence(edges, psi.size, vital)
     k1, k2 = (_nearest(points, nv, edges[i, nv], inc) for i in (0, 1))
-    r, c, w = _interpolate(points, nv, k1, k2, groups[k1], groups[k2])
-    P = sp.csr_matrix((np.r_[np.ones(iv.size), w], (np.r_[iv, r], np.r_[groups[iv], c])),
+    both = (k1 >= 0) & (k2 >= 0)                             # else a fixed end: none there
+    r, c, w = _interpolate(points, nv[both], k1[both], k2[both], groups[k1[both]],
+                           groups[k2[both]])
+    one = nv[~both]
+    P = sp.csr_matrix((np.r_[np.ones(iv.size + one.size), w],
+                       (np.r_[iv, one, r],
+                        np.r_[groups[iv], groups[np.maximum(k1, k2)[~both]], c])),
                       shape=(ne, first.size))
     return Space("vital", P, vital=vital, groups=groups)
 
 
-def _pick_winners(edges, psi):
+def _pick_winners(edges, psi, fixed):
     """Algo1's greedy loop (rules 1-3 of :func:`winner_nodes`): the winners in
-    the order picked and, for each edge, the position of the winner that broke it."""
+    the order picked and, for each edge, the position of the winner that broke it.
+    A fixed node counts as degree 0 throughout, so it never wins."""
     a, b = edges
     apsi = np.abs(psi)
     deg = np.bincount(edges.ravel(), minlength=psi.size)    # unbroken edges at a node
+    deg[fixed] = 0
     inc = _incidence(edges, psi.size, np.ones(a.size, dtype=bool))
     diff, ratio = np.empty(a.size, dtype=np.int64), np.empty(a.size)
 
@@ -215,16 +252,18 @@ def _pick_winners(edges, psi):
         diff[broken] = -1
         broken_by[broken] = len(winners)
         np.subtract.at(deg, edges[:, broken].ravel(), 1)
+        deg[fixed] = 0
         near = _edges_at(inc, edges[:, broken].ravel())[1]  # only their keys changed
         score(near[diff[near] >= 0])
         winners.append(w)
     return np.array(winners, dtype=np.int64), broken_by
 
 
-def winner_nodes(edges, psi, points, nodes) -> Space:
+def winner_nodes(edges, psi, points, nodes, fixed=None) -> Space:
     """Algo1 (Moës, Béchet & Tourbier 2006): one multiplier per winner node.
 
-    Parameters and errors as :func:`vital_edges` (``nodes`` is only checked).
+    Parameters and errors as :func:`vital_edges` (``nodes`` is only checked;
+    a ``fixed`` node never wins: it counts as degree 0).
 
     Notes
     -----
@@ -265,10 +304,11 @@ def winner_nodes(edges, psi, points, nodes) -> Space:
     ([1], [1.0, 1.0])
     """
     edges, psi, points, nodes = _check(edges, psi, points, nodes)
+    fixed = _check_fixed(fixed, edges, psi.size)
     ne = edges.shape[1]
     if ne == 0:
         return Space("winner", sp.csr_matrix((0, 0)), winners=np.zeros(0, int))
-    winners, broken_by = _pick_winners(edges, psi)
+    winners, broken_by = _pick_winners(edges, psi, fixed)
     column = np.full(psi.size, -1)
     column[winners] = np.arange(winners.size)
     c0, c1 = column[edges]
