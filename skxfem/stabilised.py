@@ -19,85 +19,10 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components, min_weight_full_bipartite_matching
 
+from .cutgraph import check_fixed, check_graph, edges_at, incidence, interpolate, nearest
 from .multipliers import Space
 
 __all__ = ["Space", "vital_edges", "winner_nodes"]
-
-
-def _check(edges, psi, points, nodes):
-    nodes, psi, edges = np.asarray(nodes, float), np.asarray(psi, float), np.asarray(edges)
-    points = np.asarray(points, float)
-    if nodes.ndim != 2 or nodes.shape[0] not in (2, 3) or not np.isfinite(nodes).all():
-        raise ValueError(f"nodes must be finite, shape (dim, nnodes); got {nodes.shape}")
-    if psi.shape != nodes.shape[1:] or not np.isfinite(psi).all():
-        raise ValueError(f"psi must be finite, shape ({nodes.shape[1]},); got {psi.shape}")
-    if edges.ndim != 2 or edges.shape[0] != 2 or (edges.size and edges.dtype.kind not in "iu"):
-        raise ValueError(f"edges must be node indices, shape (2, ne); got {edges.dtype} "
-                         f"{edges.shape}")
-    edges = edges.astype(np.int64)
-    if points.shape != (nodes.shape[0], edges.shape[1]) or not np.isfinite(points).all():
-        raise ValueError(f"points must be finite, shape ({nodes.shape[0]}, {edges.shape[1]});"
-                         f" got {points.shape}")
-    if edges.size and (edges.min() < 0 or edges.max() >= psi.size):
-        raise ValueError(f"edges refer to nodes outside 0..{psi.size - 1}")
-    for e in np.flatnonzero(psi[edges[0]] * psi[edges[1]] >= 0)[:1]:
-        raise ValueError(f"edges must be strictly cut, psi(v1) psi(v2) < 0; edge {e} = "
-                         f"{edges[:, e].tolist()} has psi {psi[edges[:, e]].tolist()}")
-    if np.unique(np.sort(edges, axis=0), axis=1).shape[1] < edges.shape[1]:
-        raise ValueError("edges lists the same edge twice")
-    for e in np.flatnonzero(np.all(nodes[:, edges[0]] == nodes[:, edges[1]], axis=0))[:1]:
-        raise ValueError(f"nodes: the two ends of edge {e} coincide")
-    return edges, psi, points, nodes
-
-
-def _check_fixed(fixed, edges, nnodes):
-    """``fixed`` as an (nnodes,) bool array (default: no node fixed)."""
-    if fixed is None:
-        return np.zeros(nnodes, dtype=bool)
-    fixed = np.asarray(fixed)
-    if fixed.shape != (nnodes,) or fixed.dtype != bool:
-        raise ValueError(f"fixed must be one bool per node, shape ({nnodes},); "
-                         f"got {fixed.dtype} {fixed.shape}")
-    for e in np.flatnonzero(fixed[edges[0]] & fixed[edges[1]])[:1]:
-        raise ValueError(f"fixed: both ends of edge {e} = {edges[:, e].tolist()} are fixed; "
-                         f"leave such an edge out (it carries no multiplier)")
-    return fixed
-
-
-def _incidence(edges, nnodes, keep):
-    """(nnodes, ne) CSR with an entry (v, e) for each kept edge e and end v."""
-    k = np.flatnonzero(keep)
-    return sp.csr_matrix((np.ones(2 * k.size), (edges[:, k].ravel(), np.tile(k, 2))),
-                         shape=(nnodes, edges.shape[1]))
-
-
-def _edges_at(inc, v):
-    """The rows ``v`` of ``inc`` laid end to end: (row position, edge) pairs."""
-    start = inc.indptr[v]
-    count = inc.indptr[v + 1] - start
-    at = np.repeat(start - np.cumsum(count) + count, count) + np.arange(count.sum())
-    return np.repeat(np.arange(v.size), count), inc.indices[at]
-
-
-def _nearest(points, query, ends, inc):
-    """For each edge q = query[i]: the edge of ``inc`` at node ends[i] whose point
-    is nearest to q's (ties: lowest index), -1 if there is none."""
-    i, k = _edges_at(inc, ends)
-    dist = np.linalg.norm(points[:, query[i]] - points[:, k], axis=0)
-    order = np.lexsort((k, dist, i))
-    first = order[np.r_[True, i[order][1:] != i[order][:-1]]] if i.size else order
-    best = np.full(ends.size, -1)
-    best[i[first]] = k[first]
-    return best
-
-
-def _interpolate(points, query, k1, k2, col1, col2):
-    """COO rows of λ_e = d2/(d1+d2) λ_k1 + d1/(d1+d2) λ_k2, d_i = |x_e - x_ki| (§5)."""
-    d1 = np.linalg.norm(points[:, query] - points[:, k1], axis=0)
-    d2 = np.linalg.norm(points[:, query] - points[:, k2], axis=0)
-    same = d1 + d2 == 0                                     # coincident points: halves
-    d1[same] = d2[same] = 1.0
-    return np.r_[query, query], np.r_[col1, col2], np.r_[d2, d1] / np.tile(d1 + d2, 2)
 
 
 def _minimum_edge_cover(edges, psi, length, fixed):
@@ -188,8 +113,8 @@ def vital_edges(edges, psi, points, nodes, fixed=None) -> Space:
         If an argument has the wrong shape, an edge is not strictly cut, is
         listed twice or has length zero.
     """
-    edges, psi, points, nodes = _check(edges, psi, points, nodes)
-    fixed = _check_fixed(fixed, edges, psi.size)
+    edges, psi, points, nodes = check_graph(edges, psi, points, nodes)
+    fixed = check_fixed(fixed, edges, psi.size)
     ne = edges.shape[1]
     if ne == 0:
         return Space("vital", sp.csr_matrix((0, 0)), np.zeros(0, bool), np.zeros(0, int))
@@ -210,10 +135,10 @@ def vital_edges(edges, psi, points, nodes, fixed=None) -> Space:
     groups[iv] = rank[inverse]
 
     nv = np.flatnonzero(~vital)
-    inc = _incidence(edges, psi.size, vital)
-    k1, k2 = (_nearest(points, nv, edges[i, nv], inc) for i in (0, 1))
+    inc = incidence(edges, psi.size, vital)
+    k1, k2 = (nearest(points, nv, edges[i, nv], inc) for i in (0, 1))
     both = (k1 >= 0) & (k2 >= 0)                             # else a fixed end: none there
-    r, c, w = _interpolate(points, nv[both], k1[both], k2[both], groups[k1[both]],
+    r, c, w = interpolate(points, nv[both], k1[both], k2[both], groups[k1[both]],
                            groups[k2[both]])
     one = nv[~both]
     P = sp.csr_matrix((np.r_[np.ones(iv.size + one.size), w],
@@ -231,7 +156,7 @@ def _pick_winners(edges, psi, fixed):
     apsi = np.abs(psi)
     deg = np.bincount(edges.ravel(), minlength=psi.size)    # unbroken edges at a node
     deg[fixed] = 0
-    inc = _incidence(edges, psi.size, np.ones(a.size, dtype=bool))
+    inc = incidence(edges, psi.size, np.ones(a.size, dtype=bool))
     diff, ratio = np.empty(a.size, dtype=np.int64), np.empty(a.size)
 
     def score(e):                                            # rule 1's two keys
@@ -247,13 +172,13 @@ def _pick_winners(edges, psi, fixed):
         e = best[np.argmax(ratio[best])]                    # argmax: lowest index on ties
         u, v = a[e], b[e]
         w = v if deg[v] > deg[u] or (deg[v] == deg[u] and apsi[v] < apsi[u]) else u
-        broken = _edges_at(inc, np.array([w]))[1]
+        broken = edges_at(inc, np.array([w]))[1]
         broken = broken[diff[broken] >= 0]
         diff[broken] = -1
         broken_by[broken] = len(winners)
         np.subtract.at(deg, edges[:, broken].ravel(), 1)
         deg[fixed] = 0
-        near = _edges_at(inc, edges[:, broken].ravel())[1]  # only their keys changed
+        near = edges_at(inc, edges[:, broken].ravel())[1]  # only their keys changed
         score(near[diff[near] >= 0])
         winners.append(w)
     return np.array(winners, dtype=np.int64), broken_by
@@ -303,8 +228,8 @@ def winner_nodes(edges, psi, points, nodes, fixed=None) -> Space:
     >>> space.winners.tolist(), space.P.toarray().ravel().tolist()
     ([1], [1.0, 1.0])
     """
-    edges, psi, points, nodes = _check(edges, psi, points, nodes)
-    fixed = _check_fixed(fixed, edges, psi.size)
+    edges, psi, points, nodes = check_graph(edges, psi, points, nodes)
+    fixed = check_fixed(fixed, edges, psi.size)
     ne = edges.shape[1]
     if ne == 0:
         return Space("winner", sp.csr_matrix((0, 0)), winners=np.zeros(0, int))
@@ -314,10 +239,10 @@ def winner_nodes(edges, psi, points, nodes, fixed=None) -> Space:
     c0, c1 = column[edges]
     single = (c0 < 0) | (c1 < 0)
     one, two = np.flatnonzero(single), np.flatnonzero(~single)
-    inc = _incidence(edges, psi.size, single)
-    k1, k2 = (_nearest(points, two, edges[i, two], inc) for i in (0, 1))
+    inc = incidence(edges, psi.size, single)
+    k1, k2 = (nearest(points, two, edges[i, two], inc) for i in (0, 1))
     ok = (k1 >= 0) & (k2 >= 0)
-    r, c, w = _interpolate(points, two[ok], k1[ok], k2[ok], c0[two[ok]], c1[two[ok]])
+    r, c, w = interpolate(points, two[ok], k1[ok], k2[ok], c0[two[ok]], c1[two[ok]])
     lone = two[~ok]
     P = sp.csr_matrix((np.r_[np.ones(one.size + lone.size), w],
                        (np.r_[one, lone, r], np.r_[np.maximum(c0, c1)[one], broken_by[lone], c])),
