@@ -38,6 +38,7 @@ from matplotlib.patches import Ellipse
 from .convergence import observed_rates
 from .multipliers import SPACES
 from .plotting import COLORS, pressure_along
+from .simplex import edge_point
 
 __all__ = ["FIG6_XY", "FIG6_EDGES", "figure6_graph", "fig5", "fig6", "fig7", "fig8",
            "fig9", "fig10", "fig_inf_sup", "plot_space_2d"]
@@ -157,8 +158,8 @@ def figure6_graph(xy: Mapping | None = None):
         nodes[:, node] = x
     psi = nodes[1].copy()
     edges = np.array(FIG6_EDGES).T
-    pa, pb = psi[edges[0]], psi[edges[1]]
-    points = nodes[:, edges[0]] + pa / (pa - pb) * (nodes[:, edges[1]] - nodes[:, edges[0]])
+    points = edge_point(nodes[:, edges[0]].T, nodes[:, edges[1]].T,
+                        psi[edges[0]], psi[edges[1]]).T
     return edges, psi, points, nodes
 
 

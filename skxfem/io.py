@@ -1,21 +1,41 @@
 """Write a solver result to disk: ``result.json`` and two VTU files for ParaView.
 
-* ``result.json``: the scene name, the multiplier ``points`` (one coordinate
-  list per point), ``normals``, ``traction``, ``pressure``, ``max_jump``,
+* ``result.json``: the scene name, ``law`` and ``space``, the multiplier
+  ``points``, ``normals``, ``traction``, ``pressure``, ``max_jump``,
   ``n_dofs``, ``n_multipliers`` and the ``timings`` in seconds per stage.
   NaN or inf become ``null``.
-* ``displacement.vtu``: the mesh with point data ``u_minus`` and ``u_plus``
-  (the nodal fields of Ω⁻ and Ω⁺) and cell data ``side``: -1 in Ω⁻, +1 in Ω⁺,
-  0 in the cells the interface cuts.
+* ``displacement.vtu``: each side of Γ as its own piece of mesh with its own
+  field ``displacement``, so that ParaView's *Warp By Vector* shows the
+  discontinuity: the cells of Ω⁻ and the cut cells with ``u_minus`` on one copy
+  of their nodes, the cells of Ω⁺ and the cut cells with ``u_plus`` on a
+  second copy.  A cut cell is thus written twice, once per side, each copy
+  moving with its side's field; cell data ``side`` (-1 or +1: the copy) and
+  ``cut`` (1 on cut cells), point data ``levelset`` (ψ at the nodes: clip a
+  side's copy at ψ = 0 to see only its own part of the cut cells).
 * ``interface.vtu``: the interface facets (``line`` cells in 2D, ``triangle``
   cells in 3D) on the multiplier points, with point data ``pressure``,
   ``traction`` and ``normal``.
 
-Vectors are written with 3 components (z = 0 in 2D) so ParaView can draw them.
+**Array shapes.**  :class:`skxfem.solver.Result` follows scikit-fem: a set of
+points or vectors is ``(dim, n)`` (``mesh.p``, ``result.points``,
+``result.traction``).  The files follow meshio, VTK and JSON readers, where a
+point is a row: ``result.json``'s ``points``, ``normals`` and ``traction`` are
+``(n, dim)`` (one list per point, ``np.array(data["points"]) ==
+result.points.T``), and VTU vectors are ``(n, 3)`` (z = 0 in 2D, so ParaView
+can draw them).
+
+**Atomic writes.**  :func:`write_result` writes every file under a temporary
+name in the target folder and renames them only when all are written; a failed
+write (a full disk, an error in the middle) removes the temporary files and
+leaves the previous result, or nothing, never a mix of old and new or a
+truncated file.  :func:`check_output` checks the folder before a solve.
 """
 from __future__ import annotations
 
+import errno
 import json
+import os
+import secrets
 from pathlib import Path
 
 import meshio
@@ -24,7 +44,8 @@ from skfem.io.meshio import to_meshio
 
 from .levelset import nodal_values
 
-__all__ = ["write_result", "result_summary", "cell_sides", "vtk_cells"]
+__all__ = ["write_result", "result_summary", "cell_sides", "vtk_cells", "check_output",
+           "side_pieces"]
 
 _STAGES = ("cut", "enrich", "assemble", "solve")
 # VTK wants cells positively oriented: the simplex of these corners has det > 0
@@ -34,6 +55,9 @@ _CORNERS = {"triangle": [0, 1, 2], "quad": [0, 1, 3], "tetra": [0, 1, 2, 3],
             "hexahedron": [0, 1, 3, 4], "wedge": [0, 2, 1, 3]}
 _FLIP = {"triangle": [0, 2, 1], "quad": [0, 3, 2, 1], "tetra": [0, 2, 1, 3],
          "hexahedron": [0, 3, 2, 1, 4, 7, 6, 5], "wedge": [0, 2, 1, 3, 5, 4]}
+_FILES = {"json": "result.json", "displacement": "displacement.vtu",
+          "interface": "interface.vtu"}
+
 
 def _plain(a) -> list | float | None:
     """A number or an array as plain Python floats (nested lists), NaN/inf as None."""
@@ -99,44 +123,165 @@ def result_summary(result) -> dict:
     }
 
 
+def check_output(out_dir: str | Path) -> Path:
+    """Check, without creating anything, that results can be written into ``out_dir``.
+
+    The folder may exist (its previous results are replaced) or not (it is
+    created by :func:`write_result`, under the nearest existing parent).
+
+    Raises
+    ------
+    ValueError
+        If ``out_dir`` or one of its parents is an existing file, or the folder
+        that would receive the files is not writable.
+
+    >>> check_output("results/plate").name
+    'plate'
+    """
+    out = Path(out_dir)
+    existing = out
+    while not existing.exists() and existing != existing.parent:
+        existing = existing.parent
+    if not existing.is_dir():
+        what = "is a file" if existing == out else f"is below the file {str(existing)!r}"
+        raise ValueError(f"output folder {str(out)!r} {what}; give another output folder")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise ValueError(f"output folder {str(out)!r} cannot be written: "
+                         f"{str(existing)!r} is not writable; give another output folder")
+    return out
+
+
+def side_pieces(mesh, psi_nodes: np.ndarray, u_minus: np.ndarray, u_plus: np.ndarray):
+    """The mesh as two pieces, one per side of Γ, each on its own copy of its nodes.
+
+    Piece -1 holds the cells of Ω⁻ and the cut cells, piece +1 those of Ω⁺
+    and the cut cells; each carries its side's displacement at its nodes.
+
+    Returns
+    -------
+    points : (n, dim) the nodes of piece -1 then those of piece +1
+    cells : (ncells, nverts) VTK-oriented, indices into ``points``
+    side, cut : (ncells,) the piece of each cell (-1/+1) and 1 on cut cells
+    displacement : (n, dim) ``u_minus`` on piece -1, ``u_plus`` on piece +1
+    levelset : (n,) ψ at the points
+
+    >>> from skfem import MeshTri1                # cells (0, 1, 2) and (1, 3, 2)
+    >>> u = np.zeros((2, 4))
+    >>> p, c, side, cut, d, psi = side_pieces(MeshTri1(), np.array([-1.5, -.5, -.5, .5]), u, u)
+    >>> c.tolist(), side.tolist(), cut.tolist()
+    ([[0, 1, 2], [1, 3, 2], [4, 6, 5]], [-1, -1, 1], [0, 1, 1])
+    """
+    _, t = vtk_cells(mesh)
+    sides = cell_sides(mesh, psi_nodes)
+    points, cells, side, cut, disp, psi = [], [], [], [], [], []
+    offset = 0
+    for s, u in ((-1, u_minus), (1, u_plus)):
+        keep = sides != -s
+        nodes, local = np.unique(t[keep], return_inverse=True)
+        points.append(mesh.p[:, nodes].T)
+        cells.append(local.reshape(-1, t.shape[1]) + offset)
+        side.append(np.full(int(keep.sum()), s))
+        cut.append((sides[keep] == 0).astype(np.int64))
+        disp.append(np.asarray(u)[:, nodes].T)
+        psi.append(psi_nodes[nodes])
+        offset += nodes.size
+    return (np.vstack(points), np.vstack(cells), np.concatenate(side), np.concatenate(cut),
+            np.vstack(disp), np.concatenate(psi))
+
+
+def _pad3(a: np.ndarray) -> np.ndarray:
+    """(n, dim) → (n, 3) with zero z in 2D."""
+    return np.hstack([a, np.zeros((a.shape[0], 3 - a.shape[1]))])
+
+
+def _write_json(result, path: Path):
+    path.write_text(json.dumps(result_summary(result), indent=1, allow_nan=False))
+
+
+def _write_displacement(result, path: Path):
+    mesh = result.mesh
+    cell_type, _ = vtk_cells(mesh)
+    levelset = getattr(result.scene, "levelset", None)
+    if levelset is None:  # no level set known: every cell on both sides
+        psi_nodes = np.zeros(mesh.nvertices)
+    else:
+        psi_nodes = nodal_values(levelset, mesh)
+    points, cells, side, cut, disp, psi = side_pieces(mesh, psi_nodes, result.u_minus,
+                                                      result.u_plus)
+    meshio.write(path, meshio.Mesh(
+        _pad3(points), [(cell_type, cells)],
+        point_data={"displacement": _pad3(disp), "levelset": psi},
+        cell_data={"side": [side], "cut": [cut]}), file_format="vtu")
+
+
+def _write_interface(result, path: Path):
+    points = np.asarray(result.points, dtype=float)
+    facets = np.asarray(result.facets, dtype=np.int64)
+    kind = {2: "line", 3: "triangle"}[points.shape[0]]
+    meshio.write(path, meshio.Mesh(
+        _vectors3(points), [(kind, facets.T.reshape(-1, points.shape[0]))],
+        point_data={"pressure": np.asarray(result.pressure, dtype=float),
+                    "traction": _vectors3(result.traction),
+                    "normal": _vectors3(result.normals)}), file_format="vtu")
+
+
+_WRITERS = {"json": _write_json, "displacement": _write_displacement,
+            "interface": _write_interface}
+
+
 def write_result(result, out_dir: str | Path) -> dict[str, Path]:
     """Write ``result.json``, ``displacement.vtu`` and ``interface.vtu`` into ``out_dir``.
+
+    All or nothing: each file is written under a temporary name in
+    ``out_dir``, and the three are renamed over the previous ones only once
+    all are complete (see the module notes).
 
     Parameters
     ----------
     result
         A :class:`skxfem.solver.Result` (or any object with the same attributes).
     out_dir
-        Folder to write into; created if missing.
+        Folder to write into; created if missing (and removed again if the
+        writing fails).
 
     Returns
     -------
     dict
         ``{"json": ..., "displacement": ..., "interface": ...}`` paths.
+
+    Raises
+    ------
+    ValueError
+        From :func:`check_output` or :func:`result_summary`.
+    OSError
+        If a file cannot be written (e.g. the disk is full); nothing is left.
     """
-    out = Path(out_dir)
+    out = check_output(out_dir)
+    result_summary(result)                      # refuse a bad result before touching disk
+    created = [p for p in (out, *out.parents) if not p.exists()]
     out.mkdir(parents=True, exist_ok=True)
-    paths = {"json": out / "result.json", "displacement": out / "displacement.vtu",
-             "interface": out / "interface.vtu"}
-    paths["json"].write_text(json.dumps(result_summary(result), indent=1, allow_nan=False))
-
-    mesh = result.mesh
-    cell_type, cells = vtk_cells(mesh)
-    cell_data = {}
-    levelset = getattr(result.scene, "levelset", None)
-    if levelset is not None:
-        cell_data["side"] = [cell_sides(mesh, nodal_values(levelset, mesh))]
-    meshio.write(paths["displacement"], meshio.Mesh(
-        _vectors3(mesh.p), [(cell_type, cells)],
-        point_data={"u_minus": _vectors3(result.u_minus), "u_plus": _vectors3(result.u_plus)},
-        cell_data=cell_data))
-
-    points = np.asarray(result.points, dtype=float)
-    facets = np.asarray(result.facets, dtype=np.int64)
-    kind = {2: "line", 3: "triangle"}[points.shape[0]]
-    meshio.write(paths["interface"], meshio.Mesh(
-        _vectors3(points), [(kind, facets.T.reshape(-1, points.shape[0]))],
-        point_data={"pressure": np.asarray(result.pressure, dtype=float),
-                    "traction": _vectors3(result.traction),
-                    "normal": _vectors3(result.normals)}))
+    paths = {key: out / name for key, name in _FILES.items()}
+    temporary, renamed = {}, []
+    try:
+        for key, path in paths.items():
+            tag = f"{os.getpid()}-{secrets.token_hex(4)}"
+            temporary[key] = out / f".{path.stem}-{tag}{path.suffix}"
+            _WRITERS[key](result, temporary[key])
+            if temporary[key].stat().st_size == 0:
+                raise OSError(errno.EIO, f"{path.name} was written empty")
+        for key, path in paths.items():
+            os.replace(temporary[key], path)
+            renamed.append(temporary.pop(key))
+    except BaseException:
+        for tmp in temporary.values():
+            tmp.unlink(missing_ok=True)
+        if renamed:       # a rename failed half-way (never seen): nothing rather than a mix
+            for path in paths.values():
+                path.unlink(missing_ok=True)
+        for folder in created:                  # innermost first; only if left empty
+            try:
+                folder.rmdir()
+            except OSError:
+                break
+        raise
     return paths

@@ -28,7 +28,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from matplotlib.tri import Triangulation
 
-from .cut import cell_edges
+from .cells import cell_edges
 from .multipliers import SPACES
 
 __all__ = [

@@ -11,6 +11,10 @@ stored in ``mesh.boundaries``) or given as a selection ``x -> bool``.  An impose
 acts on its boundary *facets*.  The pressure is positive in compression: the
 traction is t = -p n with n the outward unit normal.
 
+A value (displacement component, pressure, traction component) is a number, a
+callable ``x -> array`` or a formula string such as ``"4*x*(1 - x)"``, checked
+as in scene files (:mod:`skxfem.expr`) and compiled for the scene's dimension.
+
 >>> from skxfem.levelset import plane
 >>> scene = Scene(Box(3, "quad"), plane((0, 0.5), (0, 1)),
 ...               displacements=(clamped("ymin"),),
@@ -20,7 +24,7 @@ traction is t = -p n with n the outward unit normal.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable, Mapping, Union
 
@@ -28,6 +32,7 @@ import numpy as np
 from skfem import Mesh
 
 from .boundary import COMPONENTS, FACES, dirichlet, load_facets, traction
+from .expr import Expression
 from .levelset import LevelSet
 from .material import Material
 from .multipliers import LAWS, SPACES
@@ -39,7 +44,7 @@ __all__ = ["Box", "Displacement", "SurfaceLoad", "Scene", "clamped", "rollers",
 CELLS = {"tri": 2, "quad": 2, "tet": 3, "hex": 3, "prism": 3}
 """Cell types of :class:`Box` and their dimension."""
 
-Value = Union[float, Callable[[np.ndarray], np.ndarray]]
+Value = Union[float, str, Callable[[np.ndarray], np.ndarray]]
 
 
 def _is_number(v) -> bool:
@@ -47,11 +52,18 @@ def _is_number(v) -> bool:
 
 
 def _check_value(v, what: str) -> float | Callable:
-    """A finite number (returned as float) or a callable ``x -> array``."""
+    """A finite number (as float), a callable ``x -> array`` or a formula string
+    (as a 3D :class:`~skxfem.expr.Expression`; :class:`Scene` fits it to its dim)."""
+    if isinstance(v, str):
+        try:
+            return Expression(v, 3)
+        except ValueError as e:
+            raise ValueError(f"{what}: {e}") from None
     if callable(v):
         return v
     if not _is_number(v):
-        raise TypeError(f"{what} must be a number or a callable x -> array, got {v!r}")
+        raise TypeError(f"{what} must be a number, a formula string such as '4*x*(1 - x)' "
+                        f"or a callable x -> array, got {v!r}")
     if not np.isfinite(v):
         raise ValueError(f"{what} must be finite, got {v!r}")
     return float(v)
@@ -213,6 +225,11 @@ class Scene:
                              f"got {q!r}")
         if not (isinstance(self.name, str) and self.name):
             raise ValueError(f"Scene name must be a non-empty string, got {self.name!r}")
+        object.__setattr__(self, "displacements", tuple(
+            _for_dim(d, self.dim, f"displacements[{k}]")
+            for k, d in enumerate(self.displacements)))
+        object.__setattr__(self, "loads", tuple(
+            _for_dim(load, self.dim, f"loads[{k}]") for k, load in enumerate(self.loads)))
         if isinstance(self.mesh, (Box, Mesh)):
             _check_dims(self, self.mesh.dim if isinstance(self.mesh, Box) else self.mesh.dim())
 
@@ -220,6 +237,30 @@ class Scene:
     def dim(self) -> int:
         """The dimension of the problem (that of the level set)."""
         return self.levelset.dim
+
+
+def _for_dim(item: Displacement | SurfaceLoad, dim: int, where: str):
+    """A displacement or load whose formula strings evaluate on ``dim``-D points.
+
+    >>> load = SurfaceLoad("ymax", pressure="4*x*(1 - x)")
+    >>> load.pressure.dim, _for_dim(load, 2, "loads[0]").pressure.dim
+    (3, 2)
+    """
+    def fit(v, what: str):
+        if not isinstance(v, Expression) or v.dim == dim:
+            return v
+        try:
+            return Expression(v.text, dim)
+        except ValueError as e:
+            raise ValueError(f"{where} {what}: {e}") from None
+
+    if isinstance(item, Displacement):
+        return replace(item, components={c: fit(v, f"component {c!r}")
+                                         for c, v in item.components.items()})
+    if item.pressure is not None:
+        return replace(item, pressure=fit(item.pressure, "pressure"))
+    return replace(item, traction=tuple(fit(v, f"traction[{i}]")
+                                        for i, v in enumerate(item.traction)))
 
 
 def _check_dims(scene: Scene, dim: int):

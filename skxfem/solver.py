@@ -31,6 +31,7 @@ import scipy.sparse as sp
 
 from . import saddle
 from .enrich import XSpace, split_fields
+from .levelset import point_normals
 from .problem import Problem, assemble, constrained_dofs
 from .scene import Scene
 
@@ -65,16 +66,6 @@ class Result:
     timings: dict = field(default_factory=dict)
     U: np.ndarray | None = field(default=None, repr=False)
     space: XSpace | None = field(default=None, repr=False)
-
-
-def _point_normals(c) -> np.ndarray:
-    """Area-weighted mean normal of the facets around each multiplier point."""
-    dim = c.normals.shape[0]
-    n = np.zeros((dim, c.points.shape[1]))
-    for k in range(c.facets.shape[0]):
-        for d in range(dim):
-            np.add.at(n[d], c.facets[k], c.normals[d] * c.measures)
-    return n / np.linalg.norm(n, axis=0)
 
 
 def _differences(c, ncomp: int) -> sp.csr_matrix:
@@ -138,7 +129,7 @@ def solve_problem(p: Problem, dependent: str = "remove") -> Result:
     lam = (P @ mu).reshape(ncomp, -1)
     timings["solve"] = time.perf_counter() - t0
 
-    normals = _point_normals(c)
+    normals = point_normals(c, scene.levelset)
     traction = lam if ncomp > 1 else lam * normals
     J = (p.J @ U).reshape(mesh.dim(), -1)
     jn = np.abs((J * p.rule.normals).sum(0)) if p.law == "bilateral" \

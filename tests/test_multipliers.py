@@ -19,7 +19,8 @@ unit square/cube (so that the normal is not a mesh direction):
 import numpy as np
 import pytest
 
-from skxfem.cut import cell_edges, cut
+from skxfem.cells import cell_edges
+from skxfem.cut import cut
 from skxfem.enrich import space
 from skxfem.levelset import plane
 from skxfem.meshes import box
