@@ -425,15 +425,18 @@ def fig10(studies: Mapping[str, Sequence]) -> Figure:
                    "contact pressure error")
 
 
-def fig_inf_sup(h_scaled: Mapping[tuple, Sequence], l2_scaled: Mapping[tuple, Sequence]
-                ) -> Figure:
-    """The inf-sup constant β_h vs h, per space: M = h·(interface mass) left, L² right.
+def fig_inf_sup(h_scaled: Mapping[tuple, Sequence], l2_scaled: Mapping[tuple, Sequence],
+                bonded: Mapping[tuple, Sequence] | None = None) -> Figure:
+    """The inf-sup constant β_h vs h, per space: the bilateral tie with
+    M = h·(interface mass) and with the L² mass, and the bonded tie if given.
 
     Parameters
     ----------
     h_scaled, l2_scaled
         ``{(cell, space): [InfSup, ...]}`` from :func:`skxfem.lbb.inf_sup` with
-        ``scaling="h"`` and ``"l2"``; h is each result's ``h``.
+        ``law="bilateral"`` and ``scaling="h"``, ``"l2"``; h is each result's ``h``.
+    bonded
+        The same for ``law="bonded"``, ``scaling="h"`` (a third panel).
 
     >>> from skxfem.lbb import InfSup
     >>> r = [InfSup(b, np.array([b * b]), 0, 1, 1, h) for b, h in ((0.1, 0.2), (0.05, 0.1))]
@@ -441,16 +444,19 @@ def fig_inf_sup(h_scaled: Mapping[tuple, Sequence], l2_scaled: Mapping[tuple, Se
     >>> len(fig.axes), fig.axes[0].lines[0].get_label()
     (2, 'naive, tri, slope 1.00')
     """
-    fig = Figure(figsize=(9.5, 4.2), layout="constrained")
-    for ax, data, name in zip(fig.subplots(1, 2), (h_scaled, l2_scaled),
-                              ("M = h × interface mass (discrete H^-1/2)", "M = L² mass")):
+    panels = [(h_scaled, "bilateral tie, M = h × interface mass"),
+              (l2_scaled, "bilateral tie, M = L² mass")]
+    if bonded is not None:
+        panels.append((bonded, "bonded tie, M = h × interface mass"))
+    fig = Figure(figsize=(4.75 * len(panels), 4.2), layout="constrained")
+    for ax, (data, name) in zip(np.atleast_1d(fig.subplots(1, len(panels))), panels):
         for (cell, space), results in data.items():
             h = np.array([r.h for r in results])
             beta = np.array([r.beta for r in results])
             slope = _slope(h, beta)
             _curve(ax, h, beta, space, cell, f"{space}, {cell}{slope}")
         _log_axes(ax)
-        _finish(ax, "h (mean length of the cut edges)", f"inf-sup constant, {name}", "β_h")
+        _finish(ax, "h (mean length of the cut edges)", f"β_h, {name}", "β_h")
     return fig
 
 

@@ -34,8 +34,8 @@ from skfem.refdom import RefLine, RefTri
 from .cut import Cut
 from .enrich import XSpace, jump_matrix
 
-__all__ = ["Space", "naive", "multiplier_space", "SPACES", "InterfaceRule", "interface_rule",
-           "coupling", "interface_mass", "LAWS"]
+__all__ = ["Space", "naive", "multiplier_space", "fixed_jumps", "normal_fixed", "SPACES",
+           "InterfaceRule", "interface_rule", "coupling", "interface_mass", "LAWS"]
 
 LAWS = ("bonded", "bilateral")
 SPACES = ("naive", "winner", "vital")
@@ -71,17 +71,73 @@ def naive(cut: Cut) -> Space:
     return Space("naive", sp.identity(cut.edge_ids.size, format="csr"))
 
 
-def multiplier_space(name: str, mesh, cut: Cut) -> Space:
-    """The space ``name``: "naive", "winner" (algo1) or "vital" (algo2, §5)."""
+def multiplier_space(name: str, mesh, cut: Cut, fixed=None) -> Space:
+    """The space ``name``: "naive", "winner" (algo1) or "vital" (algo2, §5).
+
+    ``fixed`` (nnodes,) bool: nodes whose jump a support holds (see
+    :func:`fixed_jumps`).  A cut edge with two fixed ends carries no
+    multiplier (its row of P is empty); the space is built on the other
+    edges, the fixed nodes needing no multiplier of their own.  Default: none.
+    """
+    if name not in SPACES:
+        raise ValueError(f"space must be one of {SPACES}, got {name!r}")
+    ne = cut.edge_ids.size
+    if fixed is None or not np.any(fixed):
+        fixed = None
+        sub = np.arange(ne)
+    else:
+        fixed = np.asarray(fixed, dtype=bool)
+        if fixed.shape != cut.psi.shape:
+            raise ValueError(f"fixed must be one bool per node, shape {cut.psi.shape}; "
+                             f"got {fixed.shape}")
+        sub = np.flatnonzero(~(fixed[cut.edges[0]] & fixed[cut.edges[1]]))
     if name == "naive":
-        return naive(cut)
+        return naive(cut) if sub.size == ne else \
+            Space("naive", sp.identity(ne, format="csr")[:, sub])
     from .stabilised import vital_edges, winner_nodes  # they build on Space
 
-    if name == "winner":
-        return winner_nodes(cut.edges, cut.psi, cut.points, mesh.p)
-    if name == "vital":
-        return vital_edges(cut.edges, cut.psi, cut.points, mesh.p)
-    raise ValueError(f"space must be one of {SPACES}, got {name!r}")
+    build = winner_nodes if name == "winner" else vital_edges
+    S = build(cut.edges[:, sub], cut.psi, cut.points[:, sub], mesh.p, fixed)
+    if sub.size == ne:
+        return S
+    embed = sp.csr_matrix((np.ones(sub.size), (sub, np.arange(sub.size))), shape=(ne, sub.size))
+    vital = groups = None
+    if S.vital is not None:
+        vital, groups = np.zeros(ne, dtype=bool), np.full(ne, -1)
+        vital[sub], groups[sub] = S.vital, S.groups
+    return Space(name, (embed @ S.P).tocsr(), vital, groups, S.winners)
+
+
+def fixed_jumps(V: XSpace, dofs: np.ndarray) -> np.ndarray:
+    """(dim, nnodes) bool: the enriched dof of component c at node j is among
+    the constrained unknowns ``dofs`` (held at zero by a support, see
+    :func:`skxfem.problem.constrained_dofs`).
+
+    On an edge only the P1/Q1 functions of its two ends do not vanish, so
+    the jump [[u_h]]_c = -2 Σⱼ φⱼ bⱼ_c at the point of a cut edge whose two
+    ends are fixed for c is zero for every admissible U: a support holds it.
+    """
+    held = np.zeros(V.n_std, dtype=bool)
+    enr = np.asarray(dofs)
+    held[V.enr_dofs[enr[enr >= V.n_std] - V.n_std]] = True
+    return held[V.basis.nodal_dofs]
+
+
+def normal_fixed(fixed: np.ndarray, cut: Cut, tol: float = 1e-12) -> np.ndarray:
+    """(nnodes,) bool: the normal jump [[u_h]]·n is held at node j, i.e. j is
+    an end of a cut edge and is fixed (``fixed`` from :func:`fixed_jumps`) in
+    every component in which a normal of the interface facets around j's cut
+    edges has a part (> ``tol``)."""
+    dim = fixed.shape[0]
+    part = np.zeros((dim, cut.edge_ids.size), dtype=bool)
+    for k in range(cut.facets.shape[0]):
+        for c in range(dim):
+            np.logical_or.at(part[c], cut.facets[k], np.abs(cut.normals[c]) > tol)
+    at_node = np.zeros(fixed.shape, dtype=bool)
+    for i in (0, 1):
+        for c in range(dim):
+            np.logical_or.at(at_node[c], cut.edges[i], part[c])
+    return np.all(fixed | ~at_node, axis=0) & at_node.any(axis=0)
 
 
 @dataclass(frozen=True)

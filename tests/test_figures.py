@@ -128,6 +128,9 @@ def test_inf_sup_plot_two_norms():
     assert len(fig.axes) == 2
     assert fig.axes[0].lines[0].get_label() == "vital, tri, slope 0.00"
     assert same_colour(fig.axes[1].lines[0].get_color(), COLORS["vital"])
+    fig = fig_inf_sup({("tri", "vital"): res}, {("tri", "vital"): res}, {("tri", "naive"): res})
+    assert len(fig.axes) == 3 and "bonded" in fig.axes[2].get_title()
+    assert same_colour(fig.axes[2].lines[0].get_color(), COLORS["naive"])
 
 
 # 4. a space on a 2D mesh
