@@ -485,7 +485,7 @@ def plot_space_2d(mesh, cut, space, ax=None, title: str | None = None) -> Figure
     >>> from skxfem.meshes import box
     >>> from skxfem.levelset import plane
     >>> from skxfem.cut import cut
-    >>> from skxfem.multipliers import multiplier_space
+    >>> from skxfem.stabilised import multiplier_space
     >>> m = box(4, "tri")
     >>> c = cut(m, plane((0, 0.52), (0.25, 1)))
     >>> fig = plot_space_2d(m, c, multiplier_space("vital", m, c))

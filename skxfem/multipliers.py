@@ -34,7 +34,7 @@ from skfem.refdom import RefLine, RefTri
 from .cut import Cut
 from .enrich import XSpace, jump_matrix
 
-__all__ = ["Space", "naive", "multiplier_space", "fixed_jumps", "normal_fixed", "SPACES",
+__all__ = ["Space", "naive", "fixed_jumps", "normal_fixed", "SPACES",
            "InterfaceRule", "interface_rule", "coupling", "interface_mass", "LAWS"]
 
 LAWS = ("bonded", "bilateral")
@@ -69,43 +69,6 @@ class Space:
 def naive(cut: Cut) -> Space:
     """One free multiplier per cut edge: P = I."""
     return Space("naive", sp.identity(cut.edge_ids.size, format="csr"))
-
-
-def multiplier_space(name: str, mesh, cut: Cut, fixed=None) -> Space:
-    """The space ``name``: "naive", "winner" (algo1) or "vital" (algo2, §5).
-
-    ``fixed`` (nnodes,) bool: nodes whose jump a support holds (see
-    :func:`fixed_jumps`).  A cut edge with two fixed ends carries no
-    multiplier (its row of P is empty); the space is built on the other
-    edges, the fixed nodes needing no multiplier of their own.  Default: none.
-    """
-    if name not in SPACES:
-        raise ValueError(f"space must be one of {SPACES}, got {name!r}")
-    ne = cut.edge_ids.size
-    if fixed is None or not np.any(fixed):
-        fixed = None
-        sub = np.arange(ne)
-    else:
-        fixed = np.asarray(fixed, dtype=bool)
-        if fixed.shape != cut.psi.shape:
-            raise ValueError(f"fixed must be one bool per node, shape {cut.psi.shape}; "
-                             f"got {fixed.shape}")
-        sub = np.flatnonzero(~(fixed[cut.edges[0]] & fixed[cut.edges[1]]))
-    if name == "naive":
-        return naive(cut) if sub.size == ne else \
-            Space("naive", sp.identity(ne, format="csr")[:, sub])
-    from .stabilised import vital_edges, winner_nodes  # they build on Space
-
-    build = winner_nodes if name == "winner" else vital_edges
-    S = build(cut.edges[:, sub], cut.psi, cut.points[:, sub], mesh.p, fixed)
-    if sub.size == ne:
-        return S
-    embed = sp.csr_matrix((np.ones(sub.size), (sub, np.arange(sub.size))), shape=(ne, sub.size))
-    vital = groups = None
-    if S.vital is not None:
-        vital, groups = np.zeros(ne, dtype=bool), np.full(ne, -1)
-        vital[sub], groups[sub] = S.vital, S.groups
-    return Space(name, (embed @ S.P).tocsr(), vital, groups, S.winners)
 
 
 def fixed_jumps(V: XSpace, dofs: np.ndarray) -> np.ndarray:

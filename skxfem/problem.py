@@ -37,10 +37,10 @@ from .multipliers import (
     fixed_jumps,
     interface_mass,
     interface_rule,
-    multiplier_space,
     normal_fixed,
 )
 from .scene import Scene, dirichlet, load_facets, resolve_mesh
+from .stabilised import multiplier_space
 
 __all__ = ["Problem", "assemble", "constrained_dofs", "COUPLING", "check_law"]
 

@@ -19,10 +19,11 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components, min_weight_full_bipartite_matching
 
+from .cut import Cut
 from .cutgraph import check_fixed, check_graph, edges_at, incidence, interpolate, nearest
-from .multipliers import Space
+from .multipliers import SPACES, Space, naive
 
-__all__ = ["Space", "vital_edges", "winner_nodes"]
+__all__ = ["Space", "vital_edges", "winner_nodes", "multiplier_space"]
 
 
 def _minimum_edge_cover(edges, psi, length, fixed):
@@ -248,3 +249,38 @@ def winner_nodes(edges, psi, points, nodes, fixed=None) -> Space:
                        (np.r_[one, lone, r], np.r_[np.maximum(c0, c1)[one], broken_by[lone], c])),
                       shape=(ne, winners.size))
     return Space("winner", P, winners=winners)
+
+
+def multiplier_space(name: str, mesh, cut: Cut, fixed=None) -> Space:
+    """The space ``name``: "naive", "winner" (algo1) or "vital" (algo2, §5).
+
+    ``fixed`` (nnodes,) bool: nodes whose jump a support holds (see
+    :func:`skxfem.multipliers.fixed_jumps`).  A cut edge with two fixed ends carries no
+    multiplier (its row of P is empty); the space is built on the other
+    edges, the fixed nodes needing no multiplier of their own.  Default: none.
+    """
+    if name not in SPACES:
+        raise ValueError(f"space must be one of {SPACES}, got {name!r}")
+    ne = cut.edge_ids.size
+    if fixed is None or not np.any(fixed):
+        fixed = None
+        sub = np.arange(ne)
+    else:
+        fixed = np.asarray(fixed, dtype=bool)
+        if fixed.shape != cut.psi.shape:
+            raise ValueError(f"fixed must be one bool per node, shape {cut.psi.shape}; "
+                             f"got {fixed.shape}")
+        sub = np.flatnonzero(~(fixed[cut.edges[0]] & fixed[cut.edges[1]]))
+    if name == "naive":
+        return naive(cut) if sub.size == ne else \
+            Space("naive", sp.identity(ne, format="csr")[:, sub])
+    build = winner_nodes if name == "winner" else vital_edges
+    S = build(cut.edges[:, sub], cut.psi, cut.points[:, sub], mesh.p, fixed)
+    if sub.size == ne:
+        return S
+    embed = sp.csr_matrix((np.ones(sub.size), (sub, np.arange(sub.size))), shape=(ne, sub.size))
+    vital = groups = None
+    if S.vital is not None:
+        vital, groups = np.zeros(ne, dtype=bool), np.full(ne, -1)
+        vital[sub], groups[sub] = S.vital, S.groups
+    return Space(name, (embed @ S.P).tocsr(), vital, groups, S.winners)

@@ -27,9 +27,8 @@ from skxfem.figures import (
 from skxfem.lbb import InfSup
 from skxfem.levelset import plane
 from skxfem.meshes import box
-from skxfem.multipliers import multiplier_space
 from skxfem.plotting import COLORS
-from skxfem.stabilised import vital_edges, winner_nodes
+from skxfem.stabilised import multiplier_space, vital_edges, winner_nodes
 
 
 def same_colour(a, b):

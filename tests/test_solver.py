@@ -32,7 +32,7 @@ from skxfem.enrich import space, stiffness
 from skxfem.levelset import circle, plane
 from skxfem.loads import boundary_quadrature, surface_load
 from skxfem.material import Material, stiffness_form
-from skxfem.multipliers import interface_mass, interface_rule, multiplier_space
+from skxfem.multipliers import interface_mass, interface_rule
 from skxfem.quadrature import cell_rule
 from skxfem.scene import (
     Box,
@@ -47,6 +47,7 @@ from skxfem.scene import (
 )
 from skxfem.scenes import P_MAX, paper_plate, strip
 from skxfem.solver import constrained_dofs, solve
+from skxfem.stabilised import multiplier_space
 
 DELTA = 0.01  # imposed shortening of the unit block (E = 1: |σ| = DELTA)
 THETA = np.deg2rad(30)
