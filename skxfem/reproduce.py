@@ -39,6 +39,12 @@ from pathlib import Path
 
 import numpy as np
 
+from . import figures
+from .convergence import observed_rates, study
+from .lbb import inf_sup
+from .scenes import exact_scene
+from .stabilised import vital_edges, winner_nodes
+
 __all__ = ["main", "parser", "plan"]
 
 SETS = {
@@ -78,10 +84,6 @@ def plan(quick: bool, sizes=None) -> dict:
 
 def _measure(cell, ns):
     """Study rows and inf-sup results (both norms) of ``cell`` for its spaces."""
-    from .convergence import study
-    from .lbb import inf_sup
-    from .scenes import exact_scene
-
     rows = study(lambda n, s: exact_scene(n, cell, s), ns, CELLS[cell], with_inf_sup=False)
     betas = {(scaling, space): [inf_sup(exact_scene(n, cell, space), scaling, "bilateral")
                                 for n in ns]
@@ -92,8 +94,6 @@ def _measure(cell, ns):
 
 
 def _rates(h, e):
-    from .convergence import observed_rates
-
     return [round(float(r), 4) for r in observed_rates(h, e)] if len(h) > 1 else []
 
 
@@ -137,9 +137,6 @@ def _print_table(studies: dict) -> None:
 
 def main(argv=None) -> int:
     """Compute, draw and write everything; returns the exit code 0."""
-    from . import figures
-    from .stabilised import vital_edges, winner_nodes
-
     args = parser().parse_args(argv)
     sizes = plan(args.quick, args.sizes)
     out = args.out

@@ -51,6 +51,7 @@ from pathlib import Path
 from . import levelset as ls
 from . import scene as sc
 from .material import Material
+from .meshes import read
 from .scene_parts import COMPONENTS
 from .tomlcheck import array, choice, formula, keys, number, one_of, table, vector
 
@@ -157,8 +158,6 @@ def _mesh(t: dict, folder: Path) -> tuple[sc.Box | Path, int]:
     path = (folder / t["file"]).resolve()
     if not path.is_file():
         raise ValueError(f"[mesh] file {t['file']!r} not found (looked for {path})")
-    from .meshes import read
-
     try:
         mesh = read(path)
     except SystemExit:  # meshio calls sys.exit(1) on a file it cannot read
