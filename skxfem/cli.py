@@ -20,8 +20,8 @@ counts of the last step and its largest pressure.
 Exit codes: 0 success; 2 for every error the command anticipates (a bad or
 missing scene or mesh file, a scene the solver refuses — a level set that cuts
 no cell, a singular system, a contact Newton method that does not converge —,
-a bad output folder, a failed write, a problem
-over the size limit, running out of memory, a usage error), reported as ONE
+a bad output folder, a failed write, a problem over the size limit, running
+out of memory, a usage error), reported as ONE
 line ``skxfem: error: ...`` on stderr; 1 for an unexpected error (a bug or a
 numerical failure), reported as one line with its type and message and the
 hint to run again with ``--debug``, which shows the traceback instead; 130
@@ -100,7 +100,7 @@ def parser() -> argparse.ArgumentParser:
                                           "SIZE, e.g. 500M or 16G (default: 4G)")
     run.add_argument("--max-iter", type=_positive, default=None, metavar="N",
                      help="contact laws: Newton iterations allowed per load step "
-                          "(default: 30)")
+                          "(default: that of skxfem.contact.solve, 30)")
     run.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
                      help="show the traceback of an error")
     for name, (text, _) in FORWARDED.items():
@@ -131,7 +131,8 @@ def _contact_line(result) -> str:
     last = result.steps[-1]
     counts = {name: int((last.status == code).sum()) for code, name in enumerate(STATUS_NAMES)}
     its = [int(st.newton.iterations) for st in result.steps]
-    p = f"max pressure {last.pressure.max():.4g}" if last.pressure.size else "no interface point"
+    p = (f"max pressure {last.pressure.max() + 0.0:.4g}"    # + 0.0: -0.0 printed as 0
+         if last.pressure.size else "no interface point")
     return (f"{result.problem.scene.name}: {result.law.name}, {len(its)} load step(s), "
             f"{sum(its)} Newton iterations ({', '.join(map(str, its))}); last step: "
             f"{counts['stick'] + counts['slip']} in contact ({counts['stick']} stick, "
@@ -147,7 +148,8 @@ def _run(args) -> int:
     out = io.check_output(args.out if args.out is not None else Path(s.name))
     budget.check(s, args.max_memory, "--max-memory")
     if contact:
-        result = solve_contact(s, max_iter=30 if args.max_iter is None else args.max_iter)
+        limit = {} if args.max_iter is None else {"max_iter": args.max_iter}
+        result = solve_contact(s, **limit)
     else:
         result = solve(s)
     try:

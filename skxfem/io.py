@@ -29,8 +29,9 @@ after each iteration).
 The two VTU files hold the **last** step only (one file per step would leave
 the other steps' files of an earlier run beside a new result, or need a
 cleaning that the atomic write cannot undo; the JSON has every step):
-``displacement.vtu`` as for a tie, ``interface.vtu`` the multiplier dofs as
-``vertex`` cells with ``pressure``, ``gap``, ``status`` (legend: 0 open,
+``displacement.vtu`` as for a tie, ``interface.vtu`` the multiplier dofs (where
+the laws hold; with the winner or vital space they are not the cut edges that
+a tie's facets join) as ``vertex`` cells with ``pressure``, ``gap``, ``status`` (legend: 0 open,
 1 stick, 2 slip), ``normal``, ``traction``, ``tangential_traction``, ``slip``.
 
 **Array shapes.**  :class:`skxfem.solver.Result` follows scikit-fem: a set of

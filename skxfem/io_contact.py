@@ -45,11 +45,16 @@ def is_contact(result) -> bool:
 
 
 def _tangents(result) -> np.ndarray:
-    """(m, k, dim): the tangent frame at each multiplier dof."""
+    """(m, k, dim): the tangent frame of each multiplier dof's normal.
+
+    On a plane Γ it is the frame of ``ops.Bt``; on a curved Γ the components
+    are ψ_j-weighted means over frames that turn with n, close to this one.
+    """
     return np.moveaxis(tangent_frames(result.ops.normals), 2, 0)
 
 
 def _step(step) -> dict:
+    """One load step's entry of ``result.json``."""
     residuals = np.asarray(step.newton.residuals, dtype=float).reshape(-1, len(EQUATIONS))
     status = [STATUS_NAMES[k] for k in np.asarray(step.status)]
     return {

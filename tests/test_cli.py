@@ -18,6 +18,7 @@ import skxfem
 from skxfem import cli, io, reproduce
 from skxfem.cli import main
 from skxfem.contact_newton import ContactConvergenceError
+from skxfem.scenefile import load_scene
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -262,6 +263,8 @@ def test_18_contact_example_runs_and_its_json_satisfies_signorini(tmp_path, caps
     def tie_solve(scene):
         raise AssertionError("a contact scene went to skxfem.solver.solve")
     monkeypatch.setattr(cli, "solve", tie_solve)
+    s = load_scene(CONTACT)
+    assert (s.name, s.law, s.friction, s.steps) == ("contact", "coulomb", 0.5, (0.5, 1.0))
     data = run(tmp_path, "contact")
     out = capsys.readouterr().out
     assert out.count("\n") == 1 and out.startswith("contact: coulomb, 2 load step(s), ")
@@ -332,8 +335,8 @@ def test_20_a_contact_newton_that_does_not_converge_exits_2(tmp_path, capsys):
 def test_21_a_non_convergence_anywhere_in_the_history_is_one_line(tmp_path, capsys,
                                                                   monkeypatch):
     """Whatever raises it (a later step, the fixed point), the error is anticipated."""
-    def solve_contact(scene, max_iter):
-        assert scene.steps == (0.5, 1.0) and max_iter == 30
+    def solve_contact(scene, **options):
+        assert scene.steps == (0.5, 1.0) and options == {}   # contact.solve's defaults
         raise ContactConvergenceError("the fixed point on the friction threshold failed "
                                       "in pass 2:\nalternates between two states")
     monkeypatch.setattr(cli, "solve_contact", solve_contact)
