@@ -40,7 +40,7 @@ contract is in ``pyproject.toml``):
    ``scenes``, ``scenefile``;
 8. ``problem``;  9. ``contact_interface``, ``contact_newton``,
    ``contact_fixed_point``;  10. ``lbb``, ``contact``, then ``solver``;
-11. ``io``, ``budget``, ``convergence``;
+11. ``io`` (on ``io_contact``, ``vtu``), ``budget``, ``convergence``;
 12. drawing: ``plotting``, then ``figstyle``, ``plot_space``, ``render3d``,
     then ``figures``, ``contact_plots``, ``plot_supports``;
 13. ``reproduce``, ``cli``.
