@@ -14,8 +14,8 @@ dimension.
 >>> scene = Scene(Box(3, "quad"), plane((0, 0.5), (0, 1)),
 ...               displacements=(clamped("ymin"),),
 ...               loads=(SurfaceLoad("ymax", pressure=1.0),))
->>> scene.law, scene.space
-('bonded', 'naive')
+>>> scene.law, scene.space          # the stable space unless asked otherwise
+('bonded', 'vital')
 """
 from __future__ import annotations
 
@@ -59,7 +59,7 @@ class Scene:
     displacements: tuple[Displacement, ...] = ()
     loads: tuple[SurfaceLoad, ...] = ()
     law: str = "bonded"
-    space: str = "naive"
+    space: str = "vital"
     quadrature_order: int | None = None
     name: str = "scene"
     friction: float = 0.0

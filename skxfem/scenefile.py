@@ -34,7 +34,7 @@ type is refused with an error naming the key.  The schema::
 
     [interface]
     law = "bonded"                     # one of skxfem.scene.LAWS or CONTACT_LAWS
-    space = "naive"                    # one of skxfem.scene.SPACES
+    space = "vital"                    # one of skxfem.scene.SPACES (default vital)
     # friction = 0.5                   # Coulomb's mu (law "coulomb"), >= 0
     # rho_n = 10.0                     # contact augmentation, > 0 (default E/h)
     # rho_t = 10.0                     # friction augmentation, > 0
@@ -119,7 +119,7 @@ def _scene(data: dict, path: Path) -> sc.Scene:
             raise ValueError(f"[interface] steps must be a non-empty list of load "
                              f"factors, got {steps!r}")
         contact["steps"] = tuple(steps)
-    space = choice(interface.get("space", "naive"), sc.SPACES, "[interface] space")
+    space = choice(interface.get("space", "vital"), sc.SPACES, "[interface] space")
     order = solver.get("quadrature_order")
     if order is not None and (type(order) is not int or order < 1):
         raise ValueError(f"[solver] quadrature_order must be a positive integer, got {order!r}")

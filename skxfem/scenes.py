@@ -41,7 +41,7 @@ def _odd_cells(n: int, nz: int | None, key: str) -> int:
 
 
 def paper_plate(n: int = 4, cell: str = "hex", nz: int | None = None,
-                law: str = "bonded", space: str = "naive", nx: int | None = None) -> Scene:
+                law: str = "bonded", space: str = "vital", nx: int | None = None) -> Scene:
     """The plate under non-uniform compression of the paper, §5 (Figures 4, 5, 7-10).
 
     From the paper: a 3D elastic plate whose bottom face is clamped, a parabolic
@@ -97,7 +97,7 @@ def paper_plate(n: int = 4, cell: str = "hex", nz: int | None = None,
 
 
 def strip(n: int = 4, cell: str = "quad", ny: int | None = None,
-          law: str = "bonded", space: str = "naive", sides: str = "free") -> Scene:
+          law: str = "bonded", space: str = "vital", sides: str = "free") -> Scene:
     """The 2D plane-strain analogue of :func:`paper_plate` on [0, 1]².
 
     The plate's coordinates (y, z) become (x, y): the bottom y = 0 is clamped,
@@ -152,7 +152,7 @@ def _exact_bcs(sol, faces, bottom):
 
 
 def exact_strip(n: int = 4, cell: str = "quad", ny: int | None = None,
-                law: str = "bonded", space: str = "naive") -> Scene:
+                law: str = "bonded", space: str = "vital") -> Scene:
     """:func:`strip` with the loads of :mod:`skxfem.exact`: the pressure on Γ is p(x).
 
     Same mesh, material and top pressure as :func:`strip`; in addition a
@@ -172,7 +172,7 @@ def exact_strip(n: int = 4, cell: str = "quad", ny: int | None = None,
 
 
 def exact_plate(n: int = 4, cell: str = "hex", nz: int | None = None, nx: int | None = None,
-                law: str = "bonded", space: str = "naive") -> Scene:
+                law: str = "bonded", space: str = "vital") -> Scene:
     """:func:`paper_plate` with the loads of :mod:`skxfem.exact` (see :func:`exact_strip`).
 
     ``nx`` cells along x (default ``n``): with rollers on x = 0 and x = 1 the
@@ -186,7 +186,7 @@ def exact_plate(n: int = 4, cell: str = "hex", nz: int | None = None, nx: int | 
                    loads=loads, name="exact_" + base.name)
 
 
-def exact_scene(n: int, cell: str, space: str = "naive") -> Scene:
+def exact_scene(n: int, cell: str, space: str = "vital") -> Scene:
     """The exact benchmark of a cell type, cheapest form: :func:`exact_strip`
     for ``"tri"``/``"quad"``, :func:`exact_plate` with one layer of cells
     along x for ``"tet"``/``"hex"``/``"prism"``.  Its interface coordinate

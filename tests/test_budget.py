@@ -21,7 +21,8 @@ FACTOR = 4
 def scene_of(cell, n=4):
     if cell in ("tri", "quad"):
         return scenes.strip(n, cell=cell)
-    hexes = scenes.paper_plate(n, cell="hex")
+    # the naive space: the estimate counts one multiplier per cut edge and component
+    hexes = scenes.paper_plate(n, cell="hex", space="naive")
     return dataclasses.replace(hexes, mesh=Box(hexes.mesh.n, cell))
 
 

@@ -37,7 +37,7 @@ def test_01_plate_example_is_the_paper_plate():
     assert s.displacements == (clamped("zmin"), rollers("xmin"), rollers("xmax"))
     [load] = s.loads
     assert load.boundary == "zmax" and load.pressure == Expression("4*y*(1 - y)", 3)
-    assert (s.law, s.space, s.quadrature_order) == ("bonded", "naive", None)
+    assert (s.law, s.space, s.quadrature_order) == ("bonded", "vital", None)
 
 
 def test_02_strip_and_inclusion_examples_parse():
@@ -55,7 +55,7 @@ def test_02_strip_and_inclusion_examples_parse():
 def test_03_defaults_come_from_the_dataclasses(tmp_path):
     s = load_scene(write(tmp_path, MINIMAL, "my_strip.toml"))
     assert s.name == "my_strip" and s.material == Material()
-    assert (s.displacements, s.loads, s.law, s.space) == ((), (), "bonded", "naive")
+    assert (s.displacements, s.loads, s.law, s.space) == ((), (), "bonded", "vital")
 
 
 def test_04_a_mesh_file_is_read_relative_to_the_scene_file(tmp_path):

@@ -53,7 +53,7 @@ def test_domain_cells_and_interface(n, cell):
     assert scene.mesh == Box((n,) * (dim - 1) + (nup,), cell, (1.0,) * dim), (
         f"{scene.name}: expected {n} cells across and {nup} (odd) cells up, got {scene.mesh}")
     assert scene.material == Material(1.0, 0.3, "strain")
-    assert (scene.law, scene.space) == ("bonded", "naive")
+    assert (scene.law, scene.space) == ("bonded", "vital")
     mesh, _ = built(scene)
     assert np.array_equal(mesh.p.min(axis=1), np.zeros(dim))
     assert np.array_equal(mesh.p.max(axis=1), np.ones(dim)), "Ω must be the unit box"

@@ -306,8 +306,9 @@ def tet_scene(normal=(0.1, 0.15, 1.0)):
 
 
 SIMPLEX_SCENES = {
-    "tri": dataclasses.replace(strip(4, "tri"), levelset=plane((0.5, 0.53), (0.3, 1.0))),
-    "tet": tet_scene(),
+    "tri": dataclasses.replace(strip(4, "tri", space="naive"),
+                               levelset=plane((0.5, 0.53), (0.3, 1.0))),
+    "tet": dataclasses.replace(tet_scene(), space="naive"),
 }
 
 
@@ -372,7 +373,8 @@ def test_a_clamped_face_that_gamma_cuts_holds_on_both_sides(cell):
 # ---------------------------------------------------------------------------
 
 def tet_patch():
-    return block("tet", THETA, material=Material(1.0, 0.3), lateral="free", top="pressure")
+    return dataclasses.replace(block("tet", THETA, material=Material(1.0, 0.3), lateral="free",
+                                     top="pressure"), space="naive")
 
 
 def test_rank_deficient_naive_space_is_refused_on_request():
@@ -401,7 +403,7 @@ def test_dependent_multipliers_are_removed():
 
 @functools.cache
 def solved(name, n, cell):
-    return solve({"plate": paper_plate, "strip": strip}[name](n, cell))
+    return solve({"plate": paper_plate, "strip": strip}[name](n, cell, space="naive"))
 
 
 def profile(result):
@@ -615,7 +617,8 @@ def test_a_nearly_dependent_naive_space_is_refused_and_stable_spaces_solve_it():
     balances the top load: ∫_Γ r = (0, -∫ p) = (0, -2P/3)."""
     from skxfem.saddle import NearlyDependentError
 
-    scene = dataclasses.replace(strip(128, "tri"), levelset=plane((0.0, 0.37), (-0.21, 1.0)))
+    scene = dataclasses.replace(strip(128, "tri", space="naive"),
+                                levelset=plane((0.0, 0.37), (-0.21, 1.0)))
     with pytest.raises(NearlyDependentError, match=r"nearly dependent.*8\.1e-09.*space=\"vital\""):
         solve(scene)
     for name in ("vital", "winner"):
