@@ -25,3 +25,21 @@ def test_cut_3d_refuses_2d():
     m = box(2, "quad")
     with pytest.raises(ValueError, match="3D mesh"):
         plot_cut_3d(m, cut(m, plane((0.5, 0.4), (0, 1))))
+
+
+def test_result_3d_renders_both_sides_and_the_pressure():
+    pytest.importorskip("pyvista")
+    from skxfem.render3d import plot_result_3d
+    from skxfem.scenes import paper_plate, strip
+    from skxfem.solver import solve
+
+    fig = plot_result_3d(solve(paper_plate(2, "hex")), window_size=(320, 240))
+    assert len(fig.axes) == 2
+    left = fig.axes[0].images[0].get_array().astype(float)
+    assert left.shape == (240, 320, 3)
+    # both sides are drawn in their (shaded) colours: Ω⁻ blue, Ω⁺ orange
+    bluish = (left[..., 2] - left[..., 0] > 30).mean()
+    orange = (left[..., 0] - left[..., 2] > 30).mean()
+    assert bluish > 0.05 and orange > 0.05, (bluish, orange)
+    with pytest.raises(ValueError, match="3D result"):
+        plot_result_3d(solve(strip(2, "quad")))
