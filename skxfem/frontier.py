@@ -21,7 +21,7 @@ not change with the method.
 >>> pts = sweep(Plan("strip", ("quad",), ("vital",), (None,), ("direct",), (4,)))
 >>> p = pts[0]
 >>> p.method, p.dofs, p.energy < 0.3
-('quad/vital/q-/direct', 72, True)
+('quad/vital/q-/direct', 80, True)
 """
 from __future__ import annotations
 
