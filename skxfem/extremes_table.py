@@ -41,6 +41,6 @@ def format_rows(rows, width: int = 90) -> str:
     for r in rows:
         value = "-" if r.value is None else f"{r.value:.1e}"
         note = r.message if len(r.message) <= width else r.message[:width - 3] + "..."
-        lines.append(f"{r.group:8} {r.case:45} {r.outcome:10} {value:>8} {r.tolerance:7.0e}"
+        lines.append(f"{r.group:8} {r.case:45} {r.outcome:10} {value:>8} {r.tolerance:>7.3g}"
                      f"  {note}".rstrip())
     return "\n".join(lines)

@@ -162,14 +162,17 @@ def pareto(points, error: str = "energy") -> list[Point]:
 
 
 def summary(points) -> dict:
-    """Per method: the sizes run, the least errors reached, the time of the largest
-    size, and how many of its points are on each front.
+    """Per method: its sizes, errors and times, and how many of its points are on
+    each front (the front of its own benchmark).
 
     >>> P = lambda t, e: Point("strip", "tri", "vital", None, "direct", 8, 1, t, e, e)
     >>> summary([P(1.0, 0.5)])["tri/vital/q-/direct"]["on_energy_front"]
     1
     """
-    fronts = {e: {id(p) for p in pareto(points, e)} for e in ("energy", "pressure")}
+    problems = {p.problem for p in points}
+    fronts = {e: {id(p) for pb in problems
+                  for p in pareto([q for q in points if q.problem == pb], e)}
+              for e in ("energy", "pressure")}
     out = {}
     for p in points:
         s = out.setdefault(p.method, {"problem": p.problem, "n": [], "energy": [],

@@ -67,3 +67,9 @@ def test_plot_and_reproduce_write_figures_and_numbers(points, tmp_path):
                                                     "frontier_pressure.png", "frontier.json"}
     data = json.loads((tmp_path / "frontier.json").read_text())
     assert len(data["points"]) == 8 and set(data["methods"]) == set(result)
+
+
+def test_summary_takes_the_front_of_each_benchmark_separately():
+    slow_plate = Point("plate", "hex", "vital", None, "direct", 4, 1, 10.0, 0.9, 0.9)
+    s = summary([point(1, 0.5), slow_plate])
+    assert s["hex/vital/q-/direct"]["on_energy_front"] == 1
