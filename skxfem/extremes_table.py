@@ -4,7 +4,8 @@ r"""The whole extremes table of issue 11, and its text form.
 :mod:`skxfem.extremes_scales` (E, ν, ρ) and :mod:`skxfem.extremes_shapes`
 (one cell, memory, slanted and curved Γ); :func:`format_rows` prints them,
 one line each, with the refusal messages cut to a width (the rows keep them
-whole).  ``progress`` (a :class:`skxfem.progress.Progress`) reports each part.
+whole).  ``progress`` (a :class:`skxfem.progress.Progress`; by default one that
+is on in a terminal only) reports each part.
 
 >>> from skxfem.extremes import Row
 >>> print(format_rows([Row("E", "E = 1", "solved", "deviation", 0.0, 1e-8, "", 0.01)]))
@@ -27,7 +28,7 @@ def table(cells=CELL_TYPES, progress: Progress | None = None) -> list[Row]:
              ("E", modulus_rows), ("ν", poisson_rows), ("ρ", rho_rows),
              ("one cell, memory", lambda: one_cell_rows(cells) + memory_rows(cells)),
              ("shapes", lambda: shape_rows(cells))]
-    progress = progress or Progress(len(parts), "extremes", enabled=False)
+    progress = progress or Progress(len(parts), "extremes")
     rows = []
     for name, make in parts:
         rows += make()

@@ -39,7 +39,8 @@ from .progress import Progress
 from .scenes import exact_plate, exact_strip
 from .solver import Result, solve_problem
 
-__all__ = ["SOLVERS", "Plan", "PLANS", "Point", "sweep", "pareto", "summary", "ERROR_ORDER"]
+__all__ = ["SOLVERS", "Plan", "PLANS", "plans", "Point", "sweep", "pareto", "summary",
+           "ERROR_ORDER"]
 
 SOLVERS: dict[str, Callable[[Problem], Result]] = {"direct": solve_problem}
 """Linear solvers of the tie: name → function(Problem) → Result."""
@@ -90,7 +91,22 @@ PLANS = {
              Plan("strip", ("tri", "quad"), ("naive", "winner", "vital"), (None, 4),
                   ("direct",), (8, 16, 32, 64, 128, 256))),
 }
-"""The sweeps of the book (``quick``) and of ``skxfem reproduce`` without --quick."""
+"""The sweeps of the book and ``skxfem reproduce --quick`` (``quick``), and of
+``skxfem reproduce`` (``full``)."""
+
+
+def plans(quick: bool = True, sizes=None) -> tuple[Plan, ...]:
+    """The plans of ``skxfem reproduce``: :data:`PLANS` ``quick`` or ``full``, or,
+    with ``sizes`` (its ``--sizes``, for tests), both benchmarks at those sizes with
+    the minimal rule only.
+
+    >>> [(p.problem, p.sizes, p.quadratures) for p in plans(sizes=[4])]
+    [('plate', (4,), (None,)), ('strip', (4,), (None,))]
+    """
+    if not sizes:
+        return PLANS["quick" if quick else "full"]
+    sizes = tuple(sorted(set(int(n) for n in sizes)))
+    return tuple(replace(p, quadratures=(None,), sizes=sizes) for p in PLANS["quick"])
 
 
 @dataclass(frozen=True)
@@ -125,9 +141,12 @@ def _measure(result: Result) -> tuple[float, float]:
 
 
 def sweep(plan: Plan, repeat: int = 1, progress: Progress | None = None) -> list[Point]:
-    """Solve every method of ``plan``; the time is the least of ``repeat`` runs."""
+    """Solve every method of ``plan``; the time is the least of ``repeat`` runs.
+
+    ``progress``: one line per method (default: on in a terminal only).
+    """
     methods = plan.methods()
-    progress = progress or Progress(len(methods), plan.problem, enabled=False)
+    progress = progress or Progress(len(methods), plan.problem)
     points = []
     for cell, space_name, q, solver, n in methods:
         scene = plan.scene(cell, space_name, q, n)

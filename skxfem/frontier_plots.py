@@ -25,7 +25,8 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.ticker import NullFormatter
 
-from .frontier import PLANS, pareto, summary, sweep
+from .frontier import pareto, summary, sweep
+from .frontier import plans as frontier_plans
 from .plotting import COLORS
 from .progress import Progress
 
@@ -73,17 +74,23 @@ def plot_frontier(points, error: str = "energy") -> Figure:
     return fig
 
 
-def reproduce_frontier(out, quick: bool = True, repeat: int = 2,
+def reproduce_frontier(out, quick: bool = True, sizes=None, repeat: int | None = None,
                        progress: bool | None = None, plans=None) -> dict:
-    """Sweep :data:`skxfem.frontier.PLANS` (``quick`` or ``full``; or ``plans``), write
-    ``frontier_energy.png``, ``frontier_pressure.png`` and ``frontier.json``
-    (every point and the per-method :func:`~skxfem.frontier.summary`) into
-    ``out``, and return the summary.  ``progress``: see :class:`skxfem.progress.Progress`.
+    """Run the frontier sweep of ``skxfem reproduce`` and write its files.
+
+    The plans are :func:`skxfem.frontier.plans` ``(quick, sizes)`` unless
+    ``plans`` is given; each time is the least of ``repeat`` runs (default 1
+    with ``quick`` or ``sizes``, else 3).  Writes ``frontier_energy.png``,
+    ``frontier_pressure.png`` and ``frontier.json`` (every point and the
+    per-method :func:`~skxfem.frontier.summary`) into ``out`` and returns the
+    summary.  ``progress``: one line per solve (default: in a terminal only).
     """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
+    if repeat is None:
+        repeat = 1 if (quick or sizes) else 3
     points = []
-    for plan in plans or PLANS["quick" if quick else "full"]:
+    for plan in plans or frontier_plans(quick, sizes):
         p = Progress(len(plan.methods()), f"frontier {plan.problem}", enabled=progress)
         points += sweep(plan, repeat, p)
     for error in ("energy", "pressure"):

@@ -62,7 +62,7 @@ def test_plan_checks_its_choices():
 def test_plot_and_reproduce_write_figures_and_numbers(points, tmp_path):
     fig = plot_frontier(points, "energy")
     assert isinstance(fig, Figure) and len(fig.axes) == 2
-    result = reproduce_frontier(tmp_path, plans=TINY[:1], repeat=1)
+    result = reproduce_frontier(tmp_path, plans=TINY[:1])
     assert {f.name for f in tmp_path.iterdir()} == {"frontier_energy.png",
                                                     "frontier_pressure.png", "frontier.json"}
     data = json.loads((tmp_path / "frontier.json").read_text())
@@ -73,3 +73,12 @@ def test_summary_takes_the_front_of_each_benchmark_separately():
     slow_plate = Point("plate", "hex", "vital", None, "direct", 4, 1, 10.0, 0.9, 0.9)
     s = summary([point(1, 0.5), slow_plate])
     assert s["hex/vital/q-/direct"]["on_energy_front"] == 1
+
+
+def test_reproduce_sizes_give_small_plans_of_both_benchmarks():
+    from skxfem.frontier import plans
+
+    small = plans(True, [8, 4, 8])
+    assert [p.problem for p in small] == ["plate", "strip"]
+    assert all(p.sizes == (4, 8) and p.quadratures == (None,) for p in small)
+    assert plans(False) == PLANS["full"] and plans(True) == PLANS["quick"]
