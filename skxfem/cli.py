@@ -10,12 +10,18 @@
 ``skxfem run`` reads the scene, checks the output folder (an existing file, a
 folder that cannot be written), estimates the size of the problem
 (:mod:`skxfem.budget`; refused above ``--max-memory``, 4 GB by default), and
-only then solves and writes the results atomically (:mod:`skxfem.io`).
+only then solves and writes the results atomically (:mod:`skxfem.io`).  A
+scene whose ``[interface] law`` is a contact law (``frictionless``,
+``coulomb``, ``adhesive``) is solved by :func:`skxfem.contact.solve` over
+its load ``steps`` (``--max-iter``: the Newton iteration limit of each step)
+and the line printed gives the steps, the Newton iterations, the status
+counts of the last step and its largest pressure.
 
 Exit codes: 0 success; 2 for every error the command anticipates (a bad or
 missing scene or mesh file, a scene the solver refuses — a level set that cuts
-no cell, a singular system —, a bad output folder, a failed write, a problem
-over the size limit, running out of memory, a usage error), reported as ONE
+no cell, a singular system, a contact Newton method that does not converge —,
+a bad output folder, a failed write, a problem over the size limit, running
+out of memory, a usage error), reported as ONE
 line ``skxfem: error: ...`` on stderr; 1 for an unexpected error (a bug or a
 numerical failure), reported as one line with its type and message and the
 hint to run again with ``--debug``, which shows the traceback instead; 130
@@ -31,7 +37,11 @@ import argparse
 import sys
 from pathlib import Path
 
-from . import __version__, budget, io, reproduce, scene
+from . import __version__, budget, io, reproduce
+from .contact import solve as solve_contact
+from .contact_laws import CONTACT_LAWS, STATUS_NAMES
+from .contact_newton import ContactConvergenceError
+from .scenefile import load_scene
 from .solver import solve
 
 __all__ = ["main", "parser", "FORWARDED"]
@@ -42,8 +52,9 @@ FORWARDED = {
 }
 """Subcommands handed their arguments as they are: ``name -> (help, main(argv) -> int)``."""
 
-ANTICIPATED = (OSError, ValueError, TypeError, MemoryError)
-"""Errors reported as a bad input (exit 2): files, scenes, refused problems, disk, memory."""
+ANTICIPATED = (OSError, ValueError, TypeError, MemoryError, ContactConvergenceError)
+"""Errors reported as a bad input (exit 2): files, scenes, refused problems, disk, memory,
+a contact iteration that does not converge (its message says what to change)."""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -58,6 +69,16 @@ def _memory(text: str) -> int:
         return budget.parse_bytes(text)
     except ValueError as e:
         raise argparse.ArgumentTypeError(str(e)) from None
+
+
+def _positive(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be a positive integer, got {text!r}")
+    return value
 
 
 def parser() -> argparse.ArgumentParser:
@@ -77,6 +98,9 @@ def parser() -> argparse.ArgumentParser:
     run.add_argument("--max-memory", type=_memory, default=budget.DEFAULT_MAX_BYTES,
                      metavar="SIZE", help="refuse a scene whose estimated memory exceeds "
                                           "SIZE, e.g. 500M or 16G (default: 4G)")
+    run.add_argument("--max-iter", type=_positive, default=None, metavar="N",
+                     help="contact laws: Newton iterations allowed per load step "
+                          "(default: that of skxfem.contact.solve, 30)")
     run.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
                      help="show the traceback of an error")
     for name, (text, _) in FORWARDED.items():
@@ -102,16 +126,40 @@ def _fail(error: BaseException, debug: bool) -> int:
     return 1
 
 
+def _contact_line(result) -> str:
+    """The one-line summary of a contact result: steps, iterations, last step's statuses."""
+    last = result.steps[-1]
+    counts = {name: int((last.status == code).sum()) for code, name in enumerate(STATUS_NAMES)}
+    its = [int(st.newton.iterations) for st in result.steps]
+    p = (f"max pressure {last.pressure.max() + 0.0:.4g}"    # + 0.0: -0.0 printed as 0
+         if last.pressure.size else "no interface point")
+    return (f"{result.problem.scene.name}: {result.law.name}, {len(its)} load step(s), "
+            f"{sum(its)} Newton iterations ({', '.join(map(str, its))}); last step: "
+            f"{counts['stick'] + counts['slip']} in contact ({counts['stick']} stick, "
+            f"{counts['slip']} slip), {counts['open']} open, {p}")
+
+
 def _run(args) -> int:
-    s = scene.load_scene(args.scene)
+    s = load_scene(args.scene)
+    contact = s.law in CONTACT_LAWS
+    if args.max_iter is not None and not contact:
+        raise ValueError(f"--max-iter applies to the contact laws {CONTACT_LAWS}; the scene's "
+                         f"law is {s.law!r}")
     out = io.check_output(args.out if args.out is not None else Path(s.name))
     budget.check(s, args.max_memory, "--max-memory")
-    result = solve(s)
+    if contact:
+        limit = {} if args.max_iter is None else {"max_iter": args.max_iter}
+        result = solve_contact(s, **limit)
+    else:
+        result = solve(s)
     try:
         paths = io.write_result(result, out)
     except OSError as e:
         raise OSError(e.errno, f"cannot write the results to {str(out)!r}: "
                                f"{e.strerror or e}; nothing was written") from e
+    if contact:
+        print(f"{_contact_line(result)} -> {paths['json'].parent}")
+        return 0
     p = result.pressure
     span = f"pressure in [{p.min():.4g}, {p.max():.4g}]" if p.size else "no interface point"
     print(f"{s.name}: {result.n_dofs} dofs, {result.n_multipliers} multipliers, "

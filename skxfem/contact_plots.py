@@ -104,7 +104,7 @@ def edge_status(result, step: int = -1) -> np.ndarray:
 def plot_status_3d(result, step: int = -1, window_size: tuple[int, int] = (800, 600),
                    view: tuple = (0.6, -1.0, 0.9), title: str | None = None) -> Figure:
     """Status map on a 3D Γ, rendered off-screen with pyvista (like
-    :func:`skxfem.plotting.plot_cut_3d`): the interface triangles, each vertex (a
+    :func:`skxfem.render3d.plot_cut_3d`): the interface triangles, each vertex (a
     cut edge) coloured by :func:`edge_status`, over the outline of the mesh.
 
     pyvista (the ``viz`` extra) is imported here.

@@ -15,14 +15,19 @@ r"""Error measures and convergence rates (paper §5, Figures 9 and 10).
 """
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
 from skfem.helpers import ddot
 
+from .enrich import signed_bases
+from .exact import ExactPlate
+from .lbb import inf_sup
 from .multipliers import interface_rule
 from .progress import Progress
+from .solver import solve
 
 __all__ = ["PressureError", "pressure_error", "energy_error", "observed_rates", "StudyRow",
            "study"]
@@ -53,8 +58,6 @@ def energy_error(result, exact_strain: Callable) -> float:
 
     ∇u_h = ∇(Πa) + H ∇(Πb) - ∇(Π(Hⱼ b)) on each side, Π the standard interpolant.
     """
-    from .enrich import signed_bases
-
     V, material = result.space, result.scene.material
     dim = V.mesh.dim()
     a = result.U[:V.n_std]
@@ -111,12 +114,6 @@ def study(make_scene: Callable, ns, spaces=("naive", "winner", "vital"),
     >>> rows[0].n, rows[0].pressure_l2 < 0.05
     (4, True)
     """
-    import time
-
-    from .exact import ExactPlate
-    from .lbb import inf_sup
-    from .solver import solve
-
     rows = []
     progress = progress or Progress(len(spaces) * len(ns), "study")
     for space in spaces:

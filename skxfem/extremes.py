@@ -37,11 +37,12 @@ from .cut import cut as cut_mesh
 from .enrich import far_side_fraction, space, stiffness
 from .levelset import plane
 from .material import Material
-from .multipliers import coupling, interface_rule, multiplier_space
+from .multipliers import coupling, interface_rule
 from .problem import constrained_dofs
 from .saddle import independent_rows
 from .scene import Box, Displacement, Scene, SurfaceLoad, resolve_mesh, rollers
 from .solver import solve
+from .stabilised import multiplier_space
 
 __all__ = ["Row", "Conditioning", "attempt", "patch_scene", "uniform_strain", "patch_error",
            "OFFSETS", "position_rows", "conditioning", "CELL_TYPES"]

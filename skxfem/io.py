@@ -16,6 +16,24 @@
   cells in 3D) on the multiplier points, with point data ``pressure``,
   ``traction`` and ``normal``.
 
+**A contact result** (:class:`skxfem.contact.ContactResult`, content from
+:mod:`skxfem.io_contact`) goes into the same three files.  ``result.json``
+holds the set-up (``law``, ``friction``, the ``rho_n``, ``rho_t`` used, the
+multiplier dof ``points``, ``normals``, ``tangents``, ``weights``,
+``status_codes``) and a list ``steps``, one entry per load step: ``load``,
+``pressure``, ``tangential_traction``, ``gap``, ``slip``, ``Lambda``,
+``status`` (strings ``"open"``, ``"stick"``, ``"slip"``), their ``counts``
+and ``newton``: ``iterations`` and ``residuals`` (one list per equation,
+equilibrium, contact and friction: the relative residual at the start, then
+after each iteration).
+The two VTU files hold the **last** step only (one file per step would leave
+the other steps' files of an earlier run beside a new result, or need a
+cleaning that the atomic write cannot undo; the JSON has every step):
+``displacement.vtu`` as for a tie, ``interface.vtu`` the multiplier dofs (where
+the laws hold; with the winner or vital space they are not the cut edges that
+a tie's facets join) as ``vertex`` cells with ``pressure``, ``gap``, ``status`` (legend: 0 open,
+1 stick, 2 slip), ``normal``, ``traction``, ``tangential_traction``, ``slip``.
+
 **Array shapes.**  :class:`skxfem.solver.Result` follows scikit-fem: a set of
 points or vectors is ``(dim, n)`` (``mesh.p``, ``result.points``,
 ``result.traction``).  The files follow meshio, VTK and JSON readers, where a
@@ -40,21 +58,15 @@ from pathlib import Path
 
 import meshio
 import numpy as np
-from skfem.io.meshio import to_meshio
 
+from .io_contact import contact_summary, interface_mesh, is_contact, last_step_fields
 from .levelset import nodal_values
+from .vtu import cell_sides, pad3, side_pieces, vectors3, vtk_cells
 
 __all__ = ["write_result", "result_summary", "cell_sides", "vtk_cells", "check_output",
            "side_pieces"]
 
 _STAGES = ("cut", "enrich", "assemble", "solve")
-# VTK wants cells positively oriented: the simplex of these corners has det > 0
-# (a wedge's face (0, 1, 2) has its right-hand normal pointing *away* from (3, 4, 5));
-# scikit-fem allows either orientation, so mirrored cells get their nodes flipped.
-_CORNERS = {"triangle": [0, 1, 2], "quad": [0, 1, 3], "tetra": [0, 1, 2, 3],
-            "hexahedron": [0, 1, 3, 4], "wedge": [0, 2, 1, 3]}
-_FLIP = {"triangle": [0, 2, 1], "quad": [0, 3, 2, 1], "tetra": [0, 2, 1, 3],
-         "hexahedron": [0, 3, 2, 1, 4, 7, 6, 5], "wedge": [0, 2, 1, 3, 5, 4]}
 _FILES = {"json": "result.json", "displacement": "displacement.vtu",
           "interface": "interface.vtu"}
 
@@ -65,45 +77,22 @@ def _plain(a) -> list | float | None:
     return np.where(np.isfinite(a), a, None).tolist()
 
 
-def _vectors3(a: np.ndarray) -> np.ndarray:
-    """(dim, n) → (n, 3), padding 2D vectors with a zero z component."""
-    a = np.asarray(a, dtype=float)
-    return np.vstack([a, np.zeros((3 - a.shape[0], a.shape[1]))]).T
-
-
-def cell_sides(mesh, psi_nodes: np.ndarray) -> np.ndarray:
-    """-1 for cells in Ω⁻, +1 in Ω⁺, 0 for cells with vertices on both sides.
-
-    >>> from skfem import MeshTri1                # cells (0, 1, 2) and (1, 3, 2)
-    >>> cell_sides(MeshTri1(), np.array([-1.5, -0.5, -0.5, 0.5])).tolist()
-    [-1, 0]
-    """
-    psi = psi_nodes[mesh.t]
-    cut = (psi.min(axis=0) < 0) & (psi.max(axis=0) > 0)
-    return np.where(cut, 0, np.sign(psi.mean(axis=0))).astype(np.int64)
-
-
-def vtk_cells(mesh) -> tuple[str, np.ndarray]:
-    """The meshio cell type and the (ncells, nverts) cells, positively oriented for VTK.
-
-    The node order is scikit-fem's ``to_meshio`` (which renumbers hexahedra).
-
-    >>> from skfem import MeshTri1
-    >>> kind, cells = vtk_cells(MeshTri1())
-    >>> kind, cells.tolist()
-    ('triangle', [[0, 1, 2], [1, 3, 2]])
-    """
-    block = to_meshio(mesh, encode_cell_data=False).cells[0]
-    t = block.data.copy()
-    corners = mesh.p[:, t[:, _CORNERS[block.type]]]            # (dim, ncells, dim + 1)
-    edges = corners[:, :, 1:] - corners[:, :, :1]
-    flip = np.linalg.det(np.moveaxis(edges, 0, 1)) < 0          # det of (ncells, dim, dim)
-    t[flip] = t[flip][:, _FLIP[block.type]]
-    return block.type, t
+def _jsonable(value):
+    """Arrays and numpy numbers inside dicts and lists as plain Python values."""
+    if isinstance(value, dict):
+        return {k: _jsonable(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_jsonable(v) for v in value]
+    return _plain(value) if isinstance(value, (np.ndarray, float, np.floating)) else value
 
 
 def result_summary(result) -> dict:
-    """The content of ``result.json`` as a dict of plain Python values."""
+    """The content of ``result.json`` as a dict of plain Python values.
+
+    A contact result gives :func:`skxfem.io_contact.contact_summary`.
+    """
+    if is_contact(result):
+        return _jsonable(contact_summary(result))
     timings = {k: float(v) for k, v in dict(result.timings).items()}
     missing = [s for s in _STAGES if s not in timings]
     if missing:
@@ -151,54 +140,13 @@ def check_output(out_dir: str | Path) -> Path:
     return out
 
 
-def side_pieces(mesh, psi_nodes: np.ndarray, u_minus: np.ndarray, u_plus: np.ndarray):
-    """The mesh as two pieces, one per side of Γ, each on its own copy of its nodes.
-
-    Piece -1 holds the cells of Ω⁻ and the cut cells, piece +1 those of Ω⁺
-    and the cut cells; each carries its side's displacement at its nodes.
-
-    Returns
-    -------
-    points : (n, dim) the nodes of piece -1 then those of piece +1
-    cells : (ncells, nverts) VTK-oriented, indices into ``points``
-    side, cut : (ncells,) the piece of each cell (-1/+1) and 1 on cut cells
-    displacement : (n, dim) ``u_minus`` on piece -1, ``u_plus`` on piece +1
-    levelset : (n,) ψ at the points
-
-    >>> from skfem import MeshTri1                # cells (0, 1, 2) and (1, 3, 2)
-    >>> u = np.zeros((2, 4))
-    >>> p, c, side, cut, d, psi = side_pieces(MeshTri1(), np.array([-1.5, -.5, -.5, .5]), u, u)
-    >>> c.tolist(), side.tolist(), cut.tolist()
-    ([[0, 1, 2], [1, 3, 2], [4, 6, 5]], [-1, -1, 1], [0, 1, 1])
-    """
-    _, t = vtk_cells(mesh)
-    sides = cell_sides(mesh, psi_nodes)
-    points, cells, side, cut, disp, psi = [], [], [], [], [], []
-    offset = 0
-    for s, u in ((-1, u_minus), (1, u_plus)):
-        keep = sides != -s
-        nodes, local = np.unique(t[keep], return_inverse=True)
-        points.append(mesh.p[:, nodes].T)
-        cells.append(local.reshape(-1, t.shape[1]) + offset)
-        side.append(np.full(int(keep.sum()), s))
-        cut.append((sides[keep] == 0).astype(np.int64))
-        disp.append(np.asarray(u)[:, nodes].T)
-        psi.append(psi_nodes[nodes])
-        offset += nodes.size
-    return (np.vstack(points), np.vstack(cells), np.concatenate(side), np.concatenate(cut),
-            np.vstack(disp), np.concatenate(psi))
-
-
-def _pad3(a: np.ndarray) -> np.ndarray:
-    """(n, dim) → (n, 3) with zero z in 2D."""
-    return np.hstack([a, np.zeros((a.shape[0], 3 - a.shape[1]))])
-
-
 def _write_json(result, path: Path):
     path.write_text(json.dumps(result_summary(result), indent=1, allow_nan=False))
 
 
 def _write_displacement(result, path: Path):
+    if is_contact(result):
+        result = last_step_fields(result)
     mesh = result.mesh
     cell_type, _ = vtk_cells(mesh)
     levelset = getattr(result.scene, "levelset", None)
@@ -209,20 +157,23 @@ def _write_displacement(result, path: Path):
     points, cells, side, cut, disp, psi = side_pieces(mesh, psi_nodes, result.u_minus,
                                                       result.u_plus)
     meshio.write(path, meshio.Mesh(
-        _pad3(points), [(cell_type, cells)],
-        point_data={"displacement": _pad3(disp), "levelset": psi},
+        pad3(points), [(cell_type, cells)],
+        point_data={"displacement": pad3(disp), "levelset": psi},
         cell_data={"side": [side], "cut": [cut]}), file_format="vtu")
 
 
 def _write_interface(result, path: Path):
+    if is_contact(result):
+        meshio.write(path, interface_mesh(result), file_format="vtu")
+        return
     points = np.asarray(result.points, dtype=float)
     facets = np.asarray(result.facets, dtype=np.int64)
     kind = {2: "line", 3: "triangle"}[points.shape[0]]
     meshio.write(path, meshio.Mesh(
-        _vectors3(points), [(kind, facets.T.reshape(-1, points.shape[0]))],
+        vectors3(points), [(kind, facets.T.reshape(-1, points.shape[0]))],
         point_data={"pressure": np.asarray(result.pressure, dtype=float),
-                    "traction": _vectors3(result.traction),
-                    "normal": _vectors3(result.normals)}), file_format="vtu")
+                    "traction": vectors3(result.traction),
+                    "normal": vectors3(result.normals)}), file_format="vtu")
 
 
 _WRITERS = {"json": _write_json, "displacement": _write_displacement,
@@ -239,7 +190,8 @@ def write_result(result, out_dir: str | Path) -> dict[str, Path]:
     Parameters
     ----------
     result
-        A :class:`skxfem.solver.Result` (or any object with the same attributes).
+        A :class:`skxfem.solver.Result` (or any object with the same attributes)
+        or a :class:`skxfem.contact.ContactResult`.
     out_dir
         Folder to write into; created if missing (and removed again if the
         writing fails).

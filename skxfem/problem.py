@@ -34,11 +34,13 @@ from .multipliers import (
     InterfaceRule,
     Space,
     coupling,
+    fixed_jumps,
     interface_mass,
     interface_rule,
-    multiplier_space,
+    normal_fixed,
 )
 from .scene import Scene, dirichlet, load_facets, resolve_mesh
+from .stabilised import multiplier_space
 
 __all__ = ["Problem", "assemble", "constrained_dofs", "COUPLING", "check_law"]
 
@@ -63,31 +65,44 @@ def check_law(law: str) -> str:
 class Problem:
     r"""The discrete interface problem of a scene (paper §3-5), for one tie law.
 
-    With U = [a, b] the X-FEM unknowns (eq. 11, shifted enrichment) and μ
+    With U = [a, b] the X-FEM unknowns ([11], shifted enrichment) and μ
     the independent multipliers, λ = P μ on the cut edges, the problem is
     K U + Bᵀ y = F, B U = 0, U[D] = g (y = -μ; :mod:`skxfem.solver`).
 
     Attributes
     ----------
     scene, mesh, cut : the scene, its resolved mesh and :class:`~skxfem.cut.Cut` (§4.1).
-    V : :class:`~skxfem.enrich.XSpace`, the displacement space u_h of eq. 11.
-    K : (N, N) CSR, the stiffness a(u, v) = ∫ σ(u):ε(v) (eq. 8's bilinear form).
-    F : (N,), the load l(v) of the surface tractions.
+    V : :class:`~skxfem.enrich.XSpace`, the displacement space u_h of [11].
+    K : (N, N) CSR, the stiffness a(u, v) = ∫ σ(u):ε(v) of §3's weak equilibrium,
+        σ from the constitutive law [1].
+    F : (N,), the load l(v) = ∫_{Γ_t} t·v of the surface tractions (§3).
     D, g : the constrained unknowns (int array) and their values: the scene's
         displacements, with the enriched dofs they hold on cut boundary
         facets (:func:`constrained_dofs`).
     rule : :class:`~skxfem.multipliers.InterfaceRule`, the quadrature on Γ_h.
-    J : (dim·nq, N) CSR, U ↦ [[u_h]] at the rule's points, component-major
+    J : (dim·nq, N) CSR, U ↦ [[u_h]] at the rule's points, component-major: the
+        jump of §4.1 written with the enriched dofs of [11]
         (:func:`skxfem.enrich.jump_matrix`).
     space : :class:`~skxfem.multipliers.Space`, the scene's multiplier space
         on all cut edges (§4.2 naive, §5 winner nodes / vital edges).
     law : the tie law P and B are built for (``"bonded"`` or ``"bilateral"``).
     ncomp : multiplier components per edge: dim (bonded) or 1 (bilateral).
     P : (ncomp·n_edges, m) CSR, the prolongation λ = P μ of the law's
-        multipliers, component-major (eq. 12 and §5's linear relations).
+        multipliers, component-major (λ_h of [12] on the cut edges, §5's
+        equalities and linear relations):
+        block-diagonal, one block per component, ``spaces[k].P``.
     B : (m, N) CSR, Pᵀ B_edges, the coupling ∫_Γ λ_h·[[v]] (or λ_h [[v]]·n)
-        reduced to the space: the constraint of eq. 8.
-    M_edges : (n_edges, n_edges) CSR, the interface mass ∫_Γ N_e N_f.
+        reduced to the space: the interface terms of §3's mixed formulation,
+        with a tie law in place of the contact law [6].
+    M_edges : (n_edges, n_edges) CSR, the interface mass ∫_Γ N_e N_f (the
+        L² norm of λ_h; §5's inf-sup test scales it by h).
+    held : (ncomp, n_edges) bool, the (component, edge) pairs whose jump a
+        support holds: both ends of the edge are fixed for that component
+        (:func:`skxfem.multipliers.fixed_jumps`, from ``D``; bilateral: the
+        normal jump, :func:`skxfem.multipliers.normal_fixed`).  They carry
+        no multiplier: their rows of P are empty.
+    spaces : the ncomp spaces of the law's components, each built on the
+        edges it keeps (``space`` itself where a component has no fixed node).
     timings : seconds per stage.
     """
 
@@ -107,6 +122,8 @@ class Problem:
     P: sp.csr_matrix
     B: sp.csr_matrix
     M_edges: sp.csr_matrix
+    held: np.ndarray
+    spaces: tuple
     timings: dict = field(default_factory=dict)
 
 
@@ -205,9 +222,25 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
     B_edges = coupling(V, rule, COUPLING[law], J=J)
     M_edges = interface_mass(rule)
     lap("interface")
-    ncomp = B_edges.shape[0] // c.points.shape[1]
-    P = sp.kron(sp.identity(ncomp), S.P, format="csr")  # component-major
+    fixed = fixed_jumps(V, D)
+    if COUPLING[law] == "bilateral":
+        fixed = normal_fixed(fixed, c)[None, :]
+    held = fixed[:, c.edges[0]] & fixed[:, c.edges[1]]
+    spaces = _component_spaces(scene.space, mesh, c, S, fixed)
+    P = sp.block_diag([s.P for s in spaces], format="csr")  # component-major
     B = (P.T @ B_edges).tocsr()
     lap("prolongation")
-    return Problem(scene, mesh, c, V, K, F, D, g, rule, J, S, law, ncomp, P, B, M_edges,
-                   timings)
+    return Problem(scene, mesh, c, V, K, F, D, g, rule, J, S, law, held.shape[0], P, B,
+                   M_edges, held, spaces, timings)
+
+
+def _component_spaces(name, mesh, c, S, fixed) -> tuple:
+    """The multiplier space of each component, built with that component's
+    fixed nodes (``S``, the space of all edges, where none is fixed; one
+    build per distinct set of fixed nodes)."""
+    built = {}
+    for row in fixed:
+        key = row.tobytes()
+        if key not in built:
+            built[key] = S if not row.any() else multiplier_space(name, mesh, c, fixed=row)
+    return tuple(built[row.tobytes()] for row in fixed)

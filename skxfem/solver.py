@@ -29,7 +29,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from . import saddle
+from . import contact, saddle
+from .contact import ContactResult
+from .contact_laws import CONTACT_LAWS
 from .enrich import XSpace, split_fields
 from .levelset import point_normals
 from .problem import Problem, assemble, constrained_dofs
@@ -80,8 +82,13 @@ def _differences(c, ncomp: int) -> sp.csr_matrix:
     return sp.kron(sp.identity(ncomp), G, format="csr")
 
 
-def solve(scene: Scene, dependent: str = "remove") -> Result:
+def solve(scene: Scene, dependent: str = "remove") -> Result | ContactResult:
     """Solve ``scene`` and return a :class:`Result`.
+
+    A scene with a contact law (``frictionless``, ``coulomb``, ``adhesive``)
+    is handed to :func:`skxfem.contact.solve` with its load steps, and its
+    :class:`~skxfem.contact.ContactResult` is returned: one call solves any
+    scene.
 
     Parameters
     ----------
@@ -103,6 +110,8 @@ def solve(scene: Scene, dependent: str = "remove") -> Result:
     """
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
+    if scene.law in CONTACT_LAWS:
+        return contact.solve(scene)
     p = assemble(scene)
     return solve_problem(p, dependent)
 

@@ -17,6 +17,8 @@ import pytest
 import skxfem
 from skxfem import cli, io, reproduce
 from skxfem.cli import main
+from skxfem.contact_newton import ContactConvergenceError
+from skxfem.scenefile import load_scene
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -249,3 +251,105 @@ def test_17_a_read_only_folder(tmp_path, capsys, no_solve):
         assert list(ro.iterdir()) == []
     finally:
         ro.chmod(0o700)
+
+
+# --- contact laws: contact.solve over the scene's load steps --------------------------
+
+CONTACT = str(EXAMPLES / "contact.toml")
+
+
+def test_18_contact_example_runs_and_its_json_satisfies_signorini(tmp_path, capsys,
+                                                                   monkeypatch):
+    def tie_solve(scene):
+        raise AssertionError("a contact scene went to skxfem.solver.solve")
+    monkeypatch.setattr(cli, "solve", tie_solve)
+    s = load_scene(CONTACT)
+    assert (s.name, s.law, s.friction, s.steps) == ("contact", "coulomb", 0.5, (0.5, 1.0))
+    data = run(tmp_path, "contact")
+    out = capsys.readouterr().out
+    assert out.count("\n") == 1 and out.startswith("contact: coulomb, 2 load step(s), ")
+    iterations = [st["newton"]["iterations"] for st in data["steps"]]
+    assert f"{sum(iterations)} Newton iterations" in out
+    last = data["steps"][-1]
+    c = last["counts"]
+    assert (f"{c['stick'] + c['slip']} in contact ({c['stick']} stick, {c['slip']} slip), "
+            f"{c['open']} open, max pressure {max(last['pressure']):.4g}") in out
+    assert data["law"] == "coulomb" and data["friction"] == 0.5
+    assert [st["load"] for st in data["steps"]] == [0.5, 1.0]     # [interface] steps
+    for st in data["steps"]:
+        assert set(st["status"]) == {"open", "stick", "slip"}
+        newton = st["newton"]
+        assert 1 <= newton["iterations"] <= 15
+        assert all(len(v) == newton["iterations"] + 1 and v[-1] <= 1e-10
+                   for v in newton["residuals"].values())
+        p, gap = np.array(st["pressure"]), np.array(st["gap"])
+        scale = p.max() * np.abs(gap).max()
+        assert p.min() >= 0, "Signorini: p >= 0"
+        assert gap.max() <= 1e-12 * np.abs(gap).max(), "Signorini: gap <= 0"
+        assert np.abs(p * gap).max() <= 1e-12 * scale, "Signorini: p gap = 0"
+        assert all(g < 0 for g, s in zip(gap, st["status"], strict=True) if s == "open")
+        r = np.abs(np.array(st["tangential_traction"])[:, 0])
+        assert np.all(r <= 0.5 * p * (1 + 1e-10)), "Coulomb: |r_τ| <= μp"
+    m = meshio.read(tmp_path / "contact" / "interface.vtu")
+    codes = [data["status_codes"][s] for s in last["status"]]
+    np.testing.assert_array_equal(m.point_data["status"], codes)
+    assert meshio.read(tmp_path / "contact" / "displacement.vtu").cells[0].type == "quad"
+
+
+CONTACT_TEXT = (EXAMPLES / "contact.toml").read_text()
+
+
+@pytest.mark.parametrize("edits, words", [
+    ({"friction = 0.5": "friction = -0.1"}, ["[interface] friction", ">= 0"]),
+    ({"friction = 0.5": "friction = 0.5\nrho_n = 0"}, ["[interface] rho_n", "> 0"]),
+    ({"friction = 0.5": "friction = 0.5\nrho_t = -2.0"}, ["[interface] rho_t", "> 0"]),
+    ({'law = "coulomb"': 'law = "glue"'}, ["[interface] law", "glue"]),
+    ({"steps = [0.5, 1.0]": "steps = []"}, ["[interface] steps", "non-empty"]),
+    ({'law = "coulomb"': 'law = "frictionless"',          # Ω⁺ free to slide in x
+      '[[displacement]]\nboundary = "ymax"\nx = 2.0': '#'}, ["singular"]),
+])
+def test_19_bad_contact_values_exit_2_with_one_line(tmp_path, capsys, edits, words):
+    text = CONTACT_TEXT
+    for old, bad in edits.items():
+        assert old in text
+        text = text.replace(old, bad)
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 2
+    err = one_line(capsys)
+    assert all(w in err for w in words), err
+    assert not (tmp_path / "out").exists()
+
+
+def test_20_a_contact_newton_that_does_not_converge_exits_2(tmp_path, capsys):
+    argv = ["run", CONTACT, "--out", str(tmp_path / "o"), "--max-iter", "1"]
+    assert main(argv) == 2
+    err = one_line(capsys)
+    assert "did not converge in 1 iterations" in err and "friction" in err
+    assert not (tmp_path / "o").exists()
+    with pytest.raises(ContactConvergenceError):
+        main(argv + ["--debug"])
+    assert main(["run", CONTACT, "--out", str(tmp_path / "o"), "--max-iter", "15"]) == 0
+
+
+def test_21_a_non_convergence_anywhere_in_the_history_is_one_line(tmp_path, capsys,
+                                                                  monkeypatch):
+    """Whatever raises it (a later step, the fixed point), the error is anticipated."""
+    def solve_contact(scene, **options):
+        assert scene.steps == (0.5, 1.0) and options == {}   # contact.solve's defaults
+        raise ContactConvergenceError("the fixed point on the friction threshold failed "
+                                      "in pass 2:\nalternates between two states")
+    monkeypatch.setattr(cli, "solve_contact", solve_contact)
+    assert main(["run", CONTACT, "--out", str(tmp_path / "o")]) == 2
+    assert "pass 2: alternates" in one_line(capsys)
+    assert ContactConvergenceError in cli.ANTICIPATED
+    assert RuntimeError not in cli.ANTICIPATED, "other numerical failures stay exit 1"
+
+
+def test_22_max_iter_is_for_contact_scenes(tmp_path, capsys, no_solve):
+    assert main(["run", STRIP, "--out", str(tmp_path / "o"), "--max-iter", "5"]) == 2
+    assert "--max-iter" in one_line(capsys) and not (tmp_path / "o").exists()
+    for bad in ("0", "many"):
+        with pytest.raises(SystemExit) as done:
+            main(["run", CONTACT, "--max-iter", bad])
+        assert done.value.code == 2 and "--max-iter" in one_line(capsys)

@@ -9,11 +9,12 @@ import skxfem.lbb as lbb
 import skxfem.solver as solver
 from skxfem.cut import cut as cut_mesh
 from skxfem.enrich import jump_matrix, space, stiffness
-from skxfem.multipliers import coupling, interface_rule, multiplier_space
+from skxfem.multipliers import coupling, interface_rule
 from skxfem.problem import COUPLING, assemble, check_law, constrained_dofs
 from skxfem.quadrature import cell_rule
 from skxfem.scene import resolve_mesh
 from skxfem.scenes import paper_plate, strip
+from skxfem.stabilised import multiplier_space
 
 
 def _spy(monkeypatch, module, seen):

@@ -283,7 +283,7 @@ def test_18_strip_is_the_plate_in_the_y_z_plane():
 
 @pytest.mark.parametrize("make, message", [
     (lambda: paper_plate(4, nz=4), "nz must be an odd"),
-    (lambda: paper_plate(4, cell="tet"), "'hex' or 'prism'"),
+    (lambda: paper_plate(4, cell="quad"), "'hex', 'prism' or 'tet'"),
     (lambda: paper_plate(0), "n must be a positive"),
     (lambda: strip(4, ny=2), "ny must be an odd"),
     (lambda: strip(4, cell="hex"), "'quad' or 'tri'"),

@@ -8,7 +8,8 @@ import pytest
 from skxfem.expr import Expression
 from skxfem.material import Material
 from skxfem.meshes import box
-from skxfem.scene import Box, Scene, clamped, load_scene, resolve_mesh, rollers
+from skxfem.scene import Box, Scene, clamped, resolve_mesh, rollers
+from skxfem.scenefile import load_scene
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
