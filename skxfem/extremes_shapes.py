@@ -10,8 +10,8 @@ Rows of the extremes table (:mod:`skxfem.extremes`):
   the refusal of the next size by :func:`skxfem.budget.check`;
 * :func:`shape_rows`: Γ slanted at 45°, curved (a circle, a sphere) and
   touching or crossing the boundary, under the patch test;
-* :func:`naive_rows`: the naive space near a node on the exact strip, where
-  its multipliers become nearly dependent.
+* :func:`space_rows`: the naive and winner spaces near a node on the exact
+  benchmark, where their multipliers become nearly dependent.
 
 >>> [r.outcome for r in one_cell_rows(["quad"])]
 ['solved']
@@ -26,11 +26,11 @@ from .exact import ExactPlate
 from .extremes import CELL_TYPES, PATCH_TOL, Row, attempt, patch_error, patch_scene
 from .levelset import circle, plane, sphere
 from .scene import Box
-from .scenes import exact_strip, paper_plate, strip
+from .scenes import exact_scene, paper_plate, strip
 from .solver import solve
 
 __all__ = ["one_cell_rows", "memory_scene", "largest", "memory_rows", "shape_rows",
-           "naive_rows"]
+           "UNSTABLE", "space_rows"]
 
 
 def _dim(cell: str) -> int:
@@ -124,21 +124,28 @@ def shape_rows(cells=CELL_TYPES, n2: int = 8, n3: int = 4, space: str = "vital")
     return rows
 
 
-def naive_rows(offsets=(1e-3, 0.5), n: int = 4, cells=("tri", "quad")) -> list[Row]:
-    """The naive space on the exact strip with Γ at ``offsets``·h above a node row:
-    the L² pressure error against :mod:`skxfem.exact` (held to 1, i.e. finite and
-    below the pressure itself), or the refusal of nearly dependent multipliers."""
+UNSTABLE = (("tri", "naive", 1e-3), ("tri", "naive", 0.5), ("quad", "naive", 1e-3),
+            ("quad", "naive", 0.5), ("tet", "winner", 1e-6), ("tet", "vital", 1e-6))
+"""(cell, space, offset) of :func:`space_rows`: where a space is nearly dependent, and
+the same scenes with a space that is not."""
+
+
+def space_rows(cases=UNSTABLE, n: int = 4) -> list[Row]:
+    """The exact benchmark (:func:`skxfem.scenes.exact_scene`) of each (cell, space)
+    with Γ at ``offset``·h above a node row: the L² pressure error against
+    :mod:`skxfem.exact` (held to 1, i.e. below the pressure itself), or the
+    refusal of nearly dependent multipliers."""
     rows = []
-    for cell in cells:
-        base = exact_strip(n, cell, space="naive")
-        h = 1.0 / base.mesh.n[1]
-        for offset in offsets:
-            psi = plane((0.0, 2 * h + offset * h), (0.0, 1.0))
+    for cell, space_name, offset in cases:
+        base = exact_scene(n, cell, space_name)
+        d = _dim(cell)
+        h = 1.0 / base.mesh.n[-1]
+        psi = plane((0.0,) * (d - 1) + (2 * h + offset * h,), (0.0,) * (d - 1) + (1.0,))
 
-            def run(scene=replace(base, levelset=psi)):
-                sol = ExactPlate(scene.material, 2)
-                return pressure_error(solve(scene), sol.pressure).l2
+        def run(scene=replace(base, levelset=psi)):
+            sol = ExactPlate(scene.material, scene.dim)
+            return pressure_error(solve(scene), sol.pressure).l2
 
-            rows.append(attempt("position", f"{cell} naive, exact strip, Γ at {offset:g} h "
-                                f"from a node row", "pressure L2 error (exact)", 1.0, run))
+        rows.append(attempt("position", f"{cell} {space_name}, exact, Γ at {offset:g} h "
+                            f"from a node row", "pressure L2 error (exact)", 1.0, run))
     return rows

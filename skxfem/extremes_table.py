@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from .extremes import CELL_TYPES, Row, position_rows
 from .extremes_scales import modulus_rows, poisson_rows, rho_rows
-from .extremes_shapes import memory_rows, naive_rows, one_cell_rows, shape_rows
+from .extremes_shapes import memory_rows, one_cell_rows, shape_rows, space_rows
 from .progress import Progress
 
 __all__ = ["table", "format_rows"]
@@ -24,7 +24,7 @@ __all__ = ["table", "format_rows"]
 
 def table(cells=CELL_TYPES, progress: Progress | None = None) -> list[Row]:
     """Every row of the extremes table (about 15 s here)."""
-    parts = [("Γ near nodes", lambda: position_rows(cells) + naive_rows()),
+    parts = [("Γ near nodes", lambda: position_rows(cells) + space_rows()),
              ("E", modulus_rows), ("ν", poisson_rows), ("ρ", rho_rows),
              ("one cell, memory", lambda: one_cell_rows(cells) + memory_rows(cells)),
              ("shapes", lambda: shape_rows(cells))]

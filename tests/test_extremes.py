@@ -6,7 +6,7 @@ import pytest
 
 from skxfem.extremes import Row, attempt, conditioning, patch_error, patch_scene, position_rows
 from skxfem.extremes_scales import modulus_rows, poisson_rows, rho_rows
-from skxfem.extremes_shapes import largest, memory_rows, naive_rows, one_cell_rows, shape_rows
+from skxfem.extremes_shapes import largest, memory_rows, one_cell_rows, shape_rows, space_rows
 from skxfem.extremes_table import format_rows
 from skxfem.levelset import plane
 from skxfem.scene import Box
@@ -40,12 +40,16 @@ def test_position_rows_solve_to_round_off_or_refuse_nodes_on_gamma():
         assert "dropped (sliver)" in rows[f"{cell}, Γ at 1e-10 h from a node row"].message
 
 
-def test_naive_space_near_a_node_is_refused_as_nearly_dependent():
-    rows = check_rows(naive_rows(offsets=(1e-3,), cells=("tri",)))
-    r = rows["tri naive, exact strip, Γ at 0.001 h from a node row"]
-    assert r.outcome == "refused"
-    assert r.message.startswith("the multipliers are nearly dependent on this mesh")
-    assert 'use a stable space (space="vital" or "winner")' in r.message
+def test_unstable_spaces_near_a_node_are_refused_as_nearly_dependent():
+    rows = check_rows(space_rows((("tri", "naive", 1e-3), ("tet", "winner", 1e-6),
+                                  ("tet", "vital", 1e-6))))
+    for case in ("tri naive, exact, Γ at 0.001 h from a node row",
+                 "tet winner, exact, Γ at 1e-06 h from a node row"):
+        r = rows[case]
+        assert r.outcome == "refused"
+        assert r.message.startswith("the multipliers are nearly dependent on this mesh")
+        assert 'use the vital space (space="vital")' in r.message
+    assert rows["tet vital, exact, Γ at 1e-06 h from a node row"].outcome == "solved"
 
 
 def test_conditioning_without_the_small_cut_rule_is_singular_on_slivers():
