@@ -9,8 +9,8 @@ is on in a terminal only) reports each part.
 
 >>> from skxfem.extremes import Row
 >>> print(format_rows([Row("E", "E = 1", "solved", "deviation", 0.0, 1e-8, "", 0.01)]))
-group    case                                          outcome       value     tol  note
-E        E = 1                                         solved      0.0e+00   1e-08
+group    case                                               outcome        value      tol  note
+E        E = 1                                              solved      0.00e+00    1e-08
 """
 from __future__ import annotations
 
@@ -38,10 +38,10 @@ def table(cells=CELL_TYPES, progress: Progress | None = None) -> list[Row]:
 
 def format_rows(rows, width: int = 90) -> str:
     """The rows as a fixed-width text table; notes and messages cut to ``width``."""
-    lines = [f"{'group':8} {'case':45} {'outcome':10} {'value':>8} {'tol':>7}  note"]
+    lines = [f"{'group':8} {'case':50} {'outcome':10} {'value':>9} {'tol':>8}  note"]
     for r in rows:
-        value = "-" if r.value is None else f"{r.value:.1e}"
+        value = "-" if r.value is None else f"{r.value:.2e}"
         note = r.message if len(r.message) <= width else r.message[:width - 3] + "..."
-        lines.append(f"{r.group:8} {r.case:45} {r.outcome:10} {value:>8} {r.tolerance:>7.3g}"
+        lines.append(f"{r.group:8} {r.case:50} {r.outcome:10} {value:>9} {r.tolerance:>8.3g}"
                      f"  {note}".rstrip())
     return "\n".join(lines)
