@@ -31,7 +31,7 @@ The package is flat; its modules stand on floors, lowest first.  A module
 imports only from lower floors (import-linter checks it in ``make test``; the
 contract is in ``pyproject.toml``):
 
-1. kernels: ``simplex``, ``expr``, ``saddle``;
+1. kernels: ``simplex``, ``expr``, ``saddle``, ``vtu``, ``progress``;
 2. ``levelset`` (the sign convention), ``meshes``, ``cells``, ``material``,
    ``quadrature``, ``evaluate``, ``contact_laws``;
 3. ``cut``, ``exact``;  4. ``enrich``, ``loads``;
@@ -40,10 +40,12 @@ contract is in ``pyproject.toml``):
    ``scenes``, ``scenefile``;
 8. ``problem``;  9. ``contact_interface``, ``contact_newton``,
    ``contact_fixed_point``;  10. ``lbb``, ``contact``, then ``solver``;
-11. ``io`` (on ``io_contact``, ``vtu``), ``budget``, ``convergence``;
-12. drawing: ``plotting``, then ``figstyle``, ``plot_space``, ``render3d``,
-    then ``figures``, ``contact_plots``, ``plot_supports``;
-13. ``reproduce``, ``cli``.
+11. ``io`` (on ``io_contact``), ``budget``, ``convergence``;
+12. the studies: ``extremes``, ``frontier``, then ``extremes_scales``,
+    ``extremes_shapes``, then ``extremes_table``;
+13. drawing: ``plotting``, then ``figstyle``, ``plot_space``, ``render3d``,
+    then ``figures``, ``contact_plots``, ``plot_supports``, ``frontier_plots``;
+14. ``reproduce``, ``cli``.
 """
 from importlib.metadata import PackageNotFoundError
 from importlib.metadata import version as _version

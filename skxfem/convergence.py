@@ -26,6 +26,7 @@ from .enrich import signed_bases
 from .exact import ExactPlate
 from .lbb import inf_sup
 from .multipliers import interface_rule
+from .progress import Progress
 from .solver import solve
 
 __all__ = ["PressureError", "pressure_error", "energy_error", "observed_rates", "StudyRow",
@@ -100,11 +101,13 @@ class StudyRow:
 
 
 def study(make_scene: Callable, ns, spaces=("naive", "winner", "vital"),
-          exact=None, with_inf_sup: bool = True) -> list[StudyRow]:
+          exact=None, with_inf_sup: bool = True, progress: Progress | None = None
+          ) -> list[StudyRow]:
     """Solve ``make_scene(n, space)`` for every n and space and measure it.
 
     ``exact`` is an :class:`skxfem.exact.ExactPlate` (default: built for the
-    scene's material and dimension).  h = 1/n.
+    scene's material and dimension).  h = 1/n.  ``progress``: one line per
+    mesh (default: a :class:`skxfem.progress.Progress`, on in a terminal only).
 
     >>> from skxfem.scenes import exact_strip
     >>> rows = study(lambda n, s: exact_strip(n, "quad", space=s), [4], ["naive"])
@@ -112,6 +115,7 @@ def study(make_scene: Callable, ns, spaces=("naive", "winner", "vital"),
     (4, True)
     """
     rows = []
+    progress = progress or Progress(len(spaces) * len(ns), "study")
     for space in spaces:
         for n in ns:
             scene = make_scene(n, space)
@@ -125,4 +129,5 @@ def study(make_scene: Callable, ns, spaces=("naive", "winner", "vital"),
             rows.append(StudyRow(n, 1.0 / n, space, I.beta if I else float("nan"),
                                  I.n_zero if I else -1, p.l2, p.max, e, result.n_dofs,
                                  result.n_multipliers, seconds))
+            progress.step(f"{scene.name} ({space})")
     return rows

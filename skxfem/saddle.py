@@ -150,8 +150,8 @@ def _unbalanced(B, r, mu, balance: float, tol: float, scale: float) -> Exception
             f"{SMOOTH_TOL:.0e}), and balancing the displacement needs a multiplier "
             f"{need.max():.1e} along them (typical multiplier {typical:.1e}); smooth "
             f"multipliers leave a relative imbalance {balance:.1e} > {tol:.0e}.  The "
-            f"naive space does this where Γ passes very close to a node: use a stable "
-            f"space (space=\"vital\" or \"winner\")")
+            f"naive space does this where Γ passes very close to a node, and so does the "
+            f"winner space on tetrahedra: use the vital space (space=\"vital\")")
     return RuntimeError(
         f"the multipliers do not balance the displacement (relative error "
         f"{balance:.1e} > {tol:.0e}): the interface tractions would be wrong; "
