@@ -13,17 +13,22 @@ writes into ``--out``
   of the bonded tie the scenes solve (``beta_h_bonded``, ``n_zero_bonded``),
   the relative L² error of the contact pressure and the relative energy
   error with their observed rates, sizes and timings;
+* ``frontier_energy.png``, ``frontier_pressure.png``, ``frontier.json``: the
+  speed-accuracy frontier (:mod:`skxfem.frontier`): error against wall time
+  for every method a user can choose, with the Pareto front; its per-method
+  summary is also under ``frontier`` in ``summary.json``;
 
-and prints a short table.  Errors are measured against the exact solution of
-:mod:`skxfem.exact` (scenes :func:`~skxfem.scenes.exact_strip` and
+and prints a short table (and, on a terminal, one progress line per part).
+Errors are measured against the exact solution of :mod:`skxfem.exact`
+(scenes :func:`~skxfem.scenes.exact_strip` and
 :func:`~skxfem.scenes.exact_plate` with one layer of cells along x), under
 which the paper's reference p(y) = 4y(1 - y) is the exact contact pressure.
 3D uses prisms (all three spaces) and hexahedra (the naive space: on this
 structured mesh cut by a plane every space is the naive one), 2D triangles and
 quadrilaterals (all three spaces).
 
-``--quick`` takes about half a minute (2D up to 1/h = 64, 3D up to 32); the
-default goes one mesh further in each (about two minutes).  ``--sizes``
+``--quick`` takes about a minute (2D up to 1/h = 64, 3D up to 32); the
+default goes one mesh further in each (a few minutes).  ``--sizes``
 replaces every list of meshes (for tests).
 
 >>> parser().parse_args(["--quick", "--sizes", "8", "16"]).sizes
@@ -41,7 +46,9 @@ import numpy as np
 
 from . import figures
 from .convergence import observed_rates, study
+from .frontier_plots import reproduce_frontier
 from .lbb import inf_sup
+from .progress import Progress
 from .scenes import exact_scene
 from .stabilised import vital_edges, winner_nodes
 
@@ -53,6 +60,9 @@ SETS = {
     "full": {"d2": (8, 16, 32, 64, 128), "d3": (8, 16, 32, 64), "fig5": 16,
              "fig7": (4, 8, 16, 32, 64), "fig8": (16, 32)},
 }
+PARTS = ("fig5", "fig6", "fig7", "fig8", "fig7_2d", "fig8_2d", "study_tri", "study_quad",
+         "study_prism", "study_hex", "frontier")
+"""The timed parts of a run, in order (one progress line each, on a terminal)."""
 CELLS = {"tri": ("naive", "winner", "vital"), "quad": ("naive", "winner", "vital"),
          "prism": ("naive", "winner", "vital"), "hex": ("naive",)}
 
@@ -147,11 +157,13 @@ def main(argv=None) -> int:
     def save(fig, name):
         fig.savefig(out / f"{name}.png", dpi=120, bbox_inches="tight")
 
+    progress = Progress(len(PARTS), "reproduce")
+
     def timed(name, make):
         t0 = time.perf_counter()
         value = make()
         timings[name] = round(time.perf_counter() - t0, 2)
-        print(f"{name}: {timings[name]:.1f} s", flush=True)
+        progress.step(name)
         return value
 
     save(timed("fig5", lambda: figures.fig5(sizes["fig5"])), "fig5")
@@ -177,6 +189,8 @@ def main(argv=None) -> int:
                 for s in shown[c]} for scaling in ("h", "l2", "bonded")]
     save(figures.fig_inf_sup(*inf_sup), "inf_sup")
 
+    frontier = timed("frontier", lambda: reproduce_frontier(out, args.quick, args.sizes))
+
     quad = studies["quad"]
     summary = {
         "paper": "Géniaut, Massin & Moës (2007), §5, Figures 5-10",
@@ -192,6 +206,7 @@ def main(argv=None) -> int:
             np.ptp([quad[s][k][i] for s in quad]) for k in ("beta_h", "pressure_l2")
             for i in range(len(quad["naive"]["n"])))),
         "studies": studies,
+        "frontier": frontier,
         "timings": timings,
     }
     timings["total"] = round(time.perf_counter() - start, 2)

@@ -8,7 +8,8 @@ import pytest
 
 from skxfem.reproduce import main
 
-FIGURES = ["fig5", "fig6", "fig7", "fig8", "fig7_2d", "fig8_2d", "fig9", "fig10", "inf_sup"]
+FIGURES = ["fig5", "fig6", "fig7", "fig8", "fig7_2d", "fig8_2d", "fig9", "fig10", "inf_sup",
+           "frontier_energy", "frontier_pressure"]
 
 
 @pytest.fixture(scope="module")
@@ -38,6 +39,8 @@ def test_summary_layout(run):
     assert summary["timings"]["total"] > 0
     assert summary["figure6"]["vital"]["multipliers"] == 5
     assert summary["figure6"]["winner"]["multipliers"] == 5
+    assert summary["frontier"], "the speed-accuracy frontier is part of the reproduction"
+    assert (run[1] / "frontier.json").exists()
 
 
 @pytest.mark.parametrize("cell", ["tri", "prism"])
