@@ -44,7 +44,6 @@ from skxfem.material import Material, stiffness_form
 from skxfem.meshes import box
 from skxfem.quadrature import cell_rule
 
-CELLS = ["tri", "quad", "tet", "hex", "prism"]
 MATERIAL = Material(E=1.0, nu=0.3)
 
 
@@ -124,7 +123,6 @@ def interface_points(c):
 
 # 1. the space -----------------------------------------------------------------------
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_enriched_nodes_are_the_nodes_of_cut_cells(cell):
     mesh, psi, c, V, _, layers = split_box(cell)
     dim = mesh.dim()
@@ -152,7 +150,6 @@ def test_docstring_counts():
     assert (V.n_std, V.n_enr) == (50, 20)
 
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_sliver_nodes_are_not_enriched(cell):
     """Γ a hair (1e-5) past the node layer x = 1/3: the layer x = 2/3 only sees a sliver."""
     mesh = box(3, cell)
@@ -203,7 +200,6 @@ def test_far_side_fraction_exact_for_a_plane_x_const(cell):
         f"far-side fractions wrong: max error {np.abs(frac - expected).max():.3g}")
 
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_far_side_fraction_adds_up_to_the_side_volume(cell):
     """Σⱼ ∫_{Ω⁺} φⱼ = |Ω⁺| (partition of unity), with ∫_{Ω⁺} φⱼ recovered from
     the fraction: far·∫φⱼ for nodes of Ω⁻, (1 - far)·∫φⱼ for nodes of Ω⁺."""
@@ -225,7 +221,6 @@ def test_far_side_fraction_adds_up_to_the_side_volume(cell):
 
 # 3. stiffness -------------------------------------------------------------------------
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_stiffness_is_symmetric_and_its_standard_block_is_plain_fem(cell):
     mesh, _, _, V, _, _ = split_box(cell)
     K = stiffness(V, MATERIAL)
@@ -240,7 +235,6 @@ def test_stiffness_is_symmetric_and_its_standard_block_is_plain_fem(cell):
         f"differs by {err:.3g}")
 
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_stiffness_null_space_is_the_rigid_motions_of_each_side(cell):
     mesh, _, _, V, _, _ = split_box(cell)
     dim = mesh.dim()
@@ -264,7 +258,6 @@ def test_stiffness_null_space_is_the_rigid_motions_of_each_side(cell):
     assert ev[n_rigid] > 1e-6, "the first non-rigid mode must be clearly positive"
 
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_strain_energy_of_a_piecewise_linear_field(cell):
     """u = G⁻x on Ω⁻, G⁺x on Ω⁺: uᵀKu = Σ± |Ω±| σ(ε±):ε±, ε = sym G."""
     mesh, _, _, V, vol_minus, _ = split_box(cell)
@@ -286,7 +279,6 @@ def test_strain_energy_of_a_piecewise_linear_field(cell):
 
 # 4. mass ------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_mass_of_piecewise_constant_fields(cell):
     mesh, _, _, V, vol_minus, _ = split_box(cell)
     dim = mesh.dim()
@@ -311,7 +303,6 @@ def test_mass_of_piecewise_constant_fields(cell):
 
 # 5. split_fields and jump_matrix -------------------------------------------------------
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_split_fields_recovers_each_side(cell):
     mesh, _, c, V, _, _ = split_box(cell)
     dim = mesh.dim()
@@ -336,7 +327,6 @@ def test_split_fields_recovers_each_side(cell):
     assert np.array_equal(own, a), "aᵢ must be the displacement at node i on its own side"
 
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_jump_of_piecewise_rigid_motion(cell):
     """[[u]] = u⁻ - u⁺ = r⁻(x) - r⁺(x) at points of Γ."""
     mesh, psi, c, V, _, _ = split_box(cell)
@@ -360,7 +350,6 @@ def test_jump_of_piecewise_rigid_motion(cell):
         "[[u]] must be u⁻ - u⁺ (Ω⁻ minus Ω⁺), not the other way round")
 
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_jump_matrix_agrees_with_split_fields(cell):
     mesh, _, c, V, _, _ = split_box(cell)
     dim = mesh.dim()
@@ -390,7 +379,6 @@ def test_jump_matrix_agrees_with_split_fields(cell):
 
 # 6. enriched load ----------------------------------------------------------------------
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_enriched_load_work_of_a_constant_traction(cell):
     """Fᵀu = ∫_top t·u for u = c⁻ on Ω⁻, c⁺ on Ω⁺, on the top face cut by Γ."""
     mesh, _, c, V, _, _ = split_box(cell)
@@ -415,7 +403,6 @@ def test_enriched_load_work_of_a_constant_traction(cell):
     assert np.array_equal(F[:V.n_std], f)
 
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_mass_integrates_linear_fields_exactly(cell):
     """The mass has its own quadrature orders (issue 7: the inf-sup norm was
     integrated with the stiffness' rule, one point on a simplex): u⁻ = y e₀,

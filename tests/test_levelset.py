@@ -29,8 +29,6 @@ from skxfem.levelset import (
 )
 from skxfem.meshes import box
 
-CELLS = ["tri", "quad", "tet", "hex", "prism"]
-
 
 def dim_of(cell):
     return 2 if cell in ("tri", "quad") else 3
@@ -147,7 +145,6 @@ def test_cannot_combine_2d_and_3d():
 
 # 4. nodal values ------------------------------------------------------------------
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_nodal_values_on_every_cell_type(cell):
     dim = dim_of(cell)
     mesh = box(3, cell)
@@ -294,7 +291,6 @@ def test_a_level_set_without_gradient_gets_central_differences(scale):
             f"central differences at scale {scale}: error {np.abs(g - exact).max():.1e}"
 
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_point_normals_are_exact_for_planes_and_balls(cell):
     from skxfem.cut import cut
     from skxfem.levelset import point_normals

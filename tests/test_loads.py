@@ -22,14 +22,14 @@ from skxfem.loads import BoundaryQuadrature, boundary_quadrature, pressure, surf
 from skxfem.material import Material, stiffness_form
 from skxfem.meshes import box
 from skxfem.quadrature import cell_rule
+from skxfem.scene import CELLS
 
 ELEM = {"tri": ElementTriP1, "quad": ElementQuad1, "tet": ElementTetP1,
         "hex": ElementHex1, "prism": ElementWedge1}
-CELLS_2D, CELLS_3D = ["tri", "quad"], ["tet", "hex", "prism"]
 
 
 def unit_box(cell):
-    return box((3, 2) if cell in CELLS_2D else (2, 3, 3), cell)
+    return box((3, 2) if CELLS[cell] == 2 else (2, 3, 3), cell)
 
 
 def vector_basis(mesh, cell):
@@ -52,7 +52,6 @@ def parabola(x):
 
 # 1. geometry of the boundary rule ----------------------------------------------
 
-@pytest.mark.parametrize("cell", CELLS_2D + CELLS_3D)
 def test_closed_boundary_identities(cell):
     # divergence theorem on the whole boundary: ∮ n = 0 and ∮ x·n = dim * volume
     mesh = sheared(unit_box(cell))
@@ -69,7 +68,6 @@ def test_closed_boundary_identities(cell):
     assert np.all(q.side == 1)
 
 
-@pytest.mark.parametrize("cell", CELLS_2D + CELLS_3D)
 def test_normals_point_out_of_their_cell(cell):
     mesh = sheared(unit_box(cell))
     q = boundary_quadrature(mesh, mesh.boundary_facets(), order=1)
@@ -79,10 +77,9 @@ def test_normals_point_out_of_their_cell(cell):
 
 # 2. total forces ---------------------------------------------------------------
 
-@pytest.mark.parametrize("cell", CELLS_2D + CELLS_3D)
 def test_total_force_of_constant_and_parabolic_pressure(cell):
     mesh = unit_box(cell)
-    top = "ymax" if cell in CELLS_2D else "zmax"
+    top = "ymax" if CELLS[cell] == 2 else "zmax"
     basis = vector_basis(mesh, cell)
     q = boundary_quadrature(mesh, mesh.boundaries[top], order=4)
     for p, exact in ((lambda x: 1.0 + 0 * x[0], 1.0), (parabola, 2 / 3)):
@@ -105,7 +102,7 @@ def test_prism_triangle_faces_carry_the_load_too():
 @pytest.mark.parametrize("cell", ["tri", "quad", "tet", "hex"])
 def test_load_vector_equals_skfem_facetbasis(cell):
     mesh0 = unit_box(cell)
-    top = mesh0.boundaries["ymax" if cell in CELLS_2D else "zmax"]
+    top = mesh0.boundaries["ymax" if CELLS[cell] == 2 else "zmax"]
     mesh = sheared(mesh0)
     basis = vector_basis(mesh, cell)
     shear = np.array([0.5, -0.2, 0.3][:mesh.dim()])
@@ -185,10 +182,9 @@ def test_prism_load_node_by_node():
 
 # 3. facets cut by a level set --------------------------------------------------
 
-@pytest.mark.parametrize("cell", CELLS_2D + CELLS_3D)
 def test_cut_face_measures_both_sides(cell):
     mesh = unit_box(cell)
-    if cell in CELLS_2D:             # Γ: x = 0.3 cuts the top edge y = 1
+    if CELLS[cell] == 2:             # Γ: x = 0.3 cuts the top edge y = 1
         psi, top, plus = mesh.p[0] - 0.3, "ymax", 0.7
     else:                            # Γ: x + 2y = 1.1 cuts the top face obliquely
         psi, top, plus = mesh.p[0] + 2 * mesh.p[1] - 1.1, "zmax", 0.7
@@ -198,11 +194,11 @@ def test_cut_face_measures_both_sides(cell):
     assert abs(q.weights[q.side > 0].sum() - plus) < 1e-14
     assert abs(q.weights @ q.side - (plus - (1 - plus))) < 1e-14
     # each point really lies on its side of Γ
-    psi_x = q.points[0] - 0.3 if cell in CELLS_2D else q.points[0] + 2 * q.points[1] - 1.1
+    psi_x = q.points[0] - 0.3 if CELLS[cell] == 2 else q.points[0] + 2 * q.points[1] - 1.1
     assert np.all(q.side * psi_x >= -1e-14)
 
 
-@pytest.mark.parametrize("cell", CELLS_3D)
+@pytest.mark.parametrize("cell", [c for c in CELLS if CELLS[c] == 3])
 def test_enriched_load_of_the_parabolic_pressure(cell):
     # ∫ H p over the top face with Γ: y = 0.3 (not on a node line)
     mesh = unit_box(cell)
@@ -215,7 +211,7 @@ def test_enriched_load_of_the_parabolic_pressure(cell):
     assert abs(f_H[basis.nodal_dofs[2]].sum() + (2 / 3 - 2 * below)) < 1e-12
 
 
-@pytest.mark.parametrize("cell", CELLS_3D)
+@pytest.mark.parametrize("cell", [c for c in CELLS if CELLS[c] == 3])
 def test_level_set_through_nodes_and_on_the_face(cell):
     mesh = box((2, 2, 2), cell)
     top = mesh.boundaries["zmax"]

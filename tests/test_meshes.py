@@ -35,7 +35,6 @@ def faces_per_square(cell, axis):
     return 2 if axis == 0 else 1     # prism: triangles on x = const, quads elsewhere
 
 
-@pytest.mark.parametrize("cell", list(CELLS))
 def test_box_counts_volume_and_name(cell):
     n, size = shape(cell)
     mesh = box(n, cell, size=size)
@@ -46,7 +45,6 @@ def test_box_counts_volume_and_name(cell):
     assert check_mesh(mesh, dim=len(n)) is mesh
 
 
-@pytest.mark.parametrize("cell", list(CELLS))
 def test_box_named_boundaries(cell):
     n, size = shape(cell)
     mesh = box(n, cell, size=size)

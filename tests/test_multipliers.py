@@ -36,7 +36,6 @@ from skxfem.multipliers import (
 )
 from skxfem.stabilised import multiplier_space
 
-CELLS = ["tri", "quad", "tet", "hex", "prism"]
 SLOPES = (0.1, 0.07)  # Γ: last coordinate = 0.5 + a (x - 0.5) [+ b (y - 0.5)]
 
 
@@ -81,7 +80,6 @@ def setup(cell, n=3):
 
 # 1. the naive space ------------------------------------------------------------
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_naive_space_is_one_multiplier_per_strictly_cut_edge(cell):
     mesh, psi, _, _, c = setup(cell)
     _, _, edges = cell_edges(mesh)
@@ -98,7 +96,6 @@ def test_naive_space_is_one_multiplier_per_strictly_cut_edge(cell):
 
 # 2. the interface rule ------------------------------------------------------------
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_interface_weights_sum_to_the_measure_of_gamma(cell):
     mesh, psi, normal, area, c = setup(cell)
     rule = interface_rule(mesh, c)
@@ -110,7 +107,6 @@ def test_interface_weights_sum_to_the_measure_of_gamma(cell):
         "the normals of a plane Γ must all be its unit normal, pointing into Ω⁺"
 
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_interface_rule_integrates_polynomials_exactly(cell):
     mesh, _, _, area, c = setup(cell)
     dim = mesh.dim()
@@ -134,7 +130,6 @@ def test_interface_rule_integrates_polynomials_exactly(cell):
         f"got {got}, exact {exact}")
 
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_multiplier_functions_are_p1_on_the_facets(cell):
     """N_k: a partition of unity that interpolates linear functions exactly."""
     mesh, _, _, _, c = setup(cell)
@@ -149,7 +144,6 @@ def test_multiplier_functions_are_p1_on_the_facets(cell):
 
 # 3. the interface mass ----------------------------------------------------------------
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_interface_mass_is_spd_and_integrates_exactly(cell):
     mesh, _, _, area, c = setup(cell)
     dim = mesh.dim()
@@ -201,7 +195,6 @@ JUMPS = {
 
 
 @pytest.mark.parametrize("jump", JUMPS)
-@pytest.mark.parametrize("cell", CELLS)
 def test_coupling_of_a_known_jump(cell, jump):
     mesh, _, normal, _, c = setup(cell)
     dim = mesh.dim()

@@ -24,7 +24,6 @@ from skxfem.scene import (
 )
 from skxfem.scenes import paper_plate, strip
 
-CELLS = ["tri", "quad", "tet", "hex", "prism"]
 DIM = {"tri": 2, "quad": 2, "tet": 3, "hex": 3, "prism": 3}
 
 
@@ -149,7 +148,6 @@ def test_08_resolve_mesh_refuses_nan_coordinates_and_dimension_mismatch(tmp_path
 
 # --- 3. imposed displacements on the five cell types ----------------------------
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_09_clamped_face_imposes_every_component_of_its_nodes(cell):
     mesh, basis, psi = small(cell)
     dofs, values = dirichlet(Scene(mesh, psi, displacements=(clamped("xmin"),)), mesh, basis)
@@ -159,7 +157,6 @@ def test_09_clamped_face_imposes_every_component_of_its_nodes(cell):
     assert values.shape == dofs.shape and np.all(values == 0.0)
 
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_10_values_selections_and_later_conditions_win(cell):
     mesh, basis, psi = small(cell)
     corner = Expression(" and ".join(f"{c} < 1e-9" for c in "xyz"[:DIM[cell]]),
@@ -214,7 +211,6 @@ def test_13_named_faces_work_on_meshes_without_boundaries():
 
 # --- 4. loaded facets on the five cell types ------------------------------------
 
-@pytest.mark.parametrize("cell", CELLS)
 def test_14_load_facets_resolve_names_and_selections(cell):
     mesh, _, psi = small(cell)
     top = "ymax" if DIM[cell] == 2 else "zmax"

@@ -148,7 +148,6 @@ def check_traction(result, sigma_up, theta):
         < 1e-15
 
 
-@pytest.mark.parametrize("cell", ["tri", "quad", "tet", "hex", "prism"])
 @pytest.mark.parametrize("theta, law", [(0.0, "bonded"), (THETA, "bonded"),
                                         (0.0, "bilateral")])
 def test_uniaxial_imposed_displacement(cell, theta, law):
@@ -285,7 +284,6 @@ def test_bonded_tractions_are_the_conforming_reactions(cell):
         < 1e-9 * np.abs(reaction[:, node]).max()
 
 
-@pytest.mark.parametrize("cell", ["tri", "quad", "tet", "hex", "prism"])
 def test_patch_test_equals_plain_solve(cell):
     """A uniform pressure on a block with free sides (ν = 0.3, Γ tilted): both the
     X-FEM and the plain solve on the same mesh reproduce the linear state."""
@@ -350,7 +348,6 @@ def test_a_clamped_face_that_gamma_does_not_cut_leaves_the_enrichment_free():
     assert energy < energy_plain - 1e-6 * abs(energy_plain)
 
 
-@pytest.mark.parametrize("cell", ["tri", "quad", "tet", "hex", "prism"])
 def test_a_clamped_face_that_gamma_cuts_holds_on_both_sides(cell):
     """Γ (slanted) cuts the clamped face x = 0: there u⁻ and u⁺ must both
     vanish, at every node and so between the nodes: the enriched dofs of the
@@ -486,7 +483,6 @@ def test_level_set_cutting_no_cell_is_refused():
 # 6. Stability at the extremes: Γ a vanishing distance from a node row
 # ---------------------------------------------------------------------------
 
-@pytest.mark.parametrize("cell", ["tri", "quad", "tet", "hex", "prism"])
 def test_gamma_closing_in_on_a_node_row_is_stable(cell):
     """As Γ approaches a row of nodes (distance d·h/4, d = 1e-3, 1e-6, 1e-9),
     the tied solution with the vital-edge space tends to a limit: the
