@@ -130,7 +130,7 @@ def load_wrong(folder: Path, name: str) -> types.ModuleType:
 @pytest.fixture(scope="module")
 def impl(request):
     """The module under test, chosen by ``--impl``."""
-    folder = Path(request.module.__file__).resolve().parent
+    folder = Path(request.node.path).resolve().parent   # the file collected, not a cached module
     choice = request.config.getoption("impl")
     if choice == "student":
         return load_student(folder, request.module.ASKED, request.module.LIBRARY)

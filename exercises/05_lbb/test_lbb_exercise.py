@@ -1,6 +1,7 @@
 """Exercise 05, the inf-sup constant: make these pass in order (``pytest exercises/05_lbb``)."""
 
 import numpy as np
+import pytest
 import scipy.sparse as sp
 
 import skxfem.lbb
@@ -99,6 +100,7 @@ def saddle_matrices(space):
     return captured, result, c
 
 
+@pytest.mark.points(2)
 def test_06_why_the_naive_space_loses_it(impl):
     mats, result, c = saddle_matrices("naive")
     n_edges, n_nodes = c.edges.shape[1], np.unique(c.edges).size

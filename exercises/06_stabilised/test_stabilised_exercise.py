@@ -2,6 +2,7 @@
 import itertools
 
 import numpy as np
+import pytest
 
 from skxfem.figures import FIG6_EDGES, figure6_graph
 
@@ -96,6 +97,7 @@ def test_04_small_random_graphs(impl):
                     + f" of lengths {length.astype(int).tolist()}")
 
 
+@pytest.mark.points(2)
 def test_05_figure6_of_the_paper(impl):
     edges, psi, points, nodes = figure6_graph()
     length = np.linalg.norm(nodes[:, edges[0]] - nodes[:, edges[1]], axis=0)
