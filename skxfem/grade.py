@@ -112,21 +112,23 @@ def table(scores: list[Score]) -> str:
 
     >>> print(table([Score("01_levelset", (Result("test_01", "passed", 2.0),
     ...                                    Result("test_02", "failed", 1.0, "no")))]))
-    exercise          tests   points
-    01_levelset         1/2      2/3   first failure: test_02: no
-    total               1/2      2/3
+    exercise           tests   points
+    01_levelset          1/2      2/3   first failure: test_02: no
+    total                1/2      2/3
     """
-    rows = ["exercise          tests   points"]
+    def row(name, passed, total, points, best, note=""):
+        return (f"{name:16} {f'{passed}/{total}':>7} "
+                f"{f'{_number(points)}/{_number(best)}':>8}{note}"[:200])
+
+    rows = [f"{'exercise':16} {'tests':>7} {'points':>8}"]
     for s in scores:
         failed = next((r for r in s.results if r.outcome != "passed"), None)
         note = f"   first failure: {failed.name}: {failed.message}" if failed else ""
         if s.total == 0:
             note = "   no test ran (see the pytest output above)"
-        rows.append(f"{s.exercise:16} {s.passed:>3}/{s.total:<3} "
-                    f"{_number(s.points):>4}/{_number(s.max_points):<4}{note[:160]}".rstrip())
-    passed, total = sum(s.passed for s in scores), sum(s.total for s in scores)
-    points, best = sum(s.points for s in scores), sum(s.max_points for s in scores)
-    rows.append(f"{'total':16} {passed:>3}/{total:<3} {_number(points):>4}/{_number(best)}")
+        rows.append(row(s.exercise, s.passed, s.total, s.points, s.max_points, note))
+    rows.append(row("total", sum(s.passed for s in scores), sum(s.total for s in scores),
+                    sum(s.points for s in scores), sum(s.max_points for s in scores)))
     return "\n".join(rows)
 
 

@@ -122,7 +122,8 @@ def copy_exercise(tmp_path, name, student_source=None) -> Path:
 @pytest.mark.parametrize("name, source", [
     ("01_levelset", "from skxfem.levelset import circle, plane, sphere\n"),
     ("01_levelset", "import skxfem.levelset as L\n\n\ndef plane(point, normal):\n"
-                    "    return L.plane(point, normal)\n\n\ncircle = L.circle\nsphere = L.sphere\n"),
+                    "    return L.plane(point, normal)\n\n\n"
+                    "circle = L.circle\nsphere = L.sphere\n"),
     ("06_stabilised", "from skxfem.stabilised import _minimum_edge_cover as minimum_edge_cover\n"
                       "\n\ndef star_groups(edges, vital):\n    raise NotImplementedError\n"),
 ])
@@ -156,12 +157,12 @@ def test_a_student_goes_from_the_readme_to_a_score_table(tmp_path):
     assert stub.returncode == 1 and "NotImplementedError" in stub.stdout, stub.stdout[-2000:]
     graded = shell(commands[1])
     assert graded.returncode == 1, graded.stdout[-2000:] + graded.stderr[-2000:]
-    assert "03_enrich          0/6" in graded.stdout, graded.stdout[-2000:]
+    assert "03_enrich            0/6      0/6" in graded.stdout, graded.stdout[-2000:]
 
     shutil.copy(EXERCISES / "solutions" / "03_enrich" / "reference.py", folder / "exercise.py")
     graded = shell(commands[1])
     assert graded.returncode == 0, graded.stdout[-3000:] + graded.stderr[-2000:]
-    assert "03_enrich          6/6      6/6" in graded.stdout, graded.stdout[-2000:]
+    assert "03_enrich            6/6      6/6" in graded.stdout, graded.stdout[-2000:]
     report = json.loads((tmp_path / "grade.json").read_text(encoding="utf-8"))
     assert report["passed"] == report["total"] == 6
     assert [t["outcome"] for t in report["exercises"]["03_enrich"]["tests"]] == ["passed"] * 6
