@@ -1,7 +1,8 @@
 # skxfem: the whole set-up on a fresh machine is `make figures` and `make test`.
 #
 #   make figures   create .venv, install skxfem, reproduce the paper's figures in out/
-#   make test      create .venv, install skxfem, lint, run pytest, then build the book
+#   make test      create .venv, install skxfem, lint (ruff, import floors), run pytest,
+#                  then build the book
 #   make book      build the book (executes every chapter) into book/_build/html
 #   make install   only create .venv and install skxfem[viz,book,dev]
 #   make clean     remove the built book
@@ -48,6 +49,7 @@ figures: $(STAMP)
 
 test: $(STAMP)
 	$(BIN)/ruff check skxfem tests exercises
+	$(BIN)/lint-imports
 	$(BIN)/pytest -q
 	$(MAKE) --no-print-directory book
 

@@ -1,2 +1,89 @@
-"""skxfem: X-FEM with contact on an interface that cuts the mesh, on scikit-fem."""
-__version__ = "0.1.0"
+r"""skxfem: X-FEM with contact on an interface that cuts the mesh, on scikit-fem.
+
+A notebook needs one import, as with scikit-fem:
+
+>>> import skxfem
+>>> r = skxfem.solve(skxfem.scenes.strip(8, cell="tri"))
+>>> r.points.shape[0], r.pressure.shape == r.points.shape[1:]   # (dim, n) and (n,)
+(2, True)
+
+What ``import skxfem`` gives:
+
+* ``skxfem.solve(scene)`` — the tied interface (laws ``bonded``, ``bilateral``)
+  or, for the contact laws (``frictionless``, ``coulomb``, ``adhesive``), the
+  contact solve of :mod:`skxfem.contact`;
+* the scene and its parts: :class:`Scene`, :class:`Box`, :class:`Displacement`,
+  :class:`SurfaceLoad`, :func:`clamped`, :func:`rollers`, :class:`Material`,
+  :func:`load_scene` (a TOML scene file) and the built-in scenes
+  ``skxfem.scenes`` (``paper_plate``, ``strip``, ``exact_plate`` ...);
+* the level sets :func:`plane`, :func:`circle`, :func:`sphere` and their
+  combinations;
+* :func:`assemble`, the one assembled interface problem every solver shares;
+* the step modules, one per chapter of the book: ``levelset``, ``cut``,
+  ``enrich``, ``multipliers``, ``lbb``, ``stabilised``, ``contact``; and
+  ``plotting`` and ``evaluate`` (``pressure_along``) to look at a result.
+  The paper's figures are ``skxfem.figures`` (imported on demand).
+
+The stable multiplier space (vital edges, the paper's algo2) is what a scene
+gets unless it asks for another.
+
+The package is flat; its modules stand on floors, lowest first.  A module
+imports only from lower floors (import-linter checks it in ``make test``; the
+contract is in ``pyproject.toml``):
+
+1. kernels: ``simplex``, ``expr``, ``saddle``, ``vtu``, ``progress``;
+2. ``levelset`` (the sign convention), ``meshes``, ``cells``, ``material``,
+   ``quadrature``, ``evaluate``, ``contact_laws``;
+3. ``cut``, ``exact``;  4. ``enrich``, ``loads``;
+5. ``multipliers``, ``cutgraph``;  6. ``stabilised``;
+7. the scene: ``scene_parts``, ``tomlcheck``, ``boundary``, ``scene``, then
+   ``scenes``, ``scenefile``;
+8. ``problem``;  9. ``contact_interface``, ``contact_newton``,
+   ``contact_fixed_point``;  10. ``lbb``, ``contact``, then ``solver``;
+11. ``io`` (on ``io_contact``), ``budget``, ``convergence``;
+12. the studies: ``extremes``, ``frontier``, then ``extremes_scales``,
+    ``extremes_shapes``, then ``extremes_table``;
+13. drawing: ``plotting``, then ``figstyle``, ``plot_space``, ``render3d``,
+    then ``figures``, ``contact_plots``, ``plot_supports``, ``frontier_plots``;
+14. ``reproduce``, ``cli``.
+"""
+from importlib.metadata import PackageNotFoundError
+from importlib.metadata import version as _version
+
+try:
+    __version__ = _version("skxfem")
+except PackageNotFoundError:  # running from a source tree that is not installed
+    __version__ = "0.1.0"
+
+from . import (  # noqa: E402  (the steps, in the order of the book)
+    contact,
+    cut,
+    enrich,
+    evaluate,
+    lbb,
+    levelset,
+    multipliers,
+    plotting,
+    scenes,
+    stabilised,
+)
+from .levelset import circle, complement, intersection, plane, sphere, union  # noqa: E402
+from .material import Material  # noqa: E402
+from .problem import assemble  # noqa: E402
+from .scene import (  # noqa: E402
+    Box,
+    Displacement,
+    Scene,
+    SurfaceLoad,
+    clamped,
+    rollers,
+)
+from .scenefile import load_scene  # noqa: E402
+from .solver import Result, solve  # noqa: E402
+
+__all__ = [
+    "__version__", "solve", "Result", "assemble", "Scene", "Box", "Displacement",
+    "SurfaceLoad", "clamped", "rollers", "Material", "load_scene", "plane", "circle",
+    "sphere", "union", "intersection", "complement", "scenes", "levelset", "cut", "enrich",
+    "multipliers", "lbb", "stabilised", "contact", "plotting", "evaluate",
+]

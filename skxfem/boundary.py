@@ -23,14 +23,14 @@ from typing import TYPE_CHECKING, Callable
 import numpy as np
 from skfem import Mesh
 
-if TYPE_CHECKING:  # scene.py imports this module
-    from .scene import Scene, SurfaceLoad
+from .scene_parts import COMPONENTS, FACES, SurfaceLoad
+
+if TYPE_CHECKING:
+    from .scene import Scene
 
 __all__ = ["FACES", "COMPONENTS", "named_facets", "select_nodes", "select_facets",
            "imposed", "dirichlet", "load_facets", "traction"]
 
-COMPONENTS = ("x", "y", "z")
-FACES = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
 
 
 def named_facets(mesh: Mesh, name: str) -> np.ndarray:
@@ -154,7 +154,6 @@ def traction(load: SurfaceLoad, x: np.ndarray, n: np.ndarray) -> np.ndarray:
     Both arrays have shape ``(dim, ...)``; so has the result: t = -p n for a
     pressure, else the given vector.
 
-    >>> from skxfem.scene import SurfaceLoad
     >>> traction(SurfaceLoad("ymax", pressure=2.0), np.zeros((2, 1)), np.array([[0.], [1.]]))
     array([[-0.],
            [-2.]])

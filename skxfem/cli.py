@@ -1,13 +1,35 @@
-"""The ``skxfem`` command: run a scene file and write its results.
+"""The ``skxfem`` command: run a scene file, reproduce the paper, print the version.
 
 ::
 
-    skxfem run examples/plate.toml --out results/plate
-    python -m skxfem run examples/plate.toml
+    skxfem run examples/plate.toml --out results/plate [--max-memory 8G]
+    skxfem reproduce --quick --out out/        # the same as python -m skxfem.reproduce
+    skxfem --version
+    python -m skxfem run examples/plate.toml   # the same as skxfem
 
-A bad scene file (unknown key, wrong type, refused formula ...) or a problem
-the solver refuses is reported in one line on stderr, with exit code 2 and no
-traceback; ``--debug`` shows the traceback instead.
+``skxfem run`` reads the scene, checks the output folder (an existing file, a
+folder that cannot be written), estimates the size of the problem
+(:mod:`skxfem.budget`; refused above ``--max-memory``, 4 GB by default), and
+only then solves and writes the results atomically (:mod:`skxfem.io`).  A
+scene whose ``[interface] law`` is a contact law (``frictionless``,
+``coulomb``, ``adhesive``) is solved by :func:`skxfem.contact.solve` over
+its load ``steps`` (``--max-iter``: the Newton iteration limit of each step)
+and the line printed gives the steps, the Newton iterations, the status
+counts of the last step and its largest pressure.
+
+Exit codes: 0 success; 2 for every error the command anticipates (a bad or
+missing scene or mesh file, a scene the solver refuses — a level set that cuts
+no cell, a singular system, a contact Newton method that does not converge —,
+a bad output folder, a failed write, a problem over the size limit, running
+out of memory, a usage error), reported as ONE
+line ``skxfem: error: ...`` on stderr; 1 for an unexpected error (a bug or a
+numerical failure), reported as one line with its type and message and the
+hint to run again with ``--debug``, which shows the traceback instead; 130
+after Ctrl-C.
+
+A module with ``main(argv) -> int`` becomes a subcommand with one entry in
+:data:`FORWARDED` (``skxfem reproduce`` is ``skxfem.reproduce.main``); its
+errors are reported in the same way.
 """
 from __future__ import annotations
 
@@ -15,53 +37,155 @@ import argparse
 import sys
 from pathlib import Path
 
-__all__ = ["main"]
+from . import __version__, budget, io, reproduce
+from .contact import solve as solve_contact
+from .contact_laws import CONTACT_LAWS, STATUS_NAMES
+from .contact_newton import ContactConvergenceError
+from .scenefile import load_scene
+from .solver import solve
+
+__all__ = ["main", "parser", "FORWARDED"]
+
+FORWARDED = {
+    "reproduce": ("reproduce the paper's figures and summary.json "
+                  "(python -m skxfem.reproduce)", reproduce.main),
+}
+"""Subcommands handed their arguments as they are: ``name -> (help, main(argv) -> int)``."""
+
+ANTICIPATED = (OSError, ValueError, TypeError, MemoryError, ContactConvergenceError)
+"""Errors reported as a bad input (exit 2): files, scenes, refused problems, disk, memory,
+a contact iteration that does not converge (its message says what to change)."""
 
 
-def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="skxfem", description="X-FEM with an interface that cuts the mesh.")
-    commands = parser.add_subparsers(dest="command", required=True)
+class _Parser(argparse.ArgumentParser):
+    """argparse, with a usage error in one line (exit 2)."""
+
+    def error(self, message):
+        self.exit(2, f"skxfem: error: {message} (see {self.prog} --help)\n")
+
+
+def _memory(text: str) -> int:
+    try:
+        return budget.parse_bytes(text)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
+
+
+def _positive(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be a positive integer, got {text!r}")
+    return value
+
+
+def parser() -> argparse.ArgumentParser:
+    """The command line of ``skxfem``.
+
+    >>> parser().parse_args(["run", "a.toml", "--max-memory", "1G"]).max_memory
+    1073741824
+    """
+    p = _Parser(prog="skxfem", description="X-FEM with an interface that cuts the mesh.")
+    p.add_argument("--version", action="version", version=f"skxfem {__version__}")
+    p.add_argument("--debug", action="store_true", help="show the traceback of an error")
+    commands = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
     run = commands.add_parser("run", help="solve a scene file (TOML)")
     run.add_argument("scene", type=Path, help="the scene file, e.g. examples/plate.toml")
     run.add_argument("--out", type=Path, default=None,
                      help="output folder (default: ./<scene name>)")
-    run.add_argument("--debug", action="store_true", help="show tracebacks on errors")
-    return parser
+    run.add_argument("--max-memory", type=_memory, default=budget.DEFAULT_MAX_BYTES,
+                     metavar="SIZE", help="refuse a scene whose estimated memory exceeds "
+                                          "SIZE, e.g. 500M or 16G (default: 4G)")
+    run.add_argument("--max-iter", type=_positive, default=None, metavar="N",
+                     help="contact laws: Newton iterations allowed per load step "
+                          "(default: that of skxfem.contact.solve, 30)")
+    run.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
+                     help="show the traceback of an error")
+    for name, (text, _) in FORWARDED.items():
+        commands.add_parser(name, help=f"{text}; `skxfem {name} --help` for its options",
+                            add_help=False)
+    return p
 
 
-def _fail(error: Exception, debug: bool) -> int:
+def _fail(error: BaseException, debug: bool) -> int:
+    """One line on stderr and the exit code; the traceback with ``--debug``."""
     if debug:
         raise error
-    print(f"skxfem: error: {error}", file=sys.stderr)
-    return 2
+    text = " ".join(str(error).split())                 # one line, whatever the message
+    if isinstance(error, ANTICIPATED):
+        message = text or type(error).__name__
+        if isinstance(error, MemoryError):
+            message = ("out of memory" + (f" ({text})" if text else "")
+                       + "; lower --max-memory so that the size guard refuses such scenes")
+        print(f"skxfem: error: {message}", file=sys.stderr)
+        return 2
+    print(f"skxfem: unexpected error: {type(error).__name__}: {text} "
+          f"(run with --debug for the traceback)", file=sys.stderr)
+    return 1
+
+
+def _contact_line(result) -> str:
+    """The one-line summary of a contact result: steps, iterations, last step's statuses."""
+    last = result.steps[-1]
+    counts = {name: int((last.status == code).sum()) for code, name in enumerate(STATUS_NAMES)}
+    its = [int(st.newton.iterations) for st in result.steps]
+    p = (f"max pressure {last.pressure.max() + 0.0:.4g}"    # + 0.0: -0.0 printed as 0
+         if last.pressure.size else "no interface point")
+    return (f"{result.problem.scene.name}: {result.law.name}, {len(its)} load step(s), "
+            f"{sum(its)} Newton iterations ({', '.join(map(str, its))}); last step: "
+            f"{counts['stick'] + counts['slip']} in contact ({counts['stick']} stick, "
+            f"{counts['slip']} slip), {counts['open']} open, {p}")
+
+
+def _run(args) -> int:
+    s = load_scene(args.scene)
+    contact = s.law in CONTACT_LAWS
+    if args.max_iter is not None and not contact:
+        raise ValueError(f"--max-iter applies to the contact laws {CONTACT_LAWS}; the scene's "
+                         f"law is {s.law!r}")
+    out = io.check_output(args.out if args.out is not None else Path(s.name))
+    budget.check(s, args.max_memory, "--max-memory")
+    if contact:
+        limit = {} if args.max_iter is None else {"max_iter": args.max_iter}
+        result = solve_contact(s, **limit)
+    else:
+        result = solve(s)
+    try:
+        paths = io.write_result(result, out)
+    except OSError as e:
+        raise OSError(e.errno, f"cannot write the results to {str(out)!r}: "
+                               f"{e.strerror or e}; nothing was written") from e
+    if contact:
+        print(f"{_contact_line(result)} -> {paths['json'].parent}")
+        return 0
+    p = result.pressure
+    span = f"pressure in [{p.min():.4g}, {p.max():.4g}]" if p.size else "no interface point"
+    print(f"{s.name}: {result.n_dofs} dofs, {result.n_multipliers} multipliers, "
+          f"max jump {result.max_jump:.2e}, {span}, "
+          f"{sum(result.timings.values()):.2f} s -> {paths['json'].parent}")
+    return 0
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run the command line; return the exit code (0 success, 2 bad input).
+    """Run the command line; return the exit code (0, 2 anticipated error, 1 unexpected).
 
     >>> main(["run", "no-such-scene.toml"])
     2
     """
-    args = _parser().parse_args(argv)
-    from .io import write_result
-    from .scene import load_scene
-
+    argv = list(sys.argv[1:] if argv is None else argv)
+    debug = bool(argv) and argv[0] == "--debug"
+    if debug:
+        argv = argv[1:]
     try:
-        scene = load_scene(args.scene)
-    except (OSError, ValueError, TypeError) as e:  # a missing or bad scene file
-        return _fail(e, args.debug)
-    from .solver import solve
-
-    try:
-        result = solve(scene)
-    except ValueError as e:  # a problem the solver refuses, e.g. Γ cuts no cell
-        return _fail(e, args.debug)
-    out = args.out if args.out is not None else Path(scene.name)
-    paths = write_result(result, out)
-    p = result.pressure
-    span = f"pressure in [{p.min():.4g}, {p.max():.4g}]" if p.size else "no interface point"
-    print(f"{scene.name}: {result.n_dofs} dofs, {result.n_multipliers} multipliers, "
-          f"max jump {result.max_jump:.2e}, {span}, "
-          f"{sum(result.timings.values()):.2f} s -> {paths['json'].parent}")
-    return 0
+        if argv and argv[0] in FORWARDED:
+            return FORWARDED[argv[0]][1](argv[1:])
+        args = parser().parse_args(argv)
+        debug = debug or args.debug
+        return _run(args)
+    except KeyboardInterrupt:
+        print("skxfem: interrupted", file=sys.stderr)
+        return 130
+    except Exception as e:  # every error ends as one line (or a traceback with --debug)
+        return _fail(e, debug)

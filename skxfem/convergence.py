@@ -15,13 +15,19 @@ r"""Error measures and convergence rates (paper §5, Figures 9 and 10).
 """
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
 from skfem.helpers import ddot
 
+from .enrich import signed_bases
+from .exact import ExactPlate
+from .lbb import inf_sup
 from .multipliers import interface_rule
+from .progress import Progress
+from .solver import solve
 
 __all__ = ["PressureError", "pressure_error", "energy_error", "observed_rates", "StudyRow",
            "study"]
@@ -52,8 +58,6 @@ def energy_error(result, exact_strain: Callable) -> float:
 
     ∇u_h = ∇(Πa) + H ∇(Πb) - ∇(Π(Hⱼ b)) on each side, Π the standard interpolant.
     """
-    from .enrich import signed_bases
-
     V, material = result.space, result.scene.material
     dim = V.mesh.dim()
     a = result.U[:V.n_std]
@@ -97,24 +101,21 @@ class StudyRow:
 
 
 def study(make_scene: Callable, ns, spaces=("naive", "winner", "vital"),
-          exact=None, with_inf_sup: bool = True) -> list[StudyRow]:
+          exact=None, with_inf_sup: bool = True, progress: Progress | None = None
+          ) -> list[StudyRow]:
     """Solve ``make_scene(n, space)`` for every n and space and measure it.
 
     ``exact`` is an :class:`skxfem.exact.ExactPlate` (default: built for the
-    scene's material and dimension).  h = 1/n.
+    scene's material and dimension).  h = 1/n.  ``progress``: one line per
+    mesh (default: a :class:`skxfem.progress.Progress`, on in a terminal only).
 
     >>> from skxfem.scenes import exact_strip
     >>> rows = study(lambda n, s: exact_strip(n, "quad", space=s), [4], ["naive"])
     >>> rows[0].n, rows[0].pressure_l2 < 0.05
     (4, True)
     """
-    import time
-
-    from .exact import ExactPlate
-    from .lbb import inf_sup
-    from .solver import solve
-
     rows = []
+    progress = progress or Progress(len(spaces) * len(ns), "study")
     for space in spaces:
         for n in ns:
             scene = make_scene(n, space)
@@ -128,4 +129,5 @@ def study(make_scene: Callable, ns, spaces=("naive", "winner", "vital"),
             rows.append(StudyRow(n, 1.0 / n, space, I.beta if I else float("nan"),
                                  I.n_zero if I else -1, p.l2, p.max, e, result.n_dofs,
                                  result.n_multipliers, seconds))
+            progress.step(f"{scene.name} ({space})")
     return rows

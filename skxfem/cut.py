@@ -12,8 +12,7 @@ Given nodal values ψ_i of the level set (sign convention in :mod:`skxfem.levels
   into triangles by a fan from its first vertex.  Normals point into Ω⁺.
 * The **sub-cells** split each cut cell into pieces on either side, for
   integrating discontinuous integrands.  The reference cell is split into
-  simplices (a quadrilateral into 2 triangles, a hexahedron into 6 and a prism
-  into 3 tetrahedra, all with the cell's own vertices), and each simplex is
+  simplices (:func:`skxfem.cells.reference_simplices`), and each simplex is
   split by :func:`skxfem.simplex.split`.  Everything is done in the parent's
   reference coordinates, ready for per-cell quadrature.
 
@@ -36,60 +35,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from skfem import MeshQuad1, MeshTet1, MeshTri1, MeshWedge1
 
+from .cells import cell_edges, faces_of_edges, reference_simplices
 from .levelset import nodal_values
 from .meshes import cell_name
-from .simplex import split
+from .simplex import edge_point, split
 
-__all__ = ["Cut", "cut", "cell_edges", "reference_simplices"]
-
-
-def reference_simplices(mesh) -> np.ndarray:
-    """Local vertex indices splitting the reference cell into simplices.
-
-    >>> reference_simplices(MeshQuad1()).tolist()
-    [[0, 1, 2], [0, 2, 3]]
-    """
-    ref = mesh.elem().doflocs  # (nverts, dim), in the mesh's local order
-    if isinstance(mesh, (MeshTri1, MeshTet1)):
-        return np.arange(mesh.t.shape[0])[None, :]
-    if isinstance(mesh, MeshQuad1):
-        return np.array([[0, 1, 2], [0, 2, 3]])
-    if isinstance(mesh, MeshWedge1):
-        return np.array([[0, 1, 2, 3], [1, 2, 3, 4], [2, 3, 4, 5]])
-    # hexahedron: the 6 Kuhn tetrahedra around the diagonal (0,0,0)-(1,1,1)
-    def vertex(c):
-        return int(np.flatnonzero(np.all(ref == c, axis=1))[0])
-    tets = []
-    for perm in ((0, 1, 2), (0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0)):
-        c = np.zeros(3)
-        path = [vertex(c)]
-        for axis in perm:
-            c[axis] = 1.0
-            path.append(vertex(c))
-        tets.append(path)
-    return np.array(tets)
-
-
-def cell_edges(mesh):
-    """Local edges of the reference cell and the cell → global edge table.
-
-    Returns ``(local, t2e, edges)``: local vertex pairs ``(nle, 2)``, global
-    edge index of each local edge ``(nle, ncells)`` and the global edges
-    ``(2, nedges)``.  In 2D the edges are the mesh facets.
-    """
-    refdom = mesh.elem().refdom
-    if mesh.dim() == 2:
-        return np.array(refdom.facets), mesh.t2f, mesh.facets
-    return np.array(refdom.edges), mesh.t2e, mesh.edges
-
-
-def _faces_of_edges(mesh, local_edges) -> np.ndarray:
-    """Boolean (nle, nle): do two local edges lie on a common face?"""
-    faces = [set(f) for f in mesh.elem().refdom.facets]
-    on = np.array([[set(e) <= f for f in faces] for e in local_edges])
-    return (on.astype(int) @ on.T.astype(int)) > 0
+__all__ = ["Cut", "cut", "strictly_cut_edges"]
 
 
 @dataclass(frozen=True)
@@ -132,6 +84,30 @@ class Cut:
     sub_side: np.ndarray
 
 
+def strictly_cut_edges(edges, psi, x) -> tuple[np.ndarray, np.ndarray]:
+    """S_e = {e : ψ(v₁(e)) ψ(v₂(e)) < 0} (paper §5) and the intersection points.
+
+    Parameters
+    ----------
+    edges : (2, nedges) vertex pairs; psi : (nverts,) nodal values;
+    x : (dim, nverts) vertex coordinates.
+
+    Returns
+    -------
+    edge_ids, points
+        Indices of the strictly cut edges and their points (dim, ne), where
+        the linear interpolant of ψ vanishes (:func:`skxfem.simplex.edge_point`).
+
+    >>> ids, pts = strictly_cut_edges(np.array([[0, 1], [1, 2]]), np.array([-1., 1., 3.]),
+    ...                               np.array([[0., 1., 2.]]))
+    >>> ids.tolist(), pts.tolist()
+    ([0], [[0.5]])
+    """
+    edge_ids = np.flatnonzero(psi[edges[0]] * psi[edges[1]] < 0)
+    a, b = edges[:, edge_ids]
+    return edge_ids, edge_point(x[:, a].T, x[:, b].T, psi[a], psi[b]).T
+
+
 def _check(mesh, psi_nodes):
     cell_name(mesh)  # TypeError for an unsupported mesh type
     scale = np.ptp(mesh.p, axis=1).max()
@@ -168,16 +144,14 @@ def cut(mesh, psi) -> Cut:
     _check(mesh, psi)
     local, t2e, all_edges = cell_edges(mesh)
 
-    # S_e and the intersection points
-    is_cut = psi[all_edges[0]] * psi[all_edges[1]] < 0
-    edge_ids = np.flatnonzero(is_cut)
+    edge_ids, points = strictly_cut_edges(all_edges, psi, mesh.p)
     if edge_ids.size == 0:
         raise ValueError(
             f"the level set cuts no cell of the mesh (psi ranges over "
             f"[{psi.min():.3g}, {psi.max():.3g}]); move the interface inside the domain")
     edges = all_edges[:, edge_ids]
-    pa, pb = psi[edges[0]], psi[edges[1]]
-    points = mesh.p[:, edges[0]] + pa / (pa - pb) * (mesh.p[:, edges[1]] - mesh.p[:, edges[0]])
+    is_cut = np.zeros(all_edges.shape[1], dtype=bool)
+    is_cut[edge_ids] = True
     cut_index = np.full(all_edges.shape[1], -1)
     cut_index[edge_ids] = np.arange(edge_ids.size)
 
@@ -189,7 +163,7 @@ def cut(mesh, psi) -> Cut:
     enriched = np.unique(mesh.t[:, cells])
 
     facets, facet_cell, facet_ref = _interface(mesh, psi, local, cut_index[t2e[:, cells]],
-                                               cells, _faces_of_edges(mesh, local))
+                                               cells, faces_of_edges(mesh, local))
     normals, measures = _facet_geometry(mesh, facet_ref, facet_cell, psi)
     sub_ref, sub_cell, sub_side = _subcells(mesh, psi, cells)
     return Cut(psi, edge_ids, edges, points, cells, side, enriched, facets, facet_cell,
@@ -202,8 +176,7 @@ def _local_points(mesh, psi, local, cells):
     pv = psi[mesh.t[:, cells]].T  # (ncut, nverts)
     a, b = local[:, 0], local[:, 1]
     with np.errstate(divide="ignore", invalid="ignore"):  # uncut edges: unused values
-        t = pv[:, a] / (pv[:, a] - pv[:, b])
-        return ref[a][None] + t[..., None] * (ref[b] - ref[a])[None]
+        return edge_point(ref[a][None], ref[b][None], pv[:, a], pv[:, b])
 
 
 def _interface(mesh, psi, local, cut_ids, cells, share_face):
@@ -259,7 +232,7 @@ def _interface(mesh, psi, local, cut_ids, cells, share_face):
 
 def _facet_geometry(mesh, facet_ref, facet_cell, psi):
     """Unit normals (into Ω⁺) and measures of the (affinely mapped) facets."""
-    mapping = mesh._mapping()
+    mapping = mesh.mapping()
     x = mapping.F(np.transpose(facet_ref, (1, 2, 0)), tind=facet_cell)  # (dim, nf, nv)
     t = x[:, :, 1:] - x[:, :, :1]
     if mesh.dim() == 2:

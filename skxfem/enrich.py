@@ -64,6 +64,18 @@ def _orders(mesh) -> tuple[int, int]:
     return 1, 1
 
 
+def _mass_orders(mesh) -> tuple[int, int]:
+    """As :func:`_orders`, for the mass ∫ u·v on affine cells: a product of
+    two P1/Q1 functions has degree 2 per variable in the cell (every cell
+    rule of order 2 is exact) and, in the parent's reference coordinates on
+    a sub-simplex, total degree 2 (simplices), 4 (quad, prism) or 6 (hexahedron)."""
+    if isinstance(mesh, MeshHex1):
+        return 2, 6
+    if isinstance(mesh, (MeshQuad1, MeshWedge1)):
+        return 2, 4
+    return 2, 2
+
+
 @dataclass(frozen=True)
 class XSpace:
     """An X-FEM vector displacement space on a cut mesh.
@@ -99,7 +111,7 @@ class XSpace:
         return self.n_std + self.n_enr
 
 
-def _side_bases(mesh, cut: Cut, elem, quadrature=None):
+def _side_bases(mesh, cut: Cut, elem, quadrature=None, sub_order=None):
     """Bases covering the mesh, each lying on one side of Γ: pairs (basis, ±1).
 
     Uncut cells of Ω⁻ and of Ω⁺ use the cell rule.  The sub-simplices of the
@@ -115,7 +127,8 @@ def _side_bases(mesh, cut: Cut, elem, quadrature=None):
             pairs.append((Basis(mesh, elem, elements=cells, quadrature=cell_q), s))
         sub = np.flatnonzero(cut.sub_side == s)
         if sub.size:
-            rule = subcell_rule(cut.sub_ref[sub], np.arange(sub.size), _orders(mesh)[1])
+            rule = subcell_rule(cut.sub_ref[sub], np.arange(sub.size),
+                                sub_order or _orders(mesh)[1])
             pairs.append((Basis(mesh, elem, elements=cut.sub_cell[sub],
                                 quadrature=(rule.X, rule.W)), s))
     return pairs
@@ -162,23 +175,28 @@ def space(mesh, cut: Cut, order: int | None = None, sliver: float = 1e-8) -> XSp
     return XSpace(mesh, cut, basis, enr.ravel(), H_node)
 
 
-def signed_bases(V: XSpace):
+def signed_bases(V: XSpace, orders: tuple[int, int] | None = None):
     """The pairs (basis, H) covering the mesh, H = ±1 the constant value of
-    the Heaviside function on that basis: see :func:`_side_bases`."""
-    return _side_bases(V.mesh, V.cut, V.basis.elem, V.basis.quadrature)
+    the Heaviside function on that basis: see :func:`_side_bases`.
+
+    ``orders`` (cell, sub-simplex): the quadrature orders; default those of
+    ``V`` (its basis's rule and the stiffness' sub-simplex order)."""
+    if orders is None:
+        return _side_bases(V.mesh, V.cut, V.basis.elem, V.basis.quadrature)
+    return _side_bases(V.mesh, V.cut, V.basis.elem, cell_rule(V.mesh, orders[0]), orders[1])
 
 
-def enriched_matrix(V: XSpace, form) -> sp.csr_matrix:
+def enriched_matrix(V: XSpace, form, orders: tuple[int, int] | None = None) -> sp.csr_matrix:
     """The X-FEM matrix on [a, b] of a form that reads the Heaviside value w["H"].
 
     The form must be linear in H, H·g(u, v) (as the stiffness and the mass
     are).  With A = the form at H = 1 (standard) and A_H its signed version, and
     D = diag(Hⱼ), the blocks follow from H² = 1 (see the module notes).  Both
     come from one pass over the quadrature points: with A^± the form over Ω^±,
-    A = A⁺ + A⁻ and A_H = A⁺ - A⁻.
+    A = A⁺ + A⁻ and A_H = A⁺ - A⁻.  ``orders``: see :func:`signed_bases`.
     """
     A = AH = 0
-    for b, s in signed_bases(V):
+    for b, s in signed_bases(V, orders):
         part = form.assemble(b, H=np.ones(b.dx.shape))  # ∫ over one side only
         A, AH = A + part, AH + s * part
     A, AH = A.tocsr(), AH.tocsr()
@@ -201,8 +219,10 @@ def _signed_vector_mass(u, v, w):
 
 
 def mass(V: XSpace) -> sp.csr_matrix:
-    """The X-FEM mass matrix on the unknowns [a, b]: ∫ u·v."""
-    return enriched_matrix(V, _signed_vector_mass)
+    """The X-FEM mass matrix on the unknowns [a, b]: ∫ u·v, integrated
+    exactly on affine cells (its own orders, :func:`_mass_orders`, not the
+    stiffness' of ``V``'s basis)."""
+    return enriched_matrix(V, _signed_vector_mass, _mass_orders(V.mesh))
 
 
 def enriched_load(V: XSpace, f: np.ndarray, f_H: np.ndarray) -> np.ndarray:

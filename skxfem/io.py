@@ -1,39 +1,75 @@
 """Write a solver result to disk: ``result.json`` and two VTU files for ParaView.
 
-* ``result.json``: the scene name, the multiplier ``points`` (one coordinate
-  list per point), ``normals``, ``traction``, ``pressure``, ``max_jump``,
+* ``result.json``: the scene name, ``law`` and ``space``, the multiplier
+  ``points``, ``normals``, ``traction``, ``pressure``, ``max_jump``,
   ``n_dofs``, ``n_multipliers`` and the ``timings`` in seconds per stage.
   NaN or inf become ``null``.
-* ``displacement.vtu``: the mesh with point data ``u_minus`` and ``u_plus``
-  (the nodal fields of Ω⁻ and Ω⁺) and cell data ``side``: -1 in Ω⁻, +1 in Ω⁺,
-  0 in the cells the interface cuts.
+* ``displacement.vtu``: each side of Γ as its own piece of mesh with its own
+  field ``displacement``, so that ParaView's *Warp By Vector* shows the
+  discontinuity: the cells of Ω⁻ and the cut cells with ``u_minus`` on one copy
+  of their nodes, the cells of Ω⁺ and the cut cells with ``u_plus`` on a
+  second copy.  A cut cell is thus written twice, once per side, each copy
+  moving with its side's field; cell data ``side`` (-1 or +1: the copy) and
+  ``cut`` (1 on cut cells), point data ``levelset`` (ψ at the nodes: clip a
+  side's copy at ψ = 0 to see only its own part of the cut cells).
 * ``interface.vtu``: the interface facets (``line`` cells in 2D, ``triangle``
   cells in 3D) on the multiplier points, with point data ``pressure``,
   ``traction`` and ``normal``.
 
-Vectors are written with 3 components (z = 0 in 2D) so ParaView can draw them.
+**A contact result** (:class:`skxfem.contact.ContactResult`, content from
+:mod:`skxfem.io_contact`) goes into the same three files.  ``result.json``
+holds the set-up (``law``, ``friction``, the ``rho_n``, ``rho_t`` used, the
+multiplier dof ``points``, ``normals``, ``tangents``, ``weights``,
+``status_codes``) and a list ``steps``, one entry per load step: ``load``,
+``pressure``, ``tangential_traction``, ``gap``, ``slip``, ``Lambda``,
+``status`` (strings ``"open"``, ``"stick"``, ``"slip"``), their ``counts``
+and ``newton``: ``iterations`` and ``residuals`` (one list per equation,
+equilibrium, contact and friction: the relative residual at the start, then
+after each iteration).
+The two VTU files hold the **last** step only (one file per step would leave
+the other steps' files of an earlier run beside a new result, or need a
+cleaning that the atomic write cannot undo; the JSON has every step):
+``displacement.vtu`` as for a tie, ``interface.vtu`` the multiplier dofs (where
+the laws hold; with the winner or vital space they are not the cut edges that
+a tie's facets join) as ``vertex`` cells with ``pressure``, ``gap``, ``status`` (legend: 0 open,
+1 stick, 2 slip), ``normal``, ``traction``, ``tangential_traction``, ``slip``.
+
+**Array shapes.**  :class:`skxfem.solver.Result` follows scikit-fem: a set of
+points or vectors is ``(dim, n)`` (``mesh.p``, ``result.points``,
+``result.traction``).  The files follow meshio, VTK and JSON readers, where a
+point is a row: ``result.json``'s ``points``, ``normals`` and ``traction`` are
+``(n, dim)`` (one list per point, ``np.array(data["points"]) ==
+result.points.T``), and VTU vectors are ``(n, 3)`` (z = 0 in 2D, so ParaView
+can draw them).
+
+**Atomic writes.**  :func:`write_result` writes every file under a temporary
+name in the target folder and renames them only when all are written; a failed
+write (a full disk, an error in the middle) removes the temporary files and
+leaves the previous result, or nothing, never a mix of old and new or a
+truncated file.  :func:`check_output` checks the folder before a solve.
 """
 from __future__ import annotations
 
+import errno
 import json
+import os
+import secrets
 from pathlib import Path
 
 import meshio
 import numpy as np
-from skfem.io.meshio import to_meshio
 
+from .io_contact import contact_summary, interface_mesh, is_contact, last_step_fields
 from .levelset import nodal_values
+from .vtu import cell_sides, pad3, side_pieces, vectors3, vtk_cells
 
-__all__ = ["write_result", "result_summary", "cell_sides", "vtk_cells"]
+__all__ = ["write_result", "result_summary", "cell_sides", "vtk_cells", "check_output",
+           "side_pieces"]
 
 _STAGES = ("cut", "enrich", "assemble", "solve")
-# VTK wants cells positively oriented: the simplex of these corners has det > 0
-# (a wedge's face (0, 1, 2) has its right-hand normal pointing *away* from (3, 4, 5));
-# scikit-fem allows either orientation, so mirrored cells get their nodes flipped.
-_CORNERS = {"triangle": [0, 1, 2], "quad": [0, 1, 3], "tetra": [0, 1, 2, 3],
-            "hexahedron": [0, 1, 3, 4], "wedge": [0, 2, 1, 3]}
-_FLIP = {"triangle": [0, 2, 1], "quad": [0, 3, 2, 1], "tetra": [0, 2, 1, 3],
-         "hexahedron": [0, 3, 2, 1, 4, 7, 6, 5], "wedge": [0, 2, 1, 3, 5, 4]}
+_FILES = {"json": "result.json", "displacement": "displacement.vtu",
+          "interface": "interface.vtu"}
+
 
 def _plain(a) -> list | float | None:
     """A number or an array as plain Python floats (nested lists), NaN/inf as None."""
@@ -41,45 +77,22 @@ def _plain(a) -> list | float | None:
     return np.where(np.isfinite(a), a, None).tolist()
 
 
-def _vectors3(a: np.ndarray) -> np.ndarray:
-    """(dim, n) → (n, 3), padding 2D vectors with a zero z component."""
-    a = np.asarray(a, dtype=float)
-    return np.vstack([a, np.zeros((3 - a.shape[0], a.shape[1]))]).T
-
-
-def cell_sides(mesh, psi_nodes: np.ndarray) -> np.ndarray:
-    """-1 for cells in Ω⁻, +1 in Ω⁺, 0 for cells with vertices on both sides.
-
-    >>> from skfem import MeshTri1                # cells (0, 1, 2) and (1, 3, 2)
-    >>> cell_sides(MeshTri1(), np.array([-1.5, -0.5, -0.5, 0.5])).tolist()
-    [-1, 0]
-    """
-    psi = psi_nodes[mesh.t]
-    cut = (psi.min(axis=0) < 0) & (psi.max(axis=0) > 0)
-    return np.where(cut, 0, np.sign(psi.mean(axis=0))).astype(np.int64)
-
-
-def vtk_cells(mesh) -> tuple[str, np.ndarray]:
-    """The meshio cell type and the (ncells, nverts) cells, positively oriented for VTK.
-
-    The node order is scikit-fem's ``to_meshio`` (which renumbers hexahedra).
-
-    >>> from skfem import MeshTri1
-    >>> kind, cells = vtk_cells(MeshTri1())
-    >>> kind, cells.tolist()
-    ('triangle', [[0, 1, 2], [1, 3, 2]])
-    """
-    block = to_meshio(mesh, encode_cell_data=False).cells[0]
-    t = block.data.copy()
-    corners = mesh.p[:, t[:, _CORNERS[block.type]]]            # (dim, ncells, dim + 1)
-    edges = corners[:, :, 1:] - corners[:, :, :1]
-    flip = np.linalg.det(np.moveaxis(edges, 0, 1)) < 0          # det of (ncells, dim, dim)
-    t[flip] = t[flip][:, _FLIP[block.type]]
-    return block.type, t
+def _jsonable(value):
+    """Arrays and numpy numbers inside dicts and lists as plain Python values."""
+    if isinstance(value, dict):
+        return {k: _jsonable(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_jsonable(v) for v in value]
+    return _plain(value) if isinstance(value, (np.ndarray, float, np.floating)) else value
 
 
 def result_summary(result) -> dict:
-    """The content of ``result.json`` as a dict of plain Python values."""
+    """The content of ``result.json`` as a dict of plain Python values.
+
+    A contact result gives :func:`skxfem.io_contact.contact_summary`.
+    """
+    if is_contact(result):
+        return _jsonable(contact_summary(result))
     timings = {k: float(v) for k, v in dict(result.timings).items()}
     missing = [s for s in _STAGES if s not in timings]
     if missing:
@@ -99,44 +112,128 @@ def result_summary(result) -> dict:
     }
 
 
+def check_output(out_dir: str | Path) -> Path:
+    """Check, without creating anything, that results can be written into ``out_dir``.
+
+    The folder may exist (its previous results are replaced) or not (it is
+    created by :func:`write_result`, under the nearest existing parent).
+
+    Raises
+    ------
+    ValueError
+        If ``out_dir`` or one of its parents is an existing file, or the folder
+        that would receive the files is not writable.
+
+    >>> check_output("results/plate").name
+    'plate'
+    """
+    out = Path(out_dir)
+    existing = out
+    while not existing.exists() and existing != existing.parent:
+        existing = existing.parent
+    if not existing.is_dir():
+        what = "is a file" if existing == out else f"is below the file {str(existing)!r}"
+        raise ValueError(f"output folder {str(out)!r} {what}; give another output folder")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise ValueError(f"output folder {str(out)!r} cannot be written: "
+                         f"{str(existing)!r} is not writable; give another output folder")
+    return out
+
+
+def _write_json(result, path: Path):
+    path.write_text(json.dumps(result_summary(result), indent=1, allow_nan=False))
+
+
+def _write_displacement(result, path: Path):
+    if is_contact(result):
+        result = last_step_fields(result)
+    mesh = result.mesh
+    cell_type, _ = vtk_cells(mesh)
+    levelset = getattr(result.scene, "levelset", None)
+    if levelset is None:  # no level set known: every cell on both sides
+        psi_nodes = np.zeros(mesh.nvertices)
+    else:
+        psi_nodes = nodal_values(levelset, mesh)
+    points, cells, side, cut, disp, psi = side_pieces(mesh, psi_nodes, result.u_minus,
+                                                      result.u_plus)
+    meshio.write(path, meshio.Mesh(
+        pad3(points), [(cell_type, cells)],
+        point_data={"displacement": pad3(disp), "levelset": psi},
+        cell_data={"side": [side], "cut": [cut]}), file_format="vtu")
+
+
+def _write_interface(result, path: Path):
+    if is_contact(result):
+        meshio.write(path, interface_mesh(result), file_format="vtu")
+        return
+    points = np.asarray(result.points, dtype=float)
+    facets = np.asarray(result.facets, dtype=np.int64)
+    kind = {2: "line", 3: "triangle"}[points.shape[0]]
+    meshio.write(path, meshio.Mesh(
+        vectors3(points), [(kind, facets.T.reshape(-1, points.shape[0]))],
+        point_data={"pressure": np.asarray(result.pressure, dtype=float),
+                    "traction": vectors3(result.traction),
+                    "normal": vectors3(result.normals)}), file_format="vtu")
+
+
+_WRITERS = {"json": _write_json, "displacement": _write_displacement,
+            "interface": _write_interface}
+
+
 def write_result(result, out_dir: str | Path) -> dict[str, Path]:
     """Write ``result.json``, ``displacement.vtu`` and ``interface.vtu`` into ``out_dir``.
+
+    All or nothing: each file is written under a temporary name in
+    ``out_dir``, and the three are renamed over the previous ones only once
+    all are complete (see the module notes).
 
     Parameters
     ----------
     result
-        A :class:`skxfem.solver.Result` (or any object with the same attributes).
+        A :class:`skxfem.solver.Result` (or any object with the same attributes)
+        or a :class:`skxfem.contact.ContactResult`.
     out_dir
-        Folder to write into; created if missing.
+        Folder to write into; created if missing (and removed again if the
+        writing fails).
 
     Returns
     -------
     dict
         ``{"json": ..., "displacement": ..., "interface": ...}`` paths.
+
+    Raises
+    ------
+    ValueError
+        From :func:`check_output` or :func:`result_summary`.
+    OSError
+        If a file cannot be written (e.g. the disk is full); nothing is left.
     """
-    out = Path(out_dir)
+    out = check_output(out_dir)
+    result_summary(result)                      # refuse a bad result before touching disk
+    created = [p for p in (out, *out.parents) if not p.exists()]
     out.mkdir(parents=True, exist_ok=True)
-    paths = {"json": out / "result.json", "displacement": out / "displacement.vtu",
-             "interface": out / "interface.vtu"}
-    paths["json"].write_text(json.dumps(result_summary(result), indent=1, allow_nan=False))
-
-    mesh = result.mesh
-    cell_type, cells = vtk_cells(mesh)
-    cell_data = {}
-    levelset = getattr(result.scene, "levelset", None)
-    if levelset is not None:
-        cell_data["side"] = [cell_sides(mesh, nodal_values(levelset, mesh))]
-    meshio.write(paths["displacement"], meshio.Mesh(
-        _vectors3(mesh.p), [(cell_type, cells)],
-        point_data={"u_minus": _vectors3(result.u_minus), "u_plus": _vectors3(result.u_plus)},
-        cell_data=cell_data))
-
-    points = np.asarray(result.points, dtype=float)
-    facets = np.asarray(result.facets, dtype=np.int64)
-    kind = {2: "line", 3: "triangle"}[points.shape[0]]
-    meshio.write(paths["interface"], meshio.Mesh(
-        _vectors3(points), [(kind, facets.T.reshape(-1, points.shape[0]))],
-        point_data={"pressure": np.asarray(result.pressure, dtype=float),
-                    "traction": _vectors3(result.traction),
-                    "normal": _vectors3(result.normals)}))
+    paths = {key: out / name for key, name in _FILES.items()}
+    temporary, renamed = {}, []
+    try:
+        for key, path in paths.items():
+            tag = f"{os.getpid()}-{secrets.token_hex(4)}"
+            temporary[key] = out / f".{path.stem}-{tag}{path.suffix}"
+            _WRITERS[key](result, temporary[key])
+            if temporary[key].stat().st_size == 0:
+                raise OSError(errno.EIO, f"{path.name} was written empty")
+        for key, path in paths.items():
+            os.replace(temporary[key], path)
+            renamed.append(temporary.pop(key))
+    except BaseException:
+        for tmp in temporary.values():
+            tmp.unlink(missing_ok=True)
+        if renamed:       # a rename failed half-way (never seen): nothing rather than a mix
+            for path in paths.values():
+                path.unlink(missing_ok=True)
+        for folder in created:                  # innermost first; only if left empty
+            try:
+                folder.rmdir()
+            except OSError:
+                break
+        raise
     return paths

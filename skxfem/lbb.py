@@ -31,6 +31,9 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .enrich import mass
+from .problem import assemble
+
 __all__ = ["InfSup", "inf_sup_constant", "inf_sup"]
 
 
@@ -52,7 +55,7 @@ class InfSup:
 
 
 def inf_sup_constant(A, B, M, tol: float = 1e-6, rank_tol: float = 1e-10,
-                     h: float = 1.0) -> InfSup:
+                     h: float = 1.0, block: int = 128) -> InfSup:
     """β_h from matrices: A (N, N) SPD, B (m, N), M (m, m) SPD.
 
     An eigenvalue counts as zero when its β is below ``tol`` times the
@@ -60,6 +63,14 @@ def inf_sup_constant(A, B, M, tol: float = 1e-6, rank_tol: float = 1e-10,
     the eigenvalues are β².  The rank of B counts its singular values above
     ``rank_tol`` times the largest (round-off: ε).  The two counts are
     independent measurements of one thing, the multipliers B cannot see.
+
+    Only B's non-zero columns enter: the jump reaches the enriched unknowns
+    of the cut cells alone, so B_c = B[:, cols] is (m, c) with c ≤ dim·n_enr,
+    an interface-sized block like S itself, never the N columns of B.  The
+    rank is that of B_c, from its singular values (dense SVD of B_c; no
+    sparse rank-revealing QR in scipy), and S = B_c (A⁻¹ B_cᵀ)[cols] is
+    formed from sparse LU solves in blocks of ``block`` right-hand sides,
+    so no dense (N, m) array is held.
 
     >>> import numpy as np, scipy.sparse as sp
     >>> r = inf_sup_constant(sp.identity(3), sp.csr_matrix([[1., 0, 0], [0, 2., 0]]), np.eye(2))
@@ -69,35 +80,48 @@ def inf_sup_constant(A, B, M, tol: float = 1e-6, rank_tol: float = 1e-10,
     A = sp.csc_matrix(A)
     B = sp.csr_matrix(B)
     M = M.toarray() if sp.issparse(M) else np.asarray(M, float)
-    X = spla.splu(A).solve(B.T.toarray())
-    S = B @ X
+    cols = np.unique(B.indices)                        # the unknowns B reaches
+    Bc = B[:, cols].toarray()                          # (m, c): the interface block
+    lu = spla.splu(A)
+    S = np.zeros((B.shape[0],) * 2)
+    for k in range(0, B.shape[0], block):
+        rhs = np.zeros((A.shape[0], min(block, B.shape[0] - k)))
+        rhs[cols] = Bc[k:k + block].T
+        S[:, k:k + block] = Bc @ lu.solve(rhs)[cols]
     S = 0.5 * (S + S.T)
     ev = np.sort(np.abs(sla.eigh(S, M, eigvals_only=True)))
     zero = ev <= tol ** 2 * ev.max()
     nz = ev[~zero]
-    rank = np.linalg.matrix_rank(B.toarray(), tol=rank_tol * sla.norm(B.toarray(), 2))
+    sv = sla.svdvals(Bc) if Bc.size else np.zeros(0)
+    rank = np.count_nonzero(sv > rank_tol * sv.max()) if sv.size else 0
     return InfSup(float(np.sqrt(nz.min())) if nz.size else 0.0, ev, int(zero.sum()),
                   int(rank), B.shape[0], h)
 
 
-def inf_sup(scene, scaling: str = "h", law: str = "bilateral") -> InfSup:
-    """β_h of the scene's multiplier space, for the normal (``bilateral``) or
-    vector (``bonded``) tie.
+def inf_sup(scene, scaling: str = "h", law: str | None = None) -> InfSup:
+    """β_h of the scene's multiplier space, for the law the scene solves
+    (or ``law``): the normal (``bilateral``) or vector (``bonded``) tie.
 
-    A is the X-FEM stiffness plus E/L² times the X-FEM mass (so bodies that
-    float without the tie are still normed), restricted to the free unknowns;
-    M is h·(interface mass) (``scaling="h"``, the discrete H^{-1/2} norm) or
-    the plain interface mass (``"l2"``).
+    Everything comes from :func:`skxfem.problem.assemble`, the problem the
+    solver solves: B is its reduced coupling, with the support-aware spaces
+    of the law's components.  A is its stiffness plus E/L² times the X-FEM
+    mass (so bodies that float without the tie are still normed),
+    restricted to the free unknowns; M is h·(interface mass)
+    (``scaling="h"``, the discrete H^{-1/2} norm) or the plain interface
+    mass (``"l2"``).  Both masses are integrated exactly (the volume one
+    with its own orders, :func:`skxfem.enrich.mass`; the interface rule of
+    order 4 is exact for P1 × P1 on the flat facets).
 
     Parameters
     ----------
     scene
         A :class:`skxfem.scene.Scene`; its mesh, level set, material,
-        displacements and ``space`` are used (its loads and law are not).
+        displacements, ``space`` and ``law`` are used (its loads are not).
     scaling
         ``"h"`` or ``"l2"``, the norm of the multipliers (see the module notes).
     law
-        ``"bilateral"`` (one multiplier per point) or ``"bonded"`` (dim of them).
+        ``None`` (the scene's), ``"bilateral"`` (one multiplier per point) or
+        ``"bonded"`` (dim of them).
 
     Returns
     -------
@@ -105,29 +129,16 @@ def inf_sup(scene, scaling: str = "h", law: str = "bilateral") -> InfSup:
         β_h, all β², the zero modes, the rank of B_r and the h used in M
         (the mean length of the cut edges).
     """
-    from .cut import cut as cut_mesh
-    from .enrich import mass, space, stiffness
-    from .multipliers import coupling, interface_mass, interface_rule, multiplier_space
-    from .scene import resolve_mesh
-    from .solver import constrained_dofs
-
     if scaling not in ("h", "l2"):
         raise ValueError(f"scaling must be 'h' or 'l2', got {scaling!r}")
-    mesh = resolve_mesh(scene)
-    c = cut_mesh(mesh, scene.levelset)
-    V = space(mesh, c)
+    p = assemble(scene, law)
+    mesh, c, V = p.mesh, p.cut, p.V
     L = np.ptp(mesh.p, axis=1).max()
-    A = stiffness(V, scene.material) + (scene.material.E / L ** 2) * mass(V)
-    rule = interface_rule(mesh, c)
-    B = coupling(V, rule, law)
-    S = multiplier_space(scene.space, mesh, c)
-    ncomp = B.shape[0] // c.points.shape[1]
-    P = sp.kron(sp.identity(ncomp), S.P, format="csr")
-    M = sp.kron(sp.identity(ncomp), interface_mass(rule))
-    dofs, _ = constrained_dofs(V, scene, mesh)   # the solver's, enriched ones included
-    free = np.setdiff1d(np.arange(V.N), dofs)
+    A = p.K + (scene.material.E / L ** 2) * mass(V)
+    M = sp.kron(sp.identity(p.ncomp), p.M_edges)
+    free = np.setdiff1d(np.arange(V.N), p.D)   # the solver's, enriched ones included
     # mesh size across Γ: the mean length of the cut edges (anisotropic
     # meshes, such as one layer of prisms along x, are measured where it matters)
     h = float(np.mean(np.linalg.norm(mesh.p[:, c.edges[0]] - mesh.p[:, c.edges[1]], axis=0)))
-    Mr = P.T @ M @ P * (h if scaling == "h" else 1.0)
-    return inf_sup_constant(A[free][:, free], (P.T @ B)[:, free], Mr, h=h)
+    Mr = p.P.T @ M @ p.P * (h if scaling == "h" else 1.0)
+    return inf_sup_constant(A[free][:, free], p.B[:, free], Mr, h=h)

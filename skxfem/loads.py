@@ -9,8 +9,9 @@ Every boundary facet is described in the reference coordinates of its
 parent cell and split into reference simplices: a segment (2D), a triangle,
 or a quadrilateral cut along its diagonal into two triangles (3D).  With a
 level set, each simplex is clipped by the zero of the linearly interpolated
-ψ, exactly like the X-FEM cut: an edge is cut when ψ(v₁)ψ(v₂) < 0, at the
-point where the linear interpolant vanishes.  Each piece gets its own
+ψ with the X-FEM cut's own kernel (:func:`skxfem.simplex.split`): an edge
+is cut when ψ(v₁)ψ(v₂) < 0, at the point where the linear interpolant
+vanishes.  Each piece gets its own
 simplex rule and its side H = ±1.  A point x = F(X) with X = V₀ + Σ ξᵢ Tᵢ
 gets the weight w·|DF T₁| (2D) or w·|DF T₁ × DF T₂| (3D), and the outward
 unit normal n ∝ DF⁻ᵀ n̂ of the reference facet.
@@ -37,6 +38,7 @@ from skfem.refdom import RefLine, RefTri
 
 from .evaluate import evaluation_matrix
 from .meshes import cell_name
+from .simplex import split
 
 __all__ = ["BoundaryQuadrature", "boundary_quadrature", "pressure", "surface_load"]
 
@@ -86,47 +88,6 @@ def _facet_simplices(refdom) -> tuple[np.ndarray, np.ndarray]:
         nodes += pieces
         owner += [k] * len(pieces)
     return np.array(nodes), np.array(owner)
-
-
-def _clip(V: np.ndarray, psi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Split simplices V (ns, D, dim) by the zero of the linear interpolant of psi (ns, D).
-
-    The boundary of a simplex is walked as a polygon of candidates: vertex 0,
-    cut point of edge 01, vertex 1, ... (a cut point exists where ψ changes
-    sign strictly).  The candidates on one side, kept in this order, form a
-    convex polygon of at most D + 1 points, which is fan-triangulated.
-
-    Returns the pieces (np, D, dim), the simplex each comes from, and its side ±1.
-    """
-    D = V.shape[1]
-    edges = [(0, 1)] if D == 2 else [(0, 1), (1, 2), (2, 0)]
-    pts, val = [], []
-    for j in range(D):
-        pts.append(V[:, j])
-        val.append(psi[:, j])
-        if j < len(edges):
-            a, b = edges[j]
-            pa, pb = psi[:, a], psi[:, b]
-            cut = pa * pb < 0
-            theta = np.where(cut, pa / np.where(cut, pa - pb, 1.0), 0.0)
-            pts.append(V[:, a] + theta[:, None] * (V[:, b] - V[:, a]))
-            val.append(np.where(cut, 0.0, np.nan))     # a cut point is on both sides
-    pts, val = np.stack(pts, axis=1), np.stack(val, axis=1)   # (ns, nc, dim), (ns, nc)
-    pieces, source, side = [], [], []
-    for s in (1.0, -1.0):
-        keep = s * val >= 0                            # vertices on this side, cut points
-        if s < 0:                                      # a facet lying on Γ counts as +
-            keep &= np.any(psi != 0, axis=1)[:, None]
-        order = np.argsort(~keep, axis=1, kind="stable")
-        poly = np.take_along_axis(pts, order[:, :, None], axis=1)
-        count = keep.sum(axis=1)
-        fans = [(0, 1)] if D == 2 else [(0, 1, 2), (0, 2, 3)]
-        for k, fan in enumerate(fans):
-            ok = count >= D + k
-            pieces.append(poly[ok][:, list(fan)])
-            source.append(np.nonzero(ok)[0])
-            side.append(np.full(ok.sum(), s))
-    return np.concatenate(pieces), np.concatenate(source), np.concatenate(side)
 
 
 def boundary_quadrature(mesh, facets: ArrayLike, order: int,
@@ -187,7 +148,7 @@ def boundary_quadrature(mesh, facets: ArrayLike, order: int,
             raise ValueError(f"psi_nodes must be finite, of shape ({mesh.nvertices},) "
                              f"(one value per vertex), got shape {psi_nodes.shape}")
         psi = psi_nodes[mesh.t[nodes[si], cells[fi, None]]]   # (ns, D)
-        V, source, side = _clip(V, psi)
+        V, source, side = split(V, psi)
 
     # 3. the simplex rule on every piece, in reference coordinates of the parent
     Xs, Ws = get_quadrature(RefLine if dim == 2 else RefTri, order)

@@ -2,7 +2,10 @@ r"""Linear elastic material: Hooke's law σ = C ε (paper eq. 1) as scikit-fem f
 
 In 3D, σ = 2μ ε + λ tr(ε) I with the Lamé constants of (E, ν).  In 2D the
 ``plane`` setting chooses plane strain (ε_zz = 0, the 3D constants) or plane
-stress (σ_zz = 0, which replaces λ by 2μλ/(λ + 2μ)).
+stress (σ_zz = 0, which replaces λ by 2μλ/(λ + 2μ) = Eν/(1 - ν²)).  The
+constants and σ(ε) are scikit-fem's own (:mod:`skfem.models.elasticity`:
+``lame_parameters``, ``plane_stress``, ``linear_stress``); this module adds
+the validation and the Heaviside-signed form of the X-FEM.
 
 >>> m = Material(E=1.0, nu=0.0)
 >>> m.lame(2), m.lame(3)
@@ -13,7 +16,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from skfem import BilinearForm
-from skfem.helpers import ddot, eye, sym_grad, trace
+from skfem.helpers import ddot, sym_grad
+from skfem.models.elasticity import lame_parameters, linear_elasticity, linear_stress, plane_stress
 
 __all__ = ["Material", "stiffness_form", "signed_stiffness_form"]
 
@@ -47,26 +51,18 @@ class Material:
 
     def lame(self, dim: int) -> tuple[float, float]:
         """Return (λ, μ) for a ``dim``-dimensional model."""
-        lam = self.E * self.nu / ((1 + self.nu) * (1 - 2 * self.nu))
-        mu = self.E / (2 * (1 + self.nu))
         if dim == 2 and self.plane == "stress":
-            lam = 2 * mu * lam / (lam + 2 * mu)
-        return lam, mu
+            return plane_stress(self.E, self.nu)
+        return lame_parameters(self.E, self.nu)
 
     def stress(self, eps, dim: int):
         """σ(ε) for a strain tensor field ``eps`` of shape ``(dim, dim, ...)``."""
-        lam, mu = self.lame(dim)
-        return 2.0 * mu * eps + lam * eye(trace(eps), dim)
+        return linear_stress(*self.lame(dim))(eps)
 
 
 def stiffness_form(material: Material, dim: int) -> BilinearForm:
-    """The elasticity form a(u, v) = ∫ σ(u) : ε(v)."""
-
-    @BilinearForm
-    def elasticity(u, v, w):
-        return ddot(material.stress(sym_grad(u), dim), sym_grad(v))
-
-    return elasticity
+    """The elasticity form a(u, v) = ∫ σ(u) : ε(v): scikit-fem's ``linear_elasticity``."""
+    return linear_elasticity(*material.lame(dim))
 
 
 def signed_stiffness_form(material: Material, dim: int) -> BilinearForm:

@@ -30,8 +30,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
+import meshio
 import numpy as np
 from skfem import Mesh, MeshHex1, MeshQuad1, MeshTet1, MeshTri1, MeshWedge1
+from skfem.io.meshio import from_meshio
 
 __all__ = ["CELLS", "box", "cell_name", "check_mesh", "read"]
 
@@ -213,9 +215,6 @@ def read(path) -> Mesh:
     >>> read(path).nelements
     2
     """
-    import meshio
-    from skfem.io.meshio import from_meshio
-
     path = Path(path)
     if not path.is_file():
         raise ValueError(f"mesh file {str(path)!r} does not exist; give the path of a "

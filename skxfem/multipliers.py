@@ -34,8 +34,8 @@ from skfem.refdom import RefLine, RefTri
 from .cut import Cut
 from .enrich import XSpace, jump_matrix
 
-__all__ = ["Space", "naive", "multiplier_space", "SPACES", "InterfaceRule", "interface_rule",
-           "coupling", "interface_mass", "LAWS"]
+__all__ = ["Space", "naive", "fixed_jumps", "normal_fixed", "SPACES",
+           "InterfaceRule", "interface_rule", "coupling", "interface_mass", "LAWS"]
 
 LAWS = ("bonded", "bilateral")
 SPACES = ("naive", "winner", "vital")
@@ -71,17 +71,36 @@ def naive(cut: Cut) -> Space:
     return Space("naive", sp.identity(cut.edge_ids.size, format="csr"))
 
 
-def multiplier_space(name: str, mesh, cut: Cut) -> Space:
-    """The space ``name``: "naive", "winner" (algo1) or "vital" (algo2, §5)."""
-    if name == "naive":
-        return naive(cut)
-    from .stabilised import vital_edges, winner_nodes  # they build on Space
+def fixed_jumps(V: XSpace, dofs: np.ndarray) -> np.ndarray:
+    """(dim, nnodes) bool: the enriched dof of component c at node j is among
+    the constrained unknowns ``dofs`` (held at zero by a support, see
+    :func:`skxfem.problem.constrained_dofs`).
 
-    if name == "winner":
-        return winner_nodes(cut.edges, cut.psi, cut.points, mesh.p)
-    if name == "vital":
-        return vital_edges(cut.edges, cut.psi, cut.points, mesh.p)
-    raise ValueError(f"space must be one of {SPACES}, got {name!r}")
+    On an edge only the P1/Q1 functions of its two ends do not vanish, so
+    the jump [[u_h]]_c = -2 Σⱼ φⱼ bⱼ_c at the point of a cut edge whose two
+    ends are fixed for c is zero for every admissible U: a support holds it.
+    """
+    held = np.zeros(V.n_std, dtype=bool)
+    enr = np.asarray(dofs)
+    held[V.enr_dofs[enr[enr >= V.n_std] - V.n_std]] = True
+    return held[V.basis.nodal_dofs]
+
+
+def normal_fixed(fixed: np.ndarray, cut: Cut, tol: float = 1e-12) -> np.ndarray:
+    """(nnodes,) bool: the normal jump [[u_h]]·n is held at node j, i.e. j is
+    an end of a cut edge and is fixed (``fixed`` from :func:`fixed_jumps`) in
+    every component in which a normal of the interface facets around j's cut
+    edges has a part (> ``tol``)."""
+    dim = fixed.shape[0]
+    part = np.zeros((dim, cut.edge_ids.size), dtype=bool)
+    for k in range(cut.facets.shape[0]):
+        for c in range(dim):
+            np.logical_or.at(part[c], cut.facets[k], np.abs(cut.normals[c]) > tol)
+    at_node = np.zeros(fixed.shape, dtype=bool)
+    for i in (0, 1):
+        for c in range(dim):
+            np.logical_or.at(at_node[c], cut.edges[i], part[c])
+    return np.all(fixed | ~at_node, axis=0) & at_node.any(axis=0)
 
 
 @dataclass(frozen=True)
@@ -131,12 +150,17 @@ def interface_rule(mesh, cut: Cut, order: int = 4) -> InterfaceRule:
     return InterfaceRule(points, normals, weights, cells, ref, N)
 
 
-def coupling(V: XSpace, rule: InterfaceRule, law: str) -> sp.csr_matrix:
-    """B on the edge multipliers: ``(dim·n_edges, N)`` bonded, ``(n_edges, N)`` bilateral."""
+def coupling(V: XSpace, rule: InterfaceRule, law: str, J=None) -> sp.csr_matrix:
+    """B on the edge multipliers: ``(dim·n_edges, N)`` bonded, ``(n_edges, N)`` bilateral.
+
+    ``J`` is the jump operator at the rule's points (:func:`skxfem.enrich.jump_matrix`,
+    (dim·nq, N), component-major); built here if not given.
+    """
     if law not in LAWS:
         raise ValueError(f"law must be one of {LAWS}, got {law!r}")
     dim, nq = V.mesh.dim(), rule.weights.size
-    J = jump_matrix(V, rule.cells, rule.ref)  # (dim*nq, N), component-major
+    if J is None:
+        J = jump_matrix(V, rule.cells, rule.ref)
     NW = (rule.N.T @ sp.diags(rule.weights)).tocsr()  # (n_edges, nq)
     blocks = [NW @ J[c * nq:(c + 1) * nq] for c in range(dim)]
     if law == "bonded":

@@ -17,7 +17,6 @@ each multiplier space of :data:`skxfem.multipliers.SPACES`.
 """
 from __future__ import annotations
 
-import os
 from collections.abc import Callable, Mapping
 
 import numpy as np
@@ -28,17 +27,14 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from matplotlib.tri import Triangulation
 
-from .cut import cell_edges
 from .multipliers import SPACES
 
 __all__ = [
     "COLORS",
     "CURVE_COLORS",
     "plot_cut_2d",
-    "plot_cut_3d",
     "plot_levelset_2d",
     "plot_pressure",
-    "pressure_along",
 ]
 
 #: The colours of skxfem, used by every figure.
@@ -59,7 +55,6 @@ COLORS = {
 CURVE_COLORS = ("#08519c", "#e6550d", "#54278f", "#006d2c")
 
 _MARKERS = ("o", "s", "^", "D", "v")
-_AXES = "xyz"
 
 
 def _figure_and_axes(ax, figsize):
@@ -221,146 +216,6 @@ def plot_cut_2d(mesh, cut, ax=None, title: str | None = None) -> Figure:
                       label="enriched node in Ω⁺")]
     _finish_2d(ax, mesh, handles, title)
     return fig
-
-
-def plot_cut_3d(mesh, cut, window_size: tuple[int, int] = (900, 700),
-                view: tuple = (1.0, -0.45, 0.55), title: str | None = None) -> Figure:
-    """A 3D mesh cut by Γ, rendered off-screen with pyvista into a static figure.
-
-    Shows the interface triangles (the polygons of the cut cells, fanned into
-    triangles; their edges are drawn so the fan is visible) in the colour of
-    Γ, the edges of the cut cells as a wireframe, the intersection points and
-    the outline of the mesh.  pyvista (the ``viz`` extra) is imported here; the
-    environment variable ``VTK_DEFAULT_OPENGL_WINDOW`` defaults to
-    ``vtkEGLRenderWindow`` so that no display is needed.
-
-    Parameters
-    ----------
-    mesh
-        A 3D scikit-fem mesh.
-    cut
-        Its :class:`skxfem.cut.Cut`.
-    window_size
-        Size of the rendered image in pixels, (width, height).
-    view
-        Direction from the mesh towards the camera; z is up.
-    title
-        Optional title above the image.
-
-    Returns
-    -------
-    Figure
-        One axes holding the screenshot.
-
-    >>> from skxfem.meshes import box
-    >>> from skxfem.levelset import plane
-    >>> from skxfem.cut import cut
-    >>> m = box(2, "hex")
-    >>> fig = plot_cut_3d(m, cut(m, plane((0.5, 0.5, 0.6), (1, 1, 1))), (400, 300))
-    >>> len(fig.axes), fig.axes[0].images[0].get_array().shape
-    (1, (300, 400, 3))
-    """
-    os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
-    import pyvista as pv
-
-    if mesh.dim() != 3:
-        raise ValueError(f"plot_cut_3d needs a 3D mesh, got {mesh.dim()}D; use plot_cut_2d")
-    faces = np.column_stack([np.full(cut.facets.shape[1], 3), cut.facets.T]).ravel()
-    interface = pv.PolyData(cut.points.T, faces)
-    _, t2e, edges = cell_edges(mesh)
-    cell_edge_ids = np.unique(t2e[:, cut.cells])
-    lines = np.column_stack([np.full(cell_edge_ids.size, 2), edges[:, cell_edge_ids].T])
-    wireframe = pv.PolyData(mesh.p.T, lines=lines.ravel())
-
-    plotter = pv.Plotter(off_screen=True, window_size=list(window_size))
-    plotter.set_background("white")
-    plotter.add_mesh(pv.PolyData(mesh.p.T).outline(), color=COLORS["mesh"], line_width=2)
-    plotter.add_mesh(wireframe, color=COLORS["mesh"], line_width=1)
-    plotter.add_mesh(interface, color=COLORS["gamma"], show_edges=True,
-                     edge_color="#ffffff", line_width=1, opacity=0.9)
-    plotter.add_mesh(pv.PolyData(cut.points.T), color=COLORS["gamma"], point_size=8,
-                     render_points_as_spheres=True)
-    plotter.add_axes(color="black")
-    plotter.view_vector(view, viewup=(0.0, 0.0, 1.0))
-    image = plotter.screenshot(return_img=True)
-    plotter.close()
-
-    width, height = window_size
-    fig = Figure(figsize=(width / 100, height / 100 + (0.3 if title else 0.0)), dpi=100)
-    ax = fig.add_axes((0.0, 0.0, 1.0, height / (height + (30 if title else 0))))
-    ax.imshow(image)
-    ax.set_axis_off()
-    if title:
-        fig.suptitle(title)
-    return fig
-
-
-def _axis(name: str | int, dim: int) -> int:
-    """Coordinate index of ``"x"``, ``"y"``, ``"z"`` (or of an int)."""
-    a = _AXES.index(name) if isinstance(name, str) and name in _AXES else name
-    if not (isinstance(a, (int, np.integer)) and 0 <= a < dim):
-        raise ValueError(f"axis must be one of {list(_AXES[:dim])} or 0..{dim - 1}, "
-                         f"got {name!r}")
-    return int(a)
-
-
-def pressure_along(result, axis: str | int = "y", where: Mapping | None = None,
-                   tol: float = 1e-9) -> tuple[np.ndarray, np.ndarray]:
-    """The contact pressure at the multiplier points, sorted along one coordinate.
-
-    Parameters
-    ----------
-    result
-        A :class:`skxfem.solver.Result`, or anything with ``points``
-        ``(dim, n)`` and ``pressure`` ``(n,)``.
-    axis
-        The coordinate to sort by: ``"x"``, ``"y"``, ``"z"`` or 0, 1, 2.
-    where
-        Coordinates to hold fixed, e.g. ``{"x": 0.5}``: only the points within
-        ``tol`` (relative to the size of the point cloud) of those planes are
-        kept.  ``{}`` keeps every point (their projection on ``axis``).
-        Default: in 2D every point; in 3D every other coordinate that varies
-        among the points is fixed at its middle value, the middle node plane
-        of a structured mesh cut by a coordinate plane (the paper's plate:
-        the line x = 0.5 of z = 0.5).
-    tol
-        Relative tolerance of the selection.
-
-    Returns
-    -------
-    s, p
-        The coordinate ``axis`` of the selected points, increasing, and their
-        pressures.
-
-    >>> from types import SimpleNamespace
-    >>> pts = np.array([[0.0, 0.5, 1.0, 0.0, 0.5, 1.0], [1, 1, 1, 0, 0, 0], [0.5] * 6])
-    >>> r = SimpleNamespace(points=pts, pressure=np.arange(6.0))
-    >>> s, p = pressure_along(r, "x")        # y fixed at its middle value: y = 1
-    >>> s.tolist(), p.tolist()
-    ([0.0, 0.5, 1.0], [0.0, 1.0, 2.0])
-    >>> pressure_along(r, "x", where={"y": 0.0})[1].tolist()
-    [3.0, 4.0, 5.0]
-    """
-    points = np.asarray(result.points, dtype=float)
-    pressure = np.asarray(result.pressure, dtype=float)
-    dim = points.shape[0]
-    a = _axis(axis, dim)
-    scale = max(float(np.ptp(points, axis=1).max()), 1.0)
-    if where is None:
-        where = {}
-        if dim == 3:
-            for d in range(dim):
-                values = np.unique(np.round(points[d] / (tol * scale)))
-                if d != a and values.size > 1:
-                    where[d] = float(values[values.size // 2] * tol * scale)
-    keep = np.ones(points.shape[1], dtype=bool)
-    for name, value in where.items():
-        keep &= np.abs(points[_axis(name, dim)] - value) <= tol * scale
-    if not keep.any():
-        raise ValueError(f"no multiplier point lies on {dict(where)} (tolerance "
-                         f"{tol * scale:.1e}); choose values present in result.points")
-    order = np.argsort(points[a, keep], kind="stable")
-    return points[a, keep][order], pressure[keep][order]
 
 
 def plot_pressure(curves: Mapping[str, tuple], reference: Callable | tuple | None = None,

@@ -8,9 +8,11 @@ writes into ``--out``
   and 8 on the 2D strip of triangles, and ``inf_sup.png``: β_h vs h (our
   addition);
 * ``summary.json``: the measured numbers — per cell and space, for every n:
-  the inf-sup constant β_h (both norms of :func:`skxfem.lbb.inf_sup`), the
-  number of zero modes, the relative L² error of the contact pressure and the
-  relative energy error with their observed rates, sizes and timings;
+  the inf-sup constant β_h of the bilateral tie (``beta_h``, ``beta_l2``:
+  both norms of :func:`skxfem.lbb.inf_sup`, ``n_zero`` its zero modes) and
+  of the bonded tie the scenes solve (``beta_h_bonded``, ``n_zero_bonded``),
+  the relative L² error of the contact pressure and the relative energy
+  error with their observed rates, sizes and timings;
 
 and prints a short table.  Errors are measured against the exact solution of
 :mod:`skxfem.exact` (scenes :func:`~skxfem.scenes.exact_strip` and
@@ -36,6 +38,12 @@ import time
 from pathlib import Path
 
 import numpy as np
+
+from . import figures
+from .convergence import observed_rates, study
+from .lbb import inf_sup
+from .scenes import exact_scene
+from .stabilised import vital_edges, winner_nodes
 
 __all__ = ["main", "parser", "plan"]
 
@@ -76,19 +84,16 @@ def plan(quick: bool, sizes=None) -> dict:
 
 def _measure(cell, ns):
     """Study rows and inf-sup results (both norms) of ``cell`` for its spaces."""
-    from .convergence import study
-    from .lbb import inf_sup
-    from .scenes import exact_scene
-
     rows = study(lambda n, s: exact_scene(n, cell, s), ns, CELLS[cell], with_inf_sup=False)
-    betas = {(scaling, space): [inf_sup(exact_scene(n, cell, space), scaling) for n in ns]
+    betas = {(scaling, space): [inf_sup(exact_scene(n, cell, space), scaling, "bilateral")
+                                for n in ns]
              for scaling in ("h", "l2") for space in CELLS[cell]}
+    betas.update({("bonded", space): [inf_sup(exact_scene(n, cell, space), "h", "bonded")
+                                      for n in ns] for space in CELLS[cell]})
     return rows, betas
 
 
 def _rates(h, e):
-    from .convergence import observed_rates
-
     return [round(float(r), 4) for r in observed_rates(h, e)] if len(h) > 1 else []
 
 
@@ -103,6 +108,8 @@ def _table(cell, rows, betas) -> dict:
             "beta_l2": [r.beta for r in betas["l2", space]],
             "h_cut_edges": [r.h for r in betas["h", space]],
             "n_zero": [r.n_zero for r in betas["h", space]],
+            "beta_h_bonded": [r.beta for r in betas["bonded", space]],
+            "n_zero_bonded": [r.n_zero for r in betas["bonded", space]],
             "pressure_l2": [r.pressure_l2 for r in mine],
             "pressure_l2_rates": _rates(h, [r.pressure_l2 for r in mine]),
             "pressure_max": [r.pressure_max for r in mine],
@@ -116,22 +123,20 @@ def _table(cell, rows, betas) -> dict:
 
 
 def _print_table(studies: dict) -> None:
-    print(f"{'cell':6} {'space':7} {'1/h':>4} {'beta_h':>8} {'L2(p)':>9} {'rate':>5} "
-          f"{'W(u)':>9} {'rate':>5}")
+    print(f"{'cell':6} {'space':7} {'1/h':>4} {'beta_h':>8} {'bonded':>8} {'L2(p)':>9} "
+          f"{'rate':>5} {'W(u)':>9} {'rate':>5}")
     for cell, spaces in studies.items():
         for space, t in spaces.items():
             for k, n in enumerate(t["n"]):
                 pr = f"{t['pressure_l2_rates'][k - 1]:5.2f}" if k else "     "
                 er = f"{t['energy_rates'][k - 1]:5.2f}" if k else "     "
                 print(f"{cell:6} {space:7} {n:4d} {t['beta_h'][k]:8.4f} "
+                      f"{t['beta_h_bonded'][k]:8.4f} "
                       f"{t['pressure_l2'][k]:9.2e} {pr} {t['energy'][k]:9.2e} {er}")
 
 
 def main(argv=None) -> int:
     """Compute, draw and write everything; returns the exit code 0."""
-    from . import figures
-    from .stabilised import vital_edges, winner_nodes
-
     args = parser().parse_args(argv)
     sizes = plan(args.quick, args.sizes)
     out = args.out
@@ -169,7 +174,7 @@ def main(argv=None) -> int:
     save(figures.fig9({c: [r for r in rows[c] if r.space in shown[c]] for c in rows}), "fig9")
     save(figures.fig10({c: [r for r in rows[c] if r.space in shown[c]] for c in rows}), "fig10")
     inf_sup = [{(c, s): measured[c][1][scaling, s] for c in ("tri", "quad", "prism")
-                for s in shown[c]} for scaling in ("h", "l2")]
+                for s in shown[c]} for scaling in ("h", "l2", "bonded")]
     save(figures.fig_inf_sup(*inf_sup), "inf_sup")
 
     quad = studies["quad"]

@@ -21,6 +21,17 @@ singular matrix, we
    differences between neighbouring multipliers (:func:`smoothest_multipliers`).
    A constant traction has G μ = 0, so it is recovered exactly whenever it
    balances U (the patch test).
+4. check that the reported multipliers balance U (Bᵀμ = KU - F to ``tol``).
+   They may not when rows of B are *nearly* dependent — kept by the QR (its
+   pivots exceed 1e-10 of the largest) but with a singular value below the
+   recovery's 1e-6 — and U's reaction really loads that combination: the
+   multipliers that balance U then carry a spike of the size of the reaction
+   over that singular value.  The unstable naive space does this where Γ
+   passes within about 1e-4 of an edge's length from a node (a 128 × 129
+   triangle strip, 1.6e-4: σ_min/σ_max = 8e-9, and the balance needs a
+   multiplier 3e5 times the typical one).  Such a scene is refused
+   with a :class:`NearlyDependentError` (a ValueError: use a stable space);
+   any other imbalance is a RuntimeError, an unexpected numerical failure.
 
 >>> import numpy as np, scipy.sparse as sp
 >>> K = sp.identity(2, format="csr"); B = sp.csr_matrix([[1.0, -1.0], [2.0, -2.0]])
@@ -37,7 +48,12 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-__all__ = ["SaddleInfo", "SingularSystemError", "independent_rows", "solve"]
+__all__ = ["SaddleInfo", "SingularSystemError", "NearlyDependentError", "independent_rows",
+           "smoothest_multipliers", "solve"]
+
+SMOOTH_TOL = 1e-6
+"""Singular values of B below this fraction of the largest are not trusted to fix
+the multipliers: :func:`smoothest_multipliers` chooses those components."""
 
 
 class SingularSystemError(ValueError):
@@ -45,6 +61,12 @@ class SingularSystemError(ValueError):
     leave a rigid motion of one side of Γ free, or an unknown has no
     stiffness at all (a node no cell uses).  A ValueError, since the fix is
     in the input (the mesh, the scene's displacements or its interface law)."""
+
+
+class NearlyDependentError(ValueError):
+    """The multiplier space is nearly dependent on this mesh: no smooth
+    multipliers balance the displacement, only ones with a huge spike.  A
+    ValueError, since the fix is in the input: a stable multiplier space."""
 
 
 @dataclass(frozen=True)
@@ -74,7 +96,7 @@ def independent_rows(B: sp.spmatrix, tol: float = 1e-10) -> np.ndarray:
     return np.sort(piv[:int(np.sum(d > tol * d.max()))])
 
 
-def smoothest_multipliers(B, r, G, tol: float = 1e-6) -> np.ndarray:
+def smoothest_multipliers(B, r, G, tol: float = SMOOTH_TOL) -> np.ndarray:
     """The smoothest μ with Bᵀμ = r: a truncated SVD, then least squares.
 
     With B = U S Vᵀ, the components of Uᵀμ whose singular value exceeds
@@ -98,6 +120,42 @@ def smoothest_multipliers(B, r, G, tol: float = 1e-6) -> np.ndarray:
         c = np.linalg.lstsq(GN, -(G @ mu), rcond=None)[0]
         mu = mu + N @ c
     return mu
+
+
+def _unbalanced(B, r, mu, balance: float, tol: float, scale: float) -> Exception:
+    """The error for multipliers ``mu`` that do not balance ``r`` (Bᵀμ ≠ r).
+
+    With B = U S Vᵀ, the imbalance e = Bᵀμ - r is split into its part along
+    the directions V_k whose singular value is below ``SMOOTH_TOL`` (those
+    :func:`smoothest_multipliers` chooses) and the rest.  If the rest balances
+    (≤ ``tol`` times ``scale``), the rows of B are nearly dependent and the reaction loads
+    that combination: a :class:`NearlyDependentError` naming the rows, the
+    measured σ_k/σ_max and the multiplier the balance would need,
+    |V_kᵀ r|/σ_k.  Otherwise a RuntimeError: an unexpected failure.
+    """
+    cols = np.unique(B.indices)
+    U, sv, Vt = sla.svd(B[:, cols].toarray(), full_matrices=False)
+    small = sv < SMOOTH_TOL * sv[0]
+    e = (B.T @ mu - r)[cols]
+    rest = e - Vt[small].T @ (Vt[small] @ e)
+    near = np.flatnonzero(small & (sv > 0))  # nearly, not exactly, dependent
+    if near.size and np.linalg.norm(rest) <= tol * scale:
+        need = np.abs(Vt[near] @ r[cols]) / sv[near]
+        k = near[np.argmax(need)]
+        rows = np.flatnonzero(np.abs(U[:, k]) > 0.1 * np.abs(U[:, k]).max())
+        typical = np.median(np.abs(mu[mu != 0])) if np.any(mu != 0) else 0.0
+        return NearlyDependentError(
+            f"the multipliers are nearly dependent on this mesh: the rows {rows.tolist()} "
+            f"of B have a singular value {sv[k] / sv[0]:.1e} of the largest (below "
+            f"{SMOOTH_TOL:.0e}), and balancing the displacement needs a multiplier "
+            f"{need.max():.1e} along them (typical multiplier {typical:.1e}); smooth "
+            f"multipliers leave a relative imbalance {balance:.1e} > {tol:.0e}.  The "
+            f"naive space does this where Γ passes very close to a node, and so does the "
+            f"winner space on tetrahedra: use the vital space (space=\"vital\")")
+    return RuntimeError(
+        f"the multipliers do not balance the displacement (relative error "
+        f"{balance:.1e} > {tol:.0e}): the interface tractions would be wrong; "
+        f"please report this scene")
 
 
 def _floating(detail: str) -> SingularSystemError:
@@ -138,9 +196,13 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float =
         If a free unknown has zero stiffness, the system is singular (SuperLU
         finds an exactly zero pivot, or a pivot below ``pivot_tol``), or the
         residual exceeds ``tol``.
+    NearlyDependentError
+        (a ValueError) If the multipliers do not balance U (Bᵀμ = K U - F
+        within ``tol``) because rows of B are nearly dependent (step 4 of the
+        module notes): the space is nearly singular on this mesh.
     RuntimeError
-        If the multipliers do not balance U (Bᵀμ = K U - F within ``tol``):
-        a numerical failure, never observed, checked so it cannot pass silently.
+        If they do not balance U for any other reason: a numerical failure,
+        never observed, checked so it cannot pass silently.
     """
     N, m = K.shape[0], B.shape[0]
     D = np.zeros(0, int) if D is None else np.asarray(D, int)
@@ -187,11 +249,8 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float =
     if G is not None:
         mu = smoothest_multipliers(B[:, free], reaction, G)
     # the multipliers reported must balance U: huge or wrong ones would not
-    balance = np.linalg.norm(B[:, free].T @ mu - reaction) / max(
-        np.linalg.norm(reaction), np.linalg.norm(F[free]), 1e-300)
+    scale = max(np.linalg.norm(reaction), np.linalg.norm(F[free]), 1e-300)
+    balance = np.linalg.norm(B[:, free].T @ mu - reaction) / scale
     if not np.isfinite(balance) or balance > tol:
-        raise RuntimeError(
-            f"the multipliers do not balance the displacement (relative error "
-            f"{balance:.1e} > {tol:.0e}): the interface tractions would be wrong; "
-            f"please report this scene")
+        raise _unbalanced(B[:, free], reaction, mu, balance, tol, scale)
     return U, mu, SaddleInfo(int(m - keep.size), float(residual), float(balance))

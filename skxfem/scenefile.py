@@ -33,8 +33,12 @@ type is refused with an error naming the key.  The schema::
     # traction = [0, 0, "-1"]          # or a traction vector
 
     [interface]
-    law = "bonded"                     # one of skxfem.scene.LAWS
-    space = "naive"                    # one of skxfem.scene.SPACES
+    law = "bonded"                     # one of skxfem.scene.LAWS or CONTACT_LAWS
+    space = "vital"                    # one of skxfem.scene.SPACES (default vital)
+    # friction = 0.5                   # Coulomb's mu (law "coulomb"), >= 0
+    # rho_n = 10.0                     # contact augmentation, > 0 (default E/h)
+    # rho_t = 10.0                     # friction augmentation, > 0
+    # steps = [0.5, 1.0]               # load factors of a contact solve
 
     [solver]
     quadrature_order = 2               # optional
@@ -46,8 +50,10 @@ from pathlib import Path
 
 from . import levelset as ls
 from . import scene as sc
-from .expr import Expression
 from .material import Material
+from .meshes import read
+from .scene_parts import COMPONENTS
+from .tomlcheck import array, choice, formula, keys, number, one_of, table, vector
 
 __all__ = ["load_scene"]
 
@@ -87,15 +93,33 @@ def load_scene(path: str | Path) -> sc.Scene:
 
 
 def _scene(data: dict, path: Path) -> sc.Scene:
-    _keys(data, _TOP, "the top level")
+    keys(data, _TOP, "the top level")
     for key in ("mesh", "levelset"):
         if key not in data:
             raise ValueError(f"missing table [{key}]")
-    mesh, dim = _mesh(_table(data["mesh"], "[mesh]", ("box", "file")), path.parent)
-    interface = _table(data.get("interface", {}), "[interface]", ("law", "space"))
-    solver = _table(data.get("solver", {}), "[solver]", ("quadrature_order",))
-    law = _choice(interface.get("law", "bonded"), sc.LAWS, "[interface] law")
-    space = _choice(interface.get("space", "naive"), sc.SPACES, "[interface] space")
+    mesh, dim = _mesh(table(data["mesh"], "[mesh]", ("box", "file")), path.parent)
+    interface = table(data.get("interface", {}), "[interface]",
+                       ("law", "space", "friction", "rho_n", "rho_t", "steps"))
+    solver = table(data.get("solver", {}), "[solver]", ("quadrature_order",))
+    law = choice(interface.get("law", "bonded"), sc.LAWS + sc.CONTACT_LAWS,
+                  "[interface] law")
+    contact = {k: interface[k] for k in ("friction", "rho_n", "rho_t") if k in interface}
+    for key, value in contact.items():
+        if not (isinstance(value, (int, float)) and not isinstance(value, bool)):
+            raise TypeError(f"[interface] {key} must be a number, got {value!r}")
+    if "friction" in contact and contact["friction"] < 0:
+        raise ValueError(f"[interface] friction must be >= 0, got {contact['friction']!r}")
+    for key in ("rho_n", "rho_t"):
+        if key in contact and not contact[key] > 0:
+            raise ValueError(f"[interface] {key} must be > 0, got {contact[key]!r}")
+    if "steps" in interface:
+        steps = interface["steps"]
+        if not (isinstance(steps, list) and steps and all(
+                isinstance(f, (int, float)) and not isinstance(f, bool) for f in steps)):
+            raise ValueError(f"[interface] steps must be a non-empty list of load "
+                             f"factors, got {steps!r}")
+        contact["steps"] = tuple(steps)
+    space = choice(interface.get("space", "vital"), sc.SPACES, "[interface] space")
     order = solver.get("quadrature_order")
     if order is not None and (type(order) is not int or order < 1):
         raise ValueError(f"[solver] quadrature_order must be a positive integer, got {order!r}")
@@ -105,85 +129,26 @@ def _scene(data: dict, path: Path) -> sc.Scene:
     return sc.Scene(
         mesh=mesh,
         levelset=_levelset(data["levelset"], dim),
-        material=_material(_table(data.get("material", {}), "[material]",
+        material=_material(table(data.get("material", {}), "[material]",
                                   ("E", "nu", "plane"))),
         displacements=tuple(_displacement(t, dim, f"[[displacement]] #{i + 1}")
-                            for i, t in enumerate(_array(data, "displacement"))),
+                            for i, t in enumerate(array(data, "displacement"))),
         loads=tuple(_load(t, dim, f"[[load]] #{i + 1}")
-                    for i, t in enumerate(_array(data, "load"))),
-        law=law, space=space, quadrature_order=order, name=name)
-
-
-def _table(t, where: str, allowed: tuple) -> dict:
-    """``t`` if it is a table whose keys are all ``allowed``."""
-    if not isinstance(t, dict):
-        raise TypeError(f"{where} must be a table, got {t!r}")
-    _keys(t, allowed, where)
-    return t
-
-
-def _array(data: dict, key: str) -> list:
-    items = data.get(key, [])
-    if not isinstance(items, list) or not all(isinstance(t, dict) for t in items):
-        raise TypeError(f"{key} must be written as [[{key}]] tables")
-    return items
-
-
-def _keys(t: dict, allowed: tuple, where: str):
-    for key in t:
-        if key not in allowed:
-            raise ValueError(f"{where}: unknown key {key!r}; allowed keys: {', '.join(allowed)}")
-
-
-def _one_of(t: dict, options: tuple, where: str) -> str:
-    present = [k for k in options if k in t]
-    if len(present) != 1:
-        raise ValueError(f"{where} needs exactly one of {', '.join(options)}; "
-                         f"got {', '.join(present) or 'none'}")
-    return present[0]
-
-
-def _choice(v, allowed: tuple, key: str) -> str:
-    if v not in allowed:
-        raise ValueError(f"{key} must be one of {', '.join(allowed)}, got {v!r}")
-    return v
-
-
-def _number(v, key: str) -> float:
-    if type(v) not in (int, float):
-        raise TypeError(f"{key} must be a number, got {v!r}")
-    return float(v)
-
-
-def _vector(v, key: str, dim: int) -> list[float]:
-    if not isinstance(v, list) or len(v) != dim:
-        raise ValueError(f"{key} must be a list of {dim} numbers on a {dim}D mesh, got {v!r}")
-    return [_number(c, key) for c in v]
-
-
-def _formula(v, key: str, dim: int, boolean: bool = False):
-    """A number, or a string checked by :mod:`skxfem.expr`."""
-    if isinstance(v, str):
-        try:
-            return Expression(v, dim, boolean)
-        except ValueError as e:
-            raise ValueError(f"{key}: {e}") from None
-    if boolean:
-        raise TypeError(f"{key} must be a condition string such as 'x < 1e-9', got {v!r}")
-    return _number(v, key)
+                    for i, t in enumerate(array(data, "load"))),
+        law=law, space=space, quadrature_order=order, name=name, **contact)
 
 
 def _mesh(t: dict, folder: Path) -> tuple[sc.Box | Path, int]:
-    if _one_of(t, ("box", "file"), "[mesh]") == "box":
-        box = _table(t["box"], "[mesh] box", ("n", "cell", "size"))
+    if one_of(t, ("box", "file"), "[mesh]") == "box":
+        box = table(t["box"], "[mesh] box", ("n", "cell", "size"))
         if "n" not in box or "cell" not in box:
             raise ValueError("[mesh] box needs n and cell, e.g. {n = 4, cell = \"quad\"}")
         n, cell, size = box["n"], box["cell"], box.get("size")
         if not (type(n) is int or isinstance(n, list) and all(type(k) is int for k in n)):
             raise TypeError(f"[mesh] box.n must be an integer or a list of integers, got {n!r}")
-        _choice(cell, tuple(sc.CELLS), "[mesh] box.cell")
+        choice(cell, tuple(sc.CELLS), "[mesh] box.cell")
         if size is not None:
-            size = _vector(size, "[mesh] box.size", sc.CELLS[cell])
+            size = vector(size, "[mesh] box.size", sc.CELLS[cell])
         try:
             return sc.Box(tuple(n) if isinstance(n, list) else n, cell, size), sc.CELLS[cell]
         except ValueError as e:
@@ -193,8 +158,6 @@ def _mesh(t: dict, folder: Path) -> tuple[sc.Box | Path, int]:
     path = (folder / t["file"]).resolve()
     if not path.is_file():
         raise ValueError(f"[mesh] file {t['file']!r} not found (looked for {path})")
-    from .meshes import read
-
     try:
         mesh = read(path)
     except SystemExit:  # meshio calls sys.exit(1) on a file it cannot read
@@ -206,34 +169,34 @@ def _mesh(t: dict, folder: Path) -> tuple[sc.Box | Path, int]:
 
 def _levelset(t: dict, dim: int) -> ls.LevelSet:
     kinds = ("plane", "circle", "sphere", "expr")
-    t = _table(t, "[levelset]", kinds)
-    kind = _one_of(t, kinds, "[levelset]")
+    t = table(t, "[levelset]", kinds)
+    kind = one_of(t, kinds, "[levelset]")
     key = f"[levelset] {kind}"
     if kind == "expr":
         if not isinstance(t[kind], str):
             raise TypeError(f"{key} must be a formula string, got {t[kind]!r}")
-        return ls.LevelSet(_formula(t[kind], key, dim), dim, t[kind])
+        return ls.LevelSet(formula(t[kind], key, dim), dim, t[kind])
     if kind in ("circle", "sphere") and dim != {"circle": 2, "sphere": 3}[kind]:
         other = "sphere" if kind == "circle" else "circle"
         raise ValueError(f"{key} is a {5 - dim}D shape but the mesh is {dim}D; "
                          f"use {other} or expr")
     args = ("point", "normal") if kind == "plane" else ("center", "radius")
-    spec = _table(t[kind], key, args)
+    spec = table(t[kind], key, args)
     for a in args:
         if a not in spec:
             raise ValueError(f"{key} needs {a}")
     if kind == "plane":
-        return ls.plane(_vector(spec["point"], f"{key}.point", dim),
-                        _vector(spec["normal"], f"{key}.normal", dim))
+        return ls.plane(vector(spec["point"], f"{key}.point", dim),
+                        vector(spec["normal"], f"{key}.normal", dim))
     try:
-        return getattr(ls, kind)(_vector(spec["center"], f"{key}.center", dim),
-                                 _number(spec["radius"], f"{key}.radius"))
+        return getattr(ls, kind)(vector(spec["center"], f"{key}.center", dim),
+                                 number(spec["radius"], f"{key}.radius"))
     except ValueError as e:
         raise ValueError(f"{key}: {e}") from None
 
 
 def _material(t: dict) -> Material:
-    args = {k: _number(t[k], f"[material] {k}") for k in ("E", "nu") if k in t}
+    args = {k: number(t[k], f"[material] {k}") for k in ("E", "nu") if k in t}
     try:
         return Material(**args, plane=t.get("plane", "strain"))
     except ValueError as e:
@@ -241,9 +204,9 @@ def _material(t: dict) -> Material:
 
 
 def _where(t: dict, dim: int, where: str):
-    kind = _one_of(t, ("boundary", "where"), where)
+    kind = one_of(t, ("boundary", "where"), where)
     if kind == "where":
-        return _formula(t["where"], f"{where} where", dim, boolean=True)
+        return formula(t["where"], f"{where} where", dim, boolean=True)
     if not isinstance(t["boundary"], str):
         raise TypeError(f"{where} boundary must be a name such as 'xmin', "
                         f"got {t['boundary']!r}")
@@ -251,32 +214,32 @@ def _where(t: dict, dim: int, where: str):
 
 
 def _displacement(t: dict, dim: int, where: str) -> sc.Displacement:
-    _keys(t, ("boundary", "where", "kind", "x", "y", "z"), where)
+    keys(t, ("boundary", "where", "kind", "x", "y", "z"), where)
     boundary = _where(t, dim, where)
-    given = [c for c in sc.COMPONENTS if c in t]
+    given = [c for c in COMPONENTS if c in t]
     if "z" in given and dim == 2:
         raise ValueError(f"{where} z: component 'z' does not exist on a 2D mesh")
     if "kind" in t:
         if given:
             raise ValueError(f"{where}: give either kind or components ({', '.join(given)})")
-        kind = _choice(t["kind"], ("clamped", "rollers"), f"{where} kind")
+        kind = choice(t["kind"], ("clamped", "rollers"), f"{where} kind")
         if kind == "rollers" and not isinstance(boundary, str):
             raise ValueError(f"{where} kind: rollers needs a named boundary, not where")
         return sc.clamped(boundary) if kind == "clamped" else sc.rollers(boundary)
     if not given:
         raise ValueError(f"{where} needs kind or at least one of x, y, z")
-    return sc.Displacement(boundary, {c: _formula(t[c], f"{where} {c}", dim) for c in given})
+    return sc.Displacement(boundary, {c: formula(t[c], f"{where} {c}", dim) for c in given})
 
 
 def _load(t: dict, dim: int, where: str) -> sc.SurfaceLoad:
-    _keys(t, ("boundary", "where", "pressure", "traction"), where)
+    keys(t, ("boundary", "where", "pressure", "traction"), where)
     boundary = _where(t, dim, where)
-    if _one_of(t, ("pressure", "traction"), where) == "pressure":
-        return sc.SurfaceLoad(boundary, pressure=_formula(t["pressure"], f"{where} pressure",
+    if one_of(t, ("pressure", "traction"), where) == "pressure":
+        return sc.SurfaceLoad(boundary, pressure=formula(t["pressure"], f"{where} pressure",
                                                           dim))
     v = t["traction"]
     if not isinstance(v, list) or len(v) != dim:
         raise ValueError(f"{where} traction must be a list of {dim} numbers or formulas "
                          f"on a {dim}D mesh, got {v!r}")
     return sc.SurfaceLoad(boundary, traction=tuple(
-        _formula(c, f"{where} traction[{i}]", dim) for i, c in enumerate(v)))
+        formula(c, f"{where} traction[{i}]", dim) for i, c in enumerate(v)))

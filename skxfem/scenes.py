@@ -41,7 +41,7 @@ def _odd_cells(n: int, nz: int | None, key: str) -> int:
 
 
 def paper_plate(n: int = 4, cell: str = "hex", nz: int | None = None,
-                law: str = "bonded", space: str = "naive") -> Scene:
+                law: str = "bonded", space: str = "vital", nx: int | None = None) -> Scene:
     """The plate under non-uniform compression of the paper, §5 (Figures 4, 5, 7-10).
 
     From the paper: a 3D elastic plate whose bottom face is clamped, a parabolic
@@ -71,32 +71,41 @@ def paper_plate(n: int = 4, cell: str = "hex", nz: int | None = None,
         Cells in x and y (for prisms: n squares in y, each cut into 2 triangles).
     cell
         ``"hex"`` or ``"prism"`` (prisms: triangles in the (y, z) plane extruded
-        along x, as in the paper's Figure 4).
+        along x, as in the paper's Figure 4); ``"tet"`` (not in the paper:
+        each box cell cut into tetrahedra, see :class:`skxfem.scene.Box`).
     nz
         Cells in z, odd; default ``n`` if odd else ``n + 1``.
     law, space
         Interface law and multiplier space (see :data:`skxfem.scene.LAWS`).
+    nx
+        Cells in x, default ``n`` (the solution does not depend on x).
     """
-    if cell not in ("hex", "prism"):
-        raise ValueError(f"cell must be 'hex' or 'prism' for the paper plate, got {cell!r}")
+    if cell not in ("hex", "prism", "tet"):
+        raise ValueError(f"cell must be 'hex', 'prism' or 'tet' for the paper plate, "
+                         f"got {cell!r}")
     nz = _odd_cells(n, nz, "nz")
+    nx = n if nx is None else nx
+    if not (isinstance(nx, int) and not isinstance(nx, bool) and nx >= 1):
+        raise ValueError(f"nx must be a positive integer, got {nx!r}")
     return Scene(
-        mesh=Box((n, n, nz), cell, (1.0, 1.0, 1.0)),
+        mesh=Box((nx, n, nz), cell, (1.0, 1.0, 1.0)),
         levelset=plane(point=(0.0, 0.0, 0.5), normal=(0.0, 0.0, 1.0)),
         material=Material(E=1.0, nu=0.3, plane="strain"),
         displacements=(clamped("zmin"), rollers("xmin"), rollers("xmax")),
         loads=(SurfaceLoad("zmax", pressure=Expression(f"4*{P_MAX}*y*(1 - y)", 3)),),
-        law=law, space=space, name=f"paper_plate_{cell}_{n}x{n}x{nz}")
+        law=law, space=space, name=f"paper_plate_{cell}_{nx}x{n}x{nz}")
 
 
 def strip(n: int = 4, cell: str = "quad", ny: int | None = None,
-          law: str = "bonded", space: str = "naive") -> Scene:
+          law: str = "bonded", space: str = "vital", sides: str = "free") -> Scene:
     """The 2D plane-strain analogue of :func:`paper_plate` on [0, 1]².
 
     The plate's coordinates (y, z) become (x, y): the bottom y = 0 is clamped,
     the pressure p(x) = 4 P_max x (1 - x) acts on the top y = 1, Γ is the line
-    y = 0.5 (Ω⁻ below) and the sides x = 0, x = 1 are free.  Same material
-    assumptions as :func:`paper_plate` (E = 1, ν = 0.3, plane strain).
+    y = 0.5 (Ω⁻ below) and the sides x = 0, x = 1 are free (``sides="free"``)
+    or on rollers, u_x = 0 (``sides="rollers"``, as the plate's faces x = 0
+    and x = 1: then Γ meets a support).  Same material assumptions as
+    :func:`paper_plate` (E = 1, ν = 0.3, plane strain).
 
     Parameters
     ----------
@@ -108,20 +117,28 @@ def strip(n: int = 4, cell: str = "quad", ny: int | None = None,
         Cells in y, odd; default ``n`` if odd else ``n + 1``.
     law, space
         Interface law and multiplier space.
+    sides
+        ``"free"`` or ``"rollers"``: the supports of the sides x = 0 and x = 1.
 
     >>> strip(n=2, cell="tri").mesh
     Box(n=(2, 3), cell='tri', size=(1.0, 1.0))
+    >>> strip(n=2, sides="rollers").name
+    'strip_quad_2x3_rollers'
     """
     if cell not in ("quad", "tri"):
         raise ValueError(f"cell must be 'quad' or 'tri' for the strip, got {cell!r}")
+    if sides not in ("free", "rollers"):
+        raise ValueError(f"sides must be 'free' or 'rollers', got {sides!r}")
     ny = _odd_cells(n, ny, "ny")
+    held = (rollers("xmin"), rollers("xmax")) if sides == "rollers" else ()
     return Scene(
         mesh=Box((n, ny), cell, (1.0, 1.0)),
         levelset=plane(point=(0.0, 0.5), normal=(0.0, 1.0)),
         material=Material(E=1.0, nu=0.3, plane="strain"),
-        displacements=(clamped("ymin"),),
+        displacements=(clamped("ymin"),) + held,
         loads=(SurfaceLoad("ymax", pressure=Expression(f"4*{P_MAX}*x*(1 - x)", 2)),),
-        law=law, space=space, name=f"strip_{cell}_{n}x{ny}")
+        law=law, space=space,
+        name=f"strip_{cell}_{n}x{ny}" + ("_rollers" if sides == "rollers" else ""))
 
 
 def _exact_bcs(sol, faces, bottom):
@@ -135,7 +152,7 @@ def _exact_bcs(sol, faces, bottom):
 
 
 def exact_strip(n: int = 4, cell: str = "quad", ny: int | None = None,
-                law: str = "bonded", space: str = "naive") -> Scene:
+                law: str = "bonded", space: str = "vital") -> Scene:
     """:func:`strip` with the loads of :mod:`skxfem.exact`: the pressure on Γ is p(x).
 
     Same mesh, material and top pressure as :func:`strip`; in addition a
@@ -155,23 +172,21 @@ def exact_strip(n: int = 4, cell: str = "quad", ny: int | None = None,
 
 
 def exact_plate(n: int = 4, cell: str = "hex", nz: int | None = None, nx: int | None = None,
-                law: str = "bonded", space: str = "naive") -> Scene:
+                law: str = "bonded", space: str = "vital") -> Scene:
     """:func:`paper_plate` with the loads of :mod:`skxfem.exact` (see :func:`exact_strip`).
 
     ``nx`` cells along x (default ``n``): with rollers on x = 0 and x = 1 the
     solution does not depend on x, so ``nx = 1`` gives the same answer at a
     fraction of the cost.
     """
-    base = paper_plate(n, cell, nz, law, space)
-    if nx is not None:
-        base = replace(base, mesh=replace(base.mesh, n=(nx,) + tuple(base.mesh.n[1:])))
+    base = paper_plate(n, cell, nz, law, space, nx)
     sol = ExactPlate(base.material, 3, P_MAX)
     bottom_u, loads = _exact_bcs(sol, ("ymin", "ymax"), "zmin")
     return replace(base, displacements=(bottom_u, rollers("xmin"), rollers("xmax")),
                    loads=loads, name="exact_" + base.name)
 
 
-def exact_scene(n: int, cell: str, space: str = "naive") -> Scene:
+def exact_scene(n: int, cell: str, space: str = "vital") -> Scene:
     """The exact benchmark of a cell type, cheapest form: :func:`exact_strip`
     for ``"tri"``/``"quad"``, :func:`exact_plate` with one layer of cells
     along x for ``"tet"``/``"hex"``/``"prism"``.  Its interface coordinate

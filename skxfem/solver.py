@@ -29,15 +29,15 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from . import saddle
-from .boundary import imposed
-from .cut import cut as cut_mesh
-from .enrich import XSpace, enriched_load, jump_matrix, space, split_fields, stiffness
-from .loads import boundary_quadrature, surface_load
-from .multipliers import coupling, interface_rule, multiplier_space
-from .scene import Scene, dirichlet, load_facets, resolve_mesh
+from . import contact, saddle
+from .contact import ContactResult
+from .contact_laws import CONTACT_LAWS
+from .enrich import XSpace, split_fields
+from .levelset import point_normals
+from .problem import Problem, assemble, constrained_dofs
+from .scene import Scene
 
-__all__ = ["Result", "solve", "constrained_dofs"]
+__all__ = ["Result", "solve", "solve_problem", "constrained_dofs"]
 
 
 @dataclass(frozen=True)
@@ -70,16 +70,6 @@ class Result:
     space: XSpace | None = field(default=None, repr=False)
 
 
-def _point_normals(c) -> np.ndarray:
-    """Area-weighted mean normal of the facets around each multiplier point."""
-    dim = c.normals.shape[0]
-    n = np.zeros((dim, c.points.shape[1]))
-    for k in range(c.facets.shape[0]):
-        for d in range(dim):
-            np.add.at(n[d], c.facets[k], c.normals[d] * c.measures)
-    return n / np.linalg.norm(n, axis=0)
-
-
 def _differences(c, ncomp: int) -> sp.csr_matrix:
     """G: λ_i - λ_j over the sides (i, j) of the interface facets, per component."""
     nv = c.facets.shape[0]
@@ -92,50 +82,13 @@ def _differences(c, ncomp: int) -> sp.csr_matrix:
     return sp.kron(sp.identity(ncomp), G, format="csr")
 
 
-def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndarray]:
-    """Constrained unknowns of the X-FEM space and their values.
-
-    The shifted enrichment φⱼ(H - Hⱼ) vanishes on a boundary facet that Γ
-    does not cut, so there imposing aᵢ imposes u.  On a facet that Γ cuts,
-    u = a + b(H - Hⱼ) takes both signs of H, so where a displacement acts on
-    the whole facet (it selects all the facet's vertices) the enriched dofs
-    of its components at the facet's nodes are set to zero as well.  Each
-    displacement is taken on its own: two supports whose nodes together
-    cover a facet do not constrain it.
-
-    Parameters
-    ----------
-    V
-        The X-FEM space (:func:`skxfem.enrich.space`).
-    scene, mesh
-        The scene and its resolved mesh.
-
-    Returns
-    -------
-    dofs, values
-        Indices into the unknowns [a, b] (``V.N`` of them) and imposed values.
-    """
-    dofs, values = dirichlet(scene, mesh, V.basis)
-    psi = V.cut.psi
-    bf = mesh.facets[:, mesh.boundary_facets()]
-    cut_bf = bf[:, (psi[bf] < 0).any(axis=0) & (psi[bf] > 0).any(axis=0)]
-    pos = np.full(V.n_std, -1)
-    pos[V.enr_dofs] = np.arange(V.n_enr)
-    enr = [np.zeros(0, dtype=np.int64)]
-    for held, components in imposed(scene, mesh):
-        selected = np.zeros(mesh.p.shape[1], dtype=bool)
-        selected[held] = True
-        nodes = np.unique(cut_bf[:, selected[cut_bf].all(axis=0)])
-        for c in components:
-            b = pos[V.basis.nodal_dofs[c, nodes]]
-            enr.append(V.n_std + b[b >= 0])
-    enr = np.unique(np.concatenate(enr))
-    return (np.concatenate([dofs, enr]),
-            np.concatenate([values, np.zeros(enr.size)]))
-
-
-def solve(scene: Scene, dependent: str = "remove") -> Result:
+def solve(scene: Scene, dependent: str = "remove") -> Result | ContactResult:
     """Solve ``scene`` and return a :class:`Result`.
+
+    A scene with a contact law (``frictionless``, ``coulomb``, ``adhesive``)
+    is handed to :func:`skxfem.contact.solve` with its load steps, and its
+    :class:`~skxfem.contact.ContactResult` is returned: one call solves any
+    scene.
 
     Parameters
     ----------
@@ -157,33 +110,21 @@ def solve(scene: Scene, dependent: str = "remove") -> Result:
     """
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
-    timings = {}
-    t0 = time.perf_counter()
-    mesh = resolve_mesh(scene)
-    c = cut_mesh(mesh, scene.levelset)
-    S = multiplier_space(scene.space, mesh, c)
-    timings["cut"] = time.perf_counter() - t0
+    if scene.law in CONTACT_LAWS:
+        return contact.solve(scene)
+    p = assemble(scene)
+    return solve_problem(p, dependent)
 
-    t0 = time.perf_counter()
-    V = space(mesh, c, scene.quadrature_order)
-    timings["enrich"] = time.perf_counter() - t0
 
-    t0 = time.perf_counter()
-    K = stiffness(V, scene.material)
-    f, f_H = np.zeros(V.n_std), np.zeros(V.n_std)
-    for facets, traction in load_facets(scene, mesh):
-        q = boundary_quadrature(mesh, facets, 4, psi_nodes=c.psi)
-        df, df_H = surface_load(V.basis, q, traction)
-        f, f_H = f + df, f_H + df_H
-    F = enriched_load(V, f, f_H)
-    rule = interface_rule(mesh, c)
-    B_edges = coupling(V, rule, scene.law)
-    ncomp = B_edges.shape[0] // c.points.shape[1]
-    P = sp.kron(sp.identity(ncomp), S.P, format="csr")  # component-major
-    B = (P.T @ B_edges).tocsr()
-    D, g = constrained_dofs(V, scene, mesh)
-    timings["assemble"] = time.perf_counter() - t0
-
+def solve_problem(p: Problem, dependent: str = "remove") -> Result:
+    """Solve an assembled :class:`skxfem.problem.Problem` (its law): see :func:`solve`."""
+    if dependent not in ("remove", "raise"):
+        raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
+    scene, mesh, c, V, B, P, D, ncomp = p.scene, p.mesh, p.cut, p.V, p.B, p.P, p.D, p.ncomp
+    t = p.timings
+    timings = {"cut": t["cut"] + t["space"], "enrich": t["enrich"],
+               "assemble": sum(t[k] for k in ("stiffness", "load", "constraints", "interface",
+                                              "prolongation"))}
     t0 = time.perf_counter()
     if dependent == "raise":
         removed = B.shape[0] - saddle.independent_rows(
@@ -192,15 +133,15 @@ def solve(scene: Scene, dependent: str = "remove") -> Result:
             raise ValueError(
                 f"the multiplier space is rank deficient: {removed} of {B.shape[0]} "
                 f"multipliers depend on the others (space {scene.space!r}, law "
-                f"{scene.law!r}); use a stabilised space or dependent='remove'")
-    U, mu, info = saddle.solve(K, B, F, D, g, G=_differences(c, ncomp) @ P)
+                f"{p.law!r}); use a stabilised space or dependent='remove'")
+    U, mu, info = saddle.solve(p.K, B, p.F, D, p.g, G=_differences(c, ncomp) @ P)
     lam = (P @ mu).reshape(ncomp, -1)
     timings["solve"] = time.perf_counter() - t0
 
-    normals = _point_normals(c)
+    normals = point_normals(c, scene.levelset)
     traction = lam if ncomp > 1 else lam * normals
-    J = (jump_matrix(V, rule.cells, rule.ref) @ U).reshape(mesh.dim(), -1)
-    jn = np.abs((J * rule.normals).sum(0)) if scene.law == "bilateral" \
+    J = (p.J @ U).reshape(mesh.dim(), -1)
+    jn = np.abs((J * p.rule.normals).sum(0)) if p.law == "bilateral" \
         else np.linalg.norm(J, axis=0)
     u_minus, u_plus = split_fields(V, U)
     return Result(scene, mesh, u_minus, u_plus, c.points, normals, traction,

@@ -19,75 +19,15 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components, min_weight_full_bipartite_matching
 
-from .multipliers import Space
+from .cut import Cut
+from .cutgraph import check_fixed, check_graph, edges_at, incidence, interpolate, nearest
+from .multipliers import SPACES, Space, naive
 
-__all__ = ["Space", "vital_edges", "winner_nodes"]
-
-
-def _check(edges, psi, points, nodes):
-    nodes, psi, edges = np.asarray(nodes, float), np.asarray(psi, float), np.asarray(edges)
-    points = np.asarray(points, float)
-    if nodes.ndim != 2 or nodes.shape[0] not in (2, 3) or not np.isfinite(nodes).all():
-        raise ValueError(f"nodes must be finite, shape (dim, nnodes); got {nodes.shape}")
-    if psi.shape != nodes.shape[1:] or not np.isfinite(psi).all():
-        raise ValueError(f"psi must be finite, shape ({nodes.shape[1]},); got {psi.shape}")
-    if edges.ndim != 2 or edges.shape[0] != 2 or (edges.size and edges.dtype.kind not in "iu"):
-        raise ValueError(f"edges must be node indices, shape (2, ne); got {edges.dtype} "
-                         f"{edges.shape}")
-    edges = edges.astype(np.int64)
-    if points.shape != (nodes.shape[0], edges.shape[1]) or not np.isfinite(points).all():
-        raise ValueError(f"points must be finite, shape ({nodes.shape[0]}, {edges.shape[1]});"
-                         f" got {points.shape}")
-    if edges.size and (edges.min() < 0 or edges.max() >= psi.size):
-        raise ValueError(f"edges refer to nodes outside 0..{psi.size - 1}")
-    for e in np.flatnonzero(psi[edges[0]] * psi[edges[1]] >= 0)[:1]:
-        raise ValueError(f"edges must be strictly cut, psi(v1) psi(v2) < 0; edge {e} = "
-                         f"{edges[:, e].tolist()} has psi {psi[edges[:, e]].tolist()}")
-    if np.unique(np.sort(edges, axis=0), axis=1).shape[1] < edges.shape[1]:
-        raise ValueError("edges lists the same edge twice")
-    for e in np.flatnonzero(np.all(nodes[:, edges[0]] == nodes[:, edges[1]], axis=0))[:1]:
-        raise ValueError(f"nodes: the two ends of edge {e} coincide")
-    return edges, psi, points, nodes
+__all__ = ["Space", "vital_edges", "winner_nodes", "multiplier_space"]
 
 
-def _incidence(edges, nnodes, keep):
-    """(nnodes, ne) CSR with an entry (v, e) for each kept edge e and end v."""
-    k = np.flatnonzero(keep)
-    return sp.csr_matrix((np.ones(2 * k.size), (edges[:, k].ravel(), np.tile(k, 2))),
-                         shape=(nnodes, edges.shape[1]))
-
-
-def _edges_at(inc, v):
-    """The rows ``v`` of ``inc`` laid end to end: (row position, edge) pairs."""
-    start = inc.indptr[v]
-    count = inc.indptr[v + 1] - start
-    at = np.repeat(start - np.cumsum(count) + count, count) + np.arange(count.sum())
-    return np.repeat(np.arange(v.size), count), inc.indices[at]
-
-
-def _nearest(points, query, ends, inc):
-    """For each edge q = query[i]: the edge of ``inc`` at node ends[i] whose point
-    is nearest to q's (ties: lowest index), -1 if there is none."""
-    i, k = _edges_at(inc, ends)
-    dist = np.linalg.norm(points[:, query[i]] - points[:, k], axis=0)
-    order = np.lexsort((k, dist, i))
-    first = order[np.r_[True, i[order][1:] != i[order][:-1]]] if i.size else order
-    best = np.full(ends.size, -1)
-    best[i[first]] = k[first]
-    return best
-
-
-def _interpolate(points, query, k1, k2, col1, col2):
-    """COO rows of λ_e = d2/(d1+d2) λ_k1 + d1/(d1+d2) λ_k2, d_i = |x_e - x_ki| (§5)."""
-    d1 = np.linalg.norm(points[:, query] - points[:, k1], axis=0)
-    d2 = np.linalg.norm(points[:, query] - points[:, k2], axis=0)
-    same = d1 + d2 == 0                                     # coincident points: halves
-    d1[same] = d2[same] = 1.0
-    return np.r_[query, query], np.r_[col1, col2], np.r_[d2, d1] / np.tile(d1 + d2, 2)
-
-
-def _minimum_edge_cover(edges, psi, length):
-    """S_ve: the fewest edges touching every node of N_e, then the shortest.
+def _minimum_edge_cover(edges, psi, length, fixed):
+    """S_ve: the fewest edges touching every node of N_e not ``fixed``, then the shortest.
 
     Gallai: a minimum edge cover is a maximum matching M plus, for each node
     left unmatched, one edge at it (its shortest, of length m(v)).  Its length
@@ -99,25 +39,30 @@ def _minimum_edge_cover(edges, psi, length):
     component, too big for the dense linear_sum_assignment): rows N_e⁻,
     columns N_e⁺ plus one private "unmatched" column per row, which costs
     more than any total saving, so that the matching is maximum first.
+    A fixed node needs no cover: an edge with a fixed end covers one node,
+    so only edges between two free nodes enter the matching.
     """
     ne = edges.shape[1]
     ell = length / length.mean()
     m = np.full(psi.size, np.inf)
     np.minimum.at(m, edges.ravel(), np.tile(ell, 2))
-    cost = ell - m[edges[0]] - m[edges[1]]                  # minus the saving
-    minus = np.where(psi[edges[0]] < 0, edges[0], edges[1])
-    rows, ri = np.unique(minus, return_inverse=True)
-    cols, ci = np.unique(edges[0] + edges[1] - minus, return_inverse=True)
-    alone = cols.size + np.arange(rows.size)
-    shift, big = np.abs(cost).max() + 1.0, 2.0 * np.abs(cost).sum() + 1.0   # weights > 0
-    A = sp.csr_matrix((np.r_[cost + shift, np.full(rows.size, big + shift)],
-                       (np.r_[ri, np.arange(rows.size)], np.r_[ci, alone])),
-                      shape=(rows.size, alone[-1] + 1))
-    r, c = min_weight_full_bipartite_matching(A)
-    edge_of = sp.csr_matrix((np.arange(1, ne + 1), (ri, ci)), shape=A.shape)
     vital = np.zeros(ne, dtype=bool)
-    vital[np.asarray(edge_of[r[c < cols.size], c[c < cols.size]]).ravel() - 1] = True
-    covered = np.zeros(psi.size, dtype=bool)               # then each unmatched node
+    pair = np.flatnonzero(~fixed[edges[0]] & ~fixed[edges[1]])
+    if pair.size:
+        e0, e1 = edges[:, pair]
+        cost = ell[pair] - m[e0] - m[e1]                     # minus the saving
+        minus = np.where(psi[e0] < 0, e0, e1)
+        rows, ri = np.unique(minus, return_inverse=True)
+        cols, ci = np.unique(e0 + e1 - minus, return_inverse=True)
+        alone = cols.size + np.arange(rows.size)
+        shift, big = np.abs(cost).max() + 1.0, 2.0 * np.abs(cost).sum() + 1.0  # weights > 0
+        A = sp.csr_matrix((np.r_[cost + shift, np.full(rows.size, big + shift)],
+                           (np.r_[ri, np.arange(rows.size)], np.r_[ci, alone])),
+                          shape=(rows.size, alone[-1] + 1))
+        r, c = min_weight_full_bipartite_matching(A)
+        edge_of = sp.csr_matrix((pair + 1, (ri, ci)), shape=A.shape)
+        vital[np.asarray(edge_of[r[c < cols.size], c[c < cols.size]]).ravel() - 1] = True
+    covered = fixed.copy()                                   # then each unmatched node
     covered[edges[:, vital]] = True                          # takes its shortest edge
     ends, ids = edges.ravel(), np.tile(np.arange(ne), 2)
     order = np.lexsort((ids, length[ids]))                   # (ties: lowest index)
@@ -126,7 +71,7 @@ def _minimum_edge_cover(edges, psi, length):
     return vital
 
 
-def vital_edges(edges, psi, points, nodes) -> Space:
+def vital_edges(edges, psi, points, nodes, fixed=None) -> Space:
     """Algo2 (paper §5): vital edges, star groups, distance-weighted relations.
 
     Parameters
@@ -135,6 +80,9 @@ def vital_edges(edges, psi, points, nodes) -> Space:
     psi : (nnodes,) nodal level set; its sign splits N_e into N_e⁻ and N_e⁺.
     points : (dim, ne) the intersection point x_e of each edge (λ_e lives there).
     nodes : (dim, nnodes) node coordinates, for the edge lengths.
+    fixed : (nnodes,) bool, optional: nodes whose jump a support holds
+        (:func:`skxfem.multipliers.multiplier_space`); no edge may have two
+        fixed ends.  Default: none.
 
     Returns
     -------
@@ -156,6 +104,9 @@ def vital_edges(edges, psi, points, nodes) -> Space:
        at v_i (never none: S_ve covers v_i) whose point is nearest to x_e
        (ties: lowest index) and λ_e = d2/(d1+d2) λ_k1 + d1/(d1+d2) λ_k2,
        d_i = |x_e - x_ki|.
+    4. With fixed nodes: S_ve covers the free nodes only (a fixed node has
+       no jump to control), the groups connect through free nodes only, and
+       a non-vital edge with a fixed end takes the λ of its other end's k_i.
 
     Raises
     ------
@@ -163,16 +114,21 @@ def vital_edges(edges, psi, points, nodes) -> Space:
         If an argument has the wrong shape, an edge is not strictly cut, is
         listed twice or has length zero.
     """
-    edges, psi, points, nodes = _check(edges, psi, points, nodes)
+    edges, psi, points, nodes = check_graph(edges, psi, points, nodes)
+    fixed = check_fixed(fixed, edges, psi.size)
     ne = edges.shape[1]
     if ne == 0:
         return Space("vital", sp.csr_matrix((0, 0)), np.zeros(0, bool), np.zeros(0, int))
     length = np.linalg.norm(nodes[:, edges[0]] - nodes[:, edges[1]], axis=0)
-    vital = _minimum_edge_cover(edges, psi, length)
+    vital = _minimum_edge_cover(edges, psi, length, fixed)
 
     iv = np.flatnonzero(vital)
-    star = sp.coo_matrix((np.ones(iv.size), tuple(edges[:, iv])), shape=(psi.size,) * 2)
-    label = connected_components(star, directed=False)[1][edges[0, iv]]
+    ends = edges[:, iv].copy()                               # a fixed end joins no star:
+    alone = fixed[ends]                                      # it becomes a node of its own
+    ends[alone] = psi.size + np.flatnonzero(alone.ravel())
+    nn = psi.size + 2 * iv.size
+    star = sp.coo_matrix((np.ones(iv.size), tuple(ends)), shape=(nn, nn))
+    label = connected_components(star, directed=False)[1][ends[0]]
     _, first, inverse = np.unique(label, return_index=True, return_inverse=True)
     rank = np.empty_like(first)
     rank[np.argsort(first)] = np.arange(first.size)          # order of lowest edge
@@ -180,21 +136,28 @@ def vital_edges(edges, psi, points, nodes) -> Space:
     groups[iv] = rank[inverse]
 
     nv = np.flatnonzero(~vital)
-    inc = _incidence(edges, psi.size, vital)
-    k1, k2 = (_nearest(points, nv, edges[i, nv], inc) for i in (0, 1))
-    r, c, w = _interpolate(points, nv, k1, k2, groups[k1], groups[k2])
-    P = sp.csr_matrix((np.r_[np.ones(iv.size), w], (np.r_[iv, r], np.r_[groups[iv], c])),
+    inc = incidence(edges, psi.size, vital)
+    k1, k2 = (nearest(points, nv, edges[i, nv], inc) for i in (0, 1))
+    both = (k1 >= 0) & (k2 >= 0)                             # else a fixed end: none there
+    r, c, w = interpolate(points, nv[both], k1[both], k2[both], groups[k1[both]],
+                           groups[k2[both]])
+    one = nv[~both]
+    P = sp.csr_matrix((np.r_[np.ones(iv.size + one.size), w],
+                       (np.r_[iv, one, r],
+                        np.r_[groups[iv], groups[np.maximum(k1, k2)[~both]], c])),
                       shape=(ne, first.size))
     return Space("vital", P, vital=vital, groups=groups)
 
 
-def _pick_winners(edges, psi):
+def _pick_winners(edges, psi, fixed):
     """Algo1's greedy loop (rules 1-3 of :func:`winner_nodes`): the winners in
-    the order picked and, for each edge, the position of the winner that broke it."""
+    the order picked and, for each edge, the position of the winner that broke it.
+    A fixed node counts as degree 0 throughout, so it never wins."""
     a, b = edges
     apsi = np.abs(psi)
     deg = np.bincount(edges.ravel(), minlength=psi.size)    # unbroken edges at a node
-    inc = _incidence(edges, psi.size, np.ones(a.size, dtype=bool))
+    deg[fixed] = 0
+    inc = incidence(edges, psi.size, np.ones(a.size, dtype=bool))
     diff, ratio = np.empty(a.size, dtype=np.int64), np.empty(a.size)
 
     def score(e):                                            # rule 1's two keys
@@ -210,21 +173,23 @@ def _pick_winners(edges, psi):
         e = best[np.argmax(ratio[best])]                    # argmax: lowest index on ties
         u, v = a[e], b[e]
         w = v if deg[v] > deg[u] or (deg[v] == deg[u] and apsi[v] < apsi[u]) else u
-        broken = _edges_at(inc, np.array([w]))[1]
+        broken = edges_at(inc, np.array([w]))[1]
         broken = broken[diff[broken] >= 0]
         diff[broken] = -1
         broken_by[broken] = len(winners)
         np.subtract.at(deg, edges[:, broken].ravel(), 1)
-        near = _edges_at(inc, edges[:, broken].ravel())[1]  # only their keys changed
+        deg[fixed] = 0
+        near = edges_at(inc, edges[:, broken].ravel())[1]  # only their keys changed
         score(near[diff[near] >= 0])
         winners.append(w)
     return np.array(winners, dtype=np.int64), broken_by
 
 
-def winner_nodes(edges, psi, points, nodes) -> Space:
+def winner_nodes(edges, psi, points, nodes, fixed=None) -> Space:
     """Algo1 (Moës, Béchet & Tourbier 2006): one multiplier per winner node.
 
-    Parameters and errors as :func:`vital_edges` (``nodes`` is only checked).
+    Parameters and errors as :func:`vital_edges` (``nodes`` is only checked;
+    a ``fixed`` node never wins: it counts as degree 0).
 
     Notes
     -----
@@ -264,22 +229,58 @@ def winner_nodes(edges, psi, points, nodes) -> Space:
     >>> space.winners.tolist(), space.P.toarray().ravel().tolist()
     ([1], [1.0, 1.0])
     """
-    edges, psi, points, nodes = _check(edges, psi, points, nodes)
+    edges, psi, points, nodes = check_graph(edges, psi, points, nodes)
+    fixed = check_fixed(fixed, edges, psi.size)
     ne = edges.shape[1]
     if ne == 0:
         return Space("winner", sp.csr_matrix((0, 0)), winners=np.zeros(0, int))
-    winners, broken_by = _pick_winners(edges, psi)
+    winners, broken_by = _pick_winners(edges, psi, fixed)
     column = np.full(psi.size, -1)
     column[winners] = np.arange(winners.size)
     c0, c1 = column[edges]
     single = (c0 < 0) | (c1 < 0)
     one, two = np.flatnonzero(single), np.flatnonzero(~single)
-    inc = _incidence(edges, psi.size, single)
-    k1, k2 = (_nearest(points, two, edges[i, two], inc) for i in (0, 1))
+    inc = incidence(edges, psi.size, single)
+    k1, k2 = (nearest(points, two, edges[i, two], inc) for i in (0, 1))
     ok = (k1 >= 0) & (k2 >= 0)
-    r, c, w = _interpolate(points, two[ok], k1[ok], k2[ok], c0[two[ok]], c1[two[ok]])
+    r, c, w = interpolate(points, two[ok], k1[ok], k2[ok], c0[two[ok]], c1[two[ok]])
     lone = two[~ok]
     P = sp.csr_matrix((np.r_[np.ones(one.size + lone.size), w],
                        (np.r_[one, lone, r], np.r_[np.maximum(c0, c1)[one], broken_by[lone], c])),
                       shape=(ne, winners.size))
     return Space("winner", P, winners=winners)
+
+
+def multiplier_space(name: str, mesh, cut: Cut, fixed=None) -> Space:
+    """The space ``name``: "naive", "winner" (algo1) or "vital" (algo2, §5).
+
+    ``fixed`` (nnodes,) bool: nodes whose jump a support holds (see
+    :func:`skxfem.multipliers.fixed_jumps`).  A cut edge with two fixed ends carries no
+    multiplier (its row of P is empty); the space is built on the other
+    edges, the fixed nodes needing no multiplier of their own.  Default: none.
+    """
+    if name not in SPACES:
+        raise ValueError(f"space must be one of {SPACES}, got {name!r}")
+    ne = cut.edge_ids.size
+    if fixed is None or not np.any(fixed):
+        fixed = None
+        sub = np.arange(ne)
+    else:
+        fixed = np.asarray(fixed, dtype=bool)
+        if fixed.shape != cut.psi.shape:
+            raise ValueError(f"fixed must be one bool per node, shape {cut.psi.shape}; "
+                             f"got {fixed.shape}")
+        sub = np.flatnonzero(~(fixed[cut.edges[0]] & fixed[cut.edges[1]]))
+    if name == "naive":
+        return naive(cut) if sub.size == ne else \
+            Space("naive", sp.identity(ne, format="csr")[:, sub])
+    build = winner_nodes if name == "winner" else vital_edges
+    S = build(cut.edges[:, sub], cut.psi, cut.points[:, sub], mesh.p, fixed)
+    if sub.size == ne:
+        return S
+    embed = sp.csr_matrix((np.ones(sub.size), (sub, np.arange(sub.size))), shape=(ne, sub.size))
+    vital = groups = None
+    if S.vital is not None:
+        vital, groups = np.zeros(ne, dtype=bool), np.full(ne, -1)
+        vital[sub], groups[sub] = S.vital, S.groups
+    return Space(name, (embed @ S.P).tocsr(), vital, groups, S.winners)

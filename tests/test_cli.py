@@ -1,5 +1,11 @@
-"""The command line: scene file -> solve -> result.json and VTU files; clean errors."""
+"""The command line: scene file -> solve -> result.json and VTU files; clean errors.
+
+Every error the command anticipates is one line on stderr and exit 2 and leaves no
+half-written result; an unexpected one is one line and exit 1; --debug re-raises.
+"""
+import errno
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -8,7 +14,11 @@ import meshio
 import numpy as np
 import pytest
 
+import skxfem
+from skxfem import cli, io, reproduce
 from skxfem.cli import main
+from skxfem.contact_newton import ContactConvergenceError
+from skxfem.scenefile import load_scene
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -29,7 +39,8 @@ def test_01_plate_example_runs_end_to_end(tmp_path, capsys):
     assert min(data["pressure"]) > 0, "the plate is compressed everywhere on Γ"
     assert set(data["timings"]) >= {"cut", "enrich", "assemble", "solve"}
     m = meshio.read(tmp_path / "plate" / "displacement.vtu")
-    assert m.cells[0].type == "hexahedron" and len(m.cells[0]) == 4 * 4 * 5
+    assert m.cells[0].type == "hexahedron"
+    assert len(m.cells[0]) == 4 * 4 * 5 + 4 * 4               # the cut layer on both sides
     assert meshio.read(tmp_path / "plate" / "interface.vtu").points.shape == points.shape
 
 
@@ -61,6 +72,8 @@ def test_03_interface_force_balances_the_load(tmp_path):
     ("[mesh]\nbox = {n = [2, 3], cell = 'quad'}\n[levelset]\nexpr = 'y - 0.5'\n"
      "[[load]]\nboundary = 'ymax'\npressure = 1.0",
      ["singular", "displacements"]),          # no support: the body floats
+    ("[mesh]\nfile = 'nope.msh'\n[levelset]\nexpr = 'y - 0.5'", ["nope.msh", "not found"]),
+    ("[mesh\nbox = 1", ["invalid TOML"]),
 ])
 def test_04_bad_scenes_exit_2_with_one_line(tmp_path, capsys, text, words):
     path = tmp_path / "bad.toml"
@@ -87,3 +100,256 @@ def test_06_python_m_skxfem_and_default_out_folder(tmp_path):
     bad = subprocess.run([sys.executable, "-m", "skxfem", "run", "missing.toml"],
                          cwd=tmp_path, capture_output=True, text=True, timeout=300, check=False)
     assert bad.returncode == 2 and "Traceback" not in bad.stderr
+
+
+STRIP = str(EXAMPLES / "strip.toml")
+
+
+def one_line(capsys, start="skxfem: error: "):
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(start) and "Traceback" not in err, err
+    return err
+
+
+@pytest.fixture
+def no_solve(monkeypatch):
+    """Fail the test if the command solves: the errors below come before the solve."""
+    def solve(scene):
+        raise AssertionError("the command solved before checking")
+    monkeypatch.setattr(cli, "solve", solve)
+
+
+def test_07_version(capsys):
+    with pytest.raises(SystemExit) as done:
+        main(["--version"])
+    assert done.value.code == 0
+    assert capsys.readouterr().out.strip() == f"skxfem {skxfem.__version__}"
+
+
+def test_08_out_is_an_existing_file(tmp_path, capsys, no_solve):
+    (tmp_path / "taken").write_text("mine")
+    for out in ("taken", "taken/sub"):
+        assert main(["run", STRIP, "--out", str(tmp_path / out)]) == 2
+        assert "taken" in one_line(capsys)
+    assert [f.name for f in tmp_path.iterdir()] == ["taken"]
+    assert (tmp_path / "taken").read_text() == "mine"
+
+
+def test_09_out_not_writable(tmp_path, capsys, monkeypatch, no_solve):
+    """Simulated: the machines run as root, for whom a read-only folder is writable."""
+    monkeypatch.setattr(os, "access", lambda path, mode: False)
+    assert main(["run", STRIP, "--out", str(tmp_path / "out")]) == 2
+    assert "not writable" in one_line(capsys)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_10_a_failed_write_keeps_the_previous_result(tmp_path, capsys, monkeypatch):
+    out = tmp_path / "strip"
+    assert main(["run", STRIP, "--out", str(out)]) == 0
+    before = {f.name: f.read_bytes() for f in out.iterdir()}
+
+    def full_disk(result, path):          # a simulated full disk in the second file
+        path.write_bytes(b"<VTKFile")
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setitem(io._WRITERS, "displacement", full_disk)
+    capsys.readouterr()
+    assert main(["run", STRIP, "--out", str(out)]) == 2
+    assert "No space left on device" in one_line(capsys)
+    assert {f.name: f.read_bytes() for f in out.iterdir()} == before
+
+
+def test_11_the_size_guard_refuses_before_solving(tmp_path, capsys, no_solve):
+    assert main(["run", STRIP, "--out", str(tmp_path / "o"), "--max-memory", "10K"]) == 2
+    err = one_line(capsys)
+    assert "strip" in err and "needs about" in err and "--max-memory" in err
+    assert not (tmp_path / "o").exists()
+    with pytest.raises(SystemExit) as done:
+        main(["run", STRIP, "--max-memory", "lots"])
+    assert done.value.code == 2 and "--max-memory" in one_line(capsys)
+
+
+@pytest.mark.parametrize("argv", [["run"], ["run", STRIP, "--frobnicate"], ["fly"]])
+def test_12_usage_errors_are_one_line(capsys, argv):
+    with pytest.raises(SystemExit) as done:
+        main(argv)
+    assert done.value.code == 2
+    one_line(capsys)
+
+
+@pytest.mark.parametrize("error, code", [
+    (RuntimeError("the multipliers do not balance"), 1),   # a numerical failure: a bug
+    (KeyError("u"), 1),
+    (ZeroDivisionError("a message\nover two lines"), 1),
+    (MemoryError(), 2),                                    # anticipated: lower the limit
+])
+def test_13_unexpected_errors_are_one_line_and_debug_shows_them(
+        tmp_path, capsys, monkeypatch, error, code):
+    def solve(scene):
+        raise error
+    monkeypatch.setattr(cli, "solve", solve)
+    argv = ["run", STRIP, "--out", str(tmp_path / "o")]
+    assert main(argv) == code
+    err = one_line(capsys, "skxfem: unexpected error: " if code == 1 else "skxfem: error: ")
+    assert type(error).__name__ in err if code == 1 else "--max-memory" in err
+    assert ("--debug" in err) == (code == 1)
+    for debug in (argv + ["--debug"], ["--debug"] + argv):
+        with pytest.raises(type(error)):
+            main(debug)
+    assert not (tmp_path / "o").exists()
+
+
+def test_14_the_nearly_singular_strip_of_issue_7_never_gives_a_traceback(tmp_path):
+    """A slanted Γ on a fine triangle strip, naive space: solved, refused (exit 2) or,
+    while the saddle solve raises RuntimeError, one line with exit 1."""
+    scene = tmp_path / "slant.toml"
+    scene.write_text("[mesh]\nbox = {n = [128, 129], cell = 'tri'}\n[levelset]\n"
+                     "plane = {point = [0, 0.37], normal = [-0.21, 1]}\n"
+                     "[[displacement]]\nboundary = 'ymin'\nkind = 'clamped'\n"
+                     "[[load]]\nboundary = 'ymax'\npressure = '4*x*(1 - x)'\n"
+                     "[interface]\nlaw = 'bonded'\nspace = 'naive'\n")
+    done = subprocess.run([sys.executable, "-m", "skxfem", "run", str(scene), "--out",
+                           str(tmp_path / "out")], capture_output=True, text=True,
+                          timeout=300, check=False)
+    assert "Traceback" not in done.stderr
+    if done.returncode == 0:
+        assert (tmp_path / "out" / "result.json").is_file()
+    else:
+        assert done.stderr.count("\n") == 1 and done.returncode in (1, 2), done.stderr
+        assert done.returncode == 2 or "--debug" in done.stderr
+        assert not (tmp_path / "out").exists()
+
+
+def test_15_reproduce_is_forwarded(tmp_path, capsys):
+    assert cli.FORWARDED["reproduce"][1] is reproduce.main
+    with pytest.raises(SystemExit) as done:
+        main(["reproduce", "--help"])
+    assert done.value.code == 0 and "--quick" in capsys.readouterr().out
+    (tmp_path / "taken").write_text("")
+    assert main(["reproduce", "--out", str(tmp_path / "taken")]) == 2   # before computing
+    assert "taken" in one_line(capsys)
+
+
+def test_16_interrupted(tmp_path, capsys, monkeypatch):
+    def solve(scene):
+        raise KeyboardInterrupt
+    monkeypatch.setattr(cli, "solve", solve)
+    assert main(["run", STRIP, "--out", str(tmp_path / "o")]) == 130
+    one_line(capsys, "skxfem: interrupted")
+    assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root writes into read-only folders; "
+                                              "test_09 simulates the refusal instead")
+def test_17_a_read_only_folder(tmp_path, capsys, no_solve):
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    ro.chmod(0o500)
+    try:
+        assert main(["run", STRIP, "--out", str(ro / "out")]) == 2
+        assert "not writable" in one_line(capsys)
+        assert list(ro.iterdir()) == []
+    finally:
+        ro.chmod(0o700)
+
+
+# --- contact laws: contact.solve over the scene's load steps --------------------------
+
+CONTACT = str(EXAMPLES / "contact.toml")
+
+
+def test_18_contact_example_runs_and_its_json_satisfies_signorini(tmp_path, capsys,
+                                                                   monkeypatch):
+    def tie_solve(scene):
+        raise AssertionError("a contact scene went to skxfem.solver.solve")
+    monkeypatch.setattr(cli, "solve", tie_solve)
+    s = load_scene(CONTACT)
+    assert (s.name, s.law, s.friction, s.steps) == ("contact", "coulomb", 0.5, (0.5, 1.0))
+    data = run(tmp_path, "contact")
+    out = capsys.readouterr().out
+    assert out.count("\n") == 1 and out.startswith("contact: coulomb, 2 load step(s), ")
+    iterations = [st["newton"]["iterations"] for st in data["steps"]]
+    assert f"{sum(iterations)} Newton iterations" in out
+    last = data["steps"][-1]
+    c = last["counts"]
+    assert (f"{c['stick'] + c['slip']} in contact ({c['stick']} stick, {c['slip']} slip), "
+            f"{c['open']} open, max pressure {max(last['pressure']):.4g}") in out
+    assert data["law"] == "coulomb" and data["friction"] == 0.5
+    assert [st["load"] for st in data["steps"]] == [0.5, 1.0]     # [interface] steps
+    for st in data["steps"]:
+        assert set(st["status"]) == {"open", "stick", "slip"}
+        newton = st["newton"]
+        assert 1 <= newton["iterations"] <= 15
+        assert all(len(v) == newton["iterations"] + 1 and v[-1] <= 1e-10
+                   for v in newton["residuals"].values())
+        p, gap = np.array(st["pressure"]), np.array(st["gap"])
+        scale = p.max() * np.abs(gap).max()
+        assert p.min() >= 0, "Signorini: p >= 0"
+        assert gap.max() <= 1e-12 * np.abs(gap).max(), "Signorini: gap <= 0"
+        assert np.abs(p * gap).max() <= 1e-12 * scale, "Signorini: p gap = 0"
+        assert all(g < 0 for g, s in zip(gap, st["status"], strict=True) if s == "open")
+        r = np.abs(np.array(st["tangential_traction"])[:, 0])
+        assert np.all(r <= 0.5 * p * (1 + 1e-10)), "Coulomb: |r_τ| <= μp"
+    m = meshio.read(tmp_path / "contact" / "interface.vtu")
+    codes = [data["status_codes"][s] for s in last["status"]]
+    np.testing.assert_array_equal(m.point_data["status"], codes)
+    assert meshio.read(tmp_path / "contact" / "displacement.vtu").cells[0].type == "quad"
+
+
+CONTACT_TEXT = (EXAMPLES / "contact.toml").read_text()
+
+
+@pytest.mark.parametrize("edits, words", [
+    ({"friction = 0.5": "friction = -0.1"}, ["[interface] friction", ">= 0"]),
+    ({"friction = 0.5": "friction = 0.5\nrho_n = 0"}, ["[interface] rho_n", "> 0"]),
+    ({"friction = 0.5": "friction = 0.5\nrho_t = -2.0"}, ["[interface] rho_t", "> 0"]),
+    ({'law = "coulomb"': 'law = "glue"'}, ["[interface] law", "glue"]),
+    ({"steps = [0.5, 1.0]": "steps = []"}, ["[interface] steps", "non-empty"]),
+    ({'law = "coulomb"': 'law = "frictionless"',          # Ω⁺ free to slide in x
+      '[[displacement]]\nboundary = "ymax"\nx = 2.0': '#'}, ["singular"]),
+])
+def test_19_bad_contact_values_exit_2_with_one_line(tmp_path, capsys, edits, words):
+    text = CONTACT_TEXT
+    for old, bad in edits.items():
+        assert old in text
+        text = text.replace(old, bad)
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 2
+    err = one_line(capsys)
+    assert all(w in err for w in words), err
+    assert not (tmp_path / "out").exists()
+
+
+def test_20_a_contact_newton_that_does_not_converge_exits_2(tmp_path, capsys):
+    argv = ["run", CONTACT, "--out", str(tmp_path / "o"), "--max-iter", "1"]
+    assert main(argv) == 2
+    err = one_line(capsys)
+    assert "did not converge in 1 iterations" in err and "friction" in err
+    assert not (tmp_path / "o").exists()
+    with pytest.raises(ContactConvergenceError):
+        main(argv + ["--debug"])
+    assert main(["run", CONTACT, "--out", str(tmp_path / "o"), "--max-iter", "15"]) == 0
+
+
+def test_21_a_non_convergence_anywhere_in_the_history_is_one_line(tmp_path, capsys,
+                                                                  monkeypatch):
+    """Whatever raises it (a later step, the fixed point), the error is anticipated."""
+    def solve_contact(scene, **options):
+        assert scene.steps == (0.5, 1.0) and options == {}   # contact.solve's defaults
+        raise ContactConvergenceError("the fixed point on the friction threshold failed "
+                                      "in pass 2:\nalternates between two states")
+    monkeypatch.setattr(cli, "solve_contact", solve_contact)
+    assert main(["run", CONTACT, "--out", str(tmp_path / "o")]) == 2
+    assert "pass 2: alternates" in one_line(capsys)
+    assert ContactConvergenceError in cli.ANTICIPATED
+    assert RuntimeError not in cli.ANTICIPATED, "other numerical failures stay exit 1"
+
+
+def test_22_max_iter_is_for_contact_scenes(tmp_path, capsys, no_solve):
+    assert main(["run", STRIP, "--out", str(tmp_path / "o"), "--max-iter", "5"]) == 2
+    assert "--max-iter" in one_line(capsys) and not (tmp_path / "o").exists()
+    for bad in ("0", "many"):
+        with pytest.raises(SystemExit) as done:
+            main(["run", CONTACT, "--max-iter", bad])
+        assert done.value.code == 2 and "--max-iter" in one_line(capsys)

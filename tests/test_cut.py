@@ -1,4 +1,5 @@
-"""Tests for skxfem/cut.py: volumes sum exactly, interface areas are exact."""
+"""Tests for skxfem/cut.py: volumes sum exactly, interface areas are exact, facet
+normals follow ∇ψ."""
 import itertools
 
 import numpy as np
@@ -107,6 +108,25 @@ def test_cut_edges_and_points(cell):
     assert np.all(c.side[c.cells] == 0)
     uncut = c.side != 0
     assert np.all(np.sign(v[m.t[:, uncut]]) == c.side[uncut])
+
+
+@pytest.mark.parametrize("cell", CELLS)
+def test_facet_normals_follow_the_level_set_gradient(cell):
+    """The facets' normals obey the one convention n = ∇ψ/|∇ψ| (into Ω⁺): equal
+    to it for a plane; for a circle or sphere on the side ∇ψ points to at every
+    facet.  (At the multiplier points themselves the solver uses ∇ψ:
+    :func:`skxfem.levelset.point_normals`.)"""
+    dim = dim_of(cell)
+    normal = np.linspace(-1.0, 1.0, dim) + np.eye(dim)[-1]
+    psi = plane(np.full(dim, 0.47), normal)
+    c = cut(mesh_of(cell), psi)
+    assert np.abs(c.normals - psi.gradient(c.points[:, :1])).max() < 1e-14
+    x0 = np.full(dim, 0.48)
+    ball = circle(x0, 0.33) if dim == 2 else sphere(x0, 0.33)
+    c = cut(mesh_of(cell, 6), ball)
+    centroid = c.points[:, c.facets].mean(axis=1)
+    assert np.all((c.normals * ball.gradient(centroid)).sum(0) > 0.5), \
+        "every facet normal points out of the ball, into Ω⁺, as ∇ψ does"
 
 
 def test_sphere_volume_converges():

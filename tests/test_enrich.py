@@ -413,3 +413,18 @@ def test_enriched_load_work_of_a_constant_traction(cell):
         f"work of the load = {F @ U:.15g}, should be t·c⁻|top⁻| + t·c⁺|top⁺| = {exact:.15g}")
     # the standard part is the plain load
     assert np.array_equal(F[:V.n_std], f)
+
+
+@pytest.mark.parametrize("cell", CELLS)
+def test_mass_integrates_linear_fields_exactly(cell):
+    """The mass has its own quadrature orders (issue 7: the inf-sup norm was
+    integrated with the stiffness' rule, one point on a simplex): u⁻ = y e₀,
+    u⁺ = 2y e₀ gives ∫|u|² = 1/3 + 3 ∫_{Ω⁺} y², and with Γ: x = x₀ - a(y - ½)
+    [- b(z - ½)] inside the box, ∫_{Ω⁺} y² = (1 - x₀)/3 + a/12."""
+    mesh, _, _, V, x0, _ = split_box(cell)
+    a = 0.1 if mesh.dim() == 2 else 0.12
+    e0 = np.eye(mesh.dim())[0][:, None]
+    U = xfem_vector(V, lambda x: e0 * x[1], lambda x: 2 * e0 * x[1])
+    exact = 1 / 3 + 3 * ((1 - x0) / 3 + a / 12)
+    got = U @ mass(V) @ U
+    assert abs(got - exact) < 1e-13, f"∫|u|² = {got:.15g}, exact {exact:.15g}"

@@ -9,13 +9,16 @@
    and a row of component c only touches dofs of component c.
 3. Partition of unity: every row sums to 1; at a cell's vertex the matrix is
    the identity on that vertex's dofs.
+4. pressure_along: the multiplier points of one line, sorted, with their pressures.
 """
 import numpy as np
 import pytest
 from skfem import Basis, ElementVector
 
-from skxfem.evaluate import evaluation_matrix
+from skxfem.evaluate import evaluation_matrix, pressure_along
 from skxfem.meshes import box, check_mesh
+from skxfem.scenes import paper_plate, strip
+from skxfem.solver import solve
 
 CELLS = ["tri", "quad", "tet", "hex", "prism"]
 
@@ -167,3 +170,27 @@ def test_docstring_example():
     # the centroid: 1/3 on each of the cell's three vertices
     nodes = MeshTri1().t[:, 0]
     assert np.allclose(Phi.toarray()[0, basis.nodal_dofs[0, nodes]], 1 / 3)
+
+
+# 4. pressure along a line
+def test_pressure_along_2d_takes_every_point_sorted():
+    r = solve(strip(4, "tri"))
+    s, p = pressure_along(r, "x")
+    assert s.size == r.points.shape[1]
+    assert np.all(np.diff(s) > 0)
+    k = np.argmin(np.abs(r.points[0] - s[2]))
+    assert p[2] == r.pressure[k]
+
+
+def test_pressure_along_3d_picks_the_middle_node_plane():
+    r = solve(paper_plate(2, "hex"))        # 3 x 3 intersection points on z = 0.5
+    s, p = pressure_along(r, "y")
+    assert s.tolist() == [0.0, 0.5, 1.0], "3 points on the line x = 0.5"
+    s_all, _ = pressure_along(r, "y", where={})
+    assert s_all.size == r.points.shape[1]
+    _, p0 = pressure_along(r, "y", where={"x": 0.0})
+    assert np.allclose(p0, p, atol=1e-8), "the plate solution does not depend on x"
+    with pytest.raises(ValueError, match="no multiplier point"):
+        pressure_along(r, "y", where={"x": 0.3})
+    with pytest.raises(ValueError, match="axis"):
+        pressure_along(r, "w")

@@ -27,9 +27,8 @@ from skxfem.figures import (
 from skxfem.lbb import InfSup
 from skxfem.levelset import plane
 from skxfem.meshes import box
-from skxfem.multipliers import multiplier_space
 from skxfem.plotting import COLORS
-from skxfem.stabilised import vital_edges, winner_nodes
+from skxfem.stabilised import multiplier_space, vital_edges, winner_nodes
 
 
 def same_colour(a, b):
@@ -128,6 +127,9 @@ def test_inf_sup_plot_two_norms():
     assert len(fig.axes) == 2
     assert fig.axes[0].lines[0].get_label() == "vital, tri, slope 0.00"
     assert same_colour(fig.axes[1].lines[0].get_color(), COLORS["vital"])
+    fig = fig_inf_sup({("tri", "vital"): res}, {("tri", "vital"): res}, {("tri", "naive"): res})
+    assert len(fig.axes) == 3 and "bonded" in fig.axes[2].get_title()
+    assert same_colour(fig.axes[2].lines[0].get_color(), COLORS["naive"])
 
 
 # 4. a space on a 2D mesh

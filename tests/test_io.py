@@ -1,15 +1,23 @@
-"""Writing results: result.json parses, the VTU files read back with the right shapes."""
+"""Writing results: result.json parses, the VTU files read back with the right shapes;
+for a contact result, every load step in the JSON and the last one in the VTU files."""
+import errno
 import json
+import os
+from dataclasses import replace
 from types import SimpleNamespace
 
 import meshio
 import numpy as np
 import pytest
 
-from skxfem.io import cell_sides, vtk_cells, write_result
-from skxfem.levelset import plane
+from skxfem import contact, io
+from skxfem.enrich import split_fields
+from skxfem.io import cell_sides, check_output, side_pieces, vtk_cells, write_result
+from skxfem.levelset import nodal_values, plane
+from skxfem.material import Material
 from skxfem.meshes import box
-from skxfem.scene import Scene
+from skxfem.scene import Box, Displacement, Scene, SurfaceLoad, clamped
+from skxfem.scenes import strip
 
 MESHIO_TYPE = {"tri": "triangle", "quad": "quad", "tet": "tetra", "hex": "hexahedron",
                "prism": "wedge"}
@@ -56,15 +64,13 @@ def test_02_vtu_files_read_back(tmp_path, cell):
     paths = write_result(r, tmp_path)
     mesh = r.mesh
     m = meshio.read(paths["displacement"])
-    assert m.points.shape == (mesh.nvertices, 3)
-    np.testing.assert_allclose(m.points[:, :mesh.dim()], mesh.p.T)
     [block] = m.cells
-    assert block.type == MESHIO_TYPE[cell] and block.data.shape == mesh.t.T.shape
-    for name in ("u_minus", "u_plus"):
-        assert m.point_data[name].shape == (mesh.nvertices, 3)
-        np.testing.assert_allclose(m.point_data[name][:, :mesh.dim()], getattr(r, name).T)
-    side = m.cell_data["side"][0]
-    assert side.shape == (mesh.nelements,) and set(side) == {-1, 0, 1}
+    sides = cell_sides(mesh, nodal_values(r.scene.levelset, mesh))
+    n_cut = int(np.sum(sides == 0))
+    assert block.type == MESHIO_TYPE[cell]
+    assert block.data.shape == (mesh.nelements + n_cut, mesh.t.shape[0])  # cut cells twice
+    assert m.point_data["displacement"].shape == m.points.shape
+    assert set(m.cell_data["side"][0]) == {-1, 1} and m.cell_data["cut"][0].sum() == 2 * n_cut
     i = meshio.read(paths["interface"])
     assert i.cells[0].type == ("line" if mesh.dim() == 2 else "triangle")
     np.testing.assert_array_equal(i.cells[0].data, r.facets.T)
@@ -93,8 +99,11 @@ def test_03_vtk_cells_are_positively_oriented(tmp_path, cell, mirror):
     p = m.points[:, :dim][m.cells[0].data[:, corners]]      # (ncells, dim + 1, dim)
     volumes = np.linalg.det(p[:, 1:] - p[:, :1])
     assert np.all(volumes > 0), volumes
-    np.testing.assert_array_equal(np.sort(m.cells[0].data, axis=1),
-                                  np.sort(vtk_cells(r.mesh)[1], axis=1))
+    written = m.points[m.cells[0].data]                  # (ncells, nverts, 3) coordinates
+    copies = {tuple(np.round(c, 9).ravel()) for c in written}
+    for c in r.mesh.p[:, vtk_cells(r.mesh)[1]].transpose(1, 2, 0):   # every cell is written
+        padded = np.hstack([c, np.zeros((c.shape[0], 3 - dim))])
+        assert tuple(np.round(padded, 9).ravel()) in copies
 
 
 def test_04_sides_follow_the_sign_convention():
@@ -112,3 +121,244 @@ def test_05_nan_is_written_as_null_and_stages_are_required(tmp_path):
     r.timings = {"cut": 0.1}
     with pytest.raises(ValueError, match="enrich"):
         write_result(r, tmp_path)
+
+
+# --- one displacement field per side, to warp by --------------------------------
+
+@pytest.mark.parametrize("cell", ["tri", "hex", "prism"])
+def test_06_each_side_is_a_piece_with_its_own_displacement(tmp_path, cell):
+    """Warp by vector: each copy moves with its side's field, so Γ opens as it should."""
+    r = fake_result(cell)
+    m = meshio.read(write_result(r, tmp_path)["displacement"])
+    dim = r.mesh.dim()
+    psi = nodal_values(r.scene.levelset, r.mesh)
+    np.testing.assert_allclose(m.point_data["levelset"], [
+        psi[np.flatnonzero(np.all(np.isclose(r.mesh.p.T, q[:dim]), axis=1))[0]]
+        for q in m.points])
+    side, cut = m.cell_data["side"][0], m.cell_data["cut"][0]
+    for s, u in ((-1, r.u_minus), (1, r.u_plus)):
+        nodes = np.unique(m.cells[0].data[side == s])
+        for k in nodes:                            # the point is a node of the mesh ...
+            [j] = np.flatnonzero(np.all(np.isclose(r.mesh.p.T, m.points[k, :dim]), axis=1))
+            np.testing.assert_allclose(m.point_data["displacement"][k, :dim], u[:, j])
+        assert np.sum(s * m.point_data["levelset"][nodes] > 0) == np.sum(s * psi > 0)
+    assert np.all(cut[side == -1].sum() == cut[side == 1].sum())
+    pieces = [set(np.unique(m.cells[0].data[side == s])) for s in (-1, 1)]
+    assert not pieces[0] & pieces[1], "the sides share no point: each warps on its own"
+
+
+def test_07_side_pieces_puts_cut_cells_on_both_sides():
+    mesh = box((1, 4), "quad")                                  # Γ in the third row
+    u_minus, u_plus = np.zeros((2, 10)), np.ones((2, 10))
+    p, c, side, cut, d, psi = side_pieces(mesh, mesh.p[1] - 0.6, u_minus, u_plus)
+    assert side.tolist().count(-1) == 3 and side.tolist().count(1) == 2
+    assert cut.sum() == 2 and p.shape == (8 + 6, 2) and c.max() == 13
+    assert np.all(d[:8] == 0) and np.all(d[8:] == 1)
+
+
+# --- bad output folders and failed writes ------------------------------------------
+
+def snapshot(folder):
+    return {f.name: f.read_bytes() for f in sorted(folder.iterdir())}
+
+
+def test_08_an_existing_file_is_refused_before_anything_is_written(tmp_path):
+    (tmp_path / "taken").write_text("mine")
+    for out in (tmp_path / "taken", tmp_path / "taken" / "sub"):
+        with pytest.raises(ValueError, match="taken"):
+            check_output(out)
+        with pytest.raises(ValueError, match="taken"):
+            write_result(fake_result("tri"), out)
+    assert snapshot(tmp_path) == {"taken": b"mine"}
+
+
+def test_09_a_folder_that_is_not_writable_is_refused(tmp_path, monkeypatch):
+    """The machines run as root, which writes into read-only folders: os.access is
+    made to answer "not writable", as it does for an ordinary user."""
+    (tmp_path / "ro").mkdir()
+    monkeypatch.setattr(os, "access", lambda path, mode: False)
+    with pytest.raises(ValueError, match="not writable"):
+        check_output(tmp_path / "ro" / "new" / "out")
+    with pytest.raises(ValueError, match="not writable"):
+        write_result(fake_result("quad"), tmp_path / "ro")
+    assert list((tmp_path / "ro").iterdir()) == []
+
+
+def fail_after(monkeypatch, key, nbytes, error):
+    """Make the writer of ``key`` write ``nbytes`` then raise ``error`` (a full disk)."""
+    def broken(result, path):
+        path.write_bytes(b"x" * nbytes)
+        raise error
+    monkeypatch.setitem(io._WRITERS, key, broken)
+
+
+@pytest.mark.parametrize("nbytes", [0, 100])
+def test_10_a_failed_second_write_leaves_the_previous_result(tmp_path, monkeypatch, nbytes):
+    """Simulated full disk in the middle of the VTU: the old result stays whole."""
+    old = fake_result("tri")
+    write_result(old, tmp_path / "out")
+    before = snapshot(tmp_path / "out")
+    new = fake_result("tri")
+    new.pressure = new.pressure + 1.0
+    fail_after(monkeypatch, "displacement", nbytes, OSError(errno.ENOSPC, "No space left"))
+    with pytest.raises(OSError, match="No space left"):
+        write_result(new, tmp_path / "out")
+    assert snapshot(tmp_path / "out") == before            # no temporary file left either
+
+
+def test_11_a_failed_write_into_a_new_folder_leaves_nothing(tmp_path, monkeypatch):
+    fail_after(monkeypatch, "displacement", 10, OSError(errno.ENOSPC, "No space left"))
+    with pytest.raises(OSError):
+        write_result(fake_result("hex"), tmp_path / "a" / "b")
+    assert list(tmp_path.iterdir()) == []
+    monkeypatch.undo()
+    fail_after(monkeypatch, "interface", 10, RuntimeError("a bug in a writer"))
+    with pytest.raises(RuntimeError):
+        write_result(fake_result("hex"), tmp_path)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_12_a_rename_failing_half_way_leaves_nothing_rather_than_a_mix(tmp_path, monkeypatch):
+    write_result(fake_result("quad"), tmp_path)
+    calls = []
+    replace = os.replace
+
+    def second_fails(a, b):
+        calls.append(b)
+        if len(calls) == 2:
+            raise OSError(errno.EIO, "I/O error")
+        replace(a, b)
+
+    monkeypatch.setattr(os, "replace", second_fails)
+    with pytest.raises(OSError, match="I/O error"):
+        write_result(fake_result("quad"), tmp_path)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_13_files_get_the_usual_permissions(tmp_path):
+    """Written under temporary names, the files are still created with open()'s mode."""
+    umask = os.umask(0o022)
+    os.umask(umask)
+    for path in write_result(fake_result("tri"), tmp_path).values():
+        assert path.stat().st_mode & 0o777 == 0o666 & ~umask
+
+
+# --- contact results: every load step in result.json, the last one in the VTU files ---
+
+def coulomb_strip():
+    """Pressed and sheared strip with Coulomb friction (μ = 0.5): open, stick and slip
+    points on Γ (the tilted block of tests/test_contact.py), in two load steps."""
+    s = strip(n=4)
+    return replace(s, law="coulomb", friction=0.5, steps=(0.5, 1.0),
+                   loads=(SurfaceLoad("ymax", pressure=1.0),),
+                   displacements=(clamped("ymin"), Displacement("ymax", {"x": 2.0})))
+
+
+def partial_cube():
+    """Unit cube, Γ at z = 0.5, top turned: pressed near y = 0, open near y = 1."""
+    return Scene(Box((1, 4, 5), "hex"), plane((0, 0, 0.5), (0, 0, 1)), Material(E=1.0),
+                 displacements=(clamped("zmin"), Displacement(
+                     "zmax", {"x": 0.0, "y": 0.0, "z": lambda x: -0.01 * (1 - 2 * x[1])})),
+                 law="frictionless", name="partial_cube")
+
+
+@pytest.fixture(scope="module")
+def contact_results():
+    return {2: contact.solve(coulomb_strip()), 3: contact.solve(partial_cube())}
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_14_contact_json_holds_every_step(tmp_path, contact_results, dim):
+    r = contact_results[dim]
+    data = json.loads(write_result(r, tmp_path)["json"].read_text())
+    m, k = r.ops.w.size, dim - 1
+    assert data["scene"] == r.problem.scene.name and data["law"] == r.problem.scene.law
+    assert (data["friction"], data["rho_n"], data["rho_t"]) == (r.law.mu, r.law.rho_n,
+                                                                r.law.rho_t)
+    assert data["status_codes"] == {"open": 0, "stick": 1, "slip": 2}
+    assert data["n_multipliers"] == m and data["n_dofs"] == r.problem.V.N
+    np.testing.assert_allclose(data["points"], r.ops.points.T)      # one row per point
+    normals, tangents = np.array(data["normals"]), np.array(data["tangents"])
+    assert normals.shape == (m, dim) and tangents.shape == (m, k, dim)
+    frame = np.concatenate([tangents, normals[:, None]], axis=1)     # (m, dim, dim)
+    np.testing.assert_allclose(frame @ frame.transpose(0, 2, 1), np.broadcast_to(
+        np.eye(dim), (m, dim, dim)), atol=1e-12, err_msg="(t, n) is orthonormal")
+    assert sum(data["weights"]) == pytest.approx(1.0, rel=1e-12), "|Γ| = 1"
+    assert data["n_steps"] == len(data["steps"]) == len(r.steps)
+    assert {"open", "slip"} <= set(data["steps"][-1]["status"]), "a partial contact"
+    assert data["newton_iterations"] == sum(st.newton.iterations for st in r.steps)
+    for got, st in zip(data["steps"], r.steps, strict=True):
+        assert got["load"] == st.load
+        for key, value in (("pressure", st.pressure), ("gap", st.gap), ("slip", st.slip),
+                           ("tangential_traction", st.traction), ("Lambda", st.Lambda)):
+            assert np.shape(got[key]) == np.shape(value) and np.shape(value)[0] == m, key
+            np.testing.assert_array_equal(got[key], value, err_msg=key)
+        assert got["status"] == [["open", "stick", "slip"][s] for s in st.status]
+        assert got["counts"] == {name: got["status"].count(name)
+                                 for name in ("open", "stick", "slip")}
+        newton = got["newton"]
+        assert newton["iterations"] == st.newton.iterations >= 1
+        assert list(newton["residuals"]) == ["equilibrium", "contact", "friction"]
+        for i, name in enumerate(newton["residuals"]):
+            residuals = newton["residuals"][name]
+            assert len(residuals) == st.newton.iterations + 1, "the start, then each iteration"
+            np.testing.assert_array_equal(residuals, st.newton.residuals[:, i])
+            assert residuals[-1] <= 1e-10, "converged"
+
+
+def test_15_contact_json_statuses_of_the_friction_case(tmp_path, contact_results):
+    """The Coulomb strip: all three statuses; |r_τ| = μp where it slips, < μp where it
+    sticks; proportional loading: the second step is twice the first."""
+    data = json.loads(write_result(contact_results[2], tmp_path)["json"].read_text())
+    first, last = data["steps"]
+    assert set(last["status"]) == {"open", "stick", "slip"}
+    p, r = np.array(last["pressure"]), np.abs(np.array(last["tangential_traction"])[:, 0])
+    status = np.array(last["status"])
+    np.testing.assert_allclose(r[status == "slip"], 0.5 * p[status == "slip"], rtol=1e-10)
+    assert np.all(r[status == "stick"] < 0.5 * p[status == "stick"])
+    assert np.all(p[status == "open"] == 0)
+    np.testing.assert_allclose(last["pressure"], 2 * np.array(first["pressure"]), atol=1e-12)
+    assert np.dot(data["weights"], p) == pytest.approx(1.0, rel=1e-10), "∫_Γ p = load"
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_16_contact_vtu_files_read_back(tmp_path, contact_results, dim):
+    r = contact_results[dim]
+    st, m = r.steps[-1], r.ops.w.size
+    paths = write_result(r, tmp_path)
+    i = meshio.read(paths["interface"])
+    assert i.cells[0].type == "vertex" and len(i.cells[0]) == m
+    np.testing.assert_allclose(i.points[:, :dim], r.ops.points.T)
+    assert i.point_data["status"].dtype.kind == "i"
+    np.testing.assert_array_equal(i.point_data["status"], st.status)
+    np.testing.assert_allclose(i.point_data["pressure"], st.pressure)
+    np.testing.assert_allclose(i.point_data["gap"], st.gap)
+    n = i.point_data["normal"]
+    traction, tangential = i.point_data["traction"], i.point_data["tangential_traction"]
+    assert traction.shape == tangential.shape == i.point_data["slip"].shape == (m, 3)
+    np.testing.assert_allclose((traction * n).sum(1), -st.pressure, atol=1e-12)
+    np.testing.assert_allclose(traction - tangential, -st.pressure[:, None] * n, atol=1e-12)
+    np.testing.assert_allclose(np.linalg.norm(tangential, axis=1),
+                               np.linalg.norm(st.traction, axis=1), atol=1e-12)
+    np.testing.assert_allclose(np.linalg.norm(i.point_data["slip"], axis=1),
+                               np.linalg.norm(st.slip, axis=1), atol=1e-12)
+    d = meshio.read(paths["displacement"])                  # the last step, side by side
+    mesh = r.problem.mesh
+    u_minus, u_plus = split_fields(r.problem.V, st.U)
+    pieces = side_pieces(mesh, nodal_values(r.problem.scene.levelset, mesh), u_minus, u_plus)
+    np.testing.assert_allclose(d.points[:, :dim], pieces[0])
+    np.testing.assert_allclose(d.point_data["displacement"][:, :dim], pieces[4])
+    np.testing.assert_array_equal(d.cell_data["side"][0], pieces[2])
+
+
+def test_17_contact_results_are_written_all_or_nothing(tmp_path, monkeypatch, contact_results):
+    r = contact_results[2]
+    write_result(r, tmp_path / "out")
+    before = snapshot(tmp_path / "out")
+    fail_after(monkeypatch, "interface", 100, OSError(errno.ENOSPC, "No space left"))
+    with pytest.raises(OSError, match="No space left"):
+        write_result(contact_results[3], tmp_path / "out")
+    assert snapshot(tmp_path / "out") == before
+    with pytest.raises(ValueError, match="no load step"):
+        write_result(replace(r, steps=()), tmp_path / "new")
+    assert not (tmp_path / "new").exists()

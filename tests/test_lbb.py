@@ -109,10 +109,70 @@ def test_winner_nodes_lose_stability_on_tetrahedra_as_gamma_nears_a_node_row():
     def beta(d, space):
         scene = Scene(Box(4, "tet"), plane((0.5, 0.5, 0.5 + d / 4), (0.0, 0.0, 1.0)),
                       displacements=(clamped("zmin"),), space=space)
-        return inf_sup(scene).beta
+        return inf_sup(scene, law="bilateral").beta
 
     winner = [beta(d, "winner") for d in (0.5, 1e-2, 1e-3)]
     vital = [beta(d, "vital") for d in (0.5, 1e-2, 1e-3)]
     assert min(vital) > 0.4, f"vital edges stay stable: {vital}"
     assert winner[0] > 0.3 and winner[1] < 0.1 and winner[2] < 0.02, \
         f"winner nodes: β_h = {winner} for d = 0.5, 1e-2, 1e-3"
+
+
+# ------------------------------------------ Γ meets a support (issue 7) -----------
+SUPPORTED = [3, 5, 7, 9]
+
+
+@pytest.fixture(scope="module")
+def supported_betas():
+    """β_h and zero modes where Γ meets the rollers: the paper's plate (two
+    layers of cells along x, so that the x-faces hold some nodes of the cut
+    and not others) and the strip with rollers on x = 0 and x = 1."""
+    from skxfem.scenes import paper_plate, strip
+
+    scenes = {"prism": lambda n, s: paper_plate(n, "prism", space=s, nx=2),
+              "tet": lambda n, s: paper_plate(n, "tet", space=s, nx=2),
+              "tri": lambda n, s: strip(n, "tri", space=s, sides="rollers"),
+              "quad": lambda n, s: strip(n, "quad", space=s, sides="rollers")}
+    return {(cell, space, law): [inf_sup(make(n, space), law=law) for n in SUPPORTED]
+            for cell, make in scenes.items() for space in ("winner", "vital")
+            for law in ("bonded", "bilateral")}
+
+
+@pytest.mark.parametrize("cell", ["prism", "tet", "tri", "quad"])
+@pytest.mark.parametrize("space", ["winner", "vital"])
+@pytest.mark.parametrize("law", ["bonded", "bilateral"])
+def test_stable_spaces_stay_stable_where_gamma_meets_a_support(supported_betas, cell, space,
+                                                               law):
+    """Issue 7: the bonded plate lost stability at the roller faces (β_h =
+    0.0034, 0.0008, 0.0001 on prisms, 4 zero modes).  With the components a
+    support holds left without multiplier, β_h ≥ 0.2 and no zero mode."""
+    rs = supported_betas[cell, space, law]
+    beta = np.array([r.beta for r in rs])
+    assert np.all(beta >= 0.2), beta
+    assert all(r.n_zero == 0 and r.rank == r.size for r in rs), [r.n_zero for r in rs]
+
+
+def test_the_papers_plate_on_prisms_is_stable_bonded_and_bilateral():
+    """paper_plate(n, "prism", space="vital") as in issue 7 (n cells along x)."""
+    from skxfem.scenes import paper_plate
+
+    for n in (3, 5):
+        for law in ("bonded", "bilateral"):
+            r = inf_sup(paper_plate(n, "prism", space="vital"), law=law)
+            assert r.beta >= 0.3 and r.n_zero == 0, (n, law, r.beta, r.n_zero)
+
+
+def test_hexahedra_lose_their_zero_modes():
+    """Bonded hexahedra had 8, 12 zero modes for n = 3, 5 (the x-multipliers
+    of the edges in the roller faces, which see no jump)."""
+    from skxfem.scenes import paper_plate
+
+    for n in (3, 5):
+        r = inf_sup(paper_plate(n, "hex", space="naive"))
+        assert r.n_zero == 0 and r.rank == r.size and r.beta >= 0.4, (n, r.beta, r.n_zero)
+
+
+def test_inf_sup_measures_the_scenes_law():
+    scene = exact_strip(8, "tri", space="vital", law="bilateral")
+    assert inf_sup(scene).beta == inf_sup(scene, law="bilateral").beta
+    assert inf_sup(scene).size * 2 == inf_sup(scene, law="bonded").size

@@ -19,7 +19,8 @@ unit square/cube (so that the normal is not a mesh direction):
 import numpy as np
 import pytest
 
-from skxfem.cut import cell_edges, cut
+from skxfem.cells import cell_edges
+from skxfem.cut import cut
 from skxfem.enrich import space
 from skxfem.levelset import plane
 from skxfem.meshes import box
@@ -27,11 +28,13 @@ from skxfem.multipliers import (
     LAWS,
     SPACES,
     coupling,
+    fixed_jumps,
     interface_mass,
     interface_rule,
-    multiplier_space,
     naive,
+    normal_fixed,
 )
+from skxfem.stabilised import multiplier_space
 
 CELLS = ["tri", "quad", "tet", "hex", "prism"]
 SLOPES = (0.1, 0.07)  # Γ: last coordinate = 0.5 + a (x - 0.5) [+ b (y - 0.5)]
@@ -238,3 +241,81 @@ def test_unknown_law_or_space_is_refused():
     with pytest.raises(ValueError, match="space must be one of") as err:
         multiplier_space("clever", mesh, c)
     assert all(s in str(err.value) for s in SPACES), "the message should list the spaces"
+
+
+# 6. supports: the jumps they hold (issue 7) --------------------------------------------
+
+def _assembled(scene):
+    from skxfem.problem import assemble
+
+    return assemble(scene), assemble(scene, "bilateral")
+
+
+def test_rollers_hold_the_tangential_jump_on_the_strips_sides():
+    """The strip with rollers on x = 0, 1: the enriched x-dofs of the cut
+    cells' nodes on those sides are constrained, so the x-jump at the two
+    cut edges lying in the sides is held (no multiplier), the y-jump (the
+    normal one, bilateral) nowhere."""
+    from skxfem.scenes import strip
+
+    p, pn = _assembled(strip(5, cell="tri", space="vital", sides="rollers"))
+    fixed = fixed_jumps(p.V, p.D)
+    side = np.isclose(p.mesh.p[0], 0) | np.isclose(p.mesh.p[0], 1)
+    assert set(np.flatnonzero(fixed[0])) == set(p.cut.enriched[side[p.cut.enriched]])
+    assert not fixed[1].any()
+    in_side = np.isclose(p.cut.points[0], 0) | np.isclose(p.cut.points[0], 1)
+    assert in_side.sum() == 2
+    assert np.array_equal(p.held[0], in_side) and not p.held[1].any()
+    assert not pn.held.any() and not normal_fixed(fixed, p.cut).any()
+    ne = p.cut.edge_ids.size
+    assert np.all(np.diff(p.P.indptr)[:ne][in_side] == 0), "held rows of P are empty"
+    assert np.all(np.diff(p.P.indptr)[np.flatnonzero(~in_side)] > 0)
+    assert abs(p.P[ne:, p.spaces[0].size:] - p.space.P).max() == 0, "y keeps the space"
+
+
+def test_a_support_holding_the_normal_jump_removes_the_normal_multiplier():
+    """Γ: x = 0.45 crosses the bottom y = 0, where u_x (the normal
+    component) is held: bilateral loses the multiplier of the bottom cut
+    edge; a support on the other component (u_y) does not."""
+    from skxfem.scene import Box, Displacement, Scene, SurfaceLoad
+
+    def scene(component):
+        return Scene(Box((4, 4), "quad"), plane((0.45, 0.0), (1.0, 0.0)),
+                     displacements=(Displacement("ymin", {component: 0.0}),
+                                    Displacement("xmin", {"all": 0.0}),
+                                    Displacement("xmax", {"all": 0.0})),
+                     loads=(SurfaceLoad("ymax", pressure=1.0),), space="vital",
+                     law="bilateral")
+
+    p, _ = _assembled(scene("x"))
+    bottom = np.isclose(p.cut.points[1], 0)
+    assert bottom.sum() == 1 and np.array_equal(p.held[0], bottom)
+    assert np.diff(p.P.indptr)[bottom] == 0, "the held normal has no multiplier"
+    q, _ = _assembled(scene("y"))
+    assert not q.held.any() and abs(q.P - q.space.P).max() == 0
+
+
+@pytest.mark.parametrize("name", SPACES)
+def test_a_space_without_fixed_nodes_is_the_space(name):
+    mesh, _, _, _, c = setup("tet")
+    none = np.zeros(mesh.p.shape[1], dtype=bool)
+    assert abs(multiplier_space(name, mesh, c).P
+               - multiplier_space(name, mesh, c, fixed=none).P).max() == 0
+
+
+@pytest.mark.parametrize("name", SPACES)
+def test_edges_with_two_fixed_ends_carry_no_multiplier(name):
+    """Fix the nodes of the face x = 0: the cut edges in it lose their
+    multiplier (empty rows), every other row still sums to 1."""
+    mesh, _, _, _, c = setup("tet")
+    fixed = np.isclose(mesh.p[0], 0)
+    S = multiplier_space(name, mesh, c, fixed=fixed)
+    held = fixed[c.edges[0]] & fixed[c.edges[1]]
+    assert held.any() and S.P.shape[0] == c.edge_ids.size
+    rows = np.asarray(S.P.sum(axis=1)).ravel()
+    assert np.all(rows[held] == 0) and np.allclose(rows[~held], 1.0, rtol=1e-12)
+    assert np.linalg.matrix_rank(S.P.toarray()) == S.size
+    if S.winners is not None:
+        assert not fixed[S.winners].any()
+    with pytest.raises(ValueError, match="one bool per node"):
+        multiplier_space(name, mesh, c, fixed=fixed[:-1])

@@ -1,7 +1,7 @@
 """Plotting: figures are returned (never shown), with one colour scheme.
 
 The tests check what is drawn (numbers of axes, polygons, segments, lines and
-their colours) and the data helpers, not pixels.
+their colours), not pixels.
 """
 import numpy as np
 import pytest
@@ -15,13 +15,9 @@ from skxfem.multipliers import SPACES
 from skxfem.plotting import (
     COLORS,
     plot_cut_2d,
-    plot_cut_3d,
     plot_levelset_2d,
     plot_pressure,
-    pressure_along,
 )
-from skxfem.scenes import paper_plate, strip
-from skxfem.solver import solve
 
 
 # 1. one colour scheme
@@ -81,30 +77,7 @@ def test_levelset_figure_has_plot_and_colorbar():
         plot_levelset_2d(m, np.zeros(3))
 
 
-# 3. pressure along a line
-def test_pressure_along_2d_takes_every_point_sorted():
-    r = solve(strip(4, "tri"))
-    s, p = pressure_along(r, "x")
-    assert s.size == r.points.shape[1]
-    assert np.all(np.diff(s) > 0)
-    k = np.argmin(np.abs(r.points[0] - s[2]))
-    assert p[2] == r.pressure[k]
-
-
-def test_pressure_along_3d_picks_the_middle_node_plane():
-    r = solve(paper_plate(2, "hex"))        # 3 x 3 intersection points on z = 0.5
-    s, p = pressure_along(r, "y")
-    assert s.tolist() == [0.0, 0.5, 1.0], "3 points on the line x = 0.5"
-    s_all, _ = pressure_along(r, "y", where={})
-    assert s_all.size == r.points.shape[1]
-    _, p0 = pressure_along(r, "y", where={"x": 0.0})
-    assert np.allclose(p0, p, atol=1e-8), "the plate solution does not depend on x"
-    with pytest.raises(ValueError, match="no multiplier point"):
-        pressure_along(r, "y", where={"x": 0.3})
-    with pytest.raises(ValueError, match="axis"):
-        pressure_along(r, "w")
-
-
+# 3. pressure curves
 def test_plot_pressure_lines_and_colours():
     s = np.linspace(0, 1, 5)
     fig = plot_pressure({"hex": (s, s), "vital": (s, 1 - s)}, reference=(s, s ** 2))
@@ -116,15 +89,3 @@ def test_plot_pressure_lines_and_colours():
         plot_pressure({})
     with pytest.raises(ValueError, match="same length"):
         plot_pressure({"bad": (s, s[:3])})
-
-
-# 4. the 3D cut, rendered off-screen
-def test_cut_3d_renders_the_interface():
-    pytest.importorskip("pyvista")
-    m = box(2, "hex")
-    fig = plot_cut_3d(m, cut(m, plane((0.5, 0.5, 0.6), (1, 1, 1))), window_size=(320, 240))
-    image = fig.axes[0].images[0].get_array()
-    assert image.shape == (240, 320, 3)
-    gamma = np.array(to_rgba(COLORS["gamma"])[:3]) * 255
-    near = np.abs(image.astype(float) - gamma).max(axis=2) < 40
-    assert near.mean() > 0.02, "the interface (drawn in COLORS['gamma']) must be visible"

@@ -54,6 +54,18 @@ def test_summary_values_are_the_papers_findings(run, cell):
     assert t["vital"]["pressure_l2"][1] < t["winner"]["pressure_l2"][1], "algo2 more accurate"
 
 
+@pytest.mark.parametrize("cell", ["tri", "quad", "prism", "hex"])
+def test_bonded_tie_is_reported_and_stable(run, cell):
+    """β_h of the bonded tie the scenes solve, next to the bilateral one
+    (issue 7: ≥ 0.3 on prisms with vital edges, no zero mode)."""
+    _, _, summary = run
+    for space, t in summary["studies"][cell].items():
+        assert len(t["beta_h_bonded"]) == len(t["n_zero_bonded"]) == 2
+        if space != "naive" or cell in ("quad", "hex"):
+            assert min(t["beta_h_bonded"]) >= 0.3 and max(t["n_zero_bonded"]) == 0, \
+                (cell, space, t["beta_h_bonded"], t["n_zero_bonded"])
+
+
 def test_quad_spaces_coincide(run):
     _, _, summary = run
     assert summary["quad_spaces_coincide"] < 1e-8

@@ -13,6 +13,9 @@ What is checked, on small systems whose answer a dense solve gives:
    system is recovered exactly; without G it is not (so G matters).
 6. A floating body (K singular, no constraint removing the rigid motion) is
    refused with a SingularSystemError, a ValueError, as documented.
+7. Nearly dependent rows (σ_min/σ_max between the QR's 1e-10 and the
+   recovery's 1e-6): a balancing constant is still recovered; a reaction
+   along the weak combination is refused with a NearlyDependentError.
 """
 import numpy as np
 import pytest
@@ -225,3 +228,42 @@ def test_multipliers_that_do_not_balance_u_are_never_returned(monkeypatch):
                         lambda B, r, G: np.full(B.shape[0], 1e6))
     with pytest.raises(RuntimeError, match="do not balance"):
         solve(K, B, F, G=G)
+
+
+# 7. nearly dependent rows ------------------------------------------------------------------
+
+def nearly_dependent(load_on_the_weak_row, delta=1e-7, a=1 - 1e-4):
+    """B = [[1, 0, 0], [1, δ, 0]]: two rows dependent to within δ; K couples
+    U₁ and U₂ (K₁₂ = -a, soft enough that the LU still sees the weak row).
+
+    B U = 0 gives U₀ = U₁ = 0, U₂ = F₂, and the reaction r = K U - F is
+    (-F₀, -a F₂ - F₁, 0), so Bᵀμ = r needs μ₁ = r₁/δ: a spike.  Without the
+    load on the weak row, F₁ = δ/2 - a: r = Bᵀ(-½, -½), a constant balances."""
+    K = sp.csr_matrix([[1.0, 0.0, 0.0], [0.0, 1.0, -a], [0.0, -a, 1.0]])
+    B = sp.csr_matrix([[1.0, 0.0, 0.0], [1.0, delta, 0.0]])
+    F = np.array([1.0, 0.0 if load_on_the_weak_row else delta / 2 - a, 1.0])
+    return K, B, F, sp.csr_matrix([[1.0, -1.0]])
+
+
+def test_nearly_dependent_rows_that_carry_a_reaction_are_refused():
+    """σ_min/σ_max ≈ δ/2 = 5e-8 is above the QR's 1e-10 (both rows kept) but below
+    the recovery's 1e-6: the smoothest μ cannot balance a reaction along the
+    weak combination, and the solve says why instead of a RuntimeError."""
+    from skxfem.saddle import NearlyDependentError
+
+    K, B, F, G = nearly_dependent(True)
+    with pytest.raises(NearlyDependentError, match=r"rows \[0, 1\].*5\.0e-08.*1\.4e\+07.*vital"):
+        solve(K, B, F, G=G)
+    assert issubclass(NearlyDependentError, ValueError), "the fix is in the input: a ValueError"
+    # without the recovery the exact multipliers come back, spike included
+    U, mu, info = solve(K, B, F)
+    assert info.removed == 0 and abs(mu[1] / -(1 - 1e-4) * 1e-7 - 1) < 1e-6, \
+        f"μ₁ = r₁/δ = -a/δ ≈ -1e7, got {mu}"
+
+
+def test_nearly_dependent_rows_balanced_by_a_constant_are_smoothed():
+    """The same B, loaded so that a constant μ balances U: it is recovered."""
+    K, B, F, G = nearly_dependent(False)
+    U, mu, info = solve(K, B, F, G=G)
+    assert info.balance < 1e-12
+    assert np.abs(mu + 0.5).max() < 1e-12, f"the constant μ = -½ balances U, got {mu}"

@@ -8,7 +8,8 @@ import pytest
 from skxfem.expr import Expression
 from skxfem.material import Material
 from skxfem.meshes import box
-from skxfem.scene import Box, Scene, clamped, load_scene, resolve_mesh, rollers
+from skxfem.scene import Box, Scene, clamped, resolve_mesh, rollers
+from skxfem.scenefile import load_scene
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -36,7 +37,7 @@ def test_01_plate_example_is_the_paper_plate():
     assert s.displacements == (clamped("zmin"), rollers("xmin"), rollers("xmax"))
     [load] = s.loads
     assert load.boundary == "zmax" and load.pressure == Expression("4*y*(1 - y)", 3)
-    assert (s.law, s.space, s.quadrature_order) == ("bonded", "naive", None)
+    assert (s.law, s.space, s.quadrature_order) == ("bonded", "vital", None)
 
 
 def test_02_strip_and_inclusion_examples_parse():
@@ -54,7 +55,7 @@ def test_02_strip_and_inclusion_examples_parse():
 def test_03_defaults_come_from_the_dataclasses(tmp_path):
     s = load_scene(write(tmp_path, MINIMAL, "my_strip.toml"))
     assert s.name == "my_strip" and s.material == Material()
-    assert (s.displacements, s.loads, s.law, s.space) == ((), (), "bonded", "naive")
+    assert (s.displacements, s.loads, s.law, s.space) == ((), (), "bonded", "vital")
 
 
 def test_04_a_mesh_file_is_read_relative_to_the_scene_file(tmp_path):
@@ -144,7 +145,10 @@ BAD = [
     (MINIMAL + "[[load]]\nboundary = 7\npressure = 1", TypeError, ["[[load]] #1 boundary"]),
     (MINIMAL + "[interface]\nlaw = 'glued'", ValueError, ["[interface] law", "bonded"]),
     (MINIMAL + "[interface]\nspace = 'stable'", ValueError, ["[interface] space", "naive"]),
-    (MINIMAL + "[interface]\nfriction = 0.3", ValueError, ["[interface]", "'friction'"]),
+    (MINIMAL + "[interface]\nadhesion = 0.3", ValueError, ["[interface]", "'adhesion'"]),
+    (MINIMAL + "[interface]\nfriction = -0.3", ValueError, ["[interface] friction"]),
+    (MINIMAL + "[interface]\nrho_n = 0", ValueError, ["[interface] rho_n"]),
+    (MINIMAL + "[interface]\nsteps = []", ValueError, ["[interface] steps"]),
     (MINIMAL + "[solver]\nquadrature_order = 0", ValueError, ["[solver] quadrature_order"]),
     (MINIMAL + "[solver]\nquadrature_order = '2'", ValueError, ["[solver] quadrature_order"]),
     (MINIMAL + "[solver]\ntol = 1e-9", ValueError, ["[solver]", "unknown key 'tol'"]),

@@ -53,7 +53,7 @@ def test_domain_cells_and_interface(n, cell):
     assert scene.mesh == Box((n,) * (dim - 1) + (nup,), cell, (1.0,) * dim), (
         f"{scene.name}: expected {n} cells across and {nup} (odd) cells up, got {scene.mesh}")
     assert scene.material == Material(1.0, 0.3, "strain")
-    assert (scene.law, scene.space) == ("bonded", "naive")
+    assert (scene.law, scene.space) == ("bonded", "vital")
     mesh, _ = built(scene)
     assert np.array_equal(mesh.p.min(axis=1), np.zeros(dim))
     assert np.array_equal(mesh.p.max(axis=1), np.ones(dim)), "Ω must be the unit box"
@@ -185,8 +185,10 @@ def test_arguments_are_passed_on():
     (lambda: paper_plate(2.5), "n must be a positive integer"),
     (lambda: strip(True), "n must be a positive integer"),
     (lambda: strip(-3), "n must be a positive integer"),
-    (lambda: paper_plate(3, "tet"), "cell must be 'hex' or 'prism'"),
-    (lambda: paper_plate(3, "wedge"), "cell must be 'hex' or 'prism'"),
+    (lambda: paper_plate(3, "quad"), "cell must be 'hex', 'prism' or 'tet'"),
+    (lambda: paper_plate(3, "wedge"), "cell must be 'hex', 'prism' or 'tet'"),
+    (lambda: paper_plate(3, nx=0), "nx must be a positive integer"),
+    (lambda: strip(3, sides="glued"), "sides must be 'free' or 'rollers'"),
     (lambda: strip(3, "hex"), "cell must be 'quad' or 'tri'"),
     (lambda: paper_plate(3, law="sticky"), "law must be one of"),
     (lambda: strip(3, space="clever"), "space must be one of"),

@@ -283,3 +283,73 @@ def test_no_cut_edge_gives_an_empty_space():
     nodes, psi = np.zeros((2, 3)), np.ones(3)
     for algorithm in (vital_edges, winner_nodes):
         assert algorithm(np.zeros((2, 0), int), psi, np.zeros((2, 0)), nodes).P.shape == (0, 0)
+
+
+# ------------------------------------------------ fixed nodes (issue 7: supports)
+def fixed_nodes(edges, psi, seed):
+    """A random set of nodes of N_e, no two joined by an edge (an independent set)."""
+    rng = np.random.default_rng(seed)
+    fixed = np.zeros(psi.size, dtype=bool)
+    for v in rng.permutation(np.unique(edges))[:np.unique(edges).size // 3]:
+        neighbours = edges[:, (edges == v).any(axis=0)].ravel()
+        if not fixed[neighbours].any():
+            fixed[v] = True
+    assert fixed.any()
+    return fixed
+
+
+@pytest.mark.parametrize("kind, shape, seed", CASES[::2])
+def test_vital_edges_with_fixed_nodes_cover_the_free_ones_least(kind, shape, seed):
+    """A fixed node needs no cover: S_ve is a minimum cover of the free nodes
+    (an LP, exact as the incidence matrix is totally unimodular), of least
+    length, and its stars meet only at free nodes."""
+    edges, psi, points, nodes = mesh_graph(kind, shape, seed)
+    fixed = fixed_nodes(edges, psi, seed)
+    space = vital_edges(edges, psi, points, nodes, fixed=fixed)
+    free = np.setdiff1d(np.unique(edges), np.flatnonzero(fixed))
+    count = np.bincount(edges[:, space.vital].ravel(), minlength=psi.size)
+    assert np.all(count[free] >= 1), "S_ve must touch every free node"
+    length = np.linalg.norm(nodes[:, edges[0]] - nodes[:, edges[1]], axis=0)
+    ne = edges.shape[1]
+    rows = np.searchsorted(free, edges)
+    at = np.isin(edges, free)
+    A = sp.csr_matrix((np.ones(at.sum()), (rows[at], np.tile(np.arange(ne), (2, 1))[at])),
+                      shape=(free.size, ne))
+    fewest = linprog(np.ones(ne), A_ub=-A, b_ub=-np.ones(free.size), bounds=(0, 1)).fun
+    shortest = linprog(length, A_ub=-A, b_ub=-np.ones(free.size), A_eq=np.ones((1, ne)),
+                       b_eq=[round(fewest)], bounds=(0, 1)).fun
+    assert space.vital.sum() == round(fewest)
+    assert length[space.vital].sum() == pytest.approx(shortest, rel=1e-9)
+    for g in range(space.size):
+        star = edges[:, space.groups == g]
+        shared = np.flatnonzero(np.bincount(star.ravel()) > 1)
+        assert not fixed[shared].any(), f"group {g} is joined through a fixed node"
+    check_prolongation(space.P, ne)
+
+
+@pytest.mark.parametrize("kind, shape, seed", CASES[::2])
+def test_fixed_nodes_never_win(kind, shape, seed):
+    edges, psi, points, nodes = mesh_graph(kind, shape, seed)
+    fixed = fixed_nodes(edges, psi, seed)
+    space = winner_nodes(edges, psi, points, nodes, fixed=fixed)
+    assert not fixed[space.winners].any()
+    assert np.all(np.isin(edges, space.winners).any(axis=0)), "every edge has a winner end"
+    check_prolongation(space.P, edges.shape[1])
+
+
+def test_no_fixed_node_is_the_default():
+    graph = figure6()
+    none = np.zeros(14, dtype=bool)
+    for algorithm in (vital_edges, winner_nodes):
+        assert abs(algorithm(*graph).P - algorithm(*graph, fixed=none).P).max() == 0
+
+
+@pytest.mark.parametrize("fixed, message", [
+    (np.ones(3, dtype=bool), "one bool per node"),
+    (np.arange(14) % 2, "one bool per node"),
+    (np.isin(np.arange(14), [1, 8]), "both ends of edge 0"),
+])
+def test_bad_fixed_nodes_are_refused(fixed, message):
+    for algorithm in (vital_edges, winner_nodes):
+        with pytest.raises(ValueError, match=message):
+            algorithm(*figure6(), fixed=fixed)

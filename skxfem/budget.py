@@ -1,0 +1,280 @@
+"""A size guard: the unknowns and memory of a scene, estimated before it is assembled.
+
+A triangle box with ``n = 10000`` asks for 10⁸ nodes; building it, let alone
+solving it, takes many gigabytes.  :func:`estimate` counts, without building
+the mesh, what a solve will meet, and :func:`check` refuses a scene whose
+estimate exceeds a limit, naming the estimate and how to raise the limit.
+
+The counts are upper bounds:
+
+* nodes and cells: exact (from a :class:`~skxfem.scene.Box`'s cell counts, or
+  from the mesh itself when the scene carries one or names a file, which is
+  then read);
+* enriched nodes: the corners of the cells on which ψ takes both signs (for a
+  Box, of the grid's hypercubes, which contain its cells), so
+  ``n_dofs ≤ dim × (nodes + enriched nodes)``;
+* multipliers: ``ncomp`` per cut edge (``dim`` for a bonded tie, 1 for a
+  bilateral one); for a Box every grid segment of the cell type's edge
+  directions on which ψ changes sign counts (both diagonals of a face
+  where the mesh has one).
+
+ψ is evaluated at the nodes in slabs of about 10⁶ points, so the guard itself
+stays small.  The memory is a sum of terms, each from the sizes above: the
+cells (mesh, basis values at the quadrature points, the assembly of K), the
+sparse LU of the saddle matrix (fill measured on this machine, see
+:data:`LU_FILL`) and the dense interface blocks of :mod:`skxfem.saddle` (the
+rank-revealing QR and the SVD of the coupling restricted to its columns:
+about ``m × ncols + m² + ncols²`` doubles, several times).  The constants
+were calibrated with ``scripts/calibrate_budget.py`` against the peak
+resident memory of solves on this machine; :data:`SAFETY` is the factor on
+top.  The estimate, over the peak resident memory a solve added, measured
+(one process per case, the peak reset just before the solve; the solver of
+November 2026):
+
+* ``strip`` on triangles, n = 32, 128, 256, 512: 9.6 MB ... 5.7 GB, 1.6-1.9 times;
+* ``strip`` on quadrilaterals, n = 64, 256: 52 MB, 1.3 GB, 1.4 times;
+* ``paper_plate`` on prisms, n = 8, 16, 24: 78 MB, 917 MB, 4.4 GB; 1.7-1.9 times;
+* ``paper_plate`` on hexahedra, n = 8, 16, 24: 88 MB, 824 MB, 4.4 GB; 1.2-1.6 times;
+* the same plate on tetrahedra, n = 5, 9: 14 MB, 107 MB; 3.1 and 3.2 times;
+
+so the estimate is an upper bound within a factor 4 (on tetrahedra the cut
+edges are over-counted most); ``tests/test_budget.py`` checks three cases.
+
+>>> from skxfem import scenes
+>>> e = estimate(scenes.strip(8, cell="tri"))
+>>> e.n_nodes, e.n_cells
+(90, 144)
+>>> check(scenes.strip(2000, cell="tri"), 2**30)  # doctest: +ELLIPSIS
+Traceback (most recent call last):
+...
+skxfem.budget.TooLargeError: the scene 'strip...' needs about ... GB (...); the limit is 1 GB: ...
+"""
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+import numpy as np
+
+from .levelset import nodal_values
+from .meshes import CELLS, cell_name
+from .quadrature import cell_rule
+from .scene import Box, Scene, resolve_mesh
+
+__all__ = ["DEFAULT_MAX_BYTES", "Estimate", "TooLargeError", "check", "estimate",
+           "parse_bytes", "format_bytes"]
+
+DEFAULT_MAX_BYTES = 4 * 2**30
+"""The limit :func:`check` applies unless told otherwise: 4 GiB."""
+
+# vertices per cell, cells per hypercube of a Box, edge directions of a Box
+_NVERTS = {"tri": 3, "quad": 4, "tet": 4, "hex": 8, "prism": 6}
+_PER_CUBE = {"tri": 2, "quad": 1, "tet": 6, "hex": 1, "prism": 2}
+_AXES = {2: [(1, 0), (0, 1)], 3: [(1, 0, 0), (0, 1, 0), (0, 0, 1)]}
+_DIAG2 = [(1, 1), (1, -1)]
+_DIRECTIONS = {
+    "tri": _AXES[2] + _DIAG2, "quad": _AXES[2], "hex": _AXES[3],
+    "prism": _AXES[3] + [(0, 1, 1), (0, 1, -1)],
+    "tet": [e for e in itertools.product((-1, 0, 1), repeat=3)
+            if any(e) and e[next(i for i, v in enumerate(e) if v)] > 0],
+}
+_CHUNK = 10**6
+
+LU_FILL = {2: (15.5, 1.27), 3: (5.3, 1.6)}
+"""Non-zeros of L + U of the saddle matrix of size N: ``c N^p`` per dimension
+(SuperLU with COLAMD, as :mod:`skxfem.saddle` calls it; fitted above the measured
+fill of 2D strips with N = 2 440 to 530 440 and 3D plates with N = 862 to 52 852;
+the measured exponent falls with N, from 1.67 to 1.52 between the 3D sizes)."""
+LU_BYTES = 24
+"""Peak bytes of SuperLU per non-zero of L + U (values, indices, growth)."""
+PER_CELL = 2.0
+"""Bytes per cell and per (quadrature point × basis function × derivative)."""
+SAFETY = 1.2
+"""Factor on the sum of the terms."""
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """Upper bounds of what solving a scene meets.
+
+    ``n_nodes``, ``n_cells``: the mesh; ``n_dofs``: unknowns (standard and
+    enriched); ``n_multipliers``: interface unknowns; ``bytes``: peak memory.
+    """
+
+    n_nodes: int
+    n_cells: int
+    n_dofs: int
+    n_multipliers: int
+    bytes: int
+
+    def __str__(self) -> str:
+        return (f"{self.n_nodes} nodes, {self.n_cells} cells, up to {self.n_dofs} "
+                f"unknowns and {self.n_multipliers} multipliers")
+
+
+class TooLargeError(ValueError):
+    """A scene whose estimated memory exceeds the limit given to :func:`check`."""
+
+
+def format_bytes(n: float) -> str:
+    """``n`` bytes in GB, MB or KB (powers of 1024), for messages.
+
+    >>> format_bytes(3 * 2**30), format_bytes(5.5 * 2**20), format_bytes(1000)
+    ('3 GB', '5.5 MB', '0.977 KB')
+    """
+    for unit, size in (("TB", 2**40), ("GB", 2**30), ("MB", 2**20), ("KB", 2**10)):
+        if n >= size or unit == "KB":
+            v = n / size
+            return f"{v:.0f} {unit}" if v >= 100 else f"{v:.3g} {unit}"
+
+
+def parse_bytes(text: str) -> int:
+    """A size such as ``"4G"``, ``"500M"``, ``"2.5GB"`` or ``"1000000"`` in bytes.
+
+    >>> parse_bytes("4G"), parse_bytes("500MB"), parse_bytes("1024")
+    (4294967296, 524288000, 1024)
+    """
+    s = str(text).strip().upper().removesuffix("B")
+    scale = {"K": 2**10, "M": 2**20, "G": 2**30, "T": 2**40}.get(s[-1:], 1)
+    try:
+        value = float(s[:-1] if scale > 1 else s)
+    except ValueError:
+        value = float("nan")
+    if not (np.isfinite(value) and value > 0):
+        raise ValueError(f"a memory size must be a positive number with an optional unit "
+                         f"K, M, G or T (e.g. 8G), got {text!r}")
+    return int(value * scale)
+
+
+def _box_counts(box: Box, levelset) -> tuple[int, int, int, int]:
+    """Nodes, cells, enriched-node bound and cut-edge bound of a Box, slab by slab."""
+    n = box.n
+    size = box.size or (1.0,) * box.dim
+    grid = [np.linspace(0.0, L, k + 1) for k, L in zip(n, size)]
+    n_nodes = int(np.prod([k + 1 for k in n]))
+    n_cells = _PER_CUBE[box.cell] * int(np.prod(n))
+    layer = n_nodes // (n[0] + 1)
+    step = max(1, _CHUNK // layer)
+    carry = np.zeros([k + 1 for k in n[1:]], dtype=bool)
+    enriched = edges = 0
+    corners = list(itertools.product((0, 1), repeat=box.dim))
+    for a in range(0, n[0], step):
+        b = min(a + step, n[0])                           # cells a..b-1, nodes a..b
+        x = np.stack(np.meshgrid(grid[0][a:b + 1], *grid[1:], indexing="ij"))
+        psi = np.asarray(levelset(x.reshape(box.dim, -1)), dtype=float).reshape(x.shape[1:])
+        s = np.sign(psi)
+        cube = [s[tuple(slice(o, o + k) for o, k in zip(c, (b - a,) + n[1:]))]
+                for c in corners]
+        cut = (np.min(cube, axis=0) <= 0) & (np.max(cube, axis=0) >= 0)
+        mask = np.zeros(s.shape, dtype=bool)
+        mask[0] = carry
+        for c in corners:
+            mask[tuple(slice(o, o + k) for o, k in zip(c, (b - a,) + n[1:]))] |= cut
+        enriched += int(mask[:-1].sum())
+        carry = mask[-1]
+        last = b == n[0]
+        for e in _DIRECTIONS[box.cell]:
+            s1 = tuple(slice(0, None if (k == 0 and last) else -1) if v == 0 and k == 0
+                       else slice(None) if v == 0 else slice(0, -1) if v > 0 else slice(1, None)
+                       for k, v in enumerate(e))
+            s2 = tuple(slice(0, None if last else -1) if v == 0 and k == 0
+                       else slice(None) if v == 0 else slice(1, None) if v > 0 else slice(0, -1)
+                       for k, v in enumerate(e))
+            edges += int(np.sum(s[s1] * s[s2] <= 0))
+    return n_nodes, n_cells, enriched + int(carry.sum()), edges
+
+
+def _mesh_counts(mesh, levelset) -> tuple[int, int, int, int]:
+    """Nodes, cells, enriched-node bound and cut edges of a built mesh."""
+    s = np.sign(nodal_values(levelset, mesh))
+    st = s[mesh.t]
+    cut = (st.min(axis=0) <= 0) & (st.max(axis=0) >= 0)
+    edges = mesh.facets if mesh.dim() == 2 else mesh.edges
+    n_cut_edges = int(np.sum(s[edges[0]] * s[edges[1]] <= 0))
+    return int(mesh.nvertices), int(mesh.nelements), int(np.unique(mesh.t[:, cut]).size), \
+        n_cut_edges
+
+
+def _memory(dim: int, cell: str, order, n_nodes, n_cells, n_dofs, n_enr, m) -> float:
+    """Bytes of the terms named in the module notes (before :data:`SAFETY`)."""
+    nq = cell_rule(CELLS[cell], order)[1].size
+    nbf = dim * _NVERTS[cell]
+    cells = n_cells * (PER_CELL * 8 * nq * nbf * (1 + dim + dim * dim)  # basis values
+                       + 3 * 8 * nbf * nbf                                 # COO assembly
+                       + 8 * _NVERTS[cell])                                # t
+    nodes = n_nodes * 8 * dim * 4
+    c, p = LU_FILL[dim]
+    lu = LU_BYTES * c * (n_dofs + m) ** p
+    dense = 8 * (3 * m * n_enr + 2 * m * m + 2 * n_enr * n_enr)
+    return cells + nodes + lu + dense
+
+
+def estimate(scene: Scene) -> Estimate:
+    """Upper bounds of the nodes, cells, unknowns, multipliers and memory of a solve.
+
+    A Box is never built: ψ is evaluated on its grid in slabs.  A mesh file
+    is read (as the solve would).
+
+    Parameters
+    ----------
+    scene
+        A :class:`skxfem.scene.Scene`.
+
+    Returns
+    -------
+    Estimate
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"estimate needs a skxfem.scene.Scene, got {type(scene).__name__}")
+    if isinstance(scene.mesh, Box):
+        cell = scene.mesh.cell
+        n_nodes, n_cells, n_enr_nodes, n_edges = _box_counts(scene.mesh, scene.levelset)
+    else:
+        mesh = resolve_mesh(scene)
+        cell = cell_name(mesh)
+        n_nodes, n_cells, n_enr_nodes, n_edges = _mesh_counts(mesh, scene.levelset)
+    dim = scene.dim
+    n_enr = dim * n_enr_nodes
+    n_dofs = dim * n_nodes + n_enr
+    m = (1 if scene.law == "bilateral" else dim) * n_edges
+    bytes_ = SAFETY * _memory(dim, cell, scene.quadrature_order, n_nodes, n_cells, n_dofs,
+                              n_enr, m)
+    return Estimate(n_nodes, n_cells, n_dofs, m, int(bytes_))
+
+
+def check(scene: Scene, max_bytes: int = DEFAULT_MAX_BYTES,
+          option: str | None = None) -> Estimate:
+    """:func:`estimate`, refusing a scene above ``max_bytes``.
+
+    Parameters
+    ----------
+    scene
+        The scene.
+    max_bytes
+        The limit in bytes.
+    option
+        The command-line option that raises the limit, named in the message
+        (``skxfem run`` passes ``"--max-memory"``); by default the message
+        names ``max_bytes=``.
+
+    Returns
+    -------
+    Estimate
+        The estimate of an accepted scene.
+
+    Raises
+    ------
+    TooLargeError
+        (a ValueError) If the estimate exceeds ``max_bytes``.
+    """
+    if not (isinstance(max_bytes, (int, np.integer)) and max_bytes > 0):
+        raise ValueError(f"max_bytes must be a positive integer, got {max_bytes!r}")
+    e = estimate(scene)
+    if e.bytes > max_bytes:
+        more = 2 * e.bytes
+        hint = (f"max_bytes={more}" if option is None
+                else f"{option} {format_bytes(more).replace(' ', '')}")
+        raise TooLargeError(
+            f"the scene {scene.name!r} needs about {format_bytes(e.bytes)} ({e}); the limit is "
+            f"{format_bytes(max_bytes)}: use a coarser mesh, or raise the limit (e.g. {hint})")
+    return e

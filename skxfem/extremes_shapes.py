@@ -1,0 +1,151 @@
+r"""Extremes of the geometry: one cell, the largest mesh, slanted and curved Γ.
+
+Rows of the extremes table (:mod:`skxfem.extremes`):
+
+* :func:`one_cell_rows`: a single cell of each type, cut through its middle,
+  under the patch test (:func:`skxfem.extremes.patch_error`);
+* :func:`memory_rows`: the largest paper plate (hex, prism, tet) or strip
+  (tri, quad) whose estimated memory (:func:`skxfem.budget.estimate`, the
+  direct solver) fits the default 4 GB limit — an estimate, not a run — and
+  the refusal of the next size by :func:`skxfem.budget.check`;
+* :func:`shape_rows`: Γ slanted at 45°, curved (a circle, a sphere) and
+  touching or crossing the boundary, under the patch test;
+* :func:`space_rows`: the naive and winner spaces near a node on the exact
+  benchmark, where their multipliers become nearly dependent.
+
+>>> [r.outcome for r in one_cell_rows(["quad"])]
+['solved']
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+
+from .budget import DEFAULT_MAX_BYTES, check, estimate, format_bytes
+from .convergence import pressure_error
+from .exact import ExactPlate
+from .extremes import CELL_TYPES, PATCH_TOL, Row, attempt, patch_error, patch_scene
+from .levelset import circle, plane, sphere
+from .scene import Box
+from .scenes import exact_scene, paper_plate, strip
+from .solver import solve
+
+__all__ = ["one_cell_rows", "memory_scene", "largest", "memory_rows", "shape_rows",
+           "UNSTABLE", "space_rows"]
+
+
+def _dim(cell: str) -> int:
+    return 2 if cell in ("tri", "quad") else 3
+
+
+def one_cell_rows(cells=CELL_TYPES) -> list[Row]:
+    """One cell of each type across Γ (a plane at 0.55 of its height)."""
+    rows = []
+    for cell in cells:
+        d = _dim(cell)
+        psi = plane((0.5,) * (d - 1) + (0.55,), (0.0,) * (d - 1) + (1.0,))
+        rows.append(attempt("size", f"{cell}, one cell across Γ", "energy error (patch)",
+                            PATCH_TOL, lambda: patch_error(patch_scene(Box(1, cell), psi))))
+    return rows
+
+
+def memory_scene(cell: str, n: int):
+    """The strip (tri, quad) or the paper plate (hex, prism; tet: the plate's box of
+    tetrahedra) with ``n`` cells per direction."""
+    if cell in ("tri", "quad"):
+        return strip(n, cell)
+    if cell == "tet":
+        base = paper_plate(n, "hex")
+        return replace(base, mesh=replace(base.mesh, cell="tet"), name=f"paper_plate_tet_{n}")
+    return paper_plate(n, cell)
+
+
+def largest(cell: str, max_bytes: int = DEFAULT_MAX_BYTES) -> int:
+    """The largest n whose :func:`memory_scene` is estimated to fit ``max_bytes``.
+
+    >>> largest("quad", 2**20) < largest("quad", 2**24)
+    True
+    """
+    lo, hi = 1, 2
+    while estimate(memory_scene(cell, hi)).bytes <= max_bytes:
+        lo, hi = hi, 2 * hi
+    while hi - lo > 1:  # estimate(lo) fits, estimate(hi) does not
+        mid = (lo + hi) // 2
+        lo, hi = (mid, hi) if estimate(memory_scene(cell, mid)).bytes <= max_bytes else (lo, mid)
+    return lo
+
+
+def memory_rows(cells=CELL_TYPES, max_bytes: int = DEFAULT_MAX_BYTES) -> list[Row]:
+    """For each cell type, the largest mesh under ``max_bytes`` and the next one refused."""
+    rows = []
+    for cell in cells:
+        n = largest(cell, max_bytes)
+        e = estimate(memory_scene(cell, n))
+        rows.append(attempt(
+            "size", f"{cell}, largest n under {format_bytes(max_bytes)}: n = {n} (direct)",
+            "estimated bytes", max_bytes,
+            lambda: (e.bytes, f"{format_bytes(e.bytes)}: {e}")))
+        rows.append(attempt(
+            "size", f"{cell}, n = {n + 1} (direct)", "estimated bytes", max_bytes,
+            lambda: check(memory_scene(cell, n + 1), max_bytes).bytes))
+    return rows
+
+
+def _shapes(dim: int) -> dict:
+    """Named level sets of the unit square (cube): slanted, curved, at the boundary."""
+    if dim == 2:
+        return {"slanted 45°": plane((0.5, 0.53), (1.0, 1.0)),
+                "circle inside": circle((0.5, 0.5), 0.3),
+                "circle crossing the top": circle((0.5, 1.0), 0.37),
+                "circle touching the bottom": circle((0.55, 0.3), 0.3)}
+    return {"slanted 45°": plane((0.5, 0.5, 0.53), (1.0, 0.0, 1.0)),
+            "sphere inside": sphere((0.5, 0.5, 0.5), 0.3),
+            "sphere crossing the top": sphere((0.5, 0.5, 1.0), 0.37),
+            "sphere touching the bottom": sphere((0.55, 0.45, 0.3), 0.3)}
+
+
+def shape_rows(cells=CELL_TYPES, n2: int = 8, n3: int = 4, space: str = "vital") -> list[Row]:
+    """The patch test with the interfaces of :func:`_shapes` on ``n2``/``n3`` cells a side.
+
+    A plane Γ is held to round-off (:data:`~skxfem.extremes.PATCH_TOL`).  A
+    curved Γ is cut into a polygon Γ_h, whose facet normals jump from cell to
+    cell: the uniform stress is then not in the discrete problem (its
+    traction σn_h is not a P1 multiplier), the patch test is not exact, and
+    the error is the O(h) of the interface approximation: held to h.
+    """
+    rows = []
+    for cell in cells:
+        d = _dim(cell)
+        n = n2 if d == 2 else n3
+        for name, psi in _shapes(d).items():
+            tol = PATCH_TOL if name.startswith("slanted") else 1.0 / n
+            rows.append(attempt("shape", f"{cell}, {name} (h = 1/{n})", "energy error (patch)",
+                                tol, lambda: patch_error(patch_scene(Box(n, cell), psi,
+                                                                     space=space))))
+    return rows
+
+
+UNSTABLE = (("tri", "naive", 1e-3), ("tri", "naive", 0.5), ("quad", "naive", 1e-3),
+            ("quad", "naive", 0.5), ("tet", "winner", 1e-6), ("tet", "vital", 1e-6))
+"""(cell, space, offset) of :func:`space_rows`: where a space is nearly dependent, and
+the same scenes with a space that is not."""
+
+
+def space_rows(cases=UNSTABLE, n: int = 4) -> list[Row]:
+    """The exact benchmark (:func:`skxfem.scenes.exact_scene`) of each (cell, space)
+    with Γ at ``offset``·h above a node row: the L² pressure error against
+    :mod:`skxfem.exact` (held to 1, i.e. below the pressure itself), or the
+    refusal of nearly dependent multipliers."""
+    rows = []
+    for cell, space_name, offset in cases:
+        base = exact_scene(n, cell, space_name)
+        d = _dim(cell)
+        h = 1.0 / base.mesh.n[-1]
+        psi = plane((0.0,) * (d - 1) + (2 * h + offset * h,), (0.0,) * (d - 1) + (1.0,))
+
+        def run(scene=replace(base, levelset=psi)):
+            sol = ExactPlate(scene.material, scene.dim)
+            return pressure_error(solve(scene), sol.pressure).l2
+
+        rows.append(attempt("position", f"{cell} {space_name}, exact, Γ at {offset:g} h "
+                            f"from a node row", "pressure L2 error (exact)", 1.0, run))
+    return rows

@@ -1,0 +1,246 @@
+r"""The assembled interface problem of a scene: one value that every solver shares.
+
+:func:`assemble` builds, once, everything the discrete tied (or contact)
+problem of a scene is made of — the X-FEM stiffness and load, the
+constrained unknowns, the interface rule, the jump operator, the multiplier
+space and its coupling, the interface mass — and returns it as a frozen
+:class:`Problem`.  :func:`skxfem.solver.solve` (the tie),
+:func:`skxfem.lbb.inf_sup` (the inf-sup test) and the contact solver take
+their matrices from it and rebuild none of them.
+
+The law decides which jump the multipliers act on (:data:`COUPLING`):
+``bonded`` the vector jump [[u]] (dim multipliers per edge), ``bilateral``
+the normal jump [[u]]·n (one).  A new law (contact) adds one entry there.
+
+>>> from skxfem.scenes import strip
+>>> p = assemble(strip(3, cell="tri"))
+>>> p.law, p.ncomp, p.B.shape[0] == p.P.shape[1], p.J.shape[1] == p.K.shape[0]
+('bonded', 2, True, True)
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from .boundary import imposed
+from .cut import Cut
+from .cut import cut as cut_mesh
+from .enrich import XSpace, enriched_load, jump_matrix, space, stiffness
+from .loads import boundary_quadrature, surface_load
+from .multipliers import (
+    InterfaceRule,
+    Space,
+    coupling,
+    fixed_jumps,
+    interface_mass,
+    interface_rule,
+    normal_fixed,
+)
+from .scene import Scene, dirichlet, load_facets, resolve_mesh
+from .stabilised import multiplier_space
+
+__all__ = ["Problem", "assemble", "constrained_dofs", "COUPLING", "check_law"]
+
+COUPLING = {"bonded": "bonded", "bilateral": "bilateral"}
+"""For each law :func:`assemble` accepts, the coupling it is built on
+(:func:`skxfem.multipliers.coupling`): ``"bonded"``, the vector jump, or
+``"bilateral"``, the normal jump.  The one place where laws are validated."""
+
+
+def check_law(law: str) -> str:
+    """``law`` if :func:`assemble` knows it, else a ValueError listing the known ones.
+
+    >>> check_law("bonded")
+    'bonded'
+    """
+    if law not in COUPLING:
+        raise ValueError(f"law must be one of {tuple(COUPLING)}, got {law!r}")
+    return law
+
+
+@dataclass(frozen=True)
+class Problem:
+    r"""The discrete interface problem of a scene (paper §3-5), for one tie law.
+
+    With U = [a, b] the X-FEM unknowns ([11], shifted enrichment) and μ
+    the independent multipliers, λ = P μ on the cut edges, the problem is
+    K U + Bᵀ y = F, B U = 0, U[D] = g (y = -μ; :mod:`skxfem.solver`).
+
+    Attributes
+    ----------
+    scene, mesh, cut : the scene, its resolved mesh and :class:`~skxfem.cut.Cut` (§4.1).
+    V : :class:`~skxfem.enrich.XSpace`, the displacement space u_h of [11].
+    K : (N, N) CSR, the stiffness a(u, v) = ∫ σ(u):ε(v) of §3's weak equilibrium,
+        σ from the constitutive law [1].
+    F : (N,), the load l(v) = ∫_{Γ_t} t·v of the surface tractions (§3).
+    D, g : the constrained unknowns (int array) and their values: the scene's
+        displacements, with the enriched dofs they hold on cut boundary
+        facets (:func:`constrained_dofs`).
+    rule : :class:`~skxfem.multipliers.InterfaceRule`, the quadrature on Γ_h.
+    J : (dim·nq, N) CSR, U ↦ [[u_h]] at the rule's points, component-major: the
+        jump of §4.1 written with the enriched dofs of [11]
+        (:func:`skxfem.enrich.jump_matrix`).
+    space : :class:`~skxfem.multipliers.Space`, the scene's multiplier space
+        on all cut edges (§4.2 naive, §5 winner nodes / vital edges).
+    law : the tie law P and B are built for (``"bonded"`` or ``"bilateral"``).
+    ncomp : multiplier components per edge: dim (bonded) or 1 (bilateral).
+    P : (ncomp·n_edges, m) CSR, the prolongation λ = P μ of the law's
+        multipliers, component-major (λ_h of [12] on the cut edges, §5's
+        equalities and linear relations):
+        block-diagonal, one block per component, ``spaces[k].P``.
+    B : (m, N) CSR, Pᵀ B_edges, the coupling ∫_Γ λ_h·[[v]] (or λ_h [[v]]·n)
+        reduced to the space: the interface terms of §3's mixed formulation,
+        with a tie law in place of the contact law [6].
+    M_edges : (n_edges, n_edges) CSR, the interface mass ∫_Γ N_e N_f (the
+        L² norm of λ_h; §5's inf-sup test scales it by h).
+    held : (ncomp, n_edges) bool, the (component, edge) pairs whose jump a
+        support holds: both ends of the edge are fixed for that component
+        (:func:`skxfem.multipliers.fixed_jumps`, from ``D``; bilateral: the
+        normal jump, :func:`skxfem.multipliers.normal_fixed`).  They carry
+        no multiplier: their rows of P are empty.
+    spaces : the ncomp spaces of the law's components, each built on the
+        edges it keeps (``space`` itself where a component has no fixed node).
+    timings : seconds per stage.
+    """
+
+    scene: Scene
+    mesh: object
+    cut: Cut
+    V: XSpace
+    K: sp.csr_matrix
+    F: np.ndarray
+    D: np.ndarray
+    g: np.ndarray
+    rule: InterfaceRule
+    J: sp.csr_matrix
+    space: Space
+    law: str
+    ncomp: int
+    P: sp.csr_matrix
+    B: sp.csr_matrix
+    M_edges: sp.csr_matrix
+    held: np.ndarray
+    spaces: tuple
+    timings: dict = field(default_factory=dict)
+
+
+def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndarray]:
+    """Constrained unknowns of the X-FEM space and their values.
+
+    The shifted enrichment φⱼ(H - Hⱼ) vanishes on a boundary facet that Γ
+    does not cut, so there imposing aᵢ imposes u.  On a facet that Γ cuts,
+    u = a + b(H - Hⱼ) takes both signs of H, so where a displacement acts on
+    the whole facet (it selects all the facet's vertices) the enriched dofs
+    of its components at the facet's nodes are set to zero as well.  Each
+    displacement is taken on its own: two supports whose nodes together
+    cover a facet do not constrain it.
+
+    Parameters
+    ----------
+    V
+        The X-FEM space (:func:`skxfem.enrich.space`).
+    scene, mesh
+        The scene and its resolved mesh.
+
+    Returns
+    -------
+    dofs, values
+        Indices into the unknowns [a, b] (``V.N`` of them) and imposed values.
+    """
+    dofs, values = dirichlet(scene, mesh, V.basis)
+    psi = V.cut.psi
+    bf = mesh.facets[:, mesh.boundary_facets()]
+    cut_bf = bf[:, (psi[bf] < 0).any(axis=0) & (psi[bf] > 0).any(axis=0)]
+    pos = np.full(V.n_std, -1)
+    pos[V.enr_dofs] = np.arange(V.n_enr)
+    enr = [np.zeros(0, dtype=np.int64)]
+    for held, components in imposed(scene, mesh):
+        selected = np.zeros(mesh.p.shape[1], dtype=bool)
+        selected[held] = True
+        nodes = np.unique(cut_bf[:, selected[cut_bf].all(axis=0)])
+        for c in components:
+            b = pos[V.basis.nodal_dofs[c, nodes]]
+            enr.append(V.n_std + b[b >= 0])
+    enr = np.unique(np.concatenate(enr))
+    return (np.concatenate([dofs, enr]),
+            np.concatenate([values, np.zeros(enr.size)]))
+
+
+def assemble(scene: Scene, law: str | None = None) -> Problem:
+    """Assemble the interface problem of ``scene`` for ``law`` (default: ``scene.law``).
+
+    Parameters
+    ----------
+    scene
+        A :class:`skxfem.scene.Scene`; its ``quadrature_order`` sets the cell
+        rule of the stiffness (``None``: exact on affine cells).
+    law
+        A key of :data:`COUPLING`; ``None`` takes the scene's.
+
+    Returns
+    -------
+    Problem
+
+    Raises
+    ------
+    ValueError
+        An unknown law, a scene that does not fit its mesh, a level set that
+        cuts no cell or passes through nodes (from :func:`skxfem.cut.cut`).
+    """
+    law = check_law(scene.law if law is None else law)
+    timings = {}
+    clock = [time.perf_counter()]
+
+    def lap(name):
+        now = time.perf_counter()
+        timings[name] = now - clock[0]
+        clock[0] = now
+
+    mesh = resolve_mesh(scene)
+    c = cut_mesh(mesh, scene.levelset)
+    lap("cut")
+    S = multiplier_space(scene.space, mesh, c)
+    lap("space")
+    V = space(mesh, c, scene.quadrature_order)
+    lap("enrich")
+    K = stiffness(V, scene.material)
+    lap("stiffness")
+    f, f_H = np.zeros(V.n_std), np.zeros(V.n_std)
+    for facets, traction in load_facets(scene, mesh):
+        q = boundary_quadrature(mesh, facets, 4, psi_nodes=c.psi)
+        df, df_H = surface_load(V.basis, q, traction)
+        f, f_H = f + df, f_H + df_H
+    F = enriched_load(V, f, f_H)
+    lap("load")
+    D, g = constrained_dofs(V, scene, mesh)
+    lap("constraints")
+    rule = interface_rule(mesh, c)
+    J = jump_matrix(V, rule.cells, rule.ref)
+    B_edges = coupling(V, rule, COUPLING[law], J=J)
+    M_edges = interface_mass(rule)
+    lap("interface")
+    fixed = fixed_jumps(V, D)
+    if COUPLING[law] == "bilateral":
+        fixed = normal_fixed(fixed, c)[None, :]
+    held = fixed[:, c.edges[0]] & fixed[:, c.edges[1]]
+    spaces = _component_spaces(scene.space, mesh, c, S, fixed)
+    P = sp.block_diag([s.P for s in spaces], format="csr")  # component-major
+    B = (P.T @ B_edges).tocsr()
+    lap("prolongation")
+    return Problem(scene, mesh, c, V, K, F, D, g, rule, J, S, law, held.shape[0], P, B,
+                   M_edges, held, spaces, timings)
+
+
+def _component_spaces(name, mesh, c, S, fixed) -> tuple:
+    """The multiplier space of each component, built with that component's
+    fixed nodes (``S``, the space of all edges, where none is fixed; one
+    build per distinct set of fixed nodes)."""
+    built = {}
+    for row in fixed:
+        key = row.tobytes()
+        if key not in built:
+            built[key] = S if not row.any() else multiplier_space(name, mesh, c, fixed=row)
+    return tuple(built[row.tobytes()] for row in fixed)

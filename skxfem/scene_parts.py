@@ -1,0 +1,169 @@
+"""The parts of a scene: the mesh box, imposed displacements, surface loads.
+
+Boundaries are named (``"xmin"``, ``"xmax"``, ``"ymin"`` ... ``"zmax"`` or a name
+stored in ``mesh.boundaries``) or given as a selection ``x -> bool``.  An imposed
+:class:`Displacement` acts on the *nodes* of its boundary; a :class:`SurfaceLoad`
+acts on its boundary *facets*.  The pressure is positive in compression: the
+traction is t = -p n with n the outward unit normal.
+
+A value (displacement component, pressure, traction component) is a number, a
+callable ``x -> array`` or a formula string such as ``"4*x*(1 - x)"``, checked
+as in scene files (:mod:`skxfem.expr`); :class:`skxfem.scene.Scene` compiles it
+for its dimension.
+
+>>> SurfaceLoad("ymax", pressure="4*x*(1 - x)").pressure.text
+'4*x*(1 - x)'
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Mapping, Union
+
+import numpy as np
+
+from .expr import Expression
+
+__all__ = ["Box", "Displacement", "SurfaceLoad", "clamped", "rollers", "CELLS",
+           "COMPONENTS", "FACES", "is_number"]
+
+COMPONENTS = ("x", "y", "z")
+FACES = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
+
+CELLS = {"tri": 2, "quad": 2, "tet": 3, "hex": 3, "prism": 3}
+"""Cell types of :class:`Box` and their dimension."""
+
+Value = Union[float, str, Callable[[np.ndarray], np.ndarray]]
+
+
+def is_number(v) -> bool:
+    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool)
+
+
+def _check_value(v, what: str) -> float | Callable:
+    """A finite number (as float), a callable ``x -> array`` or a formula string
+    (as a 3D :class:`~skxfem.expr.Expression`; :class:`Scene` fits it to its dim)."""
+    if isinstance(v, str):
+        try:
+            return Expression(v, 3)
+        except ValueError as e:
+            raise ValueError(f"{what}: {e}") from None
+    if callable(v):
+        return v
+    if not is_number(v):
+        raise TypeError(f"{what} must be a number, a formula string such as '4*x*(1 - x)' "
+                        f"or a callable x -> array, got {v!r}")
+    if not np.isfinite(v):
+        raise ValueError(f"{what} must be finite, got {v!r}")
+    return float(v)
+
+
+def _check_boundary(b, what: str):
+    if not (callable(b) or (isinstance(b, str) and b)):
+        raise TypeError(f"{what} boundary must be a name such as 'xmin' or a "
+                        f"callable x -> bool, got {b!r}")
+
+
+@dataclass(frozen=True)
+class Box:
+    """A built-in structured mesh of a box, built by :func:`skxfem.meshes.box`.
+
+    ``n`` cells per direction (an int or one int per direction), ``cell`` one of
+    ``CELLS``, ``size`` the box lengths (default 1 in every direction).
+    """
+
+    n: int | tuple[int, ...]
+    cell: str
+    size: tuple[float, ...] | None = None
+
+    def __post_init__(self):
+        if self.cell not in CELLS:
+            raise ValueError(f"Box cell must be one of {tuple(CELLS)}, got {self.cell!r}")
+        n = (self.n,) * self.dim if is_number(self.n) else self.n
+        if (not isinstance(n, (tuple, list)) or len(n) != self.dim
+                or not all(isinstance(k, (int, np.integer)) and not isinstance(k, bool)
+                           and k >= 1 for k in n)):
+            raise ValueError(f"Box n must be a positive integer or {self.dim} of them "
+                             f"for cell {self.cell!r}, got {self.n!r}")
+        object.__setattr__(self, "n", tuple(int(k) for k in n))
+        if self.size is not None:
+            if (not isinstance(self.size, (tuple, list)) or len(self.size) != self.dim
+                    or not all(is_number(s) and np.isfinite(s) and s > 0 for s in self.size)):
+                raise ValueError(f"Box size must be {self.dim} positive numbers, "
+                                 f"got {self.size!r}")
+            object.__setattr__(self, "size", tuple(float(s) for s in self.size))
+
+    @property
+    def dim(self) -> int:
+        return CELLS[self.cell]
+
+
+@dataclass(frozen=True)
+class Displacement:
+    """Imposed displacement components on the nodes of a boundary.
+
+    ``components`` maps ``"x"``/``"y"``/``"z"`` (or 0/1/2, or ``"all"``) to a number
+    or a callable ``x -> array``; it is stored with the keys ``"x"``, ``"y"``,
+    ``"z"`` or ``"all"``.
+
+    >>> Displacement("xmin", {0: 0.0, "y": 1}).components
+    {'x': 0.0, 'y': 1.0}
+    """
+
+    boundary: str | Callable[[np.ndarray], np.ndarray]
+    components: Mapping[str | int, Value]
+
+    def __post_init__(self):
+        _check_boundary(self.boundary, "Displacement")
+        if not isinstance(self.components, Mapping) or not self.components:
+            raise TypeError("Displacement components must be a non-empty mapping such as "
+                            f"{{'x': 0.0}}, got {self.components!r}")
+        comps = {}
+        for key, value in self.components.items():
+            name = COMPONENTS[key] if key in (0, 1, 2) and not isinstance(key, bool) else key
+            if name not in COMPONENTS + ("all",):
+                raise ValueError(f"Displacement component {key!r} is not one of "
+                                 "'x', 'y', 'z', 0, 1, 2, 'all'")
+            comps[name] = _check_value(value, f"Displacement component {name!r}")
+        if "all" in comps and len(comps) > 1:
+            raise ValueError("Displacement components: use either 'all' or single components")
+        object.__setattr__(self, "components", comps)
+
+
+def clamped(boundary: str | Callable) -> Displacement:
+    """All displacement components zero on ``boundary``."""
+    return Displacement(boundary, {"all": 0.0})
+
+
+def rollers(boundary: str) -> Displacement:
+    """Normal displacement zero on an axis-aligned named face such as ``"xmin"``.
+
+    >>> rollers("zmax").components
+    {'z': 0.0}
+    """
+    if boundary not in FACES:
+        raise ValueError(f"rollers needs an axis-aligned face {FACES}, got {boundary!r}")
+    return Displacement(boundary, {boundary[0]: 0.0})
+
+
+@dataclass(frozen=True)
+class SurfaceLoad:
+    """A pressure (positive in compression, t = -p n) or a traction vector on facets."""
+
+    boundary: str | Callable[[np.ndarray], np.ndarray]
+    pressure: Value | None = None
+    traction: tuple[Value, ...] | None = None
+
+    def __post_init__(self):
+        _check_boundary(self.boundary, "SurfaceLoad")
+        if (self.pressure is None) == (self.traction is None):
+            raise ValueError("SurfaceLoad needs exactly one of pressure= or traction=")
+        if self.pressure is not None:
+            object.__setattr__(self, "pressure",
+                               _check_value(self.pressure, "SurfaceLoad pressure"))
+        else:
+            if not isinstance(self.traction, (tuple, list)) or len(self.traction) not in (2, 3):
+                raise TypeError("SurfaceLoad traction must be 2 or 3 components, "
+                                f"got {self.traction!r}")
+            object.__setattr__(self, "traction", tuple(
+                _check_value(t, f"SurfaceLoad traction[{i}]")
+                for i, t in enumerate(self.traction)))

@@ -1,0 +1,54 @@
+"""The public API (``import skxfem``) and the floors of the package."""
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import skxfem
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def test_a_notebook_needs_one_import():
+    """The cell of issue 8: solve a built-in scene, then plot the pressure."""
+    from matplotlib.figure import Figure
+
+    r = skxfem.solve(skxfem.scenes.strip(16, cell="tri"))
+    ax = Figure().add_subplot()
+    ax.plot(r.points[0], r.pressure, "o")
+    assert r.points.shape == (2, r.pressure.size) and np.all(np.isfinite(r.pressure))
+    # the total force on Γ is the applied load, ∫ 4x(1 - x) dx = 2/3
+    order = np.argsort(r.points[0])
+    assert np.trapezoid(r.pressure[order], r.points[0][order]) == pytest.approx(2 / 3, rel=1e-3)
+
+
+def test_exported_names_exist_and_steps_are_there():
+    for name in skxfem.__all__:
+        assert hasattr(skxfem, name), f"skxfem.__all__ lists {name!r} but it is missing"
+    for step in ("levelset", "cut", "enrich", "multipliers", "lbb", "stabilised", "contact"):
+        assert getattr(skxfem, step).__name__ == f"skxfem.{step}"
+    assert skxfem.__version__.count(".") >= 2
+
+
+def test_solve_hands_a_contact_scene_to_the_contact_solver():
+    from dataclasses import replace
+
+    s = skxfem.scenes.strip(3)
+    s = replace(s, law="frictionless",
+                displacements=s.displacements + (skxfem.Displacement("ymax", {"x": 0.0}),))
+    result = skxfem.solve(s)
+    assert isinstance(result, skxfem.contact.ContactResult)
+    assert result.steps[-1].pressure.min() > 0
+
+
+def test_every_module_stands_on_a_floor():
+    """The import-linter layers contract lists every module of the package, so
+    that a new module cannot escape the floors by being forgotten."""
+    config = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["importlinter"]
+    layers = next(c for c in config["contracts"] if c["type"] == "layers")["layers"]
+    listed = {m.strip() for line in layers for m in line.split("|")}
+    modules = {f"skxfem.{p.stem}" for p in (ROOT / "skxfem").glob("*.py")
+               if p.stem not in ("__init__", "__main__")}
+    assert modules - listed == set(), "add these modules to a floor in pyproject.toml"
+    assert listed - modules == set(), "these floors name modules that do not exist"

@@ -1,0 +1,146 @@
+"""The size guard: counts are upper bounds, memory within a stated factor, refusals clear."""
+import dataclasses
+import json
+import subprocess
+import sys
+
+import meshio
+import numpy as np
+import pytest
+
+from skxfem import budget, meshes, scenes
+from skxfem.budget import Estimate, TooLargeError, check, estimate, parse_bytes
+from skxfem.levelset import circle, plane, sphere
+from skxfem.scene import Box, Scene, clamped, resolve_mesh
+from skxfem.solver import solve
+
+FACTOR = 4
+"""The estimate is at most this many times the measured peak (measured 1.1-3.1)."""
+
+
+def scene_of(cell, n=4):
+    if cell in ("tri", "quad"):
+        return scenes.strip(n, cell=cell)
+    # the naive space: the estimate counts one multiplier per cut edge and component
+    hexes = scenes.paper_plate(n, cell="hex", space="naive")
+    return dataclasses.replace(hexes, mesh=Box(hexes.mesh.n, cell))
+
+
+@pytest.mark.parametrize("cell", ["tri", "quad", "tet", "hex", "prism"])
+def test_01_counts_are_exact_or_upper_bounds(cell):
+    s = scene_of(cell)
+    e = estimate(s)
+    r = solve(s)
+    assert (e.n_nodes, e.n_cells) == (r.mesh.nvertices, r.mesh.nelements)
+    assert r.n_dofs <= e.n_dofs <= 1.5 * r.n_dofs
+    m = r.n_multipliers + r.removed                       # before removing dependent ones
+    assert m <= e.n_multipliers <= 3 * m
+    if cell in ("quad", "hex"):                           # edges only along the axes: exact
+        # (the count of every cut edge and component: the solve leaves out those
+        # whose jump a support holds, here the x-jump on the plate's roller faces)
+        assert e.n_multipliers == r.mesh.dim() * r.points.shape[1]
+
+
+@pytest.mark.parametrize("law", ["bonded", "bilateral"])
+def test_02_a_curved_interface_and_a_mesh_object_give_the_same_bounds(law):
+    s = Scene(Box((7, 6), "tri"), circle((0.5, 0.5), 0.31), law=law,
+              displacements=(clamped("ymin"),))
+    from_box = estimate(s)
+    from_mesh = estimate(dataclasses.replace(s, mesh=resolve_mesh(s)))
+    assert from_box.n_nodes == from_mesh.n_nodes and from_box.n_cells == from_mesh.n_cells
+    assert from_mesh.n_dofs <= from_box.n_dofs        # the corners of the cut squares
+    assert from_mesh.n_multipliers <= from_box.n_multipliers   # both diagonals counted
+    r = solve(s)
+    assert r.n_dofs <= from_mesh.n_dofs
+    assert r.n_multipliers + r.removed <= from_mesh.n_multipliers
+
+
+def test_03_a_mesh_file_is_counted_from_the_file(tmp_path):
+    m = meshes.box(3, "tet")
+    meshio.write(tmp_path / "m.vtu", meshio.Mesh(m.p.T, [("tetra", m.t.T)]))
+    e = estimate(Scene(tmp_path / "m.vtu", sphere((0.5, 0.5, 0.5), 0.4)))
+    assert (e.n_nodes, e.n_cells) == (64, 162) and e.n_dofs > 3 * 64
+
+
+def test_04_a_box_is_never_built(monkeypatch):
+    """A triangle strip of 1500 x 1501 cells: counted slab by slab, not meshed."""
+    monkeypatch.setattr(meshes, "box", lambda *a, **k: pytest.fail("the box was built"))
+    e = estimate(scenes.strip(1500, cell="tri"))
+    assert e.n_nodes == 1501 * 1502 and e.n_cells == 2 * 1500 * 1501
+    assert e.n_dofs == 2 * (1501 * 1502 + 2 * 1501)      # two rows of nodes enriched
+    assert e.bytes > 2**30
+
+
+def test_05_check_refuses_with_the_estimate_and_the_option():
+    s = scenes.strip(10000, cell="tri")                   # 4 GB in 21 s, before the guard
+    with pytest.raises(TooLargeError, match=r"the scene 'strip\w*' needs about [\d.]+ TB") as e:
+        check(s, 4 * 2**30, "--max-memory")
+    message = str(e.value)
+    assert "100030002 nodes" in message and "limit is 4 GB" in message
+    assert "--max-memory" in message and isinstance(e.value, ValueError)
+    small = scenes.strip(4)
+    assert isinstance(check(small), Estimate)
+    with pytest.raises(TooLargeError, match=r"max_bytes=\d+\)$"):
+        check(small, estimate(small).bytes - 1)
+    with pytest.raises(ValueError, match="max_bytes"):
+        check(small, 0)
+
+
+@pytest.mark.parametrize("text, value", [("4G", 4 * 2**30), ("1.5 GB", 3 * 2**29),
+                                         ("500m", 500 * 2**20), ("2048", 2048)])
+def test_06_sizes_parse(text, value):
+    assert parse_bytes(text) == value
+
+
+@pytest.mark.parametrize("text", ["", "G", "-1G", "lots", "nanG", "0"])
+def test_07_bad_sizes_are_refused(text):
+    with pytest.raises(ValueError, match="positive number"):
+        parse_bytes(text)
+
+
+PEAK = r"""
+import json, sys
+from skxfem import budget, scenes
+from skxfem.solver import solve
+
+def status(key):                             # kB in /proc/self/status
+    with open("/proc/self/status") as f:
+        return 1024 * int(next(l for l in f if l.startswith(key)).split()[1])
+
+solve(scenes.strip(2, cell="quad"))          # imports and caches before measuring
+kind, cell, n = sys.argv[1], sys.argv[2], int(sys.argv[3])
+scene = {"strip": scenes.strip, "plate": scenes.paper_plate}[kind](n, cell=cell)
+before = status("VmRSS:")
+with open("/proc/self/clear_refs", "w") as f:
+    f.write("5")                             # reset the peak (VmHWM) to the current RSS
+solve(scene)
+print(json.dumps({"measured": status("VmHWM:") - before,
+                  "estimate": budget.estimate(scene).bytes}))
+"""
+
+
+@pytest.mark.parametrize("case", ["strip:tri:128", "strip:quad:64", "plate:prism:8"])
+def test_08_memory_is_an_upper_bound_within_the_stated_factor(case):
+    """Peak resident memory added by the solve, in a fresh process (Linux: the peak
+    VmHWM is reset just before the solve, so import-time peaks do not count)."""
+    done = subprocess.run([sys.executable, "-c", PEAK, *case.split(":")], capture_output=True,
+                          text=True, timeout=300, check=True)
+    r = json.loads(done.stdout)
+    assert r["measured"] > 20 * 2**20, "large enough to be measured"
+    assert r["measured"] <= r["estimate"] <= FACTOR * r["measured"], r
+
+
+def test_09_the_estimate_grows_with_the_mesh_and_the_law():
+    sizes = [estimate(scenes.paper_plate(n, cell="prism")).bytes for n in (4, 8, 16)]
+    assert sizes[0] < sizes[1] < sizes[2]
+    plate = scenes.paper_plate(8, cell="prism")
+    tie = estimate(dataclasses.replace(plate, law="bilateral"))
+    assert tie.n_multipliers * 3 == estimate(plate).n_multipliers
+    assert estimate(Scene(Box(3, "hex"), plane((0, 0, 2), (0, 0, 1)))).n_dofs == 3 * 64
+
+
+def test_10_estimate_needs_a_scene():
+    with pytest.raises(TypeError, match="Scene"):
+        estimate("plate.toml")
+    assert budget.DEFAULT_MAX_BYTES == 4 * 2**30
+    np.testing.assert_equal(budget.format_bytes(budget.DEFAULT_MAX_BYTES), "4 GB")

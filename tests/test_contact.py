@@ -1,0 +1,397 @@
+"""Unilateral contact and Coulomb friction (skxfem.contact) against known answers."""
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from skxfem import contact, saddle, solver
+from skxfem.contact_newton import ContactConvergenceError
+from skxfem.enrich import split_fields
+from skxfem.levelset import plane
+from skxfem.material import Material
+from skxfem.scene import Box, Displacement, Scene, SurfaceLoad, clamped
+from skxfem.scenes import strip
+
+RHOS = (1e-3, 1.0, 1e6)  # × E/h
+
+
+def held_top(scene, comps=("x",)):
+    """``scene`` with the top held tangentially: a frictionless Γ would let it slide."""
+    top = "ymax" if scene.dim == 2 else "zmax"
+    return replace(scene, displacements=scene.displacements
+                   + (Displacement(top, {c: 0.0 for c in comps}),))
+
+
+def cube(n=(1, 2, 3), law="frictionless", top=None, loads=(), mu=0.0, nu=0.3, **kw):
+    """Unit cube, Γ at z = 0.5, bottom clamped, top displacement ``top``."""
+    disp = (clamped("zmin"),) + ((Displacement("zmax", top),) if top else ())
+    return Scene(Box(n, "hex"), plane((0, 0, 0.5), (0, 0, 1)), Material(E=1.0, nu=nu),
+                 displacements=disp, loads=tuple(loads), law=law, friction=mu, **kw)
+
+
+def compressed(dim):
+    if dim == 2:
+        return held_top(strip(n=4))
+    return cube(top={"x": 0.0, "y": 0.0},
+                loads=(SurfaceLoad("zmax", pressure=lambda x: 1.0 + x[1]),))
+
+
+def rel(a, b):
+    return np.abs(a - b).max() / np.abs(b).max()
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("law, tie", [("frictionless", "bilateral"), ("adhesive", "bonded")])
+def test_compression_equals_the_tie(dim, law, tie):
+    """Pressed everywhere, frictionless = bilateral and adhesive = bonded, for every ρ."""
+    base = compressed(dim)
+    ref = solver.solve(replace(base, law=tie))
+    h = contact.solve(replace(base, law=law)).ops.h
+    for rho in RHOS:
+        res = contact.solve(replace(base, law=law, rho_n=rho / h, rho_t=rho / h))
+        step = res.steps[-1]
+        assert np.all(step.status == (1 if law == "adhesive" else 2))
+        assert rel(step.U, ref.U) < 1e-8
+        assert rel(step.pressure, ref.pressure) < 1e-8  # naive space: dofs = edges
+        if law == "adhesive":
+            t = res.ops.tangents  # (k, dim): the traction's components
+            assert rel(step.traction, (t @ ref.traction).T) < 1e-8
+        assert step.newton.iterations <= 15
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("law", ["frictionless", "coulomb", "adhesive"])
+def test_tension_opens_the_interface(law, dim):
+    """Pulled apart: λ = 0 everywhere and u is that of two bodies with a free cut."""
+    if dim == 2:
+        s = replace(strip(n=3), loads=(SurfaceLoad("xmax", traction=(0.1, 0.0)),),
+                    displacements=(clamped("ymin"),
+                                   Displacement("ymax", {"x": 0.0, "y": 0.1})))
+    else:
+        s = cube(top={"x": 0.0, "y": 0.0, "z": 0.1},
+                 loads=(SurfaceLoad("xmax", traction=(0.1, 0.0, 0.0)),))
+    res = contact.solve(replace(s, law=law, friction=0.5))
+    step = res.steps[-1]
+    assert np.all(step.pressure == 0) and np.all(step.status == 0)
+    assert np.all(step.gap < 0)
+    pb = res.problem
+    free_cut, _, _ = saddle.solve(pb.K, pb.B[:0], pb.F, pb.D, pb.g)
+    assert rel(step.U, free_cut) < 1e-10
+    u_minus, u_plus = split_fields(pb.V, step.U)
+    top = pb.mesh.p[dim - 1] > 0.99
+    assert np.allclose(u_plus[dim - 1, top], 0.1)
+
+
+def partial(rho=None, n=6, delta=0.01, dim=2):
+    """Top turned: pressed near x = 0 (3D: y = 0), opened near x = 1."""
+    if dim == 3:
+        return cube(n=(1, 4, 5), rho_n=rho, top={
+            "x": 0.0, "y": 0.0, "z": lambda x: -delta * (1 - 2 * x[1])})
+    s = strip(n=n)
+    return replace(s, law="frictionless", loads=(), rho_n=rho, displacements=(
+        clamped("ymin"), Displacement("ymax", {"x": 0.0, "y": lambda x: -delta * (1 - 2 * x[0])})))
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_partial_contact_signorini_at_every_dof(dim):
+    h = contact.solve(partial(dim=dim)).ops.h
+    for rho in RHOS:
+        st = contact.solve(partial(rho / h, dim=dim)).steps[-1]
+        scale = st.pressure.max() * np.abs(st.gap).max()
+        assert set(st.status) == {0, 2}  # open and (frictionless) sliding points
+        assert st.pressure.min() >= 0 and st.gap.max() <= 1e-12 * np.abs(st.gap).max()
+        assert np.abs(st.pressure * st.gap).max() <= 1e-12 * scale
+        assert st.newton.iterations <= 15
+
+
+def block(n=3, mu=0.5, p=1.0, delta=0.0, tau=0.0, law="coulomb", name="block"):
+    """ν = 0 block: bottom clamped, top moved by δ in x under a pressure p.  With ν = 0
+    the exact field is uniform shear τ and compression p in each body plus a slip s
+    on Γ (u_x(top) = τ/G + s = δ); the sides carry the shear τ of that field."""
+    loads = (SurfaceLoad("ymax", pressure=p), SurfaceLoad("xmax", traction=(0.0, tau)),
+             SurfaceLoad("xmin", traction=(0.0, -tau)))
+    return Scene(Box((n, n), "quad"), plane((0, 0.5), (0, 1)), Material(E=1.0, nu=0.0),
+                 displacements=(clamped("ymin"), Displacement("ymax", {"x": delta})),
+                 loads=loads, law=law, friction=mu, name=name)
+
+
+def test_block_sticks_then_slides():
+    """τ = Gδ (stick) while Gδ < μp; then τ = μp and s = δ - μp/G."""
+    G, mu, p = 0.5, 0.5, 1.0
+    for delta in (0.5, 0.9, 1.5, 3.0):
+        tau = min(G * delta, mu * p)
+        st = contact.solve(block(mu=mu, p=p, delta=delta, tau=tau)).steps[-1]
+        slip = delta - tau / G
+        assert np.all(st.status == (1 if slip == 0 else 2))
+        assert np.allclose(st.pressure, p, rtol=1e-10)
+        assert np.allclose(st.traction, tau, rtol=1e-10)
+        assert np.allclose(-st.slip, slip, atol=1e-10)  # [[u]] = u⁻ - u⁺
+
+
+def test_load_history_press_shear_unload():
+    """δ: 0 → 2.5 (slip) → 0 (elastic unloading, then reverse slip); by hand, μp = 0.5,
+    G = 0.5: slip while |τ| = μp, s = δ - τ/G; the retained slip is 1."""
+    G, mu, p = 0.5, 0.5, 1.0
+    path = [  # δ, τ, status, slip: stick, slip, elastic unloading, reverse slip
+        (0.0, 0.0, 1, 0.0), (0.5, 0.25, 1, 0.0), (1.5, 0.5, 2, 0.5), (2.5, 0.5, 2, 1.5),
+        (1.5, 0.0, 1, 1.5), (0.75, -0.375, 1, 1.5), (0.0, -0.5, 2, 1.0)]
+    for d, t, status, slip in path:  # the hand path is consistent
+        assert abs(t) <= mu * p and slip == d - t / G
+    states = [block(mu=mu, p=p, delta=d, tau=t, name=f"delta={d}") for d, t, _, _ in path]
+    res = contact.solve(states[0], history=states)
+    for (d, t, status, slip), st in zip(path, res.steps):
+        assert st.load == f"delta={d}"
+        assert np.all(st.status == status), (d, st.status)
+        assert np.allclose(st.traction, t, atol=1e-10)
+        assert np.allclose(-st.slip, slip, atol=1e-10)
+    assert np.allclose(-res.steps[-1].slip, 1.0, atol=1e-10)
+    assert max(st.newton.iterations for st in res.steps) <= 15
+
+
+@pytest.mark.parametrize("phi", [0.0, 0.6])
+def test_block_3d_slides_along_the_imposed_direction(phi):
+    """δ at angle φ to x: the slip and the traction μp point along δ."""
+    G, mu, p, delta = 0.5, 0.5, 1.0, 2.0
+    tau, d = mu * p, np.array([np.cos(phi), np.sin(phi)])
+    loads = [SurfaceLoad("zmax", pressure=p)]
+    for face, k in (("xmax", 0), ("ymax", 1)):
+        t = [0.0, 0.0, tau * d[k]]
+        loads += [SurfaceLoad(face, traction=tuple(t)),
+                  SurfaceLoad(face.replace("max", "min"), traction=(0.0, 0.0, -t[2]))]
+    s = cube(law="coulomb", mu=mu, nu=0.0, loads=loads,
+             top={"x": delta * d[0], "y": delta * d[1]})
+    res = contact.solve(s)
+    st = res.steps[-1]
+    t = res.ops.tangents[:, :2]  # tangents in the plane z = const
+    assert np.all(st.status == 2)
+    assert np.allclose(st.pressure, p, rtol=1e-9)
+    assert np.allclose(st.traction @ t, tau * d, atol=1e-9)
+    assert np.allclose(-st.slip @ t, (delta - tau / G) * d, atol=1e-9)
+
+
+def slanted(theta, mu, dim):
+    """Uniaxial compression σ = 1 across a plane Γ at angle θ to the horizontal."""
+    c, s = np.cos(theta), np.sin(theta)
+    if dim == 2:
+        corner = lambda x: (x[0] < 1e-12) & (x[1] < 1e-12)  # noqa: E731
+        return Scene(Box((5, 5), "quad"), plane((0.5, 0.45), (-s, c)), Material(E=1.0, nu=0.3),
+                     displacements=(Displacement("ymin", {"y": 0.0}),
+                                    Displacement(corner, {"x": 0.0})),
+                     loads=(SurfaceLoad("ymax", pressure=1.0),), law="coulomb", friction=mu)
+    corner = lambda x: (x[0] < 1e-12) & (x[1] < 1e-12)  # noqa: E731
+    other = lambda x: (x[0] > 1 - 1e-12) & (x[1] < 1e-12) & (x[2] < 1e-12)  # noqa: E731
+    return Scene(Box((3, 1, 3), "hex"), plane((0.5, 0.5, 0.45), (-s, 0, c)),
+                 Material(E=1.0, nu=0.3),
+                 displacements=(Displacement("zmin", {"z": 0.0}),
+                                Displacement(corner, {"x": 0.0, "y": 0.0}),
+                                Displacement(other, {"y": 0.0})),
+                 loads=(SurfaceLoad("zmax", pressure=1.0),), law="coulomb", friction=mu)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("mu", [0.6, 1.0, 2.0])
+def test_slanted_interface_sticks(mu, dim):
+    """Uniaxial σ across Γ at θ (tan θ < μ): p = σcos²θ, |r_τ| = σ cosθ sinθ,
+    |Λ| = tanθ/μ, no slip."""
+    theta, sigma = np.deg2rad(25.0), 1.0
+    c, s = np.cos(theta), np.sin(theta)
+    st = contact.solve(slanted(theta, mu, dim)).steps[-1]
+    assert np.all(st.status == 1)
+    assert np.allclose(st.pressure, sigma * c**2, rtol=1e-9)
+    assert np.allclose(np.linalg.norm(st.traction, axis=1), sigma * c * s, rtol=1e-9)
+    assert np.allclose(np.linalg.norm(st.Lambda, axis=1), np.tan(theta) / mu, rtol=1e-9)
+    assert np.abs(st.slip).max() < 1e-12
+
+
+def test_bad_input_is_refused():
+    base = held_top(strip(n=3))
+    with pytest.raises(ValueError, match="friction"):
+        replace(base, law="coulomb", friction=-0.1)
+    for key in ("rho_n", "rho_t"):
+        with pytest.raises(ValueError, match=key):
+            replace(base, law="coulomb", **{key: 0.0})
+    with pytest.raises(ValueError, match="law must be one of"):
+        replace(base, law="glue")
+    with pytest.raises(ValueError, match="scene law must be one of"):
+        contact.solve(base)  # a tie law
+    with pytest.raises(ValueError, match="history must be a non-empty"):
+        contact.solve(replace(base, law="frictionless"), history=())
+    with pytest.raises(ValueError, match=r"history\[1\]"):
+        contact.solve(replace(base, law="frictionless"), history=(1.0, "x"))
+    with pytest.raises(ValueError, match="method"):
+        contact.solve(replace(base, law="frictionless"), method="penalty")
+    moved = replace(base, law="frictionless", displacements=base.displacements
+                    + (Displacement("xmin", {"x": 0.0}),))
+    with pytest.raises(ValueError, match=r"history\[1\]: a load state must keep"):
+        contact.solve(replace(base, law="frictionless"), history=(1.0, moved))
+
+
+def test_non_convergence_raises_a_clear_error():
+    with pytest.raises(ContactConvergenceError, match=r"did not converge in 1 iterations.*"
+                       r"equilibrium .* contact .* friction"):
+        contact.solve(partial(), max_iter=1)
+
+
+def test_a_floating_side_is_refused():
+    with pytest.raises(ValueError, match="singular"):
+        contact.solve(replace(strip(n=3), law="frictionless"))
+
+
+def tilted_block(mu, delta, n):
+    """Strip pressed by p = 1 whose top is moved by δ in x: friction tilts the pressure."""
+    return replace(strip(n=n), law="coulomb", friction=mu,
+                   loads=(SurfaceLoad("ymax", pressure=1.0),),
+                   displacements=(clamped("ymin"), Displacement("ymax", {"x": delta})))
+
+
+def test_fixed_point_agrees_with_newton_where_it_converges():
+    s = tilted_block(mu=0.5, delta=2.0, n=4)
+    a = contact.solve(s).steps[-1]
+    b = contact.solve(s, method="fixed_point").steps[-1]
+    assert set(a.status) == {0, 1, 2}  # open, stick and slip points
+    assert np.array_equal(a.status, b.status)
+    assert rel(b.U, a.U) < 1e-9 and rel(b.traction, a.traction) < 1e-9
+
+
+def test_fixed_point_alternates_and_stops_with_a_wrong_force():
+    """μ = 30: the frozen threshold μλ of the frictionless first pass makes the next pass
+    alternate between two states; Newton finds the stuck solution (= the bonded one)."""
+    s = tilted_block(mu=30.0, delta=0.5, n=2)
+    res = contact.solve(s)
+    st, w = res.steps[-1], res.ops.w
+    bonded = solver.solve(replace(s, law="bonded"))
+    assert np.all(st.status == 1) and rel(st.U, bonded.U) < 1e-10
+    assert np.all(np.abs(st.traction[:, 0]) < 30.0 * st.pressure)  # inside the cone
+    assert st.newton.iterations <= 3
+    force = w @ st.traction[:, 0]
+    assert abs(force - 0.0872116) < 1e-6
+    with pytest.raises(ContactConvergenceError, match="alternates between two states") as e:
+        contact.solve(s, method="fixed_point")
+    assert "changed status more than once: dofs" in str(e.value.__cause__)
+    statuses = e.value.statuses
+    assert np.array_equal(statuses[-1], statuses[-3]) and np.array_equal(statuses[-2],
+                                                                         statuses[-4])
+    assert not np.array_equal(statuses[-1], statuses[-2])
+    _, lam, T = e.value.last[:3]
+    wrong = w @ (e.value.thresholds[-1] * T[:, 0])
+    assert abs(wrong - force) > 100 * abs(force)  # the force it would stop with
+
+
+@pytest.mark.parametrize("cell, space", [("tri", "winner"), ("tri", "vital"),
+                                         ("tet", "vital")])
+def test_stabilised_spaces_give_the_tie(cell, space):
+    """The same prolongation P carries λ and Λ: contact on a stable space = its tie."""
+    base = compressed(2 if cell == "tri" else 3)
+    base = replace(base, mesh=replace(base.mesh, cell=cell), space=space)
+    for law, tie in (("frictionless", "bilateral"), ("adhesive", "bonded")):
+        ref = solver.solve(replace(base, law=tie))
+        res = contact.solve(replace(base, law=law))
+        st = res.steps[-1]
+        assert rel(st.U, ref.U) < 1e-8
+        assert rel(res.problem.P @ st.pressure, ref.pressure) < 1e-8
+
+
+def test_dependent_multipliers_are_refused():
+    base = replace(compressed(3), mesh=Box((1, 2, 3), "tet"), space="naive")
+    with pytest.raises(ValueError, match="space='vital'"):
+        contact.solve(replace(base, law="adhesive"))
+
+
+def test_scene_file_keys(tmp_path):
+    from skxfem.scenefile import load_scene
+
+    text = """
+[mesh]
+box = {n = [3, 3], cell = "quad"}
+[levelset]
+plane = {point = [0, 0.5], normal = [0, 1]}
+[[displacement]]
+boundary = "ymin"
+kind = "clamped"
+[[displacement]]
+boundary = "ymax"
+x = 0.0
+[[load]]
+boundary = "ymax"
+pressure = 1.0
+[interface]
+law = "coulomb"
+friction = 0.3
+rho_n = 5.0
+steps = [0.5, 1.0]
+"""
+    f = tmp_path / "press.toml"
+    f.write_text(text)
+    s = load_scene(f)
+    assert (s.law, s.friction, s.rho_n, s.rho_t, s.steps) == ("coulomb", 0.3, 5.0, None,
+                                                               (0.5, 1.0))
+    res = contact.solve(s)
+    assert [st.load for st in res.steps] == [0.5, 1.0]
+    assert np.allclose(res.steps[1].pressure, 2 * res.steps[0].pressure)
+    for old, bad in (("friction = 0.3", "friction = -0.1"), ("rho_n = 5.0", "rho_t = 0"),
+                     ("steps = [0.5, 1.0]", "steps = []"), ('law = "coulomb"', 'law = "glue"')):
+        f.write_text(text.replace(old, bad))
+        with pytest.raises(ValueError, match=r"\[interface\] " + bad.split()[0]):
+            load_scene(f)
+
+
+def roughness(res):
+    """Largest deviation of the edge pressures from a quadratic fit in (x, y)."""
+    p = res.problem.P @ res.steps[-1].pressure
+    x, y = res.problem.cut.points[:2]
+    A = np.stack([np.ones_like(y), y, y**2, x, x**2, x * y], axis=1)
+    return np.abs(p - A @ np.linalg.lstsq(A, p, rcond=None)[0]).max()
+
+
+def test_lbb_story_holds_through_the_contact_solver():
+    """The paper's plate on prisms, adhesive (its top pressure only; the bottom clamped
+    holds both halves): naive oscillates, vital is smooth, each equal to its bonded tie;
+    the iterations stay ≤ 15 over ρ_n."""
+    from skxfem.scenes import paper_plate
+
+    rough = {}
+    for space in ("naive", "vital"):
+        s = replace(paper_plate(n=4, cell="prism", space=space),
+                    displacements=(clamped("zmin"),))
+        ref = solver.solve(s)
+        res = contact.solve(replace(s, law="adhesive"))
+        assert rel(res.steps[-1].U, ref.U) < 1e-8
+        rough[space] = roughness(res)
+    assert rough["naive"] > 0.5 and rough["vital"] < 0.1, rough
+    for rho in RHOS:
+        res = contact.solve(replace(s, law="adhesive", rho_n=rho / res.ops.h))
+        assert res.steps[-1].newton.iterations <= 15
+
+
+def test_contact_zone_edge_converges():
+    """The edge of the contact zone lies between the last closed and the first open dof;
+    these brackets nest as the mesh is refined and hold the edge of a fine mesh (n = 64)."""
+    brackets = []
+    for n in (8, 16, 32, 64):
+        res = contact.solve(partial(n=n))
+        x = res.ops.points[0]
+        order = np.argsort(x)
+        closed = res.steps[-1].status[order] > 0
+        k = np.flatnonzero(closed).max()
+        assert closed[:k + 1].all() and not closed[k + 1:].any()  # one contact zone
+        brackets.append((x[order][k], x[order][k + 1]))
+    fine = np.mean(brackets[-1])
+    for (a, b), (c, d) in zip(brackets, brackets[1:]):
+        assert a - 1e-12 <= c and d <= b + 1e-12  # nested
+        assert a <= fine <= b
+    assert brackets[-1][1] - brackets[-1][0] < 0.02
+
+
+def test_coulomb_does_not_depend_on_rho():
+    """Open, stick and slip points at once: the same solution for ρ_n, ρ_τ over 1e-3..1e6
+    (× E/h, × 1/h), in at most 15 iterations."""
+    s = tilted_block(mu=0.5, delta=2.0, n=4)
+    first = contact.solve(s)
+    ref, h = first.steps[-1], first.ops.h
+    assert set(ref.status) == {0, 1, 2}
+    for rho_n in RHOS:
+        for rho_t in RHOS:
+            st = contact.solve(replace(s, rho_n=rho_n / h, rho_t=rho_t / h)).steps[-1]
+            assert np.array_equal(st.status, ref.status)
+            assert rel(st.U, ref.U) < 1e-8 and rel(st.traction, ref.traction) < 1e-8
+            assert st.newton.iterations <= 15

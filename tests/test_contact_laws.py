@@ -1,0 +1,69 @@
+"""The local laws of skxfem.contact_laws: values and Jacobians against finite differences."""
+import numpy as np
+import pytest
+
+from skxfem.contact_laws import (
+    OPEN,
+    SLIP,
+    STICK,
+    ball_projection,
+    indicator,
+    normal_update,
+    status,
+)
+
+
+def test_normal_update_is_signorini():
+    """λ - χ(λ - ρ d)(λ - ρ d) = 0 holds exactly for the three Signorini states."""
+    rho = 7.0
+    lam = np.array([-2.0, 0.0, 0.0])
+    d = np.array([0.0, -1.0, 0.0])  # contact, open, grazing
+    value, _ = normal_update(lam - rho * d)
+    assert np.array_equal(lam - value, np.zeros(3))
+    # a violation in each direction leaves a residual
+    value, _ = normal_update(np.array([1.0, -1.0]) - rho * np.array([0.0, 0.1]))
+    assert np.all(np.abs(np.array([1.0, -1.0]) - value) > 0)
+
+
+def test_normal_jacobian_matches_finite_differences():
+    g = np.random.default_rng(0).uniform(-5, 5, 200)
+    g = g[np.abs(g) > 1e-3]  # away from the kink
+    h = 1e-7
+    fd = (normal_update(g + h)[0] - normal_update(g - h)[0]) / (2 * h)
+    assert np.allclose(normal_update(g)[1], fd, atol=1e-8)
+    assert set(np.unique(normal_update(g)[1])) == {0.0, 1.0}  # both branches sampled
+    assert indicator(0.0) == 0.0  # χ(0) = 0 as in the paper
+
+
+@pytest.mark.parametrize("k", [1, 2])
+def test_ball_jacobian_matches_finite_differences(k):
+    rng = np.random.default_rng(k)
+    g = rng.uniform(-2.5, 2.5, (300, k))
+    r = np.linalg.norm(g, axis=1)
+    g = g[np.abs(r - 1) > 1e-3]
+    P, DP = ball_projection(g)
+    assert np.all(np.linalg.norm(P, axis=1) <= 1 + 1e-14)
+    inside = np.linalg.norm(g, axis=1) < 1
+    assert inside.any() and (~inside).any()
+    assert np.allclose(P[inside], g[inside])
+    h = 1e-7
+    for b in range(k):
+        e = np.zeros(k)
+        e[b] = h
+        fd = (ball_projection(g + e)[0] - ball_projection(g - e)[0]) / (2 * h)
+        assert np.allclose(DP[:, :, b], fd, atol=1e-7)
+
+
+def test_ball_projection_keeps_direction_outside():
+    P, _ = ball_projection(np.array([[0.0, -4.0], [3.0, 4.0]]))
+    assert np.allclose(P, [[0.0, -1.0], [0.6, 0.8]])
+
+
+def test_status():
+    g_n = np.array([0.0, -1.0, -1.0, 2.0])
+    g_t = np.array([[5.0], [0.9], [-1.1], [0.0]])
+    assert status(g_n, g_t, "coulomb").tolist() == [OPEN, STICK, SLIP, OPEN]
+    assert status(g_n, None, "frictionless").tolist() == [OPEN, SLIP, SLIP, OPEN]
+    assert status(g_n, None, "adhesive").tolist() == [OPEN, STICK, STICK, OPEN]
+    with pytest.raises(ValueError, match="law must be one of"):
+        status(g_n, None, "glue")

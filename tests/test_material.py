@@ -1,0 +1,43 @@
+"""skxfem.material: Hooke's law on scikit-fem's elasticity model."""
+import numpy as np
+import pytest
+from skfem import Basis, ElementTriP1, ElementVector, MeshTri1
+
+from skxfem.material import Material, signed_stiffness_form, stiffness_form
+
+
+def test_lame_constants_plane_strain_and_stress():
+    m = Material(E=2.0, nu=0.25)
+    lam, mu = m.lame(3)
+    assert (lam, mu) == pytest.approx((2 * 0.25 / (1.25 * 0.5), 2 / 2.5))
+    assert m.lame(2) == m.lame(3)                      # plane strain: the 3D constants
+    lam_s, mu_s = Material(E=2.0, nu=0.25, plane="stress").lame(2)
+    assert mu_s == pytest.approx(mu) and lam_s == pytest.approx(2 * mu * lam / (lam + 2 * mu))
+
+
+def test_stress_of_a_uniaxial_strain():
+    """ε = e₁⊗e₁: σ₁₁ = λ + 2μ, σ₂₂ = λ, σ₁₂ = 0."""
+    m = Material(E=1.0, nu=0.3)
+    lam, mu = m.lame(2)
+    eps = np.zeros((2, 2, 1))
+    eps[0, 0] = 1.0
+    sig = m.stress(eps, 2)[:, :, 0]
+    assert sig == pytest.approx(np.array([[lam + 2 * mu, 0], [0, lam]]))
+
+
+def test_signed_form_at_h_one_is_the_stiffness():
+    basis = Basis(MeshTri1().refined(2), ElementVector(ElementTriP1()))
+    m = Material(E=3.0, nu=0.2)
+    K = stiffness_form(m, 2).assemble(basis)
+    KH = signed_stiffness_form(m, 2).assemble(basis, H=np.ones(basis.dx.shape))
+    assert abs(K - KH).max() == 0.0
+    assert abs(K - K.T).max() < 1e-14 and np.allclose(K @ np.tile([1.0, 0.0], basis.N // 2), 0)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"E": 0.0}, "E must be a positive"), ({"nu": 0.5}, "nu must satisfy"),
+    ({"plane": "shell"}, "plane must be"),
+])
+def test_bad_material(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        Material(**kwargs)

@@ -1,0 +1,94 @@
+"""The assembled interface problem (skxfem/problem.py): one value for every solver."""
+import dataclasses
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+import skxfem.lbb as lbb
+import skxfem.solver as solver
+from skxfem.cut import cut as cut_mesh
+from skxfem.enrich import jump_matrix, space, stiffness
+from skxfem.multipliers import coupling, interface_rule
+from skxfem.problem import COUPLING, assemble, check_law, constrained_dofs
+from skxfem.quadrature import cell_rule
+from skxfem.scene import resolve_mesh
+from skxfem.scenes import paper_plate, strip
+from skxfem.stabilised import multiplier_space
+
+
+def _spy(monkeypatch, module, seen):
+    """Record every Problem that ``module`` assembles."""
+    def spy(scene, law=None):
+        p = assemble(scene, law)
+        seen.append(p)
+        return p
+    monkeypatch.setattr(module, "assemble", spy)
+
+
+def _same(a, b):
+    return (a - b).count_nonzero() == 0 if sp.issparse(a) else np.array_equal(a, b)
+
+
+def test_solve_and_inf_sup_see_the_same_problem(monkeypatch):
+    """Issue 8's acceptance test: with a non-default quadrature_order the tie
+    solve and the inf-sup test see one K, one B and one set of constrained dofs,
+    and the K is the one of the scene's order (not the default's)."""
+    scene = dataclasses.replace(strip(3, cell="quad", space="vital"), quadrature_order=4)
+    seen, used = [], {}
+    _spy(monkeypatch, solver, seen)
+    _spy(monkeypatch, lbb, seen)
+    inner = lbb.inf_sup_constant
+
+    def record(A, B, M, **kw):
+        used.update(A=A, B=B)
+        return inner(A, B, M, **kw)
+
+    monkeypatch.setattr(lbb, "inf_sup_constant", record)
+    solver.solve(scene)
+    lbb.inf_sup(scene, law=scene.law)
+    assert len(seen) == 2
+    s, i = seen
+    for name in ("K", "B", "D", "g", "P", "F", "J"):
+        assert _same(getattr(s, name), getattr(i, name)), name
+    mesh = resolve_mesh(scene)
+    V = space(mesh, cut_mesh(mesh, scene.levelset), 4)
+    assert s.V.basis.X.shape == cell_rule(mesh, 4)[0].shape != cell_rule(mesh)[0].shape
+    assert _same(s.K, stiffness(V, scene.material))
+    free = np.setdiff1d(np.arange(s.V.N), s.D)
+    assert _same(used["B"], s.B[:, free])
+
+
+@pytest.mark.parametrize("law", ["bonded", "bilateral"])
+def test_fields_agree_with_the_steps(law):
+    """Each field is what the step modules give for the scene."""
+    scene = paper_plate(3, cell="prism", space="vital")
+    p = assemble(scene, law)
+    mesh = resolve_mesh(scene)
+    c = cut_mesh(mesh, scene.levelset)
+    V = space(mesh, c)
+    rule = interface_rule(mesh, c)
+    assert p.law == law and p.ncomp == (3 if law == "bonded" else 1)
+    assert _same(p.K, stiffness(V, scene.material))
+    D, g = constrained_dofs(V, scene, mesh)
+    assert _same(p.D, D) and _same(p.g, g)
+    assert _same(p.J, jump_matrix(V, rule.cells, rule.ref))
+    assert _same(p.B, (p.P.T @ coupling(V, rule, law)).tocsr())
+    assert p.P.shape[0] == p.ncomp * c.edge_ids.size
+    assert _same(p.space.P, multiplier_space("vital", mesh, c).P)
+    assert set(p.timings) >= {"cut", "space", "enrich", "stiffness", "load", "interface"}
+    assert all(t >= 0 for t in p.timings.values())
+
+
+def test_law_defaults_to_the_scene_and_unknown_laws_are_refused():
+    scene = strip(3, cell="tri", law="bilateral")
+    assert assemble(scene).law == "bilateral" and assemble(scene, "bonded").ncomp == 2
+    assert check_law("bonded") in COUPLING
+    with pytest.raises(ValueError, match="law must be one of"):
+        assemble(scene, "sticky")
+
+
+def test_problem_is_frozen():
+    p = assemble(strip(3, cell="tri"))
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        p.law = "bilateral"

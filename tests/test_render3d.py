@@ -1,0 +1,45 @@
+"""skxfem.render3d: 3D renders with pyvista, off-screen."""
+import numpy as np
+import pytest
+from matplotlib.colors import to_rgba
+
+from skxfem.cut import cut
+from skxfem.levelset import plane
+from skxfem.meshes import box
+from skxfem.plotting import COLORS
+from skxfem.render3d import plot_cut_3d
+
+
+def test_cut_3d_renders_the_interface():
+    pytest.importorskip("pyvista")
+    m = box(2, "hex")
+    fig = plot_cut_3d(m, cut(m, plane((0.5, 0.5, 0.6), (1, 1, 1))), window_size=(320, 240))
+    image = fig.axes[0].images[0].get_array()
+    assert image.shape == (240, 320, 3)
+    gamma = np.array(to_rgba(COLORS["gamma"])[:3]) * 255
+    near = np.abs(image.astype(float) - gamma).max(axis=2) < 40
+    assert near.mean() > 0.02, "the interface (drawn in COLORS['gamma']) must be visible"
+
+
+def test_cut_3d_refuses_2d():
+    m = box(2, "quad")
+    with pytest.raises(ValueError, match="3D mesh"):
+        plot_cut_3d(m, cut(m, plane((0.5, 0.4), (0, 1))))
+
+
+def test_result_3d_renders_both_sides_and_the_pressure():
+    pytest.importorskip("pyvista")
+    from skxfem.render3d import plot_result_3d
+    from skxfem.scenes import paper_plate, strip
+    from skxfem.solver import solve
+
+    fig = plot_result_3d(solve(paper_plate(2, "hex")), window_size=(320, 240))
+    assert len(fig.axes) == 2
+    left = fig.axes[0].images[0].get_array().astype(float)
+    assert left.shape == (240, 320, 3)
+    # both sides are drawn in their (shaded) colours: Ω⁻ blue, Ω⁺ orange
+    bluish = (left[..., 2] - left[..., 0] > 30).mean()
+    orange = (left[..., 0] - left[..., 2] > 30).mean()
+    assert bluish > 0.05 and orange > 0.05, (bluish, orange)
+    with pytest.raises(ValueError, match="3D result"):
+        plot_result_3d(solve(strip(2, "quad")))
