@@ -1,8 +1,7 @@
 """Exercise 07: the contact and friction updates of the paper's eq. 6-9 (see README.md).
 
-Every function works point by point on arrays.  A tangential vector field has
-its components first: shape (k, ...) with k = 1 or 2 tangential components
-(skxfem's layout).  You may import numpy; not skxfem.contact.
+Every function works on many law points at once: one point per row.  You may
+import numpy; not skxfem.contact_laws or skxfem.contact (they hold the answers).
 """
 import numpy as np  # noqa: F401  (you will need it)
 
@@ -12,90 +11,70 @@ def augmented_multiplier(lam, d_n, rho_n):
 
     Parameters
     ----------
-    lam : float or array, the contact multiplier λ (≤ 0 in contact).
-    d_n : float or array, the normal gap d_n = [[u]]·n (≤ 0 when admissible).
+    lam : (n,) the contact multipliers λ (≤ 0 in contact).
+    d_n : (n,) the normal gaps d_n = [[u]]·n (≤ 0 when admissible).
     rho_n : float > 0, the augmentation parameter.
 
     Returns
     -------
-    ndarray or float, like ``lam``.
+    ndarray
+        (n,) g_n.
 
     Examples
     --------
-    >>> float(augmented_multiplier(-1.0, 0.5, 2.0))
-    -2.0
+    >>> augmented_multiplier(np.array([-1.0]), np.array([0.5]), 2.0).tolist()
+    [-2.0]
     """
     raise NotImplementedError("augmented_multiplier: not written yet (exercise 07, see README.md)")
 
 
-def contact_update(g_n):
-    """χ(g_n) g_n, the value eq. 6 gives λ: g_n in contact (g_n < 0), 0 when open.
+def normal_update(g):
+    """The contact update χ(g) g (eq. 6) and its generalised derivative.
 
-    χ is the indicator function of ℝ⁻: χ(x) = 1 if x < 0 and 0 if x ≥ 0.
-
-    Examples
-    --------
-    >>> contact_update(np.array([-2.0, 0.5])).tolist()
-    [-2.0, 0.0]
-    """
-    raise NotImplementedError("contact_update: not written yet (exercise 07, see README.md)")
-
-
-def contact_derivative(g_n):
-    """The generalised derivative of g_n ↦ χ(g_n) g_n: 1 where g_n < 0, 0 where g_n ≥ 0.
-
-    This is the Newton Jacobian of the contact term: the active branch (contact)
-    and the inactive branch (open) differ.
-
-    Examples
-    --------
-    >>> contact_derivative(np.array([-2.0, 0.5])).tolist()
-    [1.0, 0.0]
-    """
-    raise NotImplementedError("contact_derivative: not written yet (exercise 07, see README.md)")
-
-
-def project_unit_ball(g):
-    """P_B(0,1)(g): the projection onto the unit ball (eq. 9c).
-
-    g if |g| ≤ 1 (adherence), g/|g| otherwise (sliding).
+    χ is the indicator of ℝ⁻: χ(x) = 1 if x < 0, 0 if x ≥ 0.  The derivative of
+    χ(g) g is χ(g) away from the kink g = 0 (1 in contact, 0 where the
+    interface is open); at g = 0 any slope in [0, 1] is a generalised
+    derivative (skxfem takes 1).
 
     Parameters
     ----------
-    g : (k, ...) array, the augmented semi-multiplier of friction g_τ = Λ + ρ_τ v_τ.
+    g : (n,) augmented multipliers g_n.
 
     Returns
     -------
-    ndarray
-        Shape (k, ...).
+    value, slope : (n,) arrays
+        χ(g) g and d(χ(g) g)/dg.
 
     Examples
     --------
-    >>> project_unit_ball(np.array([[0.3, 3.0], [0.4, 4.0]])).tolist()
-    [[0.3, 0.6], [0.4, 0.8]]
+    >>> value, slope = normal_update(np.array([-2.0, 3.0]))
+    >>> value.tolist(), slope.tolist()
+    ([-2.0, 0.0], [1.0, 0.0])
     """
-    raise NotImplementedError("project_unit_ball: not written yet (exercise 07, see README.md)")
+    raise NotImplementedError("normal_update: not written yet (exercise 07, see README.md)")
 
 
-def project_unit_ball_derivative(g):
-    """The generalised derivative of P_B(0,1) at g: a (k, k) matrix per point.
+def ball_projection(g):
+    """The projection P_B(0,1)(g) onto the unit ball (eq. 9c) and its Jacobian.
 
-    I inside the ball (|g| < 1); (I - ĝ ĝᵀ)/|g| outside, ĝ = g/|g| (take the
-    outside formula at |g| = 1).
+    P(g) = g for |g| ≤ 1 (adherence), g/|g| otherwise (sliding); its
+    generalised Jacobian is I for |g| ≤ 1 and (I - ĝ ĝᵀ)/|g| for |g| > 1,
+    ĝ = g/|g|.
 
     Parameters
     ----------
-    g : (k, ...) array.
+    g : (n, k) augmented semi-multipliers g_τ = Λ + ρ_τ v_τ, one per row
+        (k = 1 in 2D, 2 in 3D).
 
     Returns
     -------
-    ndarray
-        Shape (k, k, ...): entry [i, j] is ∂P_i/∂g_j.
+    P : (n, k) the projections.
+    DP : (n, k, k) the Jacobians, DP[i, a, b] = ∂P_a/∂g_b at point i.
 
     Examples
     --------
-    >>> project_unit_ball_derivative(np.array([2.0, 0.0])).tolist()
-    [[0.0, 0.0], [0.0, 0.5]]
+    >>> P, DP = ball_projection(np.array([[0.5], [-3.0]]))
+    >>> P.ravel().tolist(), DP.ravel().tolist()
+    ([0.5, -1.0], [1.0, 0.0])
     """
-    raise NotImplementedError(
-        "project_unit_ball_derivative: not written yet (exercise 07, see README.md)")
+    raise NotImplementedError("ball_projection: not written yet (exercise 07, see README.md)")

@@ -4,6 +4,6 @@ import numpy as np
 EXPECT = "χ(g_n) = 1 for g_n < 0"
 
 
-def contact_update(g_n):
-    g_n = np.asarray(g_n, float)
-    return np.where(g_n > 0, g_n, 0.0)
+def normal_update(g):
+    g = np.asarray(g, float)
+    return np.where(g > 0, g, 0.0), (g > 0).astype(float)

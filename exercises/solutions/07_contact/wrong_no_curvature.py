@@ -1,12 +1,11 @@
-"""Wrong: the derivative outside the ball taken as I/|g|, the -ĝĝᵀ term forgotten."""
+"""Wrong: the Jacobian outside the ball taken as I/|g|, the -ĝĝᵀ term forgotten."""
 import numpy as np
 
 EXPECT = "radial direction"
 
 
-def project_unit_ball_derivative(g):
+def ball_projection(g):
     g = np.asarray(g, float)
-    k = g.shape[0]
-    norm = np.linalg.norm(g, axis=0)
-    eye = np.eye(k).reshape((k, k) + (1,) * (g.ndim - 1))
-    return eye / np.maximum(norm, 1.0)
+    n, k = g.shape
+    norm = np.maximum(np.linalg.norm(g, axis=1), 1.0)
+    return g / norm[:, None], np.eye(k)[None] / norm[:, None, None]

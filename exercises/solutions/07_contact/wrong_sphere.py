@@ -4,6 +4,9 @@ import numpy as np
 EXPECT = "inside the unit ball"
 
 
-def project_unit_ball(g):
+def ball_projection(g):
     g = np.asarray(g, float)
-    return g / np.linalg.norm(g, axis=0)
+    n, k = g.shape
+    norm = np.linalg.norm(g, axis=1)
+    gh = g / norm[:, None]
+    return gh, (np.eye(k) - gh[:, :, None] * gh[:, None, :]) / norm[:, None, None]
