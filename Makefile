@@ -48,7 +48,7 @@ figures: $(STAMP)
 	$(BIN)/python -m skxfem.reproduce --quick --out out/
 
 test: $(STAMP)
-	$(BIN)/ruff check skxfem tests
+	$(BIN)/ruff check skxfem tests exercises
 	$(BIN)/lint-imports
 	$(BIN)/pytest -q
 	$(MAKE) --no-print-directory book

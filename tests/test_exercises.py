@@ -1,0 +1,192 @@
+"""The graders of exercises/ proved right (issue 10), and skxfem.grade.
+
+The exercises are not in the main suite's testpaths (their stubs raise); these
+tests drive them: every reference passes, every untouched stub fails test by
+test with its NotImplementedError, every wrong solution is rejected with the
+message its file announces (``EXPECT``), a student file that reuses the
+library's answer fails, and a student's path from an exercise README to a
+score table works on a copy of the exercise.
+"""
+import ast
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from skxfem.grade import Result, Score, _exercise_of, find_exercises, main, table
+
+ROOT = Path(__file__).resolve().parents[1]
+EXERCISES = ROOT / "exercises"
+NAMES = [p.name for p in find_exercises(EXERCISES)]
+WRONG = sorted((p.parent.name, p.stem.removeprefix("wrong_"))
+               for p in (EXERCISES / "solutions").glob("*/wrong_*.py"))
+
+
+class Recorder:
+    """A pytest plugin keeping the final outcome and text of every test."""
+
+    def __init__(self):
+        self.tests, self.collect_errors = {}, []
+
+    def pytest_runtest_logreport(self, report):
+        if report.when == "call" or report.outcome != "passed":
+            outcome = report.outcome if report.when == "call" else f"{report.outcome} in " \
+                f"{report.when}"
+            self.tests[report.nodeid] = (outcome, report.longreprtext)
+        elif report.nodeid not in self.tests:
+            self.tests[report.nodeid] = ("passed", "")
+
+    def pytest_collectreport(self, report):
+        if report.failed:
+            self.collect_errors.append(report.longreprtext)
+
+
+def run(*args) -> Recorder:
+    """Run pytest in this process (fast: the library is already imported)."""
+    recorder = Recorder()
+    pytest.main([*map(str, args), "-p", "no:cacheprovider", "-q"], plugins=[recorder])
+    assert not recorder.collect_errors, recorder.collect_errors[0]
+    return recorder
+
+
+def of(recorder, name):
+    return {k: v for k, v in recorder.tests.items() if f"/{name}/" in f"/{k}"}
+
+
+def test_the_course_has_its_exercises():
+    assert NAMES == ["01_levelset", "02_cut", "03_enrich", "04_multipliers", "05_lbb",
+                     "06_stabilised", "07_contact"]
+    for name in NAMES:
+        folder = EXERCISES / name
+        assert (folder / "README.md").exists() and (folder / "exercise.py").exists()
+        assert (EXERCISES / "solutions" / name / "reference.py").exists()
+        assert sum(1 for n, _ in WRONG if n == name) >= 2, f"{name}: two wrong solutions at least"
+
+
+def test_every_exercise_passes_with_its_reference():
+    r = run(EXERCISES, "--impl=solution")
+    for name in NAMES:
+        tests = of(r, name)
+        assert len(tests) >= 5, f"{name} has {len(tests)} tests"
+        failed = {k: v[1] for k, v in tests.items() if v[0] != "passed"}
+        assert not failed, failed
+
+
+def test_every_stub_fails_test_by_test_with_not_implemented():
+    r = run(EXERCISES, "--impl=student")
+    assert len(r.tests) == sum(len(of(r, n)) for n in NAMES) > 40
+    for node, (outcome, text) in r.tests.items():
+        assert outcome == "failed", f"{node}: {outcome} (a failure of the test, not a crash)"
+        assert "NotImplementedError" in text and "not written yet" in text, node
+
+
+def test_every_stub_keeps_its_docstrings():
+    for name in NAMES:
+        tree = ast.parse((EXERCISES / name / "exercise.py").read_text(encoding="utf-8"))
+        for f in (n for n in tree.body if isinstance(n, ast.FunctionDef)):
+            doc = ast.get_docstring(f) or ""
+            assert ">>>" in doc and len(doc) > 100, f"{name}: {f.name} needs its full docstring"
+            assert isinstance(f.body[-1], ast.Raise), f"{name}: {f.name} must raise"
+
+
+@pytest.mark.parametrize("name, wrong", WRONG, ids=[f"{n}:{w}" for n, w in WRONG])
+def test_each_wrong_solution_is_rejected_with_its_message(name, wrong):
+    path = EXERCISES / "solutions" / name / f"wrong_{wrong}.py"
+    expect = ast.literal_eval(next(
+        n.value for n in ast.parse(path.read_text(encoding="utf-8")).body
+        if isinstance(n, ast.Assign) and n.targets[0].id == "EXPECT"))
+    r = run(EXERCISES / name, f"--impl=wrong:{wrong}")
+    failed = {k: text for k, (outcome, text) in r.tests.items() if outcome != "passed"}
+    assert failed, f"no test of {name} rejects wrong_{wrong}.py"
+    assert all(r.tests[k][0] == "failed" for k in failed), "failures, not errors"
+    assert any(expect in text for text in failed.values()), (
+        f"no failure of {name} says {expect!r}:\n" + "\n".join(failed.values()))
+
+
+def copy_exercise(tmp_path, name, student_source=None) -> Path:
+    """A student's copy: exercises/conftest.py and one exercise, no solutions."""
+    target = tmp_path / "exercises"
+    target.mkdir(exist_ok=True)
+    shutil.copy(EXERCISES / "conftest.py", target / "conftest.py")
+    shutil.copytree(EXERCISES / name, target / name,
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    if student_source is not None:
+        (target / name / "exercise.py").write_text(student_source, encoding="utf-8")
+    return target / name
+
+
+@pytest.mark.parametrize("name, source", [
+    ("01_levelset", "from skxfem.levelset import circle, plane, sphere\n"),
+    ("01_levelset", "import skxfem.levelset as L\n\n\ndef plane(point, normal):\n"
+                    "    return L.plane(point, normal)\n\n\n"
+                    "circle = L.circle\nsphere = L.sphere\n"),
+    ("07_contact", "import numpy as np\nfrom skxfem import contact_laws\n\n\n"
+                   "def augmented_multiplier(lam, d_n, rho_n):\n    return lam - rho_n * d_n\n\n\n"
+                   "normal_update = contact_laws.normal_update\n"
+                   "ball_projection = contact_laws.ball_projection\n"),
+    ("06_stabilised", "from skxfem.stabilised import _minimum_edge_cover as minimum_edge_cover\n"
+                      "\n\ndef star_groups(edges, vital):\n    raise NotImplementedError\n"),
+])
+def test_reusing_the_library_fails_the_grade(tmp_path, name, source):
+    folder = copy_exercise(tmp_path, name, source)
+    r = run(folder, "--rootdir", tmp_path, "--import-mode=importlib")
+    assert r.tests and all(outcome == "failed" for outcome, _ in r.tests.values())
+    if name in ("01_levelset", "07_contact"):
+        assert all("uses the library's own implementation" in text and "skxfem." in text
+                   for _, text in r.tests.values())
+    else:
+        assert all("uses the library's own implementation" in text
+                   for _, text in r.tests.values() if "star_groups" not in text)
+
+
+def test_a_student_goes_from_the_readme_to_a_score_table(tmp_path):
+    """The README's commands, run on a copy of exercise 03: stub, then filled in."""
+    readme = (EXERCISES / "03_enrich" / "README.md").read_text(encoding="utf-8")
+    commands = ["pytest exercises/03_enrich", "python -m skxfem.grade exercises/03_enrich"]
+    assert all(c in readme for c in commands), "the README shows the commands run here"
+    folder = copy_exercise(tmp_path, "03_enrich")
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
+
+    def shell(command):
+        args = command.removeprefix("python -m ").split()
+        return subprocess.run([sys.executable, "-m", *args], cwd=tmp_path, env=env,
+                              capture_output=True, text=True)
+
+    stub = shell(commands[0])
+    assert stub.returncode == 1 and "NotImplementedError" in stub.stdout, stub.stdout[-2000:]
+    graded = shell(commands[1])
+    assert graded.returncode == 1, graded.stdout[-2000:] + graded.stderr[-2000:]
+    assert "03_enrich            0/6      0/6" in graded.stdout, graded.stdout[-2000:]
+
+    shutil.copy(EXERCISES / "solutions" / "03_enrich" / "reference.py", folder / "exercise.py")
+    graded = shell(commands[1])
+    assert graded.returncode == 0, graded.stdout[-3000:] + graded.stderr[-2000:]
+    assert "03_enrich            6/6      6/6" in graded.stdout, graded.stdout[-2000:]
+    report = json.loads((tmp_path / "grade.json").read_text(encoding="utf-8"))
+    assert report["passed"] == report["total"] == 6
+    assert [t["outcome"] for t in report["exercises"]["03_enrich"]["tests"]] == ["passed"] * 6
+
+
+def test_grade_points_and_exit_status(tmp_path, capsys):
+    folder = copy_exercise(tmp_path, "06_stabilised")
+    shutil.copy(EXERCISES / "solutions" / "06_stabilised" / "reference.py",
+                folder / "exercise.py")          # it imports the library: refused
+    status = main([str(folder), "--report", str(tmp_path / "r.json")])
+    out = capsys.readouterr().out
+    assert status == 1 and "uses the library's own implementation" in out
+    report = json.loads((tmp_path / "r.json").read_text(encoding="utf-8"))
+    ex = report["exercises"]["06_stabilised"]
+    assert ex["max_points"] == 8.0 and ex["points"] == 0.0       # Figure 6 is worth 2
+    assert main([str(tmp_path / "nowhere")]) == 2
+
+
+def test_table_and_junit_names():
+    assert _exercise_of("exercises.05_lbb.test_lbb_exercise", NAMES) == "05_lbb"
+    assert _exercise_of("tests.test_cut", NAMES) is None
+    text = table([Score("x", (Result("t", "passed", 2.0),))])
+    assert text.splitlines()[-1].split() == ["total", "1/1", "2/2"]
