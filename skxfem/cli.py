@@ -37,7 +37,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from . import __version__, budget, io, reproduce
+from . import __version__, budget, grade, io, reproduce
 from .contact import solve as solve_contact
 from .contact_laws import CONTACT_LAWS, STATUS_NAMES
 from .contact_newton import ContactConvergenceError
@@ -49,6 +49,8 @@ __all__ = ["main", "parser", "FORWARDED"]
 FORWARDED = {
     "reproduce": ("reproduce the paper's figures and summary.json "
                   "(python -m skxfem.reproduce)", reproduce.main),
+    "grade": ("grade the student exercises: a score table and grade.json "
+              "(python -m skxfem.grade)", grade.main),
 }
 """Subcommands handed their arguments as they are: ``name -> (help, main(argv) -> int)``."""
 

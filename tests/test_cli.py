@@ -353,3 +353,18 @@ def test_22_max_iter_is_for_contact_scenes(tmp_path, capsys, no_solve):
         with pytest.raises(SystemExit) as done:
             main(["run", CONTACT, "--max-iter", bad])
         assert done.value.code == 2 and "--max-iter" in one_line(capsys)
+
+
+def test_23_grade_is_a_subcommand(tmp_path, capsys):
+    """`skxfem grade PATH` is python -m skxfem.grade: a score table and grade.json;
+    the untouched stub of an exercise fails the grade (exit 1)."""
+    import shutil
+
+    root = Path(__file__).resolve().parents[1] / "exercises"
+    shutil.copytree(root / "01_levelset", tmp_path / "01_levelset")
+    shutil.copy(root / "conftest.py", tmp_path / "conftest.py")
+    report = tmp_path / "grade.json"
+    code = main(["grade", str(tmp_path / "01_levelset"), "--report", str(report)])
+    assert code == 1
+    assert "01_levelset" in capsys.readouterr().out
+    assert report.exists()
