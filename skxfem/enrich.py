@@ -36,44 +36,18 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import Basis, BilinearForm, ElementVector, LinearForm, MeshHex1, MeshQuad1, MeshWedge1
+from skfem import Basis, BilinearForm, ElementVector, LinearForm
 from skfem.assembly import CellBasis
 from skfem.helpers import dot
 
 from .cut import Cut
 from .evaluate import evaluation_matrix
 from .material import Material, signed_stiffness_form
-from .quadrature import cell_rule, subcell_rule
+from .quadrature import cell_rule, exact_orders, subcell_rule
 
 __all__ = ["XSpace", "space", "stiffness", "mass", "enriched_matrix", "signed_bases",
            "far_side_fraction", "enriched_load",
            "jump_matrix", "split_fields"]
-
-
-def _orders(mesh) -> tuple[int, int]:
-    """Quadrature orders that integrate the P1/Q1 stiffness exactly on affine cells.
-
-    The second is the order on sub-simplices, in reference coordinates: a
-    product of two gradients is of degree 0 (simplices), 2 (quad, prism) or
-    4 (hexahedron, trilinear functions).
-    """
-    if isinstance(mesh, MeshHex1):
-        return 2, 4
-    if isinstance(mesh, (MeshQuad1, MeshWedge1)):
-        return 2, 2
-    return 1, 1
-
-
-def _mass_orders(mesh) -> tuple[int, int]:
-    """As :func:`_orders`, for the mass ∫ u·v on affine cells: a product of
-    two P1/Q1 functions has degree 2 per variable in the cell (every cell
-    rule of order 2 is exact) and, in the parent's reference coordinates on
-    a sub-simplex, total degree 2 (simplices), 4 (quad, prism) or 6 (hexahedron)."""
-    if isinstance(mesh, MeshHex1):
-        return 2, 6
-    if isinstance(mesh, (MeshQuad1, MeshWedge1)):
-        return 2, 4
-    return 2, 2
 
 
 @dataclass(frozen=True)
@@ -119,7 +93,7 @@ def _side_bases(mesh, cut: Cut, elem, quadrature=None, sub_order=None):
     each sub-simplex is one element of its basis (its parent cell, repeated),
     so no quadrature point is spent on padding.
     """
-    cell_q = quadrature or cell_rule(mesh, _orders(mesh)[0])
+    cell_q = quadrature or cell_rule(mesh, exact_orders(mesh)[0])
     pairs = []
     for s in (-1, 1):
         cells = np.flatnonzero(cut.side == s)
@@ -128,7 +102,7 @@ def _side_bases(mesh, cut: Cut, elem, quadrature=None, sub_order=None):
         sub = np.flatnonzero(cut.sub_side == s)
         if sub.size:
             rule = subcell_rule(cut.sub_ref[sub], np.arange(sub.size),
-                                sub_order or _orders(mesh)[1])
+                                sub_order or exact_orders(mesh)[1])
             pairs.append((Basis(mesh, elem, elements=cut.sub_cell[sub],
                                 quadrature=(rule.X, rule.W)), s))
     return pairs
@@ -168,7 +142,7 @@ def space(mesh, cut: Cut, order: int | None = None, sliver: float = 1e-8) -> XSp
     if not sliver >= 0:
         raise ValueError(f"sliver must be a non-negative fraction, got {sliver!r}")
     elem = ElementVector(mesh.elem())
-    basis = Basis(mesh, elem, quadrature=cell_rule(mesh, order or _orders(mesh)[0]))
+    basis = Basis(mesh, elem, quadrature=cell_rule(mesh, order or exact_orders(mesh)[0]))
     nodes = cut.enriched[far_side_fraction(mesh, cut)[cut.enriched] >= sliver]
     enr = basis.nodal_dofs[:, nodes].T  # (nenr_nodes, dim)
     H_node = np.repeat(np.sign(cut.psi[nodes]), mesh.dim())
@@ -220,9 +194,9 @@ def _signed_vector_mass(u, v, w):
 
 def mass(V: XSpace) -> sp.csr_matrix:
     """The X-FEM mass matrix on the unknowns [a, b]: ∫ u·v, integrated
-    exactly on affine cells (its own orders, :func:`_mass_orders`, not the
+    exactly on affine cells (its own orders, :data:`skxfem.quadrature.EXACT_ORDERS`, not the
     stiffness' of ``V``'s basis)."""
-    return enriched_matrix(V, _signed_vector_mass, _mass_orders(V.mesh))
+    return enriched_matrix(V, _signed_vector_mass, exact_orders(V.mesh, "mass"))
 
 
 def enriched_load(V: XSpace, f: np.ndarray, f_H: np.ndarray) -> np.ndarray:

@@ -140,7 +140,7 @@ def interface_rule(mesh, cut: Cut, order: int = 4) -> InterfaceRule:
     nf, nq0 = cut.facets.shape[1], W.size
     ref = np.einsum("vcf,vq->cfq", cut.facet_ref, L).reshape(dim, -1)
     cells = np.repeat(cut.facet_cell, nq0)
-    points = mesh._mapping().F(ref[:, :, None], tind=cells)[:, :, 0]
+    points = mesh.mapping().F(ref[:, :, None], tind=cells)[:, :, 0]
     weights = (cut.measures[:, None] * W[None, :]).ravel()
     normals = np.repeat(cut.normals, nq0, axis=1)
     rows = np.repeat(np.arange(nf * nq0), dim)

@@ -30,21 +30,40 @@ from skfem.refdom import RefHex, RefLine, RefQuad, RefTet, RefTri, RefWedge
 
 __all__ = [
     "DEFAULT_ORDER",
+    "simplex_or_tensor_rule",
+    "EXACT_ORDERS",
+    "exact_orders",
     "SubcellRule",
     "cell_rule",
     "subcell_rule",
     "wedge_rule",
 ]
 
-#: Default order per reference cell: the lowest order that integrates the
-#: P1/Q1/prism stiffness matrix exactly on affine cells.  Gradients of P1
-#: functions are constant (order 0).  On an affine quad/hex a Q1 gradient is
-#: linear in each coordinate, so the integrand is quadratic in each: a
-#: 2-point Gauss rule per direction (order 2: 4 points on a quad, 8 on a hex)
-#: is exact, where scikit-fem's default for ElementHex1 uses 64 points.  On a
-#: right prism the gradients are linear in (r, s) and in t: order 2 gives a
-#: 3-point triangle rule times 2 Gauss points.
-DEFAULT_ORDER = {RefTri: 0, RefTet: 0, RefQuad: 2, RefHex: 2, RefWedge: 2}
+#: The one table of quadrature orders that integrate exactly, on affine
+#: cells, a product of two P1/Q1/prism gradients (``"stiffness"``) or of two
+#: P1/Q1/prism functions (``"mass"``).  Each entry is (cell rule order,
+#: sub-simplex rule order): the cell rule counts per direction on quads,
+#: hexahedra and prisms (scikit-fem's tensor rules); a sub-simplex rule maps
+#: a simplex rule into the parent's reference coordinates, where the same
+#: integrand has a higher total degree.  Stiffness: P1 gradients are
+#: constant (0, 0); a Q1 gradient on an affine quad/hex is linear in each
+#: coordinate, so the integrand is quadratic in each — a 2-point Gauss rule
+#: per direction is exact (4 points on a quad, 8 on a hex, where
+#: scikit-fem's default for ElementHex1 uses 64) — and of total degree 2
+#: (quad) or 4 (trilinear hex) on a sub-simplex; on a right prism the
+#: gradients are linear in (r, s) and in t: order 2 gives a 3-point triangle
+#: rule times 2 Gauss points, and degree 2 on a sub-simplex.  Mass: two
+#: functions give degree 2 per variable in the cell, total degree 2
+#: (simplices), 4 (quad, prism) or 6 (hexahedron) on a sub-simplex.
+EXACT_ORDERS = {
+    "stiffness": {RefTri: (0, 0), RefTet: (0, 0), RefQuad: (2, 2), RefWedge: (2, 2),
+                  RefHex: (2, 4)},
+    "mass": {RefTri: (2, 2), RefTet: (2, 2), RefQuad: (2, 4), RefWedge: (2, 4),
+             RefHex: (2, 6)},
+}
+
+#: Default cell rule order: the stiffness column of :data:`EXACT_ORDERS`.
+DEFAULT_ORDER = {refdom: cell for refdom, (cell, _) in EXACT_ORDERS["stiffness"].items()}
 
 
 def _check_order(order) -> int:
@@ -99,6 +118,18 @@ def _refdom(mesh_or_elem):
     return refdom
 
 
+def exact_orders(mesh_or_elem, integrand: str = "stiffness") -> tuple[int, int]:
+    """(cell rule order, sub-simplex rule order) of :data:`EXACT_ORDERS`.
+
+    >>> from skfem import MeshHex1
+    >>> exact_orders(MeshHex1()), exact_orders(MeshHex1(), "mass")
+    ((2, 4), (2, 6))
+    """
+    if integrand not in EXACT_ORDERS:
+        raise ValueError(f"integrand must be one of {tuple(EXACT_ORDERS)}, got {integrand!r}")
+    return EXACT_ORDERS[integrand][_refdom(mesh_or_elem)]
+
+
 def cell_rule(mesh_or_elem, order: int | None = None
               ) -> tuple[np.ndarray, np.ndarray]:
     """The quadrature rule to pass explicitly to ``skfem.Basis``.
@@ -128,6 +159,22 @@ def cell_rule(mesh_or_elem, order: int | None = None
     order = _check_order(order)
     if refdom is RefWedge:
         return wedge_rule(order)
+    return simplex_or_tensor_rule(refdom, order)
+
+
+def simplex_or_tensor_rule(refdom, order: int) -> tuple[np.ndarray, np.ndarray]:
+    """scikit-fem's rule of ``order`` on ``refdom``, except order 0 on a simplex:
+    the one-point centroid rule (scikit-fem returns 3 points on a triangle),
+    exact for the constant gradients of P1 functions.
+
+    >>> from skfem.refdom import RefTri
+    >>> X, W = simplex_or_tensor_rule(RefTri, 0)
+    >>> X.ravel().round(6).tolist(), W.tolist()
+    ([0.333333, 0.333333], [0.5])
+    """
+    if order == 0 and refdom in (RefTri, RefTet):
+        d = 2 if refdom is RefTri else 3
+        return np.full((d, 1), 1.0 / (d + 1)), np.array([0.5 if d == 2 else 1.0 / 6.0])
     return get_quadrature(refdom, order)
 
 
@@ -213,7 +260,7 @@ def subcell_rule(ref_simplices: ArrayLike, parent: ArrayLike, order: int,
             raise ValueError(f"values must have shape ({nsub},), one per "
                              f"sub-simplex, got {values.shape}")
 
-    Xs, Ws = get_quadrature(RefTri if dim == 2 else RefTet, _check_order(order))
+    Xs, Ws = simplex_or_tensor_rule(RefTri if dim == 2 else RefTet, _check_order(order))
     nq0 = Ws.size
 
     # affine map of every sub-simplex: points (nsub, nq0, dim), weights (nsub, nq0)

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from skfem import (
     Basis,
+    BilinearForm,
     ElementHex1,
     ElementQuad1,
     ElementTetP1,
@@ -21,11 +22,13 @@ from skfem import (
     MeshWedge1,
     asm,
 )
+from skfem.helpers import dot
 from skfem.quadrature import get_quadrature
 from skfem.refdom import RefTet, RefWedge
 
 from skxfem.material import Material, stiffness_form
-from skxfem.quadrature import SubcellRule, cell_rule, subcell_rule, wedge_rule
+from skxfem.meshes import box
+from skxfem.quadrature import SubcellRule, cell_rule, exact_orders, subcell_rule, wedge_rule
 
 
 def exact_monomial(cell, a, b, c=0):
@@ -240,3 +243,24 @@ def test_subcell_rule_rejects_bad_input():
         subcell_rule(tri, [0], 1, values=[1, 2])
     with pytest.raises(ValueError, match="NaN"):
         subcell_rule(tri * np.nan, [0], 1)
+
+
+def test_exact_orders_are_exact_for_the_stiffness_and_the_mass(cell):
+    """The one table of orders (EXACT_ORDERS): on an affine mesh the stiffness
+    and the mass assembled with the table's cell order equal those of a rule
+    three orders higher, to round-off (the sub-simplex orders are checked by
+    the patch tests and test_enrich's mass test)."""
+    @BilinearForm
+    def mass_form(u, v, w):
+        return dot(u, v)
+
+    mesh = box((2, 3) if cell in ("tri", "quad") else (2, 2, 3), cell)
+    elem = ElementVector(mesh.elem())
+    for integrand, form in (("stiffness", stiffness_form(Material(1.0, 0.3), mesh.dim())),
+                            ("mass", mass_form)):
+        order = exact_orders(mesh, integrand)[0]
+        A = form.assemble(Basis(mesh, elem, quadrature=cell_rule(mesh, order)))
+        B = form.assemble(Basis(mesh, elem, quadrature=cell_rule(mesh, order + 3)))
+        assert abs(A - B).max() < 1e-13 * abs(B).max(), (integrand, order)
+    with pytest.raises(ValueError, match="integrand"):
+        exact_orders(mesh, "damping")
