@@ -3,25 +3,23 @@ r"""The smoothest multipliers that balance a displacement, by a sparse method.
 When the rows of B (on the free unknowns) are dependent, the multipliers
 that balance a displacement U, Bᵀμ = K U - F, form an affine space μ₀ +
 ker Bᵀ.  :func:`skxfem.saddle.smoothest_multipliers` picks the smoothest
-one with a dense SVD of B; here the same choice is made on the interface
-unknowns only, with sparse matrices:
+one with a dense SVD of B; here the same choice is made with sparse
+matrices on the interface unknowns only.
 
-.. math:: \min_z \tfrac12 \|G(\mu_0 + z)\|^2 \quad\text{subject to}\quad B^T z = 0,
+ker Bᵀ is the null space of Q = B Bᵀ, an m × m sparse matrix (m multipliers,
+coupled only where they share an enriched unknown).  Its eigenvectors with
+the smallest eigenvalues come from shift-invert Lanczos (ARPACK's ``eigsh``
+around a small negative shift, one sparse LU of the interface matrix); those
+below ``tol``² of the largest span the dependencies — the same threshold as
+the dense path's singular values of B below ``tol`` of the largest, so
+multipliers that round-off could not tell apart count as dependent there
+and here.  With N that basis (m × k, k the number of dependencies, a few
+near supports for the stable spaces),
 
-by the augmented Lagrangian: with L = GᵀG and Q = B Bᵀ (m × m, sparse, as
-local as the multipliers), repeat
+.. math:: \mu = \mu_0 + N c, \qquad c = \arg\min_c \|G(\mu_0 + N c)\| .
 
-.. math:: (L + \rho Q)\, z = -L\mu_0 - \eta, \qquad \eta \leftarrow \eta + \rho Q z
-
-until Bᵀz vanishes.  L + ρQ is positive definite when a constant traction
-(the kernel of G) loads some free unknown, and is factorised once (SuperLU;
-m is the interface size, not the volume's).  Where a constant traction loads
-no free unknown at all (a component every support holds), the smoothest
-choice is not unique: a tiny multiple of the identity added to L then picks
-the least-norm one, as the dense path does.  With G = I the same iteration
-returns the least-norm multipliers.  For an
-independent B (the stable spaces away from supports) ker Bᵀ = {0} and the
-iteration returns μ₀ itself, to round-off.
+Without G, c = -Nᵀμ₀: the least-norm multipliers.  For an independent B
+(k = 0) μ₀ is returned unchanged.
 
 >>> import numpy as np, scipy.sparse as sp
 >>> B = sp.csr_matrix([[1.0, 0.0], [1.0, 0.0], [0.0, 1.0]])  # rows 0, 1 dependent
@@ -33,14 +31,47 @@ from __future__ import annotations
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
+from scipy.sparse.linalg import ArpackNoConvergence, eigsh
 
-__all__ = ["smoothest"]
+__all__ = ["smoothest", "dependencies"]
 
 
-def smoothest(B, mu, G=None, rho: float = 1e3, maxiter: int = 100,
-              tol: float = 1e-14) -> np.ndarray:
-    """The μ with Bᵀμ = Bᵀ``mu`` that minimises ‖Gμ‖ (‖μ‖ without G).
+def dependencies(B, tol: float = 1e-6, k: int = 8) -> np.ndarray:
+    """An orthonormal basis (m, k) of the (numerical) null space of Bᵀ.
+
+    The eigenvectors of Q = B Bᵀ whose eigenvalues are below ``tol``² times
+    the largest, i.e. the left singular vectors of B whose singular values
+    are below ``tol`` times the largest.  ``k`` is the first number of
+    eigenpairs asked for; it doubles until one of them is above the threshold.
+
+    >>> import scipy.sparse as sp
+    >>> dependencies(sp.csr_matrix([[1.0, 0.0], [2.0, 0.0], [0.0, 1.0]])).shape
+    (3, 1)
+    """
+    Q = sp.csc_matrix(B @ B.T)
+    m = Q.shape[0]
+    if m == 0:
+        return np.zeros((0, 0))
+    if m <= 200:  # small: dense is cheaper than Lanczos
+        w, V = np.linalg.eigh(Q.toarray())
+        return V[:, w <= tol ** 2 * max(w.max(), 1e-300)]
+    q_max = eigsh(Q, k=1, which="LA", return_eigenvectors=False, tol=1e-3)[0] * 1.01
+    cut = tol ** 2 * q_max
+    while True:
+        k = min(k, m - 2)
+        try:
+            w, V = eigsh(Q, k=k, sigma=-100 * cut, which="LM")
+        except ArpackNoConvergence as e:  # pragma: no cover - keep what converged
+            w, V = e.eigenvalues, e.eigenvectors
+        small = w <= cut
+        if small.sum() < k or k == m - 2:
+            return np.linalg.qr(V[:, small])[0] if small.any() else V[:, :0]
+        k *= 2
+
+
+def smoothest(B, mu, G=None, tol: float = 1e-6) -> np.ndarray:
+    """The μ with Bᵀμ = Bᵀ``mu`` (up to the dependencies below ``tol``) that
+    minimises ‖Gμ‖ (‖μ‖ without G).
 
     Parameters
     ----------
@@ -51,41 +82,20 @@ def smoothest(B, mu, G=None, rho: float = 1e3, maxiter: int = 100,
     G
         (p, m) differences between neighbouring multipliers; ``None``: the
         identity (least-norm multipliers).
-    rho
-        Penalty, relative to the ratio of the diagonals of GᵀG and BBᵀ.
-    maxiter, tol
-        Augmented-Lagrangian steps at most, and the relative size of Bᵀz at
-        which they stop.
+    tol
+        Singular values of B below ``tol`` times the largest count as zero
+        (:func:`dependencies`), as in :func:`skxfem.saddle.smoothest_multipliers`.
 
     Returns
     -------
     (m,) array.
     """
-    B = sp.csr_matrix(B)
     mu = np.asarray(mu, float)
-    m = B.shape[0]
-    if m == 0:
+    N = dependencies(sp.csr_matrix(B), tol)
+    if N.shape[1] == 0:
         return mu.copy()
-    cols = np.unique(B.indices)
-    C = B[:, cols]
-    C = C @ sp.diags(1.0 / np.sqrt(np.asarray(C.multiply(C).sum(axis=0)).ravel()))
-    L = sp.identity(m, format="csc") if G is None else sp.csc_matrix(G.T @ G)
-    # among equally smooth choices (a constant traction that loads no free
-    # unknown), the least-norm one, as the dense path's least squares does
-    L = L + 1e-10 * L.diagonal().mean() * sp.identity(m, format="csc")
-    Q = (C @ C.T).tocsc()
-    scale = rho * L.diagonal().mean() / max(Q.diagonal().mean(), 1e-300)
-    A = (L + scale * Q).tocsc()
-    lu = spla.splu(A)
-    target = np.linalg.norm(C.T @ mu) * tol
-    Lmu = L @ mu
-    eta = np.zeros(m)
-    for _ in range(maxiter):
-        rhs = -Lmu - eta
-        z = lu.solve(rhs)
-        z += lu.solve(rhs - A @ z)  # one step of refinement: A may be ill-conditioned
-        t = C.T @ z
-        if np.linalg.norm(t) <= target:
-            break
-        eta += scale * (C @ t)
-    return mu + z
+    if G is None:
+        return mu - N @ (N.T @ mu)
+    GN = G @ N
+    c = np.linalg.lstsq(GN, -(G @ mu), rcond=None)[0]
+    return mu + N @ c

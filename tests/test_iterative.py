@@ -7,7 +7,9 @@ Krylov solve of the tied saddle system gives the direct solve's answer.
    ``iterative.solve`` returns the U and the edge tractions λ = Pμ (hence the
    pressure) of ``saddle.solve`` to 1e-8 relative, including the naive spaces
    whose multipliers are dependent (the direct path removes some: checked).
-3. ``smoothest`` picks the multipliers ``saddle.smoothest_multipliers`` picks.
+3. ``smoothest`` picks the multipliers ``saddle.smoothest_multipliers`` picks,
+   by a dense eigensolve for a few multipliers and by Lanczos for many, and
+   ``dependencies`` finds as many as the direct path removes.
 4. Refusals: an iteration limit too small raises ConvergenceError (a
    ValueError) reporting iterations and residual; a side that can slide
    raises SingularSystemError; a missing pyamg names ``pip install pyamg``.
@@ -24,8 +26,8 @@ from skxfem.amg import rigid_modes
 from skxfem.enrich import split_fields
 from skxfem.problem import assemble
 from skxfem.scene import Displacement
-from skxfem.scenes import exact_plate, exact_strip
-from skxfem.smoothest import smoothest
+from skxfem.scenes import exact_plate, exact_strip, paper_plate
+from skxfem.smoothest import dependencies, smoothest
 from skxfem.solver import _differences
 
 CELLS = ["tri", "quad", "tet", "hex", "prism"]
@@ -131,6 +133,22 @@ def test_smoothest_matches_the_dense_choice():
     least = smoothest(sp.csr_matrix(B), mu0)
     assert np.allclose(least, np.linalg.pinv(B.T) @ (B.T @ mu0), atol=1e-9), \
         "without G: the least-norm multipliers"
+
+
+def test_smoothest_by_lanczos_matches_the_direct_choice():
+    """Above 200 multipliers the dependencies come from shift-invert Lanczos:
+    the naive hexahedral plate has many, near its clamped and rolled faces."""
+    p = assemble(paper_plate(8, "hex"))
+    free = np.setdiff1d(np.arange(p.V.N), p.D)
+    G = _differences(p.cut, p.ncomp) @ p.P
+    _, mu_d, info = saddle.solve(p.K, p.B, p.F, p.D, p.g, G=G)
+    assert p.B.shape[0] > 200 and info.removed > 0
+    N = dependencies(p.B[:, free])
+    assert N.shape[1] == info.removed, "as many dependencies as the direct path removes"
+    assert np.abs(p.B[:, free].T @ N).max() < 1e-10 * abs(p.B).max()
+    noisy = mu_d + N @ np.random.default_rng(0).standard_normal(N.shape[1])
+    mu = smoothest(p.B[:, free], noisy, G)
+    assert np.linalg.norm(mu - mu_d) <= 1e-8 * np.linalg.norm(mu_d)
 
 
 # 4. refusals ------------------------------------------------------------------------
