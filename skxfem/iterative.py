@@ -92,7 +92,7 @@ from scipy.sparse.linalg import LinearOperator, splu
 
 from .amg import amg, pyamg
 from .saddle import SingularSystemError
-from .smoothest import smoothest
+from .smoothest import dependencies, smoothest
 
 __all__ = ["IterativeInfo", "ConvergenceError", "solve"]
 
@@ -117,14 +117,17 @@ class ConvergenceError(ValueError):
 class IterativeInfo:
     """Diagnostics of :func:`solve`: FGMRES ``iterations``, the relative
     ``residual`` of the saddle system reached, ``balance`` (the relative error
-    of Bᵀμ = K U - F, as :class:`skxfem.saddle.SaddleInfo`), the AMG
-    ``levels`` and operator ``complexity``, the penalty ``r``, the relative ``residuals``, one per
-    iteration, and ``timings`` (seconds of the ``setup`` (scaling, AMG),
-    the ``krylov`` iterations and the choice of ``multipliers``)."""
+    of Bᵀμ = K U - F), ``removed`` (the dependent multipliers, whose values
+    were chosen smoothest: as :class:`skxfem.saddle.SaddleInfo`), the AMG
+    ``levels`` and operator ``complexity``, the penalty ``r``, the relative
+    ``residuals``, one per iteration, and ``timings``: seconds of the
+    ``setup`` (scaling, AMG), the ``krylov`` iterations and the choice of
+    ``multipliers``."""
 
     iterations: int
     residual: float
     balance: float
+    removed: int
     levels: int
     complexity: float
     r: float
@@ -134,7 +137,8 @@ class IterativeInfo:
 
 def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
           bonded: bool = False, tol: float = 1e-10, maxiter: int = 500, r: float = 3.0,
-          restart: int = 100, delta: float = 1e-8, rigid_tol: float = 1e-11):
+          restart: int = 100, delta: float = 1e-8, refine: int = 3,
+          rigid_tol: float = 1e-11):
     """Solve the tied saddle-point system by AMG-preconditioned FGMRES; see the module notes.
 
     Parameters
@@ -144,9 +148,9 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
         load (N,), imposed unknowns and values, and the neighbour differences
         (p, m) for the smoothest multipliers (without G: the least-norm ones).
     modes
-        (N, 2k) the rigid motions of each side (:func:`skxfem.amg.rigid_modes`): checked
-        to be held, and the near-null space of the AMG.  Default: no check,
-        and pyamg's near-null space, the constant vector.
+        (N, 2k) the rigid motions of each side (:func:`skxfem.amg.rigid_modes`):
+        checked to be held, and the near-null space of the AMG.  Default: no
+        check, and pyamg's near-null space, the constant vector.
     blocksize
         Unknowns per node, interleaved (the space's dimension); 1: scalar AMG.
     bonded
@@ -163,6 +167,8 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
         Krylov vectors kept before FGMRES restarts (memory: restart × (N + m)).
     delta
         Shift of B_n B_nᵀ (unit diagonal) in the multipliers' block.
+    refine
+        Least-squares corrections of the multipliers against K U - F.
     rigid_tol
         A combination of ``modes`` whose energy in K_r (scaled) is below this
         is a rigid motion the supports and the tie leave free.
@@ -178,7 +184,10 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
         (a ValueError) ``tol`` not reached within ``maxiter`` iterations, or
         multipliers that do not balance U.
     skxfem.saddle.SingularSystemError
-        A free unknown without any stiffness.
+        (a ValueError) A free unknown without any stiffness, or a rigid
+        motion of a side (a combination of ``modes``) that neither the
+        supports nor the tie hold: an iterative method would return an
+        arbitrary U there.
     ImportError
         pyamg is not installed.
     """
@@ -233,8 +242,15 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
     t2 = time.perf_counter()
     U = U0 + s * np.where(fixed, 0.0, x[:N])
     free = np.flatnonzero(~fixed)
-    mu = smoothest(B[:, free], -rows * x[N:], G)
     reaction = (K @ U - F)[free]
+    # the multipliers must balance U itself, B_nᵀ ŷ = S (K U - F): a few least-squares
+    # corrections with the factorised B_n B_nᵀ + δI sharpen the Krylov ones (where rows
+    # of B are nearly dependent, the residual alone leaves them less accurate)
+    y, target = x[N:].copy(), np.where(fixed, 0.0, s * (K @ U - F))
+    for _ in range(refine):
+        y -= simple.solve(Bn @ (Bn.T @ y + target))
+    dependent = dependencies(B[:, free])
+    mu = smoothest(B[:, free], -rows * y, G, N=dependent)
     balance = float(np.linalg.norm(B[:, free].T @ mu - reaction) / max(
         np.linalg.norm(reaction), np.linalg.norm(F[free]), 1e-300))
     if not balance <= max(10 * tol, 1e-8):
@@ -242,8 +258,8 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
             f"the multipliers do not balance the displacement (relative error "
             f"{balance:.1e}): tighten tol", iterations, residual)
     timings = {"setup": t1 - t0, "krylov": t2 - t1, "multipliers": time.perf_counter() - t2}
-    return U, mu, IterativeInfo(iterations, residual, balance, len(ml.levels),
-                                float(ml.operator_complexity()), float(r),
+    return U, mu, IterativeInfo(iterations, residual, balance, dependent.shape[1],
+                                len(ml.levels), float(ml.operator_complexity()), float(r),
                                 tuple(np.asarray(history) / nrhs), timings)
 
 

@@ -69,7 +69,7 @@ def dependencies(B, tol: float = 1e-6, k: int = 8) -> np.ndarray:
         k *= 2
 
 
-def smoothest(B, mu, G=None, tol: float = 1e-6) -> np.ndarray:
+def smoothest(B, mu, G=None, tol: float = 1e-6, N=None) -> np.ndarray:
     """The μ with Bᵀμ = Bᵀ``mu`` (up to the dependencies below ``tol``) that
     minimises ‖Gμ‖ (‖μ‖ without G).
 
@@ -85,13 +85,15 @@ def smoothest(B, mu, G=None, tol: float = 1e-6) -> np.ndarray:
     tol
         Singular values of B below ``tol`` times the largest count as zero
         (:func:`dependencies`), as in :func:`skxfem.saddle.smoothest_multipliers`.
+    N
+        The basis of those dependencies, if already computed.
 
     Returns
     -------
     (m,) array.
     """
     mu = np.asarray(mu, float)
-    N = dependencies(sp.csr_matrix(B), tol)
+    N = dependencies(sp.csr_matrix(B), tol) if N is None else N
     if N.shape[1] == 0:
         return mu.copy()
     if G is None:

@@ -113,8 +113,9 @@ def test_dependent_naive_multipliers_are_covered(cell):
     """The naive space leaves dependent multipliers here (the direct path removes
     them), so the comparison above covers a singular saddle system."""
     p = assemble(scene(cell, "naive"))
-    (Ud, _, info_d), (U, _, _) = both(p)
+    (Ud, _, info_d), (U, _, info) = both(p)
     assert info_d.removed > 0
+    assert info.removed == info_d.removed, "both paths find the same dependencies"
     assert np.linalg.norm(U - Ud) <= 1e-8 * np.linalg.norm(Ud)
 
 
