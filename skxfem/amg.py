@@ -30,7 +30,7 @@ def pyamg():
     """The pyamg module, or an ImportError that says how to install it."""
     try:
         return importlib.import_module("pyamg")
-    except ImportError as e:  # pragma: no cover - pyamg is in the dev extra
+    except ImportError as e:
         raise ImportError("the iterative solver needs pyamg: pip install pyamg "
                           "(or pip install skxfem[amg])") from e
 
@@ -53,7 +53,8 @@ def rigid_modes(V, sides: bool = True) -> np.ndarray:
 
     Returns
     -------
-    (N, 2k) array (``sides=False``: (N, k)), k = 3 in 2D (two translations,
+    (N, 2k) array, columns 2i and 2i+1 the i-th motion of Ω⁻ and of Ω⁺
+    (``sides=False``: (N, k), their sums); k = 3 in 2D (two translations,
     one rotation), 6 in 3D.
 
     >>> from skxfem.scenes import strip

@@ -138,7 +138,7 @@ class IterativeInfo:
 def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
           bonded: bool = False, tol: float = 1e-10, maxiter: int = 500, r: float = 3.0,
           restart: int = 100, delta: float = 1e-8, refine: int = 3,
-          rigid_tol: float = 1e-11):
+          dependent_tol: float = 5e-8, rigid_tol: float = 1e-11):
     """Solve the tied saddle-point system by AMG-preconditioned FGMRES; see the module notes.
 
     Parameters
@@ -169,6 +169,15 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
         Shift of B_n B_nᵀ (unit diagonal) in the multipliers' block.
     refine
         Least-squares corrections of the multipliers against K U - F.
+    dependent_tol
+        Singular values of B (free columns) below this times the largest
+        count as dependencies, their multipliers chosen smoothest
+        (:func:`skxfem.smoothest.dependencies`).  Smaller than the dense
+        path's 1e-6: the eigenvalues of B Bᵀ resolve singular values of B
+        only down to about 1e-8 (exact dependencies come out at 1e-9 to
+        3e-9), and the vital space on the prism plate has genuine ones of
+        3.4e-6 (n = 16) and 8.7e-7 (n = 24) of the largest, which must
+        balance U (measured).
     rigid_tol
         A combination of ``modes`` whose energy in K_r (scaled) is below this
         is a rigid motion the supports and the tie leave free.
@@ -249,7 +258,7 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
     y, target = x[N:].copy(), np.where(fixed, 0.0, s * (K @ U - F))
     for _ in range(refine):
         y -= simple.solve(Bn @ (Bn.T @ y + target))
-    dependent = dependencies(B[:, free])
+    dependent = dependencies(B[:, free], dependent_tol)
     mu = smoothest(B[:, free], -rows * y, G, N=dependent)
     balance = float(np.linalg.norm(B[:, free].T @ mu - reaction) / max(
         np.linalg.norm(reaction), np.linalg.norm(F[free]), 1e-300))
