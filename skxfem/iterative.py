@@ -138,7 +138,7 @@ class IterativeInfo:
 def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
           bonded: bool = False, tol: float = 1e-10, maxiter: int = 500, r: float = 3.0,
           restart: int = 100, delta: float = 1e-8, refine: int = 3,
-          dependent_tol: float = 5e-8, rigid_tol: float = 1e-11):
+          dependent_tol: float = 1e-8, rigid_tol: float = 1e-11):
     """Solve the tied saddle-point system by AMG-preconditioned FGMRES; see the module notes.
 
     Parameters
@@ -173,11 +173,10 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
         Singular values of B (free columns) below this times the largest
         count as dependencies, their multipliers chosen smoothest
         (:func:`skxfem.smoothest.dependencies`).  Smaller than the dense
-        path's 1e-6: the eigenvalues of B Bᵀ resolve singular values of B
-        only down to about 1e-8 (exact dependencies come out at 1e-9 to
-        3e-9), and the vital space on the prism plate has genuine ones of
-        3.4e-6 (n = 16) and 8.7e-7 (n = 24) of the largest, which must
-        balance U (measured).
+        path's 1e-6: the vital space on the prism plate has genuine singular
+        values of 3.4e-6 (n = 16) and 8.7e-7 (n = 24) of the largest, which
+        must balance U (with 1e-6 both paths left an imbalance of 1.8e-8 at
+        n = 24), while exact dependencies come out below 3e-10 (measured).
     rigid_tol
         A combination of ``modes`` whose energy in K_r (scaled) is below this
         is a rigid motion the supports and the tie leave free.

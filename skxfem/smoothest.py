@@ -9,11 +9,11 @@ matrices on the interface unknowns only.
 ker Bᵀ is the null space of Q = B Bᵀ, an m × m sparse matrix (m multipliers,
 coupled only where they share an enriched unknown).  Its eigenvectors with
 the smallest eigenvalues come from shift-invert Lanczos (ARPACK's ``eigsh``
-around a small negative shift, one sparse LU of the interface matrix); those
-below ``tol``² of the largest span the dependencies — the same threshold as
-the dense path's singular values of B below ``tol`` of the largest, so
-multipliers that round-off could not tell apart count as dependent there
-and here.  With N that basis (m × k, k the number of dependencies, a few
+around a small negative shift, one sparse LU of the interface matrix); a
+Rayleigh-Ritz step on their span keeps the singular values of B below
+``tol`` of the largest (:func:`dependencies`) — by default the dense path's
+threshold, so that multipliers round-off could not tell apart count as
+dependent there and here.  With N that basis (m × k, k the number of dependencies, a few
 near supports for the stable spaces),
 
 .. math:: \mu = \mu_0 + N c, \qquad c = \arg\min_c \|G(\mu_0 + N c)\| .
@@ -37,36 +37,49 @@ __all__ = ["smoothest", "dependencies"]
 
 
 def dependencies(B, tol: float = 1e-6, k: int = 8) -> np.ndarray:
-    """An orthonormal basis (m, k) of the (numerical) null space of Bᵀ.
+    """An orthonormal basis (m, k) of the (numerical) null space of Bᵀ: the left
+    singular vectors of B whose singular values are below ``tol`` times the largest.
 
-    The eigenvectors of Q = B Bᵀ whose eigenvalues are below ``tol``² times
-    the largest, i.e. the left singular vectors of B whose singular values
-    are below ``tol`` times the largest.  ``k`` is the first number of
-    eigenpairs asked for; it doubles until one of them is above the threshold.
+    Few rows (m ≤ 200): a dense SVD.  Many: the eigenvectors of Q = B Bᵀ
+    below (10⁻⁶)² of its largest eigenvalue (the candidates; ``k`` is the
+    first number asked for, doubled until one is above), then a
+    Rayleigh-Ritz step, the SVD of Bᵀ on their span, which measures the
+    singular values of B to round-off (those of Q only resolve them down to
+    about 1e-8), and keeps those below ``tol``.
 
     >>> import scipy.sparse as sp
     >>> dependencies(sp.csr_matrix([[1.0, 0.0], [2.0, 0.0], [0.0, 1.0]])).shape
     (3, 1)
     """
-    Q = sp.csc_matrix(B @ B.T)
-    m = Q.shape[0]
+    B = sp.csr_matrix(B)
+    m = B.shape[0]
     if m == 0:
         return np.zeros((0, 0))
-    if m <= 200:  # small: dense is cheaper than Lanczos
-        w, V = np.linalg.eigh(Q.toarray())
-        return V[:, w <= tol ** 2 * max(w.max(), 1e-300)]
+    if m <= 200:  # few rows: dense is cheaper than Lanczos
+        U, sv, _ = np.linalg.svd(B[:, np.unique(B.indices)].toarray(), full_matrices=True)
+        full = np.zeros(m)
+        full[:sv.size] = sv
+        return U[:, full <= tol * max(full.max(), 1e-300)]
+    Q = sp.csc_matrix(B @ B.T)
     q_max = eigsh(Q, k=1, which="LA", return_eigenvectors=False, tol=1e-3)[0] * 1.01
-    cut = tol ** 2 * q_max
+    cut = max(tol, 1e-6) ** 2 * q_max
     while True:
         k = min(k, m - 2)
         try:
             w, V = eigsh(Q, k=k, sigma=-100 * cut, which="LM")
-        except ArpackNoConvergence as e:  # pragma: no cover - keep what converged
+        except ArpackNoConvergence as e:  # keep what converged
             w, V = e.eigenvalues, e.eigenvectors
         small = w <= cut
         if small.sum() < k or k == m - 2:
-            return np.linalg.qr(V[:, small])[0] if small.any() else V[:, :0]
+            break
         k *= 2
+    if not small.any():
+        return V[:, :0]
+    V = np.linalg.qr(V[:, small])[0]
+    M = B.T @ V  # (n, k), padded to at least k rows: Wt is then (k, k)
+    M = np.vstack([M, np.zeros((max(V.shape[1] - M.shape[0], 0), V.shape[1]))])
+    _, sv, Wt = np.linalg.svd(M, full_matrices=False)
+    return V @ Wt.T[:, sv <= tol * np.sqrt(q_max)]
 
 
 def smoothest(B, mu, G=None, tol: float = 1e-6, N=None) -> np.ndarray:
