@@ -22,6 +22,8 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
+import platform
 import resource
 import subprocess
 import sys
@@ -197,6 +199,9 @@ def main(argv=None) -> None:
         rows.append((kind, cell, n, pl, it, di))
         series.setdefault(cell, []).append((it["dofs"], it["solve"], it["total"],
                                             pl["solve"], pl["total"]))
+    cpu = platform.processor() or platform.machine()
+    print(f"\n{time.strftime('%Y-%m-%d %H:%M')} on {platform.node()} ({cpu}, {os.cpu_count()} "
+          f"cores, Python {platform.python_version()}); one process per solve, one run")
     print("\n| case | dofs | mult. | direct solve | iter. solve (its) | plain solve (its) | "
           "solve ratio | X-FEM total | plain total | total ratio | direct/iter. | "
           "peak MB iter./plain (ratio) | over import: iter./plain (ratio) | "
