@@ -23,7 +23,9 @@ import importlib
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["rigid_modes", "amg"]
+from .saddle import SingularSystemError
+
+__all__ = ["rigid_modes", "amg", "check_held"]
 
 
 def pyamg():
@@ -108,3 +110,25 @@ def amg(A: sp.spmatrix, modes: np.ndarray | None = None, blocksize: int = 1):
     except RuntimeError:  # a singular coarsest matrix: an aggregate on which the modes
         return amg_module.smoothed_aggregation_solver(  # are dependent (nodes on a line)
             A, B=modes, coarse_solver="pinv", improve_candidates=None)
+
+
+def check_held(Kr, Z, rigid_tol: float = 1e-11):
+    """Refuse a rigid motion of a side that ``Kr`` leaves free.
+
+    The smallest Rayleigh quotient of ``Kr`` (scaled to unit diagonal) over
+    the span of the modes ``Z`` (orthonormalised) must reach ``rigid_tol``;
+    otherwise a :class:`skxfem.saddle.SingularSystemError`.
+    """
+    Q, R = np.linalg.qr(Z)
+    d = np.abs(np.diag(R))
+    Q = Q[:, d > 1e-12 * d.max()] if d.size and d.max() > 0 else Q[:, :0]
+    if Q.shape[1] == 0:
+        return
+    energy = np.linalg.eigvalsh(Q.T @ (Kr @ Q))[0]
+    if energy < rigid_tol:
+        raise SingularSystemError(
+            f"the tied system is singular (a rigid motion of a side has energy "
+            f"{energy:.1e}): a part of the body can move freely.  Either the displacements "
+            f"do not remove every rigid motion of the body, or a frictionless (bilateral) "
+            f"tie lets the part on the other side of Γ slide; add displacements "
+            f"(supports) on each side")

@@ -65,7 +65,8 @@ the tie lets slide (a frictionless tie); a bonded tie holds both sides
 together and the rigid motions of the whole body suffice (``bonded=True``:
 half the coarse unknowns).  The same modes tell a system that is singular —
 a side that neither the supports nor the tie hold, where an iterative
-method would return an arbitrary U — apart: :func:`solve` refuses it.  The
+method would return an arbitrary U — apart: :func:`solve` refuses it
+(:func:`skxfem.amg.check_held`).  The
 coarse grid is solved by SuperLU (``coarse_solver="splu"``; pyamg's
 default pseudo-inverse was measured 13× slower on this machine).
 
@@ -90,7 +91,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import LinearOperator, splu
 
-from .amg import amg, pyamg
+from .amg import amg, check_held, pyamg
 from .saddle import SingularSystemError
 from .smoothest import dependencies, smoothest
 
@@ -217,7 +218,7 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
     rhs = np.concatenate([np.where(fixed, 0.0, s * (F - K @ U0)) + r * (Bn.T @ c), c])
     Zs = None if modes is None else modes / s[:, None]
     if Zs is not None:
-        _check_held(Kr, Zs, rigid_tol)
+        check_held(Kr, Zs, rigid_tol)
         if bonded:
             Zs = Zs[:, 0::2] + Zs[:, 1::2]
     ml = amg(Kr, Zs, blocksize)
@@ -288,20 +289,3 @@ def _scaled(K, B, fixed):
     rows = 1.0 / np.where(norms > 0, norms, 1.0)
     return s, Ks, (sp.diags(rows) @ Bs).tocsr(), rows
 
-
-def _check_held(Kr, Z, rigid_tol):
-    """Refuse a rigid motion of a side that K_r leaves free: the smallest
-    Rayleigh quotient of K_r over the span of Z (orthonormalised)."""
-    Q, R = np.linalg.qr(Z)
-    d = np.abs(np.diag(R))
-    Q = Q[:, d > 1e-12 * d.max()] if d.size and d.max() > 0 else Q[:, :0]
-    if Q.shape[1] == 0:
-        return
-    energy = np.linalg.eigvalsh(Q.T @ (Kr @ Q))[0]
-    if energy < rigid_tol:
-        raise SingularSystemError(
-            f"the tied system is singular (a rigid motion of a side has energy "
-            f"{energy:.1e}): a part of the body can move freely.  Either the displacements "
-            f"do not remove every rigid motion of the body, or a frictionless (bilateral) "
-            f"tie lets the part on the other side of Γ slide; add displacements "
-            f"(supports) on each side")
