@@ -66,9 +66,9 @@ together and the rigid motions of the whole body suffice (``bonded=True``:
 half the coarse unknowns).  The same modes tell a system that is singular —
 a side that neither the supports nor the tie hold, where an iterative
 method would return an arbitrary U — apart: :func:`solve` refuses it
-(:func:`skxfem.amg.check_held`).  The
-coarse grid is solved by SuperLU (``coarse_solver="splu"``; pyamg's
-default pseudo-inverse was measured 13× slower on this machine).
+(:func:`skxfem.amg.check_held`).  The coarse grid is solved by SuperLU
+(``coarse_solver="splu"``; pyamg's default pseudo-inverse was 13× slower
+on the plain baseline, as measured in issue 11).
 
 Dependent multipliers (the naive spaces) make the system singular but
 consistent: U is still unique, and FGMRES converges to a solution.  The
