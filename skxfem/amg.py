@@ -1,0 +1,134 @@
+r"""Algebraic multigrid for the X-FEM stiffness: its near-null space and the hierarchy.
+
+Smoothed aggregation (pyamg) builds its coarse spaces from a few vectors the
+operator nearly annihilates.  For plain elasticity these are the rigid
+motions of the body.  The X-FEM stiffness K on [a, b] has twice as many: a
+rigid motion of Ω⁻ with Ω⁺ at rest, and one of Ω⁺ with Ω⁻ at rest
+(:func:`rigid_modes`); their sums are the rigid motions of the body.
+:func:`amg` builds the hierarchy on nodal blocks (the unknowns of a node,
+standard or enriched, aggregate together) with a SuperLU coarse solve.
+
+pyamg is an optional dependency (``pip install pyamg`` or ``skxfem[amg]``),
+imported when a hierarchy is built.
+
+>>> import scipy.sparse as sp, numpy as np
+>>> A = sp.diags([-np.ones(99), 2 * np.ones(100), -np.ones(99)], [-1, 0, 1])
+>>> amg(A).levels[0].A.shape
+(100, 100)
+"""
+from __future__ import annotations
+
+import importlib
+
+import numpy as np
+import scipy.sparse as sp
+
+from .saddle import SingularSystemError
+
+__all__ = ["rigid_modes", "amg", "check_held"]
+
+
+def pyamg():
+    """The pyamg module, or an ImportError that says how to install it."""
+    try:
+        return importlib.import_module("pyamg")
+    except ImportError as e:
+        raise ImportError("the iterative solver needs pyamg: pip install pyamg "
+                          "(or pip install skxfem[amg])") from e
+
+
+def rigid_modes(V, sides: bool = True) -> np.ndarray:
+    """The rigid motions of Ω⁻ and of Ω⁺, each with the other side at rest, on [a, b].
+
+    With the shifted enrichment u = Σ aᵢφᵢ + Σ bⱼφⱼ(H - Hⱼ) and R a rigid
+    motion, "R on the side s, 0 on the other" has aᵢ = R(xᵢ) at the nodes of
+    side s (Hᵢ = s), aᵢ = 0 elsewhere, and bⱼ = s R(xⱼ)/2 at every enriched
+    node (its far side gets R or -R from the jump 2bⱼ).  The two sum to R on
+    the whole body, with b = 0.
+
+    Parameters
+    ----------
+    V
+        An :class:`skxfem.enrich.XSpace`.
+    sides
+        ``False``: only the k rigid motions of the whole body (their sums).
+
+    Returns
+    -------
+    (N, 2k) array, columns 2i and 2i+1 the i-th motion of Ω⁻ and of Ω⁺
+    (``sides=False``: (N, k), their sums); k = 3 in 2D (two translations,
+    one rotation), 6 in 3D.
+
+    >>> from skxfem.scenes import strip
+    >>> from skxfem.problem import assemble
+    >>> p = assemble(strip(3, "tri"))
+    >>> Z = rigid_modes(p.V)
+    >>> Z.shape, float(abs(p.K @ Z).max()) < 1e-12
+    ((48, 6), True)
+    """
+    x = V.mesh.p
+    dim = x.shape[0]
+    nd = V.basis.nodal_dofs  # (dim, nverts)
+    if dim == 2:
+        motions = [np.eye(2)[:, [c]] * np.ones(x.shape[1]) for c in range(2)]
+        motions.append(np.array([-x[1], x[0]]))
+    else:
+        motions = [np.eye(3)[:, [c]] * np.ones(x.shape[1]) for c in range(3)]
+        motions += [np.array([np.zeros_like(x[0]), -x[2], x[1]]),
+                    np.array([x[2], np.zeros_like(x[0]), -x[0]]),
+                    np.array([-x[1], x[0], np.zeros_like(x[0])])]
+    H = np.where(V.cut.psi < 0, -1.0, 1.0)
+    node_of = np.zeros(V.n_std, dtype=np.int64)
+    node_of[nd.ravel()] = np.tile(np.arange(x.shape[1]), dim)
+    Z = np.zeros((V.N, 2 * len(motions)))
+    for k, R in enumerate(motions):
+        a = np.zeros(V.n_std)
+        a[nd.ravel()] = R.ravel()
+        for j, s in enumerate((-1.0, 1.0)):
+            col = 2 * k + j
+            Z[:V.n_std, col] = np.where(H[node_of] == s, a, 0.0)
+            Z[V.n_std:, col] = 0.5 * s * a[V.enr_dofs]
+    return Z if sides else Z[:, 0::2] + Z[:, 1::2]
+
+
+def amg(A: sp.spmatrix, modes: np.ndarray | None = None, blocksize: int = 1):
+    """pyamg smoothed aggregation for the SPD ``A`` with near-null space ``modes``.
+
+    Nodal blocks of ``blocksize`` unknowns are aggregated together (the
+    unknowns of a node must be interleaved); the coarsest level is solved by
+    SuperLU, or by a pseudo-inverse if it is singular (an aggregate whose
+    nodes lie on a line, where a rotation vanishes).  The modes are used as
+    they are (pyamg's smoothing of candidates is off: rigid modes are exact).
+    Returns the pyamg ``MultilevelSolver``.
+    """
+    amg_module = pyamg()
+    A = sp.bsr_matrix(A, blocksize=(blocksize, blocksize)) if blocksize > 1 \
+        else sp.csr_matrix(A)
+    try:
+        return amg_module.smoothed_aggregation_solver(
+            A, B=modes, coarse_solver="splu", improve_candidates=None)
+    except RuntimeError:  # a singular coarsest matrix: an aggregate on which the modes
+        return amg_module.smoothed_aggregation_solver(  # are dependent (nodes on a line)
+            A, B=modes, coarse_solver="pinv", improve_candidates=None)
+
+
+def check_held(Kr, Z, rigid_tol: float = 1e-11):
+    """Refuse a rigid motion of a side that ``Kr`` leaves free.
+
+    The smallest Rayleigh quotient of ``Kr`` (scaled to unit diagonal) over
+    the span of the modes ``Z`` (orthonormalised) must reach ``rigid_tol``;
+    otherwise a :class:`skxfem.saddle.SingularSystemError`.
+    """
+    Q, R = np.linalg.qr(Z)
+    d = np.abs(np.diag(R))
+    Q = Q[:, d > 1e-12 * d.max()] if d.size and d.max() > 0 else Q[:, :0]
+    if Q.shape[1] == 0:
+        return
+    energy = np.linalg.eigvalsh(Q.T @ (Kr @ Q))[0]
+    if energy < rigid_tol:
+        raise SingularSystemError(
+            f"the tied system is singular (a rigid motion of a side has energy "
+            f"{energy:.1e}): a part of the body can move freely.  Either the displacements "
+            f"do not remove every rigid motion of the body, or a frictionless (bilateral) "
+            f"tie lets the part on the other side of Γ slide; add displacements "
+            f"(supports) on each side")

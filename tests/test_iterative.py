@@ -1,0 +1,184 @@
+"""Tests for skxfem/iterative.py (and skxfem/smoothest.py): the AMG-preconditioned
+Krylov solve of the tied saddle system gives the direct solve's answer.
+
+1. ``rigid_modes``: each side's rigid motion has zero energy, vanishes on the
+   other side, and the pair sums to the rigid motion of the body (b = 0).
+2. On small scenes of every cell type, multiplier space and tie law,
+   ``iterative.solve`` returns the U and the edge tractions λ = Pμ (hence the
+   pressure) of ``saddle.solve`` to 1e-8 relative, including the naive spaces
+   whose multipliers are dependent (the direct path removes some: checked).
+3. ``smoothest`` picks the multipliers ``saddle.smoothest_multipliers`` picks,
+   by a dense eigensolve for a few multipliers and by Lanczos for many, and
+   ``dependencies`` finds as many as the direct path removes.
+4. Refusals: an iteration limit too small raises ConvergenceError (a
+   ValueError) reporting iterations and residual; a side that can slide
+   raises SingularSystemError; a missing pyamg names ``pip install pyamg``.
+"""
+import dataclasses
+import importlib
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from skxfem import iterative, saddle
+from skxfem.amg import rigid_modes
+from skxfem.enrich import split_fields
+from skxfem.problem import assemble
+from skxfem.scene import Displacement
+from skxfem.scenes import exact_plate, exact_strip, paper_plate
+from skxfem.smoothest import dependencies, smoothest
+from skxfem.solver import _differences
+
+CELLS = ["tri", "quad", "tet", "hex", "prism"]
+SPACES = ["naive", "winner", "vital"]
+
+
+def at(*coords):
+    return lambda x: np.all([np.abs(x[i] - c) < 1e-12 for i, c in enumerate(coords)], axis=0)
+
+
+def scene(cell, space, law="bonded", held=True):
+    """The exact strip (2D, 6 cells across) or plate (3D, 3 x 3 cells, one along x).
+
+    A frictionless tie lets the upper part slide: ``held`` adds the tangential
+    supports of the top face that the patch tests use."""
+    if cell in ("tri", "quad"):
+        s = exact_strip(6, cell, space=space)
+    else:
+        s = exact_plate(3, "hex" if cell == "tet" else cell, nx=1, space=space)
+        s = dataclasses.replace(s, mesh=dataclasses.replace(s.mesh, cell=cell))
+    s = dataclasses.replace(s, law=law)
+    if law == "bilateral" and held:
+        top = (Displacement(at(0.0, 1.0), {"x": 0.0}),) if s.dim == 2 else (
+            Displacement(at(0.0, 0.0, 1.0), {"x": 0.0, "y": 0.0}),
+            Displacement(at(0.0, 1.0, 1.0), {"y": 0.0}))
+        s = dataclasses.replace(s, displacements=s.displacements + top)
+    return s
+
+
+def both(problem, **kw):
+    """The direct and the iterative solve of one problem."""
+    p = problem
+    G = _differences(p.cut, p.ncomp) @ p.P
+    direct = saddle.solve(p.K, p.B, p.F, p.D, p.g, G=G)
+    it = iterative.solve(p.K, p.B, p.F, p.D, p.g, G=G, modes=rigid_modes(p.V),
+                         blocksize=p.mesh.dim(), bonded=p.law == "bonded", **kw)
+    return direct, it
+
+
+# 1. rigid modes ------------------------------------------------------------------
+
+@pytest.mark.parametrize("cell", ["tri", "hex"])
+def test_rigid_modes_move_one_side_and_cost_no_energy(cell):
+    p = assemble(scene(cell, "vital"))
+    Z = rigid_modes(p.V)
+    k = 3 if cell == "tri" else 6
+    assert Z.shape == (p.V.N, 2 * k)
+    assert np.abs(p.K @ Z).max() < 1e-12 * np.abs(p.K).max() * np.abs(Z).max(), \
+        "a rigid motion of one side must have zero energy (K Z = 0)"
+    enriched = np.zeros(p.mesh.p.shape[1], dtype=bool)
+    enriched[np.isin(p.V.basis.nodal_dofs[0], p.V.enr_dofs)] = True
+    side_of = np.sign(p.cut.psi)
+    for j, side in enumerate((-1, 1)):
+        u_minus, u_plus = split_fields(p.V, Z[:, j])  # translation along x of one side
+        moved, still = (u_minus, u_plus) if side < 0 else (u_plus, u_minus)
+        mine = (side_of == side) | enriched  # the nodes whose field on this side is defined
+        other = (side_of == -side) | enriched
+        assert np.allclose(moved[0, mine], 1.0) and np.allclose(moved[1:, mine], 0.0)
+        assert np.abs(still[:, other]).max() == 0.0, "the other side must stay at rest"
+    body = rigid_modes(p.V, sides=False)
+    assert body.shape == (p.V.N, k)
+    assert np.abs(body[p.V.n_std:]).max() == 0.0, "a rigid motion of the body has no jump"
+
+
+# 2. the direct path's answer ---------------------------------------------------------
+
+@pytest.mark.parametrize("law", ["bonded", "bilateral"])
+@pytest.mark.parametrize("space", SPACES)
+@pytest.mark.parametrize("cell", CELLS)
+def test_iterative_solve_gives_the_direct_answer(cell, space, law):
+    p = assemble(scene(cell, space, law))
+    (Ud, mud, _), (U, mu, info) = both(p, tol=1e-12)
+    assert info.residual <= 1e-12 and info.iterations > 0
+    assert np.linalg.norm(U - Ud) <= 1e-8 * np.linalg.norm(Ud), "U differs from the direct U"
+    lam, lam_d = p.P @ mu, p.P @ mud
+    assert np.linalg.norm(lam - lam_d) <= 1e-8 * np.linalg.norm(lam_d), \
+        "the edge tractions (and so the pressure) differ from the direct ones"
+    assert info.balance < 1e-10
+
+
+@pytest.mark.parametrize("cell", ["tet", "hex", "prism"])
+def test_dependent_naive_multipliers_are_covered(cell):
+    """The naive space leaves dependent multipliers here (the direct path removes
+    them), so the comparison above covers a singular saddle system."""
+    p = assemble(scene(cell, "naive"))
+    (Ud, _, info_d), (U, _, info) = both(p)
+    assert info_d.removed > 0
+    assert info.removed == info_d.removed, "both paths find the same dependencies"
+    assert np.linalg.norm(U - Ud) <= 1e-8 * np.linalg.norm(Ud)
+
+
+# 3. the smoothest multipliers ----------------------------------------------------
+
+def test_smoothest_matches_the_dense_choice():
+    rng = np.random.default_rng(3)
+    m, n = 12, 9
+    B = rng.standard_normal((m, 5)) @ rng.standard_normal((5, n))  # rank 5 < m
+    G = sp.csr_matrix(np.eye(m - 1, m) - np.eye(m - 1, m, 1))
+    mu0 = rng.standard_normal(m)
+    mu = smoothest(sp.csr_matrix(B), mu0, G)
+    dense = saddle.smoothest_multipliers(sp.csr_matrix(B), B.T @ mu0, G)
+    assert np.allclose(B.T @ mu, B.T @ mu0, atol=1e-12), "μ must still balance"
+    assert np.allclose(mu, dense, atol=1e-9)
+    least = smoothest(sp.csr_matrix(B), mu0)
+    assert np.allclose(least, np.linalg.pinv(B.T) @ (B.T @ mu0), atol=1e-9), \
+        "without G: the least-norm multipliers"
+
+
+def test_smoothest_by_lanczos_matches_the_direct_choice():
+    """Above 200 multipliers the dependencies come from shift-invert Lanczos:
+    the naive hexahedral plate has many, near its clamped and rolled faces."""
+    p = assemble(paper_plate(8, "hex"))
+    free = np.setdiff1d(np.arange(p.V.N), p.D)
+    G = _differences(p.cut, p.ncomp) @ p.P
+    _, mu_d, info = saddle.solve(p.K, p.B, p.F, p.D, p.g, G=G)
+    assert p.B.shape[0] > 200 and info.removed > 0
+    N = dependencies(p.B[:, free])
+    assert N.shape[1] == info.removed, "as many dependencies as the direct path removes"
+    assert np.abs(p.B[:, free].T @ N).max() < 1e-10 * abs(p.B).max()
+    noisy = mu_d + N @ np.random.default_rng(0).standard_normal(N.shape[1])
+    mu = smoothest(p.B[:, free], noisy, G)
+    assert np.linalg.norm(mu - mu_d) <= 1e-8 * np.linalg.norm(mu_d)
+
+
+# 4. refusals ------------------------------------------------------------------------
+
+def test_too_few_iterations_raise_a_clear_error():
+    p = assemble(scene("hex", "vital"))
+    with pytest.raises(iterative.ConvergenceError, match="maxiter") as err:
+        both(p, maxiter=2)
+    assert isinstance(err.value, ValueError)
+    assert err.value.iterations == 2 and err.value.residual > 1e-10
+
+
+@pytest.mark.parametrize("cell", ["quad", "prism"])
+def test_a_sliding_side_is_refused(cell):
+    p = assemble(scene(cell, "vital", "bilateral", held=False))
+    with pytest.raises(saddle.SingularSystemError, match="slide"):
+        iterative.solve(p.K, p.B, p.F, p.D, p.g, modes=rigid_modes(p.V),
+                        blocksize=p.mesh.dim())
+
+
+def test_missing_pyamg_names_the_install(monkeypatch):
+    real = importlib.import_module
+
+    def no_pyamg(name, *args):
+        if name == "pyamg":
+            raise ImportError("No module named 'pyamg'")
+        return real(name, *args)
+
+    monkeypatch.setattr(importlib, "import_module", no_pyamg)
+    p = assemble(scene("tri", "vital"))
+    with pytest.raises(ImportError, match="pip install pyamg"):
+        iterative.solve(p.K, p.B, p.F, p.D, p.g)
