@@ -31,7 +31,8 @@ The package is flat; its modules stand on floors, lowest first.  A module
 imports only from lower floors (import-linter checks it in ``make test``; the
 contract is in ``pyproject.toml``):
 
-1. kernels: ``simplex``, ``expr``, ``saddle``, ``vtu``, ``progress``;
+1. kernels: ``simplex``, ``expr``, ``saddle``, ``vtu``, ``progress``, ``grade``;
+   then ``amg``, ``smoothest``, then ``iterative`` (the scalable linear solve);
 2. ``levelset`` (the sign convention), ``meshes``, ``cells``, ``material``,
    ``quadrature``, ``evaluate``, ``contact_laws``;
 3. ``cut``, ``exact``;  4. ``enrich``, ``loads``;

@@ -23,21 +23,24 @@ is checked.
 """
 from __future__ import annotations
 
+import importlib.util
 import time
 from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
 
-from . import contact, saddle
+from . import contact, iterative, saddle
+from .amg import rigid_modes
 from .contact import ContactResult
 from .contact_laws import CONTACT_LAWS
 from .enrich import XSpace, split_fields
 from .levelset import point_normals
 from .problem import Problem, assemble, constrained_dofs
 from .scene import Scene
+from .smoothest import dependencies
 
-__all__ = ["Result", "solve", "solve_problem", "constrained_dofs"]
+__all__ = ["Result", "solve", "solve_problem", "constrained_dofs", "LINEAR", "AUTO_ITERATIVE"]
 
 
 @dataclass(frozen=True)
@@ -49,7 +52,8 @@ class Result:
     ``facets`` (dim, nf) index ``points``; ``u_minus``/``u_plus`` (dim, nverts)
     are the nodal fields of each side; ``max_jump`` is the largest constrained
     jump at the interface quadrature points (|[[u]]| bonded, |[[u]]·n|
-    bilateral); ``removed`` counts the dependent multipliers removed.
+    bilateral); ``removed`` counts the dependent multipliers removed;
+    ``linear`` says which linear solve ran (``"direct"`` or ``"iterative"``).
     """
 
     scene: Scene
@@ -68,6 +72,29 @@ class Result:
     timings: dict = field(default_factory=dict)
     U: np.ndarray | None = field(default=None, repr=False)
     space: XSpace | None = field(default=None, repr=False)
+    linear: str = "direct"
+
+
+LINEAR = ("auto", "direct", "iterative")
+"""The linear solves of the tie: SuperLU on the saddle system
+(:func:`skxfem.saddle.solve`), AMG-preconditioned FGMRES
+(:func:`skxfem.iterative.solve`, needs pyamg), or ``auto``."""
+
+AUTO_ITERATIVE = {2: 100_000, 3: 5_000}
+"""``auto`` takes the iterative path from this many unknowns (per dimension),
+when pyamg is installed: measured break-even on 2 cores, 3D near 3k unknowns
+(5.5x faster at 17k), 2D near 100k (1.6x faster at 529k),
+``benchmarks/tie_solve.py``."""
+
+
+def _linear(method: str, p: Problem) -> str:
+    """The linear solve ``method`` resolves to for ``p``."""
+    if method not in LINEAR:
+        raise ValueError(f"linear must be one of {LINEAR}, got {method!r}")
+    if method != "auto":
+        return method
+    big = p.V.N >= AUTO_ITERATIVE[p.mesh.dim()]
+    return "iterative" if big and importlib.util.find_spec("pyamg") else "direct"
 
 
 def _differences(c, ncomp: int) -> sp.csr_matrix:
@@ -82,7 +109,8 @@ def _differences(c, ncomp: int) -> sp.csr_matrix:
     return sp.kron(sp.identity(ncomp), G, format="csr")
 
 
-def solve(scene: Scene, dependent: str = "remove") -> Result | ContactResult:
+def solve(scene: Scene, dependent: str = "remove", linear: str = "auto"
+          ) -> Result | ContactResult:
     """Solve ``scene`` and return a :class:`Result`.
 
     A scene with a contact law (``frictionless``, ``coulomb``, ``adhesive``)
@@ -98,6 +126,10 @@ def solve(scene: Scene, dependent: str = "remove") -> Result | ContactResult:
     dependent
         ``"remove"`` (default) drops linearly dependent multipliers,
         ``"raise"`` refuses a rank-deficient coupling with a ValueError.
+    linear
+        The linear solve of the tie, one of :data:`LINEAR`: ``"direct"``,
+        ``"iterative"`` (AMG + FGMRES, pyamg), or ``"auto"`` (default): the
+        iterative one from :data:`AUTO_ITERATIVE` unknowns if pyamg is there.
 
     Raises
     ------
@@ -113,13 +145,14 @@ def solve(scene: Scene, dependent: str = "remove") -> Result | ContactResult:
     if scene.law in CONTACT_LAWS:
         return contact.solve(scene)
     p = assemble(scene)
-    return solve_problem(p, dependent)
+    return solve_problem(p, dependent, linear)
 
 
-def solve_problem(p: Problem, dependent: str = "remove") -> Result:
+def solve_problem(p: Problem, dependent: str = "remove", linear: str = "auto") -> Result:
     """Solve an assembled :class:`skxfem.problem.Problem` (its law): see :func:`solve`."""
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
+    linear = _linear(linear, p)
     scene, mesh, c, V, B, P, D, ncomp = p.scene, p.mesh, p.cut, p.V, p.B, p.P, p.D, p.ncomp
     t = p.timings
     timings = {"cut": t["cut"] + t["space"], "enrich": t["enrich"],
@@ -127,14 +160,20 @@ def solve_problem(p: Problem, dependent: str = "remove") -> Result:
                                               "prolongation"))}
     t0 = time.perf_counter()
     if dependent == "raise":
-        removed = B.shape[0] - saddle.independent_rows(
-            B[:, np.setdiff1d(np.arange(V.N), D)]).size
+        Bf = B[:, np.setdiff1d(np.arange(V.N), D)]
+        removed = (dependencies(Bf).shape[1] if linear == "iterative"
+                   else B.shape[0] - saddle.independent_rows(Bf).size)
         if removed:
             raise ValueError(
                 f"the multiplier space is rank deficient: {removed} of {B.shape[0]} "
                 f"multipliers depend on the others (space {scene.space!r}, law "
                 f"{p.law!r}); use a stabilised space or dependent='remove'")
-    U, mu, info = saddle.solve(p.K, B, p.F, D, p.g, G=_differences(c, ncomp) @ P)
+    G = _differences(c, ncomp) @ P
+    if linear == "iterative":
+        U, mu, info = iterative.solve(p.K, B, p.F, D, p.g, G=G, modes=rigid_modes(V),
+                                      blocksize=mesh.dim(), bonded=p.law == "bonded")
+    else:
+        U, mu, info = saddle.solve(p.K, B, p.F, D, p.g, G=G)
     lam = (P @ mu).reshape(ncomp, -1)
     timings["solve"] = time.perf_counter() - t0
 
@@ -146,4 +185,4 @@ def solve_problem(p: Problem, dependent: str = "remove") -> Result:
     u_minus, u_plus = split_fields(V, U)
     return Result(scene, mesh, u_minus, u_plus, c.points, normals, traction,
                   -(traction * normals).sum(0), c.facets, float(jn.max()), V.N,
-                  B.shape[0] - info.removed, info.removed, timings, U, V)
+                  B.shape[0] - info.removed, info.removed, timings, U, V, linear)

@@ -676,3 +676,27 @@ def test_traction_on_a_circle_in_uniform_stress_converges_at_every_point(centre,
     rate = -np.polyfit(np.log(ns), np.log(errors), 1)[0]
     assert np.all(rate > 0.9), f"errors {errors.tolist()} converge at rates {rate}, not ≥ 1"
     assert np.all(errors < 2 / ns[:, None]), f"errors {errors.tolist()}: not below 2h"
+
+
+# ---------------------------------------------------------------------------
+# 8. The linear solve: direct, iterative (AMG + FGMRES), auto
+# ---------------------------------------------------------------------------
+
+@pytest.mark.parametrize("make", [lambda: strip(6, "tri"), lambda: paper_plate(3, "prism")])
+def test_iterative_linear_solve_gives_the_direct_answer(make):
+    pytest.importorskip("pyamg")
+    scene = make()
+    direct = solve(scene, linear="direct")
+    it = solve(scene, linear="iterative")
+    assert (direct.linear, it.linear) == ("direct", "iterative")
+    assert np.abs(it.U - direct.U).max() <= 1e-8 * np.abs(direct.U).max()
+    assert np.abs(it.pressure - direct.pressure).max() <= 1e-6 * np.abs(direct.pressure).max()
+
+
+def test_auto_takes_the_direct_solve_on_small_scenes_and_bad_names_are_refused():
+    from skxfem.solver import AUTO_ITERATIVE
+
+    r = solve(strip(4, "quad"))
+    assert r.linear == "direct" and r.n_dofs < AUTO_ITERATIVE[2]
+    with pytest.raises(ValueError, match="linear must be one of"):
+        solve(strip(4, "quad"), linear="cholesky")
