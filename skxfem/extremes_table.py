@@ -19,7 +19,7 @@ from .extremes_scales import modulus_rows, poisson_rows, rho_rows
 from .extremes_shapes import memory_rows, one_cell_rows, shape_rows, space_rows
 from .progress import Progress
 
-__all__ = ["table", "format_rows"]
+__all__ = ["table", "format_rows", "markdown_rows"]
 
 
 def table(cells=CELL_TYPES, progress: Progress | None = None) -> list[Row]:
@@ -44,4 +44,23 @@ def format_rows(rows, width: int = 90) -> str:
         note = r.message if len(r.message) <= width else r.message[:width - 3] + "..."
         lines.append(f"{r.group:8} {r.case:50} {r.outcome:10} {value:>9} {r.tolerance:>8.3g}"
                      f"  {note}".rstrip())
+    return "\n".join(lines)
+
+
+def markdown_rows(rows) -> str:
+    """The rows as a Markdown table (for the book): every message in full.
+
+    >>> from skxfem.extremes import Row
+    >>> print(markdown_rows([Row("E", "E = 1", "solved", "energy error", 1e-15, 1e-8, "", 0.1)]))
+    | group | case | outcome | value | tolerance | message or note |
+    |---|---|---|---|---|---|
+    | E | E = 1 | solved | 1.00e-15 | 1e-08 |  |
+    """
+    lines = ["| group | case | outcome | value | tolerance | message or note |",
+             "|---|---|---|---|---|---|"]
+    for r in rows:
+        value = "-" if r.value is None else f"{r.value:.2e}"
+        note = r.message.replace("|", "\\|").replace("\n", " ")
+        lines.append(f"| {r.group} | {r.case} | {r.outcome} | {value} | {r.tolerance:.3g} "
+                     f"| {note} |")
     return "\n".join(lines)
