@@ -225,7 +225,7 @@ def test_multipliers_that_do_not_balance_u_are_never_returned(monkeypatch):
     U, mu, info = solve(K, B, F, G=G)
     assert info.balance < 1e-12
     monkeypatch.setattr(saddle, "smoothest_multipliers",
-                        lambda B, r, G: np.full(B.shape[0], 1e6))
+                        lambda B, r, G, tol=None: np.full(B.shape[0], 1e6))
     with pytest.raises(RuntimeError, match="do not balance"):
         solve(K, B, F, G=G)
 
