@@ -42,7 +42,7 @@ from .contact import solve as solve_contact
 from .contact_laws import CONTACT_LAWS, STATUS_NAMES
 from .contact_newton import ContactConvergenceError
 from .scenefile import load_scene
-from .solver import solve
+from .solver import LINEAR, solve
 
 __all__ = ["main", "parser", "FORWARDED"]
 
@@ -103,6 +103,10 @@ def parser() -> argparse.ArgumentParser:
     run.add_argument("--max-iter", type=_positive, default=None, metavar="N",
                      help="contact laws: Newton iterations allowed per load step "
                           "(default: that of skxfem.contact.solve, 30)")
+    run.add_argument("--linear", choices=LINEAR, default="auto",
+                     help="ties: the linear solve, direct (SuperLU), iterative (AMG + "
+                          "FGMRES, needs pyamg) or auto (iterative from "
+                          "skxfem.solver.AUTO_ITERATIVE unknowns; the default)")
     run.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
                      help="show the traceback of an error")
     for name, (text, _) in FORWARDED.items():
@@ -153,7 +157,7 @@ def _run(args) -> int:
         limit = {} if args.max_iter is None else {"max_iter": args.max_iter}
         result = solve_contact(s, **limit)
     else:
-        result = solve(s)
+        result = solve(s, linear=args.linear)
     try:
         paths = io.write_result(result, out)
     except OSError as e:
@@ -166,6 +170,7 @@ def _run(args) -> int:
     span = f"pressure in [{p.min():.4g}, {p.max():.4g}]" if p.size else "no interface point"
     print(f"{s.name}: {result.n_dofs} dofs, {result.n_multipliers} multipliers, "
           f"max jump {result.max_jump:.2e}, {span}, "
+          f"{result.linear} solve, "
           f"{sum(result.timings.values()):.2f} s -> {paths['json'].parent}")
     return 0
 

@@ -114,7 +114,7 @@ def one_line(capsys, start="skxfem: error: "):
 @pytest.fixture
 def no_solve(monkeypatch):
     """Fail the test if the command solves: the errors below come before the solve."""
-    def solve(scene):
+    def solve(scene, **options):
         raise AssertionError("the command solved before checking")
     monkeypatch.setattr(cli, "solve", solve)
 
@@ -185,7 +185,7 @@ def test_12_usage_errors_are_one_line(capsys, argv):
 ])
 def test_13_unexpected_errors_are_one_line_and_debug_shows_them(
         tmp_path, capsys, monkeypatch, error, code):
-    def solve(scene):
+    def solve(scene, **options):
         raise error
     monkeypatch.setattr(cli, "solve", solve)
     argv = ["run", STRIP, "--out", str(tmp_path / "o")]
@@ -231,7 +231,7 @@ def test_15_reproduce_is_forwarded(tmp_path, capsys):
 
 
 def test_16_interrupted(tmp_path, capsys, monkeypatch):
-    def solve(scene):
+    def solve(scene, **options):
         raise KeyboardInterrupt
     monkeypatch.setattr(cli, "solve", solve)
     assert main(["run", STRIP, "--out", str(tmp_path / "o")]) == 130
@@ -260,7 +260,7 @@ CONTACT = str(EXAMPLES / "contact.toml")
 
 def test_18_contact_example_runs_and_its_json_satisfies_signorini(tmp_path, capsys,
                                                                    monkeypatch):
-    def tie_solve(scene):
+    def tie_solve(scene, **options):
         raise AssertionError("a contact scene went to skxfem.solver.solve")
     monkeypatch.setattr(cli, "solve", tie_solve)
     s = load_scene(CONTACT)
@@ -368,3 +368,22 @@ def test_23_grade_is_a_subcommand(tmp_path, capsys):
     assert code == 1
     assert "01_levelset" in capsys.readouterr().out
     assert report.exists()
+
+
+def test_24_the_linear_solve_is_an_option(tmp_path, capsys):
+    """`--linear iterative` solves a tie with AMG + FGMRES (the same pressures as
+    the direct solve); an unknown name is a usage error (exit 2, one line)."""
+    pytest.importorskip("pyamg")
+    plate = Path(__file__).resolve().parents[1] / "examples" / "plate.toml"
+    pressures = {}
+    for linear in ("direct", "iterative"):
+        assert main(["run", str(plate), "--out", str(tmp_path / linear),
+                     "--linear", linear]) == 0
+        assert f"{linear} solve" in capsys.readouterr().out
+        data = json.loads((tmp_path / linear / "result.json").read_text())
+        pressures[linear] = np.array(data["pressure"])
+    assert np.abs(pressures["iterative"] - pressures["direct"]).max() < 1e-6
+    with pytest.raises(SystemExit) as done:
+        main(["run", str(plate), "--linear", "cholesky"])
+    assert done.value.code == 2
+    assert "invalid choice: 'cholesky'" in capsys.readouterr().err
