@@ -21,6 +21,9 @@ Assembly uses scikit-fem throughout.  With K the standard stiffness
 because H² = 1.  K_H needs the sub-cell quadrature of :mod:`skxfem.cut`; on
 uncut cells H is the cell's constant side.  Both come from one pass over the
 quadrature points: with K^± the stiffness of Ω^±, K = K⁺ + K⁻ and K_H = K⁺ - K⁻.
+The pass runs on *scalar* bases, one per side (:func:`side_bases`, built once
+by :func:`space` and shared with :func:`far_side_fraction`), and each K^± is
+assembled from scalar forms (:func:`skxfem.material.stiffness_matrix`).
 
 >>> from skfem import MeshTri1
 >>> from skxfem.levelset import plane
@@ -32,7 +35,7 @@ quadrature points: with K^± the stiffness of Ω^±, K = K⁺ + K⁻ and K_H = K
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
@@ -42,11 +45,11 @@ from skfem.helpers import dot
 
 from .cut import Cut
 from .evaluate import evaluation_matrix
-from .material import Material, signed_stiffness_form
+from .material import Material, stiffness_matrix
 from .quadrature import cell_rule, exact_orders, subcell_rule
 
-__all__ = ["XSpace", "space", "stiffness", "mass", "enriched_matrix", "signed_bases",
-           "far_side_fraction", "enriched_load",
+__all__ = ["XSpace", "space", "stiffness", "mass", "enriched_matrix", "enriched_blocks",
+           "signed_bases", "side_bases", "far_side_fraction", "enriched_load",
            "jump_matrix", "split_fields"]
 
 
@@ -59,11 +62,17 @@ class XSpace:
     mesh, cut
         The mesh and its :class:`skxfem.cut.Cut`.
     basis
-        The standard vector ``skfem.Basis`` (quadrature chosen explicitly).
+        The standard vector ``skfem.Basis``: it numbers the dofs and evaluates
+        fields.  Its quadrature is the one-point centroid rule, so that it
+        holds one value per cell; every integral over the cells uses
+        :func:`side_bases` (the stiffness, at ``rule``).
     enr_dofs : (n_enr,) standard dofs of the enriched nodes, ordered node by
         node (component fastest); unknown ``n_std + k`` is the enriched dof of
         ``enr_dofs[k]``.
     H_node : (n_enr,) H(x_j) of the node of each enriched dof.
+    rule : (X, W), the cell rule of the stiffness on uncut cells.
+    sides : the scalar pairs (basis, ±1) of :func:`side_bases` at ``rule``,
+        which :func:`stiffness` reuses (empty: built when needed).
     """
 
     mesh: object
@@ -71,6 +80,8 @@ class XSpace:
     basis: CellBasis
     enr_dofs: np.ndarray
     H_node: np.ndarray
+    rule: tuple = field(repr=False, compare=False, default=None)
+    sides: tuple = field(default=(), repr=False, compare=False)
 
     @property
     def n_std(self) -> int:
@@ -85,7 +96,7 @@ class XSpace:
         return self.n_std + self.n_enr
 
 
-def _side_bases(mesh, cut: Cut, elem, quadrature=None, sub_order=None):
+def side_bases(mesh, cut: Cut, elem, quadrature=None, sub_order=None) -> tuple:
     """Bases covering the mesh, each lying on one side of Γ: pairs (basis, ±1).
 
     Uncut cells of Ω⁻ and of Ω⁺ use the cell rule.  The sub-simplices of the
@@ -105,7 +116,7 @@ def _side_bases(mesh, cut: Cut, elem, quadrature=None, sub_order=None):
                                 sub_order or exact_orders(mesh)[1])
             pairs.append((Basis(mesh, elem, elements=cut.sub_cell[sub],
                                 quadrature=(rule.X, rule.W)), s))
-    return pairs
+    return tuple(pairs)
 
 
 @LinearForm
@@ -113,17 +124,17 @@ def _signed_mass(v, w):
     return w["H"] * v
 
 
-def far_side_fraction(mesh, cut: Cut) -> np.ndarray:
+def far_side_fraction(mesh, cut: Cut, sides: tuple = ()) -> np.ndarray:
     """For each node j: ∫ φⱼ over the side of Γ opposite to the node, / ∫ φⱼ.
 
     The shifted enrichment φⱼ(H - Hⱼ) lives on that far side only; where it is
     a sliver the enriched dof carries no information but spoils the
-    conditioning (see :func:`space`).
+    conditioning (see :func:`space`).  ``sides``: scalar :func:`side_bases`
+    of a rule exact for φⱼ (default: those of the stiffness' rule).
     """
-    elem = mesh.elem()
     total = np.zeros(mesh.p.shape[1])
     signed = np.zeros(mesh.p.shape[1])
-    for b, s in _side_bases(mesh, cut, elem):
+    for b, s in sides or side_bases(mesh, cut, mesh.elem()):
         part = _signed_mass.assemble(b, H=np.ones(b.dx.shape))
         total, signed = total + part, signed + s * part
     Hj = np.sign(cut.psi)
@@ -141,23 +152,40 @@ def space(mesh, cut: Cut, order: int | None = None, sliver: float = 1e-8) -> XSp
     """
     if not sliver >= 0:
         raise ValueError(f"sliver must be a non-negative fraction, got {sliver!r}")
-    elem = ElementVector(mesh.elem())
-    basis = Basis(mesh, elem, quadrature=cell_rule(mesh, order or exact_orders(mesh)[0]))
-    nodes = cut.enriched[far_side_fraction(mesh, cut)[cut.enriched] >= sliver]
+    rule = cell_rule(mesh, order or exact_orders(mesh)[0])
+    basis = Basis(mesh, ElementVector(mesh.elem()), quadrature=cell_rule(mesh, 0))
+    sides = side_bases(mesh, cut, mesh.elem(), rule)
+    nodes = cut.enriched[far_side_fraction(mesh, cut, sides)[cut.enriched] >= sliver]
     enr = basis.nodal_dofs[:, nodes].T  # (nenr_nodes, dim)
     H_node = np.repeat(np.sign(cut.psi[nodes]), mesh.dim())
-    return XSpace(mesh, cut, basis, enr.ravel(), H_node)
+    return XSpace(mesh, cut, basis, enr.ravel(), H_node, rule, sides)
 
 
-def signed_bases(V: XSpace, orders: tuple[int, int] | None = None):
+def signed_bases(V: XSpace, orders: tuple[int, int] | None = None, scalar: bool = False):
     """The pairs (basis, H) covering the mesh, H = ±1 the constant value of
-    the Heaviside function on that basis: see :func:`_side_bases`.
+    the Heaviside function on that basis: see :func:`side_bases`.
 
     ``orders`` (cell, sub-simplex): the quadrature orders; default those of
-    ``V`` (its basis's rule and the stiffness' sub-simplex order)."""
+    ``V`` (its basis's rule and the stiffness' sub-simplex order).
+    ``scalar``: bases of the scalar element (``V.sides`` when they fit)."""
+    elem = V.basis.elem.elem if scalar else V.basis.elem
     if orders is None:
-        return _side_bases(V.mesh, V.cut, V.basis.elem, V.basis.quadrature)
-    return _side_bases(V.mesh, V.cut, V.basis.elem, cell_rule(V.mesh, orders[0]), orders[1])
+        if scalar and V.sides:
+            return V.sides
+        return side_bases(V.mesh, V.cut, elem, V.rule)
+    return side_bases(V.mesh, V.cut, elem, cell_rule(V.mesh, orders[0]), orders[1])
+
+
+def enriched_blocks(V: XSpace, A, AH) -> sp.csr_matrix:
+    """The X-FEM matrix on [a, b] from A = ∫ g(φᵢ, φⱼ) and A_H = ∫ H g(φᵢ, φⱼ)
+    on the standard dofs: the blocks of the module notes (H² = 1)."""
+    A, AH = A.tocsr(), AH.tocsr()
+    E = V.enr_dofs
+    D = sp.diags(V.H_node)
+    Aab = AH[:, E] - A[:, E] @ D
+    AEE, AHEE = A[E][:, E], AH[E][:, E]
+    Abb = AEE + D @ AEE @ D - D @ AHEE - AHEE @ D
+    return sp.bmat([[A, Aab], [Aab.T, Abb]], format="csr")
 
 
 def enriched_matrix(V: XSpace, form, orders: tuple[int, int] | None = None) -> sp.csr_matrix:
@@ -173,18 +201,17 @@ def enriched_matrix(V: XSpace, form, orders: tuple[int, int] | None = None) -> s
     for b, s in signed_bases(V, orders):
         part = form.assemble(b, H=np.ones(b.dx.shape))  # ∫ over one side only
         A, AH = A + part, AH + s * part
-    A, AH = A.tocsr(), AH.tocsr()
-    E = V.enr_dofs
-    D = sp.diags(V.H_node)
-    Aab = AH[:, E] - A[:, E] @ D
-    AEE, AHEE = A[E][:, E], AH[E][:, E]
-    Abb = AEE + D @ AEE @ D - D @ AHEE - AHEE @ D
-    return sp.bmat([[A, Aab], [Aab.T, Abb]], format="csr")
+    return enriched_blocks(V, A, AH)
 
 
 def stiffness(V: XSpace, material: Material) -> sp.csr_matrix:
-    """The X-FEM stiffness on the unknowns [a, b]: ∫ σ(u):ε(v)."""
-    return enriched_matrix(V, signed_stiffness_form(material, V.mesh.dim()))
+    """The X-FEM stiffness on the unknowns [a, b]: ∫ σ(u):ε(v), each side's
+    part assembled from scalar forms (:func:`skxfem.material.stiffness_matrix`)."""
+    A = AH = 0
+    for b, s in signed_bases(V, scalar=True):
+        part = stiffness_matrix(material, b)  # ∫ over one side only
+        A, AH = A + part, AH + s * part
+    return enriched_blocks(V, A, AH)
 
 
 @BilinearForm

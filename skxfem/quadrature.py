@@ -157,24 +157,27 @@ def cell_rule(mesh_or_elem, order: int | None = None
     if order is None:
         order = DEFAULT_ORDER[refdom]
     order = _check_order(order)
-    if refdom is RefWedge:
+    if refdom is RefWedge and order > 0:
         return wedge_rule(order)
     return simplex_or_tensor_rule(refdom, order)
 
 
+_VOLUME = {RefTri: 0.5, RefQuad: 1.0, RefTet: 1.0 / 6.0, RefHex: 1.0, RefWedge: 0.5}
+
+
 def simplex_or_tensor_rule(refdom, order: int) -> tuple[np.ndarray, np.ndarray]:
-    """scikit-fem's rule of ``order`` on ``refdom``, except order 0 on a simplex:
-    the one-point centroid rule (scikit-fem returns 3 points on a triangle),
-    exact for the constant gradients of P1 functions.
+    """scikit-fem's rule of ``order`` on ``refdom``, except order 0: the
+    one-point centroid rule on every cell (scikit-fem returns 3 points on a
+    triangle, 8 on a hexahedron), exact for the constant gradients of P1
+    functions and for every (multi)linear function.
 
     >>> from skfem.refdom import RefTri
     >>> X, W = simplex_or_tensor_rule(RefTri, 0)
     >>> X.ravel().round(6).tolist(), W.tolist()
     ([0.333333, 0.333333], [0.5])
     """
-    if order == 0 and refdom in (RefTri, RefTet):
-        d = 2 if refdom is RefTri else 3
-        return np.full((d, 1), 1.0 / (d + 1)), np.array([0.5 if d == 2 else 1.0 / 6.0])
+    if order == 0:
+        return np.mean(refdom.p, axis=1)[:, None], np.array([_VOLUME[refdom]])
     return get_quadrature(refdom, order)
 
 
