@@ -92,3 +92,39 @@ def test_problem_is_frozen():
     p = assemble(strip(3, cell="tri"))
     with pytest.raises(dataclasses.FrozenInstanceError):
         p.law = "bilateral"
+
+
+def test_builds_only_what_the_scene_requires(monkeypatch):
+    """Issue 11, item 4: a 2D scene gets a 2D model, the enriched unknowns are
+    those of the nodes of cut cells only, a tie solve factorises once, and a
+    frictionless contact solve carries no friction unknowns."""
+    import scipy.sparse.linalg as spla
+
+    import skxfem.contact_newton as contact_newton
+    import skxfem.saddle as saddle
+    from skxfem.contact_laws import CONTACT_LAWS
+
+    scene = strip(6, cell="tri", space="vital")
+    p = assemble(scene)
+    nodes = p.mesh.p.shape[1]
+    assert p.mesh.dim() == 2 and p.V.n_std == 2 * nodes
+    assert p.V.n_enr == 2 * np.unique(p.mesh.t[:, p.cut.side == 0]).size
+    assert set(p.timings) == {"cut", "space", "enrich", "stiffness", "load", "constraints",
+                              "interface", "prolongation"}
+
+    calls = []
+    real = spla.splu
+    monkeypatch.setattr(saddle.spla, "splu", lambda *a, **k: calls.append(1) or real(*a, **k))
+    solver.solve(scene, linear="direct")
+    assert len(calls) == 1, "one factorisation per tie solve"
+
+    assert "frictionless" in CONTACT_LAWS
+    shapes = []
+    real_solve = contact_newton._scaled_solve
+    monkeypatch.setattr(contact_newton, "_scaled_solve",
+                        lambda A, R, nu: shapes.append((A.shape[0], nu)) or real_solve(A, R, nu))
+    from skxfem.scene import Displacement
+    held = scene.displacements + (Displacement("ymax", {"x": 0.0}),)  # Ω⁺ slides otherwise
+    result = solver.solve(dataclasses.replace(scene, law="frictionless", displacements=held))
+    m = result.ops.w.size
+    assert shapes and all(n == nu + m for n, nu in shapes), "U and λ_n only: no friction rows"
