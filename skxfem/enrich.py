@@ -21,9 +21,12 @@ Assembly uses scikit-fem throughout.  With K the standard stiffness
 because H² = 1.  K_H needs the sub-cell quadrature of :mod:`skxfem.cut`; on
 uncut cells H is the cell's constant side.  Both come from one pass over the
 quadrature points: with K^± the stiffness of Ω^±, K = K⁺ + K⁻ and K_H = K⁺ - K⁻.
-The pass runs on *scalar* bases, one per side (:func:`side_bases`, built once
-by :func:`space` and shared with :func:`far_side_fraction`), and each K^± is
-assembled from scalar forms (:func:`skxfem.material.stiffness_matrix`).
+Only the columns of enriched dofs of K_H enter, so the pass takes K whole (cut
+cells included: the integrand is a polynomial on them) and K_H = s(2Kˢ - K)
+from one side s on the cells of enriched nodes (:func:`skxfem.sides.parts`).
+The stiffness runs on *scalar* bases (built once by :func:`space` and shared
+with :func:`far_side_fraction`), assembled from scalar forms
+(:func:`skxfem.material.stiffness_matrix`).
 
 >>> from skfem import MeshTri1
 >>> from skxfem.levelset import plane
@@ -46,10 +49,11 @@ from skfem.helpers import dot
 from .cut import Cut
 from .evaluate import evaluation_matrix
 from .material import Material, stiffness_matrix
-from .quadrature import cell_rule, exact_orders, subcell_rule
+from .quadrature import cell_rule, exact_orders
+from .sides import Parts, parts, side_bases
 
 __all__ = ["XSpace", "space", "stiffness", "mass", "enriched_matrix", "enriched_blocks",
-           "signed_bases", "side_bases", "far_side_fraction", "enriched_load",
+           "signed_bases", "far_side_fraction", "enriched_load",
            "jump_matrix", "split_fields"]
 
 
@@ -71,8 +75,8 @@ class XSpace:
         ``enr_dofs[k]``.
     H_node : (n_enr,) H(x_j) of the node of each enriched dof.
     rule : (X, W), the cell rule of the stiffness on uncut cells.
-    sides : the scalar pairs (basis, ±1) of :func:`side_bases` at ``rule``,
-        which :func:`stiffness` reuses (empty: built when needed).
+    parts : the scalar :class:`skxfem.sides.Parts` at ``rule``, which
+        :func:`stiffness` reuses (None: built when needed).
     """
 
     mesh: object
@@ -81,7 +85,7 @@ class XSpace:
     enr_dofs: np.ndarray
     H_node: np.ndarray
     rule: tuple = field(repr=False, compare=False, default=None)
-    sides: tuple = field(default=(), repr=False, compare=False)
+    parts: Parts | None = field(default=None, repr=False, compare=False)
 
     @property
     def n_std(self) -> int:
@@ -96,49 +100,26 @@ class XSpace:
         return self.n_std + self.n_enr
 
 
-def side_bases(mesh, cut: Cut, elem, quadrature=None, sub_order=None) -> tuple:
-    """Bases covering the mesh, each lying on one side of Γ: pairs (basis, ±1).
-
-    Uncut cells of Ω⁻ and of Ω⁺ use the cell rule.  The sub-simplices of the
-    cut cells, grouped by side, use the simplex rule mapped into their parent;
-    each sub-simplex is one element of its basis (its parent cell, repeated),
-    so no quadrature point is spent on padding.
-    """
-    cell_q = quadrature or cell_rule(mesh, exact_orders(mesh)[0])
-    pairs = []
-    for s in (-1, 1):
-        cells = np.flatnonzero(cut.side == s)
-        if cells.size:
-            pairs.append((Basis(mesh, elem, elements=cells, quadrature=cell_q), s))
-        sub = np.flatnonzero(cut.sub_side == s)
-        if sub.size:
-            rule = subcell_rule(cut.sub_ref[sub], np.arange(sub.size),
-                                sub_order or exact_orders(mesh)[1])
-            pairs.append((Basis(mesh, elem, elements=cut.sub_cell[sub],
-                                quadrature=(rule.X, rule.W)), s))
-    return tuple(pairs)
-
-
 @LinearForm
 def _signed_mass(v, w):
     return w["H"] * v
 
 
-def far_side_fraction(mesh, cut: Cut, sides: tuple = ()) -> np.ndarray:
+def far_side_fraction(mesh, cut: Cut, scalar_parts: Parts | None = None) -> np.ndarray:
     """For each node j: ∫ φⱼ over the side of Γ opposite to the node, / ∫ φⱼ.
 
     The shifted enrichment φⱼ(H - Hⱼ) lives on that far side only; where it is
     a sliver the enriched dof carries no information but spoils the
-    conditioning (see :func:`space`).  ``sides``: scalar :func:`side_bases`
-    of a rule exact for φⱼ (default: those of the stiffness' rule).
+    conditioning (see :func:`space`).  A node of no cut cell has no far
+    side: 0.  ``scalar_parts``: :func:`skxfem.sides.parts` of the scalar
+    element at a rule exact for φⱼ (default: the stiffness' rule).
     """
-    total = np.zeros(mesh.p.shape[1])
-    signed = np.zeros(mesh.p.shape[1])
-    for b, s in sides or side_bases(mesh, cut, mesh.elem()):
-        part = _signed_mass.assemble(b, H=np.ones(b.dx.shape))
-        total, signed = total + part, signed + s * part
-    Hj = np.sign(cut.psi)
-    return np.clip(0.5 * (total - Hj * signed) / total, 0.0, 1.0)
+    p = scalar_parts or parts(mesh, cut, mesh.elem())
+    total, signed = p.signed(lambda b: _signed_mass.assemble(b, H=np.ones(b.dx.shape)))
+    j = cut.enriched  # signed is exact there only
+    frac = np.zeros(mesh.p.shape[1])
+    frac[j] = 0.5 * (total[j] - np.sign(cut.psi[j]) * signed[j]) / total[j]
+    return np.clip(frac, 0.0, 1.0)
 
 
 def space(mesh, cut: Cut, order: int | None = None, sliver: float = 1e-8) -> XSpace:
@@ -154,31 +135,28 @@ def space(mesh, cut: Cut, order: int | None = None, sliver: float = 1e-8) -> XSp
         raise ValueError(f"sliver must be a non-negative fraction, got {sliver!r}")
     rule = cell_rule(mesh, order or exact_orders(mesh)[0])
     basis = Basis(mesh, ElementVector(mesh.elem()), quadrature=cell_rule(mesh, 0))
-    sides = side_bases(mesh, cut, mesh.elem(), rule)
-    nodes = cut.enriched[far_side_fraction(mesh, cut, sides)[cut.enriched] >= sliver]
+    scalar = parts(mesh, cut, mesh.elem(), rule)
+    nodes = cut.enriched[far_side_fraction(mesh, cut, scalar)[cut.enriched] >= sliver]
     enr = basis.nodal_dofs[:, nodes].T  # (nenr_nodes, dim)
     H_node = np.repeat(np.sign(cut.psi[nodes]), mesh.dim())
-    return XSpace(mesh, cut, basis, enr.ravel(), H_node, rule, sides)
+    return XSpace(mesh, cut, basis, enr.ravel(), H_node, rule, scalar)
 
 
-def signed_bases(V: XSpace, orders: tuple[int, int] | None = None, scalar: bool = False):
+def signed_bases(V: XSpace, orders: tuple[int, int] | None = None):
     """The pairs (basis, H) covering the mesh, H = ±1 the constant value of
-    the Heaviside function on that basis: see :func:`side_bases`.
+    the Heaviside function on that basis: see :func:`skxfem.sides.side_bases`.
 
     ``orders`` (cell, sub-simplex): the quadrature orders; default those of
-    ``V`` (its basis's rule and the stiffness' sub-simplex order).
-    ``scalar``: bases of the scalar element (``V.sides`` when they fit)."""
-    elem = V.basis.elem.elem if scalar else V.basis.elem
+    ``V`` (its stiffness rule and the stiffness' sub-simplex order)."""
     if orders is None:
-        if scalar and V.sides:
-            return V.sides
-        return side_bases(V.mesh, V.cut, elem, V.rule)
-    return side_bases(V.mesh, V.cut, elem, cell_rule(V.mesh, orders[0]), orders[1])
+        return side_bases(V.mesh, V.cut, V.basis.elem, V.rule)
+    return side_bases(V.mesh, V.cut, V.basis.elem, cell_rule(V.mesh, orders[0]), orders[1])
 
 
 def enriched_blocks(V: XSpace, A, AH) -> sp.csr_matrix:
     """The X-FEM matrix on [a, b] from A = ∫ g(φᵢ, φⱼ) and A_H = ∫ H g(φᵢ, φⱼ)
-    on the standard dofs: the blocks of the module notes (H² = 1)."""
+    on the standard dofs: the blocks of the module notes (H² = 1).  Only the
+    columns of the enriched dofs of A_H are read."""
     A, AH = A.tocsr(), AH.tocsr()
     E = V.enr_dofs
     D = sp.diags(V.H_node)
@@ -193,24 +171,20 @@ def enriched_matrix(V: XSpace, form, orders: tuple[int, int] | None = None) -> s
 
     The form must be linear in H, H·g(u, v) (as the stiffness and the mass
     are).  With A = the form at H = 1 (standard) and A_H its signed version, and
-    D = diag(Hⱼ), the blocks follow from H² = 1 (see the module notes).  Both
-    come from one pass over the quadrature points: with A^± the form over Ω^±,
-    A = A⁺ + A⁻ and A_H = A⁺ - A⁻.  ``orders``: see :func:`signed_bases`.
+    D = diag(Hⱼ), the blocks follow from H² = 1 (see the module notes); A and
+    A_H come from :func:`skxfem.sides.parts`.  ``orders``: see :func:`signed_bases`.
     """
-    A = AH = 0
-    for b, s in signed_bases(V, orders):
-        part = form.assemble(b, H=np.ones(b.dx.shape))  # ∫ over one side only
-        A, AH = A + part, AH + s * part
+    cell_q = V.rule if orders is None else cell_rule(V.mesh, orders[0])
+    p = parts(V.mesh, V.cut, V.basis.elem, cell_q, None if orders is None else orders[1])
+    A, AH = p.signed(lambda b: form.assemble(b, H=np.ones(b.dx.shape)))
     return enriched_blocks(V, A, AH)
 
 
 def stiffness(V: XSpace, material: Material) -> sp.csr_matrix:
-    """The X-FEM stiffness on the unknowns [a, b]: ∫ σ(u):ε(v), each side's
-    part assembled from scalar forms (:func:`skxfem.material.stiffness_matrix`)."""
-    A = AH = 0
-    for b, s in signed_bases(V, scalar=True):
-        part = stiffness_matrix(material, b)  # ∫ over one side only
-        A, AH = A + part, AH + s * part
+    """The X-FEM stiffness on the unknowns [a, b]: ∫ σ(u):ε(v), each part
+    assembled from scalar forms (:func:`skxfem.material.stiffness_matrix`)."""
+    p = V.parts or parts(V.mesh, V.cut, V.basis.elem.elem, V.rule)
+    A, AH = p.signed(lambda b: stiffness_matrix(material, b))
     return enriched_blocks(V, A, AH)
 
 
