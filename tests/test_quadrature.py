@@ -175,8 +175,10 @@ def random_split(cell, rng, times=2):
 
 
 @pytest.mark.parametrize("cell", ["tri", "quad", "tet", "hex", "wedge"])
-@pytest.mark.parametrize("order", [1, 2, 3])
+@pytest.mark.parametrize("order", [1, 2, 3, 4, 5, 6, 7, 8])
 def test_subcell_rule_on_a_split_reference_cell(cell, order):
+    """Exact for every monomial of degree ≤ order (scikit-fem's own tetrahedron
+    rules of order 5 to 8 are not: x²y²z² is off by 0.6 % at order 6)."""
     rng = np.random.default_rng(0)
     S = random_split(cell, rng)
     rule = subcell_rule(S, np.zeros(len(S), dtype=int), order)
@@ -186,7 +188,7 @@ def test_subcell_rule_on_a_split_reference_cell(cell, order):
     dim = S.shape[2]
     for exps in monomials(dim, order):
         got = np.sum(rule.W * np.prod([rule.X[i] ** e for i, e in enumerate(exps)], axis=0))
-        assert abs(got - exact_monomial(cell, *exps)) < 1e-14, exps
+        assert abs(got - exact_monomial(cell, *exps)) < 1e-14 * max(1, order), exps
 
 
 def test_subcell_rule_packs_and_pads_by_parent():
