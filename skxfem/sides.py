@@ -20,7 +20,8 @@ on the sub-simplices of :mod:`skxfem.cut`.  Two ways to cover the mesh:
   enriched node: the sub-simplices of side s and one layer of uncut cells.
   One side's sub-simplices instead of both: on the paper's plate at n = 32,
   436k quadrature points instead of 578k (hexahedra), 475k instead of 508k
-  (prisms).
+  (prisms).  On hexahedra and prisms the cut cells of side s then take a
+  moment-fitted rule (:mod:`skxfem.moments`) instead of their sub-simplices.
 
 >>> from skfem import MeshTri1
 >>> from skxfem.cut import cut
@@ -42,6 +43,7 @@ from skfem import Basis
 from skfem.assembly import CellBasis
 
 from .cut import Cut
+from .moments import fitted_rule
 from .quadrature import cell_rule, exact_orders, subcell_rule
 
 __all__ = ["side_bases", "Parts", "parts"]
@@ -87,8 +89,8 @@ class Parts:
     side : s = ±1, the side integrated on its own: the one with fewer
         sub-simplices.
     near : the bases of side s on the cells holding an enriched node: the
-        uncut cells of side s among them (cell rule) and the sub-simplices
-        of side s (Aˢ, exact in the columns of enriched nodes only).
+        uncut cells of side s among them (cell rule) and the part of side s
+        of the cut cells (Aˢ, exact in the columns of enriched nodes only).
     """
 
     whole: CellBasis
@@ -102,8 +104,13 @@ class Parts:
         return A, self.side * (2 * As - A)
 
 
-def parts(mesh, cut: Cut, elem, quadrature=None, sub_order=None) -> Parts:
-    """The :class:`Parts` of ``mesh`` cut by ``cut`` (rules as :func:`side_bases`)."""
+def parts(mesh, cut: Cut, elem, quadrature=None, sub_order=None, fit: bool = True) -> Parts:
+    """The :class:`Parts` of ``mesh`` cut by ``cut`` (rules as :func:`side_bases`).
+
+    ``fit``: the cut cells of side s take their moment-fitted rule where the
+    cell type has one (:func:`skxfem.moments.fitted_rule`, exact for the
+    stiffness, the mass and the functions on affine cells; ``sub_order`` is
+    then not used), else their sub-simplices."""
     cell_q = quadrature or cell_rule(mesh, exact_orders(mesh)[0])
     s = -1 if np.sum(cut.sub_side < 0) <= np.sum(cut.sub_side > 0) else 1
     holds = np.zeros(mesh.p.shape[1], dtype=bool)
@@ -112,7 +119,11 @@ def parts(mesh, cut: Cut, elem, quadrature=None, sub_order=None) -> Parts:
     near = []
     if layer.size:
         near.append(Basis(mesh, elem, elements=layer, quadrature=cell_q))
-    sub = _sub_basis(mesh, cut, elem, s, sub_order or exact_orders(mesh)[1])
-    if sub is not None:
-        near.append(sub)
+    fitted = fitted_rule(cut, s, mesh.elem().refdom) if fit else None
+    if fitted is not None:
+        near.append(Basis(mesh, elem, elements=fitted.cells, quadrature=(fitted.X, fitted.W)))
+    else:
+        sub = _sub_basis(mesh, cut, elem, s, sub_order or exact_orders(mesh)[1])
+        if sub is not None:
+            near.append(sub)
     return Parts(Basis(mesh, elem, quadrature=cell_q), s, tuple(near))
