@@ -1,12 +1,16 @@
 """Measure the peak memory of solves, to calibrate and check skxfem.budget.
 
     python scripts/calibrate_budget.py strip:tri:64 plate:prism:8 ...
+    python scripts/calibrate_budget.py --linear iterative plate:hex:16 strip:tri:256 ...
 
 Each case runs in its own subprocess; printed per case (one JSON line): the
 sizes the solve met (nodes, cells, unknowns, enriched dofs, multipliers, the
 non-zeros of L + U), the peak resident memory the solve added (the peak VmHWM, reset
 just before the solve, minus the resident memory before it) and skxfem.budget's
-estimate.  Not a test: it takes seconds to minutes and depends on the machine.
+estimate, for the linear solver ``--linear`` (default ``auto``, as ``skxfem.solve``;
+``bytes_per_unknown`` is the measured peak over N + m, what
+``budget.ITERATIVE_BYTES`` bounds).  Not a test: it takes seconds to minutes and
+depends on the machine.
 """
 import subprocess
 import sys
@@ -19,13 +23,13 @@ from skxfem import budget, saddle, scenes
 from skxfem.scene import Box
 from skxfem.solver import solve
 
-kind, cell, n = sys.argv[1], sys.argv[2], int(sys.argv[3])
+kind, cell, n, linear = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
 if cell == "tet":  # the paper's plate on tetrahedra
     hexes = scenes.paper_plate(n, cell="hex")
     scene = dataclasses.replace(hexes, mesh=Box(hexes.mesh.n, "tet"))
 else:
     scene = {"strip": scenes.strip, "plate": scenes.paper_plate}[kind](n, cell=cell)
-est = budget.estimate(scene)
+est = budget.estimate(scene, linear)
 seen = {}
 splu = spla.splu
 def spy(A, **kw):
@@ -41,19 +45,25 @@ solve(scenes.strip(2, cell="quad"))
 before = status("VmRSS:")
 with open("/proc/self/clear_refs", "w") as f:
     f.write("5")   # reset the peak VmHWM
-r = solve(scene)
+r = solve(scene, linear=linear)
 peak = status("VmHWM:")
 print(json.dumps({"case": f"{kind}:{cell}:{n}", "nodes": int(r.mesh.nvertices),
                   "cells": int(r.mesh.nelements), "N": int(r.n_dofs),
                   "n_enr": int(r.space.n_enr), "m": int(r.n_multipliers + r.removed),
                   **seen, "measured_MB": round((peak - before) / 2**20, 1),
-                  "estimate_MB": round(est.bytes / 2**20, 1),
+                  "estimate_MB": round(est.bytes / 2**20, 1), "linear": est.linear,
+                  "bytes_per_unknown": round((peak - before)
+                                             / (r.n_dofs + r.n_multipliers + r.removed)),
                   "est_nodes": est.n_nodes, "est_dofs": est.n_dofs,
                   "est_multipliers": est.n_multipliers}))
 """
 
 if __name__ == "__main__":
-    for case in sys.argv[1:]:
-        done = subprocess.run([sys.executable, "-c", CHILD, *case.split(":")],
+    args = sys.argv[1:]
+    linear = "auto"
+    if args[:1] == ["--linear"]:
+        linear, args = args[1], args[2:]
+    for case in args:
+        done = subprocess.run([sys.executable, "-c", CHILD, *case.split(":"), linear],
                               capture_output=True, text=True, check=False)
         print(done.stdout.strip() or done.stderr.strip().splitlines()[-1], flush=True)

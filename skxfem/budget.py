@@ -19,17 +19,18 @@ The counts are upper bounds:
   where the mesh has one).
 
 ψ is evaluated at the nodes in slabs of about 10⁶ points, so the guard itself
-stays small.  The memory is a sum of terms, each from the sizes above: the
-cells (mesh, basis values at the quadrature points, the assembly of K), the
-sparse LU of the saddle matrix (fill measured on this machine, see
-:data:`LU_FILL`) and the dense interface blocks of :mod:`skxfem.saddle` (the
-rank-revealing QR and the SVD of the coupling restricted to its columns:
-about ``m × ncols + m² + ncols²`` doubles, several times).  The constants
-were calibrated with ``scripts/calibrate_budget.py`` against the peak
-resident memory of solves on this machine; :data:`SAFETY` is the factor on
-top.  The estimate, over the peak resident memory a solve added, measured
-(one process per case, the peak reset just before the solve; the solver of
-November 2026):
+stays small.  The memory depends on the linear solver that will run
+(:func:`skxfem.solver.choose_linear`; contact laws: the direct Newton solve).
+*Direct*: a sum of terms from the sizes above: the cells (mesh, basis values,
+the assembly of K), the sparse LU of the saddle matrix (fill measured on this
+machine, :data:`LU_FILL`) and the dense interface blocks of
+:mod:`skxfem.saddle` (about ``m × ncols + m² + ncols²`` doubles, several
+times).  *Iterative*: :data:`ITERATIVE_BYTES` per unknown (displacement and
+multiplier), everything included.  The constants were calibrated against the
+peak resident memory of solves on this machine (``scripts/calibrate_budget.py``);
+:data:`SAFETY` is the factor on top.  The estimate, over the peak resident
+memory a direct solve added, measured (one process per case, the peak reset
+just before the solve; the solver of November 2026):
 
 * ``strip`` on triangles, n = 32, 128, 256, 512: 9.6 MB ... 5.7 GB, 1.6-1.9 times;
 * ``strip`` on quadrilaterals, n = 64, 256: 52 MB, 1.3 GB, 1.4 times;
@@ -38,7 +39,8 @@ November 2026):
 * the same plate on tetrahedra, n = 5, 9: 14 MB, 107 MB; 3.1 and 3.2 times;
 
 so the estimate is an upper bound within a factor 4 (on tetrahedra the cut
-edges are over-counted most); ``tests/test_budget.py`` checks three cases.
+edges are over-counted most); ``tests/test_budget.py`` checks four cases,
+one of them iterative.
 
 >>> from skxfem import scenes
 >>> e = estimate(scenes.strip(8, cell="tri"))
@@ -56,10 +58,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .contact_laws import CONTACT_LAWS
 from .levelset import nodal_values
 from .meshes import CELLS, cell_name
 from .quadrature import cell_rule
 from .scene import Box, Scene, resolve_mesh
+from .solver import choose_linear
 
 __all__ = ["DEFAULT_MAX_BYTES", "Estimate", "TooLargeError", "check", "estimate",
            "parse_bytes", "format_bytes"]
@@ -91,6 +95,12 @@ PER_CELL = 2.0
 """Bytes per cell and per (quadrature point × basis function × derivative)."""
 SAFETY = 1.2
 """Factor on the sum of the terms."""
+ITERATIVE_BYTES = {2: 3000, 3: 9700}
+"""Peak bytes per unknown (N + m) of an iterative solve, assembly included: the
+largest measured on 24 November 2026, ``solve(scene, linear="iterative")``: strip
+(tri n = 128-512, quad n = 256) 2540-2990, paper plate (hex, prism, n = 12-32)
+7940-9660; at the minimal exact quadrature (a higher ``quadrature_order`` adds to
+the assembly's share)."""
 
 
 @dataclass(frozen=True)
@@ -98,7 +108,8 @@ class Estimate:
     """Upper bounds of what solving a scene meets.
 
     ``n_nodes``, ``n_cells``: the mesh; ``n_dofs``: unknowns (standard and
-    enriched); ``n_multipliers``: interface unknowns; ``bytes``: peak memory.
+    enriched); ``n_multipliers``: interface unknowns; ``bytes``: peak memory
+    of the ``linear`` solve (``"direct"`` or ``"iterative"``).
     """
 
     n_nodes: int
@@ -106,10 +117,11 @@ class Estimate:
     n_dofs: int
     n_multipliers: int
     bytes: int
+    linear: str = "direct"
 
     def __str__(self) -> str:
         return (f"{self.n_nodes} nodes, {self.n_cells} cells, up to {self.n_dofs} "
-                f"unknowns and {self.n_multipliers} multipliers")
+                f"unknowns and {self.n_multipliers} multipliers, {self.linear} solve")
 
 
 class TooLargeError(ValueError):
@@ -209,7 +221,7 @@ def _memory(dim: int, cell: str, order, n_nodes, n_cells, n_dofs, n_enr, m) -> f
     return cells + nodes + lu + dense
 
 
-def estimate(scene: Scene) -> Estimate:
+def estimate(scene: Scene, linear: str = "auto") -> Estimate:
     """Upper bounds of the nodes, cells, unknowns, multipliers and memory of a solve.
 
     A Box is never built: ψ is evaluated on its grid in slabs.  A mesh file
@@ -219,6 +231,9 @@ def estimate(scene: Scene) -> Estimate:
     ----------
     scene
         A :class:`skxfem.scene.Scene`.
+    linear
+        The linear solver of ``skxfem.solve(scene, linear=...)``: ``"auto"``
+        resolves as the solve does, a contact law always solves directly.
 
     Returns
     -------
@@ -236,14 +251,18 @@ def estimate(scene: Scene) -> Estimate:
     dim = scene.dim
     n_enr = dim * n_enr_nodes
     n_dofs = dim * n_nodes + n_enr
-    m = (1 if scene.law == "bilateral" else dim) * n_edges
-    bytes_ = SAFETY * _memory(dim, cell, scene.quadrature_order, n_nodes, n_cells, n_dofs,
-                              n_enr, m)
-    return Estimate(n_nodes, n_cells, n_dofs, m, int(bytes_))
+    m = (1 if scene.law == "bilateral" else dim) * n_edges  # contact: λ_n and friction
+    chosen = "direct" if scene.law in CONTACT_LAWS else choose_linear(linear, dim, n_dofs)
+    if chosen == "iterative":
+        bytes_ = SAFETY * ITERATIVE_BYTES[dim] * (n_dofs + m)
+    else:
+        bytes_ = SAFETY * _memory(dim, cell, scene.quadrature_order, n_nodes, n_cells,
+                                  n_dofs, n_enr, m)
+    return Estimate(n_nodes, n_cells, n_dofs, m, int(bytes_), chosen)
 
 
 def check(scene: Scene, max_bytes: int = DEFAULT_MAX_BYTES,
-          option: str | None = None) -> Estimate:
+          option: str | None = None, linear: str = "auto") -> Estimate:
     """:func:`estimate`, refusing a scene above ``max_bytes``.
 
     Parameters
@@ -256,6 +275,8 @@ def check(scene: Scene, max_bytes: int = DEFAULT_MAX_BYTES,
         The command-line option that raises the limit, named in the message
         (``skxfem run`` passes ``"--max-memory"``); by default the message
         names ``max_bytes=``.
+    linear
+        As for :func:`estimate`.
 
     Returns
     -------
@@ -269,7 +290,7 @@ def check(scene: Scene, max_bytes: int = DEFAULT_MAX_BYTES,
     """
     if not (isinstance(max_bytes, (int, np.integer)) and max_bytes > 0):
         raise ValueError(f"max_bytes must be a positive integer, got {max_bytes!r}")
-    e = estimate(scene)
+    e = estimate(scene, linear)
     if e.bytes > max_bytes:
         more = 2 * e.bytes
         hint = (f"max_bytes={more}" if option is None

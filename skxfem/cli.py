@@ -152,7 +152,7 @@ def _run(args) -> int:
         raise ValueError(f"--max-iter applies to the contact laws {CONTACT_LAWS}; the scene's "
                          f"law is {s.law!r}")
     out = io.check_output(args.out if args.out is not None else Path(s.name))
-    budget.check(s, args.max_memory, "--max-memory")
+    budget.check(s, args.max_memory, "--max-memory", linear=args.linear)
     if contact:
         limit = {} if args.max_iter is None else {"max_iter": args.max_iter}
         result = solve_contact(s, **limit)

@@ -5,9 +5,10 @@ Rows of the extremes table (:mod:`skxfem.extremes`):
 * :func:`one_cell_rows`: a single cell of each type, cut through its middle,
   under the patch test (:func:`skxfem.extremes.patch_error`);
 * :func:`memory_rows`: the largest paper plate (hex, prism, tet) or strip
-  (tri, quad) whose estimated memory (:func:`skxfem.budget.estimate`, the
-  direct solver) fits the default 4 GB limit — an estimate, not a run — and
-  the refusal of the next size by :func:`skxfem.budget.check`;
+  (tri, quad) whose estimated memory (:func:`skxfem.budget.estimate`) fits
+  the default 4 GB limit with each linear solver, direct and iterative — an
+  estimate, not a run — and the refusal of the next size by
+  :func:`skxfem.budget.check`;
 * :func:`shape_rows`: Γ slanted at 45°, curved (a circle, a sphere) and
   touching or crossing the boundary, under the patch test;
 * :func:`space_rows`: the naive and winner spaces near a node on the exact
@@ -18,6 +19,7 @@ Rows of the extremes table (:mod:`skxfem.extremes`):
 """
 from __future__ import annotations
 
+import itertools
 from dataclasses import replace
 
 from .budget import DEFAULT_MAX_BYTES, check, estimate, format_bytes
@@ -59,34 +61,42 @@ def memory_scene(cell: str, n: int):
     return paper_plate(n, cell)
 
 
-def largest(cell: str, max_bytes: int = DEFAULT_MAX_BYTES) -> int:
-    """The largest n whose :func:`memory_scene` is estimated to fit ``max_bytes``.
+def largest(cell: str, max_bytes: int = DEFAULT_MAX_BYTES, linear: str = "direct") -> int:
+    """The largest n whose :func:`memory_scene` is estimated to fit ``max_bytes``
+    with the ``linear`` solver.
 
     >>> largest("quad", 2**20) < largest("quad", 2**24)
     True
+    >>> largest("hex", 2**30) < largest("hex", 2**30, linear="iterative")
+    True
     """
+    def fits(n):
+        return estimate(memory_scene(cell, n), linear).bytes <= max_bytes
+
     lo, hi = 1, 2
-    while estimate(memory_scene(cell, hi)).bytes <= max_bytes:
+    while fits(hi):
         lo, hi = hi, 2 * hi
-    while hi - lo > 1:  # estimate(lo) fits, estimate(hi) does not
+    while hi - lo > 1:  # lo fits, hi does not
         mid = (lo + hi) // 2
-        lo, hi = (mid, hi) if estimate(memory_scene(cell, mid)).bytes <= max_bytes else (lo, mid)
+        lo, hi = (mid, hi) if fits(mid) else (lo, mid)
     return lo
 
 
-def memory_rows(cells=CELL_TYPES, max_bytes: int = DEFAULT_MAX_BYTES) -> list[Row]:
-    """For each cell type, the largest mesh under ``max_bytes`` and the next one refused."""
+def memory_rows(cells=CELL_TYPES, max_bytes: int = DEFAULT_MAX_BYTES,
+                solvers=("direct", "iterative")) -> list[Row]:
+    """For each cell type and linear solver, the largest mesh under ``max_bytes``
+    and the next one refused."""
     rows = []
-    for cell in cells:
-        n = largest(cell, max_bytes)
-        e = estimate(memory_scene(cell, n))
+    for cell, linear in itertools.product(cells, solvers):
+        n = largest(cell, max_bytes, linear)
+        e = estimate(memory_scene(cell, n), linear)
         rows.append(attempt(
-            "size", f"{cell}, largest n under {format_bytes(max_bytes)}: n = {n} (direct)",
+            "size", f"{cell}, largest n under {format_bytes(max_bytes)}: n = {n} ({linear})",
             "estimated bytes", max_bytes,
             lambda: (e.bytes, f"{format_bytes(e.bytes)}: {e}")))
         rows.append(attempt(
-            "size", f"{cell}, n = {n + 1} (direct)", "estimated bytes", max_bytes,
-            lambda: check(memory_scene(cell, n + 1), max_bytes).bytes))
+            "size", f"{cell}, n = {n + 1} ({linear})", "estimated bytes", max_bytes,
+            lambda: check(memory_scene(cell, n + 1), max_bytes, linear=linear).bytes))
     return rows
 
 

@@ -40,7 +40,8 @@ from .problem import Problem, assemble, constrained_dofs
 from .scene import Scene
 from .smoothest import dependencies
 
-__all__ = ["Result", "solve", "solve_problem", "constrained_dofs", "LINEAR", "AUTO_ITERATIVE"]
+__all__ = ["Result", "solve", "solve_problem", "constrained_dofs", "LINEAR", "AUTO_ITERATIVE",
+           "choose_linear"]
 
 
 @dataclass(frozen=True)
@@ -87,14 +88,24 @@ when pyamg is installed: measured break-even on 2 cores, 3D near 3k unknowns
 ``benchmarks/tie_solve.py``."""
 
 
-def _linear(method: str, p: Problem) -> str:
-    """The linear solve ``method`` resolves to for ``p``."""
+def choose_linear(method: str, dim: int, n_unknowns: int) -> str:
+    """The linear solve ``method`` resolves to for ``n_unknowns`` in ``dim`` D:
+    ``auto`` is ``iterative`` from :data:`AUTO_ITERATIVE` unknowns if pyamg is there.
+
+    >>> choose_linear("auto", 2, 1000), choose_linear("direct", 3, 10**6)
+    ('direct', 'direct')
+    """
     if method not in LINEAR:
         raise ValueError(f"linear must be one of {LINEAR}, got {method!r}")
     if method != "auto":
         return method
-    big = p.V.N >= AUTO_ITERATIVE[p.mesh.dim()]
+    big = n_unknowns >= AUTO_ITERATIVE[dim]
     return "iterative" if big and importlib.util.find_spec("pyamg") else "direct"
+
+
+def _linear(method: str, p: Problem) -> str:
+    """The linear solve ``method`` resolves to for ``p``."""
+    return choose_linear(method, p.mesh.dim(), p.V.N)
 
 
 def _differences(c, ncomp: int) -> sp.csr_matrix:

@@ -72,10 +72,11 @@ def test_04_a_box_is_never_built(monkeypatch):
 
 def test_05_check_refuses_with_the_estimate_and_the_option():
     s = scenes.strip(10000, cell="tri")                   # 4 GB in 21 s, before the guard
-    with pytest.raises(TooLargeError, match=r"the scene 'strip\w*' needs about [\d.]+ TB") as e:
+    with pytest.raises(TooLargeError, match=r"the scene 'strip\w*' needs about [\d.]+ [GT]B") as e:
         check(s, 4 * 2**30, "--max-memory")
     message = str(e.value)
     assert "100030002 nodes" in message and "limit is 4 GB" in message
+    assert "iterative solve" in message
     assert "--max-memory" in message and isinstance(e.value, ValueError)
     small = scenes.strip(4)
     assert isinstance(check(small), Estimate)
@@ -118,7 +119,8 @@ print(json.dumps({"measured": status("VmHWM:") - before,
 """
 
 
-@pytest.mark.parametrize("case", ["strip:tri:128", "strip:quad:64", "plate:prism:8"])
+@pytest.mark.parametrize("case", ["strip:tri:128", "strip:quad:64", "plate:prism:8",
+                                  "plate:hex:16"])
 def test_08_memory_is_an_upper_bound_within_the_stated_factor(case):
     """Peak resident memory added by the solve, in a fresh process (Linux: the peak
     VmHWM is reset just before the solve, so import-time peaks do not count)."""
@@ -127,6 +129,21 @@ def test_08_memory_is_an_upper_bound_within_the_stated_factor(case):
     r = json.loads(done.stdout)
     assert r["measured"] > 20 * 2**20, "large enough to be measured"
     assert r["measured"] <= r["estimate"] <= FACTOR * r["measured"], r
+
+
+def test_11_the_estimate_follows_the_linear_solver():
+    """auto resolves as the solve does (skxfem.solver.choose_linear); the
+    iterative path needs far less than the direct one in 3D; a contact law
+    solves directly whatever is asked."""
+    plate = scenes.paper_plate(16, cell="hex")               # 17k unknowns: iterative
+    auto, direct = estimate(plate), estimate(plate, linear="direct")
+    assert auto.linear == "iterative" and direct.linear == "direct"
+    assert auto.bytes < direct.bytes / 4
+    assert estimate(scenes.paper_plate(4, cell="hex")).linear == "direct"   # 1.6k unknowns
+    contact = dataclasses.replace(plate, law="frictionless")
+    assert estimate(contact, linear="iterative").linear == "direct"
+    with pytest.raises(ValueError, match="linear must be one of"):
+        estimate(plate, linear="cg")
 
 
 def test_09_the_estimate_grows_with_the_mesh_and_the_law():

@@ -90,13 +90,19 @@ def test_one_cell_and_shapes():
     assert 1e-6 < rows["quad, circle inside (h = 1/4)"].value < 0.25
 
 
-def test_memory_rows_name_the_largest_mesh_and_refuse_the_next():
-    n = largest("quad", 2**26)
-    rows = check_rows(memory_rows(["quad"], 2**26))
+@pytest.mark.parametrize("linear", ["direct", "iterative"])
+def test_memory_rows_name_the_largest_mesh_and_refuse_the_next(linear):
+    n = largest("quad", 2**26, linear)
+    rows = check_rows(memory_rows(["quad"], 2**26, solvers=(linear,)))
     fits, refused = rows.values()
-    assert fits.outcome == "solved" and fits.value <= 2**26 and f"n = {n} " in fits.case
+    assert fits.outcome == "solved" and fits.value <= 2**26 and f"n = {n} ({linear})" in fits.case
     assert refused.outcome == "refused" and refused.message.startswith("the scene 'strip_quad_")
-    assert "the limit is 64 MB" in refused.message
+    assert "the limit is 64 MB" in refused.message and f"{linear} solve" in refused.message
+
+
+def test_the_iterative_solver_fits_larger_meshes():
+    for cell in ("quad", "hex"):
+        assert largest(cell, 2**28, "iterative") > largest(cell, 2**28, "direct")
 
 
 def test_attempt_never_hides_a_failure():
