@@ -74,8 +74,11 @@ integrates 𝒫 exactly (the moments)."""
 
 def _monomials(exps: np.ndarray, X: np.ndarray) -> np.ndarray:
     """p_k(x) for every exponent row k of ``exps``: shape (nmono,) + X.shape[1:]."""
-    return np.prod([X[d][None] ** exps[:, d].reshape((-1,) + (1,) * (X.ndim - 1))
-                    for d in range(X.shape[0])], axis=0)
+    out = 1.0
+    for d in range(X.shape[0]):
+        powers = np.stack([X[d] ** k for k in range(exps[:, d].max() + 1)])
+        out = out * powers[exps[:, d]]
+    return out
 
 
 def fitted_rule(cut: Cut, side: int, refdom) -> SubcellRule | None:
