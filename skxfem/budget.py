@@ -21,16 +21,15 @@ The counts are upper bounds:
 ψ is evaluated at the nodes in slabs of about 10⁶ points, so the guard itself
 stays small.  The memory depends on the linear solver that will run
 (:func:`skxfem.solver.choose_linear`; contact laws: the direct Newton solve).
-*Direct*: a sum of terms from the sizes above: the cells (mesh, basis values,
-the assembly of K), the sparse LU of the saddle matrix (fill measured on this
-machine, :data:`LU_FILL`) and the dense interface blocks of
-:mod:`skxfem.saddle` (about ``m × ncols + m² + ncols²`` doubles, several
-times).  *Iterative*: :data:`ITERATIVE_BYTES` per unknown (displacement and
-multiplier), everything included.  The constants were calibrated against the
-peak resident memory of solves on this machine (``scripts/calibrate_budget.py``);
-:data:`SAFETY` is the factor on top.  The estimate, over the peak resident
-memory a direct solve added, measured (one process per case, the peak reset
-just before the solve; the solver of November 2026):
+*Direct*: the cells (mesh, basis values, the assembly of K), the sparse LU
+of the saddle matrix (fill measured, :data:`LU_FILL`) and the dense interface
+blocks of :mod:`skxfem.saddle` (``3 m ncols + 2 m² + 2 ncols²`` doubles).
+*Iterative*: :data:`ITERATIVE_BYTES` per unknown (displacement and multiplier),
+everything included.  The constants were calibrated against the peak resident
+memory of solves on this machine (``scripts/calibrate_budget.py``); :data:`SAFETY`
+is the factor on top.  The estimate over the peak memory a direct solve added
+(one process per case, the peak reset before the solve; before the lighter
+assembly of 24 November 2026, which made it looser: prisms n = 8, 2.5 times):
 
 * ``strip`` on triangles, n = 32, 128, 256, 512: 9.6 MB ... 5.7 GB, 1.6-1.9 times;
 * ``strip`` on quadrilaterals, n = 64, 256: 52 MB, 1.3 GB, 1.4 times;
@@ -38,9 +37,8 @@ just before the solve; the solver of November 2026):
 * ``paper_plate`` on hexahedra, n = 8, 16, 24: 88 MB, 824 MB, 4.4 GB; 1.2-1.6 times;
 * the same plate on tetrahedra, n = 5, 9: 14 MB, 107 MB; 3.1 and 3.2 times;
 
-so the estimate is an upper bound within a factor 4 (on tetrahedra the cut
-edges are over-counted most); ``tests/test_budget.py`` checks four cases,
-one of them iterative.
+so the estimate is an upper bound within a factor 4 (tetrahedra: the cut edges
+are over-counted most); ``tests/test_budget.py`` checks four cases, one iterative.
 
 >>> from skxfem import scenes
 >>> e = estimate(scenes.strip(8, cell="tri"))

@@ -19,14 +19,14 @@ Assembly uses scikit-fem throughout.  With K the standard stiffness
           K_{bb} = K[E,E] + D K[E,E] D - D K_H[E,E] - K_H[E,E] D,
 
 because H² = 1.  K_H needs the sub-cell quadrature of :mod:`skxfem.cut`; on
-uncut cells H is the cell's constant side.  Both come from one pass over the
-quadrature points: with K^± the stiffness of Ω^±, K = K⁺ + K⁻ and K_H = K⁺ - K⁻.
-Only the columns of enriched dofs of K_H enter, so the pass takes K whole (cut
-cells included: the integrand is a polynomial on them) and K_H = s(2Kˢ - K)
-from one side s on the cells of enriched nodes (:func:`skxfem.sides.parts`).
-The stiffness runs on *scalar* bases (built once by :func:`space` and shared
-with :func:`far_side_fraction`), assembled from scalar forms
-(:func:`skxfem.material.stiffness_matrix`).
+uncut cells H is the cell's constant side.  With K^± the stiffness of Ω^±,
+K = K⁺ + K⁻ and K_H = K⁺ - K⁻ = s(2Kˢ - K) for either side s.  Only the
+columns of enriched dofs of K_H enter, so K is assembled on every cell whole
+(the integrand is a polynomial on a cut cell too) and Kˢ on one side, on the
+cells of enriched nodes only (:func:`skxfem.sides.parts`; on hexahedra and
+prisms with a moment-fitted rule, :mod:`skxfem.moments`).  The stiffness runs
+on *scalar* bases (built once by :func:`space` and shared with
+:func:`far_side_fraction`), from scalar forms (:func:`skxfem.material.stiffness_matrix`).
 
 >>> from skfem import MeshTri1
 >>> from skxfem.levelset import plane
