@@ -104,8 +104,8 @@ def parser() -> argparse.ArgumentParser:
                      help="contact laws: Newton iterations allowed per load step "
                           "(default: that of skxfem.contact.solve, 30)")
     run.add_argument("--linear", choices=LINEAR, default="auto",
-                     help="ties: the linear solve, direct (SuperLU), iterative (AMG + "
-                          "FGMRES, needs pyamg) or auto (iterative from "
+                     help="ties: the linear solve, direct (SuperLU), iterative (AMG-"
+                          "preconditioned projected CG, needs pyamg) or auto (iterative from "
                           "skxfem.solver.AUTO_ITERATIVE unknowns; the default)")
     run.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
                      help="show the traceback of an error")

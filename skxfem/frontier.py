@@ -47,7 +47,7 @@ SOLVERS: dict[str, Callable[[Problem], Result]] = {
     "iterative": partial(solve_problem, linear="iterative"),
 }
 """Linear solves of the tie (:data:`skxfem.solver.LINEAR`): name → function(Problem) →
-Result; ``iterative`` is AMG + FGMRES (pyamg)."""
+Result; ``iterative`` is AMG-preconditioned projected CG (pyamg)."""
 ERROR_ORDER = 4
 """Cell quadrature order of the energy error on uncut cells (the same for every method)."""
 

@@ -9,72 +9,57 @@ Why this design
 ---------------
 The direct path factorises the whole saddle matrix; in 3D its fill grows
 like dofs².  A plain elasticity solve scales because algebraic multigrid
-(AMG) solves K nearly optimally.  Two obstacles stand between K and AMG here:
+(AMG) solves K nearly optimally.  Here U minimises the energy on the
+constrained space {B U = 0}, so it is the conjugate-gradient solution of K
+restricted to ker B (the null-space method): the multipliers are not
+unknowns of the iteration at all, and are recovered afterwards from the
+residual, Bᵀy = F - K U, by a least-squares solve on the interface.
 
-* K is singular on the free unknowns whenever a side of Γ is held by the
-  tie alone (the paper's plate: Ω⁺ floats without the multipliers), so K
-  itself cannot be the (1,1) block of a block preconditioner;
-* the multipliers need a Schur-complement approximation, and B K⁻¹ Bᵀ is
-  an H^{-1/2}-like operator that no interface mass approximates uniformly.
+K is singular on the free unknowns whenever a side of Γ is held by the tie
+alone (the paper's plate: Ω⁺ floats without the multipliers), so AMG is
+built on an augmented operator instead.  With K scaled symmetrically to
+unit diagonal (a sliver of an enriched support has a tiny stiffness) and
+the rows of B normalised (K_s, B_n),
 
-The augmented Lagrangian removes both.  Since B U = 0 at the solution, the
-system is unchanged if r BᵀWB U is added to the first equation:
+.. math:: K_r = K_s + r B_n^T B_n
 
-.. math:: K_r = K + r B^T W B, \qquad
-          \begin{bmatrix} K_r & B^T \\ B & 0 \end{bmatrix}
-          \begin{bmatrix} U \\ y \end{bmatrix} =
-          \begin{bmatrix} F \\ 0 \end{bmatrix} .
+equals K_s on ker B and is SPD on the free unknowns whenever the tied
+problem is well posed (r ≈ 1: a penalty of the order of E/h).  CG needs
+its iterates in ker B: the orthogonal projection
 
-K_r is SPD on the free unknowns whenever the tied problem is well posed, and
-its Schur complement is S_r = B K_r⁻¹ Bᵀ = (S⁻¹ + rW)⁻¹, so rW approximates
-S_r⁻¹ better the larger r (Benzi & Olshanskii's augmented-Lagrangian
-preconditioner).  We scale K symmetrically to unit diagonal (a sliver of
-an enriched support has a tiny stiffness) and normalise the rows of B, so
-that W = I and r is a plain number: r ≈ 1 means a penalty of the order of the
-local stiffness E/h.  FGMRES then runs on the augmented system,
-preconditioned by the block upper-triangular
+.. math:: \Pi = I - B_n^T (B_n B_n^T)^{-1} B_n ,
 
-.. math:: P = \begin{bmatrix} \tilde K_r & B^T \\ 0 & -\tilde S_r \end{bmatrix},
-          \qquad \tilde S_r^{-1} = r I + (B_n B_n^T + \delta I)^{-1},
+needs the m × m interface matrix B_n B_nᵀ, factorised once (SuperLU,
+shifted by δ for exactly dependent rows and refined twice, so that nearly
+dependent rows are still projected out).  CG then runs on K_r with the
+projected preconditioner Π M Π, M one symmetric AMG V-cycle of K_r (Gould,
+Hribar & Nocedal's projected CG): a short recurrence, no restarts, no
+Krylov basis to keep.  Per iteration: one V-cycle, one product with K_r,
+two projections (four products with B, six triangular solves on the
+interface).
 
-with K̃_r⁻¹ one AMG V-cycle, and S̃_r⁻¹ Woodbury's S⁻¹ + rI with S
-replaced by B diag(K)⁻¹ Bᵀ = B_n B_nᵀ (the SIMPLE approximation; δ shifts
-the exactly dependent rows).  That second term matters where rows of B are
-nearly dependent (the vital space on prisms: singular values of B down to
-5e-5 of the largest), where S is tiny and rI alone is a poor S_r⁻¹; it is a
-sparse m × m interface matrix, factorised once.  Per iteration: one
-V-cycle, two products with B, two triangular solves on the interface.
+r trades the two parts: the larger r, the closer M Π is to the inverse of K
+on ker B, but the worse the AMG does on the stiffer K_r.  On the paper's
+plate (hex, n = 16; 1 run): 19, 18, 25, 62 iterations for r = 1, 3, 10,
+100; hence r = 3.  The FGMRES with a block-triangular augmented-Lagrangian
+preconditioner that this replaced took 28, 31, 30, 38, 45 iterations on
+the plate (hex n = 16, 32; prism n = 16, 32; prism n = 16 naive), projected
+CG 18, 21, 24, 32, 23; the whole hex n = 32 solve 6.2 s, now 4.3 s.
 
-r trades the two blocks: the larger r, the better the multipliers' block,
-but the stiffer the penalty and the worse the AMG does on K_r.  Measured on
-the paper's plate (hex, n = 16): AMG-CG on K_r alone took 11, 27, 71
-iterations for r = 1, 10, 100; the whole solve (with rI alone on the
-multipliers) 37, 29, 25, 23, 32 FGMRES iterations for r = 1, 2, 3, 5, 10,
-where block-diagonal MINRES needed 60-75.  On the prism plate (n = 8) the
-SIMPLE term took FGMRES from 118 to 39 iterations (hex n = 12: 24 → 27).
-Hence r = 3 and FGMRES, which needs no symmetric preconditioner; its
-memory is 2 × ``restart`` vectors (30: see ``restart`` below).
+The AMG (:func:`skxfem.amg.amg`) is smoothed aggregation on nodal blocks
+with a SuperLU coarse solve, its near-null space the rigid motions *of each
+side of Γ separately* (:func:`skxfem.amg.rigid_modes`): K vanishes on a
+rigid motion of Ω⁻ with Ω⁺ at rest and vice versa.  A bonded tie holds the
+sides together, and the rigid motions of the body suffice (``bonded=True``:
+half the coarse unknowns).  The same modes tell a singular system — a side
+that neither the supports nor the tie hold, where CG would return an
+arbitrary U — apart: :func:`solve` refuses it (:func:`skxfem.amg.check_held`).
 
-The AMG is pyamg's smoothed aggregation on nodal blocks, its near-null space
-the rigid motions *of each side of Γ separately*
-(:func:`skxfem.amg.rigid_modes`): on the
-free unknowns, K vanishes on a rigid motion of Ω⁻ with Ω⁺ at rest and vice
-versa, and these are expressed in [a, b] (a rigid motion of the whole body is
-their sum, with b = 0).  K_r is near-singular only on their combinations that
-the tie lets slide (a frictionless tie); a bonded tie holds both sides
-together and the rigid motions of the whole body suffice (``bonded=True``:
-half the coarse unknowns).  The same modes tell a system that is singular —
-a side that neither the supports nor the tie hold, where an iterative
-method would return an arbitrary U — apart: :func:`solve` refuses it
-(:func:`skxfem.amg.check_held`).  The coarse grid is solved by SuperLU
-(``coarse_solver="splu"``; pyamg's default pseudo-inverse was 13× slower
-on the plain baseline, as measured in issue 11).
-
-Dependent multipliers (the naive spaces) make the system singular but
-consistent: U is still unique, and FGMRES converges to a solution.  The
-multipliers reported are then chosen by :func:`skxfem.smoothest.smoothest`
-(the smoothest, or the least-norm ones that balance U), a sparse computation
-on the interface unknowns only — no dense step, nothing that grows like dofs².
+Dependent multipliers (the naive spaces) leave ker B and U unchanged; only
+the multipliers are not unique.  They are chosen by
+:func:`skxfem.smoothest.smoothest` (the smoothest, or the least-norm ones
+that balance U), a sparse computation on the interface unknowns only — no
+dense step, nothing that grows like dofs².
 
 >>> import numpy as np, scipy.sparse as sp
 >>> K = sp.identity(2, format="csr"); B = sp.csr_matrix([[1.0, -1.0], [2.0, -2.0]])
@@ -89,7 +74,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse.linalg import LinearOperator, splu
+from scipy.sparse.linalg import splu
 
 from .amg import amg, check_held, pyamg
 from .saddle import SingularSystemError
@@ -116,14 +101,14 @@ class ConvergenceError(ValueError):
 
 @dataclass(frozen=True)
 class IterativeInfo:
-    """Diagnostics of :func:`solve`: FGMRES ``iterations``, the relative
+    """Diagnostics of :func:`solve`: CG ``iterations``, the relative
     ``residual`` of the saddle system reached, ``balance`` (the relative error
     of Bᵀμ = K U - F), ``removed`` (the dependent multipliers, whose values
     were chosen smoothest: as :class:`skxfem.saddle.SaddleInfo`), the AMG
     ``levels`` and operator ``complexity``, the penalty ``r``, the relative
     ``residuals``, one per iteration, and ``timings``: seconds of the
-    ``setup`` (scaling, AMG), the ``krylov`` iterations and the choice of
-    ``multipliers``."""
+    ``setup`` (scaling, AMG, interface factorisation), the ``krylov``
+    iterations and the choice of ``multipliers``."""
 
     iterations: int
     residual: float
@@ -138,9 +123,9 @@ class IterativeInfo:
 
 def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
           bonded: bool = False, tol: float = 1e-10, maxiter: int = 500, r: float = 3.0,
-          restart: int = 30, delta: float = 1e-8, refine: int = 3,
+          delta: float = 1e-12, refine: int = 2,
           dependent_tol: float = 1e-8, rigid_tol: float = 1e-11):
-    """Solve the tied saddle-point system by AMG-preconditioned FGMRES; see the module notes.
+    """Solve the tied saddle-point system by projected AMG-preconditioned CG; see the module notes.
 
     Parameters
     ----------
@@ -161,35 +146,26 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
     tol
         Relative residual ‖b - A x‖/‖b‖ of the (scaled) saddle system to reach.
     maxiter
-        Krylov iteration limit (all restarts together).
+        CG iteration limit.
     r
-        Penalty of the augmented Lagrangian, relative to the unit diagonal.
-    restart
-        Krylov vectors kept before FGMRES restarts (memory: 2 × restart × (N + m),
-        the basis and its preconditioned vectors).  On the triangle strip,
-        n = 512 (530k unknowns, 1 run): 100 → 55 iterations, 15.5 s, peak
-        1937 MB; 30 → 59, 13.4 s, 1439 MB; 15 → 64, 13.2 s, 1194 MB; on the
-        plate at n = 24 (hex 29, prism 36 iterations) 30 changed nothing.
-    delta
-        Shift of B_n B_nᵀ (unit diagonal) in the multipliers' block.
-    refine
-        Least-squares corrections of the multipliers against K U - F.
+        Penalty of the augmented operator K_r, relative to the unit diagonal.
+    delta, refine
+        Shift of B_n B_nᵀ for exactly dependent rows, and the refinement
+        steps of every solve with it: each divides the error of a mode with
+        singular value σ of B_n by 1 + σ²/δ.
     dependent_tol
         Singular values of B (free columns) below this times the largest
         count as dependencies, their multipliers chosen smoothest
-        (:func:`skxfem.smoothest.dependencies`).  Smaller than the dense
-        path's 1e-6: the vital space on the prism plate has genuine singular
-        values of 3.4e-6 (n = 16) and 8.7e-7 (n = 24) of the largest, which
-        must balance U (with 1e-6 both paths left an imbalance of 1.8e-8 at
-        n = 24), while exact dependencies come out below 3e-10 (measured).
+        (:func:`skxfem.smoothest.dependencies`).  Below the dense path's
+        1e-6: the vital prism plate has genuine singular values of 8.7e-7 of
+        the largest (n = 24), exact dependencies come out below 3e-10.
     rigid_tol
         A combination of ``modes`` whose energy in K_r (scaled) is below this
         is a rigid motion the supports and the tie leave free.
 
     Returns
     -------
-    U, mu, info
-        Unknowns (N,), multipliers (m,), :class:`IterativeInfo`.
+    U, mu, info : (N,), (m,), :class:`IterativeInfo`
 
     Raises
     ------
@@ -198,70 +174,56 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
         multipliers that do not balance U.
     skxfem.saddle.SingularSystemError
         (a ValueError) A free unknown without any stiffness, or a rigid
-        motion of a side (a combination of ``modes``) that neither the
-        supports nor the tie hold: an iterative method would return an
-        arbitrary U there.
+        motion of a side (of ``modes``) that neither supports nor tie hold.
     ImportError
         pyamg is not installed.
     """
-    if not (tol > 0 and maxiter >= 1 and r > 0 and restart >= 1):
-        raise ValueError(f"tol, maxiter, r and restart must be positive, got "
-                         f"{tol!r}, {maxiter!r}, {r!r}, {restart!r}")
-    fgmres = pyamg().krylov.fgmres
+    if not (tol > 0 and maxiter >= 1 and r > 0 and delta > 0 and refine >= 0):
+        raise ValueError(f"tol, maxiter, r and delta must be positive and refine >= 0, got "
+                         f"{tol!r}, {maxiter!r}, {r!r}, {delta!r}, {refine!r}")
+    pyamg()  # an ImportError naming the install before any work
     t0 = time.perf_counter()
-    N, m = K.shape[0], B.shape[0]
+    N = K.shape[0]
     K, B, F = sp.csr_matrix(K), sp.csr_matrix(B), np.asarray(F, float)
-    fixed = np.zeros(N, dtype=bool)
-    fixed[np.zeros(0, int) if D is None else np.asarray(D, int)] = True
-    U0 = np.zeros(N)
-    if D is not None:
-        U0[np.asarray(D, int)] = 0.0 if g is None else np.asarray(g, float)
+    D = np.zeros(0, int) if D is None else np.asarray(D, int)
+    fixed, U0 = np.zeros(N, dtype=bool), np.zeros(N)
+    fixed[D], U0[D] = True, (0.0 if g is None else np.asarray(g, float))
     s, Ks, Bn, rows = _scaled(K, B, fixed)
     Kr = (Ks + r * (Bn.T @ Bn)).tocsr()
-    c = -rows * (B @ U0)
-    rhs = np.concatenate([np.where(fixed, 0.0, s * (F - K @ U0)) + r * (Bn.T @ c), c])
     Zs = None if modes is None else modes / s[:, None]
     if Zs is not None:
         check_held(Kr, Zs, rigid_tol)
         if bonded:
             Zs = Zs[:, 0::2] + Zs[:, 1::2]
-    ml = amg(Kr, Zs, blocksize)
-    M1 = ml.aspreconditioner(cycle="V")
+    M = (ml := amg(Kr, Zs, blocksize)).aspreconditioner(cycle="V")
+    interface = _interface(Bn, delta, refine)
 
-    # S_r⁻¹ = S⁻¹ + r I, with S ≈ B diag(K)⁻¹ Bᵀ = B_n B_nᵀ (K_s has a unit
-    # diagonal), shifted by delta for dependent rows: an m x m interface matrix
-    simple = splu((Bn @ Bn.T + delta * sp.identity(m)).tocsc())
+    def project(v):  # Π v = v - B_nᵀ (B_n B_nᵀ)⁻¹ B_n v, onto ker B
+        return v - Bn.T @ interface(Bn @ v)
 
-    def triangular(v):  # [[K̃_r, Bᵀ], [0, -S̃_r]]⁻¹
-        y = -(r * v[N:] + simple.solve(v[N:]))
-        return np.concatenate([M1 @ (v[:N] - Bn.T @ y), y])
-
-    A = sp.bmat([[Kr, Bn.T], [Bn, None]], format="csr")
-    P = LinearOperator((N + m, N + m), matvec=triangular, dtype=float)
+    # scaled system: K_s x + B_nᵀ y = b, B_n x = c; x = x_p + w with B_n x_p = c
+    b = np.where(fixed, 0.0, s * (F - K @ U0))
+    c = -rows * (B @ U0)
+    x = Bn.T @ interface(c)
+    scale = max(np.linalg.norm(np.concatenate([b, c])), 1e-300)
     t1 = time.perf_counter()
-    history = []
-    x, _ = fgmres(A, rhs, tol=tol, restart=min(restart, maxiter, N + m), M=P,
-                  maxiter=-(-maxiter // min(restart, maxiter, N + m)), residuals=history)
-    nrhs = max(np.linalg.norm(rhs), 1e-300)
-    residual = float(np.linalg.norm(A @ x - rhs) / nrhs)
-    iterations = max(len(history) - 1, 0)
+    x, history = _projected_cg(Kr, M, project, b, x, tol * scale, maxiter)
+    iterations = len(history) - 1
+    residual = float(np.hypot(np.linalg.norm(project(b - Kr @ x)),
+                              np.linalg.norm(Bn @ x - c)) / scale)
     if not np.isfinite(residual) or residual > tol:
         raise ConvergenceError(
-            f"FGMRES did not reach the relative residual {tol:.0e} within {maxiter} "
+            f"projected CG did not reach the relative residual {tol:.0e} within {maxiter} "
             f"iterations (reached {residual:.2e} after {iterations}): raise maxiter, "
             f"loosen tol, or use the direct solve (skxfem.saddle.solve), which also "
             f"tells a singular system (a part of the body free to move) apart",
             iterations, residual)
     t2 = time.perf_counter()
-    U = U0 + s * np.where(fixed, 0.0, x[:N])
+    U = U0 + s * np.where(fixed, 0.0, x)
     free = np.flatnonzero(~fixed)
     reaction = (K @ U - F)[free]
-    # the multipliers must balance U itself, B_nᵀ ŷ = S (K U - F): a few least-squares
-    # corrections with the factorised B_n B_nᵀ + δI sharpen the Krylov ones (where rows
-    # of B are nearly dependent, the residual alone leaves them less accurate)
-    y, target = x[N:].copy(), np.where(fixed, 0.0, s * (K @ U - F))
-    for _ in range(refine):
-        y -= simple.solve(Bn @ (Bn.T @ y + target))
+    # the multipliers balance U: B_nᵀ y = b - K_s x in the least-squares sense
+    y = interface(Bn @ np.where(fixed, 0.0, s * (F - K @ U)))
     dependent = dependencies(B[:, free], dependent_tol)
     mu = smoothest(B[:, free], -rows * y, G, N=dependent)
     balance = float(np.linalg.norm(B[:, free].T @ mu - reaction) / max(
@@ -273,7 +235,49 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
     timings = {"setup": t1 - t0, "krylov": t2 - t1, "multipliers": time.perf_counter() - t2}
     return U, mu, IterativeInfo(iterations, residual, balance, dependent.shape[1],
                                 len(ml.levels), float(ml.operator_complexity()), float(r),
-                                tuple(np.asarray(history) / nrhs), timings)
+                                tuple(np.asarray(history) / scale), timings)
+
+
+def _projected_cg(A, M, project, b, x, atol, maxiter):
+    """CG for A x = b on x + ker B (x satisfies the constraint), preconditioned
+    by Π M Π: the iterate x and the residual norms ‖Π(b - A x)‖, one per
+    iteration.  The recursive residual is checked against the true one before
+    stopping (a restart if they drifted apart)."""
+    res = project(b - A @ x)
+    history = [np.linalg.norm(res)]
+    while len(history) <= maxiter:
+        z = project(M @ res)
+        rz, d = res @ z, z
+        while history[-1] > atol and len(history) <= maxiter:
+            q = A @ d
+            alpha = rz / (d @ q)
+            x = x + alpha * d
+            res = res - alpha * project(q)
+            history.append(np.linalg.norm(res))
+            z = project(M @ res)
+            rz, rz_old = res @ z, rz
+            d = z + (rz / rz_old) * d
+        res = project(b - A @ x)  # the true residual
+        if np.linalg.norm(res) <= atol:
+            break
+        history[-1] = np.linalg.norm(res)
+    return x, history
+
+
+def _interface(Bn, delta, refine):
+    """v ↦ (B_n B_nᵀ)⁻¹ v on the range of B_n: SuperLU of B_n B_nᵀ + δI, refined."""
+    m = Bn.shape[0]
+    if m == 0:
+        return lambda v: np.zeros(0)
+    Q = (Bn @ Bn.T).tocsr()
+    lu = splu((Q + delta * sp.identity(m)).tocsc())
+
+    def apply(v):
+        y = lu.solve(v)
+        for _ in range(refine):
+            y += lu.solve(v - Q @ y)
+        return y
+    return apply
 
 
 def _scaled(K, B, fixed):

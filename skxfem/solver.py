@@ -78,7 +78,7 @@ class Result:
 
 LINEAR = ("auto", "direct", "iterative")
 """The linear solves of the tie: SuperLU on the saddle system
-(:func:`skxfem.saddle.solve`), AMG-preconditioned FGMRES
+(:func:`skxfem.saddle.solve`), AMG-preconditioned projected CG
 (:func:`skxfem.iterative.solve`, needs pyamg), or ``auto``."""
 
 AUTO_ITERATIVE = {2: 100_000, 3: 5_000}
@@ -139,7 +139,7 @@ def solve(scene: Scene, dependent: str = "remove", linear: str = "auto"
         ``"raise"`` refuses a rank-deficient coupling with a ValueError.
     linear
         The linear solve of the tie, one of :data:`LINEAR`: ``"direct"``,
-        ``"iterative"`` (AMG + FGMRES, pyamg), or ``"auto"`` (default): the
+        ``"iterative"`` (AMG + projected CG, pyamg), or ``"auto"`` (default): the
         iterative one from :data:`AUTO_ITERATIVE` unknowns if pyamg is there.
 
     Raises

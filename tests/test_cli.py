@@ -371,7 +371,7 @@ def test_23_grade_is_a_subcommand(tmp_path, capsys):
 
 
 def test_24_the_linear_solve_is_an_option(tmp_path, capsys):
-    """`--linear iterative` solves a tie with AMG + FGMRES (the same pressures as
+    """`--linear iterative` solves a tie with AMG + projected CG (the same pressures as
     the direct solve); an unknown name is a usage error (exit 2, one line)."""
     pytest.importorskip("pyamg")
     plate = Path(__file__).resolve().parents[1] / "examples" / "plate.toml"

@@ -1,5 +1,5 @@
 """Tests for skxfem/iterative.py (and skxfem/smoothest.py): the AMG-preconditioned
-Krylov solve of the tied saddle system gives the direct solve's answer.
+projected CG solve of the tied saddle system gives the direct solve's answer.
 
 1. ``rigid_modes``: each side's rigid motion has zero energy, vanishes on the
    other side, and the pair sums to the rigid motion of the body (b = 0).

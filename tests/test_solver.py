@@ -679,7 +679,7 @@ def test_traction_on_a_circle_in_uniform_stress_converges_at_every_point(centre,
 
 
 # ---------------------------------------------------------------------------
-# 8. The linear solve: direct, iterative (AMG + FGMRES), auto
+# 8. The linear solve: direct, iterative (AMG + projected CG), auto
 # ---------------------------------------------------------------------------
 
 @pytest.mark.parametrize("make", [lambda: strip(6, "tri"), lambda: paper_plate(3, "prism")])
