@@ -31,15 +31,16 @@ The package is flat; its modules stand on floors, lowest first.  A module
 imports only from lower floors (import-linter checks it in ``make test``; the
 contract is in ``pyproject.toml``):
 
-1. kernels: ``simplex``, ``expr``, ``saddle``, ``vtu``, ``progress``, ``grade``;
-   then ``amg``, ``smoothest``, then ``iterative`` (the scalable linear solve);
+1. kernels: ``simplex``, ``expr``, ``saddle``, ``vtu``, ``progress``, ``grade``,
+   ``linear`` (which solve); then ``amg``, ``smoothest``, then ``iterative`` (the
+   scalable linear solve);
 2. ``levelset`` (the sign convention), ``meshes``, ``cells``, ``material``,
    ``quadrature``, ``evaluate``, ``contact_laws``;
 3. ``cut``, ``exact``;  4. ``enrich``, ``loads``;
 5. ``multipliers``, ``cutgraph``;  6. ``stabilised``;
 7. the scene: ``scene_parts``, ``tomlcheck``, ``boundary``, ``scene``, then
    ``scenes``, ``scenefile``;
-8. ``problem``;  9. ``contact_interface``, ``contact_newton``,
+8. ``problem``;  9. ``contact_linear``, then ``contact_interface``, ``contact_newton``,
    ``contact_fixed_point``;  10. ``lbb``, ``contact``, then ``solver``;
 11. ``io`` (on ``io_contact``), ``budget``, ``convergence``;
 12. the studies: ``extremes``, ``frontier``, then ``extremes_scales``,

@@ -20,7 +20,7 @@ The counts are upper bounds:
 
 ψ is evaluated at the nodes in slabs of about 10⁶ points, so the guard itself
 stays small.  The memory depends on the linear solver that will run
-(:func:`skxfem.solver.choose_linear`; contact laws: the direct Newton solve).
+(:func:`skxfem.linear.choose_linear`; Coulomb contact: the direct Newton solve).
 *Direct*: the cells (mesh, basis values, the assembly of K), the sparse LU
 of the saddle matrix (fill measured, :data:`LU_FILL`) and the dense interface
 blocks of :mod:`skxfem.saddle` (``3 m ncols + 2 m² + 2 ncols²`` doubles).
@@ -56,12 +56,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .contact_laws import CONTACT_LAWS
 from .levelset import nodal_values
+from .linear import choose_linear
 from .meshes import CELLS, cell_name
 from .quadrature import cell_rule
 from .scene import Box, Scene, resolve_mesh
-from .solver import choose_linear
 
 __all__ = ["DEFAULT_MAX_BYTES", "Estimate", "TooLargeError", "check", "estimate",
            "parse_bytes", "format_bytes"]
@@ -250,7 +249,8 @@ def estimate(scene: Scene, linear: str = "auto") -> Estimate:
     n_enr = dim * n_enr_nodes
     n_dofs = dim * n_nodes + n_enr
     m = (1 if scene.law == "bilateral" else dim) * n_edges  # contact: λ_n and friction
-    chosen = "direct" if scene.law in CONTACT_LAWS else choose_linear(linear, dim, n_dofs)
+    law = "frictionless" if scene.law == "coulomb" and scene.friction == 0 else scene.law
+    chosen = choose_linear(linear, dim, n_dofs, law)
     if chosen == "iterative":
         bytes_ = SAFETY * ITERATIVE_BYTES[dim] * (n_dofs + m)
     else:

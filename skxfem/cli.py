@@ -104,9 +104,10 @@ def parser() -> argparse.ArgumentParser:
                      help="contact laws: Newton iterations allowed per load step "
                           "(default: that of skxfem.contact.solve, 30)")
     run.add_argument("--linear", choices=LINEAR, default="auto",
-                     help="ties: the linear solve, direct (SuperLU), iterative (AMG-"
-                          "preconditioned projected CG, needs pyamg) or auto (iterative from "
-                          "skxfem.solver.AUTO_ITERATIVE unknowns; the default)")
+                     help="the linear solve of a tie or of each contact Newton step: direct "
+                          "(SuperLU), iterative (AMG-preconditioned projected CG, needs "
+                          "pyamg; not for coulomb) or auto (iterative from "
+                          "skxfem.linear.AUTO_ITERATIVE unknowns; the default)")
     run.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
                      help="show the traceback of an error")
     for name, (text, _) in FORWARDED.items():
@@ -142,7 +143,7 @@ def _contact_line(result) -> str:
     return (f"{result.problem.scene.name}: {result.law.name}, {len(its)} load step(s), "
             f"{sum(its)} Newton iterations ({', '.join(map(str, its))}); last step: "
             f"{counts['stick'] + counts['slip']} in contact ({counts['stick']} stick, "
-            f"{counts['slip']} slip), {counts['open']} open, {p}")
+            f"{counts['slip']} slip), {counts['open']} open, {p}, {result.linear} solve")
 
 
 def _run(args) -> int:
@@ -155,7 +156,7 @@ def _run(args) -> int:
     budget.check(s, args.max_memory, "--max-memory", linear=args.linear)
     if contact:
         limit = {} if args.max_iter is None else {"max_iter": args.max_iter}
-        result = solve_contact(s, **limit)
+        result = solve_contact(s, linear=args.linear, **limit)
     else:
         result = solve(s, linear=args.linear)
     try:

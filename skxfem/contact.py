@@ -45,10 +45,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .amg import rigid_modes
 from .contact_fixed_point import fixed_point
 from .contact_interface import Operators, operators
 from .contact_laws import CONTACT_LAWS, status
 from .contact_newton import ContactConvergenceError, Law, NewtonInfo, newton
+from .linear import choose_linear
 from .problem import Problem, assemble
 from .scene import Scene
 
@@ -82,12 +84,14 @@ class Step:
 
 @dataclass(frozen=True)
 class ContactResult:
-    """``problem`` (the assembled bilateral problem), ``ops``, ``law`` and ``steps``."""
+    """``problem`` (the assembled bilateral problem), ``ops``, ``law``, ``steps``
+    and the ``linear`` solve of the Newton steps."""
 
     problem: Problem
     ops: Operators
     law: Law
     steps: tuple
+    linear: str = "direct"
 
 
 def parameters(scene: Scene, h: float) -> Law:
@@ -139,7 +143,7 @@ def _states(scene: Scene, pb: Problem, history):
 
 
 def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10,
-          max_iter: int = 30) -> ContactResult:
+          max_iter: int = 30, linear: str = "auto") -> ContactResult:
     """Solve the contact ``scene`` over the load ``history``.
 
     Parameters
@@ -153,11 +157,16 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10
         ``"newton"`` (semi-smooth Newton on all equations) or ``"fixed_point"``.
     tol, max_iter
         Relative residual tolerance of every equation; iteration limit.
+    linear
+        The linear solve of each Newton step (:data:`skxfem.linear.LINEAR`):
+        ``"direct"``, ``"iterative"`` (frictionless and adhesive laws, pyamg)
+        or ``"auto"``: :func:`skxfem.linear.choose_linear`.
 
     Raises
     ------
     ValueError
-        A tie law, an empty or bad history, an unknown method.
+        A tie law, an empty or bad history, an unknown method, ``"iterative"``
+        for a Coulomb law.
     ContactConvergenceError
         A step that does not converge within ``max_iter`` iterations.
     """
@@ -172,6 +181,9 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10
     pb = assemble(scene, law="bilateral")
     ops = operators(pb)
     law = parameters(scene, ops.h)
+    linear = choose_linear(linear, pb.mesh.dim(), pb.V.N, law.name)
+    solve_kw = {"linear": linear} if linear == "direct" else {
+        "linear": linear, "modes": rigid_modes(pb.V), "blocksize": pb.mesh.dim()}
     states = _states(scene, pb, scene.steps if history is None else history)
     free = np.setdiff1d(np.arange(pb.V.N), pb.D)
     m, k = ops.w.size, len(ops.Bt)
@@ -183,11 +195,11 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10
         U_prev = U.copy()
         U[pb.D] = g
         U, lam, T, g_n, g_t, info = step_solver(ops, law, pb.K, F, free, U, lam, T, U_prev,
-                                                tol=tol, max_iter=max_iter)
+                                                tol=tol, max_iter=max_iter, **solve_kw)
         tau = law.mu * lam[:, None] * T if law.name == "coulomb" else (
             T if law.name == "adhesive" else np.zeros((m, k)))
         slip = np.stack([B @ U for B in ops.Bt], axis=1) / ops.w[:, None]
         Lam = T if law.name == "coulomb" else np.zeros((m, k))
         steps.append(Step(label, U.copy(), -lam, tau, ops.Bn @ U / ops.w, slip,
                           status(g_n, g_t if law.friction else None, law.name), Lam, info))
-    return ContactResult(pb, ops, law, tuple(steps))
+    return ContactResult(pb, ops, law, tuple(steps), linear)

@@ -38,8 +38,9 @@ from .contact_newton import ContactConvergenceError, NewtonInfo, newton
 __all__ = ["fixed_point"]
 
 
-def fixed_point(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30):
-    """Solve one load step by fixed point on μλ; same arguments and returns as
+def fixed_point(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30, **linear):
+    """Solve one load step by fixed point on μλ; same arguments (``linear``:
+    the keywords of the linear solve) and returns as
     :func:`skxfem.contact_newton.newton` (``iterations`` counts the passes).
 
     Raises
@@ -51,13 +52,14 @@ def fixed_point(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30)
         last pass and ``error.thresholds`` the threshold of every pass.
     """
     if law.name != "coulomb":
-        return newton(ops, law, K, F, free, U, lam, T, U_prev, tol=tol, max_iter=max_iter)
+        return newton(ops, law, K, F, free, U, lam, T, U_prev, tol=tol, max_iter=max_iter,
+                      **linear)
     S = law.mu * lam
     thresholds, residuals = [S], []
     for it in range(1, max_iter + 1):
         try:
             out = newton(ops, replace(law, threshold=S), K, F, free, U, lam, T, U_prev,
-                         tol=tol, max_iter=max_iter)
+                         tol=tol, max_iter=max_iter, **linear)
         except ContactConvergenceError as e:
             st = e.statuses
             two = len(st) > 3 and np.array_equal(st[-1], st[-3]) and np.array_equal(

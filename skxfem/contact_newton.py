@@ -25,13 +25,14 @@ traction r_τ as the unknown there with the stick row ρ_τ s = 0, and sets
 Λ = P_B(r_τ/(μλ)) after the step (the first iteration of a first load step
 is thus the bonded solve).
 Rows and columns are scaled (Jacobi on U, unit max on the others) before
-SuperLU.  Step control: backtracking on the scaled residual norm (halving up
-to 5 times; if no step decreases it the full step is taken, as the active
-set has to change).  Convergence: the status of every point (open, stick,
-slip) unchanged by the last step and every relative residual ≤ ``tol``
-(equilibrium relative to max(|F|, |KU|); contact relative to
-max(|λ|, ρ_n|d|); friction: |Λ| ≤ 1 is already unit-free, the adhesive
-traction relative to max(|r_τ|, ρ_τ|s|)).
+SuperLU, or a frictionless or adhesive step is solved as a tie by AMG +
+projected CG (:mod:`skxfem.contact_linear`). Step control: backtracking on
+the scaled residual norm (halving up to 5 times; if no step decreases it the
+full step is taken, as the active set has to change). Convergence: the
+status of every point (open, stick, slip) unchanged by the last step and
+every relative residual ≤ ``tol`` (equilibrium relative to max(|F|, |KU|);
+contact relative to max(|λ|, ρ_n|d|); friction: |Λ| ≤ 1 is already
+unit-free, the adhesive traction relative to max(|r_τ|, ρ_τ|s|)).
 
 >>> law = Law("coulomb", mu=0.5, rho_n=1.0, rho_t=1.0)
 >>> law.friction, law.threshold is None
@@ -43,8 +44,8 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
+from . import contact_linear
 from .contact_laws import ball_projection, normal_update, status
 
 __all__ = ["Law", "NewtonInfo", "ContactConvergenceError", "residual", "newton"]
@@ -189,38 +190,14 @@ def jacobian(ops, law, K, free, lam, T, g_n, g_t) -> sp.csr_matrix:
     return sp.bmat([rows_u, rows_n, rows_t], format="csr")
 
 
-def _scaled_solve(A, R, nu):
-    """Solve A x = -R, U rows and columns Jacobi-scaled, the others to unit max."""
-    A = sp.csr_matrix(A)
-    n = A.shape[0]
-    diag = np.abs(A.diagonal()[:nu])
-    c = np.ones(n)
-    c[:nu] = 1.0 / np.sqrt(np.where(diag > 0, diag, 1.0))
-    r = c.copy()
-    A1 = sp.diags(r) @ A @ sp.diags(c)
-    c[nu:] /= np.maximum(abs(A1[:, nu:]).max(axis=0).toarray().ravel(), 1e-300)
-    A1 = A @ sp.diags(c)
-    r[nu:] = 1.0 / np.maximum(abs(A1[nu:]).max(axis=1).toarray().ravel(), 1e-300)
-    As = sp.diags(r) @ A @ sp.diags(c)
-    try:
-        lu = spla.splu(As.tocsc(), permc_spec="COLAMD")
-        pivots = np.abs(lu.U.diagonal())
-        if pivots.min() < 1e-11 * pivots.max():
-            raise RuntimeError(f"smallest LU pivot {pivots.min() / pivots.max():.1e} "
-                               f"of the largest")
-    except RuntimeError as e:  # SuperLU: "Factor is exactly singular"
-        raise ValueError(
-            f"the contact Newton matrix is singular ({e}): either a part of the body can "
-            f"move freely (a frictionless or open interface leaves a rigid motion of one "
-            f"side: add supports on each side), or some multipliers depend on the others "
-            f"(the naive space on tetrahedra, or a support acting on a face that Γ cuts: "
-            f"use space='vital' or move the support)") from e
-    x = lu.solve(-r * R)
-    return c * x, r
-
-
-def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30):
+def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30,
+           linear="direct", modes=None, blocksize=1):
     """Solve one load step from the start (U, λ, T); U must hold the imposed values.
+
+    ``linear``: each Newton step solved by ``"direct"`` SuperLU or
+    ``"iterative"`` AMG + projected CG (frictionless and adhesive laws;
+    ``modes``, ``blocksize`` as :func:`skxfem.iterative.solve`), see
+    :mod:`skxfem.contact_linear`.
 
     Returns
     -------
@@ -250,7 +227,11 @@ def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30):
             s = _jumps(ops, U, U_prev)[1]
             R = (R[0], R[1], np.where(np.tile(new, k), -law.rho_t * s.T.ravel(), R[2]))
         Rv = np.concatenate(R)
-        dx, rs = _scaled_solve(A, Rv, nu)
+        if linear == "iterative":
+            dx, rs = contact_linear.iterative(ops, law, K, free, g_n, R, modes, blocksize), \
+                contact_linear.scales(A, nu)[0]
+        else:
+            dx, rs = contact_linear.direct(A, Rv, nu)
         phi0 = np.linalg.norm(rs * Rv)
         for alpha in (1.0, 0.5, 0.25, 0.125, 0.0625, 0.03125, 1.0):
             U1, lam1, T1 = U.copy(), lam + alpha * dx[nu:nu + m], T + alpha * (

@@ -1,9 +1,9 @@
 r"""An iterative solve of the tied saddle-point system, for systems too large for LU.
 
 Same equations and contract as :func:`skxfem.saddle.solve`: for U with
-U[D] = g,
+U[D] = g (and c = 0 for a tie),
 
-.. math:: K U + B^T y = F, \qquad B U = 0, \qquad \mu = -y .
+.. math:: K U + B^T y = F, \qquad B U = c, \qquad \mu = -y .
 
 Why this design
 ---------------
@@ -55,11 +55,10 @@ half the coarse unknowns).  The same modes tell a singular system — a side
 that neither the supports nor the tie hold, where CG would return an
 arbitrary U — apart: :func:`solve` refuses it (:func:`skxfem.amg.check_held`).
 
-Dependent multipliers (the naive spaces) leave ker B and U unchanged; only
-the multipliers are not unique.  They are chosen by
-:func:`skxfem.smoothest.smoothest` (the smoothest, or the least-norm ones
-that balance U), a sparse computation on the interface unknowns only — no
-dense step, nothing that grows like dofs².
+Dependent multipliers (the naive spaces) leave ker B and U unique; the
+multipliers, not unique then, are chosen by :func:`skxfem.smoothest.smoothest`
+(the smoothest, or the least-norm ones, that balance U): sparse, on the
+interface only, nothing that grows like dofs².
 
 >>> import numpy as np, scipy.sparse as sp
 >>> K = sp.identity(2, format="csr"); B = sp.csr_matrix([[1.0, -1.0], [2.0, -2.0]])
@@ -86,11 +85,8 @@ __all__ = ["IterativeInfo", "ConvergenceError", "solve"]
 class ConvergenceError(ValueError):
     """The iterative solve did not reach its tolerance within its iteration limit.
 
-    A ValueError, since the remedy is in the call: more iterations
-    (``maxiter``), a looser ``tol``, or the direct path
-    (:func:`skxfem.saddle.solve`) for a system that is singular or nearly so.
-    ``iterations`` and ``residual`` (the relative residual reached) say how far
-    it got.
+    A ValueError: the remedy is in the call (``maxiter``, ``tol``, or the
+    direct path).  ``iterations`` and ``residual`` say how far it got.
     """
 
     def __init__(self, message: str, iterations: int, residual: float):
@@ -121,7 +117,7 @@ class IterativeInfo:
     timings: dict = field(default_factory=dict)
 
 
-def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
+def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 1,
           bonded: bool = False, tol: float = 1e-10, maxiter: int = 500, r: float = 3.0,
           delta: float = 1e-12, refine: int = 2,
           dependent_tol: float = 1e-8, rigid_tol: float = 1e-11):
@@ -133,6 +129,8 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
         As :func:`skxfem.saddle.solve`: stiffness (N, N), coupling (m, N),
         load (N,), imposed unknowns and values, and the neighbour differences
         (p, m) for the smoothest multipliers (without G: the least-norm ones).
+    c
+        (m,) right-hand side of B U = c; default 0 (a tie).
     modes
         (N, 2k) the rigid motions of each side (:func:`skxfem.amg.rigid_modes`):
         checked to be held, and the near-null space of the AMG.  Default: no
@@ -203,7 +201,7 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
 
     # scaled system: K_s x + B_nᵀ y = b, B_n x = c; x = x_p + w with B_n x_p = c
     b = np.where(fixed, 0.0, s * (F - K @ U0))
-    c = -rows * (B @ U0)
+    c = rows * ((0.0 if c is None else np.asarray(c, float)) - B @ U0)
     x = Bn.T @ interface(c)
     scale = max(np.linalg.norm(np.concatenate([b, c])), 1e-300)
     t1 = time.perf_counter()
@@ -213,10 +211,12 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
                               np.linalg.norm(Bn @ x - c)) / scale)
     if not np.isfinite(residual) or residual > tol:
         raise ConvergenceError(
-            f"projected CG did not reach the relative residual {tol:.0e} within {maxiter} "
-            f"iterations (reached {residual:.2e} after {iterations}): raise maxiter, "
-            f"loosen tol, or use the direct solve (skxfem.saddle.solve), which also "
-            f"tells a singular system (a part of the body free to move) apart",
+            f"projected CG did not reach the relative residual {tol:.0e} " + (
+                f"within {maxiter} iterations (reached {residual:.2e}): raise maxiter, "
+                f"loosen tol, or use the direct solve" if iterations >= maxiter else
+                f"(reached {residual:.2e}; after {iterations} iterations a direction had no "
+                f"energy: the system is singular or nearly so, a part of the body free "
+                f"to move?): use the direct solve, which tells the cause"),
             iterations, residual)
     t2 = time.perf_counter()
     U = U0 + s * np.where(fixed, 0.0, x)
@@ -239,17 +239,19 @@ def solve(K, B, F, D=None, g=None, G=None, modes=None, blocksize: int = 1,
 
 
 def _projected_cg(A, M, project, b, x, atol, maxiter):
-    """CG for A x = b on x + ker B (x satisfies the constraint), preconditioned
-    by Π M Π: the iterate x and the residual norms ‖Π(b - A x)‖, one per
-    iteration.  The recursive residual is checked against the true one before
-    stopping (a restart if they drifted apart)."""
+    """CG for A x = b on x + ker B (x meets the constraint), preconditioned by
+    Π M Π: x and the residuals ‖Π(b - A x)‖, one per iteration.  The true
+    residual is checked before stopping (a restart if the recursive one
+    drifted); a direction without energy (A singular on ker B) stops it."""
     res = project(b - A @ x)
     history = [np.linalg.norm(res)]
-    while len(history) <= maxiter:
+    while history[-1] > atol and len(history) <= maxiter:
         z = project(M @ res)
         rz, d = res @ z, z
         while history[-1] > atol and len(history) <= maxiter:
             q = A @ d
+            if not d @ q > 0:  # breakdown: the caller reports the residual reached
+                return x, history
             alpha = rz / (d @ q)
             x = x + alpha * d
             res = res - alpha * project(q)
@@ -258,8 +260,6 @@ def _projected_cg(A, M, project, b, x, atol, maxiter):
             rz, rz_old = res @ z, rz
             d = z + (rz / rz_old) * d
         res = project(b - A @ x)  # the true residual
-        if np.linalg.norm(res) <= atol:
-            break
         history[-1] = np.linalg.norm(res)
     return x, history
 

@@ -23,7 +23,6 @@ is checked.
 """
 from __future__ import annotations
 
-import importlib.util
 import time
 from dataclasses import dataclass, field
 
@@ -36,6 +35,7 @@ from .contact import ContactResult
 from .contact_laws import CONTACT_LAWS
 from .enrich import XSpace, split_fields
 from .levelset import point_normals
+from .linear import AUTO_ITERATIVE, LINEAR, choose_linear
 from .problem import Problem, assemble, constrained_dofs
 from .scene import Scene
 from .smoothest import dependencies
@@ -76,36 +76,9 @@ class Result:
     linear: str = "direct"
 
 
-LINEAR = ("auto", "direct", "iterative")
-"""The linear solves of the tie: SuperLU on the saddle system
-(:func:`skxfem.saddle.solve`), AMG-preconditioned projected CG
-(:func:`skxfem.iterative.solve`, needs pyamg), or ``auto``."""
-
-AUTO_ITERATIVE = {2: 100_000, 3: 5_000}
-"""``auto`` takes the iterative path from this many unknowns (per dimension),
-when pyamg is installed: measured break-even on 2 cores, 3D near 3k unknowns
-(5.5x faster at 17k), 2D near 100k (1.6x faster at 529k),
-``benchmarks/tie_solve.py``."""
-
-
-def choose_linear(method: str, dim: int, n_unknowns: int) -> str:
-    """The linear solve ``method`` resolves to for ``n_unknowns`` in ``dim`` D:
-    ``auto`` is ``iterative`` from :data:`AUTO_ITERATIVE` unknowns if pyamg is there.
-
-    >>> choose_linear("auto", 2, 1000), choose_linear("direct", 3, 10**6)
-    ('direct', 'direct')
-    """
-    if method not in LINEAR:
-        raise ValueError(f"linear must be one of {LINEAR}, got {method!r}")
-    if method != "auto":
-        return method
-    big = n_unknowns >= AUTO_ITERATIVE[dim]
-    return "iterative" if big and importlib.util.find_spec("pyamg") else "direct"
-
-
 def _linear(method: str, p: Problem) -> str:
     """The linear solve ``method`` resolves to for ``p``."""
-    return choose_linear(method, p.mesh.dim(), p.V.N)
+    return choose_linear(method, p.mesh.dim(), p.V.N, p.law)
 
 
 def _differences(c, ncomp: int) -> sp.csr_matrix:
@@ -154,7 +127,7 @@ def solve(scene: Scene, dependent: str = "remove", linear: str = "auto"
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
     if scene.law in CONTACT_LAWS:
-        return contact.solve(scene)
+        return contact.solve(scene, linear=linear)
     p = assemble(scene)
     return solve_problem(p, dependent, linear)
 

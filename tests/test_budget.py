@@ -132,16 +132,22 @@ def test_08_memory_is_an_upper_bound_within_the_stated_factor(case):
 
 
 def test_11_the_estimate_follows_the_linear_solver():
-    """auto resolves as the solve does (skxfem.solver.choose_linear); the
-    iterative path needs far less than the direct one in 3D; a contact law
-    solves directly whatever is asked."""
+    """auto resolves as the solve does (skxfem.linear.choose_linear); the
+    iterative path needs far less than the direct one in 3D; frictionless
+    contact takes it too, Coulomb contact is solved directly (and refuses
+    the iterative path by name)."""
     plate = scenes.paper_plate(16, cell="hex")               # 17k unknowns: iterative
     auto, direct = estimate(plate), estimate(plate, linear="direct")
     assert auto.linear == "iterative" and direct.linear == "direct"
     assert auto.bytes < direct.bytes / 4
     assert estimate(scenes.paper_plate(4, cell="hex")).linear == "direct"   # 1.6k unknowns
     contact = dataclasses.replace(plate, law="frictionless")
-    assert estimate(contact, linear="iterative").linear == "direct"
+    assert estimate(contact).linear == estimate(contact, linear="iterative").linear \
+        == "iterative"
+    coulomb = dataclasses.replace(plate, law="coulomb", friction=0.3)
+    assert estimate(coulomb).linear == "direct"
+    with pytest.raises(ValueError, match="not 'coulomb'"):
+        estimate(coulomb, linear="iterative")
     with pytest.raises(ValueError, match="linear must be one of"):
         estimate(plate, linear="cg")
 

@@ -336,7 +336,7 @@ def test_21_a_non_convergence_anywhere_in_the_history_is_one_line(tmp_path, caps
                                                                   monkeypatch):
     """Whatever raises it (a later step, the fixed point), the error is anticipated."""
     def solve_contact(scene, **options):
-        assert scene.steps == (0.5, 1.0) and options == {}   # contact.solve's defaults
+        assert scene.steps == (0.5, 1.0) and options == {"linear": "auto"}  # the defaults
         raise ContactConvergenceError("the fixed point on the friction threshold failed "
                                       "in pass 2:\nalternates between two states")
     monkeypatch.setattr(cli, "solve_contact", solve_contact)

@@ -1,0 +1,56 @@
+"""Which linear solve a problem gets: direct (SuperLU) or iterative (AMG + projected CG).
+
+The direct solve factorises the whole saddle matrix: simple, exact, and the
+faster one on small systems, but its fill grows like dofs² in 3D.  The
+iterative one (:mod:`skxfem.iterative`) grows like a plain elasticity solve;
+it needs pyamg.  It solves the ties and the contact steps that are ties:
+a frictionless or adhesive Newton step (:mod:`skxfem.contact_linear`).  A
+Coulomb step couples the pressure to the tangential force (slip) and is
+solved directly.
+
+>>> choose_linear("auto", 2, 1000), choose_linear("direct", 3, 10**6)
+('direct', 'direct')
+>>> choose_linear("auto", 3, 10**6, law="coulomb")
+'direct'
+"""
+from __future__ import annotations
+
+import importlib.util
+
+__all__ = ["LINEAR", "AUTO_ITERATIVE", "ITERATIVE_LAWS", "choose_linear"]
+
+LINEAR = ("auto", "direct", "iterative")
+"""The linear solves: SuperLU on the saddle system (:func:`skxfem.saddle.solve`),
+AMG-preconditioned projected CG (:func:`skxfem.iterative.solve`, needs pyamg),
+or ``auto``."""
+
+AUTO_ITERATIVE = {2: 100_000, 3: 5_000}
+"""``auto`` takes the iterative path from this many unknowns (per dimension),
+when pyamg is installed: measured break-even on 2 cores, 3D near 3k unknowns
+(5.5x faster at 17k), 2D near 100k (1.6x faster at 529k),
+``benchmarks/tie_solve.py``."""
+
+ITERATIVE_LAWS = ("bonded", "bilateral", "frictionless", "adhesive")
+"""The laws whose linear systems the iterative path solves (not ``coulomb``)."""
+
+
+def choose_linear(method: str, dim: int, n_unknowns: int, law: str = "bonded") -> str:
+    """The linear solve ``method`` resolves to for ``n_unknowns`` in ``dim`` D
+    under ``law``: ``auto`` is ``iterative`` from :data:`AUTO_ITERATIVE`
+    unknowns if pyamg is there and the law is one of :data:`ITERATIVE_LAWS`.
+
+    Raises
+    ------
+    ValueError
+        An unknown ``method``, or ``"iterative"`` for a Coulomb law.
+    """
+    if method not in LINEAR:
+        raise ValueError(f"linear must be one of {LINEAR}, got {method!r}")
+    if method == "iterative" and law not in ITERATIVE_LAWS:
+        raise ValueError(f"linear='iterative' solves the laws {ITERATIVE_LAWS}, not "
+                         f"{law!r} (its Newton step couples pressure and friction): use "
+                         f"linear='direct' or 'auto'")
+    if method != "auto":
+        return method
+    big = n_unknowns >= AUTO_ITERATIVE[dim] and law in ITERATIVE_LAWS
+    return "iterative" if big and importlib.util.find_spec("pyamg") else "direct"
