@@ -2,6 +2,10 @@
 
     python scripts/calibrate_budget.py strip:tri:64 plate:prism:8 ...
     python scripts/calibrate_budget.py --linear iterative plate:hex:16 strip:tri:256 ...
+    python scripts/calibrate_budget.py --linear iterative press:hex:24 press:quad:256
+
+``press`` is frictionless contact: a box of n cells a side (3D: n x n x n), Γ
+across the middle (n even), the bottom clamped, the top pressed and held tangentially.
 
 Each case runs in its own subprocess; printed per case (one JSON line): the
 sizes the solve met (nodes, cells, unknowns, enriched dofs, multipliers, the
@@ -20,13 +24,22 @@ import dataclasses, json, sys
 import numpy as np
 import scipy.sparse.linalg as spla
 from skxfem import budget, saddle, scenes
-from skxfem.scene import Box
+from skxfem.levelset import plane
+from skxfem.scene import Box, Displacement, Scene, SurfaceLoad, clamped
 from skxfem.solver import solve
 
 kind, cell, n, linear = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
 if cell == "tet":  # the paper's plate on tetrahedra
     hexes = scenes.paper_plate(n, cell="hex")
     scene = dataclasses.replace(hexes, mesh=Box(hexes.mesh.n, "tet"))
+elif kind == "press":  # frictionless contact, pressed everywhere
+    dim = 2 if cell in ("tri", "quad") else 3
+    top, bottom = ("ymax", "ymin") if dim == 2 else ("zmax", "zmin")
+    mid = (0.5,) * (dim - 1) + (0.5 + 0.5 / n,)  # mid-cell for an even n
+    scene = Scene(Box((n,) * dim, cell), plane(mid, np.eye(dim)[-1]),
+                  displacements=(clamped(bottom), Displacement(top, {"x": 0.0, "y": 0.0}
+                                                               if dim == 3 else {"x": 0.0})),
+                  loads=(SurfaceLoad(top, pressure=1.0),), law="frictionless")
 else:
     scene = {"strip": scenes.strip, "plate": scenes.paper_plate}[kind](n, cell=cell)
 est = budget.estimate(scene, linear)
@@ -47,6 +60,11 @@ with open("/proc/self/clear_refs", "w") as f:
     f.write("5")   # reset the peak VmHWM
 r = solve(scene, linear=linear)
 peak = status("VmHWM:")
+if kind == "press":  # a ContactResult: the sizes of its bilateral problem
+    p = r.problem
+    r = dataclasses.make_dataclass("R", [])()
+    r.mesh, r.n_dofs, r.space, r.n_multipliers = p.mesh, p.V.N, p.V, p.B.shape[0]
+    r.removed = 0
 print(json.dumps({"case": f"{kind}:{cell}:{n}", "nodes": int(r.mesh.nvertices),
                   "cells": int(r.mesh.nelements), "N": int(r.n_dofs),
                   "n_enr": int(r.space.n_enr), "m": int(r.n_multipliers + r.removed),

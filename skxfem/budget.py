@@ -24,20 +24,18 @@ stays small.  The memory depends on the linear solver that will run
 *Direct*: the cells (mesh, basis values, the assembly of K), the sparse LU
 of the saddle matrix (fill measured, :data:`LU_FILL`) and the dense interface
 blocks of :mod:`skxfem.saddle` (``3 m ncols + 2 m² + 2 ncols²`` doubles).
-*Iterative*: :data:`ITERATIVE_BYTES` per unknown (displacement and multiplier),
-everything included.  The constants were calibrated against the peak resident
-memory of solves on this machine (``scripts/calibrate_budget.py``); :data:`SAFETY`
-is the factor on top.  The estimate over the peak memory a direct solve added
-(one process per case, the peak reset before the solve; before the lighter
-assembly of 24 November 2026, which made it looser: prisms n = 8, 2.5 times):
+*Iterative*: :data:`ITERATIVE_BYTES` (contact: :data:`CONTACT_ITERATIVE_BYTES`)
+per unknown, displacement and multiplier, everything included. The constants
+were calibrated against the peak resident memory of solves on this machine
+(``scripts/calibrate_budget.py``); :data:`SAFETY` is the factor on top. The
+estimate over the peak memory a direct solve added (one process per case, the
+peak reset before the solve; before the lighter assembly of 24 November 2026,
+which made it looser: prisms n = 8, 2.5 times):
 
-* ``strip`` on triangles, n = 32, 128, 256, 512: 9.6 MB ... 5.7 GB, 1.6-1.9 times;
-* ``strip`` on quadrilaterals, n = 64, 256: 52 MB, 1.3 GB, 1.4 times;
-* ``paper_plate`` on prisms, n = 8, 16, 24: 78 MB, 917 MB, 4.4 GB; 1.7-1.9 times;
-* ``paper_plate`` on hexahedra, n = 8, 16, 24: 88 MB, 824 MB, 4.4 GB; 1.2-1.6 times;
-* the same plate on tetrahedra, n = 5, 9: 14 MB, 107 MB; 3.1 and 3.2 times;
-
-so the estimate is an upper bound within a factor 4 (tetrahedra: the cut edges
+``strip`` on triangles, n = 32-512 (9.6 MB ... 5.7 GB), 1.6-1.9 times; on
+quadrilaterals, n = 64, 256, 1.4 times; ``paper_plate`` on prisms, n = 8-24
+(78 MB ... 4.4 GB), 1.7-1.9 times; hexahedra 1.2-1.6 times; tetrahedra, n = 5,
+9, 3.1 and 3.2 times; so the estimate is an upper bound within a factor 4 (tetrahedra: the cut edges
 are over-counted most); ``tests/test_budget.py`` checks four cases, one iterative.
 
 >>> from skxfem import scenes
@@ -56,6 +54,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .contact_laws import CONTACT_LAWS
 from .levelset import nodal_values
 from .linear import choose_linear
 from .meshes import CELLS, cell_name
@@ -90,14 +89,14 @@ LU_BYTES = 24
 """Peak bytes of SuperLU per non-zero of L + U (values, indices, growth)."""
 PER_CELL = 2.0
 """Bytes per cell and per (quadrature point × basis function × derivative)."""
-SAFETY = 1.2
-"""Factor on the sum of the terms."""
-ITERATIVE_BYTES = {2: 3000, 3: 9700}
-"""Peak bytes per unknown (N + m) of an iterative solve, assembly included: the
-largest measured on 24 November 2026, ``solve(scene, linear="iterative")``: strip
-(tri n = 128-512, quad n = 256) 2540-2990, paper plate (hex, prism, n = 12-32)
-7940-9660; at the minimal exact quadrature (a higher ``quadrature_order`` adds to
-the assembly's share)."""
+SAFETY = 1.2  # the factor on the sum of the terms
+ITERATIVE_BYTES = {2: 2200, 3: 8200}
+"""Peak bytes per unknown (N + m) of an iterative tie, assembly included, the largest
+measured on 25 November 2026: strip (tri n = 128-512, quad 256) 1881-2160, paper
+plate (hex, prism, n = 12-32) 6871-8161; at the minimal exact quadrature."""
+CONTACT_ITERATIVE_BYTES = {2: 3100, 3: 10900}
+"""The same for frictionless contact (its Newton matrix besides): ``press`` in
+``scripts/calibrate_budget.py``, tri 128, quad 256: 2915-3054; hex 12, 24: 9552-10841."""
 
 
 @dataclass(frozen=True)
@@ -252,7 +251,8 @@ def estimate(scene: Scene, linear: str = "auto") -> Estimate:
     law = "frictionless" if scene.law == "coulomb" and scene.friction == 0 else scene.law
     chosen = choose_linear(linear, dim, n_dofs, law)
     if chosen == "iterative":
-        bytes_ = SAFETY * ITERATIVE_BYTES[dim] * (n_dofs + m)
+        per = (CONTACT_ITERATIVE_BYTES if law in CONTACT_LAWS else ITERATIVE_BYTES)[dim]
+        bytes_ = SAFETY * per * (n_dofs + m)
     else:
         bytes_ = SAFETY * _memory(dim, cell, scene.quadrature_order, n_nodes, n_cells,
                                   n_dofs, n_enr, m)
