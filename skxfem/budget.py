@@ -35,8 +35,8 @@ which made it looser: prisms n = 8, 2.5 times):
 ``strip`` on triangles, n = 32-512 (9.6 MB ... 5.7 GB), 1.6-1.9 times; on
 quadrilaterals, n = 64, 256, 1.4 times; ``paper_plate`` on prisms, n = 8-24
 (78 MB ... 4.4 GB), 1.7-1.9 times; hexahedra 1.2-1.6 times; tetrahedra, n = 5,
-9, 3.1 and 3.2 times; so the estimate is an upper bound within a factor 4 (tetrahedra: the cut edges
-are over-counted most); ``tests/test_budget.py`` checks four cases, one iterative.
+9, 3.1 and 3.2 times; so the estimate is an upper bound within a factor 4 (the cut
+edges of tetrahedra are over-counted most); ``tests/test_budget.py`` checks cases.
 
 >>> from skxfem import scenes
 >>> e = estimate(scenes.strip(8, cell="tri"))
