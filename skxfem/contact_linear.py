@@ -116,7 +116,6 @@ def iterative(ops, law, K, free, g_n, R, modes=None, blocksize=1, tol=1e-12):
             f"{info.removed} contact multipliers depend on the others (the naive space on "
             f"tetrahedra, or a support acting on a face that Γ cuts): use space='vital' "
             f"or move the support")
-    d_lam[closed] = mu[:closed.sum()]
-    for a in range(k):
-        d_T[a, closed] = mu[(a + 1) * closed.sum():(a + 2) * closed.sum()]
+    parts = mu.reshape(k + 1, -1)  # the closed dofs' λ, then those of each T_a
+    d_lam[closed], d_T[:, closed] = parts[0], parts[1:]
     return np.concatenate([dU[free], d_lam, d_T.ravel()])

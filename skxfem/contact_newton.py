@@ -227,9 +227,9 @@ def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30,
             s = _jumps(ops, U, U_prev)[1]
             R = (R[0], R[1], np.where(np.tile(new, k), -law.rho_t * s.T.ravel(), R[2]))
         Rv = np.concatenate(R)
-        if linear == "iterative":
-            dx, rs = contact_linear.iterative(ops, law, K, free, g_n, R, modes, blocksize), \
-                contact_linear.scales(A, nu)[0]
+        if linear == "iterative":  # rs: the direct path's row scales, for the line search
+            dx = contact_linear.iterative(ops, law, K, free, g_n, R, modes, blocksize)
+            rs = contact_linear.scales(A, nu)[0]
         else:
             dx, rs = contact_linear.direct(A, Rv, nu)
         phi0 = np.linalg.norm(rs * Rv)
