@@ -29,7 +29,7 @@ def scene(case, dim, law):
     at one end, opened at the other), ``compressed`` (pressed, held tangentially),
     ``pulled`` (apart, and sheared on the right face)."""
     top = {"x": 0.0} if dim == 2 else {"x": 0.0, "y": 0.0}
-    up = lambda x: -0.01 * (1 - 2 * x[dim - 2])  # noqa: E731  (a turned top)
+    up = lambda x: -0.01 * (1 - 2.5 * x[dim - 2])  # noqa: E731  (turned about 0.4)
     moves = {"partial": {**top, "yz"[dim - 2]: up}, "compressed": top,
              "pulled": {**top, "yz"[dim - 2]: 0.1}}[case]
     loads = {"partial": (), "pulled": (SurfaceLoad("xmax", traction=(0.1,) + (0.0,) * (dim - 1)),),
