@@ -25,7 +25,7 @@ import scipy.sparse as sp
 
 from .saddle import SingularSystemError
 
-__all__ = ["rigid_modes", "amg", "check_held"]
+__all__ = ["rigid_modes", "amg", "check_held", "scaled_tie", "check_tie_held"]
 
 
 def pyamg():
@@ -132,3 +132,38 @@ def check_held(Kr, Z, rigid_tol: float = 1e-11):
             f"do not remove every rigid motion of the body, or a frictionless (bilateral) "
             f"tie lets the part on the other side of Γ slide; add displacements "
             f"(supports) on each side")
+
+
+def scaled_tie(K, B, fixed):
+    """Jacobi-scaled K (imposed unknowns as identity rows, so nodal blocks stay
+    whole) and B with unit rows: s, K_s = S K S, B_n = R B S, the row scales R."""
+    diag = np.abs(K.diagonal())
+    if np.any(diag[~fixed] == 0):
+        raise SingularSystemError(
+            f"{int(np.sum(diag[~fixed] == 0))} unknown(s) have no stiffness at all (a node "
+            f"that no cell uses, or an enriched function with an empty support): remove "
+            f"unused nodes from the mesh or impose those unknowns")
+    s = np.where(fixed, 1.0, 1.0 / np.sqrt(np.where(diag > 0, diag, 1.0)))
+    keep = sp.diags(np.where(fixed, 0.0, s))
+    Ks = (keep @ K @ keep + sp.diags(fixed.astype(float))).tocsr()
+    Bs = (B @ keep).tocsr()
+    norms = np.sqrt(np.asarray(Bs.multiply(Bs).sum(axis=1)).ravel())
+    rows = 1.0 / np.where(norms > 0, norms, 1.0)
+    return s, Ks, (sp.diags(rows) @ Bs).tocsr(), rows
+
+
+def check_tie_held(K, B, fixed, modes, r: float = 3.0, rigid_tol: float = 1e-11):
+    """Refuse a rigid motion of a side (of ``modes``) that neither the imposed
+    unknowns (boolean ``fixed``) nor the rows of ``B`` hold: :func:`check_held`
+    on the augmented K_s + r B_nᵀB_n of :func:`scaled_tie`.
+
+    >>> import scipy.sparse as sp, numpy as np
+    >>> K = sp.csr_matrix([[1.0, -1.0], [-1.0, 1.0]]); Z = np.ones((2, 1))
+    >>> check_tie_held(K, sp.csr_matrix([[1.0, 0.0]]), np.zeros(2, bool), Z)
+    >>> check_tie_held(K, sp.csr_matrix((0, 2)), np.zeros(2, bool), Z)
+    Traceback (most recent call last):
+    ...
+    skxfem.saddle.SingularSystemError: the tied system is singular (a rigid motion ...
+    """
+    s, Ks, Bn, _ = scaled_tie(K, B, fixed)
+    check_held((Ks + r * (Bn.T @ Bn)).tocsr(), modes / s[:, None], rigid_tol)

@@ -44,14 +44,16 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
 
-from .amg import rigid_modes
+from .amg import check_tie_held, rigid_modes
 from .contact_fixed_point import fixed_point
 from .contact_interface import Operators, operators
-from .contact_laws import CONTACT_LAWS, status
+from .contact_laws import CONTACT_LAWS, OPEN, SLIP, STICK, status
 from .contact_newton import ContactConvergenceError, Law, NewtonInfo, newton
 from .linear import choose_linear
 from .problem import Problem, assemble
+from .saddle import SingularSystemError
 from .scene import Scene
 
 __all__ = ["Step", "ContactResult", "parameters", "solve", "ContactConvergenceError",
@@ -169,6 +171,9 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10
         for a Coulomb law.
     ContactConvergenceError
         A step that does not converge within ``max_iter`` iterations.
+    skxfem.saddle.SingularSystemError
+        (a ValueError) A converged step whose displacement is not unique: the
+        open (or sliding) interface leaves a side free to move (:func:`held`).
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
@@ -182,8 +187,9 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10
     ops = operators(pb)
     law = parameters(scene, ops.h)
     linear = choose_linear(linear, pb.mesh.dim(), pb.V.N, law.name)
+    modes = rigid_modes(pb.V)
     solve_kw = {"linear": linear} if linear == "direct" else {
-        "linear": linear, "modes": rigid_modes(pb.V), "blocksize": pb.mesh.dim()}
+        "linear": linear, "modes": modes, "blocksize": pb.mesh.dim()}
     states = _states(scene, pb, scene.steps if history is None else history)
     free = np.setdiff1d(np.arange(pb.V.N), pb.D)
     m, k = ops.w.size, len(ops.Bt)
@@ -200,6 +206,41 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10
             T if law.name == "adhesive" else np.zeros((m, k)))
         slip = np.stack([B @ U for B in ops.Bt], axis=1) / ops.w[:, None]
         Lam = T if law.name == "coulomb" else np.zeros((m, k))
-        steps.append(Step(label, U.copy(), -lam, tau, ops.Bn @ U / ops.w, slip,
-                          status(g_n, g_t if law.friction else None, law.name), Lam, info))
+        st = status(g_n, g_t if law.friction else None, law.name)
+        held(pb, ops, law, st, g_t, modes, label)
+        steps.append(Step(label, U.copy(), -lam, tau, ops.Bn @ U / ops.w, slip, st, Lam, info))
     return ContactResult(pb, ops, law, tuple(steps), linear)
+
+
+def held(pb: Problem, ops: Operators, law: Law, st, g_t, modes, label=None) -> None:
+    """Refuse a converged contact state that leaves a side of Γ free to move.
+
+    Newton may converge to a state whose displacement is not unique: an
+    unloaded side held only by an interface that ends up open (``st`` all
+    OPEN) may slide by any rigid motion.  The state holds what its closed
+    points hold (:func:`skxfem.amg.check_tie_held`): the normal jump, and the
+    tangential one where they stick (``adhesive``: wherever closed); a point
+    sliding in 3D holds the tangent across its slip direction ĝ_τ.
+    """
+    closed, rows = st != OPEN, [ops.Bn[st != OPEN]]
+    if law.name == "adhesive":
+        rows += [B[closed] for B in ops.Bt]
+    elif law.name == "coulomb":
+        rows += [B[st == STICK] for B in ops.Bt]
+        slip = st == SLIP
+        if len(ops.Bt) == 2 and slip.any():
+            gh = g_t[slip] / np.linalg.norm(g_t[slip], axis=1)[:, None]
+            rows.append(sp.diags(-gh[:, 1]) @ ops.Bt[0][slip]
+                        + sp.diags(gh[:, 0]) @ ops.Bt[1][slip])
+    fixed = np.zeros(pb.V.N, bool)
+    fixed[pb.D] = True
+    try:
+        check_tie_held(pb.K, sp.vstack(rows, format="csr"), fixed, modes)
+    except SingularSystemError as e:
+        counts = np.bincount(st, minlength=3)
+        raise SingularSystemError(
+            f"load step {label!r}: the contact state found ({counts[OPEN]} open, "
+            f"{counts[STICK]} stick, {counts[SLIP]} slip of {st.size} points) leaves a "
+            f"part of the body free to move, so its displacement is not unique (a side "
+            f"that only the interface holds, while Γ opens or slides): add supports on "
+            f"each side of Γ or a load that closes it") from e

@@ -75,8 +75,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
-from .amg import amg, check_held, pyamg
-from .saddle import SingularSystemError
+from .amg import amg, check_held, pyamg, scaled_tie
 from .smoothest import dependencies, smoothest
 
 __all__ = ["IterativeInfo", "ConvergenceError", "solve"]
@@ -186,7 +185,7 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
     D = np.zeros(0, int) if D is None else np.asarray(D, int)
     fixed, U0 = np.zeros(N, dtype=bool), np.zeros(N)
     fixed[D], U0[D] = True, (0.0 if g is None else np.asarray(g, float))
-    s, Ks, Bn, rows = _scaled(K, B, fixed)
+    s, Ks, Bn, rows = scaled_tie(K, B, fixed)
     Kr = (Ks + r * (Bn.T @ Bn)).tocsr()
     Zs = None if modes is None else modes / s[:, None]
     if Zs is not None:
@@ -278,22 +277,3 @@ def _interface(Bn, delta, refine):
             y += lu.solve(v - Q @ y)
         return y
     return apply
-
-
-def _scaled(K, B, fixed):
-    """Jacobi-scaled K (imposed unknowns as identity rows, so nodal blocks stay
-    whole) and B with unit rows: s, K_s = S K S, B_n = R B S, the row scales R."""
-    diag = np.abs(K.diagonal())
-    if np.any(diag[~fixed] == 0):
-        raise SingularSystemError(
-            f"{int(np.sum(diag[~fixed] == 0))} unknown(s) have no stiffness at all (a node "
-            f"that no cell uses, or an enriched function with an empty support): remove "
-            f"unused nodes from the mesh or impose those unknowns")
-    s = np.where(fixed, 1.0, 1.0 / np.sqrt(np.where(diag > 0, diag, 1.0)))
-    keep = sp.diags(np.where(fixed, 0.0, s))
-    Ks = (keep @ K @ keep + sp.diags(fixed.astype(float))).tocsr()
-    Bs = (B @ keep).tocsr()
-    norms = np.sqrt(np.asarray(Bs.multiply(Bs).sum(axis=1)).ravel())
-    rows = 1.0 / np.where(norms > 0, norms, 1.0)
-    return s, Ks, (sp.diags(rows) @ Bs).tocsr(), rows
-

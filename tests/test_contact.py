@@ -237,6 +237,23 @@ def test_a_floating_side_is_refused():
         contact.solve(replace(strip(n=3), law="frictionless"))
 
 
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("law", ["coulomb", "adhesive"])
+def test_an_unloaded_side_held_only_by_an_open_interface_is_refused(law, dim):
+    """No load, the top held normally only: Newton's first (bonded) iterate U = 0 opens
+    every point, and the top may then slide by any amount; a state that does not
+    determine U is refused, not returned."""
+    s = cube(law=law, mu=0.3, top={"z": 0.0}) if dim == 3 else replace(
+        strip(n=3), law=law, friction=0.3,
+        displacements=(clamped("ymin"), Displacement("ymax", {"y": 0.0})))
+    with pytest.raises(saddle.SingularSystemError, match=r"load step 1.0: the contact state "
+                       r"found \(\d+ open, 0 stick, 0 slip .*not unique.*add supports"):
+        contact.solve(s, linear="direct")
+    held = held_top(s, ("x", "y")[:dim - 1])  # the same with the top held: U = 0, open
+    st = contact.solve(held, linear="direct").steps[-1]
+    assert np.all(st.status == 0) and np.abs(st.U).max() == 0
+
+
 def tilted_block(mu, delta, n):
     """Strip pressed by p = 1 whose top is moved by δ in x: friction tilts the pressure."""
     return replace(strip(n=n), law="coulomb", friction=mu,
