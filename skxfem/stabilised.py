@@ -23,11 +23,18 @@ from .cut import Cut
 from .cutgraph import check_fixed, check_graph, edges_at, incidence, interpolate, nearest
 from .multipliers import SPACES, Space, naive
 
-__all__ = ["Space", "vital_edges", "winner_nodes", "multiplier_space"]
+__all__ = ["Space", "minimum_edge_cover", "vital_edges", "winner_nodes", "multiplier_space"]
 
 
-def _minimum_edge_cover(edges, psi, length, fixed):
+def minimum_edge_cover(edges, psi, length, fixed=None) -> np.ndarray:
     """S_ve: the fewest edges touching every node of N_e not ``fixed``, then the shortest.
+
+    ``edges`` (2, ne) int, ``psi`` (nnodes,), ``length`` (ne,), ``fixed``
+    (nnodes,) bool or None; returns the (ne,) bool mask of the vital edges.
+
+    >>> minimum_edge_cover(np.array([[0, 0, 2], [1, 3, 3]]), np.array([-1, 1, -1, 1.]),
+    ...                    np.array([1.0, 2.0, 1.0])).tolist()   # 0-1 and 2-3 cover all
+    [True, False, True]
 
     Gallai: a minimum edge cover is a maximum matching M plus, for each node
     left unmatched, one edge at it (its shortest, of length m(v)).  Its length
@@ -42,6 +49,8 @@ def _minimum_edge_cover(edges, psi, length, fixed):
     A fixed node needs no cover: an edge with a fixed end covers one node,
     so only edges between two free nodes enter the matching.
     """
+    edges, psi, length = np.asarray(edges), np.asarray(psi, float), np.asarray(length, float)
+    fixed = np.zeros(psi.size, bool) if fixed is None else np.asarray(fixed, bool)
     ne = edges.shape[1]
     ell = length / length.mean()
     m = np.full(psi.size, np.inf)
@@ -120,7 +129,7 @@ def vital_edges(edges, psi, points, nodes, fixed=None) -> Space:
     if ne == 0:
         return Space("vital", sp.csr_matrix((0, 0)), np.zeros(0, bool), np.zeros(0, int))
     length = np.linalg.norm(nodes[:, edges[0]] - nodes[:, edges[1]], axis=0)
-    vital = _minimum_edge_cover(edges, psi, length, fixed)
+    vital = minimum_edge_cover(edges, psi, length, fixed)
 
     iv = np.flatnonzero(vital)
     ends = edges[:, iv].copy()                               # a fixed end joins no star:
