@@ -61,12 +61,13 @@ def dependencies(B, tol: float = 1e-6, k: int = 8) -> np.ndarray:
         full[:sv.size] = sv
         return U[:, full <= tol * max(full.max(), 1e-300)]
     Q = sp.csc_matrix(B @ B.T)
-    q_max = eigsh(Q, k=1, which="LA", return_eigenvectors=False, tol=1e-3)[0] * 1.01
+    v0 = np.random.default_rng(0).standard_normal(m)  # a fixed start: reproducible
+    q_max = eigsh(Q, k=1, which="LA", return_eigenvectors=False, tol=1e-3, v0=v0)[0] * 1.01
     cut = max(tol, 1e-6) ** 2 * q_max
     while True:
         k = min(k, m - 2)
         try:
-            w, V = eigsh(Q, k=k, sigma=-100 * cut, which="LM")
+            w, V = eigsh(Q, k=k, sigma=-100 * cut, which="LM", v0=v0)
         except ArpackNoConvergence as e:  # keep what converged
             w, V = e.eigenvalues, e.eigenvectors
         small = w <= cut
