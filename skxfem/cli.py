@@ -171,9 +171,15 @@ def _run(args) -> int:
     span = f"pressure in [{p.min():.4g}, {p.max():.4g}]" if p.size else "no interface point"
     print(f"{s.name}: {result.n_dofs} dofs, {result.n_multipliers} multipliers, "
           f"max jump {result.max_jump:.2e}, {span}, "
-          f"{result.linear} solve, "
+          f"{result.linear} solve{_iterations(result)}, "
           f"{sum(result.timings.values()):.2f} s -> {paths['json'].parent}")
     return 0
+
+
+def _iterations(result) -> str:
+    """' (N CG iterations)' after an iterative solve, else ''."""
+    its = result.linear_info.get("iterations")
+    return "" if its is None else f" ({its} CG iterations)"
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -2,8 +2,10 @@
 
 * ``result.json``: the scene name, ``law`` and ``space``, the multiplier
   ``points``, ``normals``, ``traction``, ``pressure``, ``max_jump``,
-  ``n_dofs``, ``n_multipliers`` and the ``timings`` in seconds per stage.
-  NaN or inf become ``null``.
+  ``n_dofs``, ``n_multipliers``, the ``timings`` in seconds per stage and
+  ``linear_solve``: the solve taken (``linear``) and how it went
+  (:attr:`skxfem.solver.Result.linear_info`: residual, balance, and the
+  iterations and residuals of an iterative solve).  NaN or inf become ``null``.
 * ``displacement.vtu``: each side of Γ as its own piece of mesh with its own
   field ``displacement``, so that ParaView's *Warp By Vector* shows the
   discontinuity: the cells of Ω⁻ and the cut cells with ``u_minus`` on one copy
@@ -109,6 +111,7 @@ def result_summary(result) -> dict:
         "n_dofs": int(result.n_dofs),
         "n_multipliers": int(result.n_multipliers),
         "timings": timings,
+        "linear_solve": _jsonable({"linear": result.linear, **dict(result.linear_info)}),
     }
 
 

@@ -54,7 +54,11 @@ class Result:
     are the nodal fields of each side; ``max_jump`` is the largest constrained
     jump at the interface quadrature points (|[[u]]| bonded, |[[u]]·n|
     bilateral); ``removed`` counts the dependent multipliers removed;
-    ``linear`` says which linear solve ran (``"direct"`` or ``"iterative"``).
+    ``linear`` says which linear solve ran (``"direct"`` or ``"iterative"``)
+    and ``linear_info`` how it went: the relative ``residual`` of the saddle
+    system reached, the ``balance`` of the multipliers (relative error of
+    Bᵀμ = K U - F) and, for the iterative solve, its CG ``iterations`` and
+    ``residuals`` (one per iteration; ``None`` for the direct solve).
     """
 
     scene: Scene
@@ -74,6 +78,7 @@ class Result:
     U: np.ndarray | None = field(default=None, repr=False)
     space: XSpace | None = field(default=None, repr=False)
     linear: str = "direct"
+    linear_info: dict = field(default_factory=dict)
 
 
 def _linear(method: str, p: Problem) -> str:
@@ -160,6 +165,10 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str = "auto") -
         U, mu, info = saddle.solve(p.K, B, p.F, D, p.g, G=G)
     lam = (P @ mu).reshape(ncomp, -1)
     timings["solve"] = time.perf_counter() - t0
+    its = getattr(info, "iterations", None)
+    linear_info = {"residual": float(info.residual), "balance": float(info.balance),
+                   "iterations": its, "residuals": None if its is None
+                   else [float(r) for r in info.residuals]}
 
     normals = point_normals(c, scene.levelset)
     traction = lam if ncomp > 1 else lam * normals
@@ -169,4 +178,5 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str = "auto") -
     u_minus, u_plus = split_fields(V, U)
     return Result(scene, mesh, u_minus, u_plus, c.points, normals, traction,
                   -(traction * normals).sum(0), c.facets, float(jn.max()), V.N,
-                  B.shape[0] - info.removed, info.removed, timings, U, V, linear)
+                  B.shape[0] - info.removed, info.removed, timings, U, V, linear,
+                  linear_info)

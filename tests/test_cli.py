@@ -372,16 +372,28 @@ def test_23_grade_is_a_subcommand(tmp_path, capsys):
 
 def test_24_the_linear_solve_is_an_option(tmp_path, capsys):
     """`--linear iterative` solves a tie with AMG + projected CG (the same pressures as
-    the direct solve); an unknown name is a usage error (exit 2, one line)."""
+    the direct solve), and says how it went: the CG iterations on the summary line,
+    the residuals in result.json; an unknown name is a usage error (exit 2, one line)."""
     pytest.importorskip("pyamg")
     plate = Path(__file__).resolve().parents[1] / "examples" / "plate.toml"
     pressures = {}
     for linear in ("direct", "iterative"):
         assert main(["run", str(plate), "--out", str(tmp_path / linear),
                      "--linear", linear]) == 0
-        assert f"{linear} solve" in capsys.readouterr().out
+        out = capsys.readouterr().out
+        assert f"{linear} solve" in out
         data = json.loads((tmp_path / linear / "result.json").read_text())
         pressures[linear] = np.array(data["pressure"])
+        info = data["linear_solve"]
+        assert info["linear"] == linear and info["residual"] <= 1e-10
+        assert info["balance"] <= 1e-8
+        if linear == "direct":
+            assert info["iterations"] is None and info["residuals"] is None
+        else:  # one residual at the start, then one per CG iteration
+            its = info["iterations"]
+            assert its > 0 and f"({its} CG iterations)" in out
+            assert len(info["residuals"]) == its + 1
+            assert info["residuals"][-1] <= 1e-10 < info["residuals"][0]
     assert np.abs(pressures["iterative"] - pressures["direct"]).max() < 1e-6
     with pytest.raises(SystemExit) as done:
         main(["run", str(plate), "--linear", "cholesky"])

@@ -40,7 +40,9 @@ def fake_result(cell, n_points=4):
         u_minus=rng.random((dim, mesh.nvertices)), u_plus=rng.random((dim, mesh.nvertices)),
         traction=-normals * np.linspace(1, 2, n_points), pressure=np.linspace(1, 2, n_points),
         facets=facets, max_jump=1e-12, n_dofs=123, n_multipliers=n_points,
-        timings={"cut": 0.1, "enrich": 0.2, "assemble": 0.3, "solve": 0.4})
+        timings={"cut": 0.1, "enrich": 0.2, "assemble": 0.3, "solve": 0.4},
+        linear="direct", linear_info={"residual": 1e-15, "balance": 1e-14,
+                                      "iterations": None, "residuals": None})
 
 
 def test_01_result_json_has_the_promised_keys(tmp_path, cell):
@@ -49,7 +51,7 @@ def test_01_result_json_has_the_promised_keys(tmp_path, cell):
     assert set(paths) == {"json", "displacement", "interface"}
     data = json.loads(paths["json"].read_text())
     for key in ("scene", "points", "pressure", "max_jump", "n_dofs", "n_multipliers",
-                "timings", "traction", "normals", "law", "space"):
+                "timings", "traction", "normals", "law", "space", "linear_solve"):
         assert key in data, key
     assert data["scene"] == f"fake_{cell}" and data["n_dofs"] == 123
     np.testing.assert_allclose(data["points"], r.points.T)       # one list per point
