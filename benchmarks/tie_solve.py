@@ -34,6 +34,8 @@ import time
 
 import numpy as np
 
+from skxfem.progress import Progress
+
 
 def _scene(kind: str, cell: str, n: int):
     from skxfem.scenes import paper_plate, strip
@@ -201,18 +203,18 @@ def main(argv=None) -> None:
     cases = [("plate", "hex", n) for n in sizes] + [("plate", "prism", n) for n in sizes] \
         + [("strip", "tri", n) for n in strip_sizes]
     rows, series = [], {}
-    t_start = time.perf_counter()
+    progress = Progress(len(cases), "tie_solve")  # on stderr, only on a terminal
     tmp = tempfile.mkdtemp(prefix="tie_solve_")
-    for i, (kind, cell, n) in enumerate(cases):
-        print(f"[{time.perf_counter() - t_start:6.0f} s] {i + 1}/{len(cases)} {kind} {cell} "
-              f"n={n}", file=sys.stderr, flush=True)
+    for kind, cell, n in cases:
         pl = best(kind, cell, n, "plain", tmp, args.repeat)
         it = best(kind, cell, n, "iterative", tmp, args.repeat)
         if pl is None or it is None:
+            progress.step(f"{kind} {cell} n={n} failed")
             continue
         cap = args.direct_max_dofs if kind == "plate" else args.direct_max_dofs_2d
         di = run(kind, cell, n, "direct", tmp) if it["dofs"] <= cap else None  # once: slow
         rows.append((kind, cell, n, pl, it, di))
+        progress.step(f"{kind} {cell} n={n}")
         series.setdefault(cell, []).append((it["dofs"], it["solve"], it["total"],
                                             pl["solve"], pl["total"]))
     cpu = platform.processor() or platform.machine()
