@@ -22,7 +22,7 @@ A Coulomb step is not a tie (at a slipping dof Δλ moves the tangential
 force μλΛ): it stays direct (:func:`skxfem.linear.choose_linear`).
 
 >>> import numpy as np, scipy.sparse as sp
->>> x, rows = direct(sp.csr_matrix([[4.0, 1.0], [1.0, 0.0]]), np.array([-1.0, 0.0]), 1)
+>>> x, rows, lu = direct(sp.csr_matrix([[4.0, 1.0], [1.0, 0.0]]), np.array([-1.0, 0.0]), 1)
 >>> x.round(12).tolist()
 [0.0, 1.0]
 """
@@ -54,10 +54,17 @@ def scales(A, nu):
     return r, c
 
 
-def direct(A, R, nu):
-    """Solve A x = -R by SuperLU on the scaled matrix; x and the row scales."""
+def direct(A, R, nu, reuse=None):
+    """Solve A x = -R by SuperLU on the scaled matrix: x, the row scales, and
+    the factorisation, which ``reuse`` passes back to the next call: if A has
+    not changed (a Newton step whose active set and, for Coulomb, iterate
+    leave the matrix as it was), it is not factorised again."""
+    A = sp.csr_matrix(A)
+    if reuse is not None and reuse[0].shape == A.shape and (reuse[0] != A).nnz == 0:
+        _, r, c, lu = reuse
+        return c * lu.solve(-r * R), r, reuse
     r, c = scales(A, nu)
-    As = sp.diags(r) @ sp.csr_matrix(A) @ sp.diags(c)
+    As = sp.diags(r) @ A @ sp.diags(c)
     try:
         lu = spla.splu(As.tocsc(), permc_spec="COLAMD")
         pivots = np.abs(lu.U.diagonal())
@@ -71,7 +78,7 @@ def direct(A, R, nu):
             f"side: add supports on each side), or some multipliers depend on the others "
             f"(the naive space on tetrahedra, or a support acting on a face that Γ cuts: "
             f"use space='vital' or move the support)") from e
-    return c * lu.solve(-r * R), r
+    return c * lu.solve(-r * R), r, (A, r, c, lu)
 
 
 def iterative(ops, law, K, free, g_n, R, modes=None, blocksize=1, tol=1e-12):

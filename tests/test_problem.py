@@ -122,9 +122,40 @@ def test_builds_only_what_the_scene_requires(monkeypatch):
     shapes = []
     real_solve = contact_newton.contact_linear.direct
     monkeypatch.setattr(contact_newton.contact_linear, "direct",
-                        lambda A, R, nu: shapes.append((A.shape[0], nu)) or real_solve(A, R, nu))
+                        lambda A, R, nu, reuse=None: shapes.append((A.shape[0], nu))
+                        or real_solve(A, R, nu, reuse))
     from skxfem.scene import Displacement
     held = scene.displacements + (Displacement("ymax", {"x": 0.0}),)  # Ω⁺ slides otherwise
     result = solver.solve(dataclasses.replace(scene, law="frictionless", displacements=held))
     m = result.ops.w.size
     assert shapes and all(n == nu + m for n, nu in shapes), "U and λ_n only: no friction rows"
+
+
+@pytest.mark.parametrize("law", ["frictionless", "adhesive", "coulomb"])
+def test_contact_newton_factorises_a_matrix_once(monkeypatch, law):
+    """Issue 11, item 4: pressed everywhere, Newton's second iteration has the
+    first one's matrix (the same active set): one factorisation for the two
+    iterations, and the answer of a fresh one.  Coulomb's matrix does change (the
+    first iteration's stick rows are those of λ = 0, the second's carry μλ): two."""
+    import scipy.sparse.linalg as spla
+
+    import skxfem.contact_linear as contact_linear
+    from skxfem import contact
+    from skxfem.scene import Displacement, SurfaceLoad
+
+    scene = dataclasses.replace(
+        strip(4, cell="quad"), law=law, friction=0.5,
+        displacements=strip(4).displacements + (Displacement("ymax", {"x": 0.0}),),
+        loads=(SurfaceLoad("ymax", pressure=1.0),))
+    calls, real = [], spla.splu
+    monkeypatch.setattr(contact_linear.spla, "splu",
+                        lambda *a, **k: calls.append(1) or real(*a, **k))
+    step = contact.solve(scene, linear="direct").steps[-1]
+    once = 2 if law == "coulomb" else 1
+    assert step.newton.iterations == 2 and len(calls) == once
+    real_direct = contact_linear.direct  # without reuse: a factorisation per iteration
+    monkeypatch.setattr(contact_linear, "direct",
+                        lambda A, R, nu, reuse=None: real_direct(A, R, nu))
+    fresh = contact.solve(scene, linear="direct").steps[-1]
+    assert len(calls) == once + 2 and np.array_equal(fresh.status, step.status)
+    assert np.abs(fresh.U - step.U).max() <= 1e-12 * np.abs(fresh.U).max()
