@@ -5,15 +5,16 @@ part of ``skxfem reproduce``.
 benchmark: one marker per method — its shape the cell type, its colour the
 multiplier space (:data:`skxfem.plotting.COLORS`), filled for the minimal
 exact quadrature and hollow for a higher order — with a thin line through the
-mesh sizes of a method and the Pareto front in black.
+mesh sizes of a method (solid: the direct solve, dashed: the iterative one,
+:data:`LINES`) and the Pareto front in black.
 :func:`reproduce_frontier` runs a sweep and writes the two figures and the
 numbers.
 
 >>> from skxfem.frontier import Point
 >>> P = lambda n, t, e: Point("strip", "tri", "vital", None, "direct", n, 1, t, e, e)
 >>> fig = plot_frontier([P(8, 0.1, 0.2), P(16, 0.3, 0.1)], "pressure")
->>> [ax.get_xscale() for ax in fig.axes]
-['log']
+>>> [ax.get_xscale() for ax in fig.axes], fig.axes[0].lines[0].get_linestyle()
+(['log'], '-')
 """
 from __future__ import annotations
 
@@ -21,19 +22,22 @@ import json
 from dataclasses import asdict
 from pathlib import Path
 
+import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
-from matplotlib.ticker import NullFormatter
+from matplotlib.ticker import FormatStrFormatter, LogLocator, NullFormatter
 
 from .frontier import pareto, summary, sweep
 from .frontier import plans as frontier_plans
 from .plotting import COLORS
 from .progress import Progress
 
-__all__ = ["MARKERS", "plot_frontier", "reproduce_frontier"]
+__all__ = ["MARKERS", "LINES", "plot_frontier", "reproduce_frontier"]
 
 MARKERS = {"tri": "^", "quad": "s", "tet": "P", "hex": "D", "prism": "v"}
 """Marker of each cell type."""
+LINES = {"direct": "-", "iterative": "--"}
+"""Line style of each linear solver (another solver: dotted)."""
 _TITLES = {"plate": "paper's plate (3D, one cell along x)", "strip": "strip (2D)"}
 _LABELS = {"energy": "relative energy error of u",
            "pressure": "relative L² error of the contact pressure"}
@@ -51,13 +55,18 @@ def plot_frontier(points, error: str = "energy") -> Figure:
             p0 = pts[0]
             colour = COLORS[p0.space]
             ax.plot([p.seconds for p in pts], [getattr(p, error) for p in pts], lw=0.6,
-                    color=colour, alpha=0.5, marker=MARKERS[p0.cell], ms=6,
-                    mfc=colour if p0.quadrature is None else "none", mec=colour)
+                    ls=LINES.get(p0.solver, ":"), color=colour, alpha=0.5,
+                    marker=MARKERS[p0.cell], ms=6, mec=colour,
+                    mfc=colour if p0.quadrature is None else "none")
         front = pareto(mine, error)
         ax.step([p.seconds for p in front], [getattr(p, error) for p in front], where="post",
                 color=COLORS["reference"], lw=1.4, zorder=5)
         ax.set(xscale="log", yscale="log", xlabel="wall time of assemble + solve [s]",
                ylabel=_LABELS[error], title=_TITLES[problem])
+        lo, hi = ax.get_xlim()  # labelled ticks even within one decade, not crowded over many
+        ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0) if np.log10(hi / lo) > 1.5
+                                              else (1.0, 1.5, 2.0, 3.0, 5.0, 7.0)))
+        ax.xaxis.set_major_formatter(FormatStrFormatter("%g"))
         ax.xaxis.set_minor_formatter(NullFormatter())
         ax.grid(True, which="both", lw=0.3, alpha=0.5)
         cells = dict.fromkeys(p.cell for p in mine)
@@ -65,6 +74,8 @@ def plot_frontier(points, error: str = "energy") -> Figure:
         handles = [Line2D([], [], ls="", marker=MARKERS[c], color="grey", label=c)
                    for c in cells]
         handles += [Line2D([], [], ls="", marker="o", color=COLORS[s], label=s) for s in spaces]
+        handles += [Line2D([], [], ls=LINES.get(v, ":"), lw=0.8, color="grey", label=f"{v} solve")
+                    for v in dict.fromkeys(p.solver for p in mine)]
         handles += [Line2D([], [], ls="", marker="o", mfc="grey", mec="grey",
                            label="minimal exact rule"),
                     Line2D([], [], ls="", marker="o", mfc="none", mec="grey",
