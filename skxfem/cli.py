@@ -41,7 +41,7 @@ from . import __version__, budget, grade, io, reproduce
 from .contact import solve as solve_contact
 from .contact_laws import CONTACT_LAWS, STATUS_NAMES
 from .contact_newton import ContactConvergenceError
-from .scenefile import load_scene
+from .scenefile import load_options, load_scene
 from .solver import LINEAR, solve
 
 __all__ = ["main", "parser", "FORWARDED"]
@@ -102,12 +102,14 @@ def parser() -> argparse.ArgumentParser:
                                           "SIZE, e.g. 500M or 16G (default: 4G)")
     run.add_argument("--max-iter", type=_positive, default=None, metavar="N",
                      help="contact laws: Newton iterations allowed per load step "
-                          "(default: that of skxfem.contact.solve, 30)")
-    run.add_argument("--linear", choices=LINEAR, default="auto",
+                          "(default: the scene file's [solver] max_iter, else that of "
+                          "skxfem.contact.solve, 30)")
+    run.add_argument("--linear", choices=LINEAR, default=None,
                      help="the linear solve of a tie or of each contact Newton step: direct "
                           "(SuperLU), iterative (AMG-preconditioned projected CG, needs "
                           "pyamg; not for coulomb) or auto (iterative from "
-                          "skxfem.linear.AUTO_ITERATIVE unknowns; the default)")
+                          "skxfem.linear.AUTO_ITERATIVE unknowns); default: the scene "
+                          "file's [solver] linear, else auto")
     run.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
                      help="show the traceback of an error")
     for name, (text, _) in FORWARDED.items():
@@ -148,17 +150,20 @@ def _contact_line(result) -> str:
 
 def _run(args) -> int:
     s = load_scene(args.scene)
+    options = load_options(args.scene)  # the command line overrides the file
+    linear = args.linear or options.get("linear", "auto")
+    max_iter = args.max_iter if args.max_iter is not None else options.get("max_iter")
     contact = s.law in CONTACT_LAWS
-    if args.max_iter is not None and not contact:
+    if max_iter is not None and not contact:
         raise ValueError(f"--max-iter applies to the contact laws {CONTACT_LAWS}; the scene's "
                          f"law is {s.law!r}")
     out = io.check_output(args.out if args.out is not None else Path(s.name))
-    budget.check(s, args.max_memory, "--max-memory", linear=args.linear)
+    budget.check(s, args.max_memory, "--max-memory", linear=linear)
     if contact:
-        limit = {} if args.max_iter is None else {"max_iter": args.max_iter}
-        result = solve_contact(s, linear=args.linear, **limit)
+        limit = {} if max_iter is None else {"max_iter": max_iter}
+        result = solve_contact(s, linear=linear, **limit)
     else:
-        result = solve(s, linear=args.linear)
+        result = solve(s, linear=linear)
     try:
         paths = io.write_result(result, out)
     except OSError as e:

@@ -40,8 +40,14 @@ type is refused with an error naming the key.  The schema::
     # rho_t = 10.0                     # friction augmentation, > 0
     # steps = [0.5, 1.0]               # load factors of a contact solve
 
-    [solver]
-    quadrature_order = 2               # optional
+    [solver]                           # optional
+    quadrature_order = 2               # default: the minimal exact rule
+    # linear = "iterative"             # auto (default), direct or iterative
+    # max_iter = 40                    # contact laws: Newton iterations per load step
+
+``linear`` and ``max_iter`` are options of the solve, not of the scene:
+:func:`load_options` reads them (``skxfem run``'s ``--linear`` and
+``--max-iter`` override them).
 '''
 from __future__ import annotations
 
@@ -50,12 +56,13 @@ from pathlib import Path
 
 from . import levelset as ls
 from . import scene as sc
+from .linear import LINEAR
 from .material import Material
 from .meshes import read
 from .scene_parts import COMPONENTS
 from .tomlcheck import array, choice, formula, keys, number, one_of, table, vector
 
-__all__ = ["load_scene"]
+__all__ = ["load_scene", "load_options"]
 
 _TOP = ("name", "mesh", "levelset", "material", "displacement", "load", "interface",
         "solver")
@@ -81,15 +88,43 @@ def load_scene(path: str | Path) -> sc.Scene:
     'strip'
     """
     path = Path(path)
-    with open(path, "rb") as f:
-        try:
-            data = tomllib.load(f)
-        except tomllib.TOMLDecodeError as e:
-            raise ValueError(f"{path.name}: invalid TOML: {e}") from None
+    data = _read(path)
     try:
         return _scene(data, path)
     except (ValueError, TypeError) as e:
         raise type(e)(f"{path.name}: {e}") from e
+
+
+def load_options(path: str | Path) -> dict:
+    r"""The solve options of a scene file's ``[solver]`` table: ``linear`` and
+    ``max_iter``, those given only (a dict for ``skxfem.solve`` or
+    ``skxfem.contact.solve``).
+
+    >>> import pathlib, tempfile
+    >>> f = pathlib.Path(tempfile.mkdtemp()) / "s.toml"
+    >>> _ = f.write_text('[solver]\nlinear = "direct"\n')
+    >>> load_options(f)
+    {'linear': 'direct'}
+    """
+    path = Path(path)
+    solver = _read(path).get("solver", {})
+    solver = solver if isinstance(solver, dict) else {}  # load_scene refuses the rest
+    out = {k: solver[k] for k in ("linear", "max_iter") if k in solver}
+    if "linear" in out and out["linear"] not in LINEAR:
+        raise ValueError(f"{path.name}: [solver] linear must be one of {LINEAR}, "
+                         f"got {out['linear']!r}")
+    if "max_iter" in out and (type(out["max_iter"]) is not int or out["max_iter"] < 1):
+        raise ValueError(f"{path.name}: [solver] max_iter must be a positive integer, "
+                         f"got {out['max_iter']!r}")
+    return out
+
+
+def _read(path: Path) -> dict:
+    with open(path, "rb") as f:
+        try:
+            return tomllib.load(f)
+        except tomllib.TOMLDecodeError as e:
+            raise ValueError(f"{path.name}: invalid TOML: {e}") from None
 
 
 def _scene(data: dict, path: Path) -> sc.Scene:
@@ -100,7 +135,8 @@ def _scene(data: dict, path: Path) -> sc.Scene:
     mesh, dim = _mesh(table(data["mesh"], "[mesh]", ("box", "file")), path.parent)
     interface = table(data.get("interface", {}), "[interface]",
                        ("law", "space", "friction", "rho_n", "rho_t", "steps"))
-    solver = table(data.get("solver", {}), "[solver]", ("quadrature_order",))
+    solver = table(data.get("solver", {}), "[solver]", ("quadrature_order", "linear",
+                                                        "max_iter"))
     law = choice(interface.get("law", "bonded"), sc.LAWS + sc.CONTACT_LAWS,
                   "[interface] law")
     contact = {k: interface[k] for k in ("friction", "rho_n", "rho_t") if k in interface}
@@ -120,6 +156,9 @@ def _scene(data: dict, path: Path) -> sc.Scene:
                              f"factors, got {steps!r}")
         contact["steps"] = tuple(steps)
     space = choice(interface.get("space", "vital"), sc.SPACES, "[interface] space")
+    if "max_iter" in solver and law not in sc.CONTACT_LAWS:
+        raise ValueError(f"[solver] max_iter applies to the contact laws {sc.CONTACT_LAWS}; "
+                         f"the law is {law!r}")
     order = solver.get("quadrature_order")
     if order is not None and (type(order) is not int or order < 1):
         raise ValueError(f"[solver] quadrature_order must be a positive integer, got {order!r}")

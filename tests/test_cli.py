@@ -395,6 +395,14 @@ def test_24_the_linear_solve_is_an_option(tmp_path, capsys):
             assert len(info["residuals"]) == its + 1
             assert info["residuals"][-1] <= 1e-10 < info["residuals"][0]
     assert np.abs(pressures["iterative"] - pressures["direct"]).max() < 1e-6
+    # the scene file's [solver] linear is the default, the command line overrides it
+    text = plate.read_text()
+    assert "[solver]" not in text
+    chosen = tmp_path / "chosen.toml"
+    chosen.write_text(text + '\n[solver]\nlinear = "iterative"\n')
+    for extra, expect in (([], "iterative"), (["--linear", "direct"], "direct")):
+        assert main(["run", str(chosen), "--out", str(tmp_path / "chosen"), *extra]) == 0
+        assert f"{expect} solve" in capsys.readouterr().out
     with pytest.raises(SystemExit) as done:
         main(["run", str(plate), "--linear", "cholesky"])
     assert done.value.code == 2

@@ -9,7 +9,7 @@ from skxfem.expr import Expression
 from skxfem.material import Material
 from skxfem.meshes import box
 from skxfem.scene import Box, Scene, clamped, resolve_mesh, rollers
-from skxfem.scenefile import load_scene
+from skxfem.scenefile import load_options, load_scene
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -152,6 +152,7 @@ BAD = [
     (MINIMAL + "[solver]\nquadrature_order = 0", ValueError, ["[solver] quadrature_order"]),
     (MINIMAL + "[solver]\nquadrature_order = '2'", ValueError, ["[solver] quadrature_order"]),
     (MINIMAL + "[solver]\ntol = 1e-9", ValueError, ["[solver]", "unknown key 'tol'"]),
+    (MINIMAL + "[solver]\nmax_iter = 5", ValueError, ["[solver] max_iter", "contact laws"]),
     ("name = 3" + MINIMAL, TypeError, ["name must be a non-empty string"]),
     ("interface = 3" + MINIMAL, TypeError, ["[interface] must be a table"]),
     ("[mesh\nbox = 1", ValueError, ["invalid TOML"]),
@@ -202,3 +203,17 @@ def test_09_a_scene_file_never_runs_code(tmp_path, monkeypatch):
         with pytest.raises(ValueError, match="function call"):
             load_scene(write(tmp_path, f'{text}\n{key} = "{attack}"'))
     assert not (tmp_path / "PWNED").exists()
+
+
+def test_10_solve_options_are_read_and_checked(tmp_path):
+    """[solver] linear and max_iter are options of the solve: load_options gives
+    those the file sets, checked; load_scene accepts them."""
+    assert load_options(write(tmp_path, MINIMAL)) == {}
+    text = MINIMAL + "[interface]\nlaw = 'frictionless'\n[solver]\nlinear = 'iterative'\n" \
+        "max_iter = 40\n"
+    assert load_options(write(tmp_path, text)) == {"linear": "iterative", "max_iter": 40}
+    assert load_scene(write(tmp_path, text)).law == "frictionless"
+    for bad, key in (("linear = 'cholesky'", "linear"), ("max_iter = 0", "max_iter"),
+                     ("max_iter = 2.5", "max_iter")):
+        with pytest.raises(ValueError, match=rf"^bad.toml: \[solver\] {key} must be"):
+            load_options(write(tmp_path, MINIMAL + f"[solver]\n{bad}\n", "bad.toml"))
