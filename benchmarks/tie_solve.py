@@ -256,6 +256,9 @@ def main(argv=None) -> None:
     print("\nGrowth exponents a in time ~ dofs^a (least squares over the sizes):")
     for cell, pts in series.items():
         dofs, its, itt, pls, plt = map(np.array, zip(*pts))
+        if len(dofs) < 2:
+            print(f"  {cell}: one size only, no exponent")
+            continue
         print(f"  {cell}: X-FEM iterative solve {slope(dofs, its):.2f}, X-FEM total "
               f"{slope(dofs, itt):.2f}, plain solve {slope(dofs, pls):.2f}, plain total "
               f"{slope(dofs, plt):.2f}")
