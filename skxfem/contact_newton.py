@@ -25,9 +25,9 @@ traction r_τ as the unknown there with the stick row ρ_τ s = 0, and sets
 Λ = P_B(r_τ/(μλ)) after the step (the first iteration of a first load step
 is thus the bonded solve).
 Rows and columns are scaled (Jacobi on U, unit max on the others) before
-SuperLU (a matrix unchanged since the last iteration is not factorised
-again), or a frictionless or adhesive step is solved as a tie by AMG +
-projected CG (:mod:`skxfem.contact_linear`). Step control: backtracking on
+SuperLU, or a frictionless or adhesive step is solved as a tie by AMG +
+projected CG (:mod:`skxfem.contact_linear`); a matrix unchanged since the
+last iteration is not factorised (or set up) again. Step control: backtracking on
 the scaled residual norm (halving up to 5 times; if no step decreases it the
 full step is taken, as the active set has to change). Convergence: the
 status of every point (open, stick, slip) unchanged by the last step and
@@ -220,7 +220,7 @@ def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30,
     history = [r]
     st = status(g_n, g_t, law.name)
     statuses = [st]
-    changes, factor = np.zeros(m, int), None  # factor: the last LU, reused if A is unchanged
+    changes, factor = np.zeros(m, int), None  # the last LU or tie set-up, reused if unchanged
     for it in range(1, max_iter + 1):
         A = jacobian(ops, law, K, free, lam, T, g_n, g_t)
         new = just_closed(law, lam, g_n)
@@ -229,10 +229,11 @@ def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30,
             R = (R[0], R[1], np.where(np.tile(new, k), -law.rho_t * s.T.ravel(), R[2]))
         Rv = np.concatenate(R)
         if linear == "iterative":  # rs: the direct path's row scales, for the line search
-            dx = contact_linear.iterative(ops, law, K, free, g_n, R, modes, blocksize)
+            dx, factor = contact_linear.iterative(ops, law, K, free, g_n, R, modes,
+                                                  blocksize, reuse=factor)
             rs = contact_linear.scales(A, nu)[0]
         else:
-            dx, rs, factor = contact_linear.direct(A, Rv, nu, factor)
+            dx, rs, factor = contact_linear.direct(A, Rv, nu, reuse=factor)
         phi0 = np.linalg.norm(rs * Rv)
         for alpha in (1.0, 0.5, 0.25, 0.125, 0.0625, 0.03125, 1.0):
             U1, lam1, T1 = U.copy(), lam + alpha * dx[nu:nu + m], T + alpha * (

@@ -73,12 +73,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse.linalg import splu
 
 from .amg import amg, check_held, pyamg, scaled_tie
+from .pcg import interface_solve, projected_cg
 from .smoothest import dependencies, smoothest
 
-__all__ = ["IterativeInfo", "ConvergenceError", "solve"]
+__all__ = ["IterativeInfo", "ConvergenceError", "Setup", "solve"]
 
 
 class ConvergenceError(ValueError):
@@ -114,12 +114,41 @@ class IterativeInfo:
     r: float
     residuals: tuple = ()
     timings: dict = field(default_factory=dict)
+    setup: object = field(default=None, repr=False, compare=False)
+
+
+@dataclass(eq=False)
+class Setup:
+    """What :func:`solve` builds before iterating, for one (K, B, imposed
+    unknowns, r, ``bonded``): the scaling, K_r, its AMG and the interface
+    solve (and, once asked for, the dependencies).  ``solve(..., reuse=info.setup)``
+    takes it again when those are unchanged (a Newton step with the same
+    active set): no second set-up of the same operator."""
+
+    K: sp.csr_matrix
+    B: sp.csr_matrix
+    fixed: np.ndarray
+    r: float
+    bonded: bool
+    s: np.ndarray
+    Bn: sp.csr_matrix
+    rows: np.ndarray
+    Kr: sp.csr_matrix
+    ml: object
+    interface: object
+    dependent: np.ndarray | None = None
+
+    def serves(self, K, B, fixed, r, bonded) -> bool:
+        """Whether this set-up is that of (K, B, fixed, r, bonded)."""
+        return (r == self.r and bonded == self.bonded and np.array_equal(fixed, self.fixed)
+                and K.shape == self.K.shape and B.shape == self.B.shape
+                and (K is self.K or (K != self.K).nnz == 0) and (B != self.B).nnz == 0)
 
 
 def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 1,
           bonded: bool = False, tol: float = 1e-10, maxiter: int = 500, r: float = 3.0,
           delta: float = 1e-12, refine: int = 2,
-          dependent_tol: float = 1e-8, rigid_tol: float = 1e-11):
+          dependent_tol: float = 1e-8, rigid_tol: float = 1e-11, reuse: Setup | None = None):
     """Solve the tied saddle-point system by projected AMG-preconditioned CG; see the module notes.
 
     Parameters
@@ -159,6 +188,9 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
     rigid_tol
         A combination of ``modes`` whose energy in K_r (scaled) is below this
         is a rigid motion the supports and the tie leave free.
+    reuse
+        The :class:`Setup` of an earlier call (``info.setup``), taken again if
+        it :meth:`~Setup.serves` this one (then ``modes`` are not checked again).
 
     Returns
     -------
@@ -185,15 +217,10 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
     D = np.zeros(0, int) if D is None else np.asarray(D, int)
     fixed, U0 = np.zeros(N, dtype=bool), np.zeros(N)
     fixed[D], U0[D] = True, (0.0 if g is None else np.asarray(g, float))
-    s, Ks, Bn, rows = scaled_tie(K, B, fixed)
-    Kr = (Ks + r * (Bn.T @ Bn)).tocsr()
-    Zs = None if modes is None else modes / s[:, None]
-    if Zs is not None:
-        check_held(Kr, Zs, rigid_tol)
-        if bonded:
-            Zs = Zs[:, 0::2] + Zs[:, 1::2]
-    M = (ml := amg(Kr, Zs, blocksize)).aspreconditioner(cycle="V")
-    interface = _interface(Bn, delta, refine)
+    st = reuse if reuse is not None and reuse.serves(K, B, fixed, r, bonded) else \
+        _setup(K, B, fixed, modes, blocksize, bonded, r, delta, refine, rigid_tol)
+    s, Bn, rows, Kr, ml, interface = st.s, st.Bn, st.rows, st.Kr, st.ml, st.interface
+    M = ml.aspreconditioner(cycle="V")
 
     def project(v):  # Π v = v - B_nᵀ (B_n B_nᵀ)⁻¹ B_n v, onto ker B
         return v - Bn.T @ interface(Bn @ v)
@@ -204,7 +231,7 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
     x = Bn.T @ interface(c)
     scale = max(np.linalg.norm(np.concatenate([b, c])), 1e-300)
     t1 = time.perf_counter()
-    x, history = _projected_cg(Kr, M, project, b, x, tol * scale, maxiter)
+    x, history = projected_cg(Kr, M, project, b, x, tol * scale, maxiter)
     iterations = len(history) - 1
     residual = float(np.hypot(np.linalg.norm(project(b - Kr @ x)),
                               np.linalg.norm(Bn @ x - c)) / scale)
@@ -223,7 +250,9 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
     reaction = (K @ U - F)[free]
     # the multipliers balance U: B_nᵀ y = b - K_s x in the least-squares sense
     y = interface(Bn @ np.where(fixed, 0.0, s * (F - K @ U)))
-    dependent = dependencies(B[:, free], dependent_tol)
+    if st.dependent is None:  # B alone decides them: once per set-up
+        st.dependent = dependencies(B[:, free], dependent_tol)
+    dependent = st.dependent
     mu = smoothest(B[:, free], -rows * y, G, N=dependent)
     balance = float(np.linalg.norm(B[:, free].T @ mu - reaction) / max(
         np.linalg.norm(reaction), np.linalg.norm(F[free]), 1e-300))
@@ -234,46 +263,17 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
     timings = {"setup": t1 - t0, "krylov": t2 - t1, "multipliers": time.perf_counter() - t2}
     return U, mu, IterativeInfo(iterations, residual, balance, dependent.shape[1],
                                 len(ml.levels), float(ml.operator_complexity()), float(r),
-                                tuple(np.asarray(history) / scale), timings)
+                                tuple(np.asarray(history) / scale), timings, st)
 
 
-def _projected_cg(A, M, project, b, x, atol, maxiter):
-    """CG for A x = b on x + ker B (x meets the constraint), preconditioned by
-    Π M Π: x and the residuals ‖Π(b - A x)‖, one per iteration.  The true
-    residual is checked before stopping (a restart if the recursive one
-    drifted); a direction without energy (A singular on ker B) stops it."""
-    res = project(b - A @ x)
-    history = [np.linalg.norm(res)]
-    while history[-1] > atol and len(history) <= maxiter:
-        z = project(M @ res)
-        rz, d = res @ z, z
-        while history[-1] > atol and len(history) <= maxiter:
-            q = A @ d
-            if not d @ q > 0:  # breakdown: the caller reports the residual reached
-                return x, history
-            alpha = rz / (d @ q)
-            x = x + alpha * d
-            res = res - alpha * project(q)
-            history.append(np.linalg.norm(res))
-            z = project(M @ res)
-            rz, rz_old = res @ z, rz
-            d = z + (rz / rz_old) * d
-        res = project(b - A @ x)  # the true residual
-        history[-1] = np.linalg.norm(res)
-    return x, history
-
-
-def _interface(Bn, delta, refine):
-    """v ↦ (B_n B_nᵀ)⁻¹ v on the range of B_n: SuperLU of B_n B_nᵀ + δI, refined."""
-    m = Bn.shape[0]
-    if m == 0:
-        return lambda v: np.zeros(0)
-    Q = (Bn @ Bn.T).tocsr()
-    lu = splu((Q + delta * sp.identity(m)).tocsc())
-
-    def apply(v):
-        y = lu.solve(v)
-        for _ in range(refine):
-            y += lu.solve(v - Q @ y)
-        return y
-    return apply
+def _setup(K, B, fixed, modes, blocksize, bonded, r, delta, refine, rigid_tol) -> Setup:
+    """Scale, augment, check the rigid modes, build the AMG and the interface solve."""
+    s, Ks, Bn, rows = scaled_tie(K, B, fixed)
+    Kr = (Ks + r * (Bn.T @ Bn)).tocsr()
+    Zs = None if modes is None else modes / s[:, None]
+    if Zs is not None:
+        check_held(Kr, Zs, rigid_tol)
+        if bonded:
+            Zs = Zs[:, 0::2] + Zs[:, 1::2]
+    return Setup(K, B, fixed, r, bonded, s, Bn, rows, Kr, amg(Kr, Zs, blocksize),
+                 interface_solve(Bn, delta, refine))

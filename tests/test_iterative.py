@@ -159,6 +159,28 @@ def test_smoothest_by_lanczos_matches_the_direct_choice():
     assert np.linalg.norm(mu - mu_d) <= 1e-8 * np.linalg.norm(mu_d)
 
 
+@pytest.mark.parametrize("cell", ["quad", "prism"])
+def test_a_setup_is_reused_for_the_same_operator_only(cell, monkeypatch):
+    """solve(..., reuse=info.setup): the same K, B and imposed unknowns take the earlier
+    set-up (no second AMG), with another load the answer of a fresh solve; another B
+    builds its own."""
+    p = assemble(scene(cell, "vital"))
+    G = _differences(p.cut, p.ncomp) @ p.P
+    kw = dict(G=G, modes=rigid_modes(p.V), blocksize=p.mesh.dim(), bonded=True)
+    built, real = [], iterative._setup
+    monkeypatch.setattr(iterative, "_setup", lambda *a: built.append(1) or real(*a))
+    _, _, first = iterative.solve(p.K, p.B, p.F, p.D, p.g, **kw)
+    U2, mu2, again = iterative.solve(p.K, p.B, 2 * p.F, p.D, p.g, reuse=first.setup, **kw)
+    assert len(built) == 1 and again.setup is first.setup
+    U, mu, fresh = iterative.solve(p.K, p.B, 2 * p.F, p.D, p.g, **kw)
+    assert len(built) == 2 and fresh.setup is not first.setup
+    assert np.abs(U2 - U).max() <= 1e-9 * np.abs(U).max()
+    assert np.abs(mu2 - mu).max() <= 1e-8 * np.abs(mu).max()
+    other = iterative.solve(p.K, p.B[1:], p.F, p.D, p.g, reuse=first.setup,
+                            **{**kw, "G": None})[2]
+    assert len(built) == 3 and other.setup is not first.setup
+
+
 # 4. refusals ------------------------------------------------------------------------
 
 def test_too_few_iterations_raise_a_clear_error():
