@@ -14,6 +14,7 @@ of the same matrix from scalar forms (:func:`stiffness_matrix`).
 """
 from __future__ import annotations
 
+import numbers
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -23,8 +24,11 @@ from skfem import BilinearForm
 from skfem.helpers import ddot, sym_grad
 from skfem.models.elasticity import lame_parameters, linear_elasticity, linear_stress, plane_stress
 
-__all__ = ["Material", "stiffness_form", "signed_stiffness_form", "partial_form",
+__all__ = ["Material", "E_RANGE", "stiffness_form", "signed_stiffness_form", "partial_form",
            "stiffness_matrix"]
+
+E_RANGE = (1e-100, 1e100)
+"""The Young's moduli a :class:`Material` accepts."""
 
 
 @dataclass(frozen=True)
@@ -34,7 +38,8 @@ class Material:
     Parameters
     ----------
     E
-        Young's modulus, > 0.
+        Young's modulus, in :data:`E_RANGE` (measured: a patch test solves to
+        round-off from 1e-150 to 1e150; the table of extremes runs 1e-6 to 1e9).
     nu
         Poisson's ratio, -1 < ν < 0.5.
     plane
@@ -46,9 +51,17 @@ class Material:
     plane: str = "strain"
 
     def __post_init__(self):
-        if not (isinstance(self.E, (int, float)) and self.E > 0):
-            raise ValueError(f"material E must be a positive number, got {self.E!r}")
-        if not (isinstance(self.nu, (int, float)) and -1.0 < self.nu < 0.5):
+        for key in ("E", "nu"):
+            value = getattr(self, key)
+            if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+                raise TypeError(f"material {key} must be a real number, got {value!r}")
+        if not E_RANGE[0] <= float(self.E) <= E_RANGE[1]:  # also refuses NaN and inf
+            raise ValueError(
+                f"material E must be a positive number in [{E_RANGE[0]:.0e}, "
+                f"{E_RANGE[1]:.0e}], got {self.E!r}: beyond, the solve's products of "
+                f"stiffnesses leave floating point; express E (and the loads) in "
+                f"another unit of stress")
+        if not -1.0 < float(self.nu) < 0.5:
             raise ValueError(f"material nu must satisfy -1 < nu < 0.5, got {self.nu!r}")
         if self.plane not in ("strain", "stress"):
             raise ValueError(

@@ -68,10 +68,37 @@ def test_scalar_assembly_with_a_rule_per_element():
     assert abs(K).max() > 0 and abs(K_fast - K).max() < 1e-13 * abs(K).max()
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    ({"E": 0.0}, "E must be a positive"), ({"nu": 0.5}, "nu must satisfy"),
-    ({"plane": "shell"}, "plane must be"),
+@pytest.mark.parametrize("kwargs, error, match", [
+    ({"E": 0.0}, ValueError, "E must be a positive"), ({"nu": 0.5}, ValueError, "nu must"),
+    ({"plane": "shell"}, ValueError, "plane must be"),
+    ({"E": float("inf")}, ValueError, r"E must be .* in \[1e-100, 1e\+100\]"),
+    ({"E": float("nan")}, ValueError, "E must be a positive"),
+    ({"E": 1e308}, ValueError, "another unit of stress"),
+    ({"E": 1e-320}, ValueError, "another unit of stress"),
+    ({"nu": float("nan")}, ValueError, "nu must satisfy"),
+    ({"E": True}, TypeError, "E must be a real number"),
+    ({"nu": "0.3"}, TypeError, "nu must be a real number"),
 ])
-def test_bad_material(kwargs, match):
-    with pytest.raises(ValueError, match=match):
+def test_bad_material(kwargs, error, match):
+    with pytest.raises(error, match=match):
         Material(**kwargs)
+
+
+def test_numpy_numbers_are_numbers():
+    """A modulus read from an array is a number like any other."""
+    assert Material(E=np.float32(2.0), nu=np.float64(0.25)).lame(3) == \
+        pytest.approx(Material(E=2.0, nu=0.25).lame(3))
+    assert Material(E=np.int64(2)).E == 2
+
+
+@pytest.mark.parametrize("E", [1e-100, 1e100])
+def test_the_ends_of_the_accepted_moduli_solve(E):
+    """E at either end of E_RANGE, the load scaled alike: the pressure of E = 1 times E."""
+    from skxfem import solve
+    from skxfem.levelset import plane
+    from skxfem.scene import Box, Scene, SurfaceLoad, clamped
+    s = Scene(Box((2, 3), "quad"), plane((0, 0.5), (0, 1)), Material(E=E),
+              (clamped("ymin"),), (SurfaceLoad("ymax", pressure=E),))
+    ref = solve(Scene(Box((2, 3), "quad"), plane((0, 0.5), (0, 1)), Material(),
+                      (clamped("ymin"),), (SurfaceLoad("ymax", pressure=1.0),)))
+    assert np.allclose(solve(s).pressure / E, ref.pressure, rtol=1e-10)
