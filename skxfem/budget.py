@@ -59,7 +59,7 @@ from .levelset import nodal_values
 from .linear import choose_linear
 from .meshes import CELLS, cell_name
 from .quadrature import cell_rule
-from .scene import Box, Scene, resolve_mesh
+from .scene import Box, Scene, check_scene, resolve_mesh
 
 __all__ = ["DEFAULT_MAX_BYTES", "Estimate", "TooLargeError", "check", "estimate",
            "parse_bytes", "format_bytes"]
@@ -235,9 +235,7 @@ def estimate(scene: Scene, linear: str = "auto") -> Estimate:
     -------
     Estimate
     """
-    if not isinstance(scene, Scene):
-        raise TypeError(f"estimate needs a skxfem.scene.Scene, got {type(scene).__name__}")
-    if isinstance(scene.mesh, Box):
+    if isinstance(check_scene(scene).mesh, Box):
         cell = scene.mesh.cell
         n_nodes, n_cells, n_enr_nodes, n_edges = _box_counts(scene.mesh, scene.levelset)
     else:

@@ -54,7 +54,7 @@ from .contact_newton import ContactConvergenceError, Law, NewtonInfo, newton
 from .linear import choose_linear
 from .problem import Problem, assemble
 from .saddle import SingularSystemError
-from .scene import Scene
+from .scene import Scene, check_scene
 
 __all__ = ["Step", "ContactResult", "parameters", "solve", "ContactConvergenceError",
            "METHODS"]
@@ -177,11 +177,11 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
-    if not (isinstance(max_iter, int) and max_iter >= 1):
+    if not (isinstance(max_iter, int) and not isinstance(max_iter, bool) and max_iter >= 1):
         raise ValueError(f"max_iter must be a positive integer, got {max_iter!r}")
     if not (isinstance(tol, float) and 0 < tol < 1):
         raise ValueError(f"tol must be a float in (0, 1), got {tol!r}")
-    if scene.law not in CONTACT_LAWS:
+    if check_scene(scene).law not in CONTACT_LAWS:
         parameters(scene, 1.0)  # raises the message naming the law
     pb = assemble(scene, law="bilateral")
     ops = operators(pb)

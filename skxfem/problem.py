@@ -39,7 +39,7 @@ from .multipliers import (
     interface_rule,
     normal_fixed,
 )
-from .scene import Scene, dirichlet, load_facets, resolve_mesh
+from .scene import Scene, check_scene, dirichlet, load_facets, resolve_mesh
 from .stabilised import multiplier_space
 
 __all__ = ["Problem", "assemble", "constrained_dofs", "COUPLING", "check_law"]
@@ -56,7 +56,7 @@ def check_law(law: str) -> str:
     >>> check_law("bonded")
     'bonded'
     """
-    if law not in COUPLING:
+    if not isinstance(law, str) or law not in COUPLING:
         raise ValueError(f"law must be one of {tuple(COUPLING)}, got {law!r}")
     return law
 
@@ -190,7 +190,7 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
         An unknown law, a scene that does not fit its mesh, a level set that
         cuts no cell or passes through nodes (from :func:`skxfem.cut.cut`).
     """
-    law = check_law(scene.law if law is None else law)
+    law = check_law(check_scene(scene).law if law is None else law)
     timings = {}
     clock = [time.perf_counter()]
 

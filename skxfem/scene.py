@@ -37,7 +37,7 @@ from .scene_parts import is_number as _is_number
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Scene", "clamped", "rollers",
            "resolve_mesh", "dirichlet", "load_facets", "traction", "LAWS", "CONTACT_LAWS",
-           "SPACES", "CELLS"]
+           "SPACES", "CELLS", "check_scene"]
 
 @dataclass(frozen=True)
 class Scene:
@@ -171,3 +171,19 @@ def resolve_mesh(scene: Scene) -> Mesh:
         mesh = meshes.read(scene.mesh)
     _check_dims(scene, mesh.dim())
     return mesh
+
+
+def check_scene(scene) -> Scene:
+    """``scene`` if it is a :class:`Scene`, else a TypeError that says how to get one.
+
+    >>> check_scene("plate.toml")
+    Traceback (most recent call last):
+    ...
+    TypeError: scene must be a skxfem.Scene, got str 'plate.toml': build one with ...
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a skxfem.Scene, got {type(scene).__name__} "
+                        f"{scene!r:.60}: build one with skxfem.Scene(...), take a built-in "
+                        f"one (skxfem.scenes.strip()) or read a scene file with "
+                        f"skxfem.load_scene(path)")
+    return scene

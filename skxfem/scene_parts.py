@@ -76,7 +76,7 @@ class Box:
     size: tuple[float, ...] | None = None
 
     def __post_init__(self):
-        if self.cell not in CELLS:
+        if not isinstance(self.cell, str) or self.cell not in CELLS:
             raise ValueError(f"Box cell must be one of {tuple(CELLS)}, got {self.cell!r}")
         n = (self.n,) * self.dim if is_number(self.n) else self.n
         if (not isinstance(n, (tuple, list)) or len(n) != self.dim

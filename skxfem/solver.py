@@ -37,7 +37,7 @@ from .enrich import XSpace, split_fields
 from .levelset import point_normals
 from .linear import AUTO_ITERATIVE, LINEAR, choose_linear
 from .problem import Problem, assemble, constrained_dofs
-from .scene import Scene
+from .scene import Scene, check_scene
 from .smoothest import dependencies
 
 __all__ = ["Result", "solve", "solve_problem", "constrained_dofs", "LINEAR", "AUTO_ITERATIVE",
@@ -131,7 +131,7 @@ def solve(scene: Scene, dependent: str = "remove", linear: str = "auto"
     """
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
-    if scene.law in CONTACT_LAWS:
+    if check_scene(scene).law in CONTACT_LAWS:
         return contact.solve(scene, linear=linear)
     p = assemble(scene)
     return solve_problem(p, dependent, linear)

@@ -220,6 +220,9 @@ def test_bad_input_is_refused():
         contact.solve(replace(base, law="frictionless"), history=(1.0, "x"))
     with pytest.raises(ValueError, match="method"):
         contact.solve(replace(base, law="frictionless"), method="penalty")
+    for bad in (True, 0, 2.0):  # True was taken for 1 iteration
+        with pytest.raises(ValueError, match="max_iter must be a positive integer"):
+            contact.solve(replace(base, law="frictionless"), max_iter=bad)
     moved = replace(base, law="frictionless", displacements=base.displacements
                     + (Displacement("xmin", {"x": 0.0}),))
     with pytest.raises(ValueError, match=r"history\[1\]: a load state must keep"):

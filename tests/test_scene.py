@@ -333,3 +333,24 @@ def test_22_a_z_formula_is_refused_by_a_2d_scene_and_kept_by_a_3d_one():
                displacements=(Displacement("zmin", {"z": "0.5*z"}),))
     assert s3.loads[0] == load and s3.loads[0].pressure(np.ones((3, 1))) == 2.0
     assert s3.displacements[0].components["z"].text == "0.5*z"
+
+
+@pytest.mark.parametrize("call", ["solve", "assemble", "inf_sup", "contact", "estimate"])
+@pytest.mark.parametrize("bad", ["plate.toml", None, 3])
+def test_every_entry_point_says_what_a_scene_is(call, bad):
+    """A path, None or a number where a Scene belongs: one TypeError that says how to
+    get a Scene, from every public call that takes one (not an AttributeError)."""
+    import skxfem
+    fn = {"solve": skxfem.solve, "assemble": skxfem.assemble, "inf_sup": skxfem.lbb.inf_sup,
+          "contact": skxfem.contact.solve, "estimate": skxfem.budget.estimate}[call]
+    with pytest.raises(TypeError, match=r"scene must be a skxfem.Scene, got .*load_scene"):
+        fn(bad)
+
+
+def test_a_box_cell_or_a_law_of_the_wrong_type_is_named():
+    from skxfem import assemble
+    from skxfem.scenes import strip
+    with pytest.raises(ValueError, match="Box cell must be one of"):
+        Box(2, ["quad"])
+    with pytest.raises(ValueError, match="law must be one of"):
+        assemble(strip(2), law=["bonded"])
