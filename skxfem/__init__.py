@@ -42,7 +42,7 @@ contract is in ``pyproject.toml``):
    ``scenes``, ``scenefile``;
 8. ``problem``;  9. ``contact_linear``, then ``contact_interface``, ``contact_newton``,
    ``contact_fixed_point``;  10. ``lbb``, ``contact``, then ``solver``;
-11. ``io`` (on ``io_contact``), ``budget``, ``convergence``;
+11. ``io`` (on ``io_contact``), ``budget`` (on ``counts``), ``convergence``;
 12. the studies: ``extremes``, ``frontier``, then ``extremes_scales``,
     ``extremes_shapes``, then ``extremes_table``;
 13. drawing: ``plotting``, then ``figstyle``, ``plot_space``, ``render3d``,

@@ -3,7 +3,9 @@
 A triangle box with ``n = 10000`` asks for 10⁸ nodes; building it, let alone
 solving it, takes many gigabytes.  :func:`estimate` counts, without building
 the mesh, what a solve will meet, and :func:`check` refuses a scene whose
-estimate exceeds a limit, naming the estimate and how to raise the limit.
+estimate exceeds a limit, naming the estimate and how to raise the limit; a
+Box that needs more than the limit even without its interface is refused
+from its cell counts alone, before ψ is evaluated.
 
 The counts are upper bounds:
 
@@ -45,17 +47,16 @@ edges of tetrahedra are over-counted most); ``tests/test_budget.py`` checks case
 >>> check(scenes.strip(2000, cell="tri"), 2**30)  # doctest: +ELLIPSIS
 Traceback (most recent call last):
 ...
-skxfem.budget.TooLargeError: the scene 'strip...' needs about ... GB (...); the limit is 1 GB: ...
+skxfem.budget.TooLargeError: the scene 'strip...' needs at least ... GB (...); the limit ...
 """
 from __future__ import annotations
 
-import itertools
 from dataclasses import dataclass
 
 import numpy as np
 
 from .contact_laws import CONTACT_LAWS
-from .levelset import nodal_values
+from .counts import NVERTS, PER_CUBE, box_counts, mesh_counts
 from .linear import choose_linear
 from .meshes import CELLS, cell_name
 from .quadrature import cell_rule
@@ -67,18 +68,6 @@ __all__ = ["DEFAULT_MAX_BYTES", "Estimate", "TooLargeError", "check", "estimate"
 DEFAULT_MAX_BYTES = 4 * 2**30
 """The limit :func:`check` applies unless told otherwise: 4 GiB."""
 
-# vertices per cell, cells per hypercube of a Box, edge directions of a Box
-_NVERTS = {"tri": 3, "quad": 4, "tet": 4, "hex": 8, "prism": 6}
-_PER_CUBE = {"tri": 2, "quad": 1, "tet": 6, "hex": 1, "prism": 2}
-_AXES = {2: [(1, 0), (0, 1)], 3: [(1, 0, 0), (0, 1, 0), (0, 0, 1)]}
-_DIAG2 = [(1, 1), (1, -1)]
-_DIRECTIONS = {
-    "tri": _AXES[2] + _DIAG2, "quad": _AXES[2], "hex": _AXES[3],
-    "prism": _AXES[3] + [(0, 1, 1), (0, 1, -1)],
-    "tet": [e for e in itertools.product((-1, 0, 1), repeat=3)
-            if any(e) and e[next(i for i, v in enumerate(e) if v)] > 0],
-}
-_CHUNK = 10**6
 
 LU_FILL = {2: (15.5, 1.27), 3: (5.3, 1.6)}
 """Non-zeros of L + U of the saddle matrix of size N: ``c N^p`` per dimension
@@ -154,62 +143,13 @@ def parse_bytes(text: str) -> int:
     return int(value * scale)
 
 
-def _box_counts(box: Box, levelset) -> tuple[int, int, int, int]:
-    """Nodes, cells, enriched-node bound and cut-edge bound of a Box, slab by slab."""
-    n = box.n
-    size = box.size or (1.0,) * box.dim
-    grid = [np.linspace(0.0, L, k + 1) for k, L in zip(n, size)]
-    n_nodes = int(np.prod([k + 1 for k in n]))
-    n_cells = _PER_CUBE[box.cell] * int(np.prod(n))
-    layer = n_nodes // (n[0] + 1)
-    step = max(1, _CHUNK // layer)
-    carry = np.zeros([k + 1 for k in n[1:]], dtype=bool)
-    enriched = edges = 0
-    corners = list(itertools.product((0, 1), repeat=box.dim))
-    for a in range(0, n[0], step):
-        b = min(a + step, n[0])                           # cells a..b-1, nodes a..b
-        x = np.stack(np.meshgrid(grid[0][a:b + 1], *grid[1:], indexing="ij"))
-        psi = np.asarray(levelset(x.reshape(box.dim, -1)), dtype=float).reshape(x.shape[1:])
-        s = np.sign(psi)
-        cube = [s[tuple(slice(o, o + k) for o, k in zip(c, (b - a,) + n[1:]))]
-                for c in corners]
-        cut = (np.min(cube, axis=0) <= 0) & (np.max(cube, axis=0) >= 0)
-        mask = np.zeros(s.shape, dtype=bool)
-        mask[0] = carry
-        for c in corners:
-            mask[tuple(slice(o, o + k) for o, k in zip(c, (b - a,) + n[1:]))] |= cut
-        enriched += int(mask[:-1].sum())
-        carry = mask[-1]
-        last = b == n[0]
-        for e in _DIRECTIONS[box.cell]:
-            s1 = tuple(slice(0, None if (k == 0 and last) else -1) if v == 0 and k == 0
-                       else slice(None) if v == 0 else slice(0, -1) if v > 0 else slice(1, None)
-                       for k, v in enumerate(e))
-            s2 = tuple(slice(0, None if last else -1) if v == 0 and k == 0
-                       else slice(None) if v == 0 else slice(1, None) if v > 0 else slice(0, -1)
-                       for k, v in enumerate(e))
-            edges += int(np.sum(s[s1] * s[s2] <= 0))
-    return n_nodes, n_cells, enriched + int(carry.sum()), edges
-
-
-def _mesh_counts(mesh, levelset) -> tuple[int, int, int, int]:
-    """Nodes, cells, enriched-node bound and cut edges of a built mesh."""
-    s = np.sign(nodal_values(levelset, mesh))
-    st = s[mesh.t]
-    cut = (st.min(axis=0) <= 0) & (st.max(axis=0) >= 0)
-    edges = mesh.facets if mesh.dim() == 2 else mesh.edges
-    n_cut_edges = int(np.sum(s[edges[0]] * s[edges[1]] <= 0))
-    return int(mesh.nvertices), int(mesh.nelements), int(np.unique(mesh.t[:, cut]).size), \
-        n_cut_edges
-
-
 def _memory(dim: int, cell: str, order, n_nodes, n_cells, n_dofs, n_enr, m) -> float:
     """Bytes of the terms named in the module notes (before :data:`SAFETY`)."""
     nq = cell_rule(CELLS[cell], order)[1].size
-    nbf = dim * _NVERTS[cell]
+    nbf = dim * NVERTS[cell]
     cells = n_cells * (PER_CELL * 8 * nq * nbf * (1 + dim + dim * dim)  # basis values
                        + 3 * 8 * nbf * nbf                                 # COO assembly
-                       + 8 * _NVERTS[cell])                                # t
+                       + 8 * NVERTS[cell])                                # t
     nodes = n_nodes * 8 * dim * 4
     c, p = LU_FILL[dim]
     lu = LU_BYTES * c * (n_dofs + m) ** p
@@ -236,12 +176,16 @@ def estimate(scene: Scene, linear: str = "auto") -> Estimate:
     Estimate
     """
     if isinstance(check_scene(scene).mesh, Box):
-        cell = scene.mesh.cell
-        n_nodes, n_cells, n_enr_nodes, n_edges = _box_counts(scene.mesh, scene.levelset)
+        counts = box_counts(scene.mesh, scene.levelset)
     else:
         mesh = resolve_mesh(scene)
-        cell = cell_name(mesh)
-        n_nodes, n_cells, n_enr_nodes, n_edges = _mesh_counts(mesh, scene.levelset)
+        counts = (*mesh_counts(mesh, scene.levelset), cell_name(mesh))
+    return _estimate(scene, linear, *counts[:4], counts[4] if len(counts) > 4
+                     else scene.mesh.cell)
+
+
+def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell) -> Estimate:
+    """The :class:`Estimate` of ``scene`` from its counts."""
     dim = scene.dim
     n_enr = dim * n_enr_nodes
     n_dofs = dim * n_nodes + n_enr
@@ -255,6 +199,19 @@ def estimate(scene: Scene, linear: str = "auto") -> Estimate:
         bytes_ = SAFETY * _memory(dim, cell, scene.quadrature_order, n_nodes, n_cells,
                                   n_dofs, n_enr, m)
     return Estimate(n_nodes, n_cells, n_dofs, m, int(bytes_), chosen)
+
+
+def _floor(scene, linear) -> Estimate | None:
+    """For a Box, the estimate without interface (no enrichment, no multiplier): a
+    lower bound of :func:`estimate` known without evaluating ψ (the least over the
+    solvers ``"auto"`` may pick); ``None`` for a mesh."""
+    box = scene.mesh
+    if not isinstance(box, Box):
+        return None
+    counts = (int(np.prod([k + 1 for k in box.n])), PER_CUBE[box.cell] * int(np.prod(box.n)),
+              0, 0, box.cell)
+    picks = ("direct", "iterative") if linear == "auto" else (linear,)
+    return min((_estimate(scene, pick, *counts) for pick in picks), key=lambda e: e.bytes)
 
 
 def check(scene: Scene, max_bytes: int = DEFAULT_MAX_BYTES,
@@ -286,12 +243,22 @@ def check(scene: Scene, max_bytes: int = DEFAULT_MAX_BYTES,
     """
     if not (isinstance(max_bytes, (int, np.integer)) and max_bytes > 0):
         raise ValueError(f"max_bytes must be a positive integer, got {max_bytes!r}")
+    floor = _floor(check_scene(scene), linear)
+    if floor is not None and floor.bytes > max_bytes:  # refused before ψ is evaluated
+        raise _too_large(scene, floor, max_bytes, option, "at least")
     e = estimate(scene, linear)
     if e.bytes > max_bytes:
-        more = 2 * e.bytes
-        hint = (f"max_bytes={more}" if option is None
-                else f"{option} {format_bytes(more).replace(' ', '')}")
-        raise TooLargeError(
-            f"the scene {scene.name!r} needs about {format_bytes(e.bytes)} ({e}); the limit is "
-            f"{format_bytes(max_bytes)}: use a coarser mesh, or raise the limit (e.g. {hint})")
+        raise _too_large(scene, e, max_bytes, option, "about")
     return e
+
+
+def _too_large(scene, e: Estimate, max_bytes: int, option, how: str) -> TooLargeError:
+    """The refusal of ``scene``, whose (lower bound, ``how``) estimate ``e`` is too large."""
+    more = 2 * e.bytes
+    hint = (f"max_bytes={more}" if option is None
+            else f"{option} {format_bytes(more).replace(' ', '')}")
+    what = str(e) if how == "about" else (f"{e.n_nodes} nodes, {e.n_cells} cells, {e.n_dofs} "
+                                          f"unknowns before any enrichment, {e.linear} solve")
+    return TooLargeError(
+        f"the scene {scene.name!r} needs {how} {format_bytes(e.bytes)} ({what}); the limit "
+        f"is {format_bytes(max_bytes)}: use a coarser mesh, or raise the limit (e.g. {hint})")

@@ -72,7 +72,8 @@ def test_04_a_box_is_never_built(monkeypatch):
 
 def test_05_check_refuses_with_the_estimate_and_the_option():
     s = scenes.strip(10000, cell="tri")                   # 4 GB in 21 s, before the guard
-    with pytest.raises(TooLargeError, match=r"the scene 'strip\w*' needs about [\d.]+ [GT]B") as e:
+    with pytest.raises(TooLargeError, match=r"the scene 'strip\w*' needs at least [\d.]+ [GT]B") \
+            as e:
         check(s, 4 * 2**30, "--max-memory")
     message = str(e.value)
     assert "100030002 nodes" in message and "limit is 4 GB" in message
@@ -80,7 +81,7 @@ def test_05_check_refuses_with_the_estimate_and_the_option():
     assert "--max-memory" in message and isinstance(e.value, ValueError)
     small = scenes.strip(4)
     assert isinstance(check(small), Estimate)
-    with pytest.raises(TooLargeError, match=r"max_bytes=\d+\)$"):
+    with pytest.raises(TooLargeError, match=r"needs about .* max_bytes=\d+\)$"):
         check(small, estimate(small).bytes - 1)
     with pytest.raises(ValueError, match="max_bytes"):
         check(small, 0)
@@ -170,3 +171,19 @@ def test_10_estimate_needs_a_scene():
         estimate("plate.toml")
     assert budget.DEFAULT_MAX_BYTES == 4 * 2**30
     np.testing.assert_equal(budget.format_bytes(budget.DEFAULT_MAX_BYTES), "4 GB")
+
+
+@pytest.mark.parametrize("n, cell", [((3000, 3000, 3000), "hex"), ((10**8, 10**8), "quad")])
+def test_12_a_huge_box_is_refused_before_its_levelset_is_evaluated(n, cell, monkeypatch):
+    """Without an interface the box already needs more than the limit: refused from
+    its cell counts alone ('at least'), ψ never evaluated (the grid sweep took 40 s
+    and 1.7 GB at 3000³, and hung at 10⁸ × 10⁸)."""
+    import skxfem.budget as b
+    from skxfem.levelset import plane
+    from skxfem.scene import Box, Scene
+    monkeypatch.setattr(b, "box_counts", lambda *a: pytest.fail("ψ was evaluated"))
+    dim = len(n)
+    s = Scene(Box(n, cell), plane((0.5,) * dim, (0,) * (dim - 1) + (1,)))
+    for linear in ("auto", "direct", "iterative"):
+        with pytest.raises(b.TooLargeError, match=r"needs at least .* the limit is 4 GB"):
+            b.check(s, linear=linear)
