@@ -173,6 +173,14 @@ def _check(node: ast.AST, expr: Expression, depth: int) -> str:
             _refuse(node, expr, "string")
         if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
             _refuse(node, expr, "constant")
+        try:
+            big = not np.isfinite(float(node.value))  # 1e999 parses as inf
+        except OverflowError:  # an int too large for a float
+            big = True
+        if big:
+            text = ast.get_source_segment(expr.text.strip(), node) or str(node.value)
+            raise ValueError(f"expression {_short(expr.text)}: the number {_short(text, 20)} "
+                             f"is too large for floating point")
         return "num"
     if isinstance(node, ast.Name):
         if node.id == "z" and expr.dim == 2:

@@ -172,3 +172,10 @@ def test_12_expressions_are_frozen_and_compare_by_text():
     assert a == b and a != Expression("x + 1", 3)
     with pytest.raises(AttributeError):
         a.text = "y"
+
+
+@pytest.mark.parametrize("text", ["1" * 400, "1e999 * x", "x - " + "9" * 320])
+def test_13_numbers_too_large_for_a_float_are_refused_when_parsed(text):
+    """They raised OverflowError ('int too large to convert to float') at solve time."""
+    with pytest.raises(ValueError, match="too large for floating point"):
+        Expression(text, 2)
