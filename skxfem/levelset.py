@@ -20,11 +20,10 @@ Every module, chapter and test uses the convention stated here and nowhere else.
 * The interface traction is r = σ(u⁻)·n = λn + r_τ (eq. 4); λ ≤ 0 in contact
   (eq. 5).  Results report the contact *pressure* p = -λ, positive in compression.
 
-A level set is any callable ``psi(x)`` taking coordinates ``x`` of shape
-``(dim, ...)`` (scikit-fem's layout: ``x[0]`` is the first coordinate) and
-returning an array of shape ``(...)``.  The helpers below build signed-distance
-functions, with their gradients, and combine them; :func:`nodal_values`
-evaluates one on a mesh and checks what comes back.
+A level set is any callable ``psi(x)`` taking coordinates ``x`` of shape ``(dim, ...)``
+(scikit-fem's layout: ``x[0]`` is the first coordinate) and returning real numbers
+of shape ``(...)``.  The helpers below build signed-distance functions, with their
+gradients, and combine them; :func:`nodal_values` evaluates one on a mesh, checked.
 
 >>> import numpy as np
 >>> psi = plane(point=(0.0, 0.5), normal=(0.0, 1.0))
@@ -33,6 +32,7 @@ array([-0.5,  0.5])
 """
 from __future__ import annotations
 
+import numbers
 from dataclasses import dataclass
 from typing import Callable
 
@@ -50,14 +50,16 @@ class LevelSet:
     Parameters
     ----------
     fun
-        ``fun(x) -> ψ(x)`` for ``x`` of shape ``(dim, ...)``.
+        ``fun(x) -> ψ(x)``: for ``x`` of shape ``(dim, ...)``, reals of shape ``(...)``.
     dim
-        Number of coordinates ``fun`` reads (2 or 3).
+        Number of coordinates ``fun`` reads (the int 2 or 3).
     name
         Human-readable description, used in error messages and plots.
     grad
-        Optional ``grad(x) -> ∇ψ(x)`` of shape ``(dim, ...)``; without it
-        :meth:`gradient` takes central differences of ``fun``.
+        Optional ``grad(x) -> ∇ψ(x)``, finite and of the shape of ``x``; without
+        it :meth:`gradient` takes central differences of ``fun``.
+
+    Bad arguments raise TypeError/ValueError, a ``fun`` or ``grad`` breaking this ValueError.
     """
 
     fun: Callable[[np.ndarray], np.ndarray]
@@ -65,37 +67,60 @@ class LevelSet:
     name: str = "psi"
     grad: Callable[[np.ndarray], np.ndarray] | None = None
 
+    def __post_init__(self):
+        if not callable(self.fun):
+            raise TypeError(f"LevelSet fun must be a callable psi(x), got {self.fun!r}")
+        ok = isinstance(self.dim, (int, np.integer)) and not isinstance(self.dim, bool)
+        if not ok or self.dim not in (2, 3):
+            raise (ValueError if ok else TypeError)(
+                f"LevelSet dim must be the int 2 or 3 (coordinates fun reads), got {self.dim!r}")
+        object.__setattr__(self, "dim", int(self.dim))
+        if not (self.grad is None or callable(self.grad)):
+            raise TypeError(f"LevelSet grad must be None or callable, got {self.grad!r}")
+
     def _points(self, x: ArrayLike) -> np.ndarray:
         x = np.asarray(x, dtype=float)
         if x.shape[0] != self.dim:
-            raise ValueError(
-                f"level set {self.name!r} is {self.dim}D but got points with "
-                f"{x.shape[0]} coordinates; use a {x.shape[0]}D level set")
+            raise ValueError(f"level set {self.name!r} is {self.dim}D but got points with "
+                             f"{x.shape[0]} coordinates; use a {x.shape[0]}D level set")
         return x
 
     def __call__(self, x: ArrayLike) -> np.ndarray:
-        return self.fun(self._points(x))
+        x = self._points(x)
+        return _real(self.fun(x), x.shape[1:], f"level set {self.name!r}", "one value per point")
 
     def gradient(self, x: ArrayLike) -> np.ndarray:
         """∇ψ at ``x`` (dim, ...): ``grad`` if given, else :func:`gradient`'s differences."""
         x = self._points(x)
         if self.grad is None:
-            return gradient(self.fun, x)
-        return np.broadcast_to(self.grad(x), x.shape).astype(float)
+            return gradient(self, x)
+        who = f"grad of level set {self.name!r}"
+        g = _real(self.grad(x), x.shape, who, "∇ψ shaped like the points x")
+        if not np.all(np.isfinite(g)):
+            raise ValueError(f"{who} returned NaN or inf; ∇ψ must be finite")
+        return g
+
+
+def _real(v, shape: tuple, who: str, what: str) -> np.ndarray:
+    """``v`` as floats of ``shape``, else a ValueError saying what ``who`` returned."""
+    try:
+        a = np.asarray(v)
+    except ValueError:  # a ragged list: refused below as an object
+        a = np.asarray(None)
+    if a.dtype.kind not in "iuf" or a.shape != shape:
+        raise ValueError(f"{who} must return real numbers, {what}: expected shape {shape}, "
+                         f"got dtype {a.dtype}, shape {a.shape}: {repr(v)[:40]}")
+    return a.astype(float, copy=False)
 
 
 def gradient(psi: Callable, x: ArrayLike) -> np.ndarray:
     """∇ψ at points ``x`` of shape (dim, ...), for any level set callable.
 
-    A :class:`LevelSet` with an analytic gradient (plane, circle, sphere and
-    their union, intersection and complement) returns it.  Otherwise (a
-    formula from a scene file, any plain callable) a central difference with
-    the step h = ε^(1/3) max|x| (ε the machine epsilon, the maximum over all
-    the coordinates given), which balances its truncation error h²|ψ‴|/6
-    and its round-off ε|ψ|/h: for a ψ smooth on the scale of the coordinates
-    the error is about ε^(2/3) ≈ 4e-11 (8e-11 on a circle).  Within h of a kink (two
-    pieces of a min or max meeting) a difference is meaningless: build such a
-    ψ with :func:`union` or :func:`intersection`, which differentiate each.
+    A :class:`LevelSet` with an analytic gradient (plane, circle, sphere and their
+    combinations) returns it.  Otherwise a central difference with the step
+    h = ε^(1/3) max|x| (ε the machine epsilon), balancing truncation h²|ψ‴|/6 and
+    round-off ε|ψ|/h: an error near ε^(2/3) ≈ 4e-11 for ψ smooth on the scale of x.
+    Within h of a kink it is meaningless: use :func:`union` or :func:`intersection`.
 
     >>> gradient(circle((0, 0), 1.0), np.array([[3.0], [4.0]])).ravel().tolist()
     [0.6, 0.8]
@@ -103,8 +128,10 @@ def gradient(psi: Callable, x: ArrayLike) -> np.ndarray:
     >>> bool(np.allclose(g.ravel(), [1.0, 1.0], atol=1e-9))
     True
     """
-    if isinstance(psi, LevelSet):
+    if isinstance(psi, LevelSet) and psi.grad is not None:
         return psi.gradient(x)
+    f = psi if isinstance(psi, LevelSet) else (
+        lambda y: _real(psi(y), y.shape[1:], "psi", "one value per point"))
     x = np.asarray(x, dtype=float)
     h = np.finfo(float).eps ** (1 / 3) * max(float(np.abs(x).max(initial=0.0)), 1e-300)
     g = np.empty(x.shape)
@@ -112,17 +139,22 @@ def gradient(psi: Callable, x: ArrayLike) -> np.ndarray:
         xp, xm = x.copy(), x.copy()
         xp[i] += h
         xm[i] -= h
-        g[i] = (psi(xp) - psi(xm)) / (xp[i] - xm[i])
+        g[i] = (f(xp) - f(xm)) / (xp[i] - xm[i])
     return g
 
 
 def _vector(name: str, v: ArrayLike) -> np.ndarray:
-    a = np.asarray(v, dtype=float)
+    try:
+        a = np.asarray(v)
+    except ValueError:  # a ragged list: refused below as an object
+        a = np.asarray(None)
+    if a.dtype.kind not in "iuf":
+        raise TypeError(f"{name} must be a sequence of 2 or 3 real numbers, got {v!r}")
     if a.ndim != 1 or a.size not in (2, 3):
         raise ValueError(f"{name} must be a 2- or 3-vector, got {v!r}")
     if not np.all(np.isfinite(a)):
         raise ValueError(f"{name} must be finite, got {v!r}")
-    return a
+    return a.astype(float)
 
 
 def plane(point: ArrayLike, normal: ArrayLike) -> LevelSet:
@@ -134,39 +166,33 @@ def plane(point: ArrayLike, normal: ArrayLike) -> LevelSet:
     >>> float(psi(np.array([0.1, 0.2, 1.0])))
     0.5
     """
-    x0 = _vector("point", point)
-    n = _vector("normal", normal)
+    x0, n = _vector("point", point), _vector("normal", normal)
     if x0.size != n.size:
         raise ValueError("point and normal must have the same dimension")
-    norm = np.linalg.norm(n)
-    if norm == 0.0:
+    if (norm := np.linalg.norm(n)) == 0.0:
         raise ValueError("normal must be non-zero")
-    n = n / norm
-    d = n.size
-
-    def fun(x):
-        return sum(n[i] * (x[i] - x0[i]) for i in range(d))
-
-    return LevelSet(fun, d, f"plane(point={x0.tolist()}, normal={n.tolist()})",
-                    lambda x: n.reshape((d,) + (1,) * (x.ndim - 1)))
+    n, d = n / norm, n.size
+    return LevelSet(lambda x: sum(n[i] * (x[i] - x0[i]) for i in range(d)), d,
+                    f"plane(point={x0.tolist()}, normal={n.tolist()})",
+                    lambda x: np.broadcast_to(n.reshape((d,) + (1,) * (x.ndim - 1)), x.shape))
 
 
 def _ball(center: ArrayLike, radius: float, dim: int, kind: str) -> LevelSet:
     c = _vector("center", center)
     if c.size != dim:
         raise ValueError(f"{kind} center must have {dim} coordinates, got {center!r}")
-    if not (np.isfinite(radius) and radius > 0):
+    if isinstance(radius, bool) or not isinstance(radius, numbers.Real):
+        raise TypeError(f"{kind} radius must be a real number, got {radius!r}; pass e.g. 0.3")
+    if not (np.isfinite(radius := float(radius)) and radius > 0):
         raise ValueError(f"{kind} radius must be a positive number, got {radius!r}")
-
-    def fun(x):
-        return np.sqrt(sum((x[i] - c[i]) ** 2 for i in range(dim))) - radius
 
     def grad(x):  # (x - c)/|x - c|; 0 at the centre, where ψ has no gradient
         d = x - c.reshape((dim,) + (1,) * (x.ndim - 1))
         r = np.sqrt((d ** 2).sum(axis=0))
         return d / np.where(r > 0, r, 1.0)
 
-    return LevelSet(fun, dim, f"{kind}(center={c.tolist()}, radius={radius})", grad)
+    return LevelSet(lambda x: np.sqrt(sum((x[i] - c[i]) ** 2 for i in range(dim))) - radius,
+                    dim, f"{kind}(center={c.tolist()}, radius={radius})", grad)
 
 
 def circle(center: ArrayLike, radius: float) -> LevelSet:
@@ -187,7 +213,11 @@ def sphere(center: ArrayLike, radius: float) -> LevelSet:
     return _ball(center, radius, 3, "sphere")
 
 
-def _same_dim(a: LevelSet, b: LevelSet) -> int:
+def _same_dim(op: str, a: LevelSet, b: LevelSet) -> int:
+    for k, v in (("a", a), ("b", b)):
+        if not isinstance(v, LevelSet):
+            raise TypeError(f"{op}: {k} must be a LevelSet (plane, circle, ...; wrap a callable "
+                            f"as LevelSet(fun, dim)), got {type(v).__name__} {v!r}")
     if a.dim != b.dim:
         raise ValueError(f"cannot combine a {a.dim}D and a {b.dim}D level set")
     return a.dim
@@ -200,41 +230,28 @@ def _active(a: LevelSet, b: LevelSet, pick_a: Callable) -> Callable:
 
 def union(a: LevelSet, b: LevelSet) -> LevelSet:
     """Ω⁻ = Ω⁻(a) ∪ Ω⁻(b), via ψ = min(ψ_a, ψ_b); ∇ψ is that of the smaller."""
-    return LevelSet(lambda x: np.minimum(a(x), b(x)), _same_dim(a, b),
+    return LevelSet(lambda x: np.minimum(a(x), b(x)), _same_dim("union", a, b),
                     f"union({a.name}, {b.name})", _active(a, b, np.less_equal))
 
 
 def intersection(a: LevelSet, b: LevelSet) -> LevelSet:
     """Ω⁻ = Ω⁻(a) ∩ Ω⁻(b), via ψ = max(ψ_a, ψ_b); ∇ψ is that of the larger."""
-    return LevelSet(lambda x: np.maximum(a(x), b(x)), _same_dim(a, b),
+    return LevelSet(lambda x: np.maximum(a(x), b(x)), _same_dim("intersection", a, b),
                     f"intersection({a.name}, {b.name})", _active(a, b, np.greater_equal))
 
 
 def complement(a: LevelSet) -> LevelSet:
     """Swap the sides: ψ → -ψ (so ∇ψ and n flip too)."""
-    return LevelSet(lambda x: -a(x), a.dim, f"complement({a.name})",
+    return LevelSet(lambda x: -a(x), _same_dim("complement", a, a), f"complement({a.name})",
                     lambda x: -a.gradient(x))
 
 
 def nodal_values(psi: Callable, mesh) -> np.ndarray:
-    """Evaluate ψ at the vertices of a scikit-fem mesh and check the result.
+    """ψ at the vertices of a scikit-fem ``mesh``, shape ``(nverts,)``, checked.
 
-    Parameters
-    ----------
-    psi
-        A :class:`LevelSet` or any callable on ``(dim, npoints)`` arrays.
-    mesh
-        A scikit-fem mesh; ``mesh.p`` has shape ``(dim, nverts)``.
-
-    Returns
-    -------
-    ndarray
-        ψ at every vertex, shape ``(nverts,)``.
-
-    Raises
-    ------
-    ValueError
-        If the dimensions differ, or ψ returns the wrong shape or non-finite values.
+    ``psi`` is a :class:`LevelSet` or any callable on ``(dim, nverts)`` arrays.
+    A ValueError if the dimensions differ or ψ returns anything but finite real
+    numbers, one per vertex.
 
     >>> from skfem import MeshTri1
     >>> nodal_values(plane((0.5, 0), (1, 0)), MeshTri1()).tolist()
@@ -242,41 +259,24 @@ def nodal_values(psi: Callable, mesh) -> np.ndarray:
     """
     dim = getattr(psi, "dim", None)
     if dim is not None and dim != mesh.dim():
-        raise ValueError(
-            f"psi is a {dim}D level set but the mesh is {mesh.dim()}D; "
-            f"build the level set with {mesh.dim()} coordinates")
-    values = np.asarray(psi(mesh.p), dtype=float)
-    if values.shape != (mesh.p.shape[1],):
-        raise ValueError(
-            f"psi must return one value per point: expected shape "
-            f"({mesh.p.shape[1]},), got {values.shape}")
+        raise ValueError(f"psi is a {dim}D level set but the mesh is {mesh.dim()}D; "
+                         f"build the level set with {mesh.dim()} coordinates")
+    who = f"level set {psi.name!r}" if isinstance(psi, LevelSet) else "psi"
+    values = _real(psi(mesh.p), mesh.p.shape[1:], who, "one value per point")
     if not np.all(np.isfinite(values)):
-        raise ValueError("psi returned NaN or inf at some mesh vertices; "
+        raise ValueError(f"{who} returned NaN or inf at some mesh vertices; "
                          "check the level set and the mesh coordinates")
     return values
 
 
 def point_normals(cut, psi=None) -> np.ndarray:
-    """The unit normal n = ∇ψ/|∇ψ| at each multiplier point of a cut.
+    """The unit normals n = ∇ψ/|∇ψ| (dim, n_points) at the multiplier points of a cut.
 
-    Parameters
-    ----------
-    cut
-        A :class:`skxfem.cut.Cut`.
-    psi
-        The level set callable the mesh was cut by (see :func:`gradient`).
-        ``None`` or nodal values: ψ is known only at the nodes, and each
-        point gets the area-weighted mean normal of its facets.
-
-    Returns
-    -------
-    ndarray
-        Unit normals (dim, n_points) into Ω⁺; exact for planes, circles, spheres.
-
-    Raises
-    ------
-    ValueError
-        If ∇ψ vanishes at a point: Γ has no normal there.
+    ``cut`` is a :class:`skxfem.cut.Cut`, ``psi`` the level set callable the mesh
+    was cut by (see :func:`gradient`): exact for planes, circles, spheres.  With
+    ``None`` or nodal values ψ is known only at the nodes, and each point gets the
+    area-weighted mean normal of its facets.  A ValueError if ∇ψ vanishes at a
+    point: Γ has no normal there.
 
     >>> from skfem import MeshTri1
     >>> from skxfem.cut import cut

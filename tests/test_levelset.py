@@ -8,7 +8,9 @@
    intersection and complement of the Ω⁻ of their arguments.
 4. nodal_values on a box mesh of every cell type: one value per vertex,
    equal to ψ at the vertex coordinates.
-5. Bad input is refused with a ValueError whose message says what is wrong.
+5. Bad input is refused with a ValueError (a TypeError for the wrong kind of
+   argument) whose message names the argument and says what is wrong: at
+   construction, and for what ψ and its gradient return when evaluated.
 6. Gradients: analytic ones (plane, circle, sphere, union, intersection,
    complement) against finite differences and known values; central
    differences for a formula, at any scale; point_normals exact for planes
@@ -21,6 +23,7 @@ from skxfem.levelset import (
     LevelSet,
     circle,
     complement,
+    gradient,
     intersection,
     nodal_values,
     plane,
@@ -223,6 +226,93 @@ def test_bad_plane_and_ball_parameters_are_refused():
     with pytest.raises(ValueError, match="center must be finite"):
         sphere((0, np.nan, 0), 1.0)
 
+
+def test_level_set_constructor_checks_its_arguments():
+    """A bad fun, dim or grad is refused when the LevelSet is built, not at solve time."""
+    with pytest.raises(TypeError, match="fun must be a callable"):
+        LevelSet(5, 2)
+    for dim in ("2", True, 2.0, None):
+        with pytest.raises(TypeError, match="dim must be the int 2 or 3"):
+            LevelSet(lambda x: x[1], dim)
+    with pytest.raises(ValueError, match="dim must be the int 2 or 3.*got 4"):
+        LevelSet(lambda x: x[1], 4)
+    with pytest.raises(TypeError, match="grad must be None or callable"):
+        LevelSet(lambda x: x[1], 2, grad=np.ones(2))
+    psi = LevelSet(lambda x: x[2], np.int64(3))  # a numpy integer is an int
+    assert psi.dim == 3 and type(psi.dim) is int
+
+
+def test_a_gradient_of_the_wrong_shape_or_not_finite_is_refused():
+    """grad must return ∇ψ shaped like x: never broadcast along the wrong axis."""
+    x = np.random.default_rng(4).uniform(size=(2, 3))
+    bad = LevelSet(lambda x: x[1] - 0.5, 2, "flat", grad=lambda x: np.ones(3))
+    with pytest.raises(ValueError, match=r"grad of level set 'flat'.*expected shape \(2, 3\)"):
+        bad.gradient(x)  # (3,) would broadcast to (2, 3): every point's ∇ψ = (1, 1)
+    per_axis = LevelSet(lambda x: x[1] - 0.5, 2, "flat", grad=lambda x: np.array([0.0, 1.0]))
+    with pytest.raises(ValueError, match=r"expected shape \(2, 2\).*shape \(2,\)"):
+        per_axis.gradient(x[:, :2])
+    with pytest.raises(ValueError, match="grad of level set 'flat'.*real numbers"):
+        LevelSet(lambda x: x[1], 2, "flat", grad=lambda x: x + 1j).gradient(x)
+    with pytest.raises(ValueError, match="grad of level set 'nan'.*NaN or inf"):
+        LevelSet(lambda x: x[1], 2, "nan", grad=lambda x: np.full_like(x, np.nan)).gradient(x)
+    with pytest.raises(ValueError, match="grad of level set 'flat'"):
+        complement(bad).gradient(x)  # combinations check through to their pieces
+
+
+def test_what_psi_returns_is_checked_where_it_is_evaluated():
+    """Complex, text, ragged or wrongly shaped ψ values: a ValueError naming the level set."""
+    mesh = box(2, "tri")
+    with pytest.raises(ValueError, match="level set 'wavy' must return real numbers.*complex"):
+        nodal_values(LevelSet(lambda x: x[1] - 0.5 + 0.1j, 2, "wavy"), mesh)
+    with pytest.raises(ValueError, match="psi must return real numbers.*complex"):
+        nodal_values(lambda x: x[1] + 0j, mesh)
+    with pytest.raises(ValueError, match="level set 'text' must return real numbers.*<U"):
+        nodal_values(LevelSet(lambda x: "x - 0.5", 2, "text"), mesh)
+    with pytest.raises(ValueError, match="level set 'ragged' must return real numbers"):
+        LevelSet(lambda x: [[0.0, 1.0], [2.0]], 2, "ragged")(np.zeros((2, 2)))
+    with pytest.raises(ValueError, match=r"'whole'.*one value per point.*shape \(5,\)"):
+        LevelSet(lambda x: x, 2, "whole")(np.zeros((2, 5)))  # (2, 5) values for 5 points
+    with pytest.raises(ValueError, match="psi must return real numbers.*<U"):
+        gradient(lambda x: [str(v) for v in x[0]], np.ones((2, 3)))
+    # a list of numbers is fine: converted, then combined and differenced like an array
+    listy = LevelSet(lambda x: list(x[1] - 0.5), 2, "listy")
+    assert np.allclose(nodal_values(listy, mesh), mesh.p[1] - 0.5)
+    assert np.allclose(complement(listy)(mesh.p), 0.5 - mesh.p[1])
+    assert np.allclose(listy.gradient(np.ones((2, 3))), [[0.0] * 3, [1.0] * 3])
+
+
+@pytest.mark.parametrize("radius", ["0.3", None, np.array([0.3, 0.2]), True, 1j])
+def test_a_radius_that_is_not_a_real_number_is_refused(radius):
+    with pytest.raises(TypeError, match="circle radius must be a real number"):
+        circle((0.5, 0.5), radius)
+    with pytest.raises(TypeError, match="sphere radius must be a real number"):
+        sphere((0.5, 0.5, 0.5), radius)
+
+
+def test_a_numpy_scalar_radius_is_accepted():
+    assert np.isclose(circle((0, 0), np.float32(0.5))(np.array([1.0, 0.0])), 0.5)
+    assert sphere((0, 0, 0), np.int64(2))(np.array([0.0, 0.0, 3.0])) == 1.0
+
+
+def test_points_normals_and_centres_must_be_real_numbers():
+    with pytest.raises(TypeError, match="point must be a sequence of 2 or 3 real numbers"):
+        plane(("a", "b"), (0, 1))
+    with pytest.raises(TypeError, match="normal must be a sequence of 2 or 3 real numbers"):
+        plane((0, 1), None)
+    with pytest.raises(TypeError, match="center must be a sequence of 2 or 3 real numbers"):
+        circle(((0, 1), 0), 1.0)  # ragged
+    with pytest.raises(TypeError, match="center must be a sequence of 2 or 3 real numbers"):
+        sphere((1j, 0, 0), 1.0)
+
+
+def test_combinators_refuse_what_is_not_a_level_set():
+    c = circle((0, 0), 1.0)
+    with pytest.raises(TypeError, match="union: b must be a LevelSet.*got int 5"):
+        union(c, 5)
+    with pytest.raises(TypeError, match="intersection: a must be a LevelSet.*got str"):
+        intersection("x < 0", c)
+    with pytest.raises(TypeError, match=r"complement: a must be a LevelSet.*LevelSet\(fun, dim\)"):
+        complement(lambda x: x[0])
 
 # 6. gradients and the normal at the multiplier points ---------------------------------
 
