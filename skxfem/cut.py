@@ -148,7 +148,9 @@ def cut(mesh, psi) -> Cut:
     if edge_ids.size == 0:
         raise ValueError(
             f"the level set cuts no cell of the mesh (psi ranges over "
-            f"[{psi.min():.3g}, {psi.max():.3g}]); move the interface inside the domain")
+            f"[{psi.min():.3g}, {psi.max():.3g}] at the nodes, one sign at all of them): "
+            f"move the interface inside the domain, or, if it is there but inside a "
+            f"single cell (smaller than the mesh size), refine the mesh")
     edges = all_edges[:, edge_ids]
     is_cut = np.zeros(all_edges.shape[1], dtype=bool)
     is_cut[edge_ids] = True

@@ -37,7 +37,12 @@ from .scene_parts import is_number as _is_number
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Scene", "clamped", "rollers",
            "resolve_mesh", "dirichlet", "load_facets", "traction", "LAWS", "CONTACT_LAWS",
-           "SPACES", "CELLS", "check_scene"]
+           "SPACES", "CELLS", "check_scene", "MAX_QUADRATURE_ORDER"]
+
+MAX_QUADRATURE_ORDER = {2: 19, 3: 8}
+"""The highest ``Scene.quadrature_order`` per dimension: scikit-fem's triangle
+rules stop at 19 and its tetrahedron rules (the sub-cells of a cut 3D cell) at
+9, which :mod:`skxfem.quadrature` takes for order 8."""
 
 @dataclass(frozen=True)
 class Scene:
@@ -101,10 +106,12 @@ class Scene:
         object.__setattr__(self, "steps", tuple(float(f) for f in self.steps))
         if self.space not in SPACES:
             raise ValueError(f"Scene space must be one of {SPACES}, got {self.space!r}")
-        q = self.quadrature_order
-        if q is not None and not (isinstance(q, int) and not isinstance(q, bool) and q >= 1):
-            raise ValueError(f"Scene quadrature_order must be a positive integer or None, "
-                             f"got {q!r}")
+        q, top = self.quadrature_order, MAX_QUADRATURE_ORDER.get(self.dim, 8)
+        if q is not None and not (isinstance(q, int) and not isinstance(q, bool)
+                                  and 1 <= q <= top):
+            raise ValueError(f"Scene quadrature_order must be an integer from 1 to {top} in "
+                             f"{self.dim}D, or None (the minimal exact rule, which affine "
+                             f"cells need), got {q!r}")
         if not (isinstance(self.name, str) and self.name):
             raise ValueError(f"Scene name must be a non-empty string, got {self.name!r}")
         object.__setattr__(self, "displacements", tuple(

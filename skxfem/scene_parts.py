@@ -161,6 +161,8 @@ class SurfaceLoad:
             object.__setattr__(self, "pressure",
                                _check_value(self.pressure, "SurfaceLoad pressure"))
         else:
+            if isinstance(self.traction, np.ndarray) and self.traction.ndim == 1:
+                object.__setattr__(self, "traction", tuple(self.traction.tolist()))
             if not isinstance(self.traction, (tuple, list)) or len(self.traction) not in (2, 3):
                 raise TypeError("SurfaceLoad traction must be 2 or 3 components, "
                                 f"got {self.traction!r}")

@@ -142,6 +142,8 @@ def test_errors_are_clear():
     m = mesh_of("quad", 4)
     with pytest.raises(ValueError, match="cuts no cell"):
         cut(m, plane((0, 5.0), (0, 1)))
+    with pytest.raises(ValueError, match="inside a single cell .* refine the mesh"):
+        cut(m, circle((0.6, 0.6), 0.05))  # a circle inside one cell of h = 1/4
     with pytest.raises(ValueError, match="vanishes at"):
         cut(m, plane((0, 0.5), (0, 1)))  # through a row of nodes
     with pytest.raises(ValueError, match="2D level set but the mesh is 3D|is 2D"):

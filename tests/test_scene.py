@@ -341,6 +341,7 @@ def test_every_entry_point_says_what_a_scene_is(call, bad):
     """A path, None or a number where a Scene belongs: one TypeError that says how to
     get a Scene, from every public call that takes one (not an AttributeError)."""
     import skxfem
+    import skxfem.budget
     fn = {"solve": skxfem.solve, "assemble": skxfem.assemble, "inf_sup": skxfem.lbb.inf_sup,
           "contact": skxfem.contact.solve, "estimate": skxfem.budget.estimate}[call]
     with pytest.raises(TypeError, match=r"scene must be a skxfem.Scene, got .*load_scene"):
@@ -354,3 +355,29 @@ def test_a_box_cell_or_a_law_of_the_wrong_type_is_named():
         Box(2, ["quad"])
     with pytest.raises(ValueError, match="law must be one of"):
         assemble(strip(2), law=["bonded"])
+
+
+@pytest.mark.parametrize("cell, top", [("tri", 19), ("quad", 19), ("tet", 8), ("hex", 8),
+                                       ("prism", 8)])
+def test_the_highest_quadrature_order_solves_and_one_more_is_refused(cell, top):
+    """Up to MAX_QUADRATURE_ORDER the rules exist (a cut cell's sub-simplices too);
+    above, a ValueError at once (order 100000 used to hang, 12 on tets raised
+    scikit-fem's NotImplementedError)."""
+    from skxfem import solve
+    from skxfem.scene import MAX_QUADRATURE_ORDER
+    from skxfem.scenes import paper_plate, strip
+    s = strip(2, cell=cell) if cell in ("tri", "quad") else paper_plate(2, cell)
+    assert MAX_QUADRATURE_ORDER[s.dim] == top
+    assert np.isfinite(solve(dataclasses.replace(s, quadrature_order=top)).pressure).all()
+    for q in (top + 1, 100000, 0):
+        with pytest.raises(ValueError, match=rf"quadrature_order must be an integer from 1 "
+                                             rf"to {top} in {s.dim}D"):
+            dataclasses.replace(s, quadrature_order=q)
+
+
+def test_a_traction_given_as_an_array_is_a_traction():
+    """np.array([0, -1]) has two components like (0, -1) (it was refused as not 2 or 3)."""
+    a = SurfaceLoad("ymax", traction=np.array([0.0, -1.0]))
+    assert a == SurfaceLoad("ymax", traction=(0.0, -1.0))
+    with pytest.raises(TypeError, match="2 or 3 components"):
+        SurfaceLoad("ymax", traction=np.zeros(4))
