@@ -77,7 +77,7 @@ def test_05_check_refuses_with_the_estimate_and_the_option():
         check(s, 4 * 2**30, "--max-memory")
     message = str(e.value)
     assert "100030002 nodes" in message and "limit is 4 GB" in message
-    assert "iterative solve" in message
+    assert "either solve" in message
     assert "--max-memory" in message and isinstance(e.value, ValueError)
     small = scenes.strip(4)
     assert isinstance(check(small), Estimate)
