@@ -199,11 +199,46 @@ _MESHIO_CELLS = {"tetra": "tet", "hexahedron": "hex", "wedge": "prism",
                  "triangle": "tri", "quad": "quad"}
 
 
+def _cell_type(m: meshio.Mesh, path: Path) -> str:
+    """The meshio type of the file's top-dimensional cells, checked (see :func:`read`)."""
+    n = len(m.points)
+    for block in m.cells:
+        missing = (block.data < 0) | (block.data >= n)
+        bad = np.nonzero(missing.any(axis=1))[0]
+        if bad.size:
+            raise ValueError(
+                f"{path} has {bad.size} {block.type} cell(s) using vertices missing from "
+                f"the file (first: cell {bad[0]} uses vertex {block.data[missing][0]}); the "
+                f"file has {n} vertices, numbered 0 to {n - 1}: fix the cells' vertex indices")
+    top = max((block.dim for block in m.cells), default=0)
+    counts = {}
+    for block in m.cells:
+        if block.dim == top:
+            counts[block.type] = counts.get(block.type, 0) + len(block)
+    if len(counts) > 1:
+        raise ValueError(
+            f"{path} mixes {' and '.join(f'{c} {k}' for k, c in counts.items())} cells; "
+            f"skxfem needs one cell type per mesh: mesh it again with a single cell type")
+    kind = next(iter(counts), None)
+    if kind not in _MESHIO_CELLS:
+        raise ValueError(
+            f"{path} has no supported cells (found {sorted(m.cells_dict)}); "
+            f"skxfem reads {sorted(_MESHIO_CELLS)} (linear cells only)")
+    unused = np.setdiff1d(np.arange(n), m.cells_dict[kind])
+    if unused.size:
+        raise ValueError(f"{path}: {unused.size} vertex(es) used by no cell (first: "
+                         f"{unused[:5].tolist()}); skxfem needs every vertex in a cell: "
+                         f"remove them from the file")
+    return kind
+
+
 def read(path) -> Mesh:
     """Read a mesh file (Gmsh ``.msh``, ``.vtu``, ... via meshio) and check it.
 
-    The highest-dimensional supported cell block is used (3D cells before
-    2D ones).  For tri/quad/tet/hex the conversion is scikit-fem's
+    The cells of the file's top dimension are used; lower-dimensional blocks
+    (boundary lines, or faces of a 3D mesh) are ignored.  The top-dimensional
+    cells must be of one supported type, refer only to vertices of the file
+    and use every vertex.  For tri/quad/tet/hex the conversion is scikit-fem's
     (``skfem.io.meshio.from_meshio``, which keeps tagged boundaries and
     subdomains); scikit-fem 12 cannot import wedges, so prisms are built
     directly (their node order is the same in meshio and scikit-fem).
@@ -225,12 +260,7 @@ def read(path) -> Mesh:
         raise ValueError(f"mesh file {str(path)!r} could not be read by meshio "
                          f"({type(e).__name__}: {e}); give a mesh file meshio reads "
                          f"(e.g. a Gmsh .msh)") from e
-    found = [k for k in _MESHIO_CELLS if k in m.cells_dict]
-    if not found:
-        raise ValueError(
-            f"{path} has no supported cells (found {sorted(m.cells_dict)}); "
-            f"skxfem reads {sorted(_MESHIO_CELLS)} (linear cells only)")
-    kind = found[0]
+    kind = _cell_type(m, path)
     if kind == "wedge":
         mesh = MeshWedge1(np.ascontiguousarray(m.points.T),
                           np.ascontiguousarray(m.cells_dict["wedge"].T))

@@ -48,24 +48,32 @@ type is refused with an error naming the key.  The schema::
 ``linear`` and ``max_iter`` are options of the solve, not of the scene:
 :func:`load_options` reads them (``skxfem run``'s ``--linear`` and
 ``--max-iter`` override them).
+
+Errors name items as the file numbers them (``[[load]] #2``).  Every boundary is
+checked on reading, except the ``where`` selections on a box whose grid has more
+than :data:`BUILT_BOX` squares or cubes (not built before the size guard).
 '''
 from __future__ import annotations
 
-import tomllib
 from pathlib import Path
 
+import numpy as np
+
 from . import levelset as ls
+from . import meshes, tomlcheck
 from . import scene as sc
+from .boundary import select_facets, select_nodes
 from .linear import LINEAR
 from .material import Material
-from .meshes import read
-from .scene_parts import COMPONENTS
+from .scene_parts import COMPONENTS, FACES
 from .tomlcheck import array, choice, formula, keys, number, one_of, table, vector
 
 __all__ = ["load_scene", "load_options"]
 
-_TOP = ("name", "mesh", "levelset", "material", "displacement", "load", "interface",
-        "solver")
+#: A box grid of at most this many squares or cubes is built to check ``where`` selections.
+BUILT_BOX = 10_000
+
+_TOP = ("name", "mesh", "levelset", "material", "displacement", "load", "interface", "solver")
 
 
 def load_scene(path: str | Path) -> sc.Scene:
@@ -87,8 +95,7 @@ def load_scene(path: str | Path) -> sc.Scene:
     >>> load_scene(f).name
     'strip'
     """
-    path = Path(path)
-    data = _read(path)
+    path, data = tomlcheck.read_toml(path)
     try:
         return _scene(data, path)
     except (ValueError, TypeError) as e:
@@ -106,8 +113,8 @@ def load_options(path: str | Path) -> dict:
     >>> load_options(f)
     {'linear': 'direct'}
     """
-    path = Path(path)
-    solver = _read(path).get("solver", {})
+    path, data = tomlcheck.read_toml(path)
+    solver = data.get("solver", {})
     solver = solver if isinstance(solver, dict) else {}  # load_scene refuses the rest
     out = {k: solver[k] for k in ("linear", "max_iter") if k in solver}
     if "linear" in out and out["linear"] not in LINEAR:
@@ -119,30 +126,19 @@ def load_options(path: str | Path) -> dict:
     return out
 
 
-def _read(path: Path) -> dict:
-    with open(path, "rb") as f:
-        try:
-            return tomllib.load(f)
-        except tomllib.TOMLDecodeError as e:
-            raise ValueError(f"{path.name}: invalid TOML: {e}") from None
-
-
 def _scene(data: dict, path: Path) -> sc.Scene:
     keys(data, _TOP, "the top level")
     for key in ("mesh", "levelset"):
         if key not in data:
             raise ValueError(f"missing table [{key}]")
-    mesh, dim = _mesh(table(data["mesh"], "[mesh]", ("box", "file")), path.parent)
+    mesh, dim, checked = _mesh(table(data["mesh"], "[mesh]", ("box", "file")), path.parent)
     interface = table(data.get("interface", {}), "[interface]",
                        ("law", "space", "friction", "rho_n", "rho_t", "steps"))
     solver = table(data.get("solver", {}), "[solver]", ("quadrature_order", "linear",
                                                         "max_iter"))
-    law = choice(interface.get("law", "bonded"), sc.LAWS + sc.CONTACT_LAWS,
-                  "[interface] law")
-    contact = {k: interface[k] for k in ("friction", "rho_n", "rho_t") if k in interface}
-    for key, value in contact.items():
-        if not (isinstance(value, (int, float)) and not isinstance(value, bool)):
-            raise TypeError(f"[interface] {key} must be a number, got {value!r}")
+    law = choice(interface.get("law", "bonded"), sc.LAWS + sc.CONTACT_LAWS, "[interface] law")
+    contact = {k: number(interface[k], f"[interface] {k}")
+               for k in ("friction", "rho_n", "rho_t") if k in interface}
     if "friction" in contact and contact["friction"] < 0:
         raise ValueError(f"[interface] friction must be >= 0, got {contact['friction']!r}")
     for key in ("rho_n", "rho_t"):
@@ -165,19 +161,40 @@ def _scene(data: dict, path: Path) -> sc.Scene:
     name = data.get("name", path.stem)
     if not isinstance(name, str) or not name:
         raise TypeError(f"name must be a non-empty string, got {name!r}")
+    items = {"displacement": [], "load": []}           # (name in the file, item) pairs
+    for key, build in (("displacement", _displacement), ("load", _load)):
+        for i, t in enumerate(array(data, key)):
+            where = f"[[{key}]] #{i + 1}"
+            items[key].append((where, tomlcheck.labelled(where, build, t, dim, where)))
+    _check_boundaries(items, checked, dim)
     return sc.Scene(
         mesh=mesh,
         levelset=_levelset(data["levelset"], dim),
         material=_material(table(data.get("material", {}), "[material]",
                                   ("E", "nu", "plane"))),
-        displacements=tuple(_displacement(t, dim, f"[[displacement]] #{i + 1}")
-                            for i, t in enumerate(array(data, "displacement"))),
-        loads=tuple(_load(t, dim, f"[[load]] #{i + 1}")
-                    for i, t in enumerate(array(data, "load"))),
+        displacements=tuple(d for _, d in items["displacement"]),
+        loads=tuple(load for _, load in items["load"]),
         law=law, space=space, quadrature_order=order, name=name, **contact)
 
 
-def _mesh(t: dict, folder: Path) -> tuple[sc.Box | Path, int]:
+def _check_boundaries(items: dict, mesh, dim: int):
+    """Each boundary exists and selects nodes (facets for a load); see the module notes."""
+    if isinstance(mesh, sc.Box):
+        faces, boundaries = FACES[:2 * dim], [i.boundary for v in items.values() for _, i in v]
+        for where, item in items["displacement"] + items["load"]:
+            if isinstance(item.boundary, str) and item.boundary not in faces:
+                raise ValueError(f"{where} boundary {item.boundary!r} is not a face of the "
+                                 f"box; use one of {', '.join(faces)}, or where")
+        if all(isinstance(b, str) for b in boundaries) or np.prod(mesh.n) > BUILT_BOX:
+            return
+        mesh = meshes.box(mesh.n, mesh.cell, mesh.size)
+    for key, select in (("displacement", select_nodes), ("load", select_facets)):
+        for where, item in items[key]:
+            tomlcheck.labelled(where, select, mesh, item.boundary, where)
+
+
+def _mesh(t: dict, folder: Path) -> tuple[sc.Box | Path, int, object]:
+    """The scene's mesh, its dimension, and what to check boundaries on (Box or Mesh)."""
     if one_of(t, ("box", "file"), "[mesh]") == "box":
         box = table(t["box"], "[mesh] box", ("n", "cell", "size"))
         if "n" not in box or "cell" not in box:
@@ -188,22 +205,21 @@ def _mesh(t: dict, folder: Path) -> tuple[sc.Box | Path, int]:
         choice(cell, tuple(sc.CELLS), "[mesh] box.cell")
         if size is not None:
             size = vector(size, "[mesh] box.size", sc.CELLS[cell])
-        try:
-            return sc.Box(tuple(n) if isinstance(n, list) else n, cell, size), sc.CELLS[cell]
-        except ValueError as e:
-            raise ValueError(f"[mesh] box: {e}") from None
+        b = tomlcheck.labelled("[mesh] box", sc.Box, tuple(n) if isinstance(n, list) else n,
+                               cell, size)
+        return b, sc.CELLS[cell], b
     if not isinstance(t["file"], str):
         raise TypeError(f"[mesh] file must be a path string, got {t['file']!r}")
     path = (folder / t["file"]).resolve()
     if not path.is_file():
         raise ValueError(f"[mesh] file {t['file']!r} not found (looked for {path})")
     try:
-        mesh = read(path)
+        mesh = meshes.read(path)
     except SystemExit:  # meshio calls sys.exit(1) on a file it cannot read
         raise ValueError(f"[mesh] file {t['file']!r} cannot be read by meshio") from None
     except Exception as e:  # any other reader error is a bad scene file too
         raise ValueError(f"[mesh] file {t['file']!r}: {e}") from None
-    return path, mesh.dim()
+    return path, mesh.dim(), mesh
 
 
 def _levelset(t: dict, dim: int) -> ls.LevelSet:
@@ -225,13 +241,12 @@ def _levelset(t: dict, dim: int) -> ls.LevelSet:
         if a not in spec:
             raise ValueError(f"{key} needs {a}")
     if kind == "plane":
-        return ls.plane(vector(spec["point"], f"{key}.point", dim),
-                        vector(spec["normal"], f"{key}.normal", dim))
-    try:
-        return getattr(ls, kind)(vector(spec["center"], f"{key}.center", dim),
-                                 number(spec["radius"], f"{key}.radius"))
-    except ValueError as e:
-        raise ValueError(f"{key}: {e}") from None
+        args = (vector(spec["point"], f"{key}.point", dim),
+                vector(spec["normal"], f"{key}.normal", dim))
+    else:
+        args = (vector(spec["center"], f"{key}.center", dim),
+                number(spec["radius"], f"{key}.radius"))
+    return tomlcheck.labelled(key, getattr(ls, kind), *args)
 
 
 def _material(t: dict) -> Material:

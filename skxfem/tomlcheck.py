@@ -1,16 +1,72 @@
-"""Checked reading of TOML values: every key known, every value of the right type.
+"""Checked reading of TOML files and values: every key known, every value of the right type.
 
 The small checks that :mod:`skxfem.scenefile` builds a scene from.  Each
-raises a ValueError or TypeError naming the key and what it should be.
+raises a ValueError or TypeError naming the key (or the file) and what it
+should be.
 
 >>> number(2, "E"), one_of({"box": {}}, ("box", "file"), "[mesh]")
 (2.0, 'box')
 """
 from __future__ import annotations
 
+import math
+import os
+import tomllib
+from pathlib import Path
+
 from .expr import Expression
 
-__all__ = ["table", "array", "keys", "one_of", "choice", "number", "vector", "formula"]
+__all__ = ["read_toml", "MissingFileError", "FolderError", "labelled", "table", "array",
+           "keys", "one_of", "choice", "number", "vector", "formula"]
+
+
+class MissingFileError(FileNotFoundError, ValueError):
+    """No file at the path: a ValueError, and the FileNotFoundError it used to be."""
+
+
+class FolderError(IsADirectoryError, ValueError):
+    """A folder at the path: a ValueError, and the IsADirectoryError it used to be."""
+
+
+def read_toml(path) -> tuple[Path, dict]:
+    """``path`` as a Path, and the table of the TOML file there.
+
+    Raises a ValueError starting with the file name if the file is missing
+    (:class:`MissingFileError`), a folder (:class:`FolderError`), unreadable,
+    not UTF-8 or not TOML.
+    """
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"path must be the path of a .toml file (a str or pathlib.Path), "
+                        f"got {type(path).__name__} {path!r:.60}")
+    path = Path(path)
+    name = f"{path.name or path}: the scene file {str(path)!r}"
+    if not path.exists():
+        raise MissingFileError(f"{name} does not exist; check the path")
+    if path.is_dir():
+        raise FolderError(f"{name} is a folder; give the path of a .toml file")
+    try:
+        text = path.read_bytes().decode("utf-8")
+    except OSError as e:
+        raise ValueError(f"{name} cannot be read ({e.strerror or e}); check that it "
+                         f"is a readable file") from None
+    except UnicodeDecodeError as e:
+        raise ValueError(f"{name} is not UTF-8 text (byte {e.object[e.start]:#04x} at "
+                         f"offset {e.start}); save it as UTF-8") from None
+    try:
+        return path, tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise ValueError(f"{path.name}: invalid TOML: {e}") from None
+
+
+def labelled(where: str, build, *args):
+    """``build(*args)``; its ValueError or TypeError gets ``where`` in front (unless it
+    already starts with it), so that it names the key as the file does."""
+    try:
+        return build(*args)
+    except (ValueError, TypeError) as e:
+        if str(e).startswith(where):
+            raise
+        raise (ValueError if isinstance(e, ValueError) else TypeError)(f"{where}: {e}") from None
 
 
 def table(t, where: str, allowed: tuple) -> dict:
@@ -51,6 +107,8 @@ def choice(v, allowed: tuple, key: str) -> str:
 def number(v, key: str) -> float:
     if type(v) not in (int, float):
         raise TypeError(f"{key} must be a number, got {v!r}")
+    if not math.isfinite(v):
+        raise ValueError(f"{key} must be a finite number, got {v!r}")
     return float(v)
 
 

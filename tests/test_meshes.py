@@ -183,3 +183,53 @@ def test_read_names_a_missing_or_unreadable_file(tmp_path):
     garbled.write_text("this is not a mesh\n")
     with pytest.raises(ValueError, match="could not be read by meshio"):
         read(garbled)
+
+
+# a 3 x 2 grid of 12 vertices: 5 quads and 2 triangles, as in a tester's file
+GRID = np.array([[0, 0], [1, 0], [2, 0], [0, 1], [1, 1], [2, 1], [0, 2], [1, 2], [2, 2],
+                 [3, 0], [3, 1], [3, 2]], dtype=float)
+QUADS = np.array([[0, 1, 4, 3], [1, 2, 5, 4], [3, 4, 7, 6], [4, 5, 8, 7], [2, 9, 10, 5]])
+TRIANGLES = np.array([[5, 10, 11], [5, 11, 8]])
+
+
+def write_mesh(tmp_path, name, points, cells):
+    path = tmp_path / name
+    meshio.write(path, meshio.Mesh(np.c_[points, np.zeros(len(points))], cells))
+    return path
+
+
+def test_read_refuses_mixed_cell_types(tmp_path):
+    path = write_mesh(tmp_path, "mixed.vtu", GRID, [("quad", QUADS), ("triangle", TRIANGLES)])
+    with pytest.raises(ValueError) as info:
+        read(path)
+    message = str(info.value)
+    for words in ("mixed.vtu", "5 quad", "2 triangle", "one cell type per mesh"):
+        assert words in message, message
+
+
+def test_read_ignores_lower_dimensional_blocks(tmp_path):
+    mesh = box(1, "tet")
+    faces = mesh.facets[:, mesh.boundary_facets()].T
+    path = tmp_path / "tets.vtu"
+    meshio.write(path, meshio.Mesh(mesh.p.T, [("tetra", mesh.t.T), ("triangle", faces)]))
+    assert read(path).nelements == mesh.nelements
+
+
+def test_read_refuses_unused_vertices(tmp_path):
+    points = np.vstack([GRID[:11], [[5.0, 5.0]]])   # the quads use 0..10: 11 is in no cell
+    path = write_mesh(tmp_path, "unused.vtu", points, [("quad", QUADS)])
+    with pytest.raises(ValueError, match=r"unused.vtu: 1 vertex\(es\) used by no cell "
+                                         r"\(first: \[11\]\).*remove them"):
+        read(path)
+
+
+def test_read_refuses_cells_past_the_last_vertex(tmp_path):
+    quads = QUADS.copy()
+    quads[1, 2] = 999
+    path = write_mesh(tmp_path, "broken.vtu", GRID, [("quad", quads)])
+    with pytest.raises(ValueError) as info:
+        read(path)
+    message = str(info.value)
+    assert "out of bounds" not in message, message
+    for words in ("broken.vtu", "1 quad cell(s)", "cell 1 uses vertex 999", "12 vertices"):
+        assert words in message, message

@@ -156,6 +156,20 @@ BAD = [
     ("name = 3" + MINIMAL, TypeError, ["name must be a non-empty string"]),
     ("interface = 3" + MINIMAL, TypeError, ["[interface] must be a table"]),
     ("[mesh\nbox = 1", ValueError, ["invalid TOML"]),
+    (MINIMAL.replace('expr = "y - 0.5"', 'plane = {point = [0, 0.5], normal = [0, 0]}'),
+     ValueError, ["[levelset] plane", "normal must be non-zero"]),
+    (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nx = nan", ValueError,
+     ["[[displacement]] #1 x", "finite"]),
+    (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nkind = 'clamped'\n"
+               "[[displacement]]\nwhere = 'x > 5'\nx = 0", ValueError,
+     ["[[displacement]] #2", "selects no node"]),
+    (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nkind = 'clamped'\n"
+               "[[displacement]]\nboundary = 'zmin'\nx = 0", ValueError,
+     ["[[displacement]] #2 boundary 'zmin'", "xmin, xmax, ymin, ymax"]),
+    (MINIMAL + "[[displacement]]\nboundary = 'left'\nkind = 'rollers'", ValueError,
+     ["[[displacement]] #1", "rollers needs an axis-aligned face"]),
+    (MINIMAL + "[[load]]\nwhere = 'y < -1'\npressure = 1", ValueError,
+     ["[[load]] #1", "selects no facet"]),
 ]
 
 
@@ -165,6 +179,7 @@ def test_05_bad_files_are_refused_naming_the_key(tmp_path, text, error, words):
         load_scene(write(tmp_path, text, "bad.toml"))
     message = str(info.value)
     assert message.startswith("bad.toml: "), message
+    assert "displacements[" not in message and "loads[" not in message, message
     for w in words:
         assert w in message, f"{w!r} not in {message!r}"
 
@@ -217,3 +232,44 @@ def test_10_solve_options_are_read_and_checked(tmp_path):
                      ("max_iter = 2.5", "max_iter")):
         with pytest.raises(ValueError, match=rf"^bad.toml: \[solver\] {key} must be"):
             load_options(write(tmp_path, MINIMAL + f"[solver]\n{bad}\n", "bad.toml"))
+
+
+def test_11_a_missing_folder_or_binary_scene_file_is_named(tmp_path):
+    """load_scene and load_options refuse alike, naming the file and the fix."""
+    (tmp_path / "folder.toml").mkdir()
+    (tmp_path / "latin1.toml").write_bytes('name = "f\xfchrung"\n'.encode("latin-1"))
+    cases = [("missing.toml", ["does not exist", "check the path"]),
+             ("folder.toml", ["is a folder", ".toml file"]),
+             ("latin1.toml", ["not UTF-8", "0xfc", "save it as UTF-8"])]
+    for read in (load_scene, load_options):
+        for name, words in cases:
+            with pytest.raises(ValueError) as info:
+                read(tmp_path / name)
+            message = str(info.value)
+            assert message.startswith(f"{name}: ") and "\n" not in message, message
+            for w in words:
+                assert w in message, f"{w!r} not in {message!r}"
+    with pytest.raises(FileNotFoundError):      # also what it was before: callers catch it
+        load_scene(tmp_path / "missing.toml")
+    with pytest.raises(TypeError, match="path must be the path of a .toml file"):
+        load_scene(None)
+
+
+def test_12_boundaries_of_a_mesh_file_are_checked_with_the_file_numbering(tmp_path):
+    box((2, 2), "tri").save(tmp_path / "tri.vtu")
+    text = MINIMAL.replace('box = {n = 3, cell = "quad"}', 'file = "tri.vtu"')
+    clamp = "[[displacement]]\nboundary = 'ymin'\nkind = 'clamped'\n"
+    for extra, words in (
+            (clamp + "[[displacement]]\nboundary = 'left'\nx = 0",
+             ["[[displacement]] #2", "unknown boundary 'left'", "xmin"]),
+            (clamp + "[[displacement]]\nwhere = 'x > 5'\nx = 0",
+             ["[[displacement]] #2", "selects no node"]),
+            ("[[load]]\nboundary = 'ymax'\npressure = 1\n[[load]]\nwhere = 'x > 5'\n"
+             "pressure = 1", ["[[load]] #2", "selects no facet"])):
+        with pytest.raises(ValueError) as info:
+            load_scene(write(tmp_path, text + extra))
+        message = str(info.value)
+        assert "displacements[" not in message and "loads[" not in message, message
+        for w in words:
+            assert w in message, f"{w!r} not in {message!r}"
+    assert len(load_scene(write(tmp_path, text + clamp)).displacements) == 1
