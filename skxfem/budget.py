@@ -83,6 +83,9 @@ ITERATIVE_BYTES = {2: 2200, 3: 8200}
 """Peak bytes per unknown (N + m) of an iterative tie, assembly included, the largest
 measured on 25 November 2026: strip (tri n = 128-512, quad 256) 1881-2160, paper
 plate (hex, prism, n = 12-32) 6871-8161; at the minimal exact quadrature."""
+FGMRES_BYTES = 2 * 51 * 8
+"""Coulomb's iterative step adds the FGMRES basis (:mod:`skxfem.contact_linear`:
+51 + 50 vectors of the unknowns' length, by the algorithm, not measured)."""
 CONTACT_ITERATIVE_BYTES = {2: 3100, 3: 10900}
 """The same for frictionless contact (its Newton matrix besides): ``press`` in
 ``scripts/calibrate_budget.py``, tri 128, quad 256: 2915-3054; hex 12, 24: 9552-10841."""
@@ -194,6 +197,7 @@ def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell) -> Es
     chosen = choose_linear(linear, dim, n_dofs, law)
     if chosen == "iterative":
         per = (CONTACT_ITERATIVE_BYTES if law in CONTACT_LAWS else ITERATIVE_BYTES)[dim]
+        per += FGMRES_BYTES if law == "coulomb" else 0
         bytes_ = SAFETY * per * (n_dofs + m)
     else:
         bytes_ = SAFETY * _memory(dim, cell, scene.quadrature_order, n_nodes, n_cells,

@@ -107,7 +107,7 @@ def parser() -> argparse.ArgumentParser:
     run.add_argument("--linear", choices=LINEAR, default=None,
                      help="the linear solve of a tie or of each contact Newton step: direct "
                           "(SuperLU), iterative (AMG-preconditioned projected CG, needs "
-                          "pyamg; not for coulomb) or auto (iterative from "
+                          "pyamg; coulomb only when asked) or auto (iterative from "
                           "skxfem.linear.AUTO_ITERATIVE unknowns); default: the scene "
                           "file's [solver] linear, else auto")
     run.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,

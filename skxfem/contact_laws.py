@@ -36,7 +36,8 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["CONTACT_LAWS", "OPEN", "STICK", "SLIP", "STATUS_NAMES", "indicator",
-           "normal_update", "ball_projection", "status"]
+           "normal_update", "ball_projection", "status", "friction_coefficient", "held",
+           "just_closed"]
 
 CONTACT_LAWS = ("frictionless", "coulomb", "adhesive")
 """Unilateral laws: no friction, Coulomb friction (μ), no slip in contact."""
@@ -115,3 +116,25 @@ def status(g_n: np.ndarray, g_t: np.ndarray | None, law: str) -> np.ndarray:
     else:
         raise ValueError(f"law must be one of {CONTACT_LAWS}, got {law!r}")
     return np.where(closed, np.where(slip, SLIP, STICK), OPEN)
+
+
+# The friction law's linearisation; ``law`` is a skxfem.contact_newton.Law.
+
+def friction_coefficient(law, lam: np.ndarray) -> np.ndarray:
+    """The factor of Λ in r_τ: μλ, or the frozen threshold (the paper's fixed point)."""
+    return law.mu * lam if law.threshold is None else law.threshold
+
+
+def held(law, g_n: np.ndarray) -> np.ndarray:
+    """Closed points whose frozen threshold is 0: r_τ = 0 whatever Λ, which is held."""
+    if law.threshold is None:
+        return np.zeros(g_n.size, bool)
+    return (normal_update(g_n)[1] > 0) & (law.threshold == 0)
+
+
+def just_closed(law, lam: np.ndarray, g_n: np.ndarray) -> np.ndarray:
+    """Closed points where λ = 0 (to 1e-12 of the largest |λ|): Λ has no coefficient."""
+    closed = normal_update(g_n)[1] > 0
+    if law.name != "coulomb" or law.threshold is not None:
+        return np.zeros(lam.size, bool)
+    return closed & (np.abs(lam) <= 1e-12 * (np.abs(lam).max() if lam.size else 0.0))

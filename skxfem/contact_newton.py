@@ -19,15 +19,16 @@ paper's third equation.
 Newton matrix: the exact generalised Jacobian (:mod:`skxfem.contact_laws`;
 χ is taken as 1 at g_n = 0 in every block, so the first iteration from an
 untouched interface is the bilateral, or bonded, solve), with one
-exception: at a point just closed with λ = 0 (:func:`just_closed`) Λ has
+exception: at a point just closed with λ = 0
+(:func:`skxfem.contact_laws.just_closed`) Λ has
 no coefficient (r_τ = μλΛ = 0 for every Λ); that iteration takes the
 traction r_τ as the unknown there with the stick row ρ_τ s = 0, and sets
 Λ = P_B(r_τ/(μλ)) after the step (the first iteration of a first load step
 is thus the bonded solve).
 Rows and columns are scaled (Jacobi on U, unit max on the others) before
-SuperLU, or a frictionless or adhesive step is solved as a tie by AMG +
-projected CG (:mod:`skxfem.contact_linear`); a matrix unchanged since the
-last iteration is not factorised (or set up) again. Step control: backtracking on
+SuperLU, or solved as ties by AMG + projected CG (:mod:`skxfem.contact_linear`);
+a matrix unchanged since the last iteration is not factorised (or set up)
+again. Step control: backtracking on
 the scaled residual norm (halving up to 5 times; if no step decreases it the
 full step is taken, as the active set has to change). Convergence: the
 status of every point (open, stick, slip) unchanged by the last step and
@@ -47,7 +48,14 @@ import numpy as np
 import scipy.sparse as sp
 
 from . import contact_linear
-from .contact_laws import ball_projection, normal_update, status
+from .contact_laws import (
+    ball_projection,
+    friction_coefficient,
+    held,
+    just_closed,
+    normal_update,
+    status,
+)
 
 __all__ = ["Law", "NewtonInfo", "ContactConvergenceError", "residual", "newton"]
 
@@ -95,22 +103,10 @@ def _jumps(ops, U, U_prev):
     return d, s
 
 
-def _coefficient(law, lam):
-    """The factor of Λ in r_τ: μλ, or the frozen threshold."""
-    return law.mu * lam if law.threshold is None else law.threshold
-
-
-def _held(law, g_n):
-    """Closed points whose frozen threshold is 0: r_τ = 0 whatever Λ, which is held."""
-    if law.threshold is None:
-        return np.zeros(g_n.size, bool)
-    return (normal_update(g_n)[1] > 0) & (law.threshold == 0)
-
-
 def _tangential(law, lam, T):
     """The tangential traction r_τ (m, k)."""
     if law.name == "coulomb":
-        return _coefficient(law, lam)[:, None] * T
+        return friction_coefficient(law, lam)[:, None] * T
     return T if law.name == "adhesive" else np.zeros_like(T)
 
 
@@ -123,7 +119,7 @@ def residual(ops, law, K, F, free, U, lam, T, U_prev):
     g_t = T + law.rho_t * s[:, :T.shape[1]]
     chi = (g_n < 0)[:, None]
     if law.name == "coulomb":
-        R_t = np.where(_held(law, g_n)[:, None], 0.0, T - chi * ball_projection(g_t)[0])
+        R_t = np.where(held(law, g_n)[:, None], 0.0, T - chi * ball_projection(g_t)[0])
     elif law.name == "adhesive":
         R_t = T - chi * g_t
     else:
@@ -142,14 +138,6 @@ def residual(ops, law, K, F, free, U, lam, T, U_prev):
 
 def _max(a):
     return float(np.abs(a).max()) if np.size(a) else 0.0
-
-
-def just_closed(law, lam, g_n) -> np.ndarray:
-    """Closed points where λ = 0 (to 1e-12 of the largest |λ|): Λ has no coefficient."""
-    closed = normal_update(g_n)[1] > 0
-    if law.name != "coulomb" or law.threshold is not None:
-        return np.zeros(lam.size, bool)
-    return closed & (np.abs(lam) <= 1e-12 * _max(lam))
 
 
 def jacobian(ops, law, K, free, lam, T, g_n, g_t) -> sp.csr_matrix:
@@ -173,11 +161,11 @@ def jacobian(ops, law, K, free, lam, T, g_n, g_t) -> sp.csr_matrix:
         mu = law.mu if law.threshold is None else 0.0  # a frozen threshold: no dλ
         rows_u[1] = A_ul - sum(mu * Bt[a].T @ sp.diags(np.where(new, 0.0, T[:, a]))
                                for a in range(k))
-        coef = np.where(new, 1.0, _coefficient(law, lam))
+        coef = np.where(new, 1.0, friction_coefficient(law, lam))
         rows_u.append(sp.hstack([-Bt[a].T @ sp.diags(coef) for a in range(k)]))
         DP = ball_projection(g_t)[1]
         DP[new] = np.eye(k)  # the stick row
-        chi = np.where(_held(law, g_n), 0.0, chi)  # held: the row ΔΛ = 0
+        chi = np.where(held(law, g_n), 0.0, chi)  # held: the row ΔΛ = 0
         t_u = [-sum(sp.diags(chi * law.rho_t * iw * DP[:, a, b]) @ Bt[b] for b in range(k))
                for a in range(k)]
         t_t = [[sp.diags(np.where(new, 0.0, (a == b) - chi * DP[:, a, b])) for b in range(k)]
@@ -196,9 +184,8 @@ def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30,
     """Solve one load step from the start (U, λ, T); U must hold the imposed values.
 
     ``linear``: each Newton step solved by ``"direct"`` SuperLU or
-    ``"iterative"`` AMG + projected CG (frictionless and adhesive laws;
-    ``modes``, ``blocksize`` as :func:`skxfem.iterative.solve`), see
-    :mod:`skxfem.contact_linear`.
+    ``"iterative"`` ties, AMG + projected CG (``modes``, ``blocksize`` as
+    :func:`skxfem.iterative.solve`), see :mod:`skxfem.contact_linear`.
 
     Returns
     -------
@@ -229,8 +216,8 @@ def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30,
             R = (R[0], R[1], np.where(np.tile(new, k), -law.rho_t * s.T.ravel(), R[2]))
         Rv = np.concatenate(R)
         if linear == "iterative":  # rs: the direct path's row scales, for the line search
-            dx, factor = contact_linear.iterative(ops, law, K, free, g_n, R, modes,
-                                                  blocksize, reuse=factor)
+            dx, factor = contact_linear.iterative(ops, law, K, free, R, lam, T, g_n, g_t, A,
+                                                  modes, blocksize, reuse=factor)
             rs = contact_linear.scales(A, nu)[0]
         else:
             dx, rs, factor = contact_linear.direct(A, Rv, nu, reuse=factor)

@@ -3,10 +3,12 @@
 The direct solve factorises the whole saddle matrix: simple, exact, and the
 faster one on small systems, but its fill grows like dofs² in 3D.  The
 iterative one (:mod:`skxfem.iterative`) grows like a plain elasticity solve;
-it needs pyamg.  It solves the ties and the contact steps that are ties:
-a frictionless or adhesive Newton step (:mod:`skxfem.contact_linear`).  A
-Coulomb step couples the pressure to the tangential force (slip) and is
-solved directly.
+it needs pyamg.  It solves the ties and each contact Newton step as ties
+(:mod:`skxfem.contact_linear`): a frictionless or adhesive step is one tie,
+a Coulomb step a few (FGMRES, the tie as preconditioner).  ``auto`` leaves
+Coulomb direct: its iterative step was measured slower than SuperLU at the
+sizes that fit a direct solve (``book/contact.md``), and is for those that do
+not.
 
 >>> choose_linear("auto", 2, 1000), choose_linear("direct", 3, 10**6)
 ('direct', 'direct')
@@ -17,7 +19,7 @@ from __future__ import annotations
 
 import importlib.util
 
-__all__ = ["LINEAR", "AUTO_ITERATIVE", "ITERATIVE_LAWS", "choose_linear"]
+__all__ = ["LINEAR", "AUTO_ITERATIVE", "ITERATIVE_LAWS", "AUTO_LAWS", "choose_linear"]
 
 LINEAR = ("auto", "direct", "iterative")
 """The linear solves: SuperLU on the saddle system (:func:`skxfem.saddle.solve`),
@@ -30,19 +32,23 @@ when pyamg is installed: measured break-even on 2 cores, 3D near 3k unknowns
 (5.5x faster at 17k), 2D near 100k (1.6x faster at 529k),
 ``benchmarks/tie_solve.py``."""
 
-ITERATIVE_LAWS = ("bonded", "bilateral", "frictionless", "adhesive")
-"""The laws whose linear systems the iterative path solves (not ``coulomb``)."""
+ITERATIVE_LAWS = ("bonded", "bilateral", "frictionless", "adhesive", "coulomb")
+"""The laws whose linear systems the iterative path solves (all of them)."""
+
+AUTO_LAWS = ("bonded", "bilateral", "frictionless", "adhesive")
+"""The laws ``auto`` may solve iteratively (Coulomb: only when asked)."""
 
 
 def choose_linear(method: str, dim: int, n_unknowns: int, law: str = "bonded") -> str:
     """The linear solve ``method`` resolves to for ``n_unknowns`` in ``dim`` D
     under ``law``: ``auto`` is ``iterative`` from :data:`AUTO_ITERATIVE`
-    unknowns if pyamg is there and the law is one of :data:`ITERATIVE_LAWS`.
+    unknowns if pyamg is there and the law is one of :data:`AUTO_LAWS`.
 
     Raises
     ------
     ValueError
-        An unknown ``method``, or ``"iterative"`` for a Coulomb law.
+        An unknown ``method``, or ``"iterative"`` for a law not in
+        :data:`ITERATIVE_LAWS`.
     """
     if method not in LINEAR:
         raise ValueError(f"linear must be one of {LINEAR}, got {method!r}")
@@ -52,5 +58,5 @@ def choose_linear(method: str, dim: int, n_unknowns: int, law: str = "bonded") -
                          f"linear='direct' or 'auto'")
     if method != "auto":
         return method
-    big = n_unknowns >= AUTO_ITERATIVE[dim] and law in ITERATIVE_LAWS
+    big = n_unknowns >= AUTO_ITERATIVE[dim] and law in AUTO_LAWS
     return "iterative" if big and importlib.util.find_spec("pyamg") else "direct"

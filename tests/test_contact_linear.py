@@ -1,14 +1,15 @@
 """Tests for skxfem/contact_linear.py: the Newton step of a frictionless or adhesive
-law solved as a tie by AMG + projected CG gives the direct step's answer.
+law solved as a tie by AMG + projected CG, and a Coulomb step by FGMRES on ties,
+give the direct step's answer.
 
 1. Partly open (frictionless), pressed (adhesive) and pulled apart (both): the
    iterative path gives the direct path's statuses, Newton iterations,
    displacement and tractions, in 2D and 3D.
 2. ``linear`` through the public calls: ``skxfem.solve`` and ``contact.solve``
    record the solve taken; ``auto`` takes the iterative path on a large
-   frictionless scene and the direct one for Coulomb.
-3. Refusals: Coulomb with ``linear="iterative"``, dependent multipliers and a
-   floating side, each with the message of the direct path's cause.
+   frictionless scene and the direct one for Coulomb (iterative when asked).
+3. Refusals: dependent multipliers and a floating side, each with the message
+   of the direct path's cause.
 """
 from dataclasses import replace
 
@@ -70,6 +71,47 @@ def test_the_iterative_step_gives_the_direct_answer(case, law, dim):
         assert np.abs(b.traction).max() <= 1e-12 * np.abs(b.U).max()
 
 
+COULOMB = [("partial", 2), ("partial", 3), ("compressed", 2), ("compressed", 3),
+           ("pulled", 2), ("pulled", 3)]
+
+
+@pytest.mark.parametrize("method", ["newton", "fixed_point"])
+@pytest.mark.parametrize("case, dim", COULOMB)
+def test_a_coulomb_step_by_fgmres_on_ties_gives_the_direct_answer(case, dim, method):
+    """Coulomb (μ = 0.3): FGMRES preconditioned by the tie step, Newton or the paper's
+    fixed point: the direct path's statuses, iterations and answer."""
+    s = replace(scene(case, dim, "coulomb"), friction=0.3)
+    direct, it = (contact.solve(s, linear=lin, method=method) for lin in ("direct", "iterative"))
+    a, b = direct.steps[-1], it.steps[-1]
+    expected = {"partial": {0, 2}, "compressed": {1}, "pulled": {0}}[case]
+    assert set(a.status) == expected, "open, stick and slip points all occur"
+    assert np.array_equal(a.status, b.status)
+    assert a.newton.iterations == b.newton.iterations
+    assert rel(b.U, a.U) < 1e-8
+    for key in ("pressure", "traction"):
+        x, y = getattr(a, key), getattr(b, key)
+        assert np.abs(x - y).max() <= 1e-8 * max(np.abs(x).max(), np.abs(a.U).max())
+
+
+def test_a_block_sliding_in_3d_under_friction_by_ties():
+    """The 3D block of test_contact, slipping along a slanted direction (slip points with
+    a 2 x 2 DP): iterative = direct."""
+    mu, p, delta, phi = 0.5, 1.0, 2.0, 0.6
+    d = np.array([np.cos(phi), np.sin(phi)])
+    loads = [SurfaceLoad("zmax", pressure=p)]
+    for face, k in (("xmax", 0), ("ymax", 1)):
+        t = [0.0, 0.0, mu * p * d[k]]
+        loads += [SurfaceLoad(face, traction=tuple(t)),
+                  SurfaceLoad(face.replace("max", "min"), traction=(0.0, 0.0, -t[2]))]
+    s = Scene(Box((1, 2, 3), "hex"), plane((0, 0, 0.5), (0, 0, 1)), Material(E=1.0, nu=0.0),
+              displacements=(clamped("zmin"),
+                             Displacement("zmax", {"x": delta * d[0], "y": delta * d[1]})),
+              loads=tuple(loads), law="coulomb", friction=mu)
+    a, b = (contact.solve(s, linear=lin).steps[-1] for lin in ("direct", "iterative"))
+    assert np.all(a.status == 2) and np.array_equal(a.status, b.status)
+    assert rel(b.U, a.U) < 1e-8 and rel(b.traction, a.traction) < 1e-8
+
+
 # 2. the public calls ------------------------------------------------------------------
 
 def test_linear_reaches_the_contact_solve_and_auto_follows_the_law(monkeypatch):
@@ -80,15 +122,10 @@ def test_linear_reaches_the_contact_solve_and_auto_follows_the_law(monkeypatch):
     assert skxfem.solve(s).linear == "iterative", "auto: large frictionless scenes"
     coulomb = replace(s, law="coulomb", friction=0.3)
     assert skxfem.solve(coulomb).linear == "direct", "auto: Coulomb is solved directly"
+    assert skxfem.solve(coulomb, linear="iterative").linear == "iterative", "when asked"
 
 
 # 3. refusals --------------------------------------------------------------------------
-
-def test_coulomb_refuses_the_iterative_path_by_name():
-    s = replace(scene("partial", 2, "coulomb"), friction=0.3)
-    with pytest.raises(ValueError, match="not 'coulomb'.*linear='direct'"):
-        contact.solve(s, linear="iterative")
-
 
 def test_dependent_multipliers_are_refused_as_by_the_direct_path():
     base = replace(scene("compressed", 3, "adhesive"), mesh=Box((1, 2, 3), "tet"),
