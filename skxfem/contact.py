@@ -57,9 +57,13 @@ from .saddle import SingularSystemError
 from .scene import Scene, check_scene
 
 __all__ = ["Step", "ContactResult", "parameters", "solve", "ContactConvergenceError",
-           "METHODS"]
+           "METHODS", "RHO_RANGE"]
 
 METHODS = ("newton", "fixed_point")
+
+RHO_RANGE = (1e-9, 1e12)
+"""The ρ_n, ρ_τ accepted, relative to their defaults (the table of extremes: 1e-6 to
+1e9 solved, but ρ_τ = 1e9/h, whose Newton stalls at 5e-9)."""
 
 
 @dataclass(frozen=True)
@@ -111,10 +115,19 @@ def parameters(scene: Scene, h: float) -> Law:
         raise ValueError(f"scene law must be one of {CONTACT_LAWS} for a contact solve, "
                          f"got {scene.law!r} (ties are solved by skxfem.solver.solve)")
     E = scene.material.E
-    rho_n = E / h if scene.rho_n is None else scene.rho_n
-    rho_t = scene.rho_t
-    if rho_t is None:
-        rho_t = 1.0 / h if scene.law == "coulomb" else E / h
+    defaults = {"rho_n": (E / h, "E/h"), "rho_t": (1.0 / h, "1/h") if scene.law == "coulomb"
+                else (E / h, "E/h")}
+    rho = {}
+    for key, (default, unit) in defaults.items():
+        given = getattr(scene, key)
+        rho[key] = default if given is None else given
+        if not RHO_RANGE[0] <= rho[key] / default <= RHO_RANGE[1]:
+            raise ValueError(
+                f"scene {key} = {rho[key]:g} is {rho[key] / default:.1e} x its default "
+                f"{unit} = {default:g}; it is an augmentation (the solution does not depend "
+                f"on it) and outside {RHO_RANGE[0]:g}..{RHO_RANGE[1]:g} x the default the "
+                f"Newton iteration loses its digits: leave it None or choose it near {unit}")
+    rho_n, rho_t = rho["rho_n"], rho["rho_t"]
     name = "frictionless" if scene.law == "coulomb" and scene.friction == 0 else scene.law
     return Law(name, float(scene.friction), float(rho_n), float(rho_t))
 

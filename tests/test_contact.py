@@ -220,6 +220,9 @@ def test_bad_input_is_refused():
         contact.solve(replace(base, law="frictionless"), history=(1.0, "x"))
     with pytest.raises(ValueError, match="method"):
         contact.solve(replace(base, law="frictionless"), method="penalty")
+    for key, value in (("rho_n", 1e300), ("rho_t", 1e-300)):  # was "matrix singular"
+        with pytest.raises(ValueError, match=rf"scene {key} = .* x its default .*augmentation"):
+            contact.solve(replace(base, law="coulomb", friction=0.3, **{key: value}))
     for bad in (True, 0, 2.0):  # True was taken for 1 iteration
         with pytest.raises(ValueError, match="max_iter must be a positive integer"):
             contact.solve(replace(base, law="frictionless"), max_iter=bad)
