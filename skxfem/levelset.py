@@ -275,8 +275,7 @@ def point_normals(cut, psi=None) -> np.ndarray:
     ``cut`` is a :class:`skxfem.cut.Cut`, ``psi`` the level set callable the mesh
     was cut by (see :func:`gradient`): exact for planes, circles, spheres.  With
     ``None`` or nodal values ψ is known only at the nodes, and each point gets the
-    area-weighted mean normal of its facets.  A ValueError if ∇ψ vanishes at a
-    point: Γ has no normal there.
+    area-weighted mean normal of its facets.  A ValueError if ∇ψ vanishes (or is not finite).
 
     >>> from skfem import MeshTri1
     >>> from skxfem.cut import cut
@@ -294,6 +293,7 @@ def point_normals(cut, psi=None) -> np.ndarray:
         n = gradient(psi, cut.points)
     size = np.linalg.norm(n, axis=0)
     if not np.all(ok := np.isfinite(size) & (size > 0)):
-        raise ValueError(f"∇ψ vanishes at interface points {cut.points[:, ~ok].T[:3].tolist()}"
-                         f": Γ has no normal there; use a level set with ∇ψ ≠ 0 on Γ")
+        what = "is NaN or inf" if not np.isfinite(size[~ok]).all() else "vanishes"
+        raise ValueError(f"∇ψ {what} at interface points {cut.points[:, ~ok].T[:3].tolist()}"
+                         f": Γ has no normal there; use a level set finite, with ∇ψ ≠ 0, on Γ")
     return n / size

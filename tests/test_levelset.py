@@ -441,3 +441,16 @@ def test_a_vanishing_gradient_on_gamma_is_refused():
         point_normals(cut(box(2, "quad"), flat), flat)
     with pytest.raises(ValueError, match="2D but got points with 3"):
         circle((0, 0), 1.0).gradient(np.zeros((3, 2)))
+
+
+def test_a_gradient_that_is_not_finite_on_gamma_is_named_so():
+    """NaN in ∇ψ at interface points is said to be NaN, not that ∇ψ vanishes."""
+    from skfem import MeshTri1
+
+    from skxfem.cut import cut
+    from skxfem.levelset import point_normals
+    c = cut(MeshTri1().refined(2), plane((0.0, 0.45), (0.0, 1.0)))
+    with pytest.raises(ValueError, match="∇ψ is NaN or inf at interface points"):
+        point_normals(c, lambda x: np.where(x[0] > 0.6, np.nan, x[1] - 0.45))
+    with pytest.raises(ValueError, match="∇ψ vanishes at interface points"):
+        point_normals(c, lambda x: 0.0 * x[0])
