@@ -19,7 +19,7 @@ known; moved to the right-hand side of equilibrium they leave
 with B the closed rows of B_n (and of the B_τa), f = -R_u + the open rows'
 forces: the tie of :func:`skxfem.iterative.solve` with a right-hand side c.
 A Coulomb step is not a tie: at a closed dof Δλ also moves the friction
-force μλΛ, a coupling no tie has.  :func:`tie_step` solves the step without
+force μλΛ, a coupling no tie has.  :class:`TieStep` solves the step without
 it (J₀); at a slipping dof it eliminates ΔΛ = (I - DP)⁻¹(-R_τ + ρ_τ/w DP B_τ
 ΔU), a symmetric interface stiffness.  FGMRES on the whole step, J₀⁻¹ as its
 preconditioner, adds the coupling back (one AMG set-up per step, shared by
@@ -42,7 +42,7 @@ from .contact_laws import ball_projection, friction_coefficient, held, just_clos
 from .iterative import ConvergenceError
 from .iterative import solve as tie_solve
 
-__all__ = ["scales", "direct", "iterative", "tie_step", "NEAR_STICK"]
+__all__ = ["scales", "direct", "iterative", "TieStep", "NEAR_STICK"]
 
 NEAR_STICK = 1e-2
 """Slip points with |g_τ| ≤ 1 + NEAR_STICK are taken as stick in the Coulomb
@@ -98,10 +98,10 @@ def iterative(ops, law, K, free, R, lam, T, g_n, g_t, A, modes=None, blocksize=1
 
     ``R`` = (R_u, R_n, R_t) and (λ, T, g_n, g_τ) the iterate, as
     :func:`skxfem.contact_newton.residual`; ``modes``, ``blocksize`` as
-    :func:`skxfem.iterative.solve`.  Frictionless and adhesive laws (and a
-    frozen Coulomb threshold without slip points near the ball's boundary):
-    one tie solve (:func:`tie_step`, exact).
-    Coulomb: FGMRES on the scaled J, preconditioned by :func:`tie_step` (its
+    :func:`skxfem.iterative.solve`.  Where J₀ = J (:attr:`TieStep.exact`:
+    frictionless and adhesive laws, a frozen Coulomb threshold without slip
+    points near the ball's boundary): one tie solve to ``tol``.
+    Coulomb: FGMRES on the scaled J, preconditioned by :class:`TieStep` (its
     ties solved to ``inner_tol``), to the relative residual ``tol`` within
     ``maxiter`` iterations (measured: 6-14 per Newton step on a 3D block).  Returns x =
     (ΔU_free, Δλ, ΔT) and the tie's :class:`skxfem.iterative.Setup`, which
@@ -116,22 +116,17 @@ def iterative(ops, law, K, free, R, lam, T, g_n, g_t, A, modes=None, blocksize=1
         As :func:`skxfem.iterative.solve` (a part of the body free to move),
         or the FGMRES of a Coulomb step short of ``tol``.
     """
-    setup = [reuse]
-    inner = tol if law.name != "coulomb" or inner_tol is None else inner_tol
-
-    def step(v):  # J₀⁻¹ v, v in the layout of R; every call the same tie
-        parts = np.split(v, [len(free), len(free) + lam.size])
-        x, setup[0] = tie_step(ops, law, K, free, [-p for p in parts], lam, T, g_n, g_t,
-                               modes, blocksize, inner, near, setup[0])
-        return x
+    step = TieStep(ops, law, K, free, lam, T, g_n, g_t, modes, blocksize, near, reuse)
+    if step.exact:  # J₀ = J: one tie solve is the step
+        return step(R, tol), step.setup
     Rv = np.concatenate(R)
-    norm = np.linalg.norm(g_t, axis=1) if law.name == "coulomb" else np.zeros(lam.size)
-    near_stick = (normal_update(g_n)[1] > 0) & (norm > 1) & (norm <= 1 + near)
-    if law.name != "coulomb" or (law.threshold is not None and not near_stick.any()):
-        return step(-Rv), setup[0]  # J₀ = J: one tie solve is the step
     r, c = scales(A, len(free))
     As = (sp.diags(r) @ sp.csr_matrix(A) @ sp.diags(c)).tocsr()
-    M = spla.LinearOperator(As.shape, matvec=lambda v: step(v / r) / c, dtype=float)
+
+    def precondition(v):  # c⁻¹ J₀⁻¹ r⁻¹ v: every call the same tie
+        parts = np.split(v / r, [len(free), len(free) + lam.size])
+        return step([-p for p in parts], inner_tol) / c
+    M = spla.LinearOperator(As.shape, matvec=precondition, dtype=float)
     history = []
     x, _ = pyamg().krylov.fgmres(As, -r * Rv, tol=tol, restart=min(maxiter, As.shape[0]),
                                  maxiter=1, M=M, residuals=history)
@@ -141,64 +136,86 @@ def iterative(ops, law, K, free, R, lam, T, g_n, g_t, A, modes=None, blocksize=1
             f"the Coulomb Newton step did not reach the relative residual {tol:.0e} in "
             f"{len(history) - 1} FGMRES iterations (reached {reached:.1e}): use "
             f"linear='direct'", len(history) - 1, float(reached))
-    return c * x, setup[0]
+    return c * x, step.setup
 
 
-def tie_step(ops, law, K, free, R, lam, T, g_n, g_t, modes=None, blocksize=1, tol=1e-12,
-             near=0.0, reuse=None):
-    """x = J₀⁻¹(-R): the Newton step as a tie, J₀ = J but for Coulomb's -μTΔλ at closed dofs
-    (and slip points within ``near`` of the ball taken as stick); and the tie's set-up.
+class TieStep:
+    """J₀⁻¹ as a tie: ``step(R, tol)`` is x = J₀⁻¹(-R), J₀ = J but for Coulomb's -μTΔλ
+    at closed dofs (and slip points within ``near`` of the ball taken as stick).
 
     Open (and held) dofs: Δλ = -R_n, ΔΛ = -R_τ.  Closed: the rows of B_n;
     stick (DP = I): the rows of B_τa, multiplier r = coef ΔΛ; slip: ΔΛ =
     (I - DP)⁻¹(-R_τ + ρ_τ/w DP B_τ ΔU), whose force adds the symmetric
-    -coef ρ_τ/w B_τᵀ (I - DP)⁻¹ DP B_τ (coef = μλ ≤ 0) to K.
+    -coef ρ_τ/w B_τᵀ (I - DP)⁻¹ DP B_τ (coef = μλ ≤ 0) to K.  The tie (K, B
+    and the dofs' kinds) is built once, here; the first call builds its
+    :class:`skxfem.iterative.Setup` (or takes ``reuse``), kept in ``setup``
+    for the next calls.  ``exact``: J₀ = J.
     """
-    R_u, R_n, R_t = R
-    N, m, k = K.shape[0], lam.size, T.shape[1]
-    Rt = R_t.reshape(k, m).T
-    closed = normal_update(g_n)[1] > 0
-    eye = np.eye(k)
-    coef, DP, coupled = np.ones(m), np.broadcast_to(eye, (m, k, k)).copy(), np.zeros((m, k))
-    friction = closed & ~held(law, g_n)  # the rows of ΔΛ that see ΔU
-    if law.name == "coulomb":
-        new = just_closed(law, lam, g_n)
-        coef = np.where(new, 1.0, friction_coefficient(law, lam))
-        DP = ball_projection(g_t)[1]
-        DP[new | (np.linalg.norm(g_t, axis=1) <= 1 + near)] = eye
-        if law.threshold is None:  # Δλ moves r_τ = μλΛ: known at the open dofs only
-            coupled = law.mu * np.where(new[:, None], 0.0, T)
-    stick = friction & np.all(np.isclose(DP, eye), axis=(1, 2))
-    slip = friction & ~stick
-    Minv = np.linalg.inv(eye - DP[slip]) if slip.any() else np.zeros((0, k, k))
-    d_lam = np.where(closed, 0.0, -R_n)
-    d_T = np.where(stick[:, None], 0.0, -Rt)
-    d_T[slip] = np.einsum("sab,sb->sa", Minv, -Rt[slip])
-    Bt = [ops.Bt[a] for a in range(k)]
-    if slip.any():  # the slip force's ΔU part: a symmetric interface stiffness
-        C = (-coef[slip] * law.rho_t / ops.w[slip])[:, None, None] * (Minv @ DP[slip])
-        W = sp.bmat([[sp.diags(C[:, a, b]) for b in range(k)] for a in range(k)])
-        Bs = sp.vstack([B[slip] for B in Bt], format="csr")
-        K = (K + Bs.T @ W @ Bs).tocsr()
-    f = np.zeros(N)
-    f[free] = -R_u
-    f += ops.Bn.T @ d_lam + sum(Bt[a].T @ (coef * d_T[:, a] + coupled[:, a] * d_lam)
-                                for a in range(k))
-    B = sp.vstack([ops.Bn[closed]] + [B[stick] for B in Bt], format="csr")
-    rhs = np.concatenate([-(ops.w / law.rho_n * R_n)[closed]]
-                         + [(ops.w / law.rho_t * Rt[:, a])[stick] for a in range(k)])
-    fixed = np.setdiff1d(np.arange(N), free)
-    dU, mu, info = tie_solve(K, B, f, fixed, np.zeros(fixed.size), c=rhs, modes=modes,
-                             blocksize=blocksize, tol=tol, reuse=reuse)
-    if info.removed:  # as the direct path: a pressure at every dof must be unique
-        raise ValueError(
-            f"{info.removed} contact multipliers depend on the others (the naive space on "
-            f"tetrahedra, or a support acting on a face that Γ cuts): use space='vital' "
-            f"or move the support")
-    nc = int(closed.sum())
-    d_lam[closed] = mu[:nc]
-    d_T[stick] = mu[nc:].reshape(k, int(stick.sum())).T / coef[stick, None]
-    if slip.any():
-        jump = np.stack([B[slip] @ dU for B in Bt], axis=1) * (law.rho_t / ops.w[slip])[:, None]
-        d_T[slip] += np.einsum("sab,sbc,sc->sa", Minv, DP[slip], jump)
-    return np.concatenate([dU[free], d_lam, d_T.T.ravel()]), info.setup
+
+    def __init__(self, ops, law, K, free, lam, T, g_n, g_t, modes=None, blocksize=1,
+                 near=0.0, reuse=None):
+        m, k = lam.size, T.shape[1]
+        self.ops, self.law, self.free, self.m, self.k = ops, law, free, m, k
+        self.modes, self.blocksize, self.setup = modes, blocksize, reuse
+        self.closed = closed = normal_update(g_n)[1] > 0
+        eye = np.eye(k)
+        coef, DP, coupled = np.ones(m), np.broadcast_to(eye, (m, k, k)).copy(), np.zeros((m, k))
+        friction = closed & ~held(law, g_n)  # the rows of ΔΛ that see ΔU
+        approximated = np.zeros(m, bool)
+        if law.name == "coulomb":
+            new = just_closed(law, lam, g_n)
+            coef = np.where(new, 1.0, friction_coefficient(law, lam))
+            DP = ball_projection(g_t)[1]
+            norm = np.linalg.norm(g_t, axis=1)
+            approximated = friction & (norm > 1) & (norm <= 1 + near)
+            DP[new | (norm <= 1 + near)] = eye
+            if law.threshold is None:  # Δλ moves r_τ = μλΛ: known at the open dofs only
+                coupled = law.mu * np.where(new[:, None], 0.0, T)
+        self.exact = law.name != "coulomb" or (law.threshold is not None
+                                               and not approximated.any())
+        self.stick = stick = friction & np.all(np.isclose(DP, eye), axis=(1, 2))
+        self.slip = slip = friction & ~stick
+        self.coef, self.DP, self.coupled = coef, DP, coupled
+        self.Minv = np.linalg.inv(eye - DP[slip]) if slip.any() else np.zeros((0, k, k))
+        self.Bt = Bt = [ops.Bt[a] for a in range(k)]
+        if slip.any():  # the slip force's ΔU part: a symmetric interface stiffness
+            C = (-coef[slip] * law.rho_t / ops.w[slip])[:, None, None] * (self.Minv @ DP[slip])
+            W = sp.bmat([[sp.diags(C[:, a, b]) for b in range(k)] for a in range(k)])
+            Bs = sp.vstack([B[slip] for B in Bt], format="csr")
+            K = (K + Bs.T @ W @ Bs).tocsr()
+        self.K = K
+        self.B = sp.vstack([ops.Bn[closed]] + [B[stick] for B in Bt], format="csr")
+        self.fixed = np.setdiff1d(np.arange(K.shape[0]), free)
+
+    def __call__(self, R, tol: float) -> np.ndarray:
+        ops, law, k, closed, stick, slip = self.ops, self.law, self.k, self.closed, \
+            self.stick, self.slip
+        coef, coupled, Minv, DP, Bt = self.coef, self.coupled, self.Minv, self.DP, self.Bt
+        R_u, R_n, R_t = R
+        Rt = R_t.reshape(k, self.m).T
+        d_lam = np.where(closed, 0.0, -R_n)
+        d_T = np.where(stick[:, None], 0.0, -Rt)
+        d_T[slip] = np.einsum("sab,sb->sa", Minv, -Rt[slip])
+        f = np.zeros(self.K.shape[0])
+        f[self.free] = -R_u
+        f += ops.Bn.T @ d_lam + sum(Bt[a].T @ (coef * d_T[:, a] + coupled[:, a] * d_lam)
+                                    for a in range(k))
+        rhs = np.concatenate([-(ops.w / law.rho_n * R_n)[closed]]
+                             + [(ops.w / law.rho_t * Rt[:, a])[stick] for a in range(k)])
+        dU, mu, info = tie_solve(self.K, self.B, f, self.fixed, np.zeros(self.fixed.size),
+                                 c=rhs, modes=self.modes, blocksize=self.blocksize, tol=tol,
+                                 reuse=self.setup)
+        self.setup = info.setup
+        if info.removed:  # as the direct path: a pressure at every dof must be unique
+            raise ValueError(
+                f"{info.removed} contact multipliers depend on the others (the naive space "
+                f"on tetrahedra, or a support acting on a face that Γ cuts): use "
+                f"space='vital' or move the support")
+        nc = int(closed.sum())
+        d_lam[closed] = mu[:nc]
+        d_T[stick] = mu[nc:].reshape(k, int(stick.sum())).T / coef[stick, None]
+        if slip.any():
+            jump = np.stack([B[slip] @ dU for B in Bt], axis=1) * (
+                law.rho_t / ops.w[slip])[:, None]
+            d_T[slip] += np.einsum("sab,sbc,sc->sa", Minv, DP[slip], jump)
+        return np.concatenate([dU[self.free], d_lam, d_T.T.ravel()])

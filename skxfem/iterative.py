@@ -142,7 +142,7 @@ class Setup:
         """Whether this set-up is that of (K, B, fixed, r, bonded)."""
         return (r == self.r and bonded == self.bonded and np.array_equal(fixed, self.fixed)
                 and K.shape == self.K.shape and B.shape == self.B.shape
-                and (K is self.K or (K != self.K).nnz == 0) and (B != self.B).nnz == 0)
+                and (K != self.K).nnz == 0 and (B != self.B).nnz == 0)
 
 
 def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 1,
