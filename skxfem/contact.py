@@ -186,7 +186,8 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10
         A step that does not converge within ``max_iter`` iterations.
     skxfem.saddle.SingularSystemError
         (a ValueError) A converged step whose displacement is not unique: the
-        open (or sliding) interface leaves a side free to move (:func:`held`).
+        open (or sliding) interface leaves a side free to move
+        (:func:`check_determined`).
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
@@ -220,12 +221,13 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10
         slip = np.stack([B @ U for B in ops.Bt], axis=1) / ops.w[:, None]
         Lam = T if law.name == "coulomb" else np.zeros((m, k))
         st = status(g_n, g_t if law.friction else None, law.name)
-        held(pb, ops, law, st, g_t, modes, label)
+        check_determined(pb, ops, law, st, g_t, modes, label)
         steps.append(Step(label, U.copy(), -lam, tau, ops.Bn @ U / ops.w, slip, st, Lam, info))
     return ContactResult(pb, ops, law, tuple(steps), linear)
 
 
-def held(pb: Problem, ops: Operators, law: Law, st, g_t, modes, label=None) -> None:
+def check_determined(pb: Problem, ops: Operators, law: Law, st, g_t, modes, label=None
+                     ) -> None:
     """Refuse a converged contact state that leaves a side of Γ free to move.
 
     Newton may converge to a state whose displacement is not unique: an
@@ -235,7 +237,8 @@ def held(pb: Problem, ops: Operators, law: Law, st, g_t, modes, label=None) -> N
     tangential one where they stick (``adhesive``: wherever closed); a point
     sliding in 3D holds the tangent across its slip direction ĝ_τ.
     """
-    closed, rows = st != OPEN, [ops.Bn[st != OPEN]]
+    closed = st != OPEN
+    rows = [ops.Bn[closed]]
     if law.name == "adhesive":
         rows += [B[closed] for B in ops.Bt]
     elif law.name == "coulomb":
