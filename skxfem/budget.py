@@ -179,12 +179,11 @@ def estimate(scene: Scene, linear: str = "auto") -> Estimate:
     Estimate
     """
     if isinstance(check_scene(scene).mesh, Box):
-        counts = box_counts(scene.mesh, scene.levelset)
+        counts, cell = box_counts(scene.mesh, scene.levelset), scene.mesh.cell
     else:
         mesh = resolve_mesh(scene)
-        counts = (*mesh_counts(mesh, scene.levelset), cell_name(mesh))
-    return _estimate(scene, linear, *counts[:4], counts[4] if len(counts) > 4
-                     else scene.mesh.cell)
+        counts, cell = mesh_counts(mesh, scene.levelset), cell_name(mesh)
+    return _estimate(scene, linear, *counts, cell)
 
 
 def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell) -> Estimate:

@@ -115,7 +115,8 @@ def plans(quick: bool = True, sizes=None) -> tuple[Plan, ...]:
     if not sizes:
         return PLANS["quick" if quick else "full"]
     sizes = tuple(sorted(set(int(n) for n in sizes)))
-    return tuple(replace(p, quadratures=(None,), sizes=sizes) for p in PLANS["quick"][:2])
+    return tuple(replace(p, quadratures=(None,), sizes=sizes) for p in PLANS["quick"]
+                 if p.solvers == ("direct",))
 
 
 @dataclass(frozen=True)
