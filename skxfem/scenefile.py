@@ -45,9 +45,8 @@ type is refused with an error naming the key.  The schema::
     # linear = "iterative"             # auto (default), direct or iterative
     # max_iter = 40                    # contact laws: Newton iterations per load step
 
-``linear`` and ``max_iter`` are options of the solve, not of the scene:
-:func:`load_options` reads them (``skxfem run``'s ``--linear`` and
-``--max-iter`` override them).
+``linear`` and ``max_iter`` are options of the solve, not of the scene: :func:`load_options`
+reads them (``skxfem run``'s ``--linear`` and ``--max-iter`` override them).
 
 Errors name items as the file numbers them (``[[load]] #2``).  Every boundary is
 checked on reading, except the ``where`` selections on a box whose grid has more
@@ -103,9 +102,8 @@ def load_scene(path: str | Path) -> sc.Scene:
 
 
 def load_options(path: str | Path) -> dict:
-    r"""The solve options of a scene file's ``[solver]`` table: ``linear`` and
-    ``max_iter``, those given only (a dict for ``skxfem.solve`` or
-    ``skxfem.contact.solve``).
+    r"""The solve options of a scene file's ``[solver]`` table, ``linear`` and ``max_iter``,
+    those given only: keywords of ``skxfem.solve`` or ``skxfem.contact.solve``.
 
     >>> import pathlib, tempfile
     >>> f = pathlib.Path(tempfile.mkdtemp()) / "s.toml"
@@ -114,15 +112,17 @@ def load_options(path: str | Path) -> dict:
     {'linear': 'direct'}
     """
     path, data = tomlcheck.read_toml(path)
-    solver = data.get("solver", {})
-    solver = solver if isinstance(solver, dict) else {}  # load_scene refuses the rest
+    solver = data.get("solver", {})  # not a table: load_scene refuses it
+    return tomlcheck.labelled(path.name, _options, solver if isinstance(solver, dict) else {})
+
+
+def _options(solver: dict) -> dict:
+    """The ``linear`` and ``max_iter`` of a ``[solver]`` table, checked."""
     out = {k: solver[k] for k in ("linear", "max_iter") if k in solver}
     if "linear" in out and out["linear"] not in LINEAR:
-        raise ValueError(f"{path.name}: [solver] linear must be one of {LINEAR}, "
-                         f"got {out['linear']!r}")
+        raise ValueError(f"[solver] linear must be one of {LINEAR}, got {out['linear']!r}")
     if "max_iter" in out and (type(out["max_iter"]) is not int or out["max_iter"] < 1):
-        raise ValueError(f"{path.name}: [solver] max_iter must be a positive integer, "
-                         f"got {out['max_iter']!r}")
+        raise ValueError(f"[solver] max_iter must be a positive integer, got {out['max_iter']!r}")
     return out
 
 
@@ -152,7 +152,7 @@ def _scene(data: dict, path: Path) -> sc.Scene:
                              f"factors, got {steps!r}")
         contact["steps"] = tuple(steps)
     space = choice(interface.get("space", "vital"), sc.SPACES, "[interface] space")
-    if "max_iter" in solver and law not in sc.CONTACT_LAWS:
+    if "max_iter" in _options(solver) and law not in sc.CONTACT_LAWS:
         raise ValueError(f"[solver] max_iter applies to the contact laws {sc.CONTACT_LAWS}; "
                          f"the law is {law!r}")
     order = solver.get("quadrature_order")

@@ -273,3 +273,11 @@ def test_12_boundaries_of_a_mesh_file_are_checked_with_the_file_numbering(tmp_pa
         for w in words:
             assert w in message, f"{w!r} not in {message!r}"
     assert len(load_scene(write(tmp_path, text + clamp)).displacements) == 1
+
+
+def test_13_load_scene_checks_the_solve_options_too(tmp_path):
+    """A bad [solver] linear is refused by load_scene as by load_options (it was accepted)."""
+    bad = MINIMAL + "[solver]\nlinear = 'cholesky'\n"
+    for load in (load_scene, load_options):
+        with pytest.raises(ValueError, match=r"^bad.toml: \[solver\] linear must be one of"):
+            load(write(tmp_path, bad, "bad.toml"))
