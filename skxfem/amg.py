@@ -25,7 +25,7 @@ import scipy.sparse as sp
 
 from .saddle import SingularSystemError
 
-__all__ = ["rigid_modes", "amg", "check_held", "scaled_tie", "check_tie_held"]
+__all__ = ["rigid_modes", "amg", "check_held", "scaled_tie", "augmented", "check_tie_held"]
 
 
 def pyamg():
@@ -152,10 +152,16 @@ def scaled_tie(K, B, fixed):
     return s, Ks, (sp.diags(rows) @ Bs).tocsr(), rows
 
 
+def augmented(K, B, fixed, r: float):
+    """:func:`scaled_tie` and the augmented K_r = K_s + r B_nᵀB_n: s, B_n, the row scales, K_r."""
+    s, Ks, Bn, rows = scaled_tie(K, B, fixed)
+    return s, Bn, rows, (Ks + r * (Bn.T @ Bn)).tocsr()
+
+
 def check_tie_held(K, B, fixed, modes, r: float = 3.0, rigid_tol: float = 1e-11):
     """Refuse a rigid motion of a side (of ``modes``) that neither the imposed
     unknowns (boolean ``fixed``) nor the rows of ``B`` hold: :func:`check_held`
-    on the augmented K_s + r B_nᵀB_n of :func:`scaled_tie`.
+    on the K_r of :func:`augmented`.
 
     >>> import scipy.sparse as sp, numpy as np
     >>> K = sp.csr_matrix([[1.0, -1.0], [-1.0, 1.0]]); Z = np.ones((2, 1))
@@ -165,5 +171,5 @@ def check_tie_held(K, B, fixed, modes, r: float = 3.0, rigid_tol: float = 1e-11)
     ...
     skxfem.saddle.SingularSystemError: the tied system is singular (a rigid motion ...
     """
-    s, Ks, Bn, _ = scaled_tie(K, B, fixed)
-    check_held((Ks + r * (Bn.T @ Bn)).tocsr(), modes / s[:, None], rigid_tol)
+    s, _, _, Kr = augmented(K, B, fixed, r)
+    check_held(Kr, modes / s[:, None], rigid_tol)

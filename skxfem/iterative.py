@@ -74,7 +74,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .amg import amg, check_held, pyamg, scaled_tie
+from .amg import amg, augmented, check_held, pyamg
 from .pcg import interface_solve, projected_cg
 from .smoothest import dependencies, smoothest
 
@@ -268,8 +268,7 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
 
 def _setup(K, B, fixed, modes, blocksize, bonded, r, delta, refine, rigid_tol) -> Setup:
     """Scale, augment, check the rigid modes, build the AMG and the interface solve."""
-    s, Ks, Bn, rows = scaled_tie(K, B, fixed)
-    Kr = (Ks + r * (Bn.T @ Bn)).tocsr()
+    s, Bn, rows, Kr = augmented(K, B, fixed, r)
     Zs = None if modes is None else modes / s[:, None]
     if Zs is not None:
         check_held(Kr, Zs, rigid_tol)
