@@ -3,9 +3,10 @@ r"""Unilateral contact and Coulomb friction on Γ over a load history (paper §2
 :func:`solve` takes a scene whose ``law`` is one of
 :data:`~skxfem.contact_laws.CONTACT_LAWS` and a load history, and returns a
 :class:`ContactResult` with one :class:`Step` per load step.  Each step is
-solved by the semi-smooth Newton method of :mod:`skxfem.contact_newton`
-(every equation at once) or, with ``method="fixed_point"``, by the paper's
-scheme (:mod:`skxfem.contact_fixed_point`).
+solved by the globalised semi-smooth Newton method of
+:mod:`skxfem.contact_newton` (every equation at once) or, with
+``method="fixed_point"``, by the paper's scheme
+(:mod:`skxfem.contact_fixed_point`).
 
 **Where the laws are imposed.** At the multiplier dofs, with the weighted
 jumps d_j = ∫ψ_j [[u]]·n / ∫ψ_j (:mod:`skxfem.contact_interface`): the
@@ -17,16 +18,23 @@ between "d_j = 0" and "λ_j = 0".  Evaluating χ at the quadrature points
 instead would mix the two states inside a facet, and the pointwise
 conditions could not all hold for a linear λ_h.
 
-**ρ_n, ρ_τ.** ``rho_n`` (a traction per length) defaults to E/h, h the mean
-length of the cut edges; ``rho_t`` defaults to 1/h for ``coulomb`` (Λ is
-dimensionless, so ρ_τ is an inverse length) and to E/h for ``adhesive``
-(where the tangential unknown is a traction).  The solution does not depend
-on them (an augmentation, not a penalty); only the iterations do.
+**ρ_n, ρ_τ.** Both are tractions per length and default to E/h, h the mean
+length of the cut edges.  The solution does not depend on them (an
+augmentation, not a penalty); only the iterations do.
 
 **Load history.** A sequence of load factors (the scene's loads and imposed
-displacements scaled) or of load states (scenes on the same mesh and Γ
-with the same supports, e.g. press, then shear, then unload).  The slip
-rate of eq. 9b is v_τ Δt = the increment of the tangential jump over a step.
+displacements scaled) or of load states (scenes on the same mesh, Γ,
+supports, material and space, e.g. press, then shear, then unload), each
+with its own law: a state may switch the interface to another contact law,
+or to ``bilateral`` (tension carried, free sliding) or ``bonded`` (no
+further slip), e.g. once it is closed.  The slip rate of eq. 9b is v_τ Δt =
+the increment of the tangential jump over a step.
+
+**Step cutting.** A step whose Newton iteration does not converge in
+``max_iter`` iterations is solved again in two halves (loads and imposed
+displacements interpolated, the state's law throughout), and so on, each
+cut reported by a :class:`StepCutWarning`, down to 1/2^``max_cuts`` of the
+step; then the error names the step and its load factor.
 
 >>> from dataclasses import replace
 >>> from skxfem.scene import Displacement
@@ -41,6 +49,7 @@ rate of eq. 9b is v_τ Δt = the increment of the tangential jump over a step.
 """
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -49,21 +58,35 @@ import scipy.sparse as sp
 from .amg import check_tie_held, rigid_modes
 from .contact_fixed_point import fixed_point
 from .contact_interface import Operators, operators
-from .contact_laws import CONTACT_LAWS, OPEN, SLIP, STICK, status
-from .contact_newton import ContactConvergenceError, Law, NewtonInfo, newton
+from .contact_laws import CONTACT_LAWS, HISTORY_LAWS, KINDS, OPEN, SLIP, STICK
+from .contact_newton import (
+    ContactConvergenceError,
+    Iterate,
+    Law,
+    NewtonInfo,
+    StepProblem,
+    newton,
+    point_laws,
+)
 from .linear import choose_linear
 from .problem import Problem, assemble
 from .saddle import SingularSystemError
 from .scene import Scene, check_scene
 
 __all__ = ["Step", "ContactResult", "parameters", "solve", "ContactConvergenceError",
-           "METHODS", "RHO_RANGE"]
+           "StepCutWarning", "METHODS", "RHO_RANGE", "MAX_CUTS"]
 
 METHODS = ("newton", "fixed_point")
 
 RHO_RANGE = (1e-9, 1e12)
-"""The ρ_n, ρ_τ accepted, relative to their defaults (the table of extremes: 1e-6 to
-1e9 solved, but ρ_τ = 1e9/h, whose Newton stalls at 5e-9)."""
+"""The ρ_n, ρ_τ accepted, relative to their defaults E/h."""
+
+MAX_CUTS = 6
+"""A load step is cut down to 1/2^MAX_CUTS of its increment before it is refused."""
+
+
+class StepCutWarning(UserWarning):
+    """A load step did not converge and is solved again in smaller increments."""
 
 
 @dataclass(frozen=True)
@@ -74,7 +97,9 @@ class Step:
     r_τ (components on ``ContactResult.ops.Bt``'s tangents); ``gap`` (m,)
     the weighted normal jump d (≤ 0 admissible); ``slip`` (m, k) the
     weighted tangential jump (total); ``status`` (m,) 0 open, 1 stick,
-    2 slip; ``Lambda`` (m, k) the semi-multiplier (``coulomb``).
+    2 slip; ``Lambda`` (m, k) the semi-multiplier Λ = r_τ/(μλ) of eq. 9a
+    (``coulomb``, where p > 0; 0 elsewhere); ``law`` the law of the step;
+    ``increments`` how many increments the step took (1 unless cut).
     """
 
     load: object
@@ -86,12 +111,14 @@ class Step:
     status: np.ndarray
     Lambda: np.ndarray
     newton: NewtonInfo
+    law: str = ""
+    increments: int = 1
 
 
 @dataclass(frozen=True)
 class ContactResult:
-    """``problem`` (the assembled bilateral problem), ``ops``, ``law``, ``steps``
-    and the ``linear`` solve of the Newton steps."""
+    """``problem`` (the assembled bilateral problem), ``ops``, ``law`` (of the
+    scene), ``steps`` and the ``linear`` solve of the Newton steps."""
 
     problem: Problem
     ops: Operators
@@ -111,46 +138,68 @@ def parameters(scene: Scene, h: float) -> Law:
     >>> law.name, law.mu, law.rho_n, law.rho_t
     ('coulomb', 0.5, 4.0, 4.0)
     """
-    if scene.law not in CONTACT_LAWS:
+    if scene.law not in HISTORY_LAWS:
         raise ValueError(f"scene law must be one of {CONTACT_LAWS} for a contact solve, "
                          f"got {scene.law!r} (ties are solved by skxfem.solver.solve)")
-    E = scene.material.E
-    defaults = {"rho_n": (E / h, "E/h"), "rho_t": (1.0 / h, "1/h") if scene.law == "coulomb"
-                else (E / h, "E/h")}
+    default = scene.material.E / h
     rho = {}
-    for key, (default, unit) in defaults.items():
+    for key in ("rho_n", "rho_t"):
         given = getattr(scene, key)
         rho[key] = default if given is None else given
         if not RHO_RANGE[0] <= rho[key] / default <= RHO_RANGE[1]:
             raise ValueError(
                 f"scene {key} = {rho[key]:g} is {rho[key] / default:.1e} x its default "
-                f"{unit} = {default:g}; it is an augmentation (the solution does not depend "
+                f"E/h = {default:g}; it is an augmentation (the solution does not depend "
                 f"on it) and outside {RHO_RANGE[0]:g}..{RHO_RANGE[1]:g} x the default the "
-                f"Newton iteration loses its digits: leave it None or choose it near {unit}")
-    rho_n, rho_t = rho["rho_n"], rho["rho_t"]
+                f"Newton iteration loses its digits: leave it None or choose it near E/h")
     name = "frictionless" if scene.law == "coulomb" and scene.friction == 0 else scene.law
-    return Law(name, float(scene.friction), float(rho_n), float(rho_t))
+    return Law(name, float(scene.friction), float(rho["rho_n"]), float(rho["rho_t"]))
 
 
-def _states(scene: Scene, pb: Problem, history):
-    """(label, F, g) for each entry of the history."""
+@dataclass(frozen=True)
+class _State:
+    """One entry of a load history: its label, load, imposed values and law."""
+
+    label: object
+    F: np.ndarray
+    g: np.ndarray
+    law: Law
+
+
+def _same_setup(state: Scene, scene: Scene, pb: Problem, state_pb: Problem, i: int):
+    """Refuse a load state that changes what one solve keeps (module notes)."""
+    for key in ("material", "space", "quadrature_order"):
+        if getattr(state, key) != getattr(scene, key):
+            raise ValueError(f"history[{i}]: a load state must keep the scene's {key} "
+                             f"({getattr(scene, key)!r}), got {getattr(state, key)!r}: the "
+                             f"solver keeps one stiffness and one multiplier space")
+    if (state_pb.V.N != pb.V.N or not np.array_equal(state_pb.D, pb.D)
+            or not np.array_equal(state_pb.cut.psi, pb.cut.psi)):
+        raise ValueError(f"history[{i}]: a load state must keep the mesh, Γ and "
+                         f"the supported boundaries of the scene (same constrained "
+                         f"unknowns); give a zero displacement where a support "
+                         f"is released")
+
+
+def _states(scene: Scene, pb: Problem, history, h: float) -> list[_State]:
+    """The :class:`_State` of each entry of the history."""
     if isinstance(history, (str, bytes)) or not hasattr(history, "__len__") \
             or len(history) == 0:
         raise ValueError(f"history must be a non-empty sequence of load factors or of "
                          f"scenes (load states), got {history!r}")
+    law = parameters(scene, h)
     out = []
     for i, item in enumerate(history):
         if isinstance(item, Scene):
+            if item.law not in HISTORY_LAWS:
+                raise ValueError(f"history[{i}]: the law of a load state must be one of "
+                                 f"{HISTORY_LAWS}, got {item.law!r}")
             state = assemble(item, law="bilateral")
-            if state.V.N != pb.V.N or not np.array_equal(state.D, pb.D):
-                raise ValueError(f"history[{i}]: a load state must keep the mesh, Γ and "
-                                 f"the supported boundaries of the scene (same constrained "
-                                 f"unknowns); give a zero displacement where a support "
-                                 f"is released")
-            out.append((item.name, state.F, state.g))
+            _same_setup(item, scene, pb, state, i)
+            out.append(_State(item.name, state.F, state.g, parameters(item, h)))
         elif isinstance(item, (int, float, np.integer, np.floating)) and \
                 not isinstance(item, bool) and np.isfinite(item):
-            out.append((float(item), item * pb.F, item * pb.g))
+            out.append(_State(float(item), item * pb.F, item * pb.g, law))
         else:
             raise ValueError(f"history[{i}] must be a finite load factor or a Scene, "
                              f"got {item!r}")
@@ -158,7 +207,8 @@ def _states(scene: Scene, pb: Problem, history):
 
 
 def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10,
-          max_iter: int = 30, linear: str = "auto") -> ContactResult:
+          max_iter: int = 30, linear: str = "auto", max_cuts: int = MAX_CUTS
+          ) -> ContactResult:
     """Solve the contact ``scene`` over the load ``history``.
 
     Parameters
@@ -171,62 +221,169 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10
     method
         ``"newton"`` (semi-smooth Newton on all equations) or ``"fixed_point"``.
     tol, max_iter
-        Relative residual tolerance of every equation; iteration limit.
+        Relative residual tolerance of every equation
+        (:func:`skxfem.contact_newton.relative_residuals`); iteration limit of
+        one (sub)step.
     linear
         The linear solve of each Newton step (:data:`skxfem.linear.LINEAR`):
-        ``"direct"``, ``"iterative"`` (frictionless and adhesive laws, pyamg)
-        or ``"auto"``: :func:`skxfem.linear.choose_linear`.
+        ``"direct"``, ``"iterative"`` (pyamg) or ``"auto"``:
+        :func:`skxfem.linear.choose_linear`.
+    max_cuts
+        How many times a failing step may be halved (module notes); 0: never.
 
     Raises
     ------
     ValueError
-        A tie law, an empty or bad history, an unknown method, ``"iterative"``
-        for a Coulomb law.
+        A tie law, an empty or bad history, an unknown method, a load state
+        that changes the set-up.
     ContactConvergenceError
-        A step that does not converge within ``max_iter`` iterations.
+        A step that does not converge, cut down to 1/2^max_cuts: the message
+        names the step and its load factor.
     skxfem.saddle.SingularSystemError
-        (a ValueError) A converged step whose displacement is not unique: the
-        open (or sliding) interface leaves a side free to move
-        (:func:`check_determined`).
+        (a ValueError) A law that leaves a side free to move even with Γ
+        closed everywhere (a frictionless Γ under a side that only Γ holds),
+        or a converged step whose displacement is not unique (the open or
+        sliding interface leaves a side free, :func:`check_determined`).
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
-    if not (isinstance(max_iter, int) and not isinstance(max_iter, bool) and max_iter >= 1):
-        raise ValueError(f"max_iter must be a positive integer, got {max_iter!r}")
+    for key, value, low, what in (("max_iter", max_iter, 1, "a positive integer"),
+                                  ("max_cuts", max_cuts, 0, "an integer >= 0")):
+        if not (isinstance(value, int) and not isinstance(value, bool) and value >= low):
+            raise ValueError(f"{key} must be {what}, got {value!r}")
     if not (isinstance(tol, float) and 0 < tol < 1):
         raise ValueError(f"tol must be a float in (0, 1), got {tol!r}")
     if check_scene(scene).law not in CONTACT_LAWS:
-        parameters(scene, 1.0)  # raises the message naming the law
+        raise ValueError(f"scene law must be one of {CONTACT_LAWS} for a contact solve, "
+                         f"got {scene.law!r} (ties are solved by skxfem.solver.solve)")
     pb = assemble(scene, law="bilateral")
     ops = operators(pb)
-    law = parameters(scene, ops.h)
-    linear = choose_linear(linear, pb.mesh.dim(), pb.V.N, law.name)
+    states = _states(scene, pb, scene.steps if history is None else history, ops.h)
+    laws = [s.law.name for s in states]
+    linear = choose_linear(linear, pb.mesh.dim(), pb.V.N,
+                           "coulomb" if "coulomb" in laws else laws[0])
     modes = rigid_modes(pb.V)
     solve_kw = {"linear": linear} if linear == "direct" else {
         "linear": linear, "modes": modes, "blocksize": pb.mesh.dim()}
-    states = _states(scene, pb, scene.steps if history is None else history)
     free = np.setdiff1d(np.arange(pb.V.N), pb.D)
     m, k = ops.w.size, len(ops.Bt)
-    U, lam = np.zeros(pb.V.N), np.zeros(m)
-    T = np.zeros((m, k if law.friction else 0))
-    step_solver = fixed_point if method == "fixed_point" else newton
+    rho_ref = scene.material.E / ops.h
+    it = Iterate(np.zeros(pb.V.N), np.zeros(m), np.zeros((m, k)))
+    F, g = np.zeros(pb.V.N), np.zeros(pb.D.size)
     steps = []
-    for label, F, g in states:
-        U_prev = U.copy()
-        U[pb.D] = g
-        U, lam, T, g_n, g_t, info = step_solver(ops, law, pb.K, F, free, U, lam, T, U_prev,
-                                                tol=tol, max_iter=max_iter, **solve_kw)
-        tau = law.mu * lam[:, None] * T if law.name == "coulomb" else (
-            T if law.name == "adhesive" else np.zeros((m, k)))
-        slip = np.stack([B @ U for B in ops.Bt], axis=1) / ops.w[:, None]
-        Lam = T if law.name == "coulomb" else np.zeros((m, k))
-        st = status(g_n, g_t if law.friction else None, law.name)
-        check_determined(pb, ops, law, st, g_t, modes, label)
-        steps.append(Step(label, U.copy(), -lam, tau, ops.Bn @ U / ops.w, slip, st, Lam, info))
-    return ContactResult(pb, ops, law, tuple(steps), linear)
+    checked = set()
+    for i, state in enumerate(states):
+        if state.law.name not in checked:  # the law holds the body with Γ closed?
+            check_closed(pb, ops, state.law, modes, state.label)
+            checked.add(state.law.name)
+
+        def one(start, U_prev, F1, g1, law=state.law):
+            step = StepProblem(ops, pb.K, F1, free, U_prev, point_laws(law, ops.held), rho_ref)
+            U = start.U.copy()
+            U[pb.D] = g1
+            start = Iterate(U, start.lam, start.r)
+            if method == "fixed_point":
+                return fixed_point(step, start, tol=tol, max_iter=max_iter, **solve_kw)
+            return newton(step, start, tol=tol, max_iter=max_iter, **solve_kw)
+
+        where = f"load step {i + 1} of {len(states)} ({_describe(state.label)})"
+        it, res, info, pieces = _advance(one, it, F, g, state.F, state.g,
+                                         max_cuts if method == "newton" else 0, where)
+        F, g = state.F, state.g
+        check_determined(pb, ops, state.law, res.status, res.y, modes, state.label)
+        steps.append(_step(state, ops, it, res, info, pieces))
+    return ContactResult(pb, ops, states[0].law, tuple(steps), linear)
 
 
-def check_determined(pb: Problem, ops: Operators, law: Law, st, g_t, modes, label=None
+def _describe(label) -> str:
+    return f"load factor {label:g}" if isinstance(label, float) else f"state {label!r}"
+
+
+def _advance(one, it, F0, g0, F1, g1, max_cuts: int, where: str):
+    """Solve from the converged ``it`` (under F0, g0) to F1, g1, halving the
+    increment where a step fails (module notes).  Returns the iterate, its
+    residual, the NewtonInfo of the last increment and the number of increments."""
+    done, size, pieces = 0.0, 1.0, 0
+    smallest = 0.5 ** max_cuts
+    while done < 1.0:
+        target = min(1.0, done + size)
+        try:
+            new, res, info = one(it, it.U, F0 + target * (F1 - F0), g0 + target * (g1 - g0))
+        except ContactConvergenceError as e:
+            if size / 2 < smallest * (1 - 1e-12):
+                cut = f" after cutting it down to 1/{round(1 / size)} of its increment" \
+                    if max_cuts and size < 1 else ""
+                err = ContactConvergenceError(
+                    f"{where}: {e}{cut}. Try more load steps, another rho_n/rho_t, or "
+                    f"max_iter")
+                err.last, err.statuses = e.last, e.statuses
+                for key in ("thresholds",):
+                    if hasattr(e, key):
+                        setattr(err, key, getattr(e, key))
+                raise err from e
+            size /= 2
+            warnings.warn(f"{where}: {str(e).split(':')[0]}; cut: solving it in increments "
+                          f"of 1/{round(1 / size)}", StepCutWarning, stacklevel=3)
+            continue
+        it, done, pieces = new, target, pieces + 1
+        size = min(1.0, 2 * size) if size < 1 else size
+    return it, res, info, pieces
+
+
+def _step(state: _State, ops: Operators, it: Iterate, res, info, pieces) -> Step:
+    """The :class:`Step` of a converged state."""
+    law = state.law
+    m, k = it.r.shape
+    slip = np.stack([B @ it.U for B in ops.Bt], axis=1).reshape(m, k) / ops.w[:, None]
+    Lam = np.zeros((m, k))
+    if law.name == "coulomb":
+        p = -it.lam
+        ok = p > 0
+        Lam[ok] = -it.r[ok] / (law.mu * p[ok, None])
+    return Step(state.label, it.U.copy(), -it.lam, it.r.copy(), ops.Bn @ it.U / ops.w, slip,
+                res.status, Lam, info, law.name, pieces)
+
+
+def _held_rows(ops: Operators, law: Law, status, y) -> sp.csr_matrix:
+    """The rows of the tie that a contact state imposes: the normal jump at
+    closed points, the tangential jumps where they stick (not those a support
+    holds); a point sliding in 3D holds the tangent across its slip direction."""
+    closed = status != OPEN
+    rows = [ops.Bn[closed]]
+    kind = KINDS[law.name].tangential
+    k = len(ops.Bt)
+    free = ~ops.held
+    if kind == "stick":
+        rows += [ops.Bt[a][closed & free[:, a]] for a in range(k)]
+    elif kind == "coulomb":
+        rows += [ops.Bt[a][(status == STICK) & free[:, a]] for a in range(k)]
+        slip = (status == SLIP) & free.all(axis=1)
+        if k == 2 and slip.any():
+            yh = y[slip] / np.linalg.norm(y[slip], axis=1)[:, None]
+            rows.append(sp.diags(-yh[:, 1]) @ ops.Bt[0][slip]
+                        + sp.diags(yh[:, 0]) @ ops.Bt[1][slip])
+    return sp.vstack(rows, format="csr")
+
+
+def check_closed(pb: Problem, ops: Operators, law: Law, modes, label=None) -> None:
+    """Refuse a law that leaves a side free to move even where Γ is closed
+    everywhere (every point in contact, sticking where the law can): no
+    contact state can then hold it (a frictionless Γ under a side that only
+    Γ holds tangentially)."""
+    m = ops.w.size
+    status = np.full(m, SLIP if KINDS[law.name].tangential == "free" else STICK)
+    fixed = np.zeros(pb.V.N, bool)
+    fixed[pb.D] = True
+    try:
+        check_tie_held(pb.K, _held_rows(ops, law, status, None), fixed, modes)
+    except SingularSystemError as e:
+        raise SingularSystemError(
+            f"load step {label!r}: even with Γ closed everywhere, the {law.name} law leaves "
+            f"a part of the body free to move ({e}): hold each side of Γ, or use a law "
+            f"with friction") from e
+
+
+def check_determined(pb: Problem, ops: Operators, law: Law, st, y, modes, label=None
                      ) -> None:
     """Refuse a converged contact state that leaves a side of Γ free to move.
 
@@ -235,23 +392,12 @@ def check_determined(pb: Problem, ops: Operators, law: Law, st, g_t, modes, labe
     OPEN) may slide by any rigid motion.  The state holds what its closed
     points hold (:func:`skxfem.amg.check_tie_held`): the normal jump, and the
     tangential one where they stick (``adhesive``: wherever closed); a point
-    sliding in 3D holds the tangent across its slip direction ĝ_τ.
+    sliding in 3D holds the tangent across its slip direction ŷ.
     """
-    closed = st != OPEN
-    rows = [ops.Bn[closed]]
-    if law.name == "adhesive":
-        rows += [B[closed] for B in ops.Bt]
-    elif law.name == "coulomb":
-        rows += [B[st == STICK] for B in ops.Bt]
-        slip = st == SLIP
-        if len(ops.Bt) == 2 and slip.any():
-            gh = g_t[slip] / np.linalg.norm(g_t[slip], axis=1)[:, None]
-            rows.append(sp.diags(-gh[:, 1]) @ ops.Bt[0][slip]
-                        + sp.diags(gh[:, 0]) @ ops.Bt[1][slip])
     fixed = np.zeros(pb.V.N, bool)
     fixed[pb.D] = True
     try:
-        check_tie_held(pb.K, sp.vstack(rows, format="csr"), fixed, modes)
+        check_tie_held(pb.K, _held_rows(ops, law, st, y), fixed, modes)
     except SingularSystemError as e:
         counts = np.bincount(st, minlength=3)
         raise SingularSystemError(

@@ -11,9 +11,20 @@ with χ the indicator of ℝ⁻ (χ(x) = 1 if x < 0, 0 if x ≥ 0).  Coulomb's l
 .. math:: \Lambda - P_{B(0,1)}(\mathbf g_\tau) = 0, \qquad
           \mathbf g_\tau = \Lambda + \rho_\tau \mathbf v_\tau,
 
-P_B the projection on the unit ball (eq. 9b–c).  Both maps are piecewise
-smooth; their generalised (Clarke) Jacobians, used by the semi-smooth Newton
-method of :mod:`skxfem.contact`, are
+P_B the projection on the unit ball (eq. 9b–c).  Multiplied by μλ ≤ 0 this is
+the same law written on the tangential *traction*, which the solver uses
+because it stays bounded where the pressure vanishes (Λ = r_τ/(μλ) does not):
+
+.. math:: \mathbf r_\tau - P_{B(0,R)}(\mathbf r_\tau - \rho_\tau \mathbf s) = 0,
+          \qquad R = \mu\,\max(0, -g_n),
+
+with s = v_τ Δt the slip increment and P_{B(0,R)} the projection on the ball
+of radius R (:func:`disk_projection`; R = μp at a closed point, 0 at an open
+one: Alart and Curnier's augmented form).  Its solutions are those of eq. 9
+for every ρ_τ > 0, now with ρ_τ a traction per length like ρ_n.
+
+The generalised (Clarke) Jacobians used by the semi-smooth Newton method of
+:mod:`skxfem.contact_newton`:
 
 * d(χ(g) g)/dg = χ(g), and 1 at the kink g = 0 (any slope in [0, 1] is a
   generalised derivative there; 1, the contact branch, makes the first Newton
@@ -33,14 +44,45 @@ the tangential one (k = 1 in 2D, 2 in 3D).
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
-__all__ = ["CONTACT_LAWS", "OPEN", "STICK", "SLIP", "STATUS_NAMES", "indicator",
-           "normal_update", "ball_projection", "status", "friction_coefficient", "held",
-           "just_closed"]
+__all__ = ["CONTACT_LAWS", "HISTORY_LAWS", "LawKind", "KINDS", "OPEN", "STICK", "SLIP",
+           "STATUS_NAMES", "indicator", "normal_update", "ball_projection",
+           "disk_projection", "status"]
 
 CONTACT_LAWS = ("frictionless", "coulomb", "adhesive")
 """Unilateral laws: no friction, Coulomb friction (μ), no slip in contact."""
+
+
+@dataclass(frozen=True)
+class LawKind:
+    """What a law imposes at a point of Γ.
+
+    ``unilateral``: Signorini (eq. 5) on the normal, else the normal jump is
+    tied (d_n = 0, λ of either sign).  ``tangential``: ``"free"`` (r_τ = 0),
+    ``"stick"`` (no slip increment where closed) or ``"coulomb"`` (eq. 8).
+    """
+
+    name: str
+    unilateral: bool
+    tangential: str
+
+
+KINDS = {
+    "frictionless": LawKind("frictionless", True, "free"),
+    "coulomb": LawKind("coulomb", True, "coulomb"),
+    "adhesive": LawKind("adhesive", True, "stick"),
+    "bilateral": LawKind("bilateral", False, "free"),
+    "bonded": LawKind("bonded", False, "stick"),
+}
+"""Every law the contact solver imposes, by name.  The contact laws
+(:data:`CONTACT_LAWS`) and, within a load history, the two ties: a state may
+switch an interface to ``bilateral`` (tension carried, free sliding) or
+``bonded`` (no further slip), from the jump it has reached."""
+
+HISTORY_LAWS = tuple(KINDS)
 
 OPEN, STICK, SLIP = 0, 1, 2
 STATUS_NAMES = ("open", "stick", "slip")
@@ -97,44 +139,68 @@ def ball_projection(g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return P, DP
 
 
-def status(g_n: np.ndarray, g_t: np.ndarray | None, law: str) -> np.ndarray:
+
+
+def disk_projection(y: np.ndarray, radius: np.ndarray):
+    """The projection P_{B(0,R)}(y) on the ball of radius R ≥ 0 and its derivatives.
+
+    Parameters
+    ----------
+    y
+        (n, k) augmented tangential tractions r_τ - ρ_τ s.
+    radius
+        (n,) radii R ≥ 0 (μ max(0, -g_n) for Coulomb).
+
+    Returns
+    -------
+    P, DP, dP_dR
+        (n, k) projections, (n, k, k) dP/dy and (n, k) dP/dR.  Inside
+        (|y| ≤ R, the stick branch, R = 0 = |y| included): P = y, DP = I,
+        dP/dR = 0; outside: P = R ŷ, DP = R (I - ŷŷᵀ)/|y|, dP/dR = ŷ.  For R > 0
+        this is R·P_B(y/R) (:func:`ball_projection`).
+
+    >>> P, DP, dR = disk_projection(np.array([[3.0, 4.0], [0.3, 0.4]]), np.array([2.0, 2.0]))
+    >>> P.tolist(), dR.tolist()
+    ([[1.2, 1.6], [0.3, 0.4]], [[0.6, 0.8], [0.0, 0.0]])
+    """
+    y = np.asarray(y, dtype=float)
+    R = np.asarray(radius, dtype=float)
+    n, k = y.shape
+    norm = np.linalg.norm(y, axis=1)
+    out = norm > R
+    P, DP, dR = y.copy(), np.broadcast_to(np.eye(k), (n, k, k)).copy(), np.zeros((n, k))
+    pos = out & (R > 0)
+    Pb, DPb = ball_projection(y[pos] / R[pos, None])
+    P[pos], DP[pos] = R[pos, None] * Pb, DPb
+    zero = out & (R <= 0)
+    P[zero], DP[zero] = 0.0, 0.0
+    dR[out] = y[out] / norm[out, None]
+    return P, DP, dR
+
+
+def status(g_n: np.ndarray, y: np.ndarray | None, radius: np.ndarray | None,
+           kinds) -> np.ndarray:
     """Status of each law point: :data:`OPEN`, :data:`STICK` or :data:`SLIP`.
 
-    A point is open where χ(g_n) = 0; a closed point slips where |g_τ| > 1
-    (``coulomb``), always (``frictionless``) or never (``adhesive``).
+    ``kinds``: a law name or (n,) of names (:data:`KINDS`).  A point is open
+    where its law is unilateral and g_n ≥ 0 (χ(g_n) = 0); a closed point slips
+    freely (``free``), never (``stick``) or where |y| > R (``coulomb``; y, R as
+    :func:`disk_projection`; a point exactly on the limit sticks).
 
-    >>> status(np.array([1.0, -1.0, -1.0]), np.array([[0.0], [0.5], [2.0]]), "coulomb")
+    >>> status(np.array([1.0, -1.0, -1.0]), np.array([[0.0], [0.5], [2.0]]),
+    ...        np.ones(3), "coulomb")
     array([0, 1, 2])
     """
-    closed = indicator(g_n) > 0
-    if law == "frictionless":
-        slip = np.ones(closed.size, bool)
-    elif law == "adhesive":
-        slip = np.zeros(closed.size, bool)
-    elif law == "coulomb":
-        slip = np.linalg.norm(g_t, axis=1) > 1.0
-    else:
-        raise ValueError(f"law must be one of {CONTACT_LAWS}, got {law!r}")
+    g_n = np.asarray(g_n, dtype=float)
+    names = np.broadcast_to(np.asarray(kinds, dtype=object), g_n.shape)
+    bad = set(names.tolist()) - set(KINDS)
+    if bad:
+        raise ValueError(f"law must be one of {HISTORY_LAWS}, got {sorted(bad)[0]!r}")
+    uni = np.array([KINDS[k].unilateral for k in names.tolist()], dtype=bool)
+    tang = np.array([KINDS[k].tangential for k in names.tolist()], dtype=object)
+    closed = ~uni | (indicator(g_n) > 0)
+    slip = tang == "free"
+    if np.any(tang == "coulomb"):
+        c = tang == "coulomb"
+        slip[c] = np.linalg.norm(y[c], axis=1) > radius[c]
     return np.where(closed, np.where(slip, SLIP, STICK), OPEN)
-
-
-# The friction law's linearisation; ``law`` is a skxfem.contact_newton.Law.
-
-def friction_coefficient(law, lam: np.ndarray) -> np.ndarray:
-    """The factor of Λ in r_τ: μλ, or the frozen threshold (the paper's fixed point)."""
-    return law.mu * lam if law.threshold is None else law.threshold
-
-
-def held(law, g_n: np.ndarray) -> np.ndarray:
-    """Closed points whose frozen threshold is 0: r_τ = 0 whatever Λ, which is held."""
-    if law.threshold is None:
-        return np.zeros(g_n.size, bool)
-    return (normal_update(g_n)[1] > 0) & (law.threshold == 0)
-
-
-def just_closed(law, lam: np.ndarray, g_n: np.ndarray) -> np.ndarray:
-    """Closed points where λ = 0 (to 1e-12 of the largest |λ|): Λ has no coefficient."""
-    closed = normal_update(g_n)[1] > 0
-    if law.name != "coulomb" or law.threshold is not None:
-        return np.zeros(lam.size, bool)
-    return closed & (np.abs(lam) <= 1e-12 * (np.abs(lam).max() if lam.size else 0.0))

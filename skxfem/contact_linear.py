@@ -9,21 +9,23 @@ multiplier:
 .. math:: \frac{\rho_n}{w_j} B_{n,j} \Delta U = -R_{n,j} \quad (\chi_j = 1),
           \qquad \Delta\lambda_j = -R_{n,j} \quad (\chi_j = 0),
 
-and ``adhesive`` adds, per tangent a, ρ_τ/w_j B_{τa,j} ΔU = R_{τa,j} at
-closed dofs and ΔT_{aj} = -R_{τa,j} at open ones.  The open unknowns are
-known; moved to the right-hand side of equilibrium they leave
+and a stick point adds, per tangent a, ρ_τ/w_j B_{τa,j} ΔU = -R_{τa,j}, where
+an open (or free, or held) one has Δr_{τa,j} = -R_{τa,j}.  The known
+unknowns moved to the right-hand side of equilibrium leave
 
 .. math:: K \Delta U + B^T y = f, \qquad B \Delta U = c, \qquad
-          (\Delta\lambda, \Delta T)_{closed} = -y,
+          (\Delta\lambda, \Delta r_\tau)_{tied} = -y,
 
-with B the closed rows of B_n (and of the B_τa), f = -R_u + the open rows'
-forces: the tie of :func:`skxfem.iterative.solve` with a right-hand side c.
-A Coulomb step is not a tie: at a closed dof Δλ also moves the friction
-force μλΛ, a coupling no tie has.  :class:`TieStep` solves the step without
-it (J₀); at a slipping dof it eliminates ΔΛ = (I - DP)⁻¹(-R_τ + ρ_τ/w DP B_τ
-ΔU), a symmetric interface stiffness.  FGMRES on the whole step, J₀⁻¹ as its
-preconditioner, adds the coupling back (one AMG set-up per step, shared by
-every preconditioner call).  ``auto`` keeps Coulomb direct
+with B the tied rows of B_n and of the B_τa and f = -R_u + the known
+multipliers' forces: the tie of :func:`skxfem.iterative.solve` with a
+right-hand side c.  A Coulomb step is not a tie: at a slipping dof, the
+radius μp of its ball moves with Δλ, a coupling no tie has.
+:class:`TieStep` solves the step without it (J₀; the radius' dependence on
+ΔU is known from the normal row there, ρ_n B_n ΔU/w = -R_n); at a slipping
+dof it eliminates Δr_τ = (I - DP)⁻¹(-R_τ - ρ_τ/w DP B_τ ΔU + ...), a
+symmetric interface stiffness ρ_τ/w B_τᵀ(I - DP)⁻¹DP B_τ.  FGMRES on the whole
+step, J₀⁻¹ as its preconditioner, adds the coupling back (one AMG set-up per
+step, shared by every preconditioner call).  ``auto`` keeps Coulomb direct
 (:func:`skxfem.linear.choose_linear`).
 
 >>> import numpy as np, scipy.sparse as sp
@@ -38,15 +40,21 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from .amg import pyamg
-from .contact_laws import ball_projection, friction_coefficient, held, just_closed, normal_update
+from .contact_laws import disk_projection
 from .iterative import ConvergenceError
 from .iterative import solve as tie_solve
+from .saddle import SingularSystemError
 
-__all__ = ["scales", "direct", "iterative", "TieStep", "NEAR_STICK"]
+__all__ = ["scales", "direct", "iterative", "TieStep", "NEAR_STICK", "SingularStepError"]
 
 NEAR_STICK = 1e-2
-"""Slip points with |g_τ| ≤ 1 + NEAR_STICK are taken as stick in the Coulomb
-preconditioner: eliminating their Λ would add a stiffness ∝ 1/(|g_τ| - 1)."""
+"""Slip points with |y| ≤ (1 + NEAR_STICK) R are taken as stick in the Coulomb
+preconditioner: eliminating their r_τ would add a stiffness ∝ 1/(|y|/R - 1)."""
+
+
+class SingularStepError(ValueError):
+    """A singular Newton matrix: a part of the body free in the step's active
+    set, or multipliers that depend on the others."""
 
 
 def scales(A, nu):
@@ -83,7 +91,7 @@ def direct(A, R, nu, reuse=None):
             raise RuntimeError(f"smallest LU pivot {pivots.min() / pivots.max():.1e} "
                                f"of the largest")
     except RuntimeError as e:  # SuperLU: "Factor is exactly singular"
-        raise ValueError(
+        raise SingularStepError(
             f"the contact Newton matrix is singular ({e}): either a part of the body can "
             f"move freely (a frictionless or open interface leaves a rigid motion of one "
             f"side: add supports on each side), or some multipliers depend on the others "
@@ -92,40 +100,42 @@ def direct(A, R, nu, reuse=None):
     return c * lu.solve(-r * R), r, (A, r, c, lu)
 
 
-def iterative(ops, law, K, free, R, lam, T, g_n, g_t, A, modes=None, blocksize=1,
-              tol=1e-12, maxiter=50, near=NEAR_STICK, reuse=None, inner_tol=1e-6):
-    """Solve the Newton step J x = -R (J = ``A``, the Newton matrix) by ties.
+def iterative(step, it, res, A, modes=None, blocksize=1, close=None, tol=1e-12, maxiter=50,
+              near=NEAR_STICK, reuse=None, inner_tol=1e-6):
+    """Solve the Newton step J x = -R (J = ``A``, at the iterate ``it`` with
+    residual ``res`` of the :class:`~skxfem.contact_newton.StepProblem` ``step``) by ties.
 
-    ``R`` = (R_u, R_n, R_t) and (λ, T, g_n, g_τ) the iterate, as
-    :func:`skxfem.contact_newton.residual`; ``modes``, ``blocksize`` as
-    :func:`skxfem.iterative.solve`.  Where J₀ = J (:attr:`TieStep.exact`:
-    frictionless and adhesive laws, a frozen Coulomb threshold without slip
-    points near the ball's boundary): one tie solve to ``tol``.
-    Coulomb: FGMRES on the scaled J, preconditioned by :class:`TieStep` (its
-    ties solved to ``inner_tol``), to the relative residual ``tol`` within
-    ``maxiter`` iterations (measured: 6-14 per Newton step on a 3D block).  Returns x =
-    (ΔU_free, Δλ, ΔT) and the tie's :class:`skxfem.iterative.Setup`, which
-    ``reuse`` passes back to the next call (the same tie: no second AMG).
+    ``modes``, ``blocksize`` as :func:`skxfem.iterative.solve`; ``close`` as
+    :func:`skxfem.contact_newton.jacobian`.  Where J₀ = J
+    (:attr:`TieStep.exact`: frictionless and adhesive laws, a frozen Coulomb
+    threshold, no slip point near the ball's boundary): one tie solve to
+    ``tol``.  Coulomb: FGMRES on the scaled J, preconditioned by
+    :class:`TieStep` (its ties solved to ``inner_tol``), to the relative
+    residual ``tol`` within ``maxiter`` iterations.  Returns x = (ΔU_free, Δλ,
+    Δr_τ) and the tie's :class:`skxfem.iterative.Setup`, which ``reuse``
+    passes back to the next call (the same tie: no second AMG).
 
     Raises
     ------
-    ValueError
+    SingularStepError
         Dependent multipliers (the direct path refuses them too: the law must
-        hold at every dof, so its multiplier must be unique).
-    skxfem.iterative.ConvergenceError, skxfem.saddle.SingularSystemError
-        As :func:`skxfem.iterative.solve` (a part of the body free to move),
-        or the FGMRES of a Coulomb step short of ``tol``.
+        hold at every dof, so its multiplier must be unique), or a part of the
+        body free in the step's active set.
+    skxfem.iterative.ConvergenceError
+        The FGMRES of a Coulomb step short of ``tol``.
     """
-    step = TieStep(ops, law, K, free, lam, T, g_n, g_t, modes, blocksize, near, reuse)
-    if step.exact:  # J₀ = J: one tie solve is the step
-        return step(R, tol), step.setup
-    Rv = np.concatenate(R)
-    r, c = scales(A, len(free))
+    tie = TieStep(step, res, modes, blocksize, near, reuse, close)
+    R = (res.R_u, res.R_n, res.R_t)
+    if tie.exact:  # J₀ = J: one tie solve is the step
+        return tie(R, tol), tie.setup
+    Rv = res.vector
+    r, c = scales(A, step.nu)
     As = (sp.diags(r) @ sp.csr_matrix(A) @ sp.diags(c)).tocsr()
+    m, k = res.R_t.shape
 
     def precondition(v):  # c⁻¹ J₀⁻¹ r⁻¹ v: every call the same tie
-        parts = np.split(v / r, [len(free), len(free) + lam.size])
-        return step([-p for p in parts], inner_tol) / c
+        parts = np.split(v / r, [step.nu, step.nu + m])
+        return tie((-parts[0], -parts[1], -parts[2].reshape(k, m).T), inner_tol) / c
     M = spla.LinearOperator(As.shape, matvec=precondition, dtype=float)
     history = []
     x, _ = pyamg().krylov.fgmres(As, -r * Rv, tol=tol, restart=min(maxiter, As.shape[0]),
@@ -136,86 +146,111 @@ def iterative(ops, law, K, free, R, lam, T, g_n, g_t, A, modes=None, blocksize=1
             f"the Coulomb Newton step did not reach the relative residual {tol:.0e} in "
             f"{len(history) - 1} FGMRES iterations (reached {reached:.1e}): use "
             f"linear='direct'", len(history) - 1, float(reached))
-    return c * x, step.setup
+    return c * x, tie.setup
 
 
 class TieStep:
-    """J₀⁻¹ as a tie: ``step(R, tol)`` is x = J₀⁻¹(-R), J₀ = J but for Coulomb's -μTΔλ
-    at closed dofs (and slip points within ``near`` of the ball taken as stick).
+    """J₀⁻¹ as a tie: ``tie(R, tol)`` is x = J₀⁻¹(-R), R = (R_u, R_n, R_t (m, k)),
+    J₀ = J but for the Δλ in the radius of Coulomb's ball at slipping dofs (and
+    slip points within ``near`` of the ball taken as stick).
 
-    Open (and held) dofs: Δλ = -R_n, ΔΛ = -R_τ.  Closed: the rows of B_n;
-    stick (DP = I): the rows of B_τa, multiplier r = coef ΔΛ; slip: ΔΛ =
-    (I - DP)⁻¹(-R_τ + ρ_τ/w DP B_τ ΔU), whose force adds the symmetric
-    -coef ρ_τ/w B_τᵀ (I - DP)⁻¹ DP B_τ (coef = μλ ≤ 0) to K.  The tie (K, B
-    and the dofs' kinds) is built once, here; the first call builds its
+    Open dofs: Δλ = -R_n; tangential components free, held or open: Δr = -R_t.
+    Closed: the rows of B_n; stick (DQ = I): the rows of B_τa, multiplier Δr;
+    slip: Δr = (I - DQ)⁻¹(-R_τ - ρ_τ/w DQ B_τ ΔU - q_R μ R_n), whose force adds
+    the symmetric ρ_τ/w B_τᵀ (I - DQ)⁻¹ DQ B_τ to K.  The tie (K, B and the
+    dofs' kinds) is built once, here; the first call builds its
     :class:`skxfem.iterative.Setup` (or takes ``reuse``), kept in ``setup``
     for the next calls.  ``exact``: J₀ = J.
     """
 
-    def __init__(self, ops, law, K, free, lam, T, g_n, g_t, modes=None, blocksize=1,
-                 near=0.0, reuse=None):
-        m, k = lam.size, T.shape[1]
-        self.ops, self.law, self.free, self.m, self.k = ops, law, free, m, k
+    def __init__(self, step, res, modes=None, blocksize=1, near=0.0, reuse=None, close=None):
+        laws, ops = step.laws, step.ops
+        m, k = res.y.shape
+        self.step, self.m, self.k = step, m, k
         self.modes, self.blocksize, self.setup = modes, blocksize, reuse
-        self.closed = closed = normal_update(g_n)[1] > 0
+        chi = np.where(laws.unilateral, res.g_n <= 0, True)
+        if close is not None:
+            chi = chi | close
+        self.closed = chi
         eye = np.eye(k)
-        coef, DP, coupled = np.ones(m), np.broadcast_to(eye, (m, k, k)).copy(), np.zeros((m, k))
-        friction = closed & ~held(law, g_n)  # the rows of ΔΛ that see ΔU
+        DQ = np.zeros((m, k, k))
+        qR = np.zeros((m, k))
+        stick_law, coulomb = laws.tangential == "stick", laws.tangential == "coulomb"
+        DQ[stick_law & chi] = eye
         approximated = np.zeros(m, bool)
-        if law.name == "coulomb":
-            new = just_closed(law, lam, g_n)
-            coef = np.where(new, 1.0, friction_coefficient(law, lam))
-            DP = ball_projection(g_t)[1]
-            norm = np.linalg.norm(g_t, axis=1)
-            approximated = friction & (norm > 1) & (norm <= 1 + near)
-            DP[new | (norm <= 1 + near)] = eye
-            if law.threshold is None:  # Δλ moves r_τ = μλΛ: known at the open dofs only
-                coupled = law.mu * np.where(new[:, None], 0.0, T)
-        self.exact = law.name != "coulomb" or (law.threshold is not None
-                                               and not approximated.any())
-        self.stick = stick = friction & np.all(np.isclose(DP, eye), axis=(1, 2))
-        self.slip = slip = friction & ~stick
-        self.coef, self.DP, self.coupled = coef, DP, coupled
-        self.Minv = np.linalg.inv(eye - DP[slip]) if slip.any() else np.zeros((0, k, k))
+        c = coulomb & (chi | (res.dR_dlam != 0))
+        if c.any():
+            y = res.y[c]
+            if close is not None:
+                y = np.where((res.g_n[c] > 0)[:, None], 0.0, y)
+            _, DQ[c], qR[c] = disk_projection(y, res.radius[c])
+            norm = np.zeros(m)
+            norm[c] = np.linalg.norm(y, axis=1)
+            approximated = c & (norm > res.radius) & (norm <= (1 + near) * res.radius)
+            DQ[approximated] = eye
+            qR[approximated] = 0.0
+        mask = ~laws.held
+        DQ = DQ * mask[:, None, :] * mask[:, :, None]
+        dR_dlam = np.where(c, res.dR_dlam, 0.0)
+        dR_dU = np.where(c, res.dR_dU, 0.0)
+        self.exact = not ((np.abs(qR).sum(axis=1) * dR_dlam != 0).any() or approximated.any())
+        nz = DQ.any(axis=(1, 2))
+        eyem = eye * mask[:, :, None] * mask[:, None, :]
+        self.stick = stick = chi & nz & np.all(np.isclose(DQ, eyem), axis=(1, 2))
+        self.slip = slip = chi & nz & ~stick
+        self.tied = tied = stick[:, None] & mask  # (m, k): the tangential rows of the tie
+        self.DQ, self.qR, self.dR_dU = DQ, qR, dR_dU
+        Iminus = eye - DQ[slip]
+        self.Minv = np.linalg.inv(Iminus) if slip.any() else np.zeros((0, k, k))
         self.Bt = Bt = [ops.Bt[a] for a in range(k)]
+        K = step.K
+        iw = 1.0 / ops.w
         if slip.any():  # the slip force's ΔU part: a symmetric interface stiffness
-            C = (-coef[slip] * law.rho_t / ops.w[slip])[:, None, None] * (self.Minv @ DP[slip])
+            C = (laws.rho_t[slip] * iw[slip])[:, None, None] * (self.Minv @ DQ[slip])
             W = sp.bmat([[sp.diags(C[:, a, b]) for b in range(k)] for a in range(k)])
             Bs = sp.vstack([B[slip] for B in Bt], format="csr")
             K = (K + Bs.T @ W @ Bs).tocsr()
         self.K = K
-        self.B = sp.vstack([ops.Bn[closed]] + [B[stick] for B in Bt], format="csr")
-        self.fixed = np.setdiff1d(np.arange(K.shape[0]), free)
+        self.B = sp.vstack([ops.Bn[chi]] + [Bt[a][tied[:, a]] for a in range(k)],
+                           format="csr")
+        self.fixed = np.setdiff1d(np.arange(K.shape[0]), step.free)
 
     def __call__(self, R, tol: float) -> np.ndarray:
-        ops, law, k, closed, stick, slip = self.ops, self.law, self.k, self.closed, \
-            self.stick, self.slip
-        coef, coupled, Minv, DP, Bt = self.coef, self.coupled, self.Minv, self.DP, self.Bt
-        R_u, R_n, R_t = R
-        Rt = R_t.reshape(k, self.m).T
+        step, k, m = self.step, self.k, self.m
+        laws, ops = step.laws, step.ops
+        closed, slip = self.closed, self.slip
+        Minv, DQ, Bt = self.Minv, self.DQ, self.Bt
+        R_u, R_n, Rt = R
+        iw = 1.0 / ops.w
         d_lam = np.where(closed, 0.0, -R_n)
-        d_T = np.where(stick[:, None], 0.0, -Rt)
-        d_T[slip] = np.einsum("sab,sb->sa", Minv, -Rt[slip])
+        d_r = np.where(self.tied, 0.0, -Rt)
+        # slip: the radius' ΔU part is known from the normal row, ρ_n B_n ΔU/w = -R_n
+        known = -Rt[slip] - (self.qR[slip] * (self.dR_dU[slip] * R_n[slip])[:, None])
+        d_r[slip] = np.einsum("sab,sb->sa", Minv, known)
         f = np.zeros(self.K.shape[0])
-        f[self.free] = -R_u
-        f += ops.Bn.T @ d_lam + sum(Bt[a].T @ (coef * d_T[:, a] + coupled[:, a] * d_lam)
-                                    for a in range(k))
-        rhs = np.concatenate([-(ops.w / law.rho_n * R_n)[closed]]
-                             + [(ops.w / law.rho_t * Rt[:, a])[stick] for a in range(k)])
-        dU, mu, info = tie_solve(self.K, self.B, f, self.fixed, np.zeros(self.fixed.size),
-                                 c=rhs, modes=self.modes, blocksize=self.blocksize, tol=tol,
-                                 reuse=self.setup)
+        f[step.free] = -R_u
+        f += ops.Bn.T @ d_lam + sum(Bt[a].T @ d_r[:, a] for a in range(k))
+        rhs = np.concatenate([-(ops.w / laws.rho_n * R_n)[closed]]
+                             + [-(ops.w / laws.rho_t * Rt[:, a])[self.tied[:, a]]
+                                for a in range(k)])
+        try:
+            dU, mu, info = tie_solve(self.K, self.B, f, self.fixed, np.zeros(self.fixed.size),
+                                     c=rhs, modes=self.modes, blocksize=self.blocksize,
+                                     tol=tol, reuse=self.setup)
+        except SingularSystemError as e:  # a part free in this active set
+            raise SingularStepError(str(e)) from e
         self.setup = info.setup
         if info.removed:  # as the direct path: a pressure at every dof must be unique
-            raise ValueError(
+            raise SingularStepError(
                 f"{info.removed} contact multipliers depend on the others (the naive space "
-                f"on tetrahedra, or a support acting on a face that Γ cuts): use "
-                f"space='vital' or move the support")
+                f"on tetrahedra): use space='vital'")
         nc = int(closed.sum())
         d_lam[closed] = mu[:nc]
-        d_T[stick] = mu[nc:].reshape(k, int(stick.sum())).T / coef[stick, None]
+        ends = nc + np.cumsum(self.tied.sum(axis=0))
+        for a in range(k):
+            d_r[self.tied[:, a], a] = mu[ends[a] - self.tied[:, a].sum():ends[a]]
         if slip.any():
             jump = np.stack([B[slip] @ dU for B in Bt], axis=1) * (
-                law.rho_t / ops.w[slip])[:, None]
-            d_T[slip] += np.einsum("sab,sbc,sc->sa", Minv, DP[slip], jump)
-        return np.concatenate([dU[self.free], d_lam, d_T.T.ravel()])
+                laws.rho_t[slip] * iw[slip])[:, None]
+            d_r[slip] -= np.einsum("sab,sbc,sc->sa", Minv, DQ[slip], jump)
+        return np.concatenate([dU[step.free], d_lam, d_r.T.ravel()])

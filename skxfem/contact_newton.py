@@ -1,40 +1,45 @@
-r"""One load step of unilateral contact with friction by a semi-smooth Newton method.
+r"""One load step of unilateral contact with friction by a globalised semi-smooth Newton method.
 
 Unknowns: the free displacement unknowns U, the contact pressure λ (one value
-per multiplier dof, λ ≤ 0 in contact) and a tangential unknown T (m, k):
-the semi-multiplier Λ of eq. 9 for ``coulomb`` (r_τ = μλΛ), the tangential
-traction r_τ itself for ``adhesive`` (no slip: the limit μ → ∞), none for
-``frictionless``.  The equations, all solved at once (paper §3):
+per multiplier dof, λ ≤ 0 in contact) and the tangential traction r_τ (m, k),
+k = dim - 1 (Coulomb's r_τ = μλΛ, eq. 9a: the solver keeps the traction,
+which stays bounded where the pressure vanishes, and reports Λ).  The
+equations, all solved at once (paper §3), at every multiplier dof j:
 
 * equilibrium  K U - Bnᵀλ - Σ_a Bt_aᵀ r_τa - F = 0 on the free unknowns;
-* contact      λ - χ(g_n) g_n = 0, g_n = λ - ρ_n d  at every dof;
-* friction     Λ - χ(g_n) P_B(g_τ) = 0, g_τ = Λ + ρ_τ s  (``coulomb``), or
-  r_τ - χ(g_n)(r_τ + ρ_τ s) = 0 (``adhesive``),
+* contact      λ - χ(g_n) g_n = 0,  g_n = λ - ρ_n d  (a tied normal: ρ_n d = 0);
+* friction     r_τ - P_{B(0,R)}(r_τ - ρ_τ s) = 0,  R = μ max(0, -g_n)  (Coulomb);
+  r_τ - χ(g_n)(r_τ - ρ_τ s) = 0 (no slip where closed); r_τ = 0 (free sliding),
 
 with d, s the weighted normal jump and tangential jump increment of
-:mod:`skxfem.contact_interface` (s = v_τ Δt: the increment over the step).
-The open points (χ = 0) get λ = 0 and Λ = 0: the term (1 - χ)Λ of the
-paper's third equation.
+:mod:`skxfem.contact_interface` (s = v_τ Δt: the increment over the step) and
+the laws of :mod:`skxfem.contact_laws`.  Tangential components that a support
+holds (:attr:`~skxfem.contact_interface.Operators.held`) carry r_τa = 0: the
+support takes that force.
 
-Newton matrix: the exact generalised Jacobian (:mod:`skxfem.contact_laws`;
-χ is taken as 1 at g_n = 0 in every block, so the first iteration from an
-untouched interface is the bilateral, or bonded, solve), with one
-exception: at a point just closed with λ = 0
-(:func:`skxfem.contact_laws.just_closed`) Λ has
-no coefficient (r_τ = μλΛ = 0 for every Λ); that iteration takes the
-traction r_τ as the unknown there with the stick row ρ_τ s = 0, and sets
-Λ = P_B(r_τ/(μλ)) after the step (the first iteration of a first load step
-is thus the bonded solve).
-Rows and columns are scaled (Jacobi on U, unit max on the others) before
-SuperLU, or solved as ties by AMG + projected CG (:mod:`skxfem.contact_linear`);
-a matrix unchanged since the last iteration is not factorised (or set up)
-again. Step control: backtracking on
-the scaled residual norm (halving up to 5 times; if no step decreases it the
-full step is taken, as the active set has to change). Convergence: the
-status of every point (open, stick, slip) unchanged by the last step and
-every relative residual ≤ ``tol`` (equilibrium relative to max(|F|, |KU|);
-contact relative to max(|λ|, ρ_n|d|); friction: |Λ| ≤ 1 is already
-unit-free, the adhesive traction relative to max(|r_τ|, ρ_τ|s|)).
+**The iteration** (:func:`newton`), one pass of five named steps:
+
+1. :func:`residual` of every equation at the iterate;
+2. :func:`jacobian`, the exact generalised Jacobian (χ taken as 1 at g_n = 0,
+   so that the first iteration from an untouched interface is the bonded
+   solve);
+3. the linear step J Δx = -R (:mod:`skxfem.contact_linear`; a matrix
+   unchanged since the last iteration is not factorised again; a singular
+   one, an active set that leaves a part of the body free, is replaced by the
+   Jacobian that keeps the points closed at the last iterate, then every point
+   closed; if that is singular too, the law or the space is at fault and the
+   :class:`~skxfem.contact_linear.SingularStepError`, a ValueError, is raised);
+4. :func:`line_search`: the largest α ∈ {1, ½, …, 2⁻⁸} that decreases the
+   merit ‖D R‖ (D the row scales of the step) by the Armijo factor (1 - 10⁻⁴α);
+   if none does, the α of the smallest merit, and the full step if no α
+   decreases it (the active set has to change);
+5. :func:`relative_residuals`, the convergence test: the residual of every
+   equation in force units (the interface rows times the lumped weight w)
+   divided by a force that cannot vanish, max(|F|, |K U|, max diag K · |U|),
+   each ≤ ``tol``.  The interface equations are measured with the *reference*
+   ρ = E/h, not the step's ρ: their zeros are the same for every ρ > 0, so the
+   test does not depend on the augmentation, and it does not look at the
+   statuses, which may flip at a point exactly on the slip limit.
 
 >>> law = Law("coulomb", mu=0.5, rho_n=1.0, rho_t=1.0)
 >>> law.friction, law.threshold is None
@@ -42,39 +47,39 @@ unit-free, the adhesive traction relative to max(|r_τ|, ρ_τ|s|)).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.sparse as sp
 
 from . import contact_linear
-from .contact_laws import (
-    ball_projection,
-    friction_coefficient,
-    held,
-    just_closed,
-    normal_update,
-    status,
-)
+from .contact_laws import KINDS, disk_projection, status
 
-__all__ = ["Law", "NewtonInfo", "ContactConvergenceError", "residual", "newton"]
+__all__ = ["Law", "PointLaws", "point_laws", "StepProblem", "Iterate", "Residual",
+           "NewtonInfo", "ContactConvergenceError", "jumps", "residual", "jacobian",
+           "line_search", "relative_residuals", "newton", "LINE_SEARCH"]
+
+LINE_SEARCH = tuple(0.5 ** np.arange(9))
+"""The step lengths tried by :func:`line_search`, longest first."""
 
 
 class ContactConvergenceError(RuntimeError):
     """The contact iteration did not converge; the message says how far it got.
 
-    ``last`` holds the last iterate (U, λ, T, g_n, g_t, info) and ``statuses``
-    the status of every point at every iteration, to show what went wrong.
+    ``last`` holds the last (:class:`Iterate`, :class:`Residual`, :class:`NewtonInfo`)
+    and ``statuses`` the status of every point at every iteration, to show what
+    went wrong.
     """
 
 
 @dataclass(frozen=True)
 class Law:
-    """A unilateral law with its parameters (μ only for ``coulomb``).
+    """A law of :data:`skxfem.contact_laws.KINDS` with its parameters (μ: ``coulomb``).
 
-    ``threshold`` (m,), if given, freezes the friction threshold: r_τ =
-    threshold · Λ instead of μλΛ (the paper's fixed point,
-    :mod:`skxfem.contact_fixed_point`); where it is 0, Λ is held.
+    ``rho_n``, ``rho_t``: the augmentations, tractions per length.
+    ``threshold`` (m,), if given, freezes the friction threshold: the radius
+    of the Coulomb ball is ``threshold`` at a closed point instead of μp (the
+    paper's fixed point, :mod:`skxfem.contact_fixed_point`).
     """
 
     name: str
@@ -85,103 +90,256 @@ class Law:
 
     @property
     def friction(self) -> bool:
-        return self.name in ("coulomb", "adhesive")
+        return KINDS[self.name].tangential != "free"
+
+
+@dataclass(frozen=True)
+class PointLaws:
+    """The law at each of the m multiplier dofs, as arrays.
+
+    ``name`` (m,) law names, ``unilateral`` (m,) Signorini or a tied normal,
+    ``tangential`` (m,) ``"free"``, ``"stick"`` or ``"coulomb"``; ``mu``,
+    ``rho_n``, ``rho_t`` (m,); ``threshold`` (m,) the frozen radius of the
+    fixed point or None; ``held`` (m, k) the tangential components a support
+    holds (their r_τ is 0).
+    """
+
+    name: np.ndarray
+    unilateral: np.ndarray
+    tangential: np.ndarray
+    mu: np.ndarray
+    rho_n: np.ndarray
+    rho_t: np.ndarray
+    held: np.ndarray
+    threshold: np.ndarray | None = None
+
+    @property
+    def k(self) -> int:
+        return self.held.shape[1]
+
+
+def point_laws(law: Law, held: np.ndarray) -> PointLaws:
+    """One :class:`Law` at every dof; ``held`` (m, k) as :attr:`PointLaws.held`.
+
+    >>> pl = point_laws(Law("adhesive", 0.0, 2.0, 3.0), np.zeros((4, 1), bool))
+    >>> pl.unilateral.all(), pl.tangential[0], pl.rho_t[0]
+    (True, 'stick', 3.0)
+    """
+    m = held.shape[0]
+    kind = KINDS[law.name]
+    full = lambda v: np.full(m, float(v))  # noqa: E731
+    return PointLaws(np.full(m, law.name, dtype=object), np.full(m, kind.unilateral),
+                     np.full(m, kind.tangential, dtype=object), full(law.mu),
+                     full(law.rho_n), full(law.rho_t), np.asarray(held, bool),
+                     law.threshold)
+
+
+@dataclass(frozen=True)
+class StepProblem:
+    """What one load step solves: the interface ``ops``, the stiffness ``K``
+    and load ``F`` on all unknowns, the ``free`` unknowns, ``U_prev`` (the
+    converged state the slip increments start from), the ``laws`` and
+    ``rho_ref`` (the reference ρ of the convergence test, E/h)."""
+
+    ops: object
+    K: sp.csr_matrix
+    F: np.ndarray
+    free: np.ndarray
+    U_prev: np.ndarray
+    laws: PointLaws
+    rho_ref: float
+
+    @property
+    def nu(self) -> int:
+        return len(self.free)
+
+
+@dataclass(frozen=True)
+class Iterate:
+    """U (N,) with the imposed values, λ (m,), r_τ (m, k)."""
+
+    U: np.ndarray
+    lam: np.ndarray
+    r: np.ndarray
+
+    def moved(self, free, dx, alpha: float) -> Iterate:
+        """The iterate x + α Δx, Δx = (ΔU_free, Δλ, Δr_τ component-major)."""
+        nu, (m, k) = len(free), self.r.shape
+        U = self.U.copy()
+        U[free] += alpha * dx[:nu]
+        return Iterate(U, self.lam + alpha * dx[nu:nu + m],
+                       self.r + alpha * dx[nu + m:].reshape(k, m).T)
+
+
+@dataclass(frozen=True)
+class Residual:
+    """The residuals at an iterate: R_u (free unknowns), R_n (m,), R_t (m, k)
+    (tractions), and what the laws saw: g_n (m,), y = r_τ - ρ_τ s on the
+    components not held (m, k), the Coulomb radius R (m,) and its derivatives
+    dR/dλ (m,) and dR/dU = ``dR_dU`` ρ_n B_n/w, the status (m,)."""
+
+    R_u: np.ndarray
+    R_n: np.ndarray
+    R_t: np.ndarray
+    g_n: np.ndarray
+    y: np.ndarray
+    radius: np.ndarray
+    status: np.ndarray
+    dR_dlam: np.ndarray = None
+    dR_dU: np.ndarray = None
+
+    @property
+    def vector(self) -> np.ndarray:
+        """(R_u, R_n, R_t component-major), the order of the unknowns."""
+        return np.concatenate([self.R_u, self.R_n, self.R_t.T.ravel()])
 
 
 @dataclass(frozen=True)
 class NewtonInfo:
-    """``iterations`` (linear solves) and ``residuals`` (iterations + 1, 3): the
-    relative residuals of equilibrium, contact and friction, first the start."""
+    """``iterations`` (linear solves), ``residuals`` (iterations + 1, 3): the
+    relative residuals of equilibrium, contact and friction, first the start;
+    ``steps`` the line-search step length α of each iteration."""
 
     iterations: int
     residuals: np.ndarray
+    steps: tuple = ()
 
 
-def _jumps(ops, U, U_prev):
+def jumps(ops, U, U_prev):
+    """d (m,) and s (m, k): the weighted normal jump and tangential jump increment."""
     d = ops.Bn @ U / ops.w
     s = np.stack([Bt @ (U - U_prev) for Bt in ops.Bt], axis=1) / ops.w[:, None]
-    return d, s
+    return d, s.reshape(d.size, len(ops.Bt))
 
 
-def _tangential(law, lam, T):
-    """The tangential traction r_τ (m, k)."""
-    if law.name == "coulomb":
-        return friction_coefficient(law, lam)[:, None] * T
-    return T if law.name == "adhesive" else np.zeros_like(T)
+RADIUS = "pressure"
 
 
-def residual(ops, law, K, F, free, U, lam, T, U_prev):
-    """Residuals (R_u, R_n, R_t), the augmented g_n, g_τ and their relative sizes."""
-    d, s = _jumps(ops, U, U_prev)
-    g_n = lam - law.rho_n * d
-    value, _ = normal_update(g_n)
-    R_n = lam - value
-    g_t = T + law.rho_t * s[:, :T.shape[1]]
-    chi = (g_n < 0)[:, None]
-    if law.name == "coulomb":
-        R_t = np.where(held(law, g_n)[:, None], 0.0, T - chi * ball_projection(g_t)[0])
-    elif law.name == "adhesive":
-        R_t = T - chi * g_t
-    else:
-        R_t = np.zeros((lam.size, 0))
-    tau = _tangential(law, lam, T)
-    KU = K @ U
-    R_u = (KU - ops.Bn.T @ lam - sum(ops.Bt[a].T @ tau[:, a] for a in range(tau.shape[1])) - F)
-    R_u = R_u[free]
-    tiny = 1e-300
-    r_u = _max(R_u) / max(_max(F[free]), _max(KU[free]), tiny)
-    r_n = _max(R_n) / max(_max(lam), law.rho_n * _max(d), tiny)
-    r_t = _max(R_t) if law.name != "adhesive" else _max(R_t) / max(
-        _max(T), law.rho_t * _max(s), tiny)
-    return (R_u, R_n, R_t.T.ravel()), g_n, g_t, np.array([r_u, r_n, r_t])
+def _radius(laws: PointLaws, lam, g_n):
+    """The radius R of the friction ball, dR/dλ and the coefficient c of dR/dU =
+    c ρ_n B_n/w: μ max(0, -λ) (Coulomb; slope -μ where λ < 0), or the frozen
+    threshold where g_n < 0 (slope 0)."""
+    m = g_n.size
+    if laws.threshold is not None:
+        return np.where(g_n < 0, laws.threshold, 0.0), np.zeros(m), np.zeros(m)
+    if RADIUS == "augmented":
+        closed = g_n <= 0
+        return laws.mu * np.maximum(0.0, -g_n), np.where(closed, -laws.mu, 0.0), np.where(
+            closed, laws.mu, 0.0)
+    return laws.mu * np.maximum(0.0, -lam), np.where(lam < 0, -laws.mu, 0.0), np.zeros(m)
 
 
-def _max(a):
+def residual(step: StepProblem, it: Iterate, rho_n=None, rho_t=None) -> Residual:
+    """Step 1: the residual of every equation at ``it``; ρ defaults to the laws'."""
+    laws, ops = step.laws, step.ops
+    rho_n = laws.rho_n if rho_n is None else rho_n
+    rho_t = laws.rho_t if rho_t is None else rho_t
+    d, s = jumps(ops, it.U, step.U_prev)
+    g_n = it.lam - rho_n * d
+    chi = np.where(laws.unilateral, g_n < 0, True)
+    R_n = it.lam - chi * g_n
+    y = np.where(laws.held, 0.0, it.r - rho_t[:, None] * s)
+    radius, dR_dlam, dR_dU = _radius(laws, it.lam, g_n)
+    Q = np.zeros_like(y)
+    stick, coulomb = laws.tangential == "stick", laws.tangential == "coulomb"
+    Q[stick] = chi[stick, None] * y[stick]
+    if coulomb.any():
+        Q[coulomb] = disk_projection(y[coulomb], radius[coulomb])[0]
+    R_t = it.r - Q
+    tau = it.r
+    R_u = (step.K @ it.U - ops.Bn.T @ it.lam
+           - sum(ops.Bt[a].T @ tau[:, a] for a in range(laws.k)) - step.F)[step.free]
+    st = status(g_n, y, radius, laws.name)
+    return Residual(R_u, R_n, R_t, g_n, y, radius, st, dR_dlam, dR_dU)
+
+
+def jacobian(step: StepProblem, it: Iterate, res: Residual, close=None) -> sp.csr_matrix:
+    """Step 2: the generalised Jacobian of (R_u, R_n, R_t) in (U_free, λ, r_τ).
+
+    ``close`` (m,) bool: points whose unilateral normal takes the contact
+    branch whatever g_n (the fallback of a singular step, see the module notes).
+    """
+    laws, ops, free = step.laws, step.ops, step.free
+    m, k = res.y.shape
+    iw = 1.0 / ops.w
+    chi = np.where(laws.unilateral, res.g_n <= 0, True)  # χ, and 1 at g_n = 0
+    if close is not None:
+        chi = chi | close
+    Bn = ops.Bn[:, free]
+    Bt = [B[:, free] for B in ops.Bt]
+    rows_u = [step.K[free][:, free], -Bn.T] + [-Bt[a].T for a in range(k)]
+    rows_n = [sp.diags(chi * laws.rho_n * iw) @ Bn, sp.diags(1.0 - chi)] + [None] * k
+    # R_t = r - Q(y, R): dQ/dy (m, k, k) and dQ/dR (m, k) by law
+    DQ = np.zeros((m, k, k))
+    qR = np.zeros((m, k))
+    stick, coulomb = laws.tangential == "stick", laws.tangential == "coulomb"
+    DQ[stick] = chi[stick, None, None] * np.eye(k)
+    dR_dlam, dR_dU = res.dR_dlam, res.dR_dU
+    # the ball's derivative where the point is closed or still pressed (λ < 0);
+    # elsewhere r_τ = 0 whatever y: DQ = 0
+    c = coulomb & (chi | (dR_dlam != 0))
+    if c.any():
+        y = res.y[c]
+        if close is not None:  # a point closed by force: its ball holds it (stick)
+            y = np.where((res.g_n[c] > 0)[:, None], 0.0, y)
+        _, DQ[c], qR[c] = disk_projection(y, res.radius[c])
+    mask = ~laws.held  # y sees r and s on the components not held
+    DQ = DQ * mask[:, None, :] * mask[:, :, None]
+    # dR_t/dU = DQ ρ_t Bt/w - qR dR/dU;  dR_t/dλ = -qR dR/dλ
+    rows_t = []
+    for a in range(k):
+        du = sum(sp.diags(DQ[:, a, b] * laws.rho_t * iw) @ Bt[b] for b in range(k))
+        du = du - sp.diags(qR[:, a] * dR_dU * laws.rho_n * iw) @ Bn
+        rows_t.append([du, sp.diags(-qR[:, a] * dR_dlam)]
+                      + [sp.diags((a == b) - DQ[:, a, b]) for b in range(k)])
+    return sp.bmat([rows_u, rows_n] + rows_t, format="csr")
+
+
+def line_search(step: StepProblem, it: Iterate, dx, merit0: float, rows):
+    """Step 4: the iterate along ``dx`` whose merit ‖rows·R‖ decreases (module notes).
+
+    Returns the new iterate, its residual and the step length α.
+    """
+    best = None
+    for alpha in LINE_SEARCH:
+        trial = it.moved(step.free, dx, alpha)
+        res = residual(step, trial)
+        merit = np.linalg.norm(rows * res.vector)
+        if merit <= (1 - 1e-4 * alpha) * merit0:
+            return trial, res, alpha
+        if best is None or merit < best[0]:
+            best = (merit, trial, res, alpha)
+    if best[0] < merit0:
+        return best[1], best[2], best[3]
+    trial = it.moved(step.free, dx, 1.0)
+    return trial, residual(step, trial), 1.0
+
+
+def force_scale(step: StepProblem, U) -> float:
+    """A force that cannot vanish unless the whole state does: max(|F|, |K U|,
+    max diag K · |U|) (an interface opened by imposed displacements has F = 0
+    and K U = 0 on the free unknowns, but not U)."""
+    diag = np.abs(step.K.diagonal()).max() if step.K.shape[0] else 0.0
+    return max(_max(step.F), _max(step.K @ U), diag * _max(U), 1e-300)
+
+
+def relative_residuals(step: StepProblem, it: Iterate) -> np.ndarray:
+    """Step 5: (equilibrium, contact, friction) residuals relative to :func:`force_scale`,
+    the interface equations at the reference ρ (module notes)."""
+    ref = np.full(it.lam.size, step.rho_ref)
+    res = residual(step, it, ref, ref)
+    w = step.ops.w
+    scale = force_scale(step, it.U)
+    return np.array([_max(res.R_u), _max(w * res.R_n), _max(w[:, None] * res.R_t)]) / scale
+
+
+def _max(a) -> float:
     return float(np.abs(a).max()) if np.size(a) else 0.0
 
 
-def jacobian(ops, law, K, free, lam, T, g_n, g_t) -> sp.csr_matrix:
-    """The generalised Jacobian of (R_u, R_n, R_t) with respect to (U_free, λ, T).
-
-    At :func:`just_closed` points (``coulomb``) the column of T is that of the
-    traction r_τ and the row is the stick condition ρ_τ s = 0; see the module notes.
-    """
-    m, k = T.shape
-    chi = normal_update(g_n)[1]  # χ, and 1 at g_n = 0 (the contact branch)
-    Bn = ops.Bn[:, free]
-    Bt = [B[:, free] for B in ops.Bt]
-    iw = 1.0 / ops.w
-    A_ul = -Bn.T
-    rows_u = [K[free][:, free], A_ul]
-    rows_n = [sp.diags(chi * law.rho_n * iw) @ Bn, sp.diags(1.0 - chi)]
-    if k == 0:
-        return sp.bmat([rows_u, rows_n], format="csr")
-    if law.name == "coulomb":
-        new = just_closed(law, lam, g_n)
-        mu = law.mu if law.threshold is None else 0.0  # a frozen threshold: no dλ
-        rows_u[1] = A_ul - sum(mu * Bt[a].T @ sp.diags(np.where(new, 0.0, T[:, a]))
-                               for a in range(k))
-        coef = np.where(new, 1.0, friction_coefficient(law, lam))
-        rows_u.append(sp.hstack([-Bt[a].T @ sp.diags(coef) for a in range(k)]))
-        DP = ball_projection(g_t)[1]
-        DP[new] = np.eye(k)  # the stick row
-        chi = np.where(held(law, g_n), 0.0, chi)  # held: the row ΔΛ = 0
-        t_u = [-sum(sp.diags(chi * law.rho_t * iw * DP[:, a, b]) @ Bt[b] for b in range(k))
-               for a in range(k)]
-        t_t = [[sp.diags(np.where(new, 0.0, (a == b) - chi * DP[:, a, b])) for b in range(k)]
-               for a in range(k)]
-    else:
-        rows_u.append(sp.hstack([-Bt[a].T for a in range(k)]))
-        t_u = [-sp.diags(chi * law.rho_t * iw) @ Bt[a] for a in range(k)]
-        t_t = [[sp.diags(1.0 - chi) if a == b else None for b in range(k)] for a in range(k)]
-    rows_n.append(sp.csr_matrix((m, m * k)))
-    rows_t = [sp.vstack(t_u), sp.csr_matrix((m * k, m)), sp.bmat(t_t)]
-    return sp.bmat([rows_u, rows_n, rows_t], format="csr")
-
-
-def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30,
-           linear="direct", modes=None, blocksize=1):
-    """Solve one load step from the start (U, λ, T); U must hold the imposed values.
+def newton(step: StepProblem, start: Iterate, tol: float = 1e-10, max_iter: int = 30,
+           linear: str = "direct", modes=None, blocksize: int = 1):
+    """Solve one load step from ``start`` (its U holds the imposed values).
 
     ``linear``: each Newton step solved by ``"direct"`` SuperLU or
     ``"iterative"`` ties, AMG + projected CG (``modes``, ``blocksize`` as
@@ -189,7 +347,7 @@ def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30,
 
     Returns
     -------
-    U, lam, T, g_n, g_t, NewtonInfo
+    Iterate, Residual, NewtonInfo
 
     Raises
     ------
@@ -197,59 +355,85 @@ def newton(ops, law, K, F, free, U, lam, T, U_prev, tol=1e-10, max_iter=30,
         After ``max_iter`` iterations without convergence: the message gives
         the iterations, the residual of each equation and the points whose
         status kept changing.
+    skxfem.contact_linear.SingularStepError
+        (a ValueError) A Newton matrix singular even with every point closed.
     """
-    U, lam, T = U.copy(), lam.copy(), T.copy()
-    m, k = T.shape
-    if law.name == "coulomb" and law.mu == 0:
-        raise ValueError("coulomb with mu = 0 is frictionless: use law='frictionless'")
-    nu = len(free)
-    R, g_n, g_t, r = residual(ops, law, K, F, free, U, lam, T, U_prev)
-    history = [r]
-    st = status(g_n, g_t, law.name)
-    statuses = [st]
-    changes, factor = np.zeros(m, int), None  # the last LU or tie set-up, reused if unchanged
-    for it in range(1, max_iter + 1):
-        A = jacobian(ops, law, K, free, lam, T, g_n, g_t)
-        new = just_closed(law, lam, g_n)
-        if new.any():  # their rows are the stick condition -ρ_τ s = 0
-            s = _jumps(ops, U, U_prev)[1]
-            R = (R[0], R[1], np.where(np.tile(new, k), -law.rho_t * s.T.ravel(), R[2]))
-        Rv = np.concatenate(R)
-        if linear == "iterative":  # rs: the direct path's row scales, for the line search
-            dx, factor = contact_linear.iterative(ops, law, K, free, R, lam, T, g_n, g_t, A,
-                                                  modes, blocksize, reuse=factor)
-            rs = contact_linear.scales(A, nu)[0]
-        else:
-            dx, rs, factor = contact_linear.direct(A, Rv, nu, reuse=factor)
-        phi0 = np.linalg.norm(rs * Rv)
-        for alpha in (1.0, 0.5, 0.25, 0.125, 0.0625, 0.03125, 1.0):
-            U1, lam1, T1 = U.copy(), lam + alpha * dx[nu:nu + m], T + alpha * (
-                dx[nu + m:].reshape(k, m).T)
-            U1[free] += alpha * dx[:nu]
-            if new.any():  # the unknown was r_τ there: Λ = P_B(r_τ / (μλ))
-                Tn = np.zeros((m, k))
-                ok = new & (lam1 < 0)
-                Tn[ok] = ball_projection(T1[ok] / (law.mu * lam1[ok, None]))[0]
-                T1[new] = Tn[new]
-            out = residual(ops, law, K, F, free, U1, lam1, T1, U_prev)
-            if np.linalg.norm(rs * np.concatenate(out[0])) <= (1 - 1e-4 * alpha) * phi0:
-                break
-        U, lam, T = U1, lam1, T1
-        R, g_n, g_t, r = out
-        history.append(r)
-        new = status(g_n, g_t, law.name)
-        changes += new != st
-        same, st = np.array_equal(new, st), new
-        statuses.append(st)
-        if same and np.all(r <= tol):
-            return U, lam, T, g_n, g_t, NewtonInfo(it, np.array(history))
+    it = start
+    res = residual(step, it)
+    history = [relative_residuals(step, it)]
+    statuses, alphas = [res.status], []
+    closed_before = res.status != 0
+    factor = None  # the last LU or tie set-up, reused while the matrix is unchanged
+    merit_rows = None
+    for n in range(1, max_iter + 1):
+        if np.all(history[-1] <= tol):
+            return it, res, NewtonInfo(n - 1, np.array(history), tuple(alphas))
+        try:
+            dx, rows, factor = _linear_step(step, it, res, None, linear, modes, blocksize,
+                                            factor)
+        except contact_linear.SingularStepError as e:
+            dx, rows, factor = _singular_fallback(step, it, res, closed_before, linear,
+                                                  modes, blocksize, e)
+        if merit_rows is None:  # one merit for the whole step: no cycle can decrease it
+            merit_rows = rows
+        merit0 = np.linalg.norm(merit_rows * res.vector)
+        closed_before = res.status != 0
+        it, res, alpha = line_search(step, it, dx, merit0, merit_rows)
+        alphas.append(alpha)
+        history.append(relative_residuals(step, it))
+        statuses.append(res.status)
+    if np.all(history[-1] <= tol):
+        return it, res, NewtonInfo(max_iter, np.array(history), tuple(alphas))
+    raise _not_converged(f"did not converge in {max_iter} iterations", history, statuses,
+                         tol, (it, res, NewtonInfo(max_iter, np.array(history),
+                                                   tuple(alphas))))
+
+
+def _linear_step(step, it, res, close, linear, modes, blocksize, factor):
+    """Step 3: Δx = -J⁻¹R, the row scales of J and the factorisation to reuse."""
+    A = jacobian(step, it, res, close)
+    if linear == "iterative":
+        dx, factor = contact_linear.iterative(step, it, res, A, modes, blocksize,
+                                              close=close, reuse=factor)
+        return dx, contact_linear.scales(A, step.nu)[0], factor
+    return contact_linear.direct(A, res.vector, step.nu, reuse=factor)
+
+
+def _singular_fallback(step, it, res, closed_before, linear, modes, blocksize, error):
+    """A singular Newton matrix (the active set leaves a part of the body free):
+    the Jacobian that keeps closed the points closed at the last iterate, then
+    the one with every unilateral point closed.  If that one is singular too,
+    no active set helps: the law or the space is at fault (``error`` re-raised)."""
+    chi = np.where(step.laws.unilateral, res.g_n <= 0, True)
+    tried = [chi]
+    for close in (closed_before, np.ones(chi.size, bool)):
+        if any(np.array_equal(chi | close, t) for t in tried):
+            continue
+        tried.append(chi | close)
+        try:
+            return _linear_step(step, it, res, close, linear, modes, blocksize, None)
+        except contact_linear.SingularStepError as e:
+            error = e
+    raise error
+
+
+def _not_converged(what, history, statuses, tol, last, detail=""):
+    """The ContactConvergenceError of a step: residuals and the points that kept flipping."""
+    r = history[-1]
+    st = np.array(statuses)
+    changes = (st[1:] != st[:-1]).sum(axis=0) if len(st) > 1 else np.zeros(st.shape[1], int)
     moving = np.flatnonzero(changes > 1)
     err = ContactConvergenceError(
-        f"contact Newton did not converge in {max_iter} iterations: relative residuals "
-        f"equilibrium {r[0]:.1e}, contact {r[1]:.1e}, friction {r[2]:.1e} (tolerance "
-        f"{tol:.0e}); {moving.size} point(s) changed status more than once"
-        f"{': dofs ' + str(moving[:10].tolist()) if moving.size else ''}. Try more load "
-        f"steps, another rho_n/rho_t, or max_iter")
-    err.last = (U, lam, T, g_n, g_t, NewtonInfo(max_iter, np.array(history)))
-    err.statuses = np.array(statuses)
-    raise err
+        f"contact Newton {what}{detail}: relative residuals equilibrium {r[0]:.1e}, "
+        f"contact {r[1]:.1e}, friction {r[2]:.1e}"
+        f"{'' if not np.isfinite(tol) else f' (tolerance {tol:.0e})'}; {moving.size} "
+        f"point(s) changed status more than once"
+        f"{': dofs ' + str(moving[:10].tolist()) if moving.size else ''}")
+    err.last = last
+    err.statuses = st
+    return err
+
+
+def with_threshold(step: StepProblem, threshold) -> StepProblem:
+    """``step`` with the friction radius frozen at ``threshold`` (m,) where closed."""
+    return replace(step, laws=replace(step.laws, threshold=np.asarray(threshold, float)))

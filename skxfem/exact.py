@@ -38,7 +38,7 @@ import numpy as np
 
 from .material import Material
 
-__all__ = ["ExactPlate"]
+__all__ = ["ExactPlate", "UniformContact"]
 
 
 @dataclass(frozen=True)
@@ -89,3 +89,79 @@ class ExactPlate:
         if self.dim == 2:
             return np.array([[ess, z], [z, ett]])
         return np.array([[z, z, z], [z, ess, z], [z, z, ett]])
+
+
+@dataclass(frozen=True)
+class UniformContact:
+    r"""A uniform stress on both sides of a plane Γ and a rigid jump across it.
+
+    Exact for any contact law that admits its traction: with σ uniform and
+    u⁻ = ε x, u⁺ = ε x - [[u]] (ε = C⁻¹σ, [[u]] = u⁻ - u⁺ constant), every
+    equation of elasticity holds in each body, the traction r = σn (n the
+    unit normal into Ω⁺) is the same at every point of Γ, and the X-FEM
+    space, which holds piecewise linear fields with a constant jump, and every
+    multiplier space, which holds constants, contain the solution: a discrete
+    solve must reproduce it to round-off.  ``pressure`` p = -n·σn,
+    ``shear`` r_τ = σn - (n·σn) n.
+
+    >>> sol = UniformContact(Material(1.0, 0.0), np.array([[0.0, 0.5], [0.5, -1.0]]),
+    ...                      (0.0, 1.0), jump=(-0.2, 0.0))
+    >>> float(sol.pressure), sol.shear.tolist()
+    (1.0, [0.5, 0.0])
+    >>> sol.displacement(np.array([[1.0], [1.0]]), +1).ravel().tolist()  # ε x - [[u]]
+    [0.7, -0.5]
+    """
+
+    material: Material
+    sigma: np.ndarray
+    normal: tuple
+    jump: tuple = None
+
+    def __post_init__(self):
+        sigma = np.asarray(self.sigma, dtype=float)
+        n = np.asarray(self.normal, dtype=float)
+        dim = n.size
+        if sigma.shape != (dim, dim) or not np.allclose(sigma, sigma.T):
+            raise ValueError(f"sigma must be a symmetric {dim}x{dim} array, got {sigma!r}")
+        object.__setattr__(self, "sigma", sigma)
+        object.__setattr__(self, "normal", n / np.linalg.norm(n))
+        jump = np.zeros(dim) if self.jump is None else np.asarray(self.jump, float)
+        object.__setattr__(self, "jump", jump)
+
+    @property
+    def dim(self) -> int:
+        return self.normal.size
+
+    @property
+    def strain(self) -> np.ndarray:
+        """ε = C⁻¹σ (the material's plane strain or stress in 2D)."""
+        lam, mu = self.material.lame(self.dim)
+        tr = np.trace(self.sigma) / (self.dim * lam + 2 * mu)
+        return (self.sigma - lam * tr * np.eye(self.dim)) / (2 * mu)
+
+    @property
+    def traction(self) -> np.ndarray:
+        """r = σn, the traction on Γ (on Ω⁻'s face, the paper's r¹)."""
+        return self.sigma @ self.normal
+
+    @property
+    def pressure(self) -> float:
+        """p = -n·σn."""
+        return float(-self.normal @ self.traction)
+
+    @property
+    def shear(self) -> np.ndarray:
+        """r_τ = σn - (n·σn) n."""
+        return self.traction + self.pressure * self.normal
+
+    def displacement(self, x, side: int):
+        """u at points x (dim, ...) of Ω⁻ (``side`` -1) or Ω⁺ (+1)."""
+        x = np.asarray(x, dtype=float)
+        u = np.einsum("ij,j...->i...", self.strain, x)
+        if side > 0:
+            u = u - self.jump.reshape((-1,) + (1,) * (x.ndim - 1))
+        return u
+
+    def face_traction(self, outward):
+        """The traction σ·n_ext on a boundary face of outward unit normal ``outward``."""
+        return self.sigma @ np.asarray(outward, dtype=float)

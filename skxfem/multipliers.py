@@ -34,7 +34,7 @@ from skfem.refdom import RefLine, RefTri
 from .cut import Cut
 from .enrich import XSpace, jump_matrix
 
-__all__ = ["Space", "naive", "fixed_jumps", "normal_fixed", "SPACES",
+__all__ = ["Space", "naive", "fixed_jumps", "normal_fixed", "direction_fixed", "SPACES",
            "InterfaceRule", "interface_rule", "coupling", "interface_mass", "LAWS"]
 
 LAWS = ("bonded", "bilateral")
@@ -90,12 +90,34 @@ def normal_fixed(fixed: np.ndarray, cut: Cut, tol: float = 1e-12) -> np.ndarray:
     """(nnodes,) bool: the normal jump [[u_h]]·n is held at node j, i.e. j is
     an end of a cut edge and is fixed (``fixed`` from :func:`fixed_jumps`) in
     every component in which a normal of the interface facets around j's cut
-    edges has a part (> ``tol``)."""
+    edges has a part (> ``tol``): :func:`direction_fixed` of the normals."""
+    return direction_fixed(fixed, cut, cut.normals, tol)
+
+
+def direction_fixed(fixed: np.ndarray, cut: Cut, directions: np.ndarray,
+                    tol: float = 1e-12) -> np.ndarray:
+    """(nnodes,) bool: the jump along ``directions`` (dim, n_facets), one unit
+    vector per interface facet, is held at node j: j is an end of a cut edge
+    and is fixed in every component in which the direction of a facet around
+    j's cut edges has a part (> ``tol``).
+
+    >>> import numpy as np
+    >>> from skfem import MeshQuad1
+    >>> from skxfem.levelset import plane
+    >>> from skxfem.cut import cut as cut_mesh
+    >>> m = MeshQuad1().refined(1)
+    >>> c = cut_mesh(m, plane((0, 0.3), (0, 1)))
+    >>> fixed = np.zeros((2, m.p.shape[1]), bool); fixed[0, m.p[0] == 0] = True
+    >>> t = np.array([[1.0], [0.0]]) * np.ones(c.facets.shape[1])   # the tangent e_x
+    >>> np.flatnonzero(direction_fixed(fixed, c, t)).tolist() == np.flatnonzero(
+    ...     (m.p[0] == 0) & np.isin(np.arange(m.p.shape[1]), c.edges)).tolist()
+    True
+    """
     dim = fixed.shape[0]
     part = np.zeros((dim, cut.edge_ids.size), dtype=bool)
     for k in range(cut.facets.shape[0]):
         for c in range(dim):
-            np.logical_or.at(part[c], cut.facets[k], np.abs(cut.normals[c]) > tol)
+            np.logical_or.at(part[c], cut.facets[k], np.abs(directions[c]) > tol)
     at_node = np.zeros(fixed.shape, dtype=bool)
     for i in (0, 1):
         for c in range(dim):

@@ -3,7 +3,11 @@ r"""Built-in benchmark scenes.
 * :func:`paper_plate`: the 3D plate of Géniaut, Massin & Moës (2007), §5;
 * :func:`strip`: its 2D plane-strain analogue;
 * :func:`exact_plate`, :func:`exact_strip`: the same with the loads of
-  :mod:`skxfem.exact`, under which the paper's reference p(y) is exact.
+  :mod:`skxfem.exact`, under which the paper's reference p(y) is exact;
+* :func:`sliding`, :func:`uniaxial` and :func:`uniform_block`: blocks in a
+  uniform contact state (:class:`skxfem.exact.UniformContact`) — sliding at
+  the slip limit in any direction, on a horizontal or slanted Γ, or pressed —
+  the known answers of the contact solver.
 
 Both are plain :class:`~skxfem.scene.Scene` objects: change a field with
 ``dataclasses.replace(scene, space=...)``.  ``examples/plate.toml`` and
@@ -17,13 +21,16 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .exact import ExactPlate
+import numpy as np
+
+from .exact import ExactPlate, UniformContact
 from .expr import Expression
 from .levelset import plane
 from .material import Material
 from .scene import Box, Displacement, Scene, SurfaceLoad, clamped, rollers
 
-__all__ = ["paper_plate", "strip", "exact_plate", "exact_strip", "exact_scene", "P_MAX"]
+__all__ = ["paper_plate", "strip", "exact_plate", "exact_strip", "exact_scene", "P_MAX",
+           "sliding", "uniaxial", "uniform_block", "DRIVES"]
 
 P_MAX = 1.0
 """Peak of the parabolic pressure, P_max = 1 Pa as in the paper."""
@@ -198,3 +205,120 @@ def exact_scene(n: int, cell: str, space: str = "vital") -> Scene:
     if cell in ("tri", "quad"):
         return exact_strip(n, cell, space=space)
     return exact_plate(n, cell, nx=1, space=space)
+
+
+DRIVES = ("displacement", "mixed", "free")
+"""How :func:`uniform_block` loads the block: ``displacement``, both ends imposed;
+``mixed``, the top's tangential components imposed and its normal stress a
+pressure; ``free``, the bottom on rollers (two corners pinned), the top pressed,
+the sides free.  The other faces carry the traction of the uniform stress."""
+
+
+def _frame(dim: int, tilt: float, angle: float):
+    """Unit normal n (into the upper body) tilted by ``tilt`` from the vertical
+    in the first coordinate plane, and the tangent at ``angle`` from the
+    tangent t₁ in that plane (3D: towards t₂ = n × t₁)."""
+    c, s = np.cos(tilt), np.sin(tilt)
+    n = np.zeros(dim)
+    n[0], n[-1] = -s, c
+    t1 = np.zeros(dim)
+    t1[0], t1[-1] = c, s
+    if dim == 2:
+        return n, t1 * (1.0 if np.cos(angle) >= 0 else -1.0)
+    t2 = np.cross(n, t1)
+    return n, np.cos(angle) * t1 + np.sin(angle) * t2
+
+
+def sliding(dim: int = 2, mu: float = 0.5, slip: float = 0.1, angle: float = 0.0,
+            tilt: float = 0.0, p: float = 1.0, ratio: float = 1.0,
+            material: Material = Material(1.0, 0.3)) -> UniformContact:
+    """A pressed block sliding on Γ: σ = -p n⊗n + r_τ⊗n + n⊗r_τ, r_τ = ratio·μp t.
+
+    ``tilt`` the angle of Γ from the horizontal, ``angle`` the slip direction
+    in Γ (3D), ``slip`` how far the upper body has moved along t ([[u]] =
+    -slip·t).  ``ratio`` = 1 and ``slip`` > 0: sliding at the limit |r_τ| = μp;
+    ``ratio`` = 1 and ``slip`` = 0: exactly at the slip limit, at rest;
+    ``ratio`` < 1 and ``slip`` = 0: sticking.
+
+    >>> sol = sliding(2, mu=0.5, slip=0.1)
+    >>> sol.pressure, sol.shear.round(12).tolist(), sol.jump.tolist()
+    (1.0, [0.5, 0.0], [-0.1, 0.0])
+    """
+    n, t = _frame(dim, tilt, angle)
+    tau = ratio * mu * p * t
+    sigma = -p * np.outer(n, n) + np.outer(tau, n) + np.outer(n, tau)
+    return UniformContact(material, sigma, n, 0.0 - slip * t)
+
+
+def uniaxial(dim: int = 2, tilt: float = 0.0, p: float = 1.0,
+             material: Material = Material(1.0, 0.3)) -> UniformContact:
+    """A block under a vertical pressure p across Γ tilted by ``tilt``: on Γ the
+    pressure p cos²(tilt) and the shear p sin(tilt)cos(tilt); it sticks where
+    tan(tilt) ≤ μ.
+
+    >>> round(uniaxial(2, tilt=np.pi / 4).pressure, 12)
+    0.5
+    """
+    n, _ = _frame(dim, tilt, 0.0)
+    sigma = np.zeros((dim, dim))
+    sigma[-1, -1] = -p
+    return UniformContact(material, sigma, n)
+
+
+def uniform_block(sol: UniformContact, cell: str | None = None, n: int = 3,
+                  law: str = "coulomb", mu: float = 0.5, drive: str = "displacement",
+                  **interface) -> Scene:
+    """The unit box [0, 1]^dim cut by Γ through its centre, loaded so that
+    ``sol`` is its exact solution (``drive``: :data:`DRIVES`).
+
+    ``cell`` (default ``quad``/``hex``) and ``n`` cells per direction (odd, so
+    that Γ cuts cells); ``law``, ``mu`` and the keywords ``rho_n``, ``rho_t``,
+    ``space`` of the :class:`~skxfem.scene.Scene`.
+
+    >>> s = uniform_block(sliding(2), n=3)
+    >>> s.law, [d.boundary for d in s.displacements]
+    ('coulomb', ['ymin', 'ymax'])
+    """
+    dim = sol.dim
+    if drive not in DRIVES:
+        raise ValueError(f"drive must be one of {DRIVES}, got {drive!r}")
+    cell = cell or ("quad" if dim == 2 else "hex")
+    axes = "xyz"[:dim]
+    v = axes[-1]
+
+    def u(side, i):
+        return lambda x: sol.displacement(x, side)[i]
+
+    def face_load(face):
+        axis, end = axes.index(face[0]), 1.0 if face.endswith("max") else -1.0
+        outward = np.zeros(dim)
+        outward[axis] = end
+        return SurfaceLoad(face, traction=tuple(float(f) for f in sol.face_traction(outward)))
+
+    sides = [f"{a}{e}" for a in axes[:-1] for e in ("min", "max")]
+    top_pressure = float(-sol.sigma[-1, -1])
+    if drive == "displacement":
+        disp = (Displacement(f"{v}min", {c: u(-1, i) for i, c in enumerate(axes)}),
+                Displacement(f"{v}max", {c: u(1, i) for i, c in enumerate(axes)}))
+        loads = tuple(face_load(f) for f in sides)
+    elif drive == "mixed":
+        disp = (Displacement(f"{v}min", {c: u(-1, i) for i, c in enumerate(axes)}),
+                Displacement(f"{v}max", {c: u(1, i) for i, c in enumerate(axes[:-1])}))
+        loads = tuple(face_load(f) for f in sides) + (
+            SurfaceLoad(f"{v}max", pressure=top_pressure),)
+    else:
+        side_t = [sol.face_traction(np.eye(dim)[i]) for i in range(dim - 1)]
+        if any(np.abs(t).max() > 1e-12 * np.abs(sol.sigma).max() for t in side_t):
+            raise ValueError("drive='free' needs a stress with traction-free sides")
+        corner = lambda x: np.all(np.abs(x) < 1e-12, axis=0)  # noqa: E731
+        disp = (Displacement(f"{v}min", {v: u(-1, dim - 1)}),
+                Displacement(corner, {c: u(-1, i) for i, c in enumerate(axes[:-1])}))
+        if dim == 3:
+            other = lambda x: (np.abs(x[0] - 1) < 1e-12) & (np.abs(x[1]) < 1e-12) & (  # noqa
+                np.abs(x[2]) < 1e-12)
+            disp += (Displacement(other, {"y": u(-1, 1)}),)
+        loads = (SurfaceLoad(f"{v}max", pressure=top_pressure),)
+    n_cells = (n,) * (dim - 1) + (n if n % 2 else n + 1,)
+    return Scene(Box(n_cells, cell), plane((0.5,) * dim, tuple(sol.normal)), sol.material,
+                 displacements=disp, loads=loads, law=law, friction=mu,
+                 name=f"uniform_{drive}_{cell}_{n}", **interface)

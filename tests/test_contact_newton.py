@@ -1,0 +1,182 @@
+"""The contact Newton method (skxfem/contact_newton.py) against known answers.
+
+1. The sweep of issue 17: uniform and oblique slip of a pressed block, a block
+   sliding on a slanted Γ, a block pushed to exactly the slip limit, a block
+   driven by a top pressure and a tangential displacement, in 2D and 3D, for
+   μ ∈ {0.1, 0.3, 0.6, 1, 2, 5} and ρ_n, ρ_τ from 1e-3 to 1e6 × E/h: every run
+   gives the exact state (a uniform stress, :class:`skxfem.exact.UniformContact`)
+   to 1e-8, in at most 15 iterations at the default ρ and 30 at any, uncut.
+2. The convergence test means something when forces vanish: an interface opened
+   by imposed displacements converges in at most 3 iterations.
+3. The pieces: the residual is zero at the exact state, the convergence test
+   does not depend on ρ, the Jacobian is the derivative of the residual.
+"""
+import warnings
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from skxfem import contact
+from skxfem.contact_interface import tangent_frames
+from skxfem.contact_newton import (
+    Iterate,
+    StepProblem,
+    jacobian,
+    point_laws,
+    relative_residuals,
+    residual,
+)
+from skxfem.enrich import split_fields
+from skxfem.levelset import plane
+from skxfem.material import Material
+from skxfem.scene import Box, Displacement, Scene, clamped
+from skxfem.scenes import sliding, uniaxial, uniform_block
+
+MUS = (0.1, 0.3, 0.6, 1.0, 2.0, 5.0)
+RHOS = ((1e-3, 1e-3), (1e-3, 1e6), (1e6, 1e-3), (1e6, 1e6), (1e-3, 1.0), (1.0, 1e-3),
+        (1e6, 1.0), (1.0, 1e6), (1e2, 1e-2))
+"""(ρ_n, ρ_τ) × E/h besides the default (1, 1): the corners of the range and the
+edges through the default."""
+
+
+def errors(sol, res):
+    """Largest error of u± (relative to |u|), of p and of r_τ (relative to p)."""
+    st, pb, ops = res.steps[-1], res.problem, res.ops
+    u_minus, u_plus = split_fields(pb.V, st.U)
+    x, psi = pb.mesh.p, pb.cut.psi
+    scale = np.abs(sol.displacement(x, 1)).max()
+    e_u = max(np.abs(u_minus - sol.displacement(x, -1))[:, psi < 0].max(),
+              np.abs(u_plus - sol.displacement(x, 1))[:, psi > 0].max()) / scale
+    r_exact = np.einsum("kdm,d->mk", tangent_frames(ops.normals), sol.shear)
+    p = max(sol.pressure, 1e-300)
+    return e_u, np.abs(st.pressure - sol.pressure).max() / p, \
+        np.abs(st.traction - r_exact).max() / p
+
+
+CASES = {
+    "slip": lambda dim, mu: (sliding(dim, mu, slip=0.1), "displacement"),
+    "oblique slip": lambda dim, mu: (sliding(dim, mu, slip=0.1, angle=np.deg2rad(30)),
+                                     "displacement"),
+    "slanted": lambda dim, mu: (sliding(dim, mu, slip=0.1, tilt=np.deg2rad(25),
+                                        angle=np.deg2rad(30)), "displacement"),
+    "at the limit": lambda dim, mu: (sliding(dim, mu, slip=0.0, angle=np.deg2rad(30)),
+                                     "displacement"),
+    "pressed and pushed": lambda dim, mu: (sliding(dim, mu, slip=0.1, angle=np.deg2rad(30)),
+                                           "mixed"),
+    "free sides": lambda dim, mu: (uniaxial(dim, tilt=0.5 * np.arctan(mu)), "free"),
+}
+
+
+def solve_case(case, dim, mu, rho=(1.0, 1.0), **kw):
+    sol, drive = CASES[case](dim, mu)
+    scene = uniform_block(sol, n=3, mu=mu, drive=drive)
+    h = 1.0 / 3  # the cut edges' length: the defaults of ρ are E/h
+    scene = replace(scene, rho_n=rho[0] * scene.material.E / h,
+                    rho_t=rho[1] * scene.material.E / h)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a cut step fails the test
+        return sol, contact.solve(scene, **kw)
+
+
+# 1. the sweep -----------------------------------------------------------------------
+
+@pytest.mark.parametrize("case", list(CASES))
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("mu", MUS)
+def test_the_exact_state_in_few_iterations_at_any_rho(case, dim, mu):
+    for rho in ((1.0, 1.0),) + RHOS:
+        sol, res = solve_case(case, dim, mu, rho)
+        st = res.steps[-1]
+        e_u, e_p, e_t = errors(sol, res)
+        assert max(e_u, e_p, e_t) < 1e-8, (rho, e_u, e_p, e_t)
+        assert st.newton.iterations <= (15 if rho == (1.0, 1.0) else 30), rho
+        assert st.increments == 1
+        if case in ("slip", "oblique slip", "slanted", "pressed and pushed"):
+            assert np.all(st.status == 2), "every point slides"
+            assert np.allclose(np.linalg.norm(st.traction, axis=1), mu * st.pressure,
+                               rtol=1e-8), "|r_τ| = μp"
+        elif case == "free sides":
+            assert np.all(st.status == 1), "tan θ = μ/2: it sticks"
+
+
+def test_the_slip_follows_its_direction():
+    """3D oblique slip: the tangential jump is -slip·t and r_τ points along t."""
+    sol, res = solve_case("oblique slip", 3, 0.6)
+    st, ops = res.steps[-1], res.ops
+    frames = tangent_frames(ops.normals)
+    assert np.allclose(st.slip, np.einsum("kdm,d->mk", frames, sol.jump), atol=1e-12)
+    assert np.allclose(st.gap, 0.0, atol=1e-12)
+
+
+# 2. a convergence test that means something ------------------------------------------
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("law", ["frictionless", "coulomb", "adhesive"])
+def test_an_interface_opened_by_imposed_displacement_converges(law, dim):
+    """No load; the top moved up by 0.1: F = 0 and K U = 0 on the free unknowns at
+    the answer (a rigid lift), which a residual relative to them cannot see."""
+    if dim == 2:
+        s = Scene(Box((3, 3), "quad"), plane((0, 0.5), (0, 1)), Material(1.0, 0.3),
+                  displacements=(clamped("ymin"), Displacement("ymax", {"x": 0.0, "y": 0.1})),
+                  law=law, friction=0.5)
+    else:
+        s = Scene(Box((2, 2, 3), "hex"), plane((0, 0, 0.5), (0, 0, 1)), Material(1.0, 0.3),
+                  displacements=(clamped("zmin"),
+                                 Displacement("zmax", {"x": 0.0, "y": 0.0, "z": 0.1})),
+                  law=law, friction=0.5)
+    st = contact.solve(s).steps[-1]
+    assert st.newton.iterations <= 3
+    assert np.all(st.status == 0) and np.abs(st.pressure).max() == 0
+    assert np.allclose(st.gap, -0.1, atol=1e-12)  # d_n = [[u]]·n = -0.1: open by 0.1
+
+
+def test_open_close_reopen_by_imposed_displacement():
+    s = Scene(Box((3, 3), "quad"), plane((0, 0.5), (0, 1)), Material(1.0, 0.3),
+              displacements=(clamped("ymin"), Displacement("ymax", {"x": 0.0, "y": 0.1})),
+              law="frictionless")
+    res = contact.solve(s, history=(1.0, -0.5, 2.0))
+    opened, closed, reopened = res.steps
+    assert np.allclose(opened.gap, -0.1) and np.all(opened.status == 0)
+    assert np.all(closed.status == 2) and closed.pressure.min() > 0
+    assert np.allclose(reopened.gap, -0.2) and np.all(reopened.status == 0)
+    assert max(st.newton.iterations for st in res.steps) <= 3
+
+
+# 3. the pieces ----------------------------------------------------------------------
+
+def exact_step(mu=0.6, rho=(1.0, 1.0)):
+    """The StepProblem of the 3D oblique slip and its exact iterate."""
+    sol, res = solve_case("oblique slip", 3, mu)
+    pb, ops, st = res.problem, res.ops, res.steps[-1]
+    law = replace(res.law, rho_n=rho[0] * res.law.rho_n, rho_t=rho[1] * res.law.rho_t)
+    free = np.setdiff1d(np.arange(pb.V.N), pb.D)
+    step = StepProblem(ops, pb.K, pb.F, free, np.zeros(pb.V.N),
+                       point_laws(law, ops.held), res.law.rho_n)
+    return step, Iterate(st.U, -st.pressure, st.traction)
+
+
+def test_the_convergence_test_does_not_depend_on_rho():
+    a_step, it = exact_step()
+    ref = relative_residuals(a_step, it)
+    assert np.all(ref < 1e-10)  # the tolerance of the solve
+    moved = Iterate(it.U * (1 + 1e-3), it.lam, it.r)
+    for rho in ((1e-3, 1e6), (1e6, 1e-3)):
+        step, _ = exact_step(rho=rho)
+        assert np.allclose(relative_residuals(step, moved), relative_residuals(a_step, moved))
+
+
+def test_the_jacobian_is_the_derivative_of_the_residual():
+    """Central differences at a sliding state, away from the kinks."""
+    step, it = exact_step()
+    rng = np.random.default_rng(0)
+    U = it.U.copy()
+    U[step.free] += 1e-4 * rng.standard_normal(step.free.size)
+    it = Iterate(U, it.lam, it.r)
+    res = residual(step, it)
+    J = jacobian(step, it, res).toarray()
+    dx = rng.standard_normal(J.shape[1])
+    h = 1e-7
+    fd = (residual(step, it.moved(step.free, dx, h)).vector
+          - residual(step, it.moved(step.free, dx, -h)).vector) / (2 * h)
+    assert np.allclose(J @ dx, fd, rtol=1e-5, atol=1e-6 * np.abs(fd).max())
