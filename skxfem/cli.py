@@ -49,7 +49,7 @@ __all__ = ["main", "parser", "FORWARDED"]
 FORWARDED = {
     "reproduce": ("reproduce the paper's figures and summary.json "
                   "(python -m skxfem.reproduce)", reproduce.main),
-    "grade": ("grade the student exercises: a score table and grade.json "
+    "grade": ("grade the student exercises: a score table and a JSON report "
               "(python -m skxfem.grade)", grade.main),
 }
 """Subcommands handed their arguments as they are: ``name -> (help, main(argv) -> int)``."""
