@@ -3,6 +3,7 @@
 ::
 
     skxfem run examples/plate.toml --out results/plate [--max-memory 8G]
+    skxfem schema                              # the scene file: every key, its units
     skxfem reproduce --quick --out out/        # the same as python -m skxfem.reproduce
     skxfem --version
     python -m skxfem run examples/plate.toml   # the same as skxfem
@@ -41,7 +42,7 @@ from . import __version__, budget, grade, io, reproduce
 from .contact import solve as solve_contact
 from .contact_laws import CONTACT_LAWS, STATUS_NAMES
 from .contact_newton import ContactConvergenceError
-from .scenefile import load_options, load_scene
+from .scenefile import load_options, load_scene, schema
 from .solver import LINEAR, solve
 
 __all__ = ["main", "parser", "FORWARDED"]
@@ -93,7 +94,8 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--version", action="version", version=f"skxfem {__version__}")
     p.add_argument("--debug", action="store_true", help="show the traceback of an error")
     commands = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    run = commands.add_parser("run", help="solve a scene file (TOML)")
+    run = commands.add_parser("run", help="solve a scene file (TOML)",
+                              epilog="The scene file's tables, keys and units: skxfem schema.")
     run.add_argument("scene", type=Path, help="the scene file, e.g. examples/plate.toml")
     run.add_argument("--out", type=Path, default=None,
                      help="output folder (default: ./<scene name>)")
@@ -112,6 +114,8 @@ def parser() -> argparse.ArgumentParser:
                           "file's [solver] linear, else auto")
     run.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
                      help="show the traceback of an error")
+    commands.add_parser("schema", help="print the scene-file schema: every table and key, "
+                                       "its values and units")
     for name, (text, _) in FORWARDED.items():
         commands.add_parser(name, help=f"{text}; `skxfem {name} --help` for its options",
                             add_help=False)
@@ -202,6 +206,9 @@ def main(argv: list[str] | None = None) -> int:
             return FORWARDED[argv[0]][1](argv[1:])
         args = parser().parse_args(argv)
         debug = debug or args.debug
+        if args.command == "schema":
+            print(schema(), end="")
+            return 0
         return _run(args)
     except KeyboardInterrupt:
         print("skxfem: interrupted", file=sys.stderr)

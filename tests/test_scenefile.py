@@ -281,3 +281,200 @@ def test_13_load_scene_checks_the_solve_options_too(tmp_path):
     for load in (load_scene, load_options):
         with pytest.raises(ValueError, match=r"^bad.toml: \[solver\] linear must be one of"):
             load(write(tmp_path, bad, "bad.toml"))
+
+
+# The schema (skxfem schema): printed from the tables the reader checks.
+
+def toml(data: dict) -> str:
+    """A scene as TOML text: top-level values, then tables, then arrays of tables."""
+    def value(v):
+        if isinstance(v, dict):
+            return "{" + ", ".join(f"{k} = {value(x)}" for k, x in v.items()) + "}"
+        if isinstance(v, list):
+            return "[" + ", ".join(value(x) for x in v) + "]"
+        return f'"{v}"' if isinstance(v, str) else repr(v)
+
+    lines = [f"{k} = {value(v)}" for k, v in data.items() if not isinstance(v, (dict, list))]
+    for k, v in data.items():
+        if isinstance(v, dict):
+            lines += [f"[{k}]"] + [f"{a} = {value(b)}" for a, b in v.items()]
+    for k, v in data.items():
+        if isinstance(v, list):
+            for item in v:
+                lines += [f"[[{k}]]"] + [f"{a} = {value(b)}" for a, b in item.items()]
+    return "\n".join(lines) + "\n"
+
+
+def base(dim: int) -> dict:
+    """A valid scene, 2D (quad) or 3D (hex), with one support and one load."""
+    last = "xyz"[dim - 1]
+    return {"mesh": {"box": {"n": [4, 5] if dim == 2 else [2, 2, 3],
+                             "cell": "quad" if dim == 2 else "hex"}},
+            "levelset": {"plane": {"point": [0.0] * (dim - 1) + [0.5],
+                                   "normal": [0.0] * (dim - 1) + [1.0]}},
+            "material": {}, "interface": {}, "solver": {},
+            "displacement": [{"boundary": f"{last}min", "kind": "clamped"}],
+            "load": [{"boundary": f"{last}max", "pressure": 1.0}]}
+
+
+def schema_tables(text: str) -> dict[str, list[str]]:
+    """The keys printed under each table heading of the schema text."""
+    from skxfem.scenefile import SCHEMA
+
+    tables, current = {}, None
+    for line in text.splitlines():
+        heading = next((t for t in SCHEMA if line == t or line.startswith(t + ":")), None)
+        if heading is not None:
+            current = tables.setdefault(heading, [])
+        elif current is not None and line.startswith("  ") and line[2] != " ":
+            current.append(line.split()[0])
+    return tables
+
+
+def part(data: dict, table: str) -> dict:
+    """The part of ``data`` that is ``table`` (its first item for an array of tables)."""
+    if table == "the top level":
+        return data
+    if table.startswith("[["):
+        return data[table.strip("[]")][0]
+    outer, _, inner = table.strip("[]").partition("] ")
+    return data[outer][inner] if inner else data[outer]
+
+
+def rivals(table: str, key: str) -> list[str]:
+    """The keys of ``table`` that cannot be given with ``key`` (its exclusive groups)."""
+    from skxfem.scenefile import SCHEMA
+
+    out = []
+    for group in SCHEMA[table].exclusive:
+        first, *rest = [k for k in group if k != "..."]
+        if "..." in group:        # first, or one or more of the rest
+            out += rest if key == first else [first] if key in rest else []
+        elif key in group:
+            out += [k for k in group if k != key]
+    return out
+
+
+def place(table: str, key: str, example):
+    """The scene (and its dimension) that uses ``key`` of ``table`` with ``example``."""
+    from skxfem.scenefile import SCHEMA
+
+    dim = 3 if key in ("sphere", "z") or table == "[levelset] sphere" else 2
+    data = base(dim)
+    if table.startswith("[levelset] "):           # a shape: all its keys are required
+        data["levelset"] = {table.split()[1]: {k.name: k.example for k in SCHEMA[table].keys}}
+    elif table == "the top level" and key != "name":
+        data.setdefault(key, example)             # a table: the base has it, or its default
+    else:
+        target = part(data, table)
+        for k in rivals(table, key):
+            target.pop(k, None)
+        target[key] = example
+    if key in ("max_iter", "friction"):           # options of the contact laws
+        data["interface"]["law"] = "coulomb"
+    return data, dim
+
+
+def test_14_the_schema_prints_every_key_the_reader_accepts(tmp_path):
+    """For every table, the keys the reader lists when it refuses an unknown key are the
+    keys `skxfem schema` prints under that table, in order."""
+    from skxfem.scenefile import SCHEMA, schema
+
+    printed = schema_tables(schema())
+    assert list(printed) == list(SCHEMA)
+    for table in SCHEMA:
+        data, _ = place(table, SCHEMA[table].keys[0].name, SCHEMA[table].keys[0].example)
+        target = part(data, table)
+        target["bogus"] = 1
+        with pytest.raises(ValueError, match="unknown key 'bogus'") as info:
+            load_scene(write(tmp_path, toml(data)))
+        allowed = str(info.value).split("allowed keys: ")[1].split(", ")
+        assert allowed == printed[table] == list(SCHEMA[table].names), table
+
+
+def test_15_every_key_of_the_schema_is_accepted_with_its_example(tmp_path):
+    """Each key, given its example value where it belongs, makes a scene that loads."""
+    from skxfem.scenefile import SCHEMA
+
+    example_file = SCHEMA["[mesh]"].keys[1].example
+    box((4, 5), "quad").save(tmp_path / example_file)        # [mesh] file's example
+    for table, t in SCHEMA.items():
+        for key in t.keys:
+            data, dim = place(table, key.name, key.example)
+            try:
+                scene = load_scene(write(tmp_path, toml(data)))
+            except (ValueError, TypeError) as e:
+                raise AssertionError(f"{table} {key.name} = {key.example!r}: {e}") from None
+            assert scene.dim == dim
+    assert load_scene(write(tmp_path, toml(place("the top level", "name", "plate")[0]))
+                      ).name == "plate"
+    e = SCHEMA["[material]"].keys[0].example
+    assert load_scene(write(tmp_path, toml(place("[material]", "E", e)[0]))).material.E == e
+
+
+def test_16_the_schema_states_units_choices_and_functions():
+    from skxfem.expr import FUNCTIONS
+    from skxfem.linear import LINEAR
+    from skxfem.scene import CELLS, CONTACT_LAWS, LAWS, SPACES
+    from skxfem.scenefile import schema
+
+    text = schema()
+    flat = " ".join(text.split())
+    assert "Units are consistent and your choice" in flat
+    for unit in ("lengths in L", "F/L²", "rho_n in F/L³", "no unit"):
+        assert unit in flat, unit
+    for choices in (CELLS, LAWS + CONTACT_LAWS, SPACES, LINEAR, FUNCTIONS):
+        assert " ".join(choices) in flat, choices
+    assert all(len(line) <= 88 for line in text.splitlines())
+    rows = {line.split()[0]: line for line in text.splitlines() if line.startswith("  ")}
+    assert "[F/L²]" in rows["E"] and "[F/L²]" in rows["pressure"] and "[L]" in rows["size"]
+    assert "[F/L³]" in rows["rho_n"] and "[L]" in rows["radius"]
+
+
+def test_17_skxfem_schema_prints_it_and_run_help_points_to_it(capsys):
+    from skxfem.cli import main
+    from skxfem.scenefile import schema
+
+    assert main(["schema"]) == 0
+    assert capsys.readouterr().out == schema()
+    with pytest.raises(SystemExit) as done:
+        main(["run", "--help"])
+    assert done.value.code == 0 and "skxfem schema" in capsys.readouterr().out
+    with pytest.raises(SystemExit) as done:
+        main(["--help"])
+    assert done.value.code == 0 and "schema" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_18_formulas_with_functions_solve_like_the_built_in_shapes(tmp_path, dim):
+    """ψ = sqrt(...) - r in a scene file is the circle (2D) or the sphere (3D): the same
+    pressures to round-off; a pressure with sqrt loads and solves."""
+    import skxfem
+
+    center = [0.5, 0.45, 0.55][:dim]
+    shape = "circle" if dim == 2 else "sphere"
+    data = base(dim)
+    data["mesh"]["box"]["n"] = 6 if dim == 2 else 4
+    data["load"] = [{"boundary": f"{'xyz'[dim - 1]}max",
+                     "pressure": "1 + 0.5*sqrt(abs(x - 0.3)) * cos(pi*x)"}]
+    data["levelset"] = {shape: {"center": center, "radius": 0.3}}
+    built = skxfem.solve(load_scene(write(tmp_path, toml(data))))
+    distance = " + ".join(f"({c} - {v})**2" for c, v in zip("xyz", center, strict=False))
+    data["levelset"] = {"expr": f"sqrt({distance}) - 0.3"}
+    written = skxfem.solve(load_scene(write(tmp_path, toml(data))))
+    np.testing.assert_allclose(written.points, built.points, atol=1e-12)
+    np.testing.assert_allclose(written.pressure, built.pressure, atol=1e-9)
+    assert np.ptp(built.pressure) > 0.1
+
+
+def test_19_a_formula_outside_its_domain_is_refused_not_solved(tmp_path, capsys):
+    """sqrt(x - 0.5) on the top of [0, 1]²: one line naming sqrt, exit 2, nothing written."""
+    from skxfem.cli import main
+
+    data = base(2)
+    data["load"][0]["pressure"] = "sqrt(x - 0.5)"
+    path = write(tmp_path, toml(data))
+    assert main(["run", str(path), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1 and "sqrt" in err and "needs a number >= 0" in err
+    assert not (tmp_path / "o").exists()
