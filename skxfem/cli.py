@@ -44,6 +44,7 @@ from .contact_laws import CONTACT_LAWS, STATUS_NAMES
 from .contact_newton import ContactConvergenceError
 from .scenefile import load_options, load_scene, schema
 from .solver import LINEAR, solve
+from .threads import limited
 
 __all__ = ["main", "parser", "FORWARDED"]
 
@@ -152,6 +153,7 @@ def _contact_line(result) -> str:
             f"{counts['slip']} slip), {counts['open']} open, {p}, {result.linear} solve")
 
 
+@limited   # BLAS threads: skxfem.threads (SKXFEM_THREADS)
 def _run(args) -> int:
     s = load_scene(args.scene)
     options = load_options(args.scene)  # the command line overrides the file

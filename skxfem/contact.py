@@ -55,6 +55,7 @@ from .linear import choose_linear
 from .problem import Problem, assemble
 from .saddle import SingularSystemError
 from .scene import Scene, check_scene
+from .threads import limited
 
 __all__ = ["Step", "ContactResult", "parameters", "solve", "ContactConvergenceError",
            "METHODS", "RHO_RANGE"]
@@ -157,6 +158,7 @@ def _states(scene: Scene, pb: Problem, history):
     return out
 
 
+@limited
 def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10,
           max_iter: int = 30, linear: str = "auto") -> ContactResult:
     """Solve the contact ``scene`` over the load ``history``.
