@@ -48,6 +48,12 @@ type is refused with an error naming the key.  The schema::
 ``linear`` and ``max_iter`` are options of the solve, not of the scene: :func:`load_options`
 reads them (``skxfem run``'s ``--linear`` and ``--max-iter`` override them).
 
+Numbers the solve cannot handle in double precision are refused when read: a load
+above :data:`MAX_MAGNITUDE` (or one whose displacements |p| L / E would be), an
+imposed displacement above :data:`MAX_SHIFT` sizes of the body.  A mesh file that
+is a folder, a FIFO, a device or a loop of symbolic links is named as such,
+unread.
+
 Errors name items as the file numbers them (``[[load]] #2``).  Every boundary is
 checked on reading, except the ``where`` selections on a box whose grid has more
 than :data:`BUILT_BOX` squares or cubes (not built before the size guard).
