@@ -202,13 +202,18 @@ def _stale(parent: Path, name: str, target: Path):
 
 @contextlib.contextmanager
 def _locked(folder: Path):
-    """An exclusive lock on ``folder`` (a no-op without fcntl)."""
+    """An exclusive lock on ``folder`` (none without fcntl, or where the file system
+    has no locks, e.g. some network mounts: a single writer is then assumed)."""
     if fcntl is None:
         yield
         return
     fd = os.open(folder, os.O_RDONLY)
     try:
-        fcntl.flock(fd, fcntl.LOCK_EX)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX)
+        except OSError as e:
+            if e.errno not in (errno.ENOLCK, errno.EOPNOTSUPP, errno.EINVAL):
+                raise
         yield
     finally:
         os.close(fd)                                # releases the lock

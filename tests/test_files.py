@@ -107,3 +107,21 @@ def test_07_check_folder_names_what_is_in_the_way(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path / "busy")
     with pytest.raises(ValueError, match="current folder"):
         check_folder(tmp_path, ["x.txt"])
+
+
+def test_08_a_file_system_without_locks_still_gets_its_set(tmp_path, monkeypatch):
+    """Some network mounts refuse flock (ENOLCK): the set is written, unlocked."""
+    from skxfem import files
+
+    def flock_fails(code, text):
+        def flock(fd, operation):
+            raise OSError(code, text)
+        return flock
+
+    monkeypatch.setattr(files.fcntl, "flock", flock_fails(errno.ENOLCK, "No locks available"))
+    write_set(tmp_path / "out", {"x.txt": lambda p: p.write_text("1")})
+    assert (tmp_path / "out" / "x.txt").read_text() == "1"
+    monkeypatch.setattr(files.fcntl, "flock", flock_fails(errno.EBADF, "Bad file descriptor"))
+    with pytest.raises(OSError, match="Bad file descriptor"):    # other errors are errors
+        write_set(tmp_path / "out", {"x.txt": lambda p: p.write_text("2")})
+    assert (tmp_path / "out" / "x.txt").read_text() == "1"
