@@ -54,6 +54,12 @@ which the reader checks against (the keys allowed, the ones exclusive of each
 other) and :func:`schema` prints (``skxfem schema``).  Units are consistent and
 the user's choice (:data:`UNITS`).
 
+Numbers the solve cannot handle in double precision are refused when read: a load
+above :data:`MAX_MAGNITUDE` (or one whose displacements |p| L / E would be), an
+imposed displacement above :data:`MAX_SHIFT` sizes of the body.  A mesh file that
+is a folder, a FIFO, a device or a loop of symbolic links is named as such,
+unread.
+
 Errors name items as the file numbers them (``[[load]] #2``).  Every boundary is
 checked on reading, except the ``where`` selections on a box whose grid has more
 than :data:`BUILT_BOX` squares or cubes (not built before the size guard).
@@ -61,6 +67,8 @@ than :data:`BUILT_BOX` squares or cubes (not built before the size guard).
 from __future__ import annotations
 
 import functools
+import math
+import os
 import textwrap
 from dataclasses import dataclass
 from pathlib import Path
@@ -71,6 +79,7 @@ from . import levelset as ls
 from . import meshes, tomlcheck
 from . import scene as sc
 from .boundary import select_facets, select_nodes
+from .files import regular_file
 from .linear import LINEAR
 from .material import Material
 from .scene_parts import COMPONENTS, FACES
@@ -264,6 +273,18 @@ def schema(width: int = 88) -> str:
     return "\n".join(out).rstrip() + "\n"
 
 
+MAX_MAGNITUDE = 1e150
+"""The largest load, and displacement from a load, a scene file may give.  Measured: the
+strip (E = 1) solves with pressure = 1e154; at 1e155 the norms of the saddle solve
+overflow (a sum of squares above 1.8e308); 1e150 leaves a factor 10⁴ for the
+square root of the number of unknowns."""
+MAX_SHIFT = 1000
+"""The largest imposed displacement, in sizes of the body.  Measured: a corner of
+``examples/inclusion.toml`` moved by 1e6 (n = 8), 1e5 (n = 32), 1e4 (n = 64) breaks
+the balance check of the multipliers (1e-8); 1e3 holds for n = 8 ... 128."""
+
+
+
 def load_scene(path: str | Path) -> sc.Scene:
     """Read and check a scene file.
 
@@ -354,14 +375,60 @@ def _scene(data: dict, path: Path) -> sc.Scene:
             where = f"[[{key}]] #{i + 1}"
             items[key].append((where, tomlcheck.labelled(where, build, t, dim, where)))
     _check_boundaries(items, checked, dim)
+    material = _material(table(data.get("material", {}), "[material]",
+                               _names("[material]")))
+    _check_magnitudes(items, material.E, _length(checked))
     return sc.Scene(
         mesh=mesh,
         levelset=_levelset(data["levelset"], dim),
-        material=_material(table(data.get("material", {}), "[material]",
-                                  _names("[material]"))),
+        material=material,
         displacements=tuple(d for _, d in items["displacement"]),
         loads=tuple(load for _, load in items["load"]),
         law=law, space=space, quadrature_order=order, name=name, **contact)
+
+
+def _length(mesh) -> float:
+    """The largest side of the body's bounding box (a Box or a read mesh)."""
+    if isinstance(mesh, sc.Box):
+        return max(mesh.size or (1.0,))
+    return float(np.ptp(mesh.p, axis=1).max())
+
+
+def _numbers(item) -> list[tuple[str, float]]:
+    """(key, number) of the values of a load or displacement given as numbers."""
+    if isinstance(item, sc.SurfaceLoad):
+        values = ({"pressure": item.pressure} if item.pressure is not None else
+                  {f"traction[{i}]": v for i, v in enumerate(item.traction)})
+    else:
+        values = dict(item.components)
+    return [(k, float(v)) for k, v in values.items() if isinstance(v, (int, float))]
+
+
+def _check_magnitudes(items: dict, E: float, length: float):
+    """Loads and imposed displacements the solve handles in double precision.
+
+    Refused: a load above :data:`MAX_MAGNITUDE`, or one whose displacements
+    (about ``|p| L / E``) exceed it; an imposed displacement above
+    :data:`MAX_SHIFT` times the size ``L`` of the body.
+    """
+    for where, load in items["load"]:
+        for key, v in _numbers(load):
+            if abs(v) > MAX_MAGNITUDE:
+                raise ValueError(f"{where} {key}: {v:g} is beyond the largest load the solver "
+                                 f"handles, {MAX_MAGNITUDE:g} in magnitude; scale the units")
+            if abs(v) * length / E > MAX_MAGNITUDE:
+                raise ValueError(f"{where} {key}: {v:g} with E = {E:g} on a body of size "
+                                 f"{length:g} gives displacements of about |p| L / E = "
+                                 f"{abs(v) * length / E:.3g}, beyond the largest magnitude the "
+                                 f"solver handles, {MAX_MAGNITUDE:g}; scale the units")
+    for where, displacement in items["displacement"]:
+        for key, v in _numbers(displacement):
+            if abs(v) > MAX_SHIFT * length:
+                raise ValueError(f"{where} {key}: {v:g} is more than {MAX_SHIFT:g} times the "
+                                 f"size of the body ({length:g}); linear elasticity is a "
+                                 f"theory of small displacements, and a larger imposed one "
+                                 f"drowns the strains in round-off: give it in the units "
+                                 f"of the mesh")
 
 
 def _check_boundaries(items: dict, mesh, dim: int):
@@ -372,7 +439,7 @@ def _check_boundaries(items: dict, mesh, dim: int):
             if isinstance(item.boundary, str) and item.boundary not in faces:
                 raise ValueError(f"{where} boundary {item.boundary!r} is not a face of the "
                                  f"box; use one of {', '.join(faces)}, or where")
-        if all(isinstance(b, str) for b in boundaries) or np.prod(mesh.n) > BUILT_BOX:
+        if all(isinstance(b, str) for b in boundaries) or math.prod(mesh.n) > BUILT_BOX:
             return
         mesh = meshes.box(mesh.n, mesh.cell, mesh.size)
     for key, select in (("displacement", select_nodes), ("load", select_facets)):
@@ -397,14 +464,17 @@ def _mesh(t: dict, folder: Path) -> tuple[sc.Box | Path, int, object]:
         return b, sc.CELLS[cell], b
     if not isinstance(t["file"], str):
         raise TypeError(f"[mesh] file must be a path string, got {t['file']!r}")
-    path = (folder / t["file"]).resolve()
-    if not path.is_file():
-        raise ValueError(f"[mesh] file {t['file']!r} not found (looked for {path})")
+    path = Path(os.path.abspath(folder / t["file"]))
+    try:
+        path = regular_file(path, f"[mesh] file {t['file']!r}").resolve()
+    except FileNotFoundError:
+        raise ValueError(f"[mesh] file {t['file']!r} not found (looked for {path})") from None
+    except IsADirectoryError:
+        raise ValueError(f"[mesh] file {t['file']!r} is a folder ({path}); give the path "
+                         f"of a mesh file") from None
     try:
         mesh = meshes.read(path)
-    except SystemExit:  # meshio calls sys.exit(1) on a file it cannot read
-        raise ValueError(f"[mesh] file {t['file']!r} cannot be read by meshio") from None
-    except Exception as e:  # any other reader error is a bad scene file too
+    except Exception as e:  # any reader error is a bad scene file
         raise ValueError(f"[mesh] file {t['file']!r}: {e}") from None
     return path, mesh.dim(), mesh
 

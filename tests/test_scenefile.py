@@ -1,15 +1,17 @@
 """Scene files (TOML): the examples parse, bad files are refused naming the key."""
+import os
 from pathlib import Path
 
 import meshio
 import numpy as np
 import pytest
 
+from skxfem import scenefile
 from skxfem.expr import Expression
 from skxfem.material import Material
 from skxfem.meshes import box
 from skxfem.scene import Box, Scene, clamped, resolve_mesh, rollers
-from skxfem.scenefile import load_options, load_scene
+from skxfem.scenefile import BUILT_BOX, MAX_MAGNITUDE, load_options, load_scene
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -478,3 +480,66 @@ def test_19_a_formula_outside_its_domain_is_refused_not_solved(tmp_path, capsys)
     err = capsys.readouterr().err
     assert len(err.splitlines()) == 1 and "sqrt" in err and "needs a number >= 0" in err
     assert not (tmp_path / "o").exists()
+
+
+def test_14_a_mesh_path_that_is_no_file_is_named_for_what_it_is(tmp_path):
+    """A folder or a FIFO was "not found"; a loop of symbolic links a RuntimeError."""
+    (tmp_path / "folder.msh").mkdir()
+    os.mkfifo(tmp_path / "fifo.msh")
+    os.symlink("loop2.msh", tmp_path / "loop1.msh")
+    os.symlink("loop1.msh", tmp_path / "loop2.msh")
+    for name, words in (("folder.msh", "is a folder"), ("fifo.msh", "is a FIFO"),
+                        ("loop1.msh", "is a loop of symbolic links"), ("none.msh", "not found")):
+        text = MINIMAL.replace('box = {n = 3, cell = "quad"}', f'file = "{name}"')
+        with pytest.raises(ValueError, match=rf"^scene.toml: \[mesh\] file '{name}' {words}"):
+            load_scene(write(tmp_path, text))
+
+
+def test_15_an_unreadable_mesh_file_is_one_line_with_what_meshio_said(tmp_path, capfd):
+    """meshio prints its own messages (on stdout and stderr) before it gives up: they are
+    part of the error, and nothing else is printed."""
+    (tmp_path / "junk.vtu").write_text("<VTKFile")
+    text = MINIMAL.replace('box = {n = 3, cell = "quad"}', 'file = "junk.vtu"')
+    with pytest.raises(ValueError, match=r"could not be read by meshio \(Error: Couldn't "
+                                         r"read file .*junk.vtu as vtu\)") as info:
+        load_scene(write(tmp_path, text))
+    assert "\n" not in str(info.value)
+    assert capfd.readouterr() == ("", "")
+
+
+def loaded(E, corner, load) -> str:
+    """MINIMAL, clamped below, a top corner moved by ``corner``, loaded above."""
+    return MINIMAL + (f"[material]\nE = {E}\n"
+                      f"[[displacement]]\nboundary = 'ymin'\nkind = 'clamped'\n"
+                      f"[[displacement]]\nwhere = 'x > 0.99 and y > 0.99'\nx = {corner}\n"
+                      f"[[load]]\nboundary = 'ymax'\n{load}\n")
+
+
+@pytest.mark.parametrize("E, corner, load, words", [
+    (1.0, 0.0, "pressure = 1e300", r"#1 pressure: 1e\+300 is beyond the largest load"),
+    (1.0, 0.0, "traction = [0, -1e151]", r"#1 traction\[1\]: -1e\+151 is beyond"),
+    (1e-100, 0.0, "pressure = 1e60", r"E = 1e-100 .* \|p\| L / E = 1e\+160"),
+    (1.0, 9223372036854775808, "pressure = 1", r"#2 x: 9.22337e\+18 is more than 1000 times"),
+    (1.0, -1001.0, "pressure = 1", r"#2 x: -1001 is more than 1000 times"),
+])
+def test_16_numbers_beyond_what_the_solve_handles_are_refused_when_read(
+        tmp_path, E, corner, load, words):
+    """pressure = 1e300 ended in a RuntimeError after three numpy warnings, a corner
+    moved by 2^63 in one (exit 1); the largest values are measured (MAX_MAGNITUDE,
+    MAX_SHIFT), and they are accepted."""
+    with pytest.raises(ValueError, match=words):
+        load_scene(write(tmp_path, loaded(E=E, corner=corner, load=load)))
+    for edge in (loaded(E=1.0, corner=1000.0, load=f"pressure = {MAX_MAGNITUDE}"),
+                 loaded(E=1e-100, corner=0.0, load="pressure = 1e50")):
+        assert load_scene(write(tmp_path, edge)).loads[0].pressure in (MAX_MAGNITUDE, 1e50)
+
+
+@pytest.mark.parametrize("n", ["9223372036854775807", "3037000500",
+                               "[4294967297, 4294967295]"])
+def test_17_an_absurd_box_is_not_built_to_check_its_selections(tmp_path, monkeypatch, n):
+    """np.prod(n) wrapped below BUILT_BOX, and the box was built to check a 'where'
+    (IndexError, or a 32 GiB allocation): the count is exact now."""
+    monkeypatch.setattr(scenefile.meshes, "box", lambda *a: pytest.fail("the box was built"))
+    text = MINIMAL.replace("n = 3", f"n = {n}") + \
+        "[[displacement]]\nwhere = 'x < 1e-9'\nx = 0\n"
+    assert load_scene(write(tmp_path, text)).mesh.n[0] > BUILT_BOX
