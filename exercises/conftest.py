@@ -14,11 +14,18 @@ References live in ``solutions/NN_name/reference.py`` (some simply re-export the
 whose function has the same contract); wrong solutions in
 ``solutions/NN_name/wrong_NAME.py``: each redefines one or two functions of the
 reference and says in ``EXPECT`` what the grader's message must point at.
+
+Failures are reported short: a function still raising ``NotImplementedError``
+is one line (where it raised, and its message), not its whole docstring per
+test; other failures show the failing lines only (``--tb=short``, unless you
+ask for another ``--tb``).  A misspelt ``--impl`` is a usage error naming the
+choices.
 """
 from __future__ import annotations
 
 import ast
 import importlib.util
+import os
 import types
 from pathlib import Path
 
@@ -38,8 +45,57 @@ def pytest_addoption(parser):
                           "or wrong:NAME (solutions/NN_name/wrong_NAME.py)")
 
 
+def _wrong_names() -> list[str]:
+    return sorted({p.stem.removeprefix("wrong_") for p in SOLUTIONS.glob("*/wrong_*.py")})
+
+
 def pytest_configure(config):
     config.addinivalue_line("markers", "points(n): the test is worth n points (default 1)")
+    if config.option.tbstyle == "auto":      # not chosen on the command line
+        config.option.tbstyle = "short"
+    choice = config.getoption("impl")
+    names = _wrong_names()
+    wrong = choice.startswith("wrong:") and choice.removeprefix("wrong:") in names
+    if choice not in ("student", "solution") and not wrong:
+        raise pytest.UsageError(
+            f"--impl must be student, solution or wrong:NAME (NAME one of: "
+            f"{', '.join(names) or 'none here'}); got {choice!r}")
+
+
+class Unwritten:
+    """A function not written yet, reported in one line: where it raised, and its message.
+
+    Stands in for pytest's report of the failure (``longrepr``), which would print the
+    stub's whole docstring for every test that calls it.
+    """
+
+    def __init__(self, path: str, lineno: int, message: str):
+        self.path, self.lineno, self.message = path, lineno, message
+
+    @property
+    def reprcrash(self):      # what --tb=line and the JUnit report read
+        return self
+
+    def __str__(self) -> str:
+        return f"{self.path}:{self.lineno}: {self.message}"
+
+    def toterminal(self, tw) -> None:
+        tw.line(str(self))
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_makereport(item, call):
+    """A test that fails on a ``NotImplementedError`` is reported in one line."""
+    report = yield
+    excinfo = call.excinfo
+    if report.failed and excinfo is not None and excinfo.errisinstance(NotImplementedError):
+        entry = excinfo.traceback[-1]
+        try:
+            path = os.path.relpath(entry.path)
+        except ValueError:    # another drive (Windows)
+            path = str(entry.path)
+        report.longrepr = Unwritten(path, entry.lineno + 1, excinfo.exconly().strip())
+    return report
 
 
 @pytest.fixture(autouse=True)

@@ -21,7 +21,8 @@ What ``import skxfem`` gives:
 * :func:`assemble`, the one assembled interface problem every solver shares;
 * the step modules, one per chapter of the book: ``levelset``, ``cut``,
   ``enrich``, ``multipliers``, ``lbb``, ``stabilised``, ``contact``; and
-  ``plotting`` and ``evaluate`` (``pressure_along``) to look at a result.
+  ``plotting`` (imported when first used: a solve does not import matplotlib) and
+  ``evaluate`` (``pressure_along``) to look at a result.
   The paper's figures are ``skxfem.figures`` (imported on demand).
 
 The stable multiplier space (vital edges, the paper's algo2) is what a scene
@@ -32,8 +33,9 @@ imports only from lower floors (import-linter checks it in ``make test``; the
 contract is in ``pyproject.toml``):
 
 1. kernels: ``simplex``, ``expr``, ``saddle``, ``vtu``, ``progress``, ``grade``,
-   ``linear`` (which solve); then ``amg``, ``smoothest``, ``pcg``, then
-   ``iterative`` (the scalable linear solve);
+   ``linear`` (which solve), ``threads`` (the BLAS threads of a solve), ``files``
+   (checked reads, a set of files written as one); then ``amg``, ``smoothest``,
+   ``pcg``, then ``iterative`` (the scalable linear solve);
 2. ``levelset`` (the sign convention), ``meshes``, ``cells``, ``material``,
    ``quadrature``, ``evaluate``, ``contact_laws``;
 3. ``cut``, ``exact``;  4. ``enrich``, ``loads``;
@@ -65,7 +67,6 @@ from . import (  # noqa: E402  (the steps, in the order of the book)
     lbb,
     levelset,
     multipliers,
-    plotting,
     scenes,
     stabilised,
 )
@@ -82,6 +83,16 @@ from .scene import (  # noqa: E402
 )
 from .scenefile import load_scene  # noqa: E402
 from .solver import Result, solve  # noqa: E402
+
+
+def __getattr__(name: str):
+    """``skxfem.plotting`` and ``skxfem.figures``, imported when first used: they import
+    matplotlib, which a solve (and ``skxfem run``) does without."""
+    if name in ("plotting", "figures"):
+        import importlib
+        return importlib.import_module(f"{__name__}.{name}")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = [
     "__version__", "solve", "Result", "assemble", "Scene", "Box", "Displacement",

@@ -56,14 +56,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from .contact_laws import CONTACT_LAWS
-from .counts import NVERTS, PER_CUBE, box_counts, mesh_counts
+from .counts import NVERTS, box_counts, box_size, mesh_counts
 from .linear import choose_linear
 from .meshes import CELLS, cell_name
 from .quadrature import cell_rule
 from .scene import Box, Scene, check_scene, resolve_mesh
 
 __all__ = ["DEFAULT_MAX_BYTES", "Estimate", "TooLargeError", "check", "estimate",
-           "parse_bytes", "format_bytes"]
+           "parse_bytes", "format_bytes", "format_count"]
 
 DEFAULT_MAX_BYTES = 4 * 2**30
 """The limit :func:`check` applies unless told otherwise: 4 GiB."""
@@ -108,8 +108,9 @@ class Estimate:
     linear: str = "direct"
 
     def __str__(self) -> str:
-        return (f"{self.n_nodes} nodes, {self.n_cells} cells, up to {self.n_dofs} "
-                f"unknowns and {self.n_multipliers} multipliers, {self.linear} solve")
+        return (f"{format_count(self.n_nodes)} nodes, {format_count(self.n_cells)} cells, "
+                f"up to {format_count(self.n_dofs)} unknowns and "
+                f"{format_count(self.n_multipliers)} multipliers, {self.linear} solve")
 
 
 class TooLargeError(ValueError):
@@ -121,11 +122,26 @@ def format_bytes(n: float) -> str:
 
     >>> format_bytes(3 * 2**30), format_bytes(5.5 * 2**20), format_bytes(1000)
     ('3 GB', '5.5 MB', '0.977 KB')
+    >>> format_bytes(2**40 * 10**40)
+    '1e+40 TB'
     """
     for unit, size in (("TB", 2**40), ("GB", 2**30), ("MB", 2**20), ("KB", 2**10)):
         if n >= size or unit == "KB":
-            v = n / size
-            return f"{v:.0f} {unit}" if v >= 100 else f"{v:.3g} {unit}"
+            v = float(min(n, 10**300)) / size
+            return f"{v:.0f} {unit}" if 100 <= v < 1e6 else f"{v:.3g} {unit}"
+
+
+def format_count(k: int) -> str:
+    """An exact count, written with an exponent above 10¹²: the absurd sizes a user may
+    give (``n = 9223372036854775807``) stay readable.
+
+    >>> format_count(123456), format_count(2**64), format_count(10**400)
+    ('123456', '1.84e+19', '1.00e+400')
+    """
+    if k < 10**12:
+        return str(k)
+    digits = str(k)
+    return f"{digits[0]}.{digits[1:3]}e+{len(digits) - 1}"
 
 
 def parse_bytes(text: str) -> int:
@@ -133,6 +149,8 @@ def parse_bytes(text: str) -> int:
 
     >>> parse_bytes("4G"), parse_bytes("500MB"), parse_bytes("1024")
     (4294967296, 524288000, 1024)
+
+    A size below one byte (``"0.5"``) is refused: a number without a unit is in bytes.
     """
     s = str(text).strip().upper().removesuffix("B")
     scale = {"K": 2**10, "M": 2**20, "G": 2**30, "T": 2**40}.get(s[-1:], 1)
@@ -143,6 +161,9 @@ def parse_bytes(text: str) -> int:
     if not (np.isfinite(value) and value > 0):
         raise ValueError(f"a memory size must be a positive number with an optional unit "
                          f"K, M, G or T (e.g. 8G), got {text!r}")
+    if value * scale < 1:
+        raise ValueError(f"a memory size must be at least one byte, got {text!r} (a number "
+                         f"without a unit is in bytes; e.g. 8G is 8 gigabytes)")
     return int(value * scale)
 
 
@@ -158,6 +179,12 @@ def _memory(dim: int, cell: str, order, n_nodes, n_cells, n_dofs, n_enr, m) -> f
     lu = LU_BYTES * c * (n_dofs + m) ** p
     dense = 8 * (3 * m * n_enr + 2 * m * m + 2 * n_enr * n_enr)
     return cells + nodes + lu + dense
+
+
+def _clip(count: int) -> float:
+    """A count as a float, at most 10¹⁰⁰ (beyond any memory): the counts are exact
+    integers, and the memory terms stay finite floats for the absurd ones."""
+    return float(min(count, 10**100))
 
 
 def estimate(scene: Scene, linear: str = "auto") -> Estimate:
@@ -197,10 +224,10 @@ def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell) -> Es
     if chosen == "iterative":
         per = (CONTACT_ITERATIVE_BYTES if law in CONTACT_LAWS else ITERATIVE_BYTES)[dim]
         per += FGMRES_BYTES if law == "coulomb" else 0
-        bytes_ = SAFETY * per * (n_dofs + m)
+        bytes_ = SAFETY * per * _clip(n_dofs + m)
     else:
-        bytes_ = SAFETY * _memory(dim, cell, scene.quadrature_order, n_nodes, n_cells,
-                                  n_dofs, n_enr, m)
+        bytes_ = SAFETY * _memory(dim, cell, scene.quadrature_order,
+                                  *map(_clip, (n_nodes, n_cells, n_dofs, n_enr, m)))
     return Estimate(n_nodes, n_cells, n_dofs, m, int(bytes_), chosen)
 
 
@@ -211,8 +238,7 @@ def _floor(scene, linear) -> Estimate | None:
     box = scene.mesh
     if not isinstance(box, Box):
         return None
-    counts = (int(np.prod([k + 1 for k in box.n])), PER_CUBE[box.cell] * int(np.prod(box.n)),
-              0, 0, box.cell)
+    counts = (*box_size(box), 0, 0, box.cell)
     floors = []
     for pick in ("direct", "iterative") if linear == "auto" else (linear,):
         try:
@@ -268,8 +294,9 @@ def _too_large(scene, e: Estimate, max_bytes: int, option, how: str, linear: str
     hint = (f"max_bytes={more}" if option is None
             else f"{option} {format_bytes(more).replace(' ', '')}")
     solve = "either solve" if linear == "auto" else f"{e.linear} solve"
-    what = str(e) if how == "about" else (f"{e.n_nodes} nodes, {e.n_cells} cells, {e.n_dofs} "
-                                          f"unknowns before any enrichment, {solve}")
+    what = str(e) if how == "about" else (
+        f"{format_count(e.n_nodes)} nodes, {format_count(e.n_cells)} cells, "
+        f"{format_count(e.n_dofs)} unknowns before any enrichment, {solve}")
     return TooLargeError(
         f"the scene {scene.name!r} needs {how} {format_bytes(e.bytes)} ({what}); the limit "
         f"is {format_bytes(max_bytes)}: use a coarser mesh, or raise the limit (e.g. {hint})")

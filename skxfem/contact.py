@@ -72,6 +72,7 @@ from .linear import choose_linear
 from .problem import Problem, assemble
 from .saddle import SingularSystemError
 from .scene import Scene, check_scene
+from .threads import limited
 
 __all__ = ["Step", "ContactResult", "parameters", "solve", "ContactConvergenceError",
            "StepCutWarning", "METHODS", "RHO_RANGE", "MAX_CUTS"]
@@ -206,6 +207,7 @@ def _states(scene: Scene, pb: Problem, history, h: float) -> list[_State]:
     return out
 
 
+@limited
 def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10,
           max_iter: int = 30, linear: str = "auto", max_cuts: int = MAX_CUTS
           ) -> ContactResult:

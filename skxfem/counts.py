@@ -12,13 +12,14 @@ slabs of about 10⁶ points; a mesh is counted from its arrays.
 from __future__ import annotations
 
 import itertools
+import math
 
 import numpy as np
 
 from .levelset import nodal_values
 from .scene import Box
 
-__all__ = ["box_counts", "mesh_counts", "NVERTS", "PER_CUBE"]
+__all__ = ["box_counts", "box_size", "mesh_counts", "NVERTS", "PER_CUBE"]
 
 # vertices per cell, cells per hypercube of a Box, edge directions of a Box
 NVERTS = {"tri": 3, "quad": 4, "tet": 4, "hex": 8, "prism": 6}
@@ -34,13 +35,21 @@ _DIRECTIONS = {
 _CHUNK = 10**6
 
 
+def box_size(box: Box) -> tuple[int, int]:
+    """Nodes and cells of a Box, in exact integers (numpy's products wrap above 2⁶³).
+
+    >>> box_size(Box(2, "tet")), box_size(Box(2**32, "tet"))[1]
+    ((27, 48), 475368975085586025561263702016)
+    """
+    return (math.prod(k + 1 for k in box.n), PER_CUBE[box.cell] * math.prod(box.n))
+
+
 def box_counts(box: Box, levelset) -> tuple[int, int, int, int]:
     """Nodes, cells, enriched-node bound and cut-edge bound of a Box, slab by slab."""
     n = box.n
     size = box.size or (1.0,) * box.dim
     grid = [np.linspace(0.0, L, k + 1) for k, L in zip(n, size)]
-    n_nodes = int(np.prod([k + 1 for k in n]))
-    n_cells = PER_CUBE[box.cell] * int(np.prod(n))
+    n_nodes, n_cells = box_size(box)
     layer = n_nodes // (n[0] + 1)
     step = max(1, _CHUNK // layer)
     carry = np.zeros([k + 1 for k in n[1:]], dtype=bool)

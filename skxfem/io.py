@@ -44,29 +44,33 @@ point is a row: ``result.json``'s ``points``, ``normals`` and ``traction`` are
 result.points.T``), and VTU vectors are ``(n, 3)`` (z = 0 in 2D, so ParaView
 can draw them).
 
-**Atomic writes.**  :func:`write_result` writes every file under a temporary
-name in the target folder and renames them only when all are written; a failed
-write (a full disk, an error in the middle) removes the temporary files and
-leaves the previous result, or nothing, never a mix of old and new or a
-truncated file.  :func:`check_output` checks the folder before a solve.
+**One set.**  :func:`write_result` writes the three files as one set
+(:func:`skxfem.files.write_set`): into a new hidden folder beside ``out_dir``
+that then takes its place, under a lock on the parent folder.  A failed write
+(a full disk, an error in the middle, a process killed at any moment) leaves
+the previous result whole, or nothing, never a mix of two runs or a truncated
+file; two writers to one folder take turns; what killed writers left is
+removed by the next one.  So ``out_dir`` holds the three files only
+(:func:`check_output` checks it, and the rest, before a solve).
+:func:`default_folder` is the folder of a scene without ``--out``.
 """
 from __future__ import annotations
 
-import errno
 import json
 import os
-import secrets
+import re
 from pathlib import Path
 
 import meshio
 import numpy as np
 
+from .files import check_folder, quiet, write_set
 from .io_contact import contact_summary, interface_mesh, is_contact, last_step_fields
 from .levelset import nodal_values
 from .vtu import cell_sides, pad3, side_pieces, vectors3, vtk_cells
 
 __all__ = ["write_result", "result_summary", "cell_sides", "vtk_cells", "check_output",
-           "side_pieces"]
+           "side_pieces", "default_folder"]
 
 _STAGES = ("cut", "enrich", "assemble", "solve")
 _FILES = {"json": "result.json", "displacement": "displacement.vtu",
@@ -118,29 +122,50 @@ def result_summary(result) -> dict:
 def check_output(out_dir: str | Path) -> Path:
     """Check, without creating anything, that results can be written into ``out_dir``.
 
-    The folder may exist (its previous results are replaced) or not (it is
-    created by :func:`write_result`, under the nearest existing parent).
+    The folder may be missing (it is created by :func:`write_result`, with its
+    parents) or hold an earlier result only (which is replaced).
 
     Raises
     ------
     ValueError
-        If ``out_dir`` or one of its parents is an existing file, or the folder
-        that would receive the files is not writable.
+        If ``out_dir`` or one of its parents is an existing file, it holds
+        other files or is the current folder (:func:`skxfem.files.check_folder`),
+        or the folder that would receive it is not writable.
 
     >>> check_output("results/plate").name
     'plate'
     """
     out = Path(out_dir)
-    existing = out
+    if str(out_dir) == "":
+        raise ValueError("the output folder is empty; give a folder name such as "
+                         "results/plate")
+    check_folder(out, _FILES.values())
+    existing = Path(os.path.realpath(out)).parent
     while not existing.exists() and existing != existing.parent:
         existing = existing.parent
     if not existing.is_dir():
-        what = "is a file" if existing == out else f"is below the file {str(existing)!r}"
-        raise ValueError(f"output folder {str(out)!r} {what}; give another output folder")
+        raise ValueError(f"output folder {str(out)!r} is below the file {str(existing)!r}; "
+                         f"give another output folder")
     if not os.access(existing, os.W_OK | os.X_OK):
         raise ValueError(f"output folder {str(out)!r} cannot be written: "
                          f"{str(existing)!r} is not writable; give another output folder")
     return out
+
+
+def default_folder(name: str) -> Path:
+    """The output folder of a scene named ``name`` when none is given: one folder
+    below the current one, whatever the name holds.
+
+    Every run of characters other than letters, digits, ``-``, ``_`` and ``.``
+    (path separators, spaces, control characters) becomes ``_``; leading and
+    trailing dots and ``_`` go, so that neither ``..`` nor a hidden folder can
+    result; at most 100 characters; ``result`` if nothing is left.
+
+    >>> [str(default_folder(s)) for s in ("../../escaped", "/etc/plate 2", "..", "été")]
+    ['escaped', 'etc_plate_2', 'result', 'été']
+    """
+    safe = re.sub(r"[^\w.-]+", "_", str(name)).strip("._")[:100].strip("._")
+    return Path(safe or "result")
 
 
 def _write_json(result, path: Path):
@@ -159,24 +184,27 @@ def _write_displacement(result, path: Path):
         psi_nodes = nodal_values(levelset, mesh)
     points, cells, side, cut, disp, psi = side_pieces(mesh, psi_nodes, result.u_minus,
                                                       result.u_plus)
-    meshio.write(path, meshio.Mesh(
-        pad3(points), [(cell_type, cells)],
-        point_data={"displacement": pad3(disp), "levelset": psi},
-        cell_data={"side": [side], "cut": [cut]}), file_format="vtu")
+    with quiet():  # meshio's own messages are not ours to print
+        meshio.write(path, meshio.Mesh(
+            pad3(points), [(cell_type, cells)],
+            point_data={"displacement": pad3(disp), "levelset": psi},
+            cell_data={"side": [side], "cut": [cut]}), file_format="vtu")
 
 
 def _write_interface(result, path: Path):
     if is_contact(result):
-        meshio.write(path, interface_mesh(result), file_format="vtu")
-        return
-    points = np.asarray(result.points, dtype=float)
-    facets = np.asarray(result.facets, dtype=np.int64)
-    kind = {2: "line", 3: "triangle"}[points.shape[0]]
-    meshio.write(path, meshio.Mesh(
-        vectors3(points), [(kind, facets.T.reshape(-1, points.shape[0]))],
-        point_data={"pressure": np.asarray(result.pressure, dtype=float),
-                    "traction": vectors3(result.traction),
-                    "normal": vectors3(result.normals)}), file_format="vtu")
+        mesh = interface_mesh(result)
+    else:
+        points = np.asarray(result.points, dtype=float)
+        facets = np.asarray(result.facets, dtype=np.int64)
+        kind = {2: "line", 3: "triangle"}[points.shape[0]]
+        mesh = meshio.Mesh(
+            vectors3(points), [(kind, facets.T.reshape(-1, points.shape[0]))],
+            point_data={"pressure": np.asarray(result.pressure, dtype=float),
+                        "traction": vectors3(result.traction),
+                        "normal": vectors3(result.normals)})
+    with quiet():
+        meshio.write(path, mesh, file_format="vtu")
 
 
 _WRITERS = {"json": _write_json, "displacement": _write_displacement,
@@ -186,9 +214,8 @@ _WRITERS = {"json": _write_json, "displacement": _write_displacement,
 def write_result(result, out_dir: str | Path) -> dict[str, Path]:
     """Write ``result.json``, ``displacement.vtu`` and ``interface.vtu`` into ``out_dir``.
 
-    All or nothing: each file is written under a temporary name in
-    ``out_dir``, and the three are renamed over the previous ones only once
-    all are complete (see the module notes).
+    All or nothing, as one set (see the module notes): ``out_dir`` is replaced
+    by a folder holding the three new files once all are complete.
 
     Parameters
     ----------
@@ -197,7 +224,7 @@ def write_result(result, out_dir: str | Path) -> dict[str, Path]:
         or a :class:`skxfem.contact.ContactResult`.
     out_dir
         Folder to write into; created if missing (and removed again if the
-        writing fails).
+        writing fails); it may hold an earlier result only.
 
     Returns
     -------
@@ -213,30 +240,6 @@ def write_result(result, out_dir: str | Path) -> dict[str, Path]:
     """
     out = check_output(out_dir)
     result_summary(result)                      # refuse a bad result before touching disk
-    created = [p for p in (out, *out.parents) if not p.exists()]
-    out.mkdir(parents=True, exist_ok=True)
-    paths = {key: out / name for key, name in _FILES.items()}
-    temporary, renamed = {}, []
-    try:
-        for key, path in paths.items():
-            tag = f"{os.getpid()}-{secrets.token_hex(4)}"
-            temporary[key] = out / f".{path.stem}-{tag}{path.suffix}"
-            _WRITERS[key](result, temporary[key])
-            if temporary[key].stat().st_size == 0:
-                raise OSError(errno.EIO, f"{path.name} was written empty")
-        for key, path in paths.items():
-            os.replace(temporary[key], path)
-            renamed.append(temporary.pop(key))
-    except BaseException:
-        for tmp in temporary.values():
-            tmp.unlink(missing_ok=True)
-        if renamed:       # a rename failed half-way (never seen): nothing rather than a mix
-            for path in paths.values():
-                path.unlink(missing_ok=True)
-        for folder in created:                  # innermost first; only if left empty
-            try:
-                folder.rmdir()
-            except OSError:
-                break
-        raise
-    return paths
+    written = write_set(out, {name: (lambda path, key=key: _WRITERS[key](result, path))
+                              for key, name in _FILES.items()})
+    return {key: written[name] for key, name in _FILES.items()}

@@ -35,6 +35,8 @@ import numpy as np
 from skfem import Mesh, MeshHex1, MeshQuad1, MeshTet1, MeshTri1, MeshWedge1
 from skfem.io.meshio import from_meshio
 
+from .files import quiet, regular_file
+
 __all__ = ["CELLS", "box", "cell_name", "check_mesh", "read"]
 
 #: The supported cell names and their scikit-fem mesh classes.
@@ -251,15 +253,27 @@ def read(path) -> Mesh:
     2
     """
     path = Path(path)
-    if not path.is_file():
-        raise ValueError(f"mesh file {str(path)!r} does not exist; give the path of a "
-                         f"mesh file meshio reads (e.g. a Gmsh .msh)")
+    what = f"mesh file {str(path)!r}"
     try:
-        m = meshio.read(path)
-    except (Exception, SystemExit) as e:  # meshio's errors (some call sys.exit)
-        raise ValueError(f"mesh file {str(path)!r} could not be read by meshio "
-                         f"({type(e).__name__}: {e}); give a mesh file meshio reads "
-                         f"(e.g. a Gmsh .msh)") from e
+        regular_file(path, what)    # a folder, a FIFO, a device, a loop: never opened
+    except OSError as e:
+        raise ValueError(f"{e.strerror}; give the path of a mesh file meshio reads "
+                         f"(e.g. a Gmsh .msh)") from None
+    with quiet() as said:         # meshio prints (to stdout and stderr) before it raises
+        try:
+            m = meshio.read(path)
+        except (Exception, SystemExit) as e:  # meshio's errors (some call sys.exit)
+            error = e
+        else:
+            error = None
+    if error is not None:
+        parts = [" ".join(said.getvalue().split())]   # what meshio printed, in one line
+        if not isinstance(error, SystemExit):
+            parts.append(f"{type(error).__name__}: {error}" if str(error)
+                         else type(error).__name__)
+        detail = "; ".join(p for p in parts if p) or "it gave up"
+        raise ValueError(f"{what} could not be read by meshio ({detail}); give a mesh "
+                         f"file meshio reads (e.g. a Gmsh .msh)") from error
     kind = _cell_type(m, path)
     if kind == "wedge":
         mesh = MeshWedge1(np.ascontiguousarray(m.points.T),

@@ -68,9 +68,16 @@ CELLS = {"tri": ("naive", "winner", "vital"), "quad": ("naive", "winner", "vital
          "prism": ("naive", "winner", "vital"), "hex": ("naive",)}
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse, with a usage error in one line (exit 2), as ``skxfem`` reports errors."""
+
+    def error(self, message):
+        self.exit(2, f"skxfem: error: reproduce: {message} (see {self.prog} --help)\n")
+
+
 def parser() -> argparse.ArgumentParser:
     """The command line of ``python -m skxfem.reproduce``."""
-    p = argparse.ArgumentParser(prog="python -m skxfem.reproduce",
+    p = _Parser(prog="python -m skxfem.reproduce",
                                 description="Reproduce Figures 5-10 of Géniaut, Massin & "
                                             "Moës (2007) and write summary.json.")
     p.add_argument("--out", type=Path, default=Path("out"), help="output folder (created)")

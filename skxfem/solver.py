@@ -39,6 +39,7 @@ from .linear import AUTO_ITERATIVE, LINEAR, choose_linear
 from .problem import Problem, assemble, constrained_dofs
 from .scene import Scene, check_scene
 from .smoothest import dependencies
+from .threads import limited
 
 __all__ = ["Result", "solve", "solve_problem", "constrained_dofs", "LINEAR", "AUTO_ITERATIVE",
            "choose_linear"]
@@ -98,6 +99,7 @@ def _differences(c, ncomp: int) -> sp.csr_matrix:
     return sp.kron(sp.identity(ncomp), G, format="csr")
 
 
+@limited
 def solve(scene: Scene, dependent: str = "remove", linear: str = "auto"
           ) -> Result | ContactResult:
     """Solve ``scene`` and return a :class:`Result`.
@@ -120,6 +122,9 @@ def solve(scene: Scene, dependent: str = "remove", linear: str = "auto"
         ``"iterative"`` (AMG + projected CG, pyamg), or ``"auto"`` (default): the
         iterative one from :data:`AUTO_ITERATIVE` unknowns if pyamg is there.
 
+    The BLAS libraries run one thread during the solve (:mod:`skxfem.threads`:
+    ``SKXFEM_THREADS`` or :func:`skxfem.threads.using` choose another number).
+
     Raises
     ------
     ValueError
@@ -137,6 +142,7 @@ def solve(scene: Scene, dependent: str = "remove", linear: str = "auto"
     return solve_problem(p, dependent, linear)
 
 
+@limited
 def solve_problem(p: Problem, dependent: str = "remove", linear: str = "auto") -> Result:
     """Solve an assembled :class:`skxfem.problem.Problem` (its law): see :func:`solve`."""
     if dependent not in ("remove", "raise"):

@@ -15,9 +15,14 @@ import tomllib
 from pathlib import Path
 
 from .expr import Expression
+from .files import read_bytes
 
-__all__ = ["read_toml", "MissingFileError", "FolderError", "labelled", "table", "array",
-           "keys", "one_of", "choice", "number", "vector", "formula"]
+__all__ = ["read_toml", "MAX_BYTES", "MissingFileError", "FolderError", "labelled", "table",
+           "array", "keys", "one_of", "choice", "number", "vector", "formula"]
+
+
+MAX_BYTES = 2**20
+"""The largest scene file read: 1 MiB (the examples are about 1 kB)."""
 
 
 class MissingFileError(FileNotFoundError, ValueError):
@@ -32,23 +37,24 @@ def read_toml(path) -> tuple[Path, dict]:
     """``path`` as a Path, and the table of the TOML file there.
 
     Raises a ValueError starting with the file name if the file is missing
-    (:class:`MissingFileError`), a folder (:class:`FolderError`), unreadable,
-    not UTF-8 or not TOML.
+    (:class:`MissingFileError`), a folder (:class:`FolderError`), not a
+    regular file (a FIFO or a device is refused without being read), a loop of
+    symbolic links, unreadable, larger than :data:`MAX_BYTES`, not UTF-8, not
+    TOML or nested too deeply.
     """
     if not isinstance(path, (str, os.PathLike)):
         raise TypeError(f"path must be the path of a .toml file (a str or pathlib.Path), "
                         f"got {type(path).__name__} {path!r:.60}")
     path = Path(path)
     name = f"{path.name or path}: the scene file {str(path)!r}"
-    if not path.exists():
-        raise MissingFileError(f"{name} does not exist; check the path")
-    if path.is_dir():
-        raise FolderError(f"{name} is a folder; give the path of a .toml file")
     try:
-        text = path.read_bytes().decode("utf-8")
-    except OSError as e:
-        raise ValueError(f"{name} cannot be read ({e.strerror or e}); check that it "
-                         f"is a readable file") from None
+        data = read_bytes(path, name, MAX_BYTES)   # a FIFO or a device is never read
+    except FileNotFoundError:
+        raise MissingFileError(f"{name} does not exist; check the path") from None
+    except IsADirectoryError:
+        raise FolderError(f"{name} is a folder; give the path of a .toml file") from None
+    try:
+        text = data.decode("utf-8")
     except UnicodeDecodeError as e:
         raise ValueError(f"{name} is not UTF-8 text (byte {e.object[e.start]:#04x} at "
                          f"offset {e.start}); save it as UTF-8") from None
@@ -56,6 +62,9 @@ def read_toml(path) -> tuple[Path, dict]:
         return path, tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise ValueError(f"{path.name}: invalid TOML: {e}") from None
+    except RecursionError:             # tomllib recurses once per level of nesting
+        raise ValueError(f"{path.name}: invalid TOML: arrays or tables nested too deeply "
+                         f"for a scene file") from None
 
 
 def labelled(where: str, build, *args):

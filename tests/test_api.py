@@ -52,3 +52,19 @@ def test_every_module_stands_on_a_floor():
                if p.stem not in ("__init__", "__main__")}
     assert modules - listed == set(), "add these modules to a floor in pyproject.toml"
     assert listed - modules == set(), "these floors name modules that do not exist"
+
+
+def test_importing_skxfem_does_not_import_matplotlib():
+    """`import skxfem` imported matplotlib (through skxfem.plotting), so every solve and
+    every `skxfem run` paid for it and printed its config warnings; skxfem.plotting and
+    skxfem.figures are imported when first used."""
+    import subprocess
+    import sys
+    code = ("import sys, skxfem; before = 'matplotlib' in sys.modules; "
+            "p = skxfem.plotting; from skxfem import figures; "
+            "print(before, p.__name__, figures.__name__, 'matplotlib' in sys.modules)")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=120, check=True)
+    assert done.stdout.split() == ["False", "skxfem.plotting", "skxfem.figures", "True"]
+    with pytest.raises(AttributeError, match="no attribute 'plots'"):
+        skxfem.plots

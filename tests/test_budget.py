@@ -1,6 +1,7 @@
 """The size guard: counts are upper bounds, memory within a stated factor, refusals clear."""
 import dataclasses
 import json
+import re
 import subprocess
 import sys
 
@@ -187,3 +188,33 @@ def test_12_a_huge_box_is_refused_before_its_levelset_is_evaluated(n, cell, monk
     for linear in ("auto", "direct", "iterative"):
         with pytest.raises(b.TooLargeError, match=r"needs at least .* the limit is 4 GB"):
             b.check(s, linear=linear)
+
+
+@pytest.mark.parametrize("n, cell, nodes", [
+    (9223372036854775807, "quad", "8.50e+37 nodes"),          # np.prod wrapped to 1
+    (3037000500, "quad", "9.22e+18 nodes"),                   # a negative product: complex
+    ((4294967297, 4294967295), "quad", "1.84e+19 nodes"),     # wrapped to -1 cells
+    ((2**32,) * 3, "hex", "7.92e+28 nodes"),
+    (10**200, "tri", "1.00e+400 nodes"),
+])
+def test_13_absurd_sizes_are_counted_exactly_and_refused_alike(n, cell, nodes, monkeypatch):
+    """Counts in exact integers: refused as any box above the limit, nothing built."""
+    import skxfem.budget as b
+    monkeypatch.setattr(b, "box_counts", lambda *a: pytest.fail("ψ was evaluated"))
+    monkeypatch.setattr(meshes, "box", lambda *a, **k: pytest.fail("the box was built"))
+    dim = Box(1, cell).dim
+    s = Scene(Box(n, cell), plane((0.5,) * dim, (0,) * (dim - 1) + (1,)))
+    for linear in ("auto", "direct", "iterative"):
+        with pytest.raises(TooLargeError, match=rf"the scene 'scene' needs at least \S+ TB "
+                                                rf"\({re.escape(nodes)}, .* cells, .* the "
+                                                rf"limit is 4 GB: use a coarser mesh"):
+            check(s, linear=linear)
+
+
+def test_14_a_size_below_one_byte_is_refused_in_the_users_terms():
+    """--max-memory 0.5 said "max_bytes must be a positive integer, got 0"."""
+    for text in ("0.5", "0.9", "0.0001K"):
+        with pytest.raises(ValueError, match=rf"at least one byte, got '{text}' \(a number "
+                                             r"without a unit is in bytes"):
+            parse_bytes(text)
+    assert parse_bytes("1") == 1 and parse_bytes("0.5K") == 512

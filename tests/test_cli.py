@@ -65,7 +65,7 @@ def test_03_interface_force_balances_the_load(tmp_path):
 @pytest.mark.parametrize("text, words", [
     ("[mesh]\nbox = {n = 'four', cell = 'quad'}\n[levelset]\nexpr = 'y - 0.5'",
      ["[mesh] box.n"]),
-    ("[mesh]\nbox = {n = 3, cell = 'quad'}\n[levelset]\nexpr = 'sin(y)'",
+    ("[mesh]\nbox = {n = 3, cell = 'quad'}\n[levelset]\nexpr = 'open(y)'",
      ["[levelset] expr", "function call"]),
     ("[mesh]\nbox = {n = 2, cell = 'quad'}\n[levelset]\nexpr = 'y - 5.25'",
      ["cuts no cell"]),                       # refused by the solver's cut step
@@ -88,8 +88,12 @@ def test_04_bad_scenes_exit_2_with_one_line(tmp_path, capsys, text, words):
 def test_05_missing_file_exits_2_and_debug_shows_the_error(tmp_path, capsys):
     assert main(["run", str(tmp_path / "nope.toml")]) == 2
     assert "nope.toml" in capsys.readouterr().err
-    with pytest.raises(FileNotFoundError):
-        main(["run", str(tmp_path / "nope.toml"), "--debug"])
+    for argv in (["run", str(tmp_path / "nope.toml"), "--debug"],
+                 ["--debug", "run", str(tmp_path / "nope.toml")]):
+        assert main(argv) == 2, "--debug keeps the exit code of an anticipated error"
+        err = capsys.readouterr().err
+        assert "Traceback" in err and "MissingFileError" in err
+        assert err.splitlines()[-1].startswith("skxfem: error: ") and "nope.toml" in err
 
 
 def test_06_python_m_skxfem_and_default_out_folder(tmp_path):
@@ -195,8 +199,9 @@ def test_13_unexpected_errors_are_one_line_and_debug_shows_them(
     assert type(error).__name__ in err if code == 1 else "--max-memory" in err
     assert ("--debug" in err) == (code == 1)
     for debug in (argv + ["--debug"], ["--debug"] + argv):
-        with pytest.raises(type(error)):
-            main(debug)
+        assert main(debug) == code, "--debug shows the traceback and keeps the exit code"
+        err = capsys.readouterr().err
+        assert "Traceback" in err and type(error).__name__ in err
     assert not (tmp_path / "o").exists()
 
 
@@ -222,7 +227,7 @@ def test_14_the_nearly_singular_strip_of_issue_7_never_gives_a_traceback(tmp_pat
 
 
 def test_15_reproduce_is_forwarded(tmp_path, capsys):
-    assert cli.FORWARDED["reproduce"][1] is reproduce.main
+    assert cli.FORWARDED["reproduce"][1] == reproduce.__name__
     with pytest.raises(SystemExit) as done:
         main(["reproduce", "--help"])
     assert done.value.code == 0 and "--quick" in capsys.readouterr().out
@@ -328,8 +333,8 @@ def test_20_a_contact_newton_that_does_not_converge_exits_2(tmp_path, capsys):
     err = one_line(capsys)
     assert "did not converge in 1 iterations" in err and "friction" in err
     assert not (tmp_path / "o").exists()
-    with pytest.raises(ContactConvergenceError):
-        main(argv + ["--debug"])
+    assert main(argv + ["--debug"]) == 2
+    assert "Traceback" in capsys.readouterr().err
     assert main(["run", CONTACT, "--out", str(tmp_path / "o"), "--max-iter", "15"]) == 0
 
 
@@ -408,3 +413,175 @@ def test_24_the_linear_solve_is_an_option(tmp_path, capsys):
         main(["run", str(plate), "--linear", "cholesky"])
     assert done.value.code == 2
     assert "invalid choice: 'cholesky'" in capsys.readouterr().err
+
+
+# --- issue 18: where results go, and every anticipated error in one line -----------
+
+STRIP_TEXT = (EXAMPLES / "strip.toml").read_text()
+
+
+def scene_file(folder, text, name="scene.toml"):
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / name).write_text(text)
+    return str(folder / name)
+
+
+@pytest.mark.parametrize("name, folder", [
+    ("../../escaped", "escaped"),
+    ("ABSOLUTE", None),
+    ("\x1b[31mred\x1b[0m\u202e", "31mred_0m"),
+    ("a/b\\c d", "a_b_c_d"),
+    ("..", "result"),
+])
+def test_25_without_out_the_results_stay_below_the_current_folder(
+        tmp_path, capfd, monkeypatch, name, folder):
+    """The scene file named the folder: '../../escaped' wrote two folders up, an absolute
+    name wrote there, escape codes were echoed raw to the terminal."""
+    if name == "ABSOLUTE":
+        name = str(tmp_path / "elsewhere")
+    scene = scene_file(tmp_path / "scenes", STRIP_TEXT.replace(
+        'name = "strip"', "name = " + json.dumps(name)))
+    here = tmp_path / "work" / "here"
+    here.mkdir(parents=True)
+    monkeypatch.chdir(here)
+    assert main(["run", scene]) == 0
+    out, err = capfd.readouterr()
+    assert err == "" and out.count("\n") == 1
+    assert "\x1b" not in out and "\u202e" not in out, "control characters are escaped"
+    [written] = here.iterdir()
+    assert folder is None or written.name == folder
+    assert (written / "result.json").is_file()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["scenes", "work"]
+    assert sorted(p.name for p in (tmp_path / "work").iterdir()) == ["here"]
+
+
+def test_26_an_empty_or_current_output_folder_is_refused(tmp_path, capsys, monkeypatch,
+                                                         no_solve):
+    """--out '' wrote into the current folder."""
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(SystemExit) as done:
+        main(["run", STRIP, "--out", ""])
+    assert done.value.code == 2 and "--out" in one_line(capsys)
+    for out in (".", str(tmp_path)):
+        assert main(["run", STRIP, "--out", out]) == 2
+        assert "current folder" in one_line(capsys)
+    (tmp_path / "mine").mkdir()
+    (tmp_path / "mine" / "notes.txt").write_text("keep")
+    assert main(["run", STRIP, "--out", "mine"]) == 2
+    assert "holds files that are not results ('notes.txt')" in one_line(capsys)
+    assert sorted(p.name for p in tmp_path.rglob("*")) == ["mine", "notes.txt"]
+
+
+CORNER = "[[displacement]]\nwhere = 'x > 0.99 and y > 0.99'\nx = 9223372036854775808\n"
+
+
+def anticipated(tmp_path, case):
+    """(argv, words) of an error a user meets (issue 18): one line and exit 2."""
+    (tmp_path / "deep.toml").write_text("x = " + "[" * 500 + "]" * 500 + "\n")
+    (tmp_path / "folder.msh").mkdir()
+    os.mkfifo(tmp_path / "fifo.msh")
+    os.symlink("loop.msh", tmp_path / "loop.msh")
+    (tmp_path / "junk.msh").write_text("garbage\n")
+    (tmp_path / "cut.msh").write_text("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2\n")
+
+    def edited(old, new, extra=""):
+        return [scene_file(tmp_path, STRIP_TEXT.replace(old, new) + extra, "s.toml")]
+
+    def mesh(name):
+        return edited('box = {n = [4, 5], cell = "quad"}', f'file = "{name}"')
+
+    pressure = 'pressure = "4*x*(1 - x)"'
+    cases = {
+        "deep": lambda: ([str(tmp_path / "deep.toml")], "nested too deeply"),
+        "folder mesh": lambda: (mesh("folder.msh"), "[mesh] file 'folder.msh' is a folder"),
+        "fifo mesh": lambda: (mesh("fifo.msh"), "[mesh] file 'fifo.msh' is a FIFO"),
+        "symlink loop": lambda: (mesh("loop.msh"), "[mesh] file 'loop.msh' is a loop of"),
+        "meshio prints": lambda: (mesh("junk.msh"), "Couldn't read file"),  # meshio's words
+        "meshio raises": lambda: (mesh("cut.msh"), "could not be read by meshio"),
+        "pressure 1e300": lambda: (edited(pressure, "pressure = 1e300"),
+                                   "1e+300 is beyond the largest load"),
+        "corner 2^63": lambda: (edited("", "", CORNER), "more than 1000 times the size"),
+        "overflow": lambda: (edited(pressure, 'pressure = "1e300*x"'), "the solve overflowed"),
+        "n wraps": lambda: (edited("n = [4, 5]", "n = [4294967297, 4294967295]",
+                                   "[[displacement]]\nwhere = 'x < 1e-9'\nx = 0\n"),
+                            "needs at least 8.86e+10 TB (1.84e+19 nodes, 1.84e+19 cells"),
+        "max-memory 0.5": lambda: ([STRIP, "--max-memory", "0.5"], "at least one byte"),
+    }
+    return cases[case]()
+
+
+@pytest.mark.parametrize("case", [
+    "deep", "folder mesh", "fifo mesh", "symlink loop", "meshio prints", "meshio raises",
+    "pressure 1e300", "corner 2^63", "overflow", "n wraps", "max-memory 0.5"])
+def test_27_anticipated_errors_are_one_line_and_exit_2(tmp_path, capfd, case):
+    """Each was exit 1, a traceback, a misleading message or several lines (numpy's
+    warnings, meshio's messages) before the error."""
+    argv, words = anticipated(tmp_path, case)
+    try:
+        code = main(["run", *argv, "--out", str(tmp_path / "out")])
+    except SystemExit as e:                                      # a usage error
+        code = e.code
+    out, err = capfd.readouterr()
+    assert code == 2 and out == "", (out, err)
+    assert err.count("\n") == 1 and err.startswith("skxfem: error: "), err
+    assert words in err, err
+    assert not (tmp_path / "out").exists()
+
+
+def run_command(argv, cwd, env=None, timeout=60):
+    """``python -m skxfem ARGV`` with at most 2 GiB of memory (a read of /dev/zero)."""
+    import resource
+
+    def limit():
+        resource.setrlimit(resource.RLIMIT_AS, (2**31, 2**31))
+    return subprocess.run([sys.executable, "-m", "skxfem", *argv], cwd=cwd, env=env,
+                          capture_output=True, text=True, timeout=timeout, check=False,
+                          preexec_fn=limit)
+
+
+def test_28_a_fifo_or_a_device_as_scene_file_is_refused_at_once(tmp_path):
+    """A FIFO as the scene file blocked for ever; /dev/zero was read until memory ran
+    out.  --debug keeps the exit code 2 and adds the traceback."""
+    os.mkfifo(tmp_path / "scene.toml")
+    for path, words in ((tmp_path / "scene.toml", "is a FIFO"),
+                        ("/dev/zero", "is a character device")):
+        done = run_command(["run", str(path)], tmp_path, timeout=30)
+        assert done.returncode == 2 and done.stdout == "", done.stderr
+        assert done.stderr.count("\n") == 1 and words in done.stderr, done.stderr
+    debug = run_command(["--debug", "run", "/dev/zero"], tmp_path, timeout=30)
+    assert debug.returncode == 2 and "Traceback" in debug.stderr
+    assert debug.stderr.splitlines()[-1].startswith("skxfem: error: ")
+
+
+def test_29_a_run_neither_imports_matplotlib_nor_prints_its_warnings(tmp_path):
+    """With its config folder unwritable, matplotlib printed two lines on every run (the
+    command imported it to solve a scene); `reproduce --bogus` printed argparse's usage."""
+    env = {**os.environ, "MPLCONFIGDIR": "/dev/null/unwritable"}
+    code = ("import sys; from skxfem.cli import main; "
+            f"c = main(['run', {STRIP!r}, '--out', 'o']); "
+            "print(c, sorted(m for m in sys.modules if m.split('.')[0] == 'matplotlib'))")
+    done = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env,
+                          capture_output=True, text=True, timeout=120, check=False)
+    assert done.stderr == "" and done.stdout.splitlines()[-1] == "0 []", done
+    bogus = run_command(["reproduce", "--bogus"], tmp_path, env=env)
+    assert bogus.returncode == 2 and bogus.stdout == ""
+    assert bogus.stderr.count("\n") == 1, bogus.stderr
+    assert bogus.stderr.startswith("skxfem: error: ") and "--bogus" in bogus.stderr
+
+
+def test_30_warnings_are_counted_not_printed(tmp_path, capfd, monkeypatch):
+    """A warning raised during a run is not printed (stderr stays empty): the summary
+    line counts it and --debug shows it."""
+    import warnings
+
+    def solve(scene, **options):
+        warnings.warn("a warning of some library", UserWarning)
+        return cli_solve(scene, **options)
+
+    cli_solve = cli.solve
+    monkeypatch.setattr(cli, "solve", solve)
+    assert main(["run", STRIP, "--out", str(tmp_path / "o")]) == 0
+    out, err = capfd.readouterr()
+    assert err == "" and "1 warning(s) not shown (--debug shows them)" in out
+    assert main(["--debug", "run", STRIP, "--out", str(tmp_path / "o")]) == 0
+    assert "a warning of some library" in capfd.readouterr().err

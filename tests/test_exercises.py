@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from skxfem.grade import Result, Score, _exercise_of, find_exercises, main, table
+from skxfem.grade import Result, Score, _exercise_of, find_exercises, hints, main, table
 
 ROOT = Path(__file__).resolve().parents[1]
 EXERCISES = ROOT / "exercises"
@@ -77,11 +77,13 @@ def test_every_exercise_passes_with_its_reference():
 
 
 def test_every_stub_fails_test_by_test_with_not_implemented():
+    """...in one line each: where the stub raised and its message, not its docstring."""
     r = run(EXERCISES, "--impl=student")
     assert len(r.tests) == sum(len(of(r, n)) for n in NAMES) > 40
     for node, (outcome, text) in r.tests.items():
         assert outcome == "failed", f"{node}: {outcome} (a failure of the test, not a crash)"
         assert "NotImplementedError" in text and "not written yet" in text, node
+        assert len(text.splitlines()) == 1 and "exercise.py:" in text, text
 
 
 def test_every_stub_keeps_its_docstrings():
@@ -159,6 +161,10 @@ def test_a_student_goes_from_the_readme_to_a_score_table(tmp_path):
 
     stub = shell(commands[0])
     assert stub.returncode == 1 and "NotImplementedError" in stub.stdout, stub.stdout[-2000:]
+    failures = stub.stdout.split(" FAILURES ")[1].split(" short test summary ")[0]
+    lines = [line for line in failures.splitlines()[1:-1]]     # between the === rulers
+    assert len(lines) == 2 * 6, failures                       # a header, one line, per test
+    assert all("exercise.py:" in line for line in lines[1::2]), failures
     graded = shell(commands[1])
     assert graded.returncode == 1, graded.stdout[-2000:] + graded.stderr[-2000:]
     assert "03_enrich            0/6      0/6" in graded.stdout, graded.stdout[-2000:]
@@ -167,7 +173,8 @@ def test_a_student_goes_from_the_readme_to_a_score_table(tmp_path):
     graded = shell(commands[1])
     assert graded.returncode == 0, graded.stdout[-3000:] + graded.stderr[-2000:]
     assert "03_enrich            6/6      6/6" in graded.stdout, graded.stdout[-2000:]
-    report = json.loads((tmp_path / "grade.json").read_text(encoding="utf-8"))
+    assert "report: out/grades/03_enrich.json" in graded.stdout, graded.stdout[-500:]
+    report = json.loads((tmp_path / "out" / "grades" / "03_enrich.json").read_text("utf-8"))
     assert report["passed"] == report["total"] == 6
     assert [t["outcome"] for t in report["exercises"]["03_enrich"]["tests"]] == ["passed"] * 6
 
@@ -190,3 +197,105 @@ def test_table_and_junit_names():
     assert _exercise_of("tests.test_cut", NAMES) is None
     text = table([Score("x", (Result("t", "passed", 2.0),))])
     assert text.splitlines()[-1].split() == ["total", "1/1", "2/2"]
+
+
+def test_grade_usage_errors_name_the_choices(tmp_path, capsys, monkeypatch):
+    """A bad --impl is one line naming the valid choices, exit 2, and runs nothing; the
+    same for pytest itself (a usage error, not an error per test)."""
+    monkeypatch.chdir(tmp_path)
+    for impl in ("bogus", "wrong:nosuch", "wrong:", "Student"):
+        for argv, names in (([str(EXERCISES), f"--impl={impl}"], [w for _, w in WRONG]),
+                            ([str(EXERCISES / "01_levelset"), "--impl", impl],
+                             [w for n, w in WRONG if n == "01_levelset"])):
+            assert main(argv) == 2, argv
+            out, err = capsys.readouterr()
+            assert out == "" and len(err.splitlines()) == 1, (out, err)
+            assert err.startswith("skxfem grade: error: --impl must be student, solution or "
+                                  "wrong:NAME") and repr(impl) in err, err
+            assert all(name in err for name in names), err
+            assert ("touching" in err) == (argv[0] == str(EXERCISES)), err   # 02_cut's
+        assert pytest.main([str(EXERCISES / "01_levelset"), f"--impl={impl}", "-p",
+                            "no:cacheprovider", "-q"]) == pytest.ExitCode.USAGE_ERROR
+        capsys.readouterr()
+    assert not (tmp_path / "out").exists(), "a usage error writes no report"
+    # the command line's subcommand is the same; so is an unknown option (argparse)
+    from skxfem.cli import main as cli
+    assert cli(["grade", str(EXERCISES), "--impl=bogus"]) == 2
+    assert len(capsys.readouterr().err.splitlines()) == 1
+    with pytest.raises(SystemExit) as done:
+        main([str(EXERCISES), "--bogus"])
+    err = capsys.readouterr().err
+    assert done.value.code == 2 and len(err.splitlines()) == 1 and "--bogus" in err
+    # solution: refused where the solutions are not (a student's copy)
+    folder = copy_exercise(tmp_path, "02_cut")
+    assert main([str(folder), "--impl=solution"]) == 2
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1 and "--impl=student" in err and "02_cut" in err
+
+
+def test_wrong_name_grades_the_exercises_that_have_it(tmp_path, capsys):
+    report = tmp_path / "r.json"
+    assert main([str(EXERCISES), "--impl=wrong:unnormalised", "--report", str(report)]) == 1
+    data = json.loads(report.read_text(encoding="utf-8"))
+    assert list(data["exercises"]) == ["01_levelset"] and data["total"] == 7
+    assert "02_cut" not in capsys.readouterr().out
+
+
+def test_hints_are_printed_whole_below_the_table(tmp_path, capsys):
+    """The failure message (the hint) of each exercise is printed in full, wrapped
+    between words; the rows of the table stay short."""
+    status = main([str(EXERCISES / "01_levelset"), "--impl=wrong:unnormalised",
+                   "--report", str(tmp_path / "r.json")])
+    out = capsys.readouterr().out
+    assert status == 1
+    table_text = out.split("exercise           tests   points")[1].split("\n\n")[0]
+    assert all(len(line) <= 99 for line in table_text.splitlines()), table_text
+    hint = out.split(table_text)[1]
+    assert "Did you normalise the normal (n/|n|)?" in " ".join(hint.split()), hint
+    assert all(len(line) <= 88 for line in hint.splitlines()), hint
+    report = json.loads((tmp_path / "r.json").read_text(encoding="utf-8"))
+    message = report["exercises"]["01_levelset"]["tests"][1]["message"]
+    assert " ".join(message.split()) in " ".join(hint.split())
+
+
+@pytest.mark.parametrize("width", [20, 40, 88])
+def test_hints_never_cut_a_word(width):
+    words = ("AssertionError: ψ of plane((0, 0, 0.5), (0, 0, 2)) should be 0.5, got 1. "
+             "Did you normalise the normal (n/|n|)? " + "x" * 50).split()
+    text = hints([Score("01_levelset", (Result("t1", "passed"),
+                                        Result("t2", "failed", 1.0, " ".join(words)),
+                                        Result("t3", "failed", 1.0, "later")))], width)
+    head, *body = text.splitlines()
+    assert head == "01_levelset: t2 failed:" and "later" not in text
+    assert " ".join(body).split() == words
+    assert all(len(line) <= width or len(line.split()) == 1 for line in body)
+    assert hints([Score("x", (Result("t", "passed"),))]) == ""
+
+
+def test_reports_go_to_an_ignored_folder_one_per_exercise(tmp_path, capsys, monkeypatch):
+    """Without --report: out/grades/NAME.json under the current folder, so grading
+    02 keeps 01's report; out/ is ignored by git. --report FILE writes FILE; a report
+    that cannot be written is one line, exit 2."""
+    folders = [copy_exercise(tmp_path, n) for n in ("01_levelset", "02_cut")]
+    monkeypatch.chdir(tmp_path)
+    for folder in folders:
+        assert main([str(folder)]) == 1
+        assert f"report: out/grades/{folder.name}.json" in capsys.readouterr().out
+    for folder in folders:
+        data = json.loads((tmp_path / "out" / "grades" / f"{folder.name}.json").read_text())
+        assert list(data["exercises"]) == [folder.name] and data["passed"] == 0
+    assert main([str(tmp_path / "exercises")]) == 1
+    assert (tmp_path / "out" / "grades" / "exercises.json").exists()
+    capsys.readouterr()
+    assert main([str(folders[0]), "--report", str(tmp_path / "mine" / "a.json")]) == 1
+    assert json.loads((tmp_path / "mine" / "a.json").read_text())["total"] == 7
+    capsys.readouterr()
+    (tmp_path / "file").write_text("")
+    assert main([str(folders[0]), "--report", str(tmp_path / "file" / "a.json")]) == 2
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1 and "cannot write the report" in err
+    if shutil.which("git") and (ROOT / ".git").exists():
+        ignored = subprocess.run(["git", "-C", str(ROOT), "check-ignore", "-q", "--no-index",
+                                  "out/grades/01_levelset.json"])
+        assert ignored.returncode == 0, "out/grades/ must be ignored by git"
+    assert "out/" in (ROOT / ".gitignore").read_text(encoding="utf-8").split()

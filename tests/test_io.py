@@ -2,7 +2,12 @@
 for a contact result, every load step in the JSON and the last one in the VTU files."""
 import errno
 import json
+import multiprocessing
 import os
+import shutil
+import signal
+import threading
+import time
 from dataclasses import replace
 from types import SimpleNamespace
 
@@ -10,7 +15,7 @@ import meshio
 import numpy as np
 import pytest
 
-from skxfem import contact, io
+from skxfem import contact, files, io
 from skxfem.enrich import split_fields
 from skxfem.io import cell_sides, check_output, side_pieces, vtk_cells, write_result
 from skxfem.levelset import nodal_values, plane
@@ -217,21 +222,101 @@ def test_11_a_failed_write_into_a_new_folder_leaves_nothing(tmp_path, monkeypatc
     assert list(tmp_path.iterdir()) == []
 
 
-def test_12_a_rename_failing_half_way_leaves_nothing_rather_than_a_mix(tmp_path, monkeypatch):
-    write_result(fake_result("quad"), tmp_path)
-    calls = []
-    replace = os.replace
+def tagged(tag: float):
+    """A fake result whose every file depends on ``tag``: files of two runs differ."""
+    r = fake_result("tri")
+    r.pressure, r.u_minus = r.pressure + tag, r.u_minus + tag
+    return r
+
+
+def references(tmp_path, tags):
+    """The bytes of the three files of each tagged run, written alone."""
+    return {tag: snapshot(write_result(tagged(tag), tmp_path / f"ref{tag}")["json"].parent)
+            for tag in tags}
+
+
+def hidden(folder):
+    """What writers left beside their target (temporary folders)."""
+    return sorted(p.name for p in folder.iterdir() if ".skxfem-" in p.name)
+
+
+KILL_POINTS = ["json", "displacement", "interface", "rename aside", "rename new", "remove old"]
+
+
+def killed_writer(out, point):
+    """In a forked process: write run 2 into ``out`` and SIGKILL itself at ``point``
+    (after writing that file, before that rename, or while removing the previous set)."""
+    def kill():
+        os.kill(os.getpid(), signal.SIGKILL)
+
+    for key in ("json", "displacement", "interface"):
+        def write(result, path, key=key, writer=io._WRITERS[key]):
+            writer(result, path)
+            if point == key:
+                kill()
+        io._WRITERS[key] = write
+    calls, rename, replace_, rmtree = [], os.rename, os.replace, shutil.rmtree
+
+    def renaming(move):
+        def renamed(a, b):
+            calls.append(b)
+            if point == ("rename aside", "rename new")[min(len(calls), 2) - 1]:
+                kill()
+            move(a, b)
+        return renamed
+
+    def removed(path, *args, **kwargs):
+        if point == "remove old" and ".skxfem-old-" in str(path):
+            kill()
+        rmtree(path, *args, **kwargs)
+
+    os.rename, os.replace, shutil.rmtree = renaming(rename), renaming(replace_), removed
+    write_result(tagged(2.0), out)
+
+
+@pytest.mark.parametrize("point", KILL_POINTS)
+def test_12_a_writer_killed_at_any_point_never_leaves_two_runs(tmp_path, monkeypatch, point):
+    """Kill -9 between any two steps of a write: the folder holds the previous set, the
+    new one (once committed), or nothing (between the two renames); the next write puts
+    the previous set back if needed and removes what the killed writer left."""
+    ref = references(tmp_path / "ref", (1.0, 2.0, 3.0))
+    out = tmp_path / "out"
+    write_result(tagged(1.0), out)
+    child = multiprocessing.get_context("fork").Process(target=killed_writer,
+                                                        args=(out, point))
+    child.start()
+    child.join(60)
+    assert child.exitcode == -signal.SIGKILL
+    committed = point == "remove old"
+    if point == "rename new":
+        assert not out.exists(), "between the renames: nothing rather than a mix"
+    else:
+        assert snapshot(out) == ref[2.0 if committed else 1.0]
+    assert hidden(tmp_path), "the killed writer left its temporary folder"
+    fail_after(monkeypatch, "interface", 10, OSError(errno.ENOSPC, "No space left"))
+    with pytest.raises(OSError, match="No space left"):          # a failed write ...
+        write_result(tagged(3.0), out)
+    assert snapshot(out) == ref[2.0 if committed else 1.0]       # ... restores the set
+    monkeypatch.undo()
+    write_result(tagged(3.0), out)
+    assert snapshot(out) == ref[3.0] and hidden(tmp_path) == []
+
+
+def test_12b_a_rename_failing_between_the_two_keeps_the_previous_result(tmp_path,
+                                                                         monkeypatch):
+    write_result(tagged(1.0), tmp_path / "out")
+    before = snapshot(tmp_path / "out")
+    rename = os.rename
 
     def second_fails(a, b):
-        calls.append(b)
-        if len(calls) == 2:
+        if ".skxfem-new-" in str(a):
             raise OSError(errno.EIO, "I/O error")
-        replace(a, b)
+        rename(a, b)
 
-    monkeypatch.setattr(os, "replace", second_fails)
+    monkeypatch.setattr(files.os, "rename", second_fails)
     with pytest.raises(OSError, match="I/O error"):
-        write_result(fake_result("quad"), tmp_path)
-    assert list(tmp_path.iterdir()) == []
+        write_result(tagged(2.0), tmp_path / "out")
+    assert snapshot(tmp_path / "out") == before and hidden(tmp_path) == []
 
 
 def test_13_files_get_the_usual_permissions(tmp_path):
@@ -361,3 +446,118 @@ def test_17_contact_results_are_written_all_or_nothing(tmp_path, monkeypatch, co
     with pytest.raises(ValueError, match="no load step"):
         write_result(replace(r, steps=()), tmp_path / "new")
     assert not (tmp_path / "new").exists()
+
+
+# --- the three files as one set: concurrent writers, stale files, other files ----------
+
+def slow_writer(out, tags):
+    """In a forked process: write each tagged run into ``out``, pausing between every
+    step (writes and renames), so that two writers interleave if they can."""
+    rename, replace_ = os.rename, os.replace
+
+    def slowly(move):
+        def moved(a, b):
+            time.sleep(0.01)
+            move(a, b)
+        return moved
+
+    os.rename, os.replace = slowly(rename), slowly(replace_)
+    for tag in tags:
+        write_result(tagged(tag), out)
+
+
+def read_set(folder):
+    """The three files as a reader sees them: through one open handle of the folder
+    (so a reader is not itself fooled by a swap); None if one is not there."""
+    try:
+        fd = os.open(folder, os.O_RDONLY)
+    except FileNotFoundError:
+        return None
+    try:
+        def opener(path, flags):
+            return os.open(path, flags, dir_fd=fd)
+        data = {}
+        for name in ("displacement.vtu", "interface.vtu", "result.json"):
+            with open(name, "rb", opener=opener) as f:
+                data[name] = f.read()
+        return data
+    except FileNotFoundError:        # not written yet, or the folder was removed
+        return None
+    finally:
+        os.close(fd)
+
+
+def test_18_two_concurrent_writers_never_mix_their_files(tmp_path):
+    """Two processes write five results each into one folder: both succeed, and a
+    reader that looks all the while sees whole sets, each from one run."""
+    a, b = (1.0, 2.0, 3.0, 4.0, 5.0), (11.0, 12.0, 13.0, 14.0, 15.0)
+    ref = list(references(tmp_path / "ref", a + b).values())
+    out = tmp_path / "out"
+    context = multiprocessing.get_context("fork")
+    writers = [context.Process(target=slow_writer, args=(out, tags)) for tags in (a, b)]
+    for w in writers:
+        w.start()
+    seen = 0
+    while any(w.is_alive() for w in writers):
+        now = read_set(out)
+        if now is not None:
+            assert now in ref, f"a mix of two runs: {sorted(now)}"
+            seen += 1
+    for w in writers:
+        w.join()
+    assert [w.exitcode for w in writers] == [0, 0]
+    assert snapshot(out) in (ref[4], ref[9]) and hidden(tmp_path) == []
+    assert seen > 0
+
+
+def test_19_threads_writing_the_same_folder_take_turns(tmp_path):
+    ref = list(references(tmp_path / "ref", (1.0, 2.0, 3.0, 4.0)).values())
+    errors = []
+
+    def write(tag):
+        try:
+            write_result(tagged(tag), tmp_path / "out")
+        except Exception as e:  # noqa: BLE001  (reported below)
+            errors.append(e)
+
+    threads = [threading.Thread(target=write, args=(t,)) for t in (1.0, 2.0, 3.0, 4.0)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert errors == [] and snapshot(tmp_path / "out") in ref and hidden(tmp_path) == []
+
+
+def test_20_stale_temporary_files_of_killed_runs_are_removed(tmp_path):
+    """Temporary files of a killed run: a new-style temporary folder beside the target,
+    and the temporary names that versions up to 0.1 left inside it."""
+    out = tmp_path / "out"
+    write_result(tagged(1.0), out)
+    (out / ".result-4242-0123abcd.json").write_text("{")
+    (out / ".displacement-4242-89abcdef.vtu").write_text("<VTK")
+    (tmp_path / f".out.skxfem-new-{'0' * 16}").mkdir()
+    (tmp_path / f".out.skxfem-new-{'0' * 16}" / "result.json").write_text("{")
+    (tmp_path / "mine.txt").write_text("kept")                    # not ours: kept
+    write_result(tagged(2.0), out)
+    assert sorted(p.name for p in out.iterdir()) == ["displacement.vtu", "interface.vtu",
+                                                      "result.json"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["mine.txt", "out"]
+
+
+def test_21_a_folder_holding_other_files_or_the_current_one_is_refused(tmp_path,
+                                                                        monkeypatch):
+    """The whole folder is replaced: a folder with files of its own is refused (named,
+    escaped), and so is the current folder or one above it, before anything is written."""
+    (tmp_path / "mine").mkdir()
+    (tmp_path / "mine" / "notes\x1b.txt").write_text("keep me")
+    with pytest.raises(ValueError, match=r"holds files that are not results.*notes\\x1b"):
+        check_output(tmp_path / "mine")
+    with pytest.raises(ValueError, match="holds files"):
+        write_result(tagged(1.0), tmp_path / "mine")
+    assert (tmp_path / "mine" / "notes\x1b.txt").read_text() == "keep me"
+    (tmp_path / "here" / "deeper").mkdir(parents=True)
+    monkeypatch.chdir(tmp_path / "here" / "deeper")
+    for out in (".", "..", str(tmp_path / "here"), ""):
+        with pytest.raises(ValueError, match="current folder|empty"):
+            check_output(out)
+    assert list((tmp_path / "here" / "deeper").iterdir()) == []

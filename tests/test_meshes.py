@@ -176,13 +176,26 @@ def test_read_rejects_files_without_supported_cells(tmp_path):
         read(path)
 
 
-def test_read_names_a_missing_or_unreadable_file(tmp_path):
+def test_read_names_a_missing_or_unreadable_file(tmp_path, capfd):
     with pytest.raises(ValueError, match="does not exist"):
         read(tmp_path / "nope.msh")
     garbled = tmp_path / "garbled.msh"
     garbled.write_text("this is not a mesh\n")
     with pytest.raises(ValueError, match="could not be read by meshio"):
         read(garbled)
+    assert capfd.readouterr() == ("", ""), "meshio's messages are in the error, not printed"
+
+
+def test_read_names_what_is_not_a_file_without_opening_it(tmp_path):
+    """A FIFO would block meshio's open() for ever; a folder was "does not exist"."""
+    import os
+    os.mkfifo(tmp_path / "fifo.msh")
+    (tmp_path / "folder.msh").mkdir()
+    os.symlink("loop.msh", tmp_path / "loop.msh")
+    for name, words in (("fifo.msh", "is a FIFO"), ("folder.msh", "is a folder"),
+                        ("loop.msh", "loop of symbolic links"), ("/dev/zero", "device")):
+        with pytest.raises(ValueError, match=words):
+            read(tmp_path / name)
 
 
 # a 3 x 2 grid of 12 vertices: 5 quads and 2 triangles, as in a tester's file

@@ -1,15 +1,17 @@
 """Scene files (TOML): the examples parse, bad files are refused naming the key."""
+import os
 from pathlib import Path
 
 import meshio
 import numpy as np
 import pytest
 
+from skxfem import scenefile
 from skxfem.expr import Expression
 from skxfem.material import Material
 from skxfem.meshes import box
 from skxfem.scene import Box, Scene, clamped, resolve_mesh, rollers
-from skxfem.scenefile import load_options, load_scene
+from skxfem.scenefile import BUILT_BOX, MAX_MAGNITUDE, load_options, load_scene
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -92,7 +94,7 @@ BAD = [
     (MINIMAL + "[material]\nE = -1.0", ValueError, ["[material]", "E must be a positive"]),
     (MINIMAL + "[material]\nnu = 0.3\nplane = 'strian'", ValueError, ["[material]", "plane"]),
     (MINIMAL + "[material]\nG = 1.0", ValueError, ["[material]", "unknown key 'G'"]),
-    (MINIMAL.replace('expr = "y - 0.5"', 'expr = "sin(y)"'), ValueError,
+    (MINIMAL.replace('expr = "y - 0.5"', 'expr = "open(y)"'), ValueError,
      ["[levelset] expr", "function call"]),
     (MINIMAL.replace('expr = "y - 0.5"', 'expr = "y.real"'), ValueError,
      ["[levelset] expr", "attribute access"]),
@@ -112,7 +114,7 @@ BAD = [
     (MINIMAL.replace('[levelset]\nexpr = "y - 0.5"', ''), ValueError, ["missing", "[levelset]"]),
     (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nz = 0.0", ValueError,
      ["[[displacement]] #1 z", "2D mesh"]),
-    (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nx = 'exp(y)'", ValueError,
+    (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nx = 'open(y)'", ValueError,
      ["[[displacement]] #1 x", "function call"]),
     (MINIMAL + "[[displacement]]\nwhere = 'x + 1'\nx = 0", ValueError,
      ["[[displacement]] #1 where", "condition"]),
@@ -281,3 +283,263 @@ def test_13_load_scene_checks_the_solve_options_too(tmp_path):
     for load in (load_scene, load_options):
         with pytest.raises(ValueError, match=r"^bad.toml: \[solver\] linear must be one of"):
             load(write(tmp_path, bad, "bad.toml"))
+
+
+# The schema (skxfem schema): printed from the tables the reader checks.
+
+def toml(data: dict) -> str:
+    """A scene as TOML text: top-level values, then tables, then arrays of tables."""
+    def value(v):
+        if isinstance(v, dict):
+            return "{" + ", ".join(f"{k} = {value(x)}" for k, x in v.items()) + "}"
+        if isinstance(v, list):
+            return "[" + ", ".join(value(x) for x in v) + "]"
+        return f'"{v}"' if isinstance(v, str) else repr(v)
+
+    lines = [f"{k} = {value(v)}" for k, v in data.items() if not isinstance(v, (dict, list))]
+    for k, v in data.items():
+        if isinstance(v, dict):
+            lines += [f"[{k}]"] + [f"{a} = {value(b)}" for a, b in v.items()]
+    for k, v in data.items():
+        if isinstance(v, list):
+            for item in v:
+                lines += [f"[[{k}]]"] + [f"{a} = {value(b)}" for a, b in item.items()]
+    return "\n".join(lines) + "\n"
+
+
+def base(dim: int) -> dict:
+    """A valid scene, 2D (quad) or 3D (hex), with one support and one load."""
+    last = "xyz"[dim - 1]
+    return {"mesh": {"box": {"n": [4, 5] if dim == 2 else [2, 2, 3],
+                             "cell": "quad" if dim == 2 else "hex"}},
+            "levelset": {"plane": {"point": [0.0] * (dim - 1) + [0.5],
+                                   "normal": [0.0] * (dim - 1) + [1.0]}},
+            "material": {}, "interface": {}, "solver": {},
+            "displacement": [{"boundary": f"{last}min", "kind": "clamped"}],
+            "load": [{"boundary": f"{last}max", "pressure": 1.0}]}
+
+
+def schema_tables(text: str) -> dict[str, list[str]]:
+    """The keys printed under each table heading of the schema text."""
+    from skxfem.scenefile import SCHEMA
+
+    tables, current = {}, None
+    for line in text.splitlines():
+        heading = next((t for t in SCHEMA if line == t or line.startswith(t + ":")), None)
+        if heading is not None:
+            current = tables.setdefault(heading, [])
+        elif current is not None and line.startswith("  ") and line[2] != " ":
+            current.append(line.split()[0])
+    return tables
+
+
+def part(data: dict, table: str) -> dict:
+    """The part of ``data`` that is ``table`` (its first item for an array of tables)."""
+    if table == "the top level":
+        return data
+    if table.startswith("[["):
+        return data[table.strip("[]")][0]
+    outer, _, inner = table.strip("[]").partition("] ")
+    return data[outer][inner] if inner else data[outer]
+
+
+def rivals(table: str, key: str) -> list[str]:
+    """The keys of ``table`` that cannot be given with ``key`` (its exclusive groups)."""
+    from skxfem.scenefile import SCHEMA
+
+    out = []
+    for group in SCHEMA[table].exclusive:
+        first, *rest = [k for k in group if k != "..."]
+        if "..." in group:        # first, or one or more of the rest
+            out += rest if key == first else [first] if key in rest else []
+        elif key in group:
+            out += [k for k in group if k != key]
+    return out
+
+
+def place(table: str, key: str, example):
+    """The scene (and its dimension) that uses ``key`` of ``table`` with ``example``."""
+    from skxfem.scenefile import SCHEMA
+
+    dim = 3 if key in ("sphere", "z") or table == "[levelset] sphere" else 2
+    data = base(dim)
+    if table.startswith("[levelset] "):           # a shape: all its keys are required
+        data["levelset"] = {table.split()[1]: {k.name: k.example for k in SCHEMA[table].keys}}
+    elif table == "the top level" and key != "name":
+        data.setdefault(key, example)             # a table: the base has it, or its default
+    else:
+        target = part(data, table)
+        for k in rivals(table, key):
+            target.pop(k, None)
+        target[key] = example
+    if key in ("max_iter", "friction"):           # options of the contact laws
+        data["interface"]["law"] = "coulomb"
+    return data, dim
+
+
+def test_14_the_schema_prints_every_key_the_reader_accepts(tmp_path):
+    """For every table, the keys the reader lists when it refuses an unknown key are the
+    keys `skxfem schema` prints under that table, in order."""
+    from skxfem.scenefile import SCHEMA, schema
+
+    printed = schema_tables(schema())
+    assert list(printed) == list(SCHEMA)
+    for table in SCHEMA:
+        data, _ = place(table, SCHEMA[table].keys[0].name, SCHEMA[table].keys[0].example)
+        target = part(data, table)
+        target["bogus"] = 1
+        with pytest.raises(ValueError, match="unknown key 'bogus'") as info:
+            load_scene(write(tmp_path, toml(data)))
+        allowed = str(info.value).split("allowed keys: ")[1].split(", ")
+        assert allowed == printed[table] == list(SCHEMA[table].names), table
+
+
+def test_15_every_key_of_the_schema_is_accepted_with_its_example(tmp_path):
+    """Each key, given its example value where it belongs, makes a scene that loads."""
+    from skxfem.scenefile import SCHEMA
+
+    example_file = SCHEMA["[mesh]"].keys[1].example
+    box((4, 5), "quad").save(tmp_path / example_file)        # [mesh] file's example
+    for table, t in SCHEMA.items():
+        for key in t.keys:
+            data, dim = place(table, key.name, key.example)
+            try:
+                scene = load_scene(write(tmp_path, toml(data)))
+            except (ValueError, TypeError) as e:
+                raise AssertionError(f"{table} {key.name} = {key.example!r}: {e}") from None
+            assert scene.dim == dim
+    assert load_scene(write(tmp_path, toml(place("the top level", "name", "plate")[0]))
+                      ).name == "plate"
+    e = SCHEMA["[material]"].keys[0].example
+    assert load_scene(write(tmp_path, toml(place("[material]", "E", e)[0]))).material.E == e
+
+
+def test_16_the_schema_states_units_choices_and_functions():
+    from skxfem.expr import FUNCTIONS
+    from skxfem.linear import LINEAR
+    from skxfem.scene import CELLS, CONTACT_LAWS, LAWS, SPACES
+    from skxfem.scenefile import schema
+
+    text = schema()
+    flat = " ".join(text.split())
+    assert "Units are consistent and your choice" in flat
+    for unit in ("lengths in L", "F/L²", "rho_n in F/L³", "no unit"):
+        assert unit in flat, unit
+    for choices in (CELLS, LAWS + CONTACT_LAWS, SPACES, LINEAR, FUNCTIONS):
+        assert " ".join(choices) in flat, choices
+    assert all(len(line) <= 88 for line in text.splitlines())
+    rows = {line.split()[0]: line for line in text.splitlines() if line.startswith("  ")}
+    assert "[F/L²]" in rows["E"] and "[F/L²]" in rows["pressure"] and "[L]" in rows["size"]
+    assert "[F/L³]" in rows["rho_n"] and "[L]" in rows["radius"]
+
+
+def test_17_skxfem_schema_prints_it_and_run_help_points_to_it(capsys):
+    from skxfem.cli import main
+    from skxfem.scenefile import schema
+
+    assert main(["schema"]) == 0
+    assert capsys.readouterr().out == schema()
+    with pytest.raises(SystemExit) as done:
+        main(["run", "--help"])
+    assert done.value.code == 0 and "skxfem schema" in capsys.readouterr().out
+    with pytest.raises(SystemExit) as done:
+        main(["--help"])
+    assert done.value.code == 0 and "schema" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_18_formulas_with_functions_solve_like_the_built_in_shapes(tmp_path, dim):
+    """ψ = sqrt(...) - r in a scene file is the circle (2D) or the sphere (3D): the same
+    pressures to round-off; a pressure with sqrt loads and solves."""
+    import skxfem
+
+    center = [0.5, 0.45, 0.55][:dim]
+    shape = "circle" if dim == 2 else "sphere"
+    data = base(dim)
+    data["mesh"]["box"]["n"] = 6 if dim == 2 else 4
+    data["load"] = [{"boundary": f"{'xyz'[dim - 1]}max",
+                     "pressure": "1 + 0.5*sqrt(abs(x - 0.3)) * cos(pi*x)"}]
+    data["levelset"] = {shape: {"center": center, "radius": 0.3}}
+    built = skxfem.solve(load_scene(write(tmp_path, toml(data))))
+    distance = " + ".join(f"({c} - {v})**2" for c, v in zip("xyz", center, strict=False))
+    data["levelset"] = {"expr": f"sqrt({distance}) - 0.3"}
+    written = skxfem.solve(load_scene(write(tmp_path, toml(data))))
+    np.testing.assert_allclose(written.points, built.points, atol=1e-12)
+    np.testing.assert_allclose(written.pressure, built.pressure, atol=1e-9)
+    assert np.ptp(built.pressure) > 0.1
+
+
+def test_19_a_formula_outside_its_domain_is_refused_not_solved(tmp_path, capsys):
+    """sqrt(x - 0.5) on the top of [0, 1]²: one line naming sqrt, exit 2, nothing written."""
+    from skxfem.cli import main
+
+    data = base(2)
+    data["load"][0]["pressure"] = "sqrt(x - 0.5)"
+    path = write(tmp_path, toml(data))
+    assert main(["run", str(path), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1 and "sqrt" in err and "needs a number >= 0" in err
+    assert not (tmp_path / "o").exists()
+
+
+def test_14_a_mesh_path_that_is_no_file_is_named_for_what_it_is(tmp_path):
+    """A folder or a FIFO was "not found"; a loop of symbolic links a RuntimeError."""
+    (tmp_path / "folder.msh").mkdir()
+    os.mkfifo(tmp_path / "fifo.msh")
+    os.symlink("loop2.msh", tmp_path / "loop1.msh")
+    os.symlink("loop1.msh", tmp_path / "loop2.msh")
+    for name, words in (("folder.msh", "is a folder"), ("fifo.msh", "is a FIFO"),
+                        ("loop1.msh", "is a loop of symbolic links"), ("none.msh", "not found")):
+        text = MINIMAL.replace('box = {n = 3, cell = "quad"}', f'file = "{name}"')
+        with pytest.raises(ValueError, match=rf"^scene.toml: \[mesh\] file '{name}' {words}"):
+            load_scene(write(tmp_path, text))
+
+
+def test_15_an_unreadable_mesh_file_is_one_line_with_what_meshio_said(tmp_path, capfd):
+    """meshio prints its own messages (on stdout and stderr) before it gives up: they are
+    part of the error, and nothing else is printed."""
+    (tmp_path / "junk.vtu").write_text("<VTKFile")
+    text = MINIMAL.replace('box = {n = 3, cell = "quad"}', 'file = "junk.vtu"')
+    with pytest.raises(ValueError, match=r"could not be read by meshio \(Error: Couldn't "
+                                         r"read file .*junk.vtu as vtu\)") as info:
+        load_scene(write(tmp_path, text))
+    assert "\n" not in str(info.value)
+    assert capfd.readouterr() == ("", "")
+
+
+def loaded(E, corner, load) -> str:
+    """MINIMAL, clamped below, a top corner moved by ``corner``, loaded above."""
+    return MINIMAL + (f"[material]\nE = {E}\n"
+                      f"[[displacement]]\nboundary = 'ymin'\nkind = 'clamped'\n"
+                      f"[[displacement]]\nwhere = 'x > 0.99 and y > 0.99'\nx = {corner}\n"
+                      f"[[load]]\nboundary = 'ymax'\n{load}\n")
+
+
+@pytest.mark.parametrize("E, corner, load, words", [
+    (1.0, 0.0, "pressure = 1e300", r"#1 pressure: 1e\+300 is beyond the largest load"),
+    (1.0, 0.0, "traction = [0, -1e151]", r"#1 traction\[1\]: -1e\+151 is beyond"),
+    (1e-100, 0.0, "pressure = 1e60", r"E = 1e-100 .* \|p\| L / E = 1e\+160"),
+    (1.0, 9223372036854775808, "pressure = 1", r"#2 x: 9.22337e\+18 is more than 1000 times"),
+    (1.0, -1001.0, "pressure = 1", r"#2 x: -1001 is more than 1000 times"),
+])
+def test_16_numbers_beyond_what_the_solve_handles_are_refused_when_read(
+        tmp_path, E, corner, load, words):
+    """pressure = 1e300 ended in a RuntimeError after three numpy warnings, a corner
+    moved by 2^63 in one (exit 1); the largest values are measured (MAX_MAGNITUDE,
+    MAX_SHIFT), and they are accepted."""
+    with pytest.raises(ValueError, match=words):
+        load_scene(write(tmp_path, loaded(E=E, corner=corner, load=load)))
+    for edge in (loaded(E=1.0, corner=1000.0, load=f"pressure = {MAX_MAGNITUDE}"),
+                 loaded(E=1e-100, corner=0.0, load="pressure = 1e50")):
+        assert load_scene(write(tmp_path, edge)).loads[0].pressure in (MAX_MAGNITUDE, 1e50)
+
+
+@pytest.mark.parametrize("n", ["9223372036854775807", "3037000500",
+                               "[4294967297, 4294967295]"])
+def test_17_an_absurd_box_is_not_built_to_check_its_selections(tmp_path, monkeypatch, n):
+    """np.prod(n) wrapped below BUILT_BOX, and the box was built to check a 'where'
+    (IndexError, or a 32 GiB allocation): the count is exact now."""
+    monkeypatch.setattr(scenefile.meshes, "box", lambda *a: pytest.fail("the box was built"))
+    text = MINIMAL.replace("n = 3", f"n = {n}") + \
+        "[[displacement]]\nwhere = 'x < 1e-9'\nx = 0\n"
+    assert load_scene(write(tmp_path, text)).mesh.n[0] > BUILT_BOX

@@ -1,8 +1,22 @@
 """skxfem.tomlcheck: each check names the key and what it should be."""
+import os
+import threading
+
 import pytest
 
 from skxfem.expr import Expression
-from skxfem.tomlcheck import array, choice, formula, keys, number, one_of, table, vector
+from skxfem.tomlcheck import (
+    MAX_BYTES,
+    array,
+    choice,
+    formula,
+    keys,
+    number,
+    one_of,
+    read_toml,
+    table,
+    vector,
+)
 
 
 def test_accepted_values():
@@ -35,3 +49,44 @@ def test_accepted_values():
 def test_refusals_name_the_key(call, error, match):
     with pytest.raises(error, match=match):
         call()
+
+
+def run_briefly(call, seconds=10):
+    """``call()`` in a thread: its exception, or a failure if it is still running."""
+    outcome = []
+
+    def target():
+        try:
+            call()
+            outcome.append(None)
+        except Exception as e:  # noqa: BLE001  (returned to the test)
+            outcome.append(e)
+
+    t = threading.Thread(target=target, daemon=True)
+    t.start()
+    t.join(seconds)
+    assert not t.is_alive(), "it blocks (a FIFO opened, or a device read for ever)"
+    return outcome[0]
+
+
+def test_a_fifo_or_a_device_is_refused_without_being_read(tmp_path):
+    """A FIFO as the scene file blocked for ever; /dev/zero was read until memory ran out."""
+    os.mkfifo(tmp_path / "scene.toml")
+    for path, words in ((tmp_path / "scene.toml", "is a FIFO (named pipe)"),
+                        ("/dev/zero", "is a character device")):
+        error = run_briefly(lambda p=path: read_toml(p))
+        assert isinstance(error, ValueError) and words in str(error), error
+        assert "not a regular file" in str(error)
+
+
+def test_deep_nesting_and_huge_files_are_one_clear_error(tmp_path):
+    """TOML nested 500 deep raised RecursionError (exit 1 in the command line)."""
+    deep = tmp_path / "deep.toml"
+    for opening, closing in (("[", "]"), ("{a = ", "}")):
+        deep.write_text("x = " + opening * 500 + "1" * (opening == "[") + closing * 500)
+        with pytest.raises(ValueError, match=r"^deep.toml: invalid TOML: .*nested too deeply"):
+            read_toml(deep)
+    big = tmp_path / "big.toml"
+    big.write_text("# " + "x" * MAX_BYTES + "\n")
+    with pytest.raises(ValueError, match=f"larger than {MAX_BYTES} bytes"):
+        read_toml(big)
