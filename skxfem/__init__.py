@@ -42,7 +42,8 @@ contract is in ``pyproject.toml``):
 5. ``multipliers``, ``cutgraph``;  6. ``stabilised``;
 7. the scene: ``scene_parts``, ``tomlcheck``, ``boundary``, ``scene``, then
    ``scenes``, ``scenefile``;
-8. ``problem``;  9. ``contact_linear``, then ``contact_interface``, ``contact_newton``,
+8. ``problem``, then ``result`` (what every solve returns);
+9. ``contact_linear``, then ``contact_interface``, ``contact_newton``,
    ``contact_fixed_point``;  10. ``lbb``, ``contact``, then ``solver``;
 11. ``io`` (on ``io_contact``), ``budget`` (on ``counts``), ``convergence``;
 12. the studies: ``extremes``, ``frontier``, then ``extremes_scales``,
@@ -73,6 +74,7 @@ from . import (  # noqa: E402  (the steps, in the order of the book)
 from .levelset import circle, complement, intersection, plane, sphere, union  # noqa: E402
 from .material import Material  # noqa: E402
 from .problem import assemble  # noqa: E402
+from .result import Result  # noqa: E402
 from .scene import (  # noqa: E402
     Box,
     Displacement,
@@ -82,7 +84,7 @@ from .scene import (  # noqa: E402
     rollers,
 )
 from .scenefile import load_scene  # noqa: E402
-from .solver import Result, solve  # noqa: E402
+from .solver import solve  # noqa: E402
 
 
 def __getattr__(name: str):

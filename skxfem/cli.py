@@ -54,9 +54,12 @@ import warnings
 from pathlib import Path
 
 from . import __version__, budget, io
+from .contact import StepCutWarning
 from .contact import solve as solve_contact
 from .contact_laws import CONTACT_LAWS, STATUS_NAMES
 from .contact_newton import ContactConvergenceError
+from .cut import SnapWarning
+from .linear import LINEAR_TOL, check_linear_tol
 from .scenefile import MAX_MAGNITUDE, load_options, load_scene, schema
 from .solver import LINEAR, solve
 from .threads import limited
@@ -132,6 +135,10 @@ def parser() -> argparse.ArgumentParser:
                      help="contact laws: Newton iterations allowed per load step "
                           "(default: the scene file's [solver] max_iter, else that of "
                           "skxfem.contact.solve, 30)")
+    run.add_argument("--linear-tol", type=float, default=None, metavar="TOL",
+                     help="the relative residual of the iterative linear solve (default: "
+                          "the scene file's [solver] linear_tol, else "
+                          f"{LINEAR_TOL:g})")
     run.add_argument("--linear", choices=LINEAR, default=None,
                      help="the linear solve of a tie or of each contact Newton step: direct "
                           "(SuperLU), iterative (AMG-preconditioned projected CG, needs "
@@ -160,6 +167,22 @@ def printable(text: str) -> str:
 
 def _say(text: str, stream=None):
     print(printable(text), file=stream or sys.stdout)
+
+
+NOTICES = (StepCutWarning, SnapWarning)
+"""skxfem's own notices, printed as ``skxfem: note: ...`` lines on stderr: a load
+step cut into smaller increments, vertices moved off Γ."""
+
+
+def _notes(caught: list) -> None:
+    """Print the notices among the ``caught`` warnings (each once) and drop them."""
+    seen = set()
+    for w in [w for w in caught if issubclass(w.category, NOTICES)]:
+        text = " ".join(str(w.message).split())
+        if text not in seen:
+            seen.add(text)
+            _say(f"skxfem: note: {text}", sys.stderr)
+    caught[:] = [w for w in caught if not issubclass(w.category, NOTICES)]
 
 
 def _fail(error: BaseException, debug: bool) -> int:
@@ -213,6 +236,8 @@ def _run(args, caught: list) -> int:
     s = load_scene(args.scene)
     options = load_options(args.scene)  # the command line overrides the file
     linear = args.linear or options.get("linear", "auto")
+    linear_tol = check_linear_tol(args.linear_tol if args.linear_tol is not None
+                                  else options.get("linear_tol", LINEAR_TOL))
     max_iter = args.max_iter if args.max_iter is not None else options.get("max_iter")
     contact = s.law in CONTACT_LAWS
     if max_iter is not None and not contact:
@@ -222,12 +247,13 @@ def _run(args, caught: list) -> int:
     budget.check(s, args.max_memory, "--max-memory", linear=linear)
     if contact:
         limit = {} if max_iter is None else {"max_iter": max_iter}
-        result = solve_contact(s, linear=linear, **limit)
+        result = solve_contact(s, linear=linear, linear_tol=linear_tol, **limit)
     else:
-        result = solve(s, linear=linear)
+        result = solve(s, linear=linear, linear_tol=linear_tol)
     overflow = _overflowed(caught)
     if overflow is not None:
         raise overflow
+    _notes(caught)
     try:
         paths = io.write_result(result, out)
     except OSError as e:
@@ -290,6 +316,8 @@ def main(argv: list[str] | None = None) -> int:
         overflow.__cause__ = e
         return _fail(overflow, debug)
     finally:
+        if not debug:
+            _notes(caught)
         for w in caught if debug else ():
             print(warnings.formatwarning(w.message, w.category, w.filename, w.lineno),
                   end="", file=sys.stderr)

@@ -1,8 +1,10 @@
 r"""Unilateral contact and Coulomb friction on Γ over a load history (paper §2–3, eq. 5–9).
 
 :func:`solve` takes a scene whose ``law`` is one of
-:data:`~skxfem.contact_laws.CONTACT_LAWS` and a load history, and returns a
-:class:`ContactResult` with one :class:`Step` per load step.  Each step is
+:data:`~skxfem.contact_laws.CONTACT_LAWS` and a load history, and returns the
+:class:`~skxfem.result.Result` of every law, its fields those of the last
+step, with one :class:`Step` per load step (the values at the multiplier
+dofs).  Each step is
 solved by the globalised semi-smooth Newton method of
 :mod:`skxfem.contact_newton` (every equation at once) or, with
 ``method="fixed_point"``, by the paper's scheme
@@ -49,6 +51,7 @@ step; then the error names the step and its load factor.
 """
 from __future__ import annotations
 
+import time
 import warnings
 from dataclasses import dataclass
 
@@ -57,7 +60,7 @@ import scipy.sparse as sp
 
 from .amg import check_tie_held, rigid_modes
 from .contact_fixed_point import fixed_point
-from .contact_interface import Operators, operators
+from .contact_interface import Operators, operators, tangent_frames
 from .contact_laws import CONTACT_LAWS, HISTORY_LAWS, KINDS, OPEN, SLIP, STICK
 from .contact_newton import (
     ContactConvergenceError,
@@ -68,13 +71,15 @@ from .contact_newton import (
     newton,
     point_laws,
 )
-from .linear import choose_linear
+from .levelset import point_normals
+from .linear import LINEAR_TOL, check_linear_tol, choose_linear
 from .problem import Problem, assemble
+from .result import Result, on_edges, result
 from .saddle import SingularSystemError
 from .scene import Scene, check_scene
 from .threads import limited
 
-__all__ = ["Step", "ContactResult", "parameters", "solve", "ContactConvergenceError",
+__all__ = ["Step", "parameters", "solve", "ContactConvergenceError",
            "StepCutWarning", "METHODS", "RHO_RANGE", "MAX_CUTS"]
 
 METHODS = ("newton", "fixed_point")
@@ -114,18 +119,6 @@ class Step:
     newton: NewtonInfo
     law: str = ""
     increments: int = 1
-
-
-@dataclass(frozen=True)
-class ContactResult:
-    """``problem`` (the assembled bilateral problem), ``ops``, ``law`` (of the
-    scene), ``steps`` and the ``linear`` solve of the Newton steps."""
-
-    problem: Problem
-    ops: Operators
-    law: Law
-    steps: tuple
-    linear: str = "direct"
 
 
 def parameters(scene: Scene, h: float) -> Law:
@@ -209,8 +202,8 @@ def _states(scene: Scene, pb: Problem, history, h: float) -> list[_State]:
 
 @limited
 def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10,
-          max_iter: int = 30, linear: str = "auto", max_cuts: int = MAX_CUTS
-          ) -> ContactResult:
+          max_iter: int = 30, linear: str = "auto", max_cuts: int = MAX_CUTS,
+          linear_tol: float = LINEAR_TOL) -> Result:
     """Solve the contact ``scene`` over the load ``history``.
 
     Parameters
@@ -232,6 +225,8 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10
         :func:`skxfem.linear.choose_linear`.
     max_cuts
         How many times a failing step may be halved (module notes); 0: never.
+    linear_tol
+        The relative residual of each iterative linear solve.
 
     Raises
     ------
@@ -264,9 +259,12 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10
     laws = [s.law.name for s in states]
     linear = choose_linear(linear, pb.mesh.dim(), pb.V.N,
                            "coulomb" if "coulomb" in laws else laws[0])
+    linear_tol = check_linear_tol(linear_tol)
     modes = rigid_modes(pb.V)
     solve_kw = {"linear": linear} if linear == "direct" else {
-        "linear": linear, "modes": modes, "blocksize": pb.mesh.dim()}
+        "linear": linear, "modes": modes, "blocksize": pb.mesh.dim(),
+        "linear_tol": linear_tol}
+    t0 = time.perf_counter()
     free = np.setdiff1d(np.arange(pb.V.N), pb.D)
     m, k = ops.w.size, len(ops.Bt)
     rho_ref = scene.material.E / ops.h
@@ -294,7 +292,30 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10
         F, g = state.F, state.g
         check_determined(pb, ops, state.law, res.status, res.y, modes, state.label)
         steps.append(_step(state, ops, it, res, info, pieces))
-    return ContactResult(pb, ops, states[0].law, tuple(steps), linear)
+    return _result(pb, ops, states[0].law, tuple(steps), linear, linear_tol,
+                   time.perf_counter() - t0)
+
+
+def _result(pb: Problem, ops: Operators, law: Law, steps: tuple, linear: str,
+            linear_tol: float, seconds: float) -> Result:
+    """The :class:`~skxfem.result.Result` of the last step: the dofs' values carried
+    to the cut edges by λ = P μ (the status: that of the dof weighing most)."""
+    last = steps[-1]
+    normals = point_normals(pb.cut, pb.scene.levelset)
+    p = on_edges(pb.P, last.pressure)
+    r = on_edges(pb.P, last.traction)  # (n, k) on each point's tangent frame
+    frames = tangent_frames(normals)  # (k, dim, n)
+    traction = -p * normals + np.einsum("nk,kdn->dn", r, frames)
+    owner = np.asarray(abs(pb.P).argmax(axis=1)).ravel()
+    dim = pb.mesh.dim()
+    Jn = ((pb.J @ last.U).reshape(dim, -1) * pb.rule.normals).sum(0)
+    t = pb.timings
+    timings = {"cut": t["cut"] + t["space"], "enrich": t["enrich"],
+               "assemble": sum(t[k] for k in ("stiffness", "load", "constraints", "interface",
+                                              "prolongation")), "solve": seconds}
+    return result(pb, last.U, traction, max(0.0, float(Jn.max())), ops.w.size, timings,
+                  linear, {"tol": linear_tol}, steps=steps, status=last.status[owner],
+                  ops=ops, law=law)
 
 
 def _describe(label) -> str:

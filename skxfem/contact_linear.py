@@ -216,7 +216,7 @@ class TieStep:
         self.fixed = np.setdiff1d(np.arange(K.shape[0]), step.free)
 
     def __call__(self, R, tol: float) -> np.ndarray:
-        step, k, m = self.step, self.k, self.m
+        step, k = self.step, self.k
         laws, ops = step.laws, step.ops
         closed, slip = self.closed, self.slip
         Minv, DQ, Bt = self.Minv, self.DQ, self.Bt

@@ -338,12 +338,13 @@ def _max(a) -> float:
 
 
 def newton(step: StepProblem, start: Iterate, tol: float = 1e-10, max_iter: int = 30,
-           linear: str = "direct", modes=None, blocksize: int = 1):
+           linear: str = "direct", modes=None, blocksize: int = 1, linear_tol: float = 1e-12):
     """Solve one load step from ``start`` (its U holds the imposed values).
 
     ``linear``: each Newton step solved by ``"direct"`` SuperLU or
     ``"iterative"`` ties, AMG + projected CG (``modes``, ``blocksize`` as
-    :func:`skxfem.iterative.solve`), see :mod:`skxfem.contact_linear`.
+    :func:`skxfem.iterative.solve`, to the relative residual ``linear_tol``),
+    see :mod:`skxfem.contact_linear`.
 
     Returns
     -------
@@ -370,10 +371,10 @@ def newton(step: StepProblem, start: Iterate, tol: float = 1e-10, max_iter: int 
             return it, res, NewtonInfo(n - 1, np.array(history), tuple(alphas))
         try:
             dx, rows, factor = _linear_step(step, it, res, None, linear, modes, blocksize,
-                                            factor)
+                                            factor, linear_tol)
         except contact_linear.SingularStepError as e:
             dx, rows, factor = _singular_fallback(step, it, res, closed_before, linear,
-                                                  modes, blocksize, e)
+                                                  modes, blocksize, e, linear_tol)
         if merit_rows is None:  # one merit for the whole step: no cycle can decrease it
             merit_rows = rows
         merit0 = np.linalg.norm(merit_rows * res.vector)
@@ -389,17 +390,18 @@ def newton(step: StepProblem, start: Iterate, tol: float = 1e-10, max_iter: int 
                                                    tuple(alphas))))
 
 
-def _linear_step(step, it, res, close, linear, modes, blocksize, factor):
+def _linear_step(step, it, res, close, linear, modes, blocksize, factor, linear_tol=1e-12):
     """Step 3: Δx = -J⁻¹R, the row scales of J and the factorisation to reuse."""
     A = jacobian(step, it, res, close)
     if linear == "iterative":
         dx, factor = contact_linear.iterative(step, it, res, A, modes, blocksize,
-                                              close=close, reuse=factor)
+                                              close=close, reuse=factor, tol=linear_tol)
         return dx, contact_linear.scales(A, step.nu)[0], factor
     return contact_linear.direct(A, res.vector, step.nu, reuse=factor)
 
 
-def _singular_fallback(step, it, res, closed_before, linear, modes, blocksize, error):
+def _singular_fallback(step, it, res, closed_before, linear, modes, blocksize, error,
+                       linear_tol=1e-12):
     """A singular Newton matrix (the active set leaves a part of the body free):
     the Jacobian that keeps closed the points closed at the last iterate, then
     the one with every unilateral point closed.  If that one is singular too,
@@ -411,7 +413,8 @@ def _singular_fallback(step, it, res, closed_before, linear, modes, blocksize, e
             continue
         tried.append(chi | close)
         try:
-            return _linear_step(step, it, res, close, linear, modes, blocksize, None)
+            return _linear_step(step, it, res, close, linear, modes, blocksize, None,
+                                linear_tol)
         except contact_linear.SingularStepError as e:
             error = e
     raise error

@@ -1,7 +1,8 @@
 """Write a solver result to disk: ``result.json`` and two VTU files for ParaView.
 
 * ``result.json``: the scene name, ``law`` and ``space``, the multiplier
-  ``points``, ``normals``, ``traction``, ``pressure``, ``max_jump``,
+  ``points`` (where Γ cuts the mesh edges), ``normals``, ``traction`` (the
+  whole vector), ``pressure``, ``jump`` ([[u]] = u⁻ - u⁺), ``max_jump``,
   ``n_dofs``, ``n_multipliers``, the ``timings`` in seconds per stage and
   ``linear_solve``: the solve taken (``linear``) and how it went
   (:attr:`skxfem.solver.Result.linear_info`: residual, balance, and the
@@ -16,25 +17,22 @@
   side's copy at ψ = 0 to see only its own part of the cut cells).
 * ``interface.vtu``: the interface facets (``line`` cells in 2D, ``triangle``
   cells in 3D) on the multiplier points, with point data ``pressure``,
-  ``traction`` and ``normal``.
+  ``traction``, ``tangential_traction``, ``normal``, ``jump`` and ``gap``.
 
-**A contact result** (:class:`skxfem.contact.ContactResult`, content from
-:mod:`skxfem.io_contact`) goes into the same three files.  ``result.json``
-holds the set-up (``law``, ``friction``, the ``rho_n``, ``rho_t`` used, the
-multiplier dof ``points``, ``normals``, ``tangents``, ``weights``,
-``status_codes``) and a list ``steps``, one entry per load step: ``load``,
-``pressure``, ``tangential_traction``, ``gap``, ``slip``, ``Lambda``,
-``status`` (strings ``"open"``, ``"stick"``, ``"slip"``), their ``counts``
-and ``newton``: ``iterations`` and ``residuals`` (one list per equation,
-equilibrium, contact and friction: the relative residual at the start, then
-after each iteration).
-The two VTU files hold the **last** step only (one file per step would leave
-the other steps' files of an earlier run beside a new result, or need a
-cleaning that the atomic write cannot undo; the JSON has every step):
-``displacement.vtu`` as for a tie, ``interface.vtu`` the multiplier dofs (where
-the laws hold; with the winner or vital space they are not the cut edges that
-a tie's facets join) as ``vertex`` cells with ``pressure``, ``gap``, ``status`` (legend: 0 open,
-1 stick, 2 slip), ``normal``, ``traction``, ``tangential_traction``, ``slip``.
+**A contact result** (content from :mod:`skxfem.io_contact`) goes into the
+same three files with the same fields, those of the last load step, and a
+``status`` per point.  ``result.json`` adds the law (``friction``, the
+``rho_n``, ``rho_t`` used, ``status_codes``), ``newton_iterations``, the
+multiplier ``dofs`` (``points``, ``normals``, ``tangents``, ``weights``: where
+the laws are imposed; with the winner or vital space they are not the cut
+edges' points) and a list ``steps``, one entry per load step, at the dofs:
+``load``, ``law``, ``pressure``, ``tangential_traction``, ``gap``, ``slip``,
+``Lambda``, ``status`` (strings ``"open"``, ``"stick"``, ``"slip"``), their
+``counts`` and ``newton``: ``iterations`` and ``residuals`` (one list per
+equation, equilibrium, contact and friction: the relative residual at the
+start, then after each iteration).  ``interface.vtu`` adds the point data
+``status`` (0 open, 1 stick, 2 slip).  The VTU files hold the last step only
+(the JSON has every step).
 
 **Array shapes.**  :class:`skxfem.solver.Result` follows scikit-fem: a set of
 points or vectors is ``(dim, n)`` (``mesh.p``, ``result.points``,
@@ -65,7 +63,7 @@ import meshio
 import numpy as np
 
 from .files import check_folder, quiet, write_set
-from .io_contact import contact_summary, interface_mesh, is_contact, last_step_fields
+from .io_contact import contact_summary, is_contact
 from .levelset import nodal_values
 from .vtu import cell_sides, pad3, side_pieces, vectors3, vtk_cells
 
@@ -97,13 +95,11 @@ def result_summary(result) -> dict:
 
     A contact result gives :func:`skxfem.io_contact.contact_summary`.
     """
-    if is_contact(result):
-        return _jsonable(contact_summary(result))
     timings = {k: float(v) for k, v in dict(result.timings).items()}
     missing = [s for s in _STAGES if s not in timings]
     if missing:
         raise ValueError(f"result.timings lacks the stages {missing}; expected {_STAGES}")
-    return {
+    data = {
         "scene": result.scene.name,
         "law": result.scene.law,
         "space": result.scene.space,
@@ -111,12 +107,16 @@ def result_summary(result) -> dict:
         "normals": _plain(np.asarray(result.normals).T),
         "traction": _plain(np.asarray(result.traction).T),
         "pressure": _plain(result.pressure),
+        "jump": _plain(np.asarray(result.jump).T),
         "max_jump": _plain(result.max_jump),
         "n_dofs": int(result.n_dofs),
         "n_multipliers": int(result.n_multipliers),
         "timings": timings,
         "linear_solve": _jsonable({"linear": result.linear, **dict(result.linear_info)}),
     }
+    if is_contact(result):
+        data.update(_jsonable(contact_summary(result)))
+    return data
 
 
 def check_output(out_dir: str | Path) -> Path:
@@ -173,8 +173,6 @@ def _write_json(result, path: Path):
 
 
 def _write_displacement(result, path: Path):
-    if is_contact(result):
-        result = last_step_fields(result)
     mesh = result.mesh
     cell_type, _ = vtk_cells(mesh)
     levelset = getattr(result.scene, "levelset", None)
@@ -192,19 +190,23 @@ def _write_displacement(result, path: Path):
 
 
 def _write_interface(result, path: Path):
+    points = np.asarray(result.points, dtype=float)
+    facets = np.asarray(result.facets, dtype=np.int64)
+    kind = {2: "line", 3: "triangle"}[points.shape[0]]
+    n, r, jump = (np.asarray(a, dtype=float) for a in (result.normals, result.traction,
+                                                        result.jump))
+    data = {"pressure": np.asarray(result.pressure, dtype=float),
+            "traction": vectors3(r),
+            "tangential_traction": vectors3(r - (r * n).sum(0) * n),
+            "normal": vectors3(n),
+            "jump": vectors3(jump),
+            "gap": (jump * n).sum(0)}
     if is_contact(result):
-        mesh = interface_mesh(result)
-    else:
-        points = np.asarray(result.points, dtype=float)
-        facets = np.asarray(result.facets, dtype=np.int64)
-        kind = {2: "line", 3: "triangle"}[points.shape[0]]
-        mesh = meshio.Mesh(
-            vectors3(points), [(kind, facets.T.reshape(-1, points.shape[0]))],
-            point_data={"pressure": np.asarray(result.pressure, dtype=float),
-                        "traction": vectors3(result.traction),
-                        "normal": vectors3(result.normals)})
+        data["status"] = np.asarray(result.status, dtype=np.int64)
     with quiet():
-        meshio.write(path, mesh, file_format="vtu")
+        meshio.write(path, meshio.Mesh(vectors3(points),
+                                       [(kind, facets.T.reshape(-1, points.shape[0]))],
+                                       point_data=data), file_format="vtu")
 
 
 _WRITERS = {"json": _write_json, "displacement": _write_displacement,
@@ -220,8 +222,8 @@ def write_result(result, out_dir: str | Path) -> dict[str, Path]:
     Parameters
     ----------
     result
-        A :class:`skxfem.solver.Result` (or any object with the same attributes)
-        or a :class:`skxfem.contact.ContactResult`.
+        A :class:`skxfem.result.Result` (or any object with the same
+        attributes), of a tie or of contact.
     out_dir
         Folder to write into; created if missing (and removed again if the
         writing fails); it may hold an earlier result only.

@@ -19,29 +19,25 @@ of the point (k = 1 in 2D, 2 in 3D), ``status`` open / stick / slip.
 >>> data = contact_summary(contact.solve(s))
 >>> data["steps"][-1]["status"], data["status_codes"]["slip"]
 (['slip', 'slip', 'slip', 'slip'], 2)
+>>> data["status"] == data["steps"][-1]["status"]   # the naive space: dofs = points
+True
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-
-import meshio
 import numpy as np
 
 from .contact_interface import tangent_frames
 from .contact_laws import STATUS_NAMES
-from .enrich import split_fields
-from .vtu import pad3
 
-__all__ = ["is_contact", "contact_summary", "last_step_fields", "interface_mesh",
-           "EQUATIONS"]
+__all__ = ["is_contact", "contact_summary", "EQUATIONS"]
 
 EQUATIONS = ("equilibrium", "contact", "friction")
 """The equations whose relative residuals :class:`~skxfem.contact_newton.NewtonInfo` holds."""
 
 
 def is_contact(result) -> bool:
-    """True for a :class:`skxfem.contact.ContactResult` (it has load ``steps``)."""
-    return hasattr(result, "steps") and hasattr(result, "ops")
+    """True for the result of a contact solve (it has load ``steps``)."""
+    return len(getattr(result, "steps", ())) > 0
 
 
 def _tangents(result) -> np.ndarray:
@@ -59,6 +55,8 @@ def _step(step) -> dict:
     status = [STATUS_NAMES[k] for k in np.asarray(step.status)]
     return {
         "load": step.load if isinstance(step.load, str) else float(step.load),
+        "law": step.law,
+        "increments": int(step.increments),
         "pressure": np.asarray(step.pressure, dtype=float),
         "tangential_traction": np.asarray(step.traction, dtype=float),
         "gap": np.asarray(step.gap, dtype=float),
@@ -72,7 +70,8 @@ def _step(step) -> dict:
 
 
 def contact_summary(result) -> dict:
-    """The content of a contact ``result.json``: the set-up, then one entry per load step.
+    """What a contact ``result.json`` adds to a tie's: the law, the ``status`` of
+    each point, the multiplier ``dofs`` and one entry per load step.
 
     Arrays are numpy arrays here (:func:`skxfem.io.result_summary` turns
     them into lists, NaN into ``null``); a set of points or vectors is one
@@ -85,69 +84,18 @@ def contact_summary(result) -> dict:
     """
     if len(result.steps) == 0:
         raise ValueError("the contact result has no load step; give a non-empty history")
-    pb, ops, law = result.problem, result.ops, result.law
+    ops, law = result.ops, result.law
     return {
-        "scene": pb.scene.name,
-        "law": pb.scene.law,
-        "space": pb.scene.space,
         "friction": float(law.mu),
         "rho_n": float(law.rho_n),
         "rho_t": float(law.rho_t),
         "status_codes": {name: code for code, name in enumerate(STATUS_NAMES)},
-        "points": np.asarray(ops.points, dtype=float).T,
-        "normals": np.asarray(ops.normals, dtype=float).T,
-        "tangents": _tangents(result),
-        "weights": np.asarray(ops.w, dtype=float),
-        "n_dofs": int(pb.V.N),
-        "n_multipliers": int(ops.w.size),
+        "status": [STATUS_NAMES[k] for k in np.asarray(result.status)],
+        "dofs": {"points": np.asarray(ops.points, dtype=float).T,
+                 "normals": np.asarray(ops.normals, dtype=float).T,
+                 "tangents": _tangents(result),
+                 "weights": np.asarray(ops.w, dtype=float)},
         "n_steps": len(result.steps),
-        "newton_iterations": sum(int(st.newton.iterations) for st in result.steps),
+        "newton_iterations": result.iterations,
         "steps": [_step(st) for st in result.steps],
     }
-
-
-@dataclass(frozen=True)
-class _Fields:
-    """The fields of one step, as the displacement writer reads them from a tie result."""
-
-    mesh: object
-    scene: object
-    u_minus: np.ndarray
-    u_plus: np.ndarray
-
-
-def last_step_fields(result):
-    """What the displacement VTU needs from the last step: a stand-in for a tie result.
-
-    Returns an object with ``mesh``, ``scene`` (for the level set),
-    ``u_minus`` and ``u_plus`` (dim, nverts), the fields of each side.
-    """
-    pb = result.problem
-    u_minus, u_plus = split_fields(pb.V, result.steps[-1].U)
-    return _Fields(pb.mesh, pb.scene, u_minus, u_plus)
-
-
-def interface_mesh(result) -> meshio.Mesh:
-    """The multiplier dofs of the last step as ``vertex`` cells, with their values.
-
-    Point data: ``pressure``, ``gap`` (scalars), ``status`` (integer: 0 open,
-    1 stick, 2 slip, ``STATUS_NAMES``), ``normal``, ``traction`` (the whole
-    traction -p n + r_τ, as in a tie's file), ``tangential_traction`` r_τ and
-    ``slip`` (the tangential jump vector), all (m, 3).
-    """
-    st = result.steps[-1]
-    normals = np.asarray(result.ops.normals, dtype=float).T          # (m, dim)
-    tangents = _tangents(result)                                      # (m, k, dim)
-    r_t = np.einsum("mk,mkd->md", np.asarray(st.traction, float), tangents)
-    slip = np.einsum("mk,mkd->md", np.asarray(st.slip, float), tangents)
-    m = normals.shape[0]
-    return meshio.Mesh(
-        pad3(np.asarray(result.ops.points, dtype=float).T),
-        [("vertex", np.arange(m).reshape(m, 1))],
-        point_data={"pressure": np.asarray(st.pressure, dtype=float),
-                    "gap": np.asarray(st.gap, dtype=float),
-                    "status": np.asarray(st.status, dtype=np.int64),
-                    "normal": pad3(normals),
-                    "traction": pad3(r_t - np.asarray(st.pressure)[:, None] * normals),
-                    "tangential_traction": pad3(r_t),
-                    "slip": pad3(slip)})

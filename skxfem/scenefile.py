@@ -80,7 +80,7 @@ from . import meshes, tomlcheck
 from . import scene as sc
 from .boundary import select_facets, select_nodes
 from .files import regular_file
-from .linear import LINEAR
+from .linear import LINEAR, check_linear_tol
 from .material import Material
 from .scene_parts import COMPONENTS, FACES
 from .tomlcheck import array, choice, formula, keys, number, one_of, table, vector
@@ -203,8 +203,8 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
         Key("friction", "number >= 0", "Coulomb's mu (law coulomb)", 0.5),
         Key("rho_n", "number > 0 [F/L³]", "contact augmentation (default E/h, h the cell "
             "size)", 10.0),
-        Key("rho_t", "number > 0 [1/L coulomb, F/L³ adhesive]", "friction augmentation "
-            "(default 1/h coulomb, E/h adhesive)", 10.0),
+        Key("rho_t", "number > 0 [F/L³]", "friction augmentation (default E/h, h the mean "
+            "cut-edge size)", 10.0),
         Key("steps", "list of numbers", "the load factors of a contact solve, in order "
             "(default [1])", [0.5, 1.0]),
     )),
@@ -215,6 +215,8 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             "iterative (AMG + CG, needs pyamg) or auto (default)", "direct"),
         Key("max_iter", "integer >= 1", "contact laws: Newton iterations per load step "
             "(default 30)", 40),
+        Key("linear_tol", "number in (0, 1)", "the relative residual of the iterative "
+            "linear solve (default 1e-12), recorded in result.json", 1e-10),
     )),
 )}
 """The scene-file schema: every table and key the reader accepts, by table name
@@ -312,7 +314,8 @@ def load_scene(path: str | Path) -> sc.Scene:
 
 
 def load_options(path: str | Path) -> dict:
-    r"""The solve options of a scene file's ``[solver]`` table, ``linear`` and ``max_iter``,
+    r"""The solve options of a scene file's ``[solver]`` table, ``linear``, ``max_iter``
+    and ``linear_tol``,
     those given only: keywords of ``skxfem.solve`` or ``skxfem.contact.solve``.
 
     >>> import pathlib, tempfile
@@ -328,7 +331,9 @@ def load_options(path: str | Path) -> dict:
 
 def _options(solver: dict) -> dict:
     """The ``linear`` and ``max_iter`` of a ``[solver]`` table, checked."""
-    out = {k: solver[k] for k in ("linear", "max_iter") if k in solver}
+    out = {k: solver[k] for k in ("linear", "max_iter", "linear_tol") if k in solver}
+    if "linear_tol" in out:
+        out["linear_tol"] = check_linear_tol(out["linear_tol"])
     if "linear" in out and out["linear"] not in LINEAR:
         raise ValueError(f"[solver] linear must be one of {LINEAR}, got {out['linear']!r}")
     if "max_iter" in out and (type(out["max_iter"]) is not int or out["max_iter"] < 1):

@@ -24,62 +24,23 @@ is checked.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
 
 from . import contact, iterative, saddle
 from .amg import rigid_modes
-from .contact import ContactResult
 from .contact_laws import CONTACT_LAWS
-from .enrich import XSpace, split_fields
 from .levelset import point_normals
-from .linear import AUTO_ITERATIVE, LINEAR, choose_linear
+from .linear import AUTO_ITERATIVE, LINEAR, LINEAR_TOL, check_linear_tol, choose_linear
 from .problem import Problem, assemble, constrained_dofs
+from .result import Result, result
 from .scene import Scene, check_scene
 from .smoothest import dependencies
 from .threads import limited
 
 __all__ = ["Result", "solve", "solve_problem", "constrained_dofs", "LINEAR", "AUTO_ITERATIVE",
            "choose_linear"]
-
-
-@dataclass(frozen=True)
-class Result:
-    """What :func:`solve` returns; the names match ``result.json``.
-
-    ``points``, ``normals``, ``traction`` are (dim, n_points) at the
-    multiplier points (cut edges); ``pressure`` = -traction·n;
-    ``facets`` (dim, nf) index ``points``; ``u_minus``/``u_plus`` (dim, nverts)
-    are the nodal fields of each side; ``max_jump`` is the largest constrained
-    jump at the interface quadrature points (|[[u]]| bonded, |[[u]]·n|
-    bilateral); ``removed`` counts the dependent multipliers removed;
-    ``linear`` says which linear solve ran (``"direct"`` or ``"iterative"``)
-    and ``linear_info`` how it went: the relative ``residual`` of the saddle
-    system reached, the ``balance`` of the multipliers (relative error of
-    Bᵀμ = K U - F) and, for the iterative solve, its CG ``iterations`` and
-    ``residuals`` (one per iteration; ``None`` for the direct solve).
-    """
-
-    scene: Scene
-    mesh: object
-    u_minus: np.ndarray
-    u_plus: np.ndarray
-    points: np.ndarray
-    normals: np.ndarray
-    traction: np.ndarray
-    pressure: np.ndarray
-    facets: np.ndarray
-    max_jump: float
-    n_dofs: int
-    n_multipliers: int
-    removed: int
-    timings: dict = field(default_factory=dict)
-    U: np.ndarray | None = field(default=None, repr=False)
-    space: XSpace | None = field(default=None, repr=False)
-    linear: str = "direct"
-    linear_info: dict = field(default_factory=dict)
 
 
 def _linear(method: str, p: Problem) -> str:
@@ -100,14 +61,13 @@ def _differences(c, ncomp: int) -> sp.csr_matrix:
 
 
 @limited
-def solve(scene: Scene, dependent: str = "remove", linear: str = "auto"
-          ) -> Result | ContactResult:
-    """Solve ``scene`` and return a :class:`Result`.
+def solve(scene: Scene, dependent: str = "remove", linear: str = "auto",
+          linear_tol: float = LINEAR_TOL) -> Result:
+    """Solve ``scene`` and return a :class:`~skxfem.result.Result`.
 
     A scene with a contact law (``frictionless``, ``coulomb``, ``adhesive``)
-    is handed to :func:`skxfem.contact.solve` with its load steps, and its
-    :class:`~skxfem.contact.ContactResult` is returned: one call solves any
-    scene.
+    is handed to :func:`skxfem.contact.solve` with its load steps: one call
+    solves any scene, and returns the same kind of result.
 
     Parameters
     ----------
@@ -121,6 +81,9 @@ def solve(scene: Scene, dependent: str = "remove", linear: str = "auto"
         The linear solve of the tie, one of :data:`LINEAR`: ``"direct"``,
         ``"iterative"`` (AMG + projected CG, pyamg), or ``"auto"`` (default): the
         iterative one from :data:`AUTO_ITERATIVE` unknowns if pyamg is there.
+    linear_tol
+        The relative residual of the iterative solve (default
+        :data:`skxfem.linear.LINEAR_TOL`), recorded in ``linear_info``.
 
     The BLAS libraries run one thread during the solve (:mod:`skxfem.threads`:
     ``SKXFEM_THREADS`` or :func:`skxfem.threads.using` choose another number).
@@ -137,17 +100,19 @@ def solve(scene: Scene, dependent: str = "remove", linear: str = "auto"
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
     if check_scene(scene).law in CONTACT_LAWS:
-        return contact.solve(scene, linear=linear)
+        return contact.solve(scene, linear=linear, linear_tol=linear_tol)
     p = assemble(scene)
-    return solve_problem(p, dependent, linear)
+    return solve_problem(p, dependent, linear, linear_tol)
 
 
 @limited
-def solve_problem(p: Problem, dependent: str = "remove", linear: str = "auto") -> Result:
+def solve_problem(p: Problem, dependent: str = "remove", linear: str = "auto",
+                  linear_tol: float = LINEAR_TOL) -> Result:
     """Solve an assembled :class:`skxfem.problem.Problem` (its law): see :func:`solve`."""
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
     linear = _linear(linear, p)
+    linear_tol = check_linear_tol(linear_tol)
     scene, mesh, c, V, B, P, D, ncomp = p.scene, p.mesh, p.cut, p.V, p.B, p.P, p.D, p.ncomp
     t = p.timings
     timings = {"cut": t["cut"] + t["space"], "enrich": t["enrich"],
@@ -166,23 +131,20 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str = "auto") -
     G = _differences(c, ncomp) @ P
     if linear == "iterative":
         U, mu, info = iterative.solve(p.K, B, p.F, D, p.g, G=G, modes=rigid_modes(V),
-                                      blocksize=mesh.dim(), bonded=p.law == "bonded")
+                                      blocksize=mesh.dim(), bonded=p.law == "bonded",
+                                      tol=linear_tol)
     else:
         U, mu, info = saddle.solve(p.K, B, p.F, D, p.g, G=G)
     lam = (P @ mu).reshape(ncomp, -1)
     timings["solve"] = time.perf_counter() - t0
     its = getattr(info, "iterations", None)
     linear_info = {"residual": float(info.residual), "balance": float(info.balance),
-                   "iterations": its, "residuals": None if its is None
+                   "tol": linear_tol, "iterations": its, "residuals": None if its is None
                    else [float(r) for r in info.residuals]}
-
     normals = point_normals(c, scene.levelset)
     traction = lam if ncomp > 1 else lam * normals
     J = (p.J @ U).reshape(mesh.dim(), -1)
     jn = np.abs((J * p.rule.normals).sum(0)) if p.law == "bilateral" \
         else np.linalg.norm(J, axis=0)
-    u_minus, u_plus = split_fields(V, U)
-    return Result(scene, mesh, u_minus, u_plus, c.points, normals, traction,
-                  -(traction * normals).sum(0), c.facets, float(jn.max()), V.N,
-                  B.shape[0] - info.removed, info.removed, timings, U, V, linear,
-                  linear_info)
+    return result(p, U, traction, float(jn.max()), B.shape[0] - info.removed, timings,
+                  linear, linear_info, removed=info.removed)

@@ -38,7 +38,8 @@ def test_solve_hands_a_contact_scene_to_the_contact_solver():
     s = replace(s, law="frictionless",
                 displacements=s.displacements + (skxfem.Displacement("ymax", {"x": 0.0}),))
     result = skxfem.solve(s)
-    assert isinstance(result, skxfem.contact.ContactResult)
+    assert isinstance(result, skxfem.Result) and result.is_contact
+    assert type(result) is type(skxfem.solve(replace(s, law="bilateral")))
     assert result.steps[-1].pressure.min() > 0
 
 

@@ -1,0 +1,159 @@
+r"""What a solve returns, for every law: the fields of both sides and of Γ at the cut edges.
+
+:func:`skxfem.solve` returns a :class:`Result` whatever the law: a tie
+(``bonded``, ``bilateral``, :mod:`skxfem.solver`) or contact (``frictionless``,
+``coulomb``, ``adhesive``, :mod:`skxfem.contact`).  Its interface fields live
+at the ``points`` where Γ cuts the mesh edges (the paper's multiplier points,
+§4.2), joined by the interface ``facets``, for every law and multiplier space:
+
+* ``traction`` (dim, n): r = σ⁻·n, the whole traction vector; its parts by
+  name: :attr:`Result.normal_traction` λ = r·n (≤ 0 in contact),
+  :attr:`Result.pressure` p = -λ, :attr:`Result.tangential_traction` r_τ;
+* ``jump`` (dim, n): [[u]] = u⁻ - u⁺ at the points; :attr:`Result.gap`
+  d_n = [[u]]·n (≤ 0 admissible in contact).
+
+A multiplier space keeps fewer multipliers μ than cut edges, λ = P μ on the
+edges (§5): the fields are those of λ_h at the points, for a contact law
+too, whose laws are imposed at the multiplier dofs (:mod:`skxfem.contact`).
+A contact result adds the load ``steps`` (the values at the dofs, each step's
+Newton iterations), the ``status`` of each point (open, stick, slip: that of
+the dof that carries most of its multiplier) and the total ``iterations``.
+
+>>> import skxfem
+>>> from dataclasses import replace
+>>> s = skxfem.scenes.strip(3, sides="rollers")
+>>> tie, glued = skxfem.solve(s), skxfem.solve(replace(s, law="adhesive"))
+>>> type(tie) is type(glued), glued.status.tolist()   # pressed and held: every point sticks
+(True, [1, 1, 1, 1])
+>>> bool(abs(tie.pressure - glued.pressure).max() < 1e-12)
+True
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from .enrich import XSpace, split_fields
+from .levelset import point_normals
+
+__all__ = ["Result", "edge_jumps", "result"]
+
+
+@dataclass(frozen=True)
+class Result:
+    """What :func:`skxfem.solve` returns; the names match ``result.json``.
+
+    ``points``, ``normals``, ``traction``, ``jump`` are (dim, n) at the cut
+    edges' points, ``facets`` (dim, nf) index them; ``u_minus``/``u_plus``
+    (dim, nverts) are the nodal fields of each side; ``max_jump`` is the
+    largest jump the law forbids at the interface quadrature points
+    (|[[u]]| bonded, |[[u]]·n| bilateral, the largest penetration max(d_n, 0)
+    in contact); ``removed`` counts the dependent multipliers removed;
+    ``linear`` says which linear solve ran (``"direct"`` or ``"iterative"``)
+    and ``linear_info`` how it went: the relative ``residual`` of the saddle
+    system reached, the ``balance`` of the multipliers, its ``tol`` and, for
+    the iterative solve, its CG ``iterations`` and ``residuals``.
+    Contact adds ``steps`` (:class:`skxfem.contact.Step`), ``status`` (n,)
+    (0 open, 1 stick, 2 slip), the interface operators ``ops`` and the
+    ``law`` (:class:`skxfem.contact_newton.Law`); for a tie they are empty.
+    """
+
+    scene: object
+    mesh: object
+    u_minus: np.ndarray
+    u_plus: np.ndarray
+    points: np.ndarray
+    normals: np.ndarray
+    traction: np.ndarray
+    jump: np.ndarray
+    facets: np.ndarray
+    max_jump: float
+    n_dofs: int
+    n_multipliers: int
+    removed: int = 0
+    timings: dict = field(default_factory=dict)
+    U: np.ndarray | None = field(default=None, repr=False)
+    space: XSpace | None = field(default=None, repr=False)
+    linear: str = "direct"
+    linear_info: dict = field(default_factory=dict)
+    problem: object = field(default=None, repr=False)
+    steps: tuple = ()
+    status: np.ndarray | None = None
+    ops: object = field(default=None, repr=False)
+    law: object = None
+
+    @property
+    def normal_traction(self) -> np.ndarray:
+        """λ = r·n (n,), ≤ 0 in contact."""
+        return (self.traction * self.normals).sum(0)
+
+    @property
+    def pressure(self) -> np.ndarray:
+        """p = -r·n (n,)."""
+        return -self.normal_traction
+
+    @property
+    def tangential_traction(self) -> np.ndarray:
+        """r_τ = r - (r·n) n (dim, n)."""
+        return self.traction - self.normal_traction * self.normals
+
+    @property
+    def gap(self) -> np.ndarray:
+        """d_n = [[u]]·n (n,), ≤ 0 admissible in contact."""
+        return (self.jump * self.normals).sum(0)
+
+    @property
+    def is_contact(self) -> bool:
+        return len(self.steps) > 0
+
+    @property
+    def iterations(self) -> int:
+        """The Newton iterations of every load step (0 for a tie)."""
+        return sum(int(st.newton.iterations) for st in self.steps)
+
+
+def edge_jumps(V: XSpace, U: np.ndarray) -> np.ndarray:
+    """[[u]] (dim, ne) at the cut edges' points: -2((1 - t) b_a + t b_b).
+
+    Along an edge (a, b) the shape functions of its two ends are the only ones
+    left, and linear, so the jump -2 Σ_j φ_j b_j at the point t of the edge
+    (ψ's zero, t = ψ_a/(ψ_a - ψ_b)) needs the enriched dofs of a and b only.
+
+    >>> from skfem import MeshQuad1
+    >>> from skxfem.cut import cut
+    >>> from skxfem.enrich import space
+    >>> from skxfem.levelset import plane
+    >>> m = MeshQuad1().refined(1)
+    >>> V = space(m, cut(m, plane((0, 0.3), (0, 1))))
+    >>> U = np.zeros(V.N); U[V.n_std:] = -0.5          # b = -1/2: [[u]] = 1
+    >>> edge_jumps(V, U).round(12).tolist()[0]
+    [1.0, 1.0, 1.0]
+    """
+    c = V.cut
+    a, b = c.edges
+    t = c.psi[a] / (c.psi[a] - c.psi[b])
+    bvals = np.zeros(V.n_std)
+    bvals[V.enr_dofs] = U[V.n_std:]
+    nodal = bvals[V.basis.nodal_dofs]  # (dim, nverts)
+    return -2.0 * ((1 - t) * nodal[:, a] + t * nodal[:, b])
+
+
+def result(pb, U: np.ndarray, traction: np.ndarray, max_jump: float, n_multipliers: int,
+           timings: dict, linear: str, linear_info: dict, **contact) -> Result:
+    """The :class:`Result` of the assembled problem ``pb`` solved as U, with the
+    ``traction`` (dim, n) at the cut edges' points; ``contact``: the keywords
+    ``steps``, ``status``, ``ops``, ``law``, ``removed``."""
+    c, V = pb.cut, pb.V
+    u_minus, u_plus = split_fields(V, U)
+    normals = point_normals(c, pb.scene.levelset)
+    return Result(pb.scene, pb.mesh, u_minus, u_plus, c.points, normals, traction,
+                  edge_jumps(V, U), c.facets, float(max_jump), V.N, int(n_multipliers),
+                  timings=timings, U=U, space=V, linear=linear, linear_info=linear_info,
+                  problem=pb, **contact)
+
+
+def on_edges(P: sp.spmatrix, values: np.ndarray) -> np.ndarray:
+    """Values at the multiplier dofs (m, ...) carried to the cut edges by λ = P μ."""
+    return np.asarray(sp.csr_matrix(P) @ values)
