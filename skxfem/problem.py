@@ -100,7 +100,8 @@ class Problem:
         support holds: both ends of the edge are fixed for that component
         (:func:`skxfem.multipliers.fixed_jumps`, from ``D``; bilateral: the
         normal jump, :func:`skxfem.multipliers.normal_fixed`).  They carry
-        no multiplier: their rows of P are empty.
+        no multiplier of their own: their rows of P are those of a neighbour
+        on Γ (:func:`skxfem.stabilised.extend_to_held`).
     spaces : the ncomp spaces of the law's components, each built on the
         edges it keeps (``space`` itself where a component has no fixed node).
     timings : seconds per stage.
