@@ -337,18 +337,17 @@ def extend_to_held(P, held, cut: Cut, loose=None) -> sp.csr_matrix:
     >>> from skxfem.cut import cut as cut_mesh
     >>> from skxfem.levelset import plane
     >>> m = MeshTri1().refined(1)
-    >>> c = cut_mesh(m, plane((0.5, 0.3), (-0.5, 1.0)))
-    >>> held = np.isclose(c.points[1], 0)          # the edge in the bottom face
-    >>> P = sp.identity(held.size, format="csr")[:, ~held]
-    >>> extend_to_held(P, held, c).sum(axis=1).A.ravel().tolist()
-    [1.0, 1.0, 1.0]
+    >>> c = cut_mesh(m, plane((0.3, 0.0), (-0.47, 1.0)))   # crosses the bottom at x = 0.3
+    >>> held = np.isclose(c.points[1], 0)                    # a support holds that edge
+    >>> P = extend_to_held(sp.identity(5, format="csr")[:, ~held], held, c)
+    >>> P.toarray()[0], c.points[:, 3].round(3)   # it takes the μ of its neighbour, edge 3
+    (array([0., 0., 1., 0.]), array([0.436, 0.064]))
     """
     P, held = sp.csr_matrix(P), np.asarray(held, dtype=bool)
     ne = held.size
-    nf = cut.facet_cell.size
-    in_cell = sp.csr_matrix((np.ones(cut.facets.size), (cut.facets.ravel(),
-                                                        np.tile(cut.facet_cell, cut.facets.shape[0]))),
-                            shape=(ne, int(cut.facet_cell.max()) + 1 if nf else 0))
+    cells = np.tile(cut.facet_cell, cut.facets.shape[0])     # the cell of each facet vertex
+    in_cell = sp.csr_matrix((np.ones(cells.size), (cut.facets.ravel(), cells)),
+                            shape=(ne, int(cells.max()) + 1 if cells.size else 0))
     near = (in_cell @ in_cell.T).tocsr()                     # edges sharing a cut cell
     done = ~held
     while True:

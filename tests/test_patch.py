@@ -208,7 +208,7 @@ def crossing(cell, where, law, supports):
     if law == "bonded":
         eps = np.array(SHEAR[dim])
     else:
-        eps = np.eye(dim) * (-(1 - 2 * 0.3) * (1 + 0.3) if dim == 3 else -(1 + 0.3) * (1 - 2 * 0.3))
+        eps = -0.2 * np.eye(dim)  # isotropic: σ = -p I in the plane of the cells
     sigma = material.stress(eps[:, :, None], dim)[..., 0]
     up = "xyz"[dim - 1]
 
