@@ -37,6 +37,7 @@ from .enrich import XSpace, split_fields
 from .levelset import point_normals
 from .linear import AUTO_ITERATIVE, LINEAR, choose_linear
 from .problem import Problem, assemble, constrained_dofs
+from .rigid import check_held
 from .scene import Scene, check_scene
 from .smoothest import dependencies
 
@@ -127,7 +128,9 @@ def solve(scene: Scene, dependent: str = "remove", linear: str = "auto"
         or passes through nodes (from :func:`skxfem.cut.cut`), a rank
         deficient space with ``dependent="raise"``.
     skxfem.saddle.SingularSystemError
-        (a ValueError) The supports leave a rigid motion of a side free.
+        (a ValueError) The supports and the law leave a rigid motion of a side
+        free (:func:`skxfem.rigid.check_held`, which names it), or the
+        system is singular for another reason.
     """
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
@@ -157,6 +160,7 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str = "auto") -
                 f"the multiplier space is rank deficient: {removed} of {B.shape[0]} "
                 f"multipliers depend on the others (space {scene.space!r}, law "
                 f"{p.law!r}); use a stabilised space or dependent='remove'")
+    check_held(p, normal=p.law == "bilateral", full=p.law == "bonded")
     G = _differences(c, ncomp) @ P
     if linear == "iterative":
         U, mu, info = iterative.solve(p.K, B, p.F, D, p.g, G=G, modes=rigid_modes(V),
