@@ -121,8 +121,8 @@ def law_rows(p: Problem, Z: np.ndarray, normal=None, full=None) -> np.ndarray:
 def _null(A: np.ndarray, tol: float) -> np.ndarray:
     """Orthonormal basis (columns) of the c that A moves by less than ``tol``
     times its largest singular value (every c if A is zero)."""
-    _, sv, Vt = np.linalg.svd(A, full_matrices=True)
-    sv = np.r_[sv, np.zeros(Vt.shape[0] - sv.size)]
+    A = np.vstack([A, np.zeros((max(A.shape[1] - A.shape[0], 0), A.shape[1]))])
+    _, sv, Vt = np.linalg.svd(A, full_matrices=False)     # Vt square: A has rows enough
     return Vt[sv <= tol * sv.max()].T
 
 
