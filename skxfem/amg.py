@@ -25,7 +25,7 @@ import scipy.sparse as sp
 
 from .saddle import SingularSystemError
 
-__all__ = ["rigid_modes", "motion_name", "free_motion_name", "amg", "check_held",
+__all__ = ["rigid_modes", "axis_name", "motion_name", "free_motion_name", "amg", "check_held",
            "scaled_tie", "augmented", "check_tie_held"]
 
 
@@ -98,9 +98,16 @@ def rigid_modes(V, sides: bool = True, centre=None, length: float = 1.0) -> np.n
     return Z if sides else Z[:, 0::2] + Z[:, 1::2]
 
 
-def _vector(v) -> str:
-    """An axis name for a unit vector along an axis, else its rounded components."""
+def axis_name(v) -> str:
+    """The name of the direction of ``v`` (either way along it): an axis, else
+    its rounded unit components, the first non-zero one positive.
+
+    >>> axis_name([0.0, -2.0]), axis_name([-1.0, 1.0])
+    ('y', '(0.707, -0.707)')
+    """
+    v = np.asarray(v, float)
     v = v / np.linalg.norm(v)
+    v = v * np.sign(v[np.flatnonzero(np.abs(v) > 1e-9)[0]])
     axis = int(np.argmax(np.abs(v)))
     if abs(abs(v[axis]) - 1.0) < 1e-9:
         return "xyz"[axis]
@@ -128,9 +135,9 @@ def motion_name(c, dim: int, centre=None, length: float = 1.0, verb: bool = True
     elif np.linalg.norm(w) > 1e-6 * max(np.abs(c).max(), 1e-300):
         x0 = centre + length * np.cross(w, t) / (w @ w)
         point = ", ".join(f"{x:.3g}" for x in x0)
-        return (f"{'rotate' if verb else 'rotates'} about an axis along {_vector(w)} "
+        return (f"{'rotate' if verb else 'rotates'} about an axis along {axis_name(w)} "
                 f"through ({point})")
-    return f"{'translate' if verb else 'translates'} along {_vector(t)}"
+    return f"{'translate' if verb else 'translates'} along {axis_name(t)}"
 
 
 def amg(A: sp.spmatrix, modes: np.ndarray | None = None, blocksize: int = 1):

@@ -49,14 +49,20 @@ skxfem.saddle.SingularSystemError: Ω⁺ (the part of the body where ψ > 0) can
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components
 
-from .amg import motion_name, rigid_modes
-from .problem import Problem
+from .amg import axis_name, motion_name, rigid_modes
 from .saddle import SingularSystemError
 
-__all__ = ["TOL", "frame", "law_rows", "free_motions", "side_names", "describe", "check_held"]
+if TYPE_CHECKING:  # the problem is read through its attributes: rigid stands below it
+    from .problem import Problem
+
+__all__ = ["TOL", "frame", "law_rows", "free_motions", "side_names", "describe", "check_held",
+           "pieces", "short_pieces"]
 
 TOL = 1e-8
 """A combination of the modes moved by less than this fraction of the most
@@ -130,7 +136,8 @@ def free_motions(p: Problem, normal=None, full=None, rows=None, tol: float = TOL
                  Z: np.ndarray | None = None) -> np.ndarray:
     """(2k, d): a basis of the coefficients c of the modes ``Z`` (default
     :func:`skxfem.amg.rigid_modes` in :func:`frame`) that no support and
-    nothing the law holds moves; d = 0 when every rigid motion is held.
+    nothing the law holds moves, and that move the body (Z c ≠ 0); d = 0
+    when every rigid motion is held.
 
     ``normal``, ``full`` as :func:`law_rows`; ``rows``: more (r, N) sparse
     rows on the unknowns that the law holds as they are (a sliding contact
@@ -144,7 +151,13 @@ def free_motions(p: Problem, normal=None, full=None, rows=None, tol: float = TOL
         R = sp.csr_matrix(rows)
         norms = np.sqrt(np.asarray(R.multiply(R).sum(axis=1)).ravel())
         blocks.append(sp.diags(1.0 / np.where(norms > 0, norms, 1.0)) @ R @ Z)
-    return _null(np.vstack(blocks), tol)
+    N = _null(np.vstack(blocks), tol)
+    if N.shape[1] == 0:
+        return N
+    # a combination the space cannot represent (Z c = 0: a piece of Γ so small that
+    # its nodes lost their enrichment, skxfem.enrich.space) is no motion at all
+    _, sv, Vt = np.linalg.svd(Z @ N, full_matrices=False)
+    return N @ Vt[sv > tol * np.linalg.norm(Z, axis=0).max()].T
 
 
 def side_names(p: Problem) -> tuple[str, str]:
@@ -162,29 +175,51 @@ def side_names(p: Problem) -> tuple[str, str]:
     return names[0], names[1]
 
 
+def _orth(A: np.ndarray, tol: float = 1e-6) -> np.ndarray:
+    """Orthonormal basis of the column space of ``A``."""
+    if A.size == 0:
+        return A
+    U, sv, _ = np.linalg.svd(A, full_matrices=False)
+    return U[:, sv > tol * max(sv.max(), 1e-300)]
+
+
+def _side_motions(S: np.ndarray, dim: int, centre, length: float) -> str:
+    """The motions ``S`` (k, d) of one side, in words: the translations they
+    allow (a direction, a plane, every direction) and each rotation, about
+    an axis through the point it leaves at rest (:func:`skxfem.amg.motion_name`)."""
+    T, W = S[:dim], S[dim:]
+    Y = _null(W, 1e-6) if W.any() else np.eye(S.shape[1])     # combinations that only translate
+    moves = _orth(T @ Y)
+    words = []
+    if moves.shape[1] == dim:
+        words.append("translate in every direction")
+    elif moves.shape[1] == 2:
+        words.append(f"translate in every direction normal to "
+                     f"{axis_name(np.cross(moves[:, 0], moves[:, 1]))}")
+    elif moves.shape[1] == 1:
+        words.append(motion_name(np.r_[moves[:, 0], np.zeros(S.shape[0] - dim)], dim))
+    rest = _null(Y.T, 1e-6) if Y.shape[1] else np.eye(S.shape[1])  # the rest: rotations
+    for y in (S @ rest).T:
+        t = y[:dim] - moves @ (moves.T @ y[:dim])               # no free translation in it
+        words.append(motion_name(np.r_[t, y[dim:]], dim, centre, length))
+    return " and ".join(words)
+
+
 def describe(p: Problem, N: np.ndarray, centre, length: float) -> str:
     """The free motions of the basis ``N`` (orthonormal columns of mode
     coefficients, Ω⁻ and Ω⁺ interleaved as :func:`skxfem.amg.rigid_modes`
     orders them), in words: those of the whole body, else of Ω⁻ alone, else
-    of Ω⁺ alone, each translation and rotation (about the frame's centre)
-    among them by name, or else one combination."""
+    of Ω⁺ alone (their translations and rotations), else of the two apart."""
     minus, plus = side_names(p)
     dim, I = p.mesh.dim(), np.eye(N.shape[0])
-    k = N.shape[0] // 2
-    looks = [("the whole body", I[0::2] - I[1::2], I[0::2] + I[1::2], 0),   # c⁻ = c⁺
-             (minus, I[1::2], I[0::2], 0),                                  # c⁺ = 0
-             (plus, I[0::2], I[1::2], 1)]                                   # c⁻ = 0
-    for who, E, pure, side in looks:
+    looks = [("the whole body", I[0::2] - I[1::2], 0),   # c⁻ = c⁺
+             (minus, I[1::2], 0),                         # c⁺ = 0
+             (plus, I[0::2], 1)]                          # c⁻ = 0
+    for who, E, side in looks:
         _, sv, Vt = np.linalg.svd(E @ N, full_matrices=True)
-        S = N @ Vt[np.r_[sv, np.zeros(Vt.shape[0] - sv.size)] < 1e-6].T   # orthonormal
-        if S.shape[1] == 0:
-            continue
-        named = [motion_name(np.eye(k)[j], dim, centre, length) for j in range(k)
-                 if np.linalg.norm(pure[j] - S @ (S.T @ pure[j])) < 1e-6 * np.linalg.norm(pure[j])]
-        if named:
-            return f"{who} can {', '.join(named[:-1]) + ' and ' if len(named) > 1 else ''}" \
-                   f"{named[-1]}"
-        return f"{who} can {motion_name(S[side::2, 0], dim, centre, length)}"
+        S = N @ Vt[np.r_[sv, np.zeros(Vt.shape[0] - sv.size)] < 1e-6].T
+        if S.shape[1]:
+            return f"{who} can {_side_motions(S[side::2], dim, centre, length)}"
     c = N[:, 0]
     return (f"{minus} can {motion_name(c[0::2], dim, centre, length)} as {plus} "
             f"{motion_name(c[1::2], dim, centre, length, verb=False)}")
@@ -217,3 +252,66 @@ def check_held(p: Problem, normal=None, full=None, rows=None, what: str | None =
         f"{text}: neither the displacements nor {what or f'the {p.law} tie'} hold it, so "
         f"the problem is singular (a part of the body can move freely, its displacement "
         f"is not unique); {hint}")
+
+
+def pieces(cut) -> np.ndarray:
+    """(ne,) the connected piece of Γ_h of each cut edge (edges that share a
+    cut cell are in one piece), numbered from 0.
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.cut import cut
+    >>> from skxfem.levelset import plane
+    >>> int(pieces(cut(MeshTri1().refined(2), plane((0.5, 0.4), (0.0, 1.0)))).max())  # one
+    0
+    """
+    ne = cut.edge_ids.size
+    cells = np.tile(cut.facet_cell, cut.facets.shape[0])
+    in_cell = sp.csr_matrix((np.ones(cells.size), (cut.facets.ravel(), cells)),
+                            shape=(ne, int(cells.max()) + 1 if cells.size else 0))
+    return connected_components(in_cell @ in_cell.T, directed=False)[1]
+
+
+def _rank(A: np.ndarray, tol: float = TOL) -> int:
+    if A.size == 0:
+        return 0
+    sv = np.linalg.svd(A, compute_uv=False)
+    return int(np.sum(sv > tol * sv.max())) if sv.max() > 0 else 0
+
+
+def short_pieces(p: Problem, B_edges, tol: float = TOL) -> np.ndarray:
+    """(ne,) bool: the cut edges of the pieces of Γ_h whose multipliers hold
+    fewer relative rigid motions of the two sides than the law does there.
+
+    On each piece, the law (``p.law``: the whole jump bonded, its normal part
+    bilateral) holds the relative motions w with w = 0 (w·n = 0) at its
+    points; the space holds those whose weighted jumps ∫ψ_j w, one per
+    multiplier μ_j of the piece (``B_edges`` reduced by ``p.P``), vanish.
+    Each with the supports (what they hold needs no multiplier), the two
+    must hold as many rigid motions.  A
+    stable space gives a small piece too few multipliers: a corner of one
+    cell that Γ cuts off (``x + y = 1.95`` on the unit square) gets one star
+    of vital edges, one μ per component, whose mean jump cannot hold the
+    piece's turning, and the tied system was singular.  Such a piece needs
+    a multiplier per edge (:func:`skxfem.stabilised.multiplier_space`'s ``per_edge``).
+    """
+    ne = p.cut.edge_ids.size
+    label = pieces(p.cut)
+    centre, length = frame(p)
+    Z = rigid_modes(p.V, centre=centre, length=length)
+    ncomp = B_edges.shape[0] // ne
+    bonded = p.law == "bonded"
+    P = sp.csr_matrix(p.P)
+    weight = np.asarray(p.rule.N.T @ p.rule.weights).ravel()   # ∫ N_e
+    supports = Z[p.D]
+    short = np.zeros(ne, dtype=bool)
+    for k in range(label.max() + 1 if ne else 0):
+        edges = label == k
+        law = law_rows(p, Z, normal=None if bonded else edges, full=edges if bonded else None)
+        rows = np.flatnonzero(np.tile(edges, ncomp))
+        Pk = P[rows]
+        used = np.flatnonzero(np.asarray(abs(Pk).sum(axis=0)).ravel() > 0)
+        w = Pk[:, used].T @ np.tile(weight, ncomp)[rows]
+        held = (sp.diags(1.0 / w) @ (Pk[:, used].T @ B_edges[rows])) @ Z
+        if _rank(np.vstack([supports, held]), tol) < _rank(np.vstack([supports, law]), tol):
+            short |= edges
+    return short

@@ -166,7 +166,17 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str = "auto") -
         U, mu, info = iterative.solve(p.K, B, p.F, D, p.g, G=G, modes=rigid_modes(V),
                                       blocksize=mesh.dim(), bonded=p.law == "bonded")
     else:
-        U, mu, info = saddle.solve(p.K, B, p.F, D, p.g, G=G)
+        try:
+            U, mu, info = saddle.solve(p.K, B, p.F, D, p.g, G=G)
+        except saddle.SingularSystemError as e:
+            if not e.detail:
+                raise
+            raise saddle.SingularSystemError(  # check_held found every rigid motion held
+                f"the tied system is singular to working precision ({e.detail}), although "
+                f"the displacements and the {p.law} tie hold every rigid motion of each side "
+                f"of Γ: its conditioning is beyond double precision (a part of the body, "
+                f"or a material, far stiffer or smaller than the rest); refine the mesh "
+                f"there or rescale the scene") from e
     lam = (P @ mu).reshape(ncomp, -1)
     timings["solve"] = time.perf_counter() - t0
     its = getattr(info, "iterations", None)

@@ -261,7 +261,7 @@ def winner_nodes(edges, psi, points, nodes, fixed=None) -> Space:
     return Space("winner", P, winners=winners)
 
 
-def multiplier_space(name: str, mesh, cut: Cut, fixed=None) -> Space:
+def multiplier_space(name: str, mesh, cut: Cut, fixed=None, per_edge=None) -> Space:
     """The space ``name``: "naive", "winner" (algo1) or "vital" (algo2, §5).
 
     ``fixed`` (nnodes,) bool: nodes whose jump a support holds (see
@@ -271,10 +271,19 @@ def multiplier_space(name: str, mesh, cut: Cut, fixed=None) -> Space:
     its own either, but takes the λ of its nearest neighbour on Γ
     (:func:`extend_to_held`), so that every row of P still sums to 1 and a
     constant traction stays in the space.  Default: none.
+
+    ``per_edge`` (n_edges,) bool: edges that get a multiplier each, as in the
+    naive space, the stable one being built on the others (the pieces of Γ
+    too small for it to hold them: :func:`skxfem.rigid.short_pieces`).
+    Default: none.
     """
     if name not in SPACES:
         raise ValueError(f"space must be one of {SPACES}, got {name!r}")
     ne = cut.edge_ids.size
+    own = np.zeros(ne, dtype=bool) if per_edge is None else np.asarray(per_edge, dtype=bool)
+    if own.shape != (ne,):
+        raise ValueError(f"per_edge must be one bool per cut edge, shape ({ne},); "
+                         f"got {own.shape}")
     if fixed is None or not np.any(fixed):
         fixed = None
         sub = np.arange(ne)
@@ -284,12 +293,24 @@ def multiplier_space(name: str, mesh, cut: Cut, fixed=None) -> Space:
             raise ValueError(f"fixed must be one bool per node, shape {cut.psi.shape}; "
                              f"got {fixed.shape}")
         sub = np.flatnonzero(~(fixed[cut.edges[0]] & fixed[cut.edges[1]]))
-    if name == "naive":
+    if name == "naive" or own[sub].all():
         S = naive(cut) if sub.size == ne else \
             Space("naive", sp.identity(sub.size, format="csr"))
+        if name != "naive":
+            S = Space(name, S.P, np.ones(sub.size, bool), np.arange(sub.size),
+                      np.zeros(0, int) if name == "winner" else None)
     else:
         build = winner_nodes if name == "winner" else vital_edges
-        S = build(cut.edges[:, sub], cut.psi, cut.points[:, sub], mesh.p, fixed)
+        stable, solo = sub[~own[sub]], sub[own[sub]]
+        S = build(cut.edges[:, stable], cut.psi, cut.points[:, stable], mesh.p, fixed)
+        if solo.size:                                        # one μ per edge there
+            order = np.argsort(np.r_[stable, solo])
+            P = sp.block_diag([S.P, sp.identity(solo.size)], format="csr")[order]
+            vital = groups = None
+            if S.vital is not None:
+                vital = np.r_[S.vital, np.ones(solo.size, bool)][order]
+                groups = np.r_[S.groups, S.size + np.arange(solo.size)][order]
+            S = Space(name, P.tocsr(), vital, groups, S.winners)
     if sub.size == ne:
         return S
     embed = sp.csr_matrix((np.ones(sub.size), (sub, np.arange(sub.size))), shape=(ne, sub.size))

@@ -267,3 +267,39 @@ def test_gamma_crossing_a_supported_face_in_the_other_spaces(cell, space):
     result = solve(dataclasses.replace(scene, space=space))
     assert patch_energy_error(result, eps) <= 1e-8
     assert result.max_jump <= 1e-9 * np.abs(eps).max()
+
+
+# A small piece of the body that only the tie holds (issue 18) -----------------------
+#
+# Γ cuts off a corner of the loaded, unsupported end of the box, inside one cell.  A
+# stable space gave that piece of Γ one star of vital edges (one μ per component):
+# its mean jump cannot hold the piece's turning, and the tied system was refused as
+# singular ("a part of the body can move freely").  Such a piece gets a multiplier
+# per edge (skxfem.rigid.short_pieces), and the patch test holds to round-off, down
+# to pieces whose nodes lose their enrichment (skxfem.enrich.space's sliver rule).
+
+@pytest.mark.parametrize("size", [0.05, 1e-3, 1e-6])
+@pytest.mark.parametrize("space", ["winner", "vital"])
+def test_a_small_corner_piece_held_by_the_tie_alone_is_solved(cell, size, space):
+    dim = 2 if cell in ("tri", "quad") else 3
+    psi = plane((dim - size,) + (0.0,) * (dim - 1), (1.0,) * dim)  # Σ x_i = dim - size
+    scene, _ = uniaxial(cell, 0.0, 0.5, "bonded")
+    result = solve(dataclasses.replace(scene, levelset=psi, space=space))
+    sigma = np.zeros((dim, dim))
+    sigma[-1, -1] = -P
+    eps = uniform_strain_of(scene.material, sigma)
+    assert patch_energy_error(result, eps) <= 1e-8
+
+
+def uniform_strain_of(material, sigma):
+    from skxfem.extremes import uniform_strain
+
+    return uniform_strain(material, sigma.shape[0], sigma)
+
+
+def test_a_small_corner_piece_with_a_frictionless_tie_slides_and_says_so():
+    scene, _ = uniaxial("quad", 0.0, 0.5, "bilateral")
+    scene = dataclasses.replace(scene, levelset=plane((1.95, 0.0), (1.0, 1.0)))
+    with pytest.raises(SingularSystemError, match=r"Ω⁺ .* can translate along "
+                       r"\(0\.707, -0\.707\)"):
+        solve(scene)

@@ -8,12 +8,17 @@
 2. The translations refused before are refused still, now naming the side
    and the direction (the strip and the paper's plate with a bilateral tie,
    a body without supports).
-3. ``free_motions`` counts: as many free motions as the problem leaves.
+3. ``free_motions`` counts: as many free motions as the problem leaves; the
+   sides are named inside / outside Γ when Γ encloses one of them.
+4. ``short_pieces``: a piece of Γ whose stable space cannot hold what the law
+   holds (a corner cut off inside one cell) gets a multiplier per edge; a long
+   Γ never does.
 """
 import dataclasses
 
 import numpy as np
 import pytest
+import scipy.sparse as sp
 
 from skxfem.levelset import plane, sphere
 from skxfem.material import Material
@@ -62,9 +67,10 @@ def test_a_ball_tied_by_its_normal_jump_can_turn_about_every_axis():
     p = assemble(scene)
     assert free_motions(p, normal=True).shape[1] == 3, "three rotations of the ball"
     with pytest.raises(SingularSystemError, match=r"Ω⁻ \(the part of the body inside Γ\) "
-                       r"can rotate about an axis along x .*, rotate about an axis along y"
-                       r" .* and rotate about an axis along z"):
+                       r"can rotate about an axis") as err:
         solve(scene)
+    assert str(err.value).count("rotate about an axis along") == 3
+    assert str(err.value).count("through (0.5, 0.5, 0.5)") == 3, "about the centre"
 
 
 def test_a_slightly_elliptic_disc_is_held_by_its_shape():
@@ -101,11 +107,10 @@ def test_a_body_without_supports_names_every_motion_of_the_whole_body(cell):
                   (SurfaceLoad("xyz"[dim - 1] + "max", pressure=1.0),))
     p = assemble(scene)
     assert free_motions(p, full=True).shape[1] == 3 * (dim - 1)
-    words = ["translate along x", "translate along y"] + (
-        ["rotate about z"] if dim == 2 else ["translate along z", "axis along x"])
-    with pytest.raises(SingularSystemError, match="the whole body can") as err:
+    with pytest.raises(SingularSystemError, match="the whole body can translate in every "
+                       "direction and rotate about") as err:
         solve(scene)
-    assert all(w in str(err.value) for w in words), str(err.value)
+    assert str(err.value).count("rotate about") == 3 * (dim - 1) - dim
 
 
 def test_rollers_on_one_side_leave_the_other_free_only_where_they_do_not_reach():
@@ -129,3 +134,37 @@ def test_sides_are_named_inside_and_outside_for_a_closed_gamma():
     assert "inside Γ" in minus and "outside Γ" in plus
     minus, plus = side_names(assemble(strip(3, "tri")))
     assert "ψ < 0" in minus and "ψ > 0" in plus
+
+
+# 4. pieces of Γ too small for a stable space ----------------------------------------
+
+def test_a_corner_piece_that_one_star_cannot_hold_gets_a_multiplier_per_edge():
+    """Γ cuts off the corner (1, 1) inside one cell: two cut edges, one star of
+    vital edges, one μ per component, whose mean jump cannot hold the corner's
+    turning; the law (bonded) holds it.  short_pieces finds the piece, and the
+    assembled space gives each of its edges a μ of its own."""
+    from skxfem.multipliers import coupling
+    from skxfem.rigid import pieces, short_pieces
+    from skxfem.stabilised import multiplier_space
+
+    scene = Scene(Box(4, "quad"), plane((1.95, 0.0), (1.0, 1.0)), Material(1.0, 0.3),
+                  (clamped("ymin"),), (SurfaceLoad("ymax", pressure=1.0),))
+    p = assemble(scene)
+    assert p.cut.edge_ids.size == 2 and pieces(p.cut).max() == 0
+    one_star = multiplier_space("vital", p.mesh, p.cut)
+    assert one_star.size == 1
+    loose = dataclasses.replace(p, P=sp.block_diag([one_star.P] * 2, format="csr"))
+    assert short_pieces(loose, coupling(p.V, p.rule, "bonded", J=p.J)).all()
+    assert p.P.shape[1] == 4 and p.space.size == 2, "a μ per edge and component"
+    assert np.isfinite(solve(scene).max_jump)
+
+
+@pytest.mark.parametrize("law", ["bonded", "bilateral"])
+def test_a_stable_space_on_a_long_gamma_is_never_short(law):
+    from skxfem.multipliers import coupling
+    from skxfem.rigid import short_pieces
+
+    for scene in (strip(8, "tri"), strip(8, "quad"), paper_plate(3, "prism"),
+                  paper_plate(3, "tet"), inclusion("bonded")):
+        p = assemble(scene, law=law)
+        assert not short_pieces(p, coupling(p.V, p.rule, law, J=p.J)).any(), scene.name
