@@ -174,6 +174,11 @@ def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndar
 def assemble(scene: Scene, law: str | None = None) -> Problem:
     """Assemble the interface problem of ``scene`` for ``law`` (default: ``scene.law``).
 
+    The multiplier space is the scene's, per component with the supports'
+    fixed nodes (:func:`skxfem.stabilised.multiplier_space`); a piece of Γ on
+    which it holds fewer rigid motions than the law (a corner cut off inside
+    one cell: :func:`skxfem.rigid.short_pieces`) gets a multiplier per edge.
+
     Parameters
     ----------
     scene
