@@ -33,10 +33,11 @@ The modes turn about the centre of the mesh's bounding box and are scaled
 by its half diagonal (:func:`frame`), so every column moves the body by
 about 1; the right singular vectors of the stacked matrix [Z[D]; law rows]
 whose singular value is below ``tol`` times the largest span the free
-motions.  The message names one of them, looked for in this order: a
-motion of the whole body, of Ω⁻ alone, of Ω⁺ alone, of the two sides
-apart (:func:`skxfem.amg.motion_name` says "can rotate about z (about the
-point ...)", "can translate along y").
+motions.  The message names them (:func:`describe`): those of the whole
+body, else of Ω⁻ alone, else of Ω⁺ alone, each as the translations it
+allows and its rotations ("can translate along y", "can translate in every
+direction normal to z and rotate about an axis along z through (0.5, 0.5,
+0.5)", "can rotate about z (about the point (0.5, 0.5))").
 
 >>> from skxfem.problem import assemble
 >>> from skxfem.scenes import strip
@@ -103,25 +104,32 @@ def _edges(mask, ne: int) -> np.ndarray:
     return mask
 
 
-def law_rows(p: Problem, Z: np.ndarray, normal=None, full=None) -> np.ndarray:
+def _edge_rows(p: Problem, Z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The weighted jumps (1/∫N_e) ∫ N_e w of the modes ``Z`` at every cut
+    edge: their normal part (ne, 2k), and their components (dim, ne, 2k)."""
+    rule = p.rule
+    dim, nq = rule.normals.shape
+    W = (rule.N.T @ sp.diags(rule.weights)).tocsr()
+    W = (sp.diags(1.0 / np.maximum(np.asarray(W.sum(axis=1)).ravel(), 1e-300)) @ W).tocsr()
+    jumps = (p.J @ Z).reshape(dim, nq, -1)
+    normal = W @ np.einsum("cq,cqm->qm", _normals(p), jumps)
+    return normal, np.stack([W @ jumps[c] for c in range(dim)])
+
+
+def law_rows(p: Problem, Z: np.ndarray, normal=None, full=None, edge_rows=None) -> np.ndarray:
     """What the law holds, applied to the modes ``Z``: dense (r, 2k).
 
     ``normal``, ``full``: the cut edges whose normal jump, or whole jump, the
     law holds (``True``: all).  One row per held edge and part, (1/∫N_e)
     ∫ N_e w·n (or each component of w): the weighted jump of the mode, a
-    displacement.
+    displacement.  ``edge_rows``: :func:`_edge_rows` of ``Z``, if already made.
     """
-    ne, rule = p.cut.edge_ids.size, p.rule
+    ne = p.cut.edge_ids.size
     normal, full = _edges(normal, ne), _edges(full, ne)
-    dim, nq = rule.normals.shape
-    W = (rule.N.T @ sp.diags(rule.weights)).tocsr()
-    W = (sp.diags(1.0 / np.maximum(np.asarray(W.sum(axis=1)).ravel(), 1e-300)) @ W).tocsr()
-    jumps = (p.J @ Z).reshape(dim, nq, -1)
-    rows = [np.zeros((0, Z.shape[1]))]
-    if normal.any():
-        rows.append(W[normal] @ np.einsum("cq,cqm->qm", _normals(p), jumps))
-    rows += [W[full] @ jumps[c] for c in range(dim) if full.any()]
-    return np.vstack(rows)
+    if not (normal.any() or full.any()):
+        return np.zeros((0, Z.shape[1]))
+    n_rows, c_rows = edge_rows if edge_rows is not None else _edge_rows(p, Z)
+    return np.vstack([n_rows[normal]] + [c[full] for c in c_rows])
 
 
 def _null(A: np.ndarray, tol: float) -> np.ndarray:
@@ -162,15 +170,14 @@ def free_motions(p: Problem, normal=None, full=None, rows=None, tol: float = TOL
 
 def side_names(p: Problem) -> tuple[str, str]:
     """How a message names Ω⁻ and Ω⁺: "the part of the body inside Γ" for a
-    side that no boundary node lies on (Γ encloses it), else by the sign of ψ."""
-    psi = p.cut.psi
+    side on no boundary node (Γ encloses it; the other is then "outside Γ"),
+    else by the sign of ψ."""
     boundary = np.unique(p.mesh.facets[:, p.mesh.boundary_facets()])
+    signs = set(np.sign(p.cut.psi[boundary]).tolist())
     names = []
-    for sign, sym, other in ((-1, "⁻", "+"), (1, "⁺", "-")):
-        on_boundary = np.any(np.sign(psi[boundary]) == sign)
-        enclosed_other = not np.any(np.sign(psi[boundary]) == -sign)
-        where = ("inside Γ" if not on_boundary else
-                 "outside Γ" if enclosed_other else f"where ψ {'<' if sign < 0 else '>'} 0")
+    for sign, sym in ((-1.0, "⁻"), (1.0, "⁺")):
+        where = ("inside Γ" if sign not in signs else "outside Γ" if len(signs) == 1
+                 else f"where ψ {'<' if sign < 0 else '>'} 0")
         names.append(f"Ω{sym} (the part of the body {where})")
     return names[0], names[1]
 
@@ -286,27 +293,29 @@ def short_pieces(p: Problem, B_edges, tol: float = TOL) -> np.ndarray:
     bilateral) holds the relative motions w with w = 0 (w·n = 0) at its
     points; the space holds those whose weighted jumps ∫ψ_j w, one per
     multiplier μ_j of the piece (``B_edges`` reduced by ``p.P``), vanish.
-    Each with the supports (what they hold needs no multiplier), the two
-    must hold as many rigid motions.  A
-    stable space gives a small piece too few multipliers: a corner of one
-    cell that Γ cuts off (``x + y = 1.95`` on the unit square) gets one star
-    of vital edges, one μ per component, whose mean jump cannot hold the
-    piece's turning, and the tied system was singular.  Such a piece needs
-    a multiplier per edge (:func:`skxfem.stabilised.multiplier_space`'s ``per_edge``).
+    Each taken with the supports (what they hold needs no multiplier), the
+    two must hold as many rigid motions.  A stable space gives a small piece
+    too few multipliers: a corner of one cell that Γ cuts off (``x + y =
+    1.95`` on the unit square) gets one star of vital edges, one μ per
+    component, whose mean jump cannot hold the piece's turning, and the tied
+    system was singular.  Such a piece needs a multiplier per edge
+    (:func:`skxfem.stabilised.multiplier_space`'s ``per_edge``).
     """
     ne = p.cut.edge_ids.size
     label = pieces(p.cut)
     centre, length = frame(p)
     Z = rigid_modes(p.V, centre=centre, length=length)
+    edge_rows = _edge_rows(p, Z)
     ncomp = B_edges.shape[0] // ne
     bonded = p.law == "bonded"
     P = sp.csr_matrix(p.P)
     weight = np.asarray(p.rule.N.T @ p.rule.weights).ravel()   # ∫ N_e
-    supports = Z[p.D]
+    supports = np.linalg.qr(Z[p.D], mode="r")                 # the same rank with any rows
     short = np.zeros(ne, dtype=bool)
     for k in range(label.max() + 1 if ne else 0):
         edges = label == k
-        law = law_rows(p, Z, normal=None if bonded else edges, full=edges if bonded else None)
+        law = law_rows(p, Z, normal=None if bonded else edges, full=edges if bonded else None,
+                       edge_rows=edge_rows)
         rows = np.flatnonzero(np.tile(edges, ncomp))
         Pk = P[rows]
         used = np.flatnonzero(np.asarray(abs(Pk).sum(axis=0)).ravel() > 0)
