@@ -274,6 +274,5 @@ def check_determined(pb: Problem, ops: Operators, law: Law, st, g_t, modes, labe
     except SingularSystemError as e:
         raise SingularSystemError(
             f"load step {label!r}: the contact state found {found} leaves a part of the "
-            f"body free to move, so "
-            f"its displacement is not unique (a side that only the interface holds, while "
-            f"Γ opens or slides): {hint}") from e
+            f"body free to move, so its displacement is not unique (a side that only the "
+            f"interface holds, while Γ opens or slides): {hint}") from e
