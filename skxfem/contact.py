@@ -53,6 +53,7 @@ from .contact_laws import CONTACT_LAWS, OPEN, SLIP, STICK, status
 from .contact_newton import ContactConvergenceError, Law, NewtonInfo, newton
 from .linear import choose_linear
 from .problem import Problem, assemble
+from .rigid import check_held
 from .saddle import SingularSystemError
 from .scene import Scene, check_scene
 from .threads import limited
@@ -234,13 +235,19 @@ def check_determined(pb: Problem, ops: Operators, law: Law, st, g_t, modes, labe
 
     Newton may converge to a state whose displacement is not unique: an
     unloaded side held only by an interface that ends up open (``st`` all
-    OPEN) may slide by any rigid motion.  The state holds what its closed
-    points hold (:func:`skxfem.amg.check_tie_held`): the normal jump, and the
-    tangential one where they stick (``adhesive``: wherever closed); a point
-    sliding in 3D holds the tangent across its slip direction ĝ_τ.
+    OPEN) may slide by any rigid motion, and a disc in contact all round
+    may turn about its centre.  The state holds what its closed points hold:
+    the normal jump, and the whole jump where they stick (``adhesive``:
+    wherever closed); a point sliding in 3D holds the tangent across its slip
+    direction ĝ_τ.  :func:`skxfem.rigid.check_held` tests that with the level
+    set's normals and names the motion left free; then
+    :func:`skxfem.amg.check_tie_held` tests the discrete rows themselves.
     """
     closed = st != OPEN
+    full = closed if law.name == "adhesive" else (
+        st == STICK if law.name == "coulomb" else np.zeros_like(closed))
     rows = [ops.Bn[closed]]
+    slip_rows = sp.csr_matrix((0, pb.V.N))
     if law.name == "adhesive":
         rows += [B[closed] for B in ops.Bt]
     elif law.name == "coulomb":
@@ -248,17 +255,26 @@ def check_determined(pb: Problem, ops: Operators, law: Law, st, g_t, modes, labe
         slip = st == SLIP
         if len(ops.Bt) == 2 and slip.any():
             gh = g_t[slip] / np.linalg.norm(g_t[slip], axis=1)[:, None]
-            rows.append(sp.diags(-gh[:, 1]) @ ops.Bt[0][slip]
-                        + sp.diags(gh[:, 0]) @ ops.Bt[1][slip])
+            slip_rows = (sp.diags(-gh[:, 1]) @ ops.Bt[0][slip]
+                         + sp.diags(gh[:, 0]) @ ops.Bt[1][slip]).tocsr()
+            rows.append(slip_rows)
+    counts = np.bincount(st, minlength=3)
+    found = (f"({counts[OPEN]} open, {counts[STICK]} stick, {counts[SLIP]} slip of "
+             f"{st.size} points)")
+    hint = "add supports on each side of Γ or a load that closes it"
+    edges_of = abs(pb.P).tocsc()
+    try:
+        check_held(pb, normal=np.asarray(edges_of[:, closed].sum(axis=1)).ravel() > 0,
+                   full=np.asarray(edges_of[:, full].sum(axis=1)).ravel() > 0,
+                   rows=slip_rows, what=f"the contact state found {found}", hint=hint)
+    except SingularSystemError as e:
+        raise SingularSystemError(f"load step {label!r}: {e}") from None
     fixed = np.zeros(pb.V.N, bool)
     fixed[pb.D] = True
     try:
         check_tie_held(pb.K, sp.vstack(rows, format="csr"), fixed, modes)
     except SingularSystemError as e:
-        counts = np.bincount(st, minlength=3)
         raise SingularSystemError(
-            f"load step {label!r}: the contact state found ({counts[OPEN]} open, "
-            f"{counts[STICK]} stick, {counts[SLIP]} slip of {st.size} points) leaves a "
-            f"part of the body free to move, so its displacement is not unique (a side "
-            f"that only the interface holds, while Γ opens or slides): add supports on "
-            f"each side of Γ or a load that closes it") from e
+            f"load step {label!r}: the contact state found {found} leaves a part of the "
+            f"body free to move, so its displacement is not unique (a side that only the "
+            f"interface holds, while Γ opens or slides): {hint}") from e
