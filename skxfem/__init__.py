@@ -42,9 +42,9 @@ contract is in ``pyproject.toml``):
 5. ``multipliers``, ``cutgraph``;  6. ``stabilised``;
 7. the scene: ``scene_parts``, ``tomlcheck``, ``boundary``, ``scene``, then
    ``scenes``, ``scenefile``;
-8. ``problem``, then ``result`` (what every solve returns);
-9. ``contact_linear``, then ``contact_interface``, ``contact_newton``,
-   ``contact_fixed_point``;  10. ``lbb``, ``contact``, then ``solver``;
+8. ``rigid`` (the rigid motions left free), then ``problem``, then ``result`` (what
+   every solve returns);  9. ``contact_linear``, then ``contact_interface``,
+   ``contact_newton``, ``contact_fixed_point``;  10. ``lbb``, ``contact``, then ``solver``;
 11. ``io`` (on ``io_contact``), ``budget`` (on ``counts``), ``convergence``;
 12. the studies: ``extremes``, ``frontier``, then ``extremes_scales``,
     ``extremes_shapes``, then ``extremes_table``;

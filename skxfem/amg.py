@@ -25,7 +25,8 @@ import scipy.sparse as sp
 
 from .saddle import SingularSystemError
 
-__all__ = ["rigid_modes", "amg", "check_held", "scaled_tie", "augmented", "check_tie_held"]
+__all__ = ["rigid_modes", "axis_name", "motion_name", "free_motion_name", "amg", "check_held",
+           "scaled_tie", "augmented", "check_tie_held"]
 
 
 def pyamg():
@@ -37,7 +38,7 @@ def pyamg():
                           "(or pip install skxfem[amg])") from e
 
 
-def rigid_modes(V, sides: bool = True) -> np.ndarray:
+def rigid_modes(V, sides: bool = True, centre=None, length: float = 1.0) -> np.ndarray:
     """The rigid motions of Ω⁻ and of Ω⁺, each with the other side at rest, on [a, b].
 
     With the shifted enrichment u = Σ aᵢφᵢ + Σ bⱼφⱼ(H - Hⱼ) and R a rigid
@@ -52,6 +53,10 @@ def rigid_modes(V, sides: bool = True) -> np.ndarray:
         An :class:`skxfem.enrich.XSpace`.
     sides
         ``False``: only the k rigid motions of the whole body (their sums).
+    centre, length
+        The rotations turn about ``centre`` (default the origin) and move a
+        point at distance ``length`` from it by 1 (default 1): the same span,
+        columns of comparable size wherever the mesh lies.
 
     Returns
     -------
@@ -66,8 +71,10 @@ def rigid_modes(V, sides: bool = True) -> np.ndarray:
     >>> Z.shape, float(abs(p.K @ Z).max()) < 1e-12
     ((48, 6), True)
     """
-    x = V.mesh.p
-    dim = x.shape[0]
+    dim = V.mesh.p.shape[0]
+    x = V.mesh.p - (np.zeros((dim, 1)) if centre is None
+                    else np.asarray(centre, float).reshape(dim, 1))
+    x = x / length
     nd = V.basis.nodal_dofs  # (dim, nverts)
     if dim == 2:
         motions = [np.eye(2)[:, [c]] * np.ones(x.shape[1]) for c in range(2)]
@@ -89,6 +96,48 @@ def rigid_modes(V, sides: bool = True) -> np.ndarray:
             Z[:V.n_std, col] = np.where(H[node_of] == s, a, 0.0)
             Z[V.n_std:, col] = 0.5 * s * a[V.enr_dofs]
     return Z if sides else Z[:, 0::2] + Z[:, 1::2]
+
+
+def axis_name(v) -> str:
+    """The name of the direction of ``v`` (either way along it): an axis, else
+    its rounded unit components, the first non-zero one positive.
+
+    >>> axis_name([0.0, -2.0]), axis_name([-1.0, 1.0])
+    ('y', '(0.707, -0.707)')
+    """
+    v = np.asarray(v, float)
+    v = v / np.linalg.norm(v)
+    v = v * np.sign(v[np.flatnonzero(np.abs(v) > 1e-9)[0]])
+    axis = int(np.argmax(np.abs(v)))
+    if abs(abs(v[axis]) - 1.0) < 1e-9:
+        return "xyz"[axis]
+    return "(" + ", ".join(f"{x:.3g}" for x in v) + ")"
+
+
+def motion_name(c, dim: int, centre=None, length: float = 1.0, verb: bool = True) -> str:
+    """A rigid motion in words, from its coefficients ``c`` on the k motions of
+    :func:`rigid_modes` (translations along x, y (, z), then the rotations)
+    with the same ``centre`` and ``length``.
+
+    >>> motion_name([0.0, 1.0, 0.0], 2)
+    'translate along y'
+    >>> motion_name([0.5, -0.5, 1.0], 2)        # turning about the origin, then shifted
+    'rotate about z (about the point (0.5, 0.5))'
+    """
+    c = np.asarray(c, float)
+    centre = np.zeros(dim) if centre is None else np.asarray(centre, float)
+    t, w = c[:dim], c[dim:]
+    if dim == 2:
+        if abs(w[0]) > 1e-6 * max(np.abs(c).max(), 1e-300):
+            x0 = centre + length * np.array([-t[1], t[0]]) / w[0]
+            point = ", ".join(f"{x:.3g}" for x in x0)
+            return f"{'rotate' if verb else 'rotates'} about z (about the point ({point}))"
+    elif np.linalg.norm(w) > 1e-6 * max(np.abs(c).max(), 1e-300):
+        x0 = centre + length * np.cross(w, t) / (w @ w)
+        point = ", ".join(f"{x:.3g}" for x in x0)
+        return (f"{'rotate' if verb else 'rotates'} about an axis along {axis_name(w)} "
+                f"through ({point})")
+    return f"{'translate' if verb else 'translates'} along {axis_name(t)}"
 
 
 def amg(A: sp.spmatrix, modes: np.ndarray | None = None, blocksize: int = 1):
@@ -117,21 +166,45 @@ def check_held(Kr, Z, rigid_tol: float = 1e-11):
 
     The smallest Rayleigh quotient of ``Kr`` (scaled to unit diagonal) over
     the span of the modes ``Z`` (orthonormalised) must reach ``rigid_tol``;
-    otherwise a :class:`skxfem.saddle.SingularSystemError`.
+    otherwise a :class:`skxfem.saddle.SingularSystemError` naming the motion
+    (:func:`free_motion_name`; ``Z`` as :func:`rigid_modes` orders them).
     """
     Q, R = np.linalg.qr(Z)
     d = np.abs(np.diag(R))
     Q = Q[:, d > 1e-12 * d.max()] if d.size and d.max() > 0 else Q[:, :0]
     if Q.shape[1] == 0:
         return
-    energy = np.linalg.eigvalsh(Q.T @ (Kr @ Q))[0]
-    if energy < rigid_tol:
+    energies, vectors = np.linalg.eigh(Q.T @ (Kr @ Q))
+    if energies[0] < rigid_tol:
+        c = np.linalg.lstsq(Z, Q @ vectors[:, 0], rcond=None)[0]
         raise SingularSystemError(
-            f"the tied system is singular (a rigid motion of a side has energy "
-            f"{energy:.1e}): a part of the body can move freely.  Either the displacements "
-            f"do not remove every rigid motion of the body, or a frictionless (bilateral) "
-            f"tie lets the part on the other side of Γ slide; add displacements "
+            f"the tied system is singular ({free_motion_name(c)}: a rigid motion of "
+            f"energy {energies[0]:.1e}): a part of the body can move freely.  Either the "
+            f"displacements do not remove every rigid motion of the body, or a frictionless "
+            f"(bilateral) tie lets the part on the other side of Γ slide; add displacements "
             f"(supports) on each side")
+
+
+def free_motion_name(c) -> str:
+    """Who moves how, for coefficients ``c`` on the 2k columns of :func:`rigid_modes`
+    (the whole body, Ω⁻ or Ω⁺ alone, or the two apart).
+
+    >>> free_motion_name([0.0, 1.0, 0.0, 0.0, 0.0, 0.0])   # Ω⁺ along x
+    'Ω⁺ can translate along x'
+    """
+    c = np.asarray(c, float)
+    if c.size not in (6, 12):                                # not the layout of rigid_modes
+        return "a combination of the modes"
+    minus, plus = c[0::2], c[1::2]
+    dim = 2 if minus.size == 3 else 3
+    size = max(np.abs(c).max(), 1e-300)
+    if np.abs(plus).max() < 1e-6 * size:
+        return f"Ω⁻ can {motion_name(minus, dim)}"
+    if np.abs(minus).max() < 1e-6 * size:
+        return f"Ω⁺ can {motion_name(plus, dim)}"
+    if np.abs(minus - plus).max() < 1e-6 * size:
+        return f"the whole body can {motion_name(minus, dim)}"
+    return f"Ω⁻ can {motion_name(minus, dim)} as Ω⁺ {motion_name(plus, dim, verb=False)}"
 
 
 def scaled_tie(K, B, fixed):
@@ -169,7 +242,7 @@ def check_tie_held(K, B, fixed, modes, r: float = 3.0, rigid_tol: float = 1e-11)
     >>> check_tie_held(K, sp.csr_matrix((0, 2)), np.zeros(2, bool), Z)
     Traceback (most recent call last):
     ...
-    skxfem.saddle.SingularSystemError: the tied system is singular (a rigid motion ...
+    skxfem.saddle.SingularSystemError: the tied system is singular (a combination of the ...
     """
     s, _, _, Kr = augmented(K, B, fixed, r)
     check_held(Kr, modes / s[:, None], rigid_tol)

@@ -75,6 +75,7 @@ from .levelset import point_normals
 from .linear import LINEAR_TOL, check_linear_tol, choose_linear
 from .problem import Problem, assemble
 from .result import Result, on_edges, result
+from .rigid import check_held
 from .saddle import SingularSystemError
 from .scene import Scene, check_scene
 from .threads import limited
@@ -388,6 +389,30 @@ def _held_rows(ops: Operators, law: Law, status, y) -> sp.csr_matrix:
     return sp.vstack(rows, format="csr")
 
 
+def _check_rigid(pb: Problem, ops: Operators, law: Law, st, y, what: str, hint: str,
+                 label) -> None:
+    """:func:`skxfem.rigid.check_held` of a contact state: the normal jump held at
+    the edges of closed dofs, the whole jump at those of sticking ones, and a
+    3D sliding point's tangent across its slip; the message names the motion."""
+    closed = st != OPEN
+    kind = KINDS[law.name].tangential
+    full = closed if kind == "stick" else (st == STICK if kind == "coulomb"
+                                           else np.zeros_like(closed))
+    edges_of = abs(pb.P).tocsc()
+    slip = (st == SLIP) & (kind == "coulomb") & ~ops.held.any(axis=1)
+    rows = sp.csr_matrix((0, pb.V.N))
+    if len(ops.Bt) == 2 and y is not None and slip.any():
+        yh = y[slip] / np.linalg.norm(y[slip], axis=1)[:, None]
+        rows = (sp.diags(-yh[:, 1]) @ ops.Bt[0][slip]
+                + sp.diags(yh[:, 0]) @ ops.Bt[1][slip]).tocsr()
+    try:
+        check_held(pb, normal=np.asarray(edges_of[:, closed].sum(axis=1)).ravel() > 0,
+                   full=np.asarray(edges_of[:, full].sum(axis=1)).ravel() > 0,
+                   rows=rows, what=what, hint=hint)
+    except SingularSystemError as e:
+        raise SingularSystemError(f"load step {label!r}: {e}") from None
+
+
 def check_closed(pb: Problem, ops: Operators, law: Law, modes, label=None) -> None:
     """Refuse a law that leaves a side free to move even where Γ is closed
     everywhere (every point in contact, sticking where the law can): no
@@ -395,6 +420,8 @@ def check_closed(pb: Problem, ops: Operators, law: Law, modes, label=None) -> No
     Γ holds tangentially)."""
     m = ops.w.size
     status = np.full(m, SLIP if KINDS[law.name].tangential == "free" else STICK)
+    _check_rigid(pb, ops, law, status, None, f"the {law.name} law with Γ closed everywhere",
+                 "hold each side of Γ, or use a law with friction", label)
     fixed = np.zeros(pb.V.N, bool)
     fixed[pb.D] = True
     try:
@@ -412,20 +439,25 @@ def check_determined(pb: Problem, ops: Operators, law: Law, st, y, modes, label=
 
     Newton may converge to a state whose displacement is not unique: an
     unloaded side held only by an interface that ends up open (``st`` all
-    OPEN) may slide by any rigid motion.  The state holds what its closed
-    points hold (:func:`skxfem.amg.check_tie_held`): the normal jump, and the
-    tangential one where they stick (``adhesive``: wherever closed); a point
-    sliding in 3D holds the tangent across its slip direction ŷ.
+    OPEN) may slide by any rigid motion, and a disc in contact all round
+    may turn about its centre.  The state holds what its closed points hold:
+    the normal jump, and the whole jump where they stick (``adhesive``:
+    wherever closed); a point sliding in 3D holds the tangent across its slip
+    direction ŷ.  :func:`skxfem.rigid.check_held` tests that with the level
+    set's normals and names the motion left free; then
+    :func:`skxfem.amg.check_tie_held` tests the discrete rows themselves.
     """
+    counts = np.bincount(st, minlength=3)
+    found = (f"({counts[OPEN]} open, {counts[STICK]} stick, {counts[SLIP]} slip of "
+             f"{st.size} points)")
+    hint = "add supports on each side of Γ or a load that closes it"
+    _check_rigid(pb, ops, law, st, y, f"the contact state found {found}", hint, label)
     fixed = np.zeros(pb.V.N, bool)
     fixed[pb.D] = True
     try:
         check_tie_held(pb.K, _held_rows(ops, law, st, y), fixed, modes)
     except SingularSystemError as e:
-        counts = np.bincount(st, minlength=3)
         raise SingularSystemError(
-            f"load step {label!r}: the contact state found ({counts[OPEN]} open, "
-            f"{counts[STICK]} stick, {counts[SLIP]} slip of {st.size} points) leaves a "
-            f"part of the body free to move, so its displacement is not unique (a side "
-            f"that only the interface holds, while Γ opens or slides): add supports on "
-            f"each side of Γ or a load that closes it") from e
+            f"load step {label!r}: the contact state found {found} leaves a part of the "
+            f"body free to move, so its displacement is not unique (a side that only the "
+            f"interface holds, while Γ opens or slides): {hint}") from e

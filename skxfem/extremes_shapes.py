@@ -12,7 +12,11 @@ Rows of the extremes table (:mod:`skxfem.extremes`):
 * :func:`shape_rows`: Γ slanted at 45°, curved (a circle, a sphere) and
   touching or crossing the boundary, under the patch test;
 * :func:`space_rows`: the naive and winner spaces near a node on the exact
-  benchmark, where their multipliers become nearly dependent.
+  benchmark, where their multipliers become nearly dependent;
+* :func:`support_rows`: Γ crossing the supported bottom face at three angles
+  and cutting off its supported corner, under the patch test;
+* :func:`piece_rows`: Γ cutting a small corner off the loaded end, a piece of
+  the body that only the tie holds, under the patch test.
 
 >>> [r.outcome for r in one_cell_rows(["quad"])]
 ['solved']
@@ -32,7 +36,7 @@ from .scenes import exact_scene, paper_plate, strip
 from .solver import solve
 
 __all__ = ["one_cell_rows", "memory_scene", "largest", "memory_rows", "shape_rows",
-           "UNSTABLE", "space_rows"]
+           "UNSTABLE", "space_rows", "CROSSINGS", "support_rows", "PIECES", "piece_rows"]
 
 
 def _dim(cell: str) -> int:
@@ -158,4 +162,58 @@ def space_rows(cases=UNSTABLE, n: int = 4) -> list[Row]:
 
         rows.append(attempt("position", f"{cell} {space_name}, exact, Γ at {offset:g} h "
                             f"from a node row", "pressure L2 error (exact)", 1.0, run))
+    return rows
+
+
+CROSSINGS = ("25°", "45°", "70°", "corner")
+"""The planes of :func:`support_rows`: crossing the bottom at 25°, 45°, 70° to it,
+and cutting off its corner at the origin (Σ xᵢ = 0.05)."""
+
+
+def _crossing(dim: int, name: str):
+    """The plane Γ of :data:`CROSSINGS` ``name`` in ``dim`` dimensions."""
+    if name == "corner":
+        return plane((0.05,) + (0.0,) * (dim - 1), (1.0,) * dim)
+    x, slope = {"25°": (0.3, 0.47), "45°": (0.37, 1.0), "70°": (0.6, 2.75)}[name]
+    tilt = (-slope, 0.31 * slope) if dim == 3 else (-slope,)
+    return plane((x,) + (0.4,) * (dim - 2) + (0.0,), tilt + (1.0,))
+
+
+def support_rows(cells=CELL_TYPES, n: int = 4, space: str = "vital") -> list[Row]:
+    """The patch test with Γ crossing the bottom face, on rollers, at :data:`CROSSINGS`.
+
+    A support holds the jump of a cut edge in its face at both ends, but only
+    at the edge's point: the edge takes its neighbour's multiplier
+    (:func:`skxfem.stabilised.extend_to_held`).  With no multiplier there the
+    uniform traction left the space (energy error 1e-3 to 4e-2, issue 18).
+    """
+    rows = []
+    for cell in cells:
+        for name in CROSSINGS:
+            psi = _crossing(_dim(cell), name)
+            rows.append(attempt("support", f"{cell}, Γ crossing the supported bottom, {name}",
+                                "energy error (patch)", PATCH_TOL,
+                                lambda: patch_error(patch_scene(Box(n, cell), psi,
+                                                                space=space))))
+    return rows
+
+
+PIECES = (0.05, 1e-3, 1e-6)
+"""The sizes (Σ xᵢ = dim - size) of the corner pieces of :func:`piece_rows`."""
+
+
+def piece_rows(cells=CELL_TYPES, sizes=PIECES, n: int = 4, space: str = "vital") -> list[Row]:
+    """The patch test with Γ cutting a corner of ``size`` off the loaded top,
+    inside one cell: a piece of the body that only the tie holds.  Its piece of
+    Γ gets a multiplier per edge (:func:`skxfem.rigid.short_pieces`); one star
+    of vital edges left it free to turn (refused as singular, issue 18)."""
+    rows = []
+    for cell in cells:
+        d = _dim(cell)
+        for size in sizes:
+            psi = plane((d - size,) + (0.0,) * (d - 1), (1.0,) * d)
+            rows.append(attempt("piece", f"{cell}, a corner of {size:g} cut off the loaded end",
+                                "energy error (patch)", PATCH_TOL,
+                                lambda: patch_error(patch_scene(Box(n, cell), psi,
+                                                                space=space))))
     return rows

@@ -1,11 +1,13 @@
 r"""The whole extremes table of issue 11, and its text form.
 
 :func:`table` gathers the rows of :mod:`skxfem.extremes` (Γ near nodes),
-:mod:`skxfem.extremes_scales` (E, ν, ρ) and :mod:`skxfem.extremes_shapes`
-(one cell, memory, slanted and curved Γ); :func:`format_rows` prints them,
-one line each, with the refusal messages cut to a width (the rows keep them
-whole).  ``progress`` (a :class:`skxfem.progress.Progress`; by default one that
-is on in a terminal only) reports each part.
+:mod:`skxfem.extremes_scales` (E, ν, ρ), :mod:`skxfem.extremes_shapes`
+(one cell, memory, slanted and curved Γ, Γ across a support, small pieces) and
+:mod:`skxfem.extremes_refused` (what is refused, and the limits accepted);
+:func:`format_rows` prints them, one line each, with the refusal messages cut
+to a width (the rows keep them whole).  ``progress`` (a
+:class:`skxfem.progress.Progress`; by default one that is on in a terminal
+only) reports each part.
 
 >>> from skxfem.extremes import Row
 >>> print(format_rows([Row("E", "E = 1", "solved", "deviation", 0.0, 1e-8, "", 0.01)]))
@@ -15,19 +17,29 @@ E        E = 1                                              solved      0.00e+00
 from __future__ import annotations
 
 from .extremes import CELL_TYPES, Row, position_rows
+from .extremes_refused import limit_rows, refused_rows
 from .extremes_scales import modulus_rows, poisson_rows, rho_rows
-from .extremes_shapes import memory_rows, one_cell_rows, shape_rows, space_rows
+from .extremes_shapes import (
+    memory_rows,
+    one_cell_rows,
+    piece_rows,
+    shape_rows,
+    space_rows,
+    support_rows,
+)
 from .progress import Progress
 
 __all__ = ["table", "format_rows", "markdown_rows"]
 
 
 def table(cells=CELL_TYPES, progress: Progress | None = None) -> list[Row]:
-    """Every row of the extremes table (about 15 s here)."""
+    """Every row of the extremes table (about 25 s here)."""
     parts = [("Γ near nodes", lambda: position_rows(cells) + space_rows()),
              ("E", modulus_rows), ("ν", poisson_rows), ("ρ", rho_rows),
              ("one cell, memory", lambda: one_cell_rows(cells) + memory_rows(cells)),
-             ("shapes", lambda: shape_rows(cells))]
+             ("shapes", lambda: shape_rows(cells)),
+             ("supports, pieces", lambda: support_rows(cells) + piece_rows(cells)),
+             ("refused, limits", lambda: refused_rows() + limit_rows(cells))]
     progress = progress or Progress(len(parts), "extremes")
     rows = []
     for name, make in parts:

@@ -161,17 +161,24 @@ def plane(point: ArrayLike, normal: ArrayLike) -> LevelSet:
     """Signed distance to the plane (a line in 2D) through ``point``.
 
     ψ(x) = (x - point)·n̂ with n̂ = normal/|normal|, so ``normal`` points into Ω⁺.
+    Only the direction of ``normal`` counts: it is scaled by its largest
+    component before |normal| is taken, so that no size overflows (1e200)
+    or underflows (1e-320) to a zero n̂; a zero normal is refused.
 
     >>> psi = plane((0, 0, 0.5), (0, 0, 2))
     >>> float(psi(np.array([0.1, 0.2, 1.0])))
     0.5
+    >>> plane((0, 0), (1e200, 1e200)).name
+    'plane(point=[0.0, 0.0], normal=[0.7071067811865475, 0.7071067811865475])'
     """
     x0, n = _vector("point", point), _vector("normal", normal)
     if x0.size != n.size:
         raise ValueError("point and normal must have the same dimension")
-    if (norm := np.linalg.norm(n)) == 0.0:
-        raise ValueError("normal must be non-zero")
-    n, d = n / norm, n.size
+    if (top := np.abs(n).max()) == 0.0:
+        raise ValueError(f"normal must be non-zero (it gives the direction of ∇ψ, into Ω⁺), "
+                         f"got {normal!r}")
+    n = n / top
+    n, d = n / np.linalg.norm(n), n.size
     return LevelSet(lambda x: sum(n[i] * (x[i] - x0[i]) for i in range(d)), d,
                     f"plane(point={x0.tolist()}, normal={n.tolist()})",
                     lambda x: np.broadcast_to(n.reshape((d,) + (1,) * (x.ndim - 1)), x.shape))

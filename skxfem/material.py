@@ -24,11 +24,20 @@ from skfem import BilinearForm
 from skfem.helpers import ddot, sym_grad
 from skfem.models.elasticity import lame_parameters, linear_elasticity, linear_stress, plane_stress
 
-__all__ = ["Material", "E_RANGE", "stiffness_form", "signed_stiffness_form", "partial_form",
-           "stiffness_matrix"]
+__all__ = ["Material", "E_RANGE", "NU_MAX", "stiffness_form", "signed_stiffness_form",
+           "partial_form", "stiffness_matrix"]
 
 E_RANGE = (1e-100, 1e100)
 """The Young's moduli a :class:`Material` accepts."""
+
+NU_MAX = 0.499999
+"""The largest Poisson's ratio a :class:`Material` accepts, 0.499999.  Nearer 0.5
+the material is nearly incompressible: λ/μ = 2ν/(1 - 2ν) exceeds 10⁶, the
+stiffness is singular to working precision on fine meshes and the tied system
+with it (measured on the patch test: 0.5 - 10⁻⁷ refused as singular on 32 × 32
+triangles and quadrilaterals, 0.5 - 10⁻⁸ on every cell at 4 a side, 0.5 - 10⁻⁶
+solved to 2e-8), and P1/Q1 displacements lock long before (the extremes table:
+the energy error doubles near ν = 0.49 on quadrilaterals)."""
 
 
 @dataclass(frozen=True)
@@ -41,7 +50,10 @@ class Material:
         Young's modulus, in :data:`E_RANGE` (measured: a patch test solves to
         round-off from 1e-150 to 1e150; the table of extremes runs 1e-6 to 1e9).
     nu
-        Poisson's ratio, -1 < ν < 0.5.
+        Poisson's ratio, -1 < ν ≤ :data:`NU_MAX` (0.5 - 10⁻⁶: nearer 0.5, a
+        nearly incompressible material, which displacement elements cannot
+        solve; refused, in 2D plane stress too, where the same material may
+        be used in 3D).
     plane
         ``"strain"`` or ``"stress"``; used only in 2D.
     """
@@ -63,6 +75,14 @@ class Material:
                 f"another unit of stress")
         if not -1.0 < float(self.nu) < 0.5:
             raise ValueError(f"material nu must satisfy -1 < nu < 0.5, got {self.nu!r}")
+        if float(self.nu) > NU_MAX:
+            raise ValueError(
+                f"material nu = {self.nu!r} is within {0.5 - float(self.nu):.1e} of 0.5: a "
+                f"nearly incompressible material (λ/μ = "
+                f"{2 * float(self.nu) / (1 - 2 * float(self.nu)):.1e}), whose stiffness is "
+                f"singular to working precision and whose displacement elements lock; "
+                f"skxfem accepts nu up to {NU_MAX} (0.5 - 1e-6), and is accurate up to "
+                f"about 0.49")
         if self.plane not in ("strain", "stress"):
             raise ValueError(
                 f"material plane must be 'strain' or 'stress', got {self.plane!r}")

@@ -4,14 +4,15 @@ One figure: the faces of a 3D mesh normal to one axis (the plate's roller
 faces x = 0 and x = 1), one row per face and one column per multiplier
 component, with the cut edges lying in the face drawn by what the
 component's prolongation P gives them (:attr:`skxfem.problem.Problem.P`,
-one block per component): no multiplier (a support holds that jump: an
-empty row of P), a μ of its own or of its group (one weight), or
-interpolated between two μ.
+one block per component): no multiplier of its own (a support holds that
+jump at both ends: :attr:`skxfem.problem.Problem.held`; it takes the λ of a
+neighbour on Γ, or none where the supports hold the whole jump), a μ of its
+own or of its group (one weight), or interpolated between two μ.
 
 >>> from skxfem.problem import assemble
 >>> from skxfem.scenes import paper_plate
 >>> p = assemble(paper_plate(3, "prism", space="vital", nx=2))
->>> fig = plot_held_edges(p.mesh, p.cut, [s.P for s in p.spaces])
+>>> fig = plot_held_edges(p.mesh, p.cut, [s.P for s in p.spaces], held=p.held)
 >>> len(fig.axes), fig.axes[0].get_title()
 (6, 'λ_x on x = 0')
 """
@@ -26,14 +27,14 @@ from .plotting import COLORS
 
 __all__ = ["plot_held_edges", "KINDS"]
 
-#: How a cut edge is drawn, by the number of entries of its row of P.
-KINDS = {0: ("no multiplier (jump held)", COLORS["gamma"], (0, (3, 2)), 2.2),
+#: How a cut edge is drawn: held, else by the number of entries of its row of P.
+KINDS = {0: ("no λ of its own (jump held)", COLORS["gamma"], (0, (3, 2)), 2.2),
          1: ("its own / its group's μ", COLORS["vital"], "-", 2.6),
          2: ("interpolated between two μ", COLORS["winner"], ":", 2.2)}
 
 
 def plot_held_edges(mesh, cut, prolongations, axis: int = 0, values=None,
-                    labels=None) -> Figure:
+                    labels=None, held=None) -> Figure:
     """The cut edges of the faces ``x_axis = value`` of a 3D mesh, per component.
 
     Parameters
@@ -51,6 +52,9 @@ def plot_held_edges(mesh, cut, prolongations, axis: int = 0, values=None,
         The faces' coordinates; default the smallest and largest.
     labels
         The components' names; default x, y, z (three blocks) or n (one).
+    held
+        (components, n_edges) bool, the edges whose jump in each component a
+        support holds (``problem.held``); default: those with an empty row of P.
 
     Returns
     -------
@@ -63,6 +67,12 @@ def plot_held_edges(mesh, cut, prolongations, axis: int = 0, values=None,
     kinds = [np.diff(P.tocsr().indptr) for P in prolongations]
     if any(k.size != ne for k in kinds):
         raise ValueError(f"prolongations must have one row per cut edge ({ne})")
+    if held is not None:
+        held = np.asarray(held, dtype=bool)
+        if held.shape != (len(kinds), ne):
+            raise ValueError(f"held must be one row of {ne} bools per component, got "
+                             f"shape {held.shape}")
+        kinds = [np.where(h, 0, np.maximum(k, 1)) for k, h in zip(kinds, held)]
     labels = labels or ("xyz" if len(kinds) == 3 else ("n",) * len(kinds))
     values = values if values is not None else (mesh.p[axis].min(), mesh.p[axis].max())
     u, v = [a for a in range(3) if a != axis]

@@ -39,6 +39,7 @@ from .multipliers import (
     interface_rule,
     normal_fixed,
 )
+from .rigid import short_pieces
 from .scene import Scene, check_scene, dirichlet, load_facets, resolve_mesh
 from .stabilised import multiplier_space
 
@@ -100,7 +101,8 @@ class Problem:
         support holds: both ends of the edge are fixed for that component
         (:func:`skxfem.multipliers.fixed_jumps`, from ``D``; bilateral: the
         normal jump, :func:`skxfem.multipliers.normal_fixed`).  They carry
-        no multiplier: their rows of P are empty.
+        no multiplier of their own: their rows of P are those of a neighbour
+        on Γ (:func:`skxfem.stabilised.extend_to_held`).
     spaces : the ncomp spaces of the law's components, each built on the
         edges it keeps (``space`` itself where a component has no fixed node).
     timings : seconds per stage.
@@ -172,6 +174,11 @@ def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndar
 def assemble(scene: Scene, law: str | None = None) -> Problem:
     """Assemble the interface problem of ``scene`` for ``law`` (default: ``scene.law``).
 
+    The multiplier space is the scene's, per component with the supports'
+    fixed nodes (:func:`skxfem.stabilised.multiplier_space`); a piece of Γ on
+    which it holds fewer rigid motions than the law (a corner cut off inside
+    one cell: :func:`skxfem.rigid.short_pieces`) gets a multiplier per edge.
+
     Parameters
     ----------
     scene
@@ -226,21 +233,29 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
     if COUPLING[law] == "bilateral":
         fixed = normal_fixed(fixed, c)[None, :]
     held = fixed[:, c.edges[0]] & fixed[:, c.edges[1]]
-    spaces = _component_spaces(scene.space, mesh, c, S, fixed)
-    P = sp.block_diag([s.P for s in spaces], format="csr")  # component-major
-    B = (P.T @ B_edges).tocsr()
+
+    def problem(S, per_edge=None):
+        spaces = _component_spaces(scene.space, mesh, c, S, fixed, per_edge)
+        P = sp.block_diag([s.P for s in spaces], format="csr")  # component-major
+        return Problem(scene, mesh, c, V, K, F, D, g, rule, J, S, law, held.shape[0], P,
+                       (P.T @ B_edges).tocsr(), M_edges, held, spaces, timings)
+
+    p = problem(S)
+    short = short_pieces(p, B_edges)  # pieces of Γ the stable space leaves loose
+    if short.any():
+        p = problem(multiplier_space(scene.space, mesh, c, per_edge=short), short)
     lap("prolongation")
-    return Problem(scene, mesh, c, V, K, F, D, g, rule, J, S, law, held.shape[0], P, B,
-                   M_edges, held, spaces, timings)
+    return p
 
 
-def _component_spaces(name, mesh, c, S, fixed) -> tuple:
+def _component_spaces(name, mesh, c, S, fixed, per_edge=None) -> tuple:
     """The multiplier space of each component, built with that component's
     fixed nodes (``S``, the space of all edges, where none is fixed; one
-    build per distinct set of fixed nodes)."""
+    build per distinct set of fixed nodes) and a multiplier per ``per_edge`` edge."""
     built = {}
     for row in fixed:
         key = row.tobytes()
         if key not in built:
-            built[key] = S if not row.any() else multiplier_space(name, mesh, c, fixed=row)
+            built[key] = S if not row.any() else multiplier_space(name, mesh, c, fixed=row,
+                                                                  per_edge=per_edge)
     return tuple(built[row.tobytes()] for row in fixed)

@@ -65,7 +65,10 @@ class SingularSystemError(ValueError):
     """The saddle-point system has no unique solution: the scene's supports
     leave a rigid motion of one side of Γ free, or an unknown has no
     stiffness at all (a node no cell uses).  A ValueError, since the fix is
-    in the input (the mesh, the scene's displacements or its interface law)."""
+    in the input (the mesh, the scene's displacements or its interface law).
+    ``detail``: what was measured (e.g. the smallest LU pivot), when known."""
+
+    detail: str = ""
 
 
 class NearlyDependentError(ValueError):
@@ -164,11 +167,15 @@ def _unbalanced(B, r, mu, balance: float, tol: float, scale: float) -> Exception
 
 
 def _floating(detail: str) -> SingularSystemError:
-    return SingularSystemError(
+    """The error of a singular factorisation; ``detail`` (what was measured) is
+    kept as its attribute, for a caller that knows more of the cause."""
+    error = SingularSystemError(
         f"the saddle-point system is singular ({detail}): a part of the body can move "
         f"freely.  Either the displacements do not remove every rigid motion of the "
         f"body, or a frictionless (bilateral) tie lets the part on the other side of "
         f"Γ slide; add displacements (supports) on each side")
+    error.detail = detail
+    return error
 
 
 def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float = 1e-11):

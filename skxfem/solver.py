@@ -35,6 +35,7 @@ from .levelset import point_normals
 from .linear import AUTO_ITERATIVE, LINEAR, LINEAR_TOL, check_linear_tol, choose_linear
 from .problem import Problem, assemble, constrained_dofs
 from .result import Result, result
+from .rigid import check_held
 from .scene import Scene, check_scene
 from .smoothest import dependencies
 from .threads import limited
@@ -95,7 +96,9 @@ def solve(scene: Scene, dependent: str = "remove", linear: str = "auto",
         or passes through nodes (from :func:`skxfem.cut.cut`), a rank
         deficient space with ``dependent="raise"``.
     skxfem.saddle.SingularSystemError
-        (a ValueError) The supports leave a rigid motion of a side free.
+        (a ValueError) The supports and the law leave a rigid motion of a side
+        free (:func:`skxfem.rigid.check_held`, which names it), or the
+        system is singular for another reason.
     """
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
@@ -128,13 +131,24 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str = "auto",
                 f"the multiplier space is rank deficient: {removed} of {B.shape[0]} "
                 f"multipliers depend on the others (space {scene.space!r}, law "
                 f"{p.law!r}); use a stabilised space or dependent='remove'")
+    check_held(p, normal=p.law == "bilateral", full=p.law == "bonded")
     G = _differences(c, ncomp) @ P
     if linear == "iterative":
         U, mu, info = iterative.solve(p.K, B, p.F, D, p.g, G=G, modes=rigid_modes(V),
                                       blocksize=mesh.dim(), bonded=p.law == "bonded",
                                       tol=linear_tol)
     else:
-        U, mu, info = saddle.solve(p.K, B, p.F, D, p.g, G=G)
+        try:
+            U, mu, info = saddle.solve(p.K, B, p.F, D, p.g, G=G)
+        except saddle.SingularSystemError as e:
+            if not e.detail:
+                raise
+            raise saddle.SingularSystemError(  # check_held found every rigid motion held
+                f"the tied system is singular to working precision ({e.detail}), although "
+                f"the displacements and the {p.law} tie hold every rigid motion of each side "
+                f"of Γ: its conditioning is beyond double precision (a part of the body, "
+                f"or a material, far stiffer or smaller than the rest); refine the mesh "
+                f"there or rescale the scene") from e
     lam = (P @ mu).reshape(ncomp, -1)
     timings["solve"] = time.perf_counter() - t0
     its = getattr(info, "iterations", None)

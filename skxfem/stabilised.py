@@ -23,7 +23,8 @@ from .cut import Cut
 from .cutgraph import check_fixed, check_graph, edges_at, incidence, interpolate, nearest
 from .multipliers import SPACES, Space, naive
 
-__all__ = ["Space", "minimum_edge_cover", "vital_edges", "winner_nodes", "multiplier_space"]
+__all__ = ["Space", "minimum_edge_cover", "vital_edges", "winner_nodes", "multiplier_space",
+           "extend_to_held"]
 
 
 def minimum_edge_cover(edges, psi, length, fixed=None) -> np.ndarray:
@@ -260,17 +261,29 @@ def winner_nodes(edges, psi, points, nodes, fixed=None) -> Space:
     return Space("winner", P, winners=winners)
 
 
-def multiplier_space(name: str, mesh, cut: Cut, fixed=None) -> Space:
+def multiplier_space(name: str, mesh, cut: Cut, fixed=None, per_edge=None) -> Space:
     """The space ``name``: "naive", "winner" (algo1) or "vital" (algo2, §5).
 
     ``fixed`` (nnodes,) bool: nodes whose jump a support holds (see
-    :func:`skxfem.multipliers.fixed_jumps`).  A cut edge with two fixed ends carries no
-    multiplier (its row of P is empty); the space is built on the other
-    edges, the fixed nodes needing no multiplier of their own.  Default: none.
+    :func:`skxfem.multipliers.fixed_jumps`).  The space is built on the cut
+    edges with a free end, the fixed nodes needing no multiplier of their
+    own; a cut edge with two fixed ends (a *held* edge) gets no multiplier of
+    its own either, but takes the λ of its nearest neighbour on Γ
+    (:func:`extend_to_held`), so that every row of P still sums to 1 and a
+    constant traction stays in the space.  Default: none.
+
+    ``per_edge`` (n_edges,) bool: edges that get a multiplier each, as in the
+    naive space, the stable one being built on the others (the pieces of Γ
+    too small for it to hold them: :func:`skxfem.rigid.short_pieces`).
+    Default: none.
     """
     if name not in SPACES:
         raise ValueError(f"space must be one of {SPACES}, got {name!r}")
     ne = cut.edge_ids.size
+    own = np.zeros(ne, dtype=bool) if per_edge is None else np.asarray(per_edge, dtype=bool)
+    if own.shape != (ne,):
+        raise ValueError(f"per_edge must be one bool per cut edge, shape ({ne},); "
+                         f"got {own.shape}")
     if fixed is None or not np.any(fixed):
         fixed = None
         sub = np.arange(ne)
@@ -280,16 +293,103 @@ def multiplier_space(name: str, mesh, cut: Cut, fixed=None) -> Space:
             raise ValueError(f"fixed must be one bool per node, shape {cut.psi.shape}; "
                              f"got {fixed.shape}")
         sub = np.flatnonzero(~(fixed[cut.edges[0]] & fixed[cut.edges[1]]))
-    if name == "naive":
-        return naive(cut) if sub.size == ne else \
-            Space("naive", sp.identity(ne, format="csr")[:, sub])
-    build = winner_nodes if name == "winner" else vital_edges
-    S = build(cut.edges[:, sub], cut.psi, cut.points[:, sub], mesh.p, fixed)
+    if name == "naive" or own[sub].all():
+        S = naive(cut) if sub.size == ne else \
+            Space("naive", sp.identity(sub.size, format="csr"))
+        if name != "naive":
+            S = Space(name, S.P, np.ones(sub.size, bool), np.arange(sub.size),
+                      np.zeros(0, int) if name == "winner" else None)
+    else:
+        build = winner_nodes if name == "winner" else vital_edges
+        stable, solo = sub[~own[sub]], sub[own[sub]]
+        S = build(cut.edges[:, stable], cut.psi, cut.points[:, stable], mesh.p, fixed)
+        if solo.size:                                        # one μ per edge there
+            order = np.argsort(np.r_[stable, solo])
+            P = sp.block_diag([S.P, sp.identity(solo.size)], format="csr")[order]
+            vital = groups = None
+            if S.vital is not None:
+                vital = np.r_[S.vital, np.ones(solo.size, bool)][order]
+                groups = np.r_[S.groups, S.size + np.arange(solo.size)][order]
+            S = Space(name, P.tocsr(), vital, groups, S.winners)
     if sub.size == ne:
         return S
     embed = sp.csr_matrix((np.ones(sub.size), (sub, np.arange(sub.size))), shape=(ne, sub.size))
+    held = np.ones(ne, dtype=bool)
+    held[sub] = False
     vital = groups = None
     if S.vital is not None:
         vital, groups = np.zeros(ne, dtype=bool), np.full(ne, -1)
         vital[sub], groups[sub] = S.vital, S.groups
-    return Space(name, (embed @ S.P).tocsr(), vital, groups, S.winners)
+    cell_nodes = mesh.t[:, cut.facet_cell]                   # (nloc, nf)
+    free_cell = ~fixed[cell_nodes].all(axis=0)               # a jump left to control there
+    loose = np.zeros(ne, dtype=bool)
+    loose[cut.facets[:, free_cell].ravel()] = True
+    return Space(name, extend_to_held((embed @ S.P).tocsr(), held, cut, loose), vital,
+                 groups, S.winners)
+
+
+def extend_to_held(P, held, cut: Cut, loose=None) -> sp.csr_matrix:
+    """P with the rows of the ``held`` edges filled: each takes the row of its
+    nearest neighbour on Γ, outward from the edges that have one.
+
+    A support that holds the jump at both ends of a cut edge holds it at the
+    edge's point x_e only: the hat function N_e of λ_e on Γ still meets the
+    jump of the free nodes on the interface facets around x_e.  So the edge
+    keeps a multiplier, but none of its own (the support leaves one jump
+    fewer to control): λ_e is the λ of the cut edge nearest to x_e among those
+    whose point lies in a cut cell with x_e (ties: lowest index), the
+    extension of a mortar multiplier to a Dirichlet boundary (Wohlmuth).  A
+    constant traction stays in the space (the patch test).  Held edges out of
+    reach of any other edge (a piece of Γ whose every cut edge is held)
+    share one new multiplier per connected piece, if the jump there can
+    move at all (a ``loose`` edge in the piece); otherwise their rows stay
+    empty: the supports hold the whole jump there, and its traction is a
+    reaction of theirs.
+
+    Parameters
+    ----------
+    P : (ne, m) sparse, the rows of the held edges empty.
+    held : (ne,) bool.
+    cut : the :class:`~skxfem.cut.Cut` (its facets say which edges share a cell).
+    loose : (ne,) bool, the edges on a facet of a cell with a node whose jump
+        no support holds (default: every edge).
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.cut import cut as cut_mesh
+    >>> from skxfem.levelset import plane
+    >>> m = MeshTri1().refined(1)
+    >>> c = cut_mesh(m, plane((0.3, 0.0), (-0.47, 1.0)))   # crosses the bottom at x = 0.3
+    >>> held = np.isclose(c.points[1], 0)                    # a support holds that edge
+    >>> P = extend_to_held(sp.identity(5, format="csr")[:, ~held], held, c)
+    >>> P.toarray()[0], c.points[:, 3].round(3)   # it takes the μ of its neighbour, edge 3
+    (array([0., 0., 1., 0.]), array([0.436, 0.064]))
+    """
+    P, held = sp.csr_matrix(P), np.asarray(held, dtype=bool)
+    ne = held.size
+    cells = np.tile(cut.facet_cell, cut.facets.shape[0])     # the cell of each facet vertex
+    in_cell = sp.csr_matrix((np.ones(cells.size), (cut.facets.ravel(), cells)),
+                            shape=(ne, int(cells.max()) + 1 if cells.size else 0))
+    near = (in_cell @ in_cell.T).tocsr()                     # edges sharing a cut cell
+    done = ~held
+    while True:
+        pairs = near[np.flatnonzero(~done)][:, np.flatnonzero(done)].tocoo()
+        if pairs.nnz == 0:
+            break
+        e, k = np.flatnonzero(~done)[pairs.row], np.flatnonzero(done)[pairs.col]
+        dist = np.linalg.norm(cut.points[:, e] - cut.points[:, k], axis=0)
+        order = np.lexsort((k, dist, e))
+        first = order[np.r_[True, e[order][1:] != e[order][:-1]]]
+        pick = sp.csr_matrix((np.ones(first.size), (e[first], k[first])), shape=(ne, ne))
+        P = (P + pick @ P).tocsr()                           # row e (empty) := row k
+        done[e[first]] = True
+    if not done.all():                                       # isolated pieces of held edges
+        alone = np.flatnonzero(~done)
+        piece = connected_components(near[alone][:, alone], directed=False)[1]
+        moves = np.zeros(piece.max() + 1, dtype=bool)
+        np.logical_or.at(moves, piece, True if loose is None else np.asarray(loose)[alone])
+        keep = moves[piece]
+        column = np.cumsum(moves) - 1
+        extra = sp.csr_matrix((np.ones(keep.sum()), (alone[keep], column[piece[keep]])),
+                              shape=(ne, int(moves.sum())))
+        P = sp.hstack([P, extra], format="csr")
+    return P

@@ -43,7 +43,9 @@ def test_01_counts_are_exact_or_upper_bounds(cell):
 
 @pytest.mark.parametrize("law", ["bonded", "bilateral"])
 def test_02_a_curved_interface_and_a_mesh_object_give_the_same_bounds(law):
-    s = Scene(Box((7, 6), "tri"), circle((0.5, 0.5), 0.31), law=law,
+    # the circle crosses the clamped bottom: a disc inside, tied by its normal jump
+    # alone (bilateral), could turn about its centre and is refused (skxfem.rigid)
+    s = Scene(Box((7, 6), "tri"), circle((0.5, 0.2), 0.31), law=law,
               displacements=(clamped("ymin"),))
     from_box = estimate(s)
     from_mesh = estimate(dataclasses.replace(s, mesh=resolve_mesh(s)))

@@ -120,3 +120,34 @@ def test_patch_error_is_round_off_and_format_is_one_line_per_row():
     assert error < 1e-12 and note == ""
     row = attempt("position", "quad", "energy error (patch)", 1e-8, lambda: error)
     assert len(format_rows([row, row]).splitlines()) == 3
+
+
+# issue 18: Γ across a support, small pieces, what is refused -------------------------
+
+@pytest.mark.parametrize("n", [4, 16])
+def test_a_slanted_gamma_crossing_the_supported_bottom_passes_the_patch_test(n):
+    """The issue's case: 3.4e-2 at n = 4, 2.3e-3 at n = 16 (not converging)."""
+    scene = patch_scene(Box((n, n + 1), "quad"), plane((0.3, 0.0), (-0.47, 1.0)))
+    assert patch_error(scene)[0] <= 1e-12
+
+
+def test_support_and_piece_rows_are_solved_to_round_off():
+    from skxfem.extremes_shapes import CROSSINGS, PIECES, piece_rows, support_rows
+
+    rows = check_rows(support_rows(["quad", "hex"]) + piece_rows(["tri", "prism"]))
+    assert len(rows) == 2 * len(CROSSINGS) + 2 * len(PIECES)
+    assert all(r.outcome == "solved" and r.value < 1e-12 for r in rows.values())
+
+
+def test_refused_rows_are_refused_and_the_limits_solved():
+    from skxfem.extremes_refused import limit_rows, refused_rows
+
+    refused = check_rows(refused_rows())
+    assert all(r.outcome == "refused" for r in refused.values())
+    assert "nearly incompressible" in refused["material: ν = 0.49999999999"].message
+    assert "rotate about z" in refused["rigid: inclusion, bilateral tie"].message
+    assert "rotate about z" in refused["rigid: inclusion, frictionless contact"].message
+    assert "translate along x" in refused["rigid: strip, bilateral tie, the top free in x"].message
+    assert "Box size must lie in" in refused["geometry: Box size 1e-300"].message
+    limits = check_rows(limit_rows(["tri", "hex"]))
+    assert all(r.outcome == "solved" for r in limits.values())

@@ -44,7 +44,8 @@ def fake_result(cell, n_points=4):
         scene=scene, mesh=mesh, points=points, normals=normals,
         u_minus=rng.random((dim, mesh.nvertices)), u_plus=rng.random((dim, mesh.nvertices)),
         traction=-normals * np.linspace(1, 2, n_points), pressure=np.linspace(1, 2, n_points),
-        jump=0.01 * rng.random((dim, n_points)), facets=facets, max_jump=1e-12, n_dofs=123, n_multipliers=n_points,
+        jump=0.01 * rng.random((dim, n_points)), facets=facets, max_jump=1e-12, n_dofs=123,
+        n_multipliers=n_points,
         timings={"cut": 0.1, "enrich": 0.2, "assemble": 0.3, "solve": 0.4},
         linear="direct", linear_info={"residual": 1e-15, "balance": 1e-14,
                                       "iterations": None, "residuals": None})

@@ -454,3 +454,16 @@ def test_a_gradient_that_is_not_finite_on_gamma_is_named_so():
         point_normals(c, lambda x: np.where(x[0] > 0.6, np.nan, x[1] - 0.45))
     with pytest.raises(ValueError, match="∇ψ vanishes at interface points"):
         point_normals(c, lambda x: 0.0 * x[0])
+
+
+@pytest.mark.parametrize("scale", [1e200, 1e-200, 1e-320, 1e300])
+def test_only_the_direction_of_a_planes_normal_counts_at_any_size(scale):
+    """Issue 18: normal = (1e200, 1e200) overflowed |normal| to inf, n̂ to 0 and
+    ψ to 0 everywhere, silently; a tiny normal underflowed the same way."""
+    x = np.random.default_rng(3).uniform(size=(2, 20))
+    ref = plane((0.3, 0.4), (1.0, 2.0))
+    big = plane((0.3, 0.4), (scale, 2 * scale))
+    assert np.allclose(big(x), ref(x), rtol=0, atol=1e-15)
+    assert np.allclose(big.gradient(x), ref.gradient(x), rtol=0, atol=1e-15)
+    with pytest.raises(ValueError, match="normal must be non-zero"):
+        plane((0.3, 0.4, 0.5), (0.0, -0.0, 0.0))

@@ -102,3 +102,25 @@ def test_the_ends_of_the_accepted_moduli_solve(E):
     ref = solve(Scene(Box((2, 3), "quad"), plane((0, 0.5), (0, 1)), Material(),
                       (clamped("ymin"),), (SurfaceLoad("ymax", pressure=1.0),)))
     assert np.allclose(solve(s).pressure / E, ref.pressure, rtol=1e-10)
+
+
+@pytest.mark.parametrize("nu", [0.49999999999, 0.4999999, 0.5 - 1e-12])
+def test_a_nearly_incompressible_material_is_refused_saying_why(nu):
+    """Issue 18: ν = 0.49999999999 was refused on every cell as "a part of the
+    body can move freely"; it is refused when the material is made, as nearly
+    incompressible, with the limit NU_MAX and λ/μ."""
+    with pytest.raises(ValueError, match=r"nearly incompressible .*λ/μ = .*up to 0\.499999"):
+        Material(E=1.0, nu=nu)
+
+
+def test_the_largest_accepted_poisson_ratio_solves_the_patch_test(cell):
+    """At NU_MAX (λ/μ = 5e5) every cell still passes the patch test."""
+    from skxfem.extremes import patch_error, patch_scene
+    from skxfem.levelset import plane
+    from skxfem.material import NU_MAX
+    from skxfem.scene import Box
+
+    dim = 2 if cell in ("tri", "quad") else 3
+    psi = plane((0.5,) * (dim - 1) + (0.53,), (0.0,) * (dim - 1) + (1.0,))
+    error, _ = patch_error(patch_scene(Box(4, cell), psi, material=Material(1.0, NU_MAX)))
+    assert error <= 1e-8

@@ -244,11 +244,21 @@ def _assembled(scene):
     return assemble(scene), assemble(scene, "bilateral")
 
 
+def _takes_a_neighbours_row(P, c, e, held) -> bool:
+    """Row e of P is the row of a cut edge that is not held and shares a cut cell with e."""
+    P = P.tocsr()
+    cells = c.facet_cell[np.any(c.facets == e, axis=0)]
+    near = np.unique(c.facets[:, np.isin(c.facet_cell, cells)])
+    return any(abs(P[e] - P[k]).max() == 0 for k in near if k != e and not held[k])
+
+
 def test_rollers_hold_the_tangential_jump_on_the_strips_sides():
     """The strip with rollers on x = 0, 1: the enriched x-dofs of the cut
     cells' nodes on those sides are constrained, so the x-jump at the two
-    cut edges lying in the sides is held (no multiplier), the y-jump (the
-    normal one, bilateral) nowhere."""
+    cut edges lying in the sides is held: they get no multiplier of their
+    own, but the λ_x of the cut edge next to them on Γ (their hat function
+    still meets the free jump of their cell); the y-jump (the normal one,
+    bilateral) is held nowhere."""
     from skxfem.scenes import strip
 
     p, pn = _assembled(strip(5, cell="tri", space="vital", sides="rollers"))
@@ -261,15 +271,17 @@ def test_rollers_hold_the_tangential_jump_on_the_strips_sides():
     assert np.array_equal(p.held[0], in_side) and not p.held[1].any()
     assert not pn.held.any() and not normal_fixed(fixed, p.cut).any()
     ne = p.cut.edge_ids.size
-    assert np.all(np.diff(p.P.indptr)[:ne][in_side] == 0), "held rows of P are empty"
-    assert np.all(np.diff(p.P.indptr)[np.flatnonzero(~in_side)] > 0)
+    Px = p.P[:ne, :p.spaces[0].size]
+    assert all(_takes_a_neighbours_row(Px, p.cut, e, in_side) for e in np.flatnonzero(in_side))
+    assert np.allclose(Px.sum(axis=1), 1.0, rtol=1e-12), "a constant λ_x stays in the space"
     assert abs(p.P[ne:, p.spaces[0].size:] - p.space.P).max() == 0, "y keeps the space"
 
 
 def test_a_support_holding_the_normal_jump_removes_the_normal_multiplier():
     """Γ: x = 0.45 crosses the bottom y = 0, where u_x (the normal
-    component) is held: bilateral loses the multiplier of the bottom cut
-    edge; a support on the other component (u_y) does not."""
+    component) is held: bilateral's bottom cut edge loses its own multiplier
+    and takes that of the edge above it; a support on the other component
+    (u_y) changes nothing."""
     from skxfem.scene import Box, Displacement, Scene, SurfaceLoad
 
     def scene(component):
@@ -283,7 +295,8 @@ def test_a_support_holding_the_normal_jump_removes_the_normal_multiplier():
     p, _ = _assembled(scene("x"))
     bottom = np.isclose(p.cut.points[1], 0)
     assert bottom.sum() == 1 and np.array_equal(p.held[0], bottom)
-    assert np.diff(p.P.indptr)[bottom] == 0, "the held normal has no multiplier"
+    assert _takes_a_neighbours_row(p.P, p.cut, np.flatnonzero(bottom)[0], bottom)
+    assert p.P.shape[1] == p.space.size - 1, "one multiplier fewer than without the support"
     q, _ = _assembled(scene("y"))
     assert not q.held.any() and abs(q.P - q.space.P).max() == 0
 
@@ -297,18 +310,38 @@ def test_a_space_without_fixed_nodes_is_the_space(name):
 
 
 @pytest.mark.parametrize("name", SPACES)
-def test_edges_with_two_fixed_ends_carry_no_multiplier(name):
-    """Fix the nodes of the face x = 0: the cut edges in it lose their
-    multiplier (empty rows), every other row still sums to 1."""
+def test_edges_with_two_fixed_ends_take_a_neighbours_multiplier(name):
+    """Fix the nodes of the face x = 0: the cut edges in it lose their own
+    multiplier and take that of a neighbour on Γ, so that every row of P
+    still sums to 1 (a constant traction stays in the space: issue 18) and
+    the columns stay independent."""
     mesh, _, _, _, c = setup("tet")
     fixed = np.isclose(mesh.p[0], 0)
     S = multiplier_space(name, mesh, c, fixed=fixed)
     held = fixed[c.edges[0]] & fixed[c.edges[1]]
     assert held.any() and S.P.shape[0] == c.edge_ids.size
-    rows = np.asarray(S.P.sum(axis=1)).ravel()
-    assert np.all(rows[held] == 0) and np.allclose(rows[~held], 1.0, rtol=1e-12)
+    assert np.allclose(S.P.sum(axis=1), 1.0, rtol=1e-12)
+    assert all(_takes_a_neighbours_row(S.P, c, e, held) for e in np.flatnonzero(held))
+    if name == "naive":
+        assert S.size == c.edge_ids.size - held.sum(), "no multiplier of their own"
     assert np.linalg.matrix_rank(S.P.toarray()) == S.size
     if S.winners is not None:
         assert not fixed[S.winners].any()
     with pytest.raises(ValueError, match="one bool per node"):
         multiplier_space(name, mesh, c, fixed=fixed[:-1])
+
+
+def test_a_piece_of_held_edges_alone_shares_one_multiplier_if_its_jump_can_move():
+    """Γ cuts off a corner whose three cut edges all lie in fixed faces: no
+    edge of the piece has a free end to borrow from, so they share one new
+    multiplier while a node of their cell is free (its jump still moves on
+    the facet), and none when every node of the cell is fixed (the supports
+    hold the whole jump there)."""
+    mesh = box(3, "hex")
+    c = cut(mesh, plane((0.1, 0.0, 0.0), (1.0, 1.0, 1.0)))
+    faces = np.isclose(mesh.p, 0).any(axis=0)
+    assert np.all(faces[c.edges]), "every cut edge lies in a face through the corner"
+    S = multiplier_space("vital", mesh, c, fixed=faces)
+    assert S.P.shape == (3, 1) and np.allclose(S.P.toarray(), 1.0)
+    every = np.ones(mesh.p.shape[1], dtype=bool)
+    assert multiplier_space("vital", mesh, c, fixed=every).P.nnz == 0

@@ -381,3 +381,33 @@ def test_a_traction_given_as_an_array_is_a_traction():
     assert a == SurfaceLoad("ymax", traction=(0.0, -1.0))
     with pytest.raises(TypeError, match="2 or 3 components"):
         SurfaceLoad("ymax", traction=np.zeros(4))
+
+
+@pytest.mark.parametrize("size", [1e-300, 1e300, 1e-308, 1e-51, 1e51])
+def test_box_sizes_outside_the_range_are_refused_naming_it(size):
+    """Issue 18: 1e300 ended in scipy's "no full matching exists", 1e-300 in a
+    self-contradicting "cuts no cell (psi ranges over [-5e-301, 5e-301])"."""
+    with pytest.raises(ValueError, match=r"Box size must lie in \[1e-50, 1e\+50\]"):
+        Box(2, "quad", size=(1.0, size))
+
+
+@pytest.mark.parametrize("size", [1e-50, 1e50])
+def test_the_ends_of_the_size_range_pass_the_patch_test(cell, size):
+    from skxfem.extremes import patch_error
+    from skxfem.scene_parts import SIZE_RANGE
+
+    assert SIZE_RANGE == (1e-50, 1e50)
+    dim = DIM[cell]
+    psi = plane((0.5 * size,) * (dim - 1) + (0.53 * size,), (0.0,) * (dim - 1) + (1.0,))
+    up = "xyz"[dim - 1]
+
+    def at(*c):
+        return lambda x: np.all([np.abs(x[i] - v) <= 1e-9 * size for i, v in enumerate(c)],
+                                axis=0)
+
+    fix = (Displacement(at(0.0, 0.0), {"x": 0.0}),) if dim == 2 else (
+        Displacement(at(0.0, 0.0, 0.0), {"x": 0.0, "y": 0.0}),
+        Displacement(at(size, 0.0, 0.0), {"y": 0.0}))
+    scene = Scene(Box(4, cell, size=(size,) * dim), psi, Material(),
+                  (rollers(up + "min"),) + fix, (SurfaceLoad(up + "max", pressure=1.0),))
+    assert patch_error(scene)[0] <= 1e-8

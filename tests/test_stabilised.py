@@ -353,3 +353,27 @@ def test_bad_fixed_nodes_are_refused(fixed, message):
     for algorithm in (vital_edges, winner_nodes):
         with pytest.raises(ValueError, match=message):
             algorithm(*figure6(), fixed=fixed)
+
+
+# ---------------------------------------------------------------- a μ per edge
+@pytest.mark.parametrize("name", ["winner", "vital"])
+def test_per_edge_edges_get_a_multiplier_each_and_the_rest_keeps_its_space(name):
+    """``per_edge``: those cut edges get their own column (as in the naive
+    space), the others the stable space built on them alone; rows sum to 1."""
+    from skxfem.cut import cut
+    from skxfem.levelset import plane
+    from skxfem.stabilised import multiplier_space
+
+    mesh = MeshTri1().refined(3)
+    c = cut(mesh, plane((0.5, 0.43), (0.2, 1.0)))
+    own = np.zeros(c.edge_ids.size, dtype=bool)
+    own[:3] = True
+    S = multiplier_space(name, mesh, c, per_edge=own)
+    P = S.P.toarray()
+    assert np.allclose(P.sum(axis=1), 1.0)
+    solo = P[own]
+    assert np.all(np.sort(solo, axis=1)[:, -1] == 1.0) and np.all((solo > 0).sum(axis=1) == 1)
+    assert not np.any(P[~own][:, np.flatnonzero(solo.any(axis=0))]), "their columns are theirs"
+    assert np.linalg.matrix_rank(P) == S.size
+    with pytest.raises(ValueError, match="per_edge must be one bool per cut edge"):
+        multiplier_space(name, mesh, c, per_edge=own[:-1])
