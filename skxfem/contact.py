@@ -32,8 +32,14 @@ or to ``bilateral`` (tension carried, free sliding) or ``bonded`` (no
 further slip), e.g. once it is closed.  The slip rate of eq. 9b is v_τ Δt =
 the increment of the tangential jump over a step.
 
-**Step cutting.** A step whose Newton iteration does not converge in
-``max_iter`` iterations is solved again in two halves (loads and imposed
+**Rescue and step cutting.** A Coulomb step whose Newton iteration does
+not converge (it may stall at a lightly pressed point on the slip limit,
+where the radius μp of the friction ball moves with the pressure) is solved
+by the paper's fixed point from the same start, whose passes freeze that
+radius, and then by Newton from the fixed point's answer (``rescued`` in the
+step's :class:`~skxfem.contact_newton.NewtonInfo` counts the iterations of
+the first attempt).  A step that still does not converge in ``max_iter``
+iterations is solved again in two halves (loads and imposed
 displacements interpolated, the state's law throughout), and so on, each
 cut reported by a :class:`StepCutWarning`, down to 1/2^``max_cuts`` of the
 step; then the error names the step and its load factor.
@@ -53,7 +59,7 @@ from __future__ import annotations
 
 import time
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.sparse as sp
@@ -63,6 +69,7 @@ from .contact_fixed_point import fixed_point
 from .contact_interface import Operators, operators, tangent_frames
 from .contact_laws import CONTACT_LAWS, HISTORY_LAWS, KINDS, OPEN, SLIP, STICK
 from .contact_newton import (
+    TOL,
     ContactConvergenceError,
     Iterate,
     Law,
@@ -78,6 +85,7 @@ from .result import Result, on_edges, result
 from .rigid import check_held
 from .saddle import SingularSystemError
 from .scene import Scene, check_scene
+from .smoothest import dependencies
 from .threads import limited
 
 __all__ = ["Step", "parameters", "solve", "ContactConvergenceError",
@@ -202,7 +210,7 @@ def _states(scene: Scene, pb: Problem, history, h: float) -> list[_State]:
 
 
 @limited
-def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10,
+def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
           max_iter: int = 30, linear: str = "auto", max_cuts: int = MAX_CUTS,
           linear_tol: float = LINEAR_TOL) -> Result:
     """Solve the contact ``scene`` over the load ``history``.
@@ -285,11 +293,15 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = 1e-10
             start = Iterate(U, start.lam, start.r)
             if method == "fixed_point":
                 return fixed_point(step, start, tol=tol, max_iter=max_iter, **solve_kw)
-            return newton(step, start, tol=tol, max_iter=max_iter, **solve_kw)
+            try:
+                return newton(step, start, tol=tol, max_iter=max_iter, **solve_kw)
+            except ContactConvergenceError as failed:
+                return _rescue(step, start, failed, tol, max_iter, solve_kw)
 
         where = f"load step {i + 1} of {len(states)} ({_describe(state.label)})"
         it, res, info, pieces = _advance(one, it, F, g, state.F, state.g,
-                                         max_cuts if method == "newton" else 0, where)
+                                         max_cuts if method == "newton" else 0, where,
+                                         state.law.name)
         F, g = state.F, state.g
         check_determined(pb, ops, state.law, res.status, res.y, modes, state.label)
         steps.append(_step(state, ops, it, res, info, pieces))
@@ -304,7 +316,8 @@ def _result(pb: Problem, ops: Operators, law: Law, steps: tuple, linear: str,
     last = steps[-1]
     normals = point_normals(pb.cut, pb.scene.levelset)
     p = on_edges(pb.P, last.pressure)
-    r = on_edges(pb.P, last.traction)  # (n, k) on each point's tangent frame
+    r = np.stack([on_edges(Pa, last.traction[:, a]) for a, Pa in enumerate(ops.Pt)],
+                 axis=1).reshape(p.size, len(ops.Pt))  # (n, k) on each point's frame
     frames = tangent_frames(normals)  # (k, dim, n)
     traction = -p * normals + np.einsum("nk,kdn->dn", r, frames)
     owner = np.asarray(abs(pb.P).argmax(axis=1)).ravel()
@@ -319,11 +332,29 @@ def _result(pb: Problem, ops: Operators, law: Law, steps: tuple, linear: str,
                   ops=ops, law=law)
 
 
+def _rescue(step: StepProblem, start: Iterate, failed: ContactConvergenceError, tol: float,
+            max_iter: int, solve_kw: dict):
+    """A Coulomb step whose Newton iteration failed (module notes): the paper's fixed
+    point from the same start, whose passes freeze the radius μp (Tresca: no
+    coupling of the pressure and the friction, the hard part near the slip limit
+    of a lightly pressed point), then Newton from its answer.  Re-raises
+    ``failed`` if the fixed point fails too."""
+    if not np.any(step.laws.tangential == "coulomb"):
+        raise failed
+    try:
+        near, _, _ = fixed_point(step, start, tol=tol, max_iter=max_iter, **solve_kw)
+        it, res, info = newton(step, near, tol=tol, max_iter=max_iter, **solve_kw)
+    except ContactConvergenceError:
+        raise failed from None
+    spent = len(failed.statuses) - 1
+    return it, res, replace(info, rescued=spent)
+
+
 def _describe(label) -> str:
     return f"load factor {label:g}" if isinstance(label, float) else f"state {label!r}"
 
 
-def _advance(one, it, F0, g0, F1, g1, max_cuts: int, where: str):
+def _advance(one, it, F0, g0, F1, g1, max_cuts: int, where: str, law_name: str = ""):
     """Solve from the converged ``it`` (under F0, g0) to F1, g1, halving the
     increment where a step fails (module notes).  Returns the iterate, its
     residual, the NewtonInfo of the last increment and the number of increments."""
@@ -334,12 +365,18 @@ def _advance(one, it, F0, g0, F1, g1, max_cuts: int, where: str):
         try:
             new, res, info = one(it, it.U, F0 + target * (F1 - F0), g0 + target * (g1 - g0))
         except ContactConvergenceError as e:
+            e.law = law_name
             if size / 2 < smallest * (1 - 1e-12):
                 cut = f" after cutting it down to 1/{round(1 / size)} of its increment" \
                     if max_cuts and size < 1 else ""
+                hint = (" The adhesive law (no slip wherever closed) may have no solution "
+                         "at the edge of a contact zone, where the pressure vanishes: a point "
+                         "that stays closed pulls, one that opens penetrates; coulomb with a "
+                         "large friction (1e3) has one." if hasattr(e, "law") and
+                         e.law == "adhesive" else "")
                 err = ContactConvergenceError(
                     f"{where}: {e}{cut}. Try more load steps, another rho_n/rho_t, or "
-                    f"max_iter")
+                    f"max_iter.{hint}")
                 err.last, err.statuses = e.last, e.statuses
                 for key in ("thresholds",):
                     if hasattr(e, key):
@@ -414,23 +451,34 @@ def _check_rigid(pb: Problem, ops: Operators, law: Law, st, y, what: str, hint: 
 
 
 def check_closed(pb: Problem, ops: Operators, law: Law, modes, label=None) -> None:
-    """Refuse a law that leaves a side free to move even where Γ is closed
-    everywhere (every point in contact, sticking where the law can): no
-    contact state can then hold it (a frictionless Γ under a side that only
-    Γ holds tangentially)."""
+    """Refuse a law that cannot determine a state even where Γ is closed
+    everywhere (every point in contact, sticking where the law can): a side
+    it leaves free to move (a frictionless Γ under a side that only Γ holds
+    tangentially; :func:`skxfem.rigid.check_held` names the motion), or
+    multipliers that depend on the others (the naive space on tetrahedra)."""
     m = ops.w.size
     status = np.full(m, SLIP if KINDS[law.name].tangential == "free" else STICK)
     _check_rigid(pb, ops, law, status, None, f"the {law.name} law with Γ closed everywhere",
                  "hold each side of Γ, or use a law with friction", label)
     fixed = np.zeros(pb.V.N, bool)
     fixed[pb.D] = True
+    rows = _held_rows(ops, law, status, None)
     try:
-        check_tie_held(pb.K, _held_rows(ops, law, status, None), fixed, modes)
+        check_tie_held(pb.K, rows, fixed, modes)
     except SingularSystemError as e:
         raise SingularSystemError(
             f"load step {label!r}: even with Γ closed everywhere, the {law.name} law leaves "
             f"a part of the body free to move ({e}): hold each side of Γ, or use a law "
             f"with friction") from e
+    free = rows[:, ~fixed]
+    norms = np.sqrt(np.asarray(free.multiply(free).sum(axis=1)).ravel())
+    N = dependencies(sp.diags(1.0 / np.where(norms > 0, norms, 1.0)) @ free)
+    if N.shape[1]:
+        raise ValueError(
+            f"load step {label!r}: {N.shape[1]} contact multipliers depend on the others "
+            f"(space {pb.scene.space!r}: the naive space on tetrahedra carries four "
+            f"multipliers on a quadrilateral cut, for three parameters of a linear jump), so "
+            f"the pressure is not unique where the laws must hold: use space='vital'")
 
 
 def check_determined(pb: Problem, ops: Operators, law: Law, st, y, modes, label=None

@@ -42,12 +42,12 @@ from dataclasses import replace
 
 import numpy as np
 
-from .contact_newton import ContactConvergenceError, NewtonInfo, newton, with_threshold
+from .contact_newton import TOL, ContactConvergenceError, NewtonInfo, newton, with_threshold
 
 __all__ = ["fixed_point"]
 
 
-def fixed_point(step, start, tol=1e-10, max_iter=30, **linear):
+def fixed_point(step, start, tol=TOL, max_iter=30, **linear):
     """Solve one load step by fixed point on μp; same arguments (``linear``:
     the keywords of the linear solve) and returns as
     :func:`skxfem.contact_newton.newton` (``iterations`` counts the passes,

@@ -15,13 +15,21 @@ the integrals ∫ψ_j [[v]]·n, ∫ψ_j [[v]]·t_a; Bn is the bilateral coupling
 with a = e_y (e_z where |n_y| > 0.9), t₂ = n × t₁.
 
 **Supports on Γ.** The normal multipliers are those of the bilateral tie,
-whose space leaves out the edges where a support holds the normal jump
+whose space treats the edges where a support holds the normal jump apart
 (:func:`skxfem.problem.assemble`).  A support may hold a tangential jump as
 well (the paper's plate: rollers u_x = 0 on the faces x = 0, 1 that Γ
 crosses hold [[u]]·e_x there); a multiplier on a jump that is held anyway is
 not determined (the support takes its force) and makes the Newton matrix
-singular.  :func:`held_tangents` marks those (dof, tangent) pairs: their
-traction is 0 and the support carries it.
+singular.  So each tangent t_a gets the space the tie builds for a component
+with those nodes held (:func:`tangential_space`): its multipliers are a
+subset of the normal dofs (the same functions off the held edges; the held
+edges borrow a neighbour's value, :func:`skxfem.stabilised.extend_to_held`),
+so that λ and r_τ still meet at every dof, and the dofs it leaves out are
+*held*: their r_τa is 0, the support carries it.  Then a sticking contact is
+the bonded tie exactly.  Where the tie's space of a held tangent is not such a
+subset (tetrahedra: the stars around the held nodes are rebuilt), the normal
+space is kept for that tangent and the dofs whose every edge is held are
+released (:func:`held_tangents`): a stable space too, but not the tie's.
 
 >>> from skxfem.problem import assemble
 >>> from skxfem.scenes import strip
@@ -36,9 +44,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from .multipliers import fixed_jumps
+from .multipliers import direction_fixed, fixed_jumps
+from .stabilised import multiplier_space
 
-__all__ = ["Operators", "operators", "tangent_frames", "held_tangents"]
+__all__ = ["Operators", "operators", "tangent_frames", "held_tangents", "tangential_space"]
 
 
 @dataclass(frozen=True)
@@ -53,6 +62,8 @@ class Operators:
     tangents : (k, dim) the tangents of the first dof (the frame of a plane Γ).
     held : (m, k) bool, the tangential components a support holds
         (:func:`held_tangents`).
+    Pt : tuple of k (n_edges, m), each tangent's prolongation from the dofs to
+        the cut edges (the normal one, ``Problem.P``, where no support holds it).
     """
 
     Bn: sp.csr_matrix
@@ -63,6 +74,7 @@ class Operators:
     normals: np.ndarray
     tangents: np.ndarray
     held: np.ndarray
+    Pt: tuple = ()
 
 
 def tangent_frames(normals: np.ndarray) -> np.ndarray:
@@ -92,7 +104,7 @@ def operators(pb) -> Operators:
     PNW = (P.T @ NW).tocsr()
     J = [pb.J[c * nq:(c + 1) * nq] for c in range(dim)]
     T = tangent_frames(rule.normals)
-    Bt = tuple((PNW @ sum(sp.diags(t[c]) @ J[c] for c in range(dim))).tocsr() for t in T)
+    PT = [(NW @ sum(sp.diags(t[c]) @ J[c] for c in range(dim))).tocsr() for t in T]
     w = np.asarray(P.T @ (pb.M_edges @ np.ones(P.shape[0]))).ravel()
     if np.any(w <= 0):
         raise ValueError(f"{int(np.sum(w <= 0))} multiplier dof(s) have no positive "
@@ -102,8 +114,61 @@ def operators(pb) -> Operators:
     normals /= np.linalg.norm(normals, axis=0)
     e = pb.cut.edges
     h = float(np.linalg.norm(pb.mesh.p[:, e[0]] - pb.mesh.p[:, e[1]], axis=0).mean())
-    held = held_tangents(fixed_jumps(pb.V, pb.D), e, P, normals)
-    return Operators(pb.B, Bt, w, h, points, normals, T[:, :, 0], held)
+    fixed = fixed_jumps(pb.V, pb.D)
+    facet_frames = tangent_frames(pb.cut.normals)  # (k, dim, n_facets)
+    fallback = held_tangents(fixed, e, P, normals)
+    Bt, Pt, held = [], [], np.zeros((w.size, dim - 1), bool)
+    for a in range(dim - 1):
+        dofs, Pa = tangential_space(pb, direction_fixed(fixed, pb.cut, facet_frames[a]))
+        if dofs is None:  # the normal space, its wholly held dofs released
+            Pt.append(sp.csr_matrix(P))
+            held[:, a] = fallback[:, a]
+        else:
+            rows = sp.csr_matrix((np.ones(dofs.size), (np.arange(dofs.size), dofs)),
+                                 shape=(dofs.size, w.size))
+            Pt.append((Pa @ rows).tocsr())
+            held[:, a] = ~np.isin(np.arange(w.size), dofs)
+        Bt.append((Pt[-1].T @ PT[a]).tocsr())
+    return Operators(pb.B, tuple(Bt), w, h, points, normals, T[:, :, 0], held, tuple(Pt))
+
+
+def tangential_space(pb, fixed: np.ndarray):
+    """The tie's space of a tangent whose jump a support holds at the ``fixed``
+    nodes, as a subset of the normal dofs: (dofs, P_a), P_a (n_edges, m_a) and
+    ``dofs`` (m_a,) the normal dof of each of its columns; (None, None) if it
+    is not such a subset (module notes); ``dofs`` = all and P_a = P where no
+    node is fixed.
+
+    Column j of P_a matches the normal column with the same values on the
+    edges that are not held (both ends fixed); every other normal column must
+    live on held edges only.
+    """
+    P = sp.csc_matrix(pb.P)
+    if not fixed.any():
+        return np.arange(P.shape[1]), P
+    Pa = sp.csc_matrix(multiplier_space(pb.scene.space, pb.mesh, pb.cut, fixed=fixed,
+                                        per_edge=pb.per_edge).P)
+    a, b = pb.cut.edges
+    free = ~(fixed[a] & fixed[b])
+    keys = {}
+    for j in range(P.shape[1]):
+        col = P[:, j]
+        ok = free[col.indices] & (col.data != 0)
+        keys.setdefault((tuple(col.indices[ok]), tuple(np.round(col.data[ok], 12))),
+                        []).append(j)
+    dofs = []
+    for j in range(Pa.shape[1]):
+        col = Pa[:, j]
+        ok = free[col.indices] & (col.data != 0)
+        hit = keys.get((tuple(col.indices[ok]), tuple(np.round(col.data[ok], 12))), [])
+        if len(hit) != 1 or not ok.any():
+            return None, None
+        dofs.append(hit[0])
+    dofs = np.array(dofs)
+    left = np.setdiff1d(np.arange(P.shape[1]), dofs)
+    if np.unique(dofs).size != dofs.size or abs(P[:, left][free]).sum() > 0:
+        return None, None
+    return dofs, Pa
 
 
 def held_tangents(fixed: np.ndarray, edges: np.ndarray, P, normals: np.ndarray,

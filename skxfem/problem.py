@@ -106,6 +106,9 @@ class Problem:
     spaces : the ncomp spaces of the law's components, each built on the
         edges it keeps (``space`` itself where a component has no fixed node).
     timings : seconds per stage.
+    per_edge : (n_edges,) bool or None, the edges of the pieces of Γ too small
+        for the stable space, which get a multiplier each
+        (:func:`skxfem.rigid.short_pieces`).
     """
 
     scene: Scene
@@ -127,6 +130,7 @@ class Problem:
     held: np.ndarray
     spaces: tuple
     timings: dict = field(default_factory=dict)
+    per_edge: np.ndarray | None = None
 
 
 def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndarray]:
@@ -238,7 +242,7 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
         spaces = _component_spaces(scene.space, mesh, c, S, fixed, per_edge)
         P = sp.block_diag([s.P for s in spaces], format="csr")  # component-major
         return Problem(scene, mesh, c, V, K, F, D, g, rule, J, S, law, held.shape[0], P,
-                       (P.T @ B_edges).tocsr(), M_edges, held, spaces, timings)
+                       (P.T @ B_edges).tocsr(), M_edges, held, spaces, timings, per_edge)
 
     p = problem(S)
     short = short_pieces(p, B_edges)  # pieces of Γ the stable space leaves loose

@@ -7,6 +7,7 @@ from skxfem.contact_laws import (
     SLIP,
     STICK,
     ball_projection,
+    disk_projection,
     indicator,
     normal_update,
     status,
@@ -61,9 +62,42 @@ def test_ball_projection_keeps_direction_outside():
 
 def test_status():
     g_n = np.array([0.0, -1.0, -1.0, 2.0])
-    g_t = np.array([[5.0], [0.9], [-1.1], [0.0]])
-    assert status(g_n, g_t, "coulomb").tolist() == [OPEN, STICK, SLIP, OPEN]
-    assert status(g_n, None, "frictionless").tolist() == [OPEN, SLIP, SLIP, OPEN]
-    assert status(g_n, None, "adhesive").tolist() == [OPEN, STICK, STICK, OPEN]
+    y = np.array([[5.0], [0.9], [-1.1], [0.0]])
+    R = np.ones(4)
+    assert status(g_n, y, R, "coulomb").tolist() == [OPEN, STICK, SLIP, OPEN]
+    assert status(g_n, None, None, "frictionless").tolist() == [OPEN, SLIP, SLIP, OPEN]
+    assert status(g_n, None, None, "adhesive").tolist() == [OPEN, STICK, STICK, OPEN]
+    assert status(g_n, None, None, "bilateral").tolist() == [SLIP] * 4  # tied: never open
+    assert status(g_n, None, None, "bonded").tolist() == [STICK] * 4
+    assert status(g_n, np.array([[1.0]] * 4), R, "coulomb")[1] == STICK  # on the limit
     with pytest.raises(ValueError, match="law must be one of"):
-        status(g_n, None, "glue")
+        status(g_n, None, None, "glue")
+
+
+@pytest.mark.parametrize("k", [1, 2])
+def test_disk_projection_scales_the_ball_and_its_jacobian(k):
+    """P_{B(R)}(y) = R P_B(y/R); dP/dy and dP/dR against central differences."""
+    rng = np.random.default_rng(k)
+    y = rng.uniform(-3, 3, (200, k))
+    R = rng.uniform(0.1, 2, 200)
+    keep = np.abs(np.linalg.norm(y, axis=1) - R) > 1e-3
+    y, R = y[keep], R[keep]
+    P, DP, dR = disk_projection(y, R)
+    assert np.allclose(P, R[:, None] * ball_projection(y / R[:, None])[0])
+    assert np.all(np.linalg.norm(P, axis=1) <= R * (1 + 1e-14))
+    h = 1e-7
+    for b in range(k):
+        e = np.zeros(k)
+        e[b] = h
+        fd = (disk_projection(y + e, R)[0] - disk_projection(y - e, R)[0]) / (2 * h)
+        assert np.allclose(DP[:, :, b], fd, atol=1e-6)
+    fd = (disk_projection(y, R + h)[0] - disk_projection(y, R - h)[0]) / (2 * h)
+    assert np.allclose(dR, fd, atol=1e-6)
+
+
+def test_disk_projection_of_radius_zero():
+    """R = 0: the traction vanishes (an open point); y = 0 too: the stick branch."""
+    P, DP, dR = disk_projection(np.array([[1.0, 2.0], [0.0, 0.0]]), np.zeros(2))
+    assert np.all(P == 0)
+    assert np.all(DP[0] == 0) and np.allclose(dR[0], np.array([1.0, 2.0]) / np.sqrt(5))
+    assert np.array_equal(DP[1], np.eye(2)) and np.all(dR[1] == 0)
