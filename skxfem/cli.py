@@ -315,9 +315,8 @@ def main(argv: list[str] | None = None) -> int:
             return _fail(e, debug)
         overflow.__cause__ = e
         return _fail(overflow, debug)
-    finally:
-        if not debug:
-            _notes(caught)
+    finally:  # a failed run's notices (the cuts of a step) are in its error line
+        caught[:] = [w for w in caught if debug or not issubclass(w.category, NOTICES)]
         for w in caught if debug else ():
             print(warnings.formatwarning(w.message, w.category, w.filename, w.lineno),
                   end="", file=sys.stderr)

@@ -32,13 +32,16 @@ or to ``bilateral`` (tension carried, free sliding) or ``bonded`` (no
 further slip), e.g. once it is closed.  The slip rate of eq. 9b is v_τ Δt =
 the increment of the tangential jump over a step.
 
-**Rescue and step cutting.** A Coulomb step whose Newton iteration does
-not converge (it may stall at a lightly pressed point on the slip limit,
-where the radius μp of the friction ball moves with the pressure) is solved
-by the paper's fixed point from the same start, whose passes freeze that
-radius, and then by Newton from the fixed point's answer (``rescued`` in the
-step's :class:`~skxfem.contact_newton.NewtonInfo` counts the iterations of
-the first attempt).  A step that still does not converge in ``max_iter``
+**Rescue and step cutting.** A step whose Newton iteration does not
+converge is solved again from the same start: by Newton with the default
+ρ = E/h where the scene chose another (an extreme ρ_τ makes a sticking point
+look sliding for many iterations), then, for Coulomb, by the paper's fixed
+point, whose passes freeze the radius μp of the friction ball (Newton may
+stall at a lightly pressed point on the slip limit, where that radius moves
+with the pressure); from the first answer found, Newton with the scene's own
+ρ confirms it (``rescued`` in the step's
+:class:`~skxfem.contact_newton.NewtonInfo` counts the iterations of the first
+attempt).  A step that still does not converge in ``max_iter``
 iterations is solved again in two halves (loads and imposed
 displacements interpolated, the state's law throughout), and so on, each
 cut reported by a :class:`StepCutWarning`, down to 1/2^``max_cuts`` of the
@@ -334,20 +337,32 @@ def _result(pb: Problem, ops: Operators, law: Law, steps: tuple, linear: str,
 
 def _rescue(step: StepProblem, start: Iterate, failed: ContactConvergenceError, tol: float,
             max_iter: int, solve_kw: dict):
-    """A Coulomb step whose Newton iteration failed (module notes): the paper's fixed
-    point from the same start, whose passes freeze the radius μp (Tresca: no
-    coupling of the pressure and the friction, the hard part near the slip limit
-    of a lightly pressed point), then Newton from its answer.  Re-raises
-    ``failed`` if the fixed point fails too."""
-    if not np.any(step.laws.tangential == "coulomb"):
-        raise failed
-    try:
-        near, _, _ = fixed_point(step, start, tol=tol, max_iter=max_iter, **solve_kw)
-        it, res, info = newton(step, near, tol=tol, max_iter=max_iter, **solve_kw)
-    except ContactConvergenceError:
-        raise failed from None
-    spent = len(failed.statuses) - 1
-    return it, res, replace(info, rescued=spent)
+    """A step whose Newton iteration failed (module notes): Newton again from the same
+    start with the default augmentation ρ = E/h where the step's is another (an
+    extreme ρ_τ makes a sticking point look sliding for many iterations), then, for
+    Coulomb, the paper's fixed point, whose passes freeze the radius μp of the
+    friction ball (the hard part near the slip limit of a lightly pressed point);
+    from the first answer found, Newton with the step's own ρ.  Re-raises
+    ``failed`` if none converges."""
+    laws = step.laws
+    attempts = []
+    if not (np.allclose(laws.rho_n, step.rho_ref) and np.allclose(laws.rho_t, step.rho_ref)):
+        reference = replace(step, laws=replace(laws, rho_n=np.full_like(laws.rho_n,
+                                                                        step.rho_ref),
+                                               rho_t=np.full_like(laws.rho_t, step.rho_ref)))
+        attempts.append(lambda: newton(reference, start, tol=tol, max_iter=max_iter,
+                                       **solve_kw))
+    if np.any(laws.tangential == "coulomb"):
+        attempts.append(lambda: fixed_point(step, start, tol=tol, max_iter=max_iter,
+                                            **solve_kw))
+    for attempt in attempts:
+        try:
+            near = attempt()[0]
+            it, res, info = newton(step, near, tol=tol, max_iter=max_iter, **solve_kw)
+        except ContactConvergenceError:
+            continue
+        return it, res, replace(info, rescued=len(failed.statuses) - 1)
+    raise failed
 
 
 def _describe(label) -> str:

@@ -30,9 +30,13 @@ support takes that force.
    closed; if that is singular too, the law or the space is at fault and the
    :class:`~skxfem.contact_linear.SingularStepError`, a ValueError, is raised);
 4. :func:`line_search`: the largest α ∈ {1, ½, …, 2⁻⁸} that decreases the
-   merit ‖D R‖ (D the row scales of the step) by the Armijo factor (1 - 10⁻⁴α);
-   if none does, the α of the smallest merit, and the full step if no α
-   decreases it (the active set has to change);
+   merit ‖D R‖ by the Armijo factor (1 - 10⁻⁴α), D the row scales of the
+   step's first Newton matrix, kept for the whole step (a merit that changed
+   with the iterate would let a cycle of active sets decrease it); if none
+   does, the α of the smallest merit, and the full step if no α decreases it
+   (the active set has to change) — unless that step returns to an active set
+   already left: then a step down the merit's gradient (:func:`descent`), off
+   the kink the cycle turns around;
 5. :func:`relative_residuals`, the convergence test: the residual of every
    equation in force units (the interface rows times the lumped weight w)
    divided by a force that cannot vanish, max(|F|, |K U|, max diag K · |U|),
@@ -128,7 +132,7 @@ def point_laws(law: Law, held: np.ndarray) -> PointLaws:
     """One :class:`Law` at every dof; ``held`` (m, k) as :attr:`PointLaws.held`.
 
     >>> pl = point_laws(Law("adhesive", 0.0, 2.0, 3.0), np.zeros((4, 1), bool))
-    >>> pl.unilateral.all(), pl.tangential[0], pl.rho_t[0]
+    >>> bool(pl.unilateral.all()), pl.tangential[0], float(pl.rho_t[0])
     (True, 'stick', 3.0)
     """
     m = held.shape[0]
@@ -401,7 +405,9 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
         merit0 = np.linalg.norm(merit_rows * res.vector)
         closed_before = res.status != 0
         new = line_search(step, it, dx, merit0, merit_rows)
-        if not new[3]:  # no step along Newton's decreases the merit: descend it first
+        if not new[3] and any(np.array_equal(new[1].status, st) for st in statuses):
+            # no step along Newton's decreases the merit, and the full step returns to
+            # an active set already left: a cycle; descend the merit instead
             down = line_search(step, it, descent(A, res.vector, merit_rows, cols, dx), merit0,
                                merit_rows, 0.5 ** np.arange(20))
             new = down if down[3] else new
@@ -424,6 +430,13 @@ def _linear_step(step, it, res, close, linear, modes, blocksize, factor, linear_
         dx, factor = contact_linear.iterative(step, it, res, A, modes, blocksize,
                                               close=close, reuse=factor, tol=linear_tol)
         return (dx, *contact_linear.scales(A, step.nu), A, factor)
+    n = step.nu + res.R_n.size
+    if np.all(step.laws.tangential == "free"):  # no friction: r_τ = 0 is known, Δr = -R_t
+        dx, rows, factor = contact_linear.direct(A[:n, :n], res.vector[:n], step.nu,
+                                                 reuse=factor)
+        ones = np.ones(res.R_t.size)
+        return np.r_[dx, -res.R_t.T.ravel()], np.r_[rows, ones], np.r_[factor[2], ones], \
+            A, factor
     dx, rows, factor = contact_linear.direct(A, res.vector, step.nu, reuse=factor)
     return dx, rows, factor[2], A, factor
 

@@ -53,7 +53,7 @@ from .simplex import edge_point, split
 
 __all__ = ["Cut", "cut", "strictly_cut_edges", "snap", "SNAP", "SnapWarning"]
 
-SNAP = 1e-6
+SNAP = 1e-9
 """Vertices closer to Γ than SNAP times their shortest edge are moved to that
 distance (:func:`snap`)."""
 

@@ -25,6 +25,7 @@ and of :mod:`skxfem.extremes_scales` (E, ν, ρ) and
 from __future__ import annotations
 
 import time
+import warnings
 from dataclasses import dataclass
 from typing import Callable
 
@@ -33,6 +34,7 @@ import scipy.sparse as sp
 
 from .contact_newton import ContactConvergenceError
 from .convergence import energy_error
+from .cut import SnapWarning
 from .cut import cut as cut_mesh
 from .enrich import far_side_fraction, space, stiffness
 from .levelset import plane
@@ -79,6 +81,7 @@ def attempt(group: str, case: str, measure: str, tolerance: float,
             run: Callable[[], float | tuple[float, str]]) -> Row:
     """Run ``run()`` (the measured value, or ``(value, note)``) into a :class:`Row`.
 
+    A :class:`~skxfem.cut.SnapWarning` (vertices on Γ moved off it) is noted.
     A ValueError (the library's refusals: bad input, a singular or nearly
     dependent system, a scene too large) or a
     :class:`~skxfem.contact_newton.ContactConvergenceError` becomes a refused
@@ -87,12 +90,16 @@ def attempt(group: str, case: str, measure: str, tolerance: float,
     A non-finite value is a failure too.
     """
     t0 = time.perf_counter()
-    try:
-        out = run()
-    except (ValueError, ContactConvergenceError) as e:
-        return Row(group, case, "refused", measure, None, tolerance, str(e),
-                   time.perf_counter() - t0)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", SnapWarning)
+        try:
+            out = run()
+        except (ValueError, ContactConvergenceError) as e:
+            return Row(group, case, "refused", measure, None, tolerance, str(e),
+                       time.perf_counter() - t0)
     value, note = out if isinstance(out, tuple) else (out, "")
+    if any(issubclass(w.category, SnapWarning) for w in caught):
+        note = "; ".join(filter(None, (note, "vertices on Γ snapped off it (cut.SNAP)")))
     value = float(value)
     if not np.isfinite(value):
         raise RuntimeError(f"{group} / {case}: the measured {measure} is {value}")

@@ -117,7 +117,7 @@ def _tractions(step) -> np.ndarray:
 
 
 def rho_rows(factors=RHO_FACTORS, n: int = 8) -> list[Row]:
-    """ρ_n and ρ_τ over ``factors`` × their default (E/h and 1/h), the other at its
+    """ρ_n and ρ_τ over ``factors`` × their default E/h, the other at its
     default, on :func:`friction_scene`: deviation of the interface tractions
     from those of the default ρ, and the Newton iterations."""
     scene = friction_scene(n)
@@ -126,7 +126,7 @@ def rho_rows(factors=RHO_FACTORS, n: int = 8) -> list[Row]:
     defaults = {"rho_n": ref.law.rho_n, "rho_t": ref.law.rho_t}
     rows = []
     for key, name in (("rho_n", "ρ_n"), ("rho_t", "ρ_τ")):
-        unit = "E/h" if key == "rho_n" else "1/h"
+        unit = "E/h"
         for k in factors:
             def run(key=key, k=k):
                 r = contact_solve(replace(scene, **{key: k * defaults[key]}))

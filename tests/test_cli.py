@@ -342,7 +342,7 @@ def test_21_a_non_convergence_anywhere_in_the_history_is_one_line(tmp_path, caps
                                                                   monkeypatch):
     """Whatever raises it (a later step, the fixed point), the error is anticipated."""
     def solve_contact(scene, **options):
-        assert scene.steps == (0.5, 1.0) and options == {"linear": "auto"}  # the defaults
+        assert scene.steps == (0.5, 1.0) and options == {"linear": "auto", "linear_tol": 1e-12}
         raise ContactConvergenceError("the fixed point on the friction threshold failed "
                                       "in pass 2:\nalternates between two states")
     monkeypatch.setattr(cli, "solve_contact", solve_contact)

@@ -144,8 +144,8 @@ def test_errors_are_clear():
         cut(m, plane((0, 5.0), (0, 1)))
     with pytest.raises(ValueError, match="inside a single cell .* refine the mesh"):
         cut(m, circle((0.6, 0.6), 0.05))  # a circle inside one cell of h = 1/4
-    with pytest.raises(ValueError, match="vanishes at"):
-        cut(m, plane((0, 0.5), (0, 1)))  # through a row of nodes
+    with pytest.raises(ValueError, match="zero on a region, not on a surface"):
+        cut(m, lambda x: np.maximum(x[1] - 0.5, 0.0))  # ψ ≡ 0 on the lower half
     with pytest.raises(ValueError, match="2D level set but the mesh is 3D|is 2D"):
         cut(mesh_of("hex", 3), circle((0.5, 0.5), 0.3))
     with pytest.raises(ValueError, match="NaN"):
@@ -157,3 +157,34 @@ def test_errors_are_clear():
     # a saddle: the four edges of a quad are cut, the cut is ambiguous
     with pytest.raises(ValueError, match="more than one piece"):
         cut(mesh_of("quad", 1), lambda x: (x[0] - 0.5) * (x[1] - 0.5))
+
+
+@pytest.mark.parametrize("cell", ["tri", "quad", "tet", "hex", "prism"])
+def test_a_level_set_through_nodes_is_snapped_off_them(cell):
+    """Γ through a row of nodes: those nodes move to SNAP·h on the side ψ > 0, one
+    SnapWarning gives the count and the shift, and the cut is that of ψ + SNAP·h."""
+    from skxfem.cut import SNAP, SnapWarning
+
+    m = mesh_of(cell, 4)
+    dim = m.dim()
+    up = (0.0,) * (dim - 1) + (1.0,)
+    row = np.isclose(m.p[-1], 0.5)
+    with pytest.warns(SnapWarning, match=rf"{row.sum()} mesh vertices: moved them off it by "
+                      r"up to 2\.5e-10"):
+        snapped = cut(m, plane((0.5,) * dim, up))
+    assert np.allclose(snapped.psi[row], SNAP * 0.25, rtol=1e-12)
+    assert np.array_equal(snapped.psi[~row], m.p[-1][~row] - 0.5)
+    shifted = cut(m, plane((0.5,) * (dim - 1) + (0.5 - SNAP * 0.25,), up))
+    assert np.array_equal(snapped.edge_ids, shifted.edge_ids)
+    assert np.allclose(snapped.points, shifted.points, atol=1e-15)
+
+
+def test_snapping_measures_distance_not_the_scale_of_psi():
+    """ψ = 1e-13 (y - 0.5) puts Γ in the middle of cells: no node is near it, whatever
+    the size of ψ (issue 18: it was refused as vanishing at 30 vertices)."""
+    from skxfem.cut import snap
+
+    m = mesh_of("quad", 5)
+    psi = 1e-13 * (m.p[1] - 0.5)
+    assert snap(m, psi)[1] == 0
+    assert cut(m, lambda x: 1e-13 * (x[1] - 0.5)).edge_ids.size == 6

@@ -26,17 +26,21 @@ def check_rows(rows):
     return {r.case: r for r in rows}
 
 
-def test_position_rows_solve_to_round_off_or_refuse_nodes_on_gamma():
+def test_position_rows_solve_to_round_off_and_snap_nodes_on_gamma():
+    """Γ within SNAP edge lengths of nodes (1e-14 h, through a node, along faces):
+    the nodes are moved off it and the patch test still passes (issue 17, item 7);
+    1e-10 h is within SNAP = 1e-9 too."""
     rows = check_rows(position_rows(["tri", "hex"], n=2))
     for cell in ("tri", "hex"):
-        for case in (f"{cell}, Γ at 1e-14 h from a node row", f"{cell}, Γ through one node",
+        for case in (f"{cell}, Γ at 1e-14 h from a node row",
+                     f"{cell}, Γ at 1e-10 h from a node row", f"{cell}, Γ through one node",
                      f"{cell}, Γ along cell faces"):
-            assert rows[case].outcome == "refused"
-            assert rows[case].message.startswith("the level set vanishes at")
-            assert "shift it off the nodes" in rows[case].message
-        for offset in ("1e-10", "1e-06", "0.001", "0.5"):
+            assert rows[case].outcome == "solved" and rows[case].value < 1e-9, rows[case]
+            assert "snapped" in rows[case].message
+        for offset in ("1e-06", "0.001", "0.5"):
             r = rows[f"{cell}, Γ at {offset} h from a node row"]
             assert r.outcome == "solved" and r.value < 1e-12, r
+            assert "snapped" not in r.message
         assert "dropped (sliver)" in rows[f"{cell}, Γ at 1e-10 h from a node row"].message
 
 
@@ -73,14 +77,12 @@ def test_poisson_rows_show_locking_on_quadrilaterals():
     assert locked.outcome == "inaccurate" and locked.value > 2 * rows["quad, ν = 0.3"].value
 
 
-def test_rho_rows_do_not_change_the_answer_and_refuse_a_huge_rho_t():
+def test_rho_rows_do_not_change_the_answer():
+    """Even ρ_τ = 1e9 × E/h, where the first Newton attempt stalls (a sticking point looks
+    sliding), is solved: the rescue at the default ρ (issue 17)."""
     rows = check_rows(rho_rows((1e-6, 1e9), n=4))
     for case, r in rows.items():
-        if case.startswith("ρ_τ = 1e+09"):
-            assert r.outcome == "refused"
-            assert r.message.startswith("contact Newton did not converge in 30 iterations")
-        else:
-            assert r.outcome == "solved" and "Newton iterations" in r.message, r
+        assert r.outcome == "solved" and "Newton iterations" in r.message, r
 
 
 def test_one_cell_and_shapes():

@@ -488,9 +488,9 @@ def test_gamma_closing_in_on_a_node_row_is_stable(cell):
     """As Γ approaches a row of nodes (distance d·h, d = 1e-3, 1e-5), the tied
     solution with the vital-edge space tends to a limit: the pressure changes by
     O(d), no warning is raised, nothing blows up.  Closer than skxfem.cut.SNAP
-    edge lengths (d = 1e-9, and Γ through the nodes, d = 0) the nodes are moved
+    edge lengths (d = 1e-12, and Γ through the nodes, d = 0) the nodes are moved
     off Γ, with a SnapWarning: the answer is that of Γ at SNAP·h above them
-    (d = 1e-9: they are below Γ) or below them (d = 0: ψ = 0 counts as Ω⁺).  (The naive
+    (d = 1e-12: they are below Γ) or below them (d = 0: ψ = 0 counts as Ω⁺).  (The naive
     space is not stable, so its pressure may jump between these distances; see
     tests/test_lbb.py for algo1 on tetrahedra.)"""
     dim = 2 if cell in ("tri", "quad") else 3
@@ -515,7 +515,7 @@ def test_gamma_closing_in_on_a_node_row_is_stable(cell):
     change = [np.abs(a - b).max() for a, b in zip(pressures, pressures[1:])]
     assert change[0] < distances[0] and change[1] < distances[1], \
         f"the pressure does not settle as Γ → nodes: changes {change}"
-    for d, shifted in ((1e-9, SNAP), (0.0, -SNAP)):
+    for d, shifted in ((1e-12, SNAP), (0.0, -SNAP)):
         with pytest.warns(SnapWarning, match=r"moved them off it by up to"):
             snapped = solve(scene(d))
         ref = solve(scene(shifted))
