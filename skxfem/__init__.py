@@ -32,8 +32,8 @@ imports only from lower floors (import-linter checks it in ``make test``; the
 contract is in ``pyproject.toml``):
 
 1. kernels: ``simplex``, ``expr``, ``saddle``, ``vtu``, ``progress``, ``grade``,
-   ``linear`` (which solve); then ``amg``, ``smoothest``, ``pcg``, then
-   ``iterative`` (the scalable linear solve);
+   ``graded`` (the course's tooling), ``linear`` (which solve); then ``amg``,
+   ``smoothest``, ``pcg``, then ``iterative`` (the scalable linear solve);
 2. ``levelset`` (the sign convention), ``meshes``, ``cells``, ``material``,
    ``quadrature``, ``evaluate``, ``contact_laws``;
 3. ``cut``, ``exact``;  4. ``enrich``, ``loads``;
