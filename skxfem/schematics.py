@@ -79,7 +79,7 @@ def fig1() -> Figure:
     points: p¹ on the face Γ¹ of Ω¹ and p² on the face Γ² of Ω², with the outward
     normals n¹ = n = ∇ψ/|∇ψ| and n² = -n and the effort densities r¹ = r = -r².
     """
-    fig = Figure(figsize=(10.5, 4.6), layout="constrained")
+    fig = Figure(figsize=(9.0, 4.0), layout="constrained")
     body, zoom = fig.subplots(1, 2, width_ratios=(1.45, 1.0))
     x = np.linspace(0.0, 3.0, 200)
     y = _interface(x)
@@ -147,7 +147,7 @@ def fig2(mu: float = 0.5) -> Figure:
     """
     if not (isinstance(mu, (int, float)) and 0.0 < mu < 5.0):
         raise ValueError(f"mu must be a number in (0, 5) to draw the cone, got {mu!r}")
-    fig = Figure(figsize=(10.5, 4.4), layout="constrained")
+    fig = Figure(figsize=(9.0, 3.9), layout="constrained")
     left, right = fig.subplots(1, 2)
     for ax in (left, right):
         xs = np.linspace(0.6, 3.0, 100)
@@ -213,9 +213,8 @@ def _box_view(ax, title, limits=((0, 1), (0, 1), (0, 1))):
     ax.set_ylim(*limits[1])
     ax.set_zlim(*limits[2])
     ax.set_box_aspect([hi - lo for lo, hi in limits])
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
-    ax.set_zlabel("z")
+    for axis in "xyz":                            # close to the box: no tick labels
+        getattr(ax, f"set_{axis}label")(axis, labelpad=-12)
     ax.set_xticks([])
     ax.set_yticks([])
     ax.set_zticks([])
@@ -243,7 +242,7 @@ def fig3() -> Figure:
     must be nodal, stores them at the middle node of each cut edge (the same unknown,
     one per cut edge).
     """
-    fig = Figure(figsize=(10.5, 5.0), layout="constrained")
+    fig = Figure(figsize=(8.0, 4.6), layout="constrained")
     for k, (name, make, (point, normal)) in enumerate(FIG3_CELLS):
         mesh = make()
         c = cut(mesh, plane(point, normal))
@@ -335,8 +334,11 @@ def fig4(n: int = 4, nz: int | None = None) -> Figure:
             and nz % 2 == 1 and 1 <= nz <= 13):
         raise ValueError(f"nz must be an odd integer from 1 to 13, so that Γ = {{z = 0.5}} "
                          f"cuts a layer of cells; got {nz!r}")
-    fig = Figure(figsize=(13.5, 5.0), layout="constrained")
-    geometry = fig.add_subplot(1, 3, 1, projection="3d")
+    fig = Figure(figsize=(8.0, 8.4), layout="constrained")
+    grid = fig.add_gridspec(2, 2)
+    geometry = fig.add_subplot(grid[0, 0], projection="3d")
+    key = fig.add_subplot(grid[0, 1])
+    key.set_axis_off()
     box_edges = np.transpose(box(1, "hex").p[:, box(1, "hex").edges], (2, 1, 0))
     geometry.add_collection3d(Line3DCollection(box_edges, colors=COLORS["mesh"], lw=1.2))
     _gamma_plane(geometry)
@@ -349,23 +351,22 @@ def fig4(n: int = 4, nz: int | None = None) -> Figure:
     geometry.plot(np.full(50, 0.5), s, 1.0 + 0.35 * 4 * s * (1 - s),
                   color=COLORS["reference"], lw=1)
     geometry.text(0.5, 0.5, 1.45, "p(y) = 4 P_max y(1 - y)", ha="center")
-    grid = np.linspace(0.1, 0.9, 4)
-    yy, zz = np.meshgrid(grid, grid)
+    yy, zz = np.meshgrid(*2 * [np.linspace(0.1, 0.9, 4)])
     for x0 in (0.0, 1.0):                                 # rollers: u_x = 0 (assumed)
         geometry.scatter(np.full(yy.size, x0), yy.ravel(), zz.ravel(), s=25,
                          facecolors="none", edgecolors=COLORS["mesh"], depthshade=False)
     for xs in np.linspace(0.0, 1.0, 6):                   # the clamped bottom
         geometry.plot([xs, xs], [0, 1], [0, 0], color=COLORS["mesh"], lw=0.5)
-    geometry.legend(handles=[
+    key.legend(handles=[
         Patch(color=COLORS["gamma"], alpha=0.3, label="Γ = {z = 0.5}, Ω⁻ below it"),
         Line2D([], [], color=COLORS["reference"], label="p(y) on z = 1, P_max = 1"),
         Line2D([], [], color=COLORS["mesh"], lw=0.5, label="clamped bottom: u = 0 on z = 0"),
         Line2D([], [], ls="", marker="o", mfc="none", color=COLORS["mesh"],
                label="assumed: rollers u_x = 0 on x = 0, 1")],
-        loc="upper center", bbox_to_anchor=(0.5, -0.1), frameon=False, fontsize="small")
+        loc="center left", frameon=False, title="skxfem.scenes.paper_plate", alignment="left")
     geometry.view_init(elev=18, azim=-52)
     _box_view(geometry, "the plate (P_max = 1; unit cube assumed)",
               limits=((0, 1), (0, 1), (0, 1.45)))
     for k, cell in enumerate(("hex", "prism")):
-        _mesh_panel(fig.add_subplot(1, 3, k + 2, projection="3d"), cell, n, nz)
+        _mesh_panel(fig.add_subplot(grid[1, k], projection="3d"), cell, n, nz)
     return fig

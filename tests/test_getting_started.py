@@ -30,7 +30,7 @@ def commands(section: str) -> list[str]:
     body = re.search(rf"^## {section}\n(.*?)(?=^## |\Z)", text, flags=re.S | re.M).group(1)
     blocks = re.findall(r"```bash\n(.*?)```", body, flags=re.S)
     lines = (line.split("  #", 1)[0].strip() for block in blocks for line in block.splitlines())
-    return [line for line in lines if line]
+    return [line for line in lines if line and not line.startswith("#")]
 
 
 STUDENT, INSTRUCTOR, COMMAND_LINE = (commands(s) for s in

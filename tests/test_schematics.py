@@ -84,8 +84,8 @@ def test_figure4_meshes_have_the_papers_counts(n):
     edges, the diagonals included; the points in view are on the faces x = 1 and y = 0."""
     nz = n if n % 2 else n + 1
     fig = fig4(n)
-    assert isinstance(fig, Figure) and len(fig.axes) == 3
-    geometry, hexes, prisms = fig.axes
+    assert isinstance(fig, Figure) and len(fig.axes) == 4
+    geometry, key, hexes, prisms = fig.axes                  # key: the legend's panel
     assert f"hex: {n * n * nz} cells, {(n + 1) ** 2} cut edges" in hexes.get_title()
     assert f"prism: {2 * n * n * nz} cells, {(n + 1) * (2 * n + 1)} cut edges" \
         in prisms.get_title()
