@@ -33,9 +33,9 @@ imports only from lower floors (import-linter checks it in ``make test``; the
 contract is in ``pyproject.toml``):
 
 1. kernels: ``simplex``, ``expr``, ``saddle``, ``vtu``, ``progress``, ``grade``,
-   ``linear`` (which solve), ``threads`` (the BLAS threads of a solve), ``files``
-   (checked reads, a set of files written as one); then ``amg``, ``smoothest``,
-   ``pcg``, then ``iterative`` (the scalable linear solve);
+   ``graded`` (the course's tooling), ``linear`` (which solve), ``threads`` (the BLAS
+   threads of a solve), ``files`` (checked reads, a set of files written as one); then
+   ``amg``, ``smoothest``, ``pcg``, then ``iterative`` (the scalable linear solve);
 2. ``levelset`` (the sign convention), ``meshes``, ``cells``, ``material``,
    ``quadrature``, ``evaluate``, ``contact_laws``;
 3. ``cut``, ``exact``;  4. ``enrich``, ``loads``;
@@ -49,7 +49,7 @@ contract is in ``pyproject.toml``):
 12. the studies: ``extremes``, ``frontier``, then ``extremes_scales``,
     ``extremes_shapes``, then ``extremes_table``;
 13. drawing: ``plotting``, then ``figstyle``, ``plot_space``, ``render3d``,
-    then ``figures``, ``contact_plots``, ``plot_supports``, ``frontier_plots``;
+    ``schematics``, then ``figures``, ``contact_plots``, ``plot_supports``, ``frontier_plots``;
 14. ``reproduce``, ``cli``.
 """
 from importlib.metadata import PackageNotFoundError

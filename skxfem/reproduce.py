@@ -3,6 +3,8 @@ r"""Reproduce the paper's figures and numbers: ``python -m skxfem.reproduce``.
 ``make figures`` runs ``python -m skxfem.reproduce --quick --out out/``.  It
 writes into ``--out``
 
+* ``fig1.png`` ... ``fig4.png``: schematics of the paper's Figures 1-4
+  (:mod:`skxfem.schematics`);
 * ``fig5.png`` ... ``fig10.png``: the paper's Figures 5-10 (see
   :mod:`skxfem.figures`), ``fig7_2d.png`` and ``fig8_2d.png``: Figures 7
   and 8 on the 2D strip of triangles, and ``inf_sup.png``: β_h vs h (our
@@ -45,7 +47,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import figures
+from . import figures, schematics
 from .convergence import observed_rates, study
 from .frontier_plots import reproduce_frontier
 from .lbb import inf_sup
@@ -174,6 +176,8 @@ def main(argv=None) -> int:
         progress.step(name)
         return value
 
+    for name in ("fig1", "fig2", "fig3", "fig4"):     # the schematics of Figures 1-4
+        save(getattr(schematics, name)(), name)
     save(timed("fig5", lambda: figures.fig5(sizes["fig5"])), "fig5")
     save(timed("fig6", figures.fig6), "fig6")
     graph = figures.figure6_graph()

@@ -9,7 +9,7 @@ import pytest
 from skxfem.reproduce import main
 
 FIGURES = ["fig5", "fig6", "fig7", "fig8", "fig7_2d", "fig8_2d", "fig9", "fig10", "inf_sup",
-           "frontier_energy", "frontier_pressure"]
+           "frontier_energy", "frontier_pressure", "fig1", "fig2", "fig3", "fig4"]
 
 
 @pytest.fixture(scope="module")
