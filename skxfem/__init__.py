@@ -36,7 +36,7 @@ contract is in ``pyproject.toml``):
    ``iterative`` (the scalable linear solve);
 2. ``levelset`` (the sign convention), ``meshes``, ``cells``, ``material``,
    ``quadrature``, ``evaluate``, ``contact_laws``;
-3. ``cut``, ``exact``;  4. ``enrich``, ``loads``;
+3. ``cut``, ``exact``, ``exact3d``;  4. ``enrich``, ``loads``;
 5. ``multipliers``, ``cutgraph``;  6. ``stabilised``;
 7. the scene: ``scene_parts``, ``tomlcheck``, ``boundary``, ``scene``, then
    ``scenes``, ``scenefile``;
