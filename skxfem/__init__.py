@@ -43,8 +43,8 @@ contract is in ``pyproject.toml``):
 8. ``problem``;  9. ``contact_linear``, then ``contact_interface``, ``contact_newton``,
    ``contact_fixed_point``;  10. ``lbb``, ``contact``, then ``solver``;
 11. ``io`` (on ``io_contact``), ``budget`` (on ``counts``), ``convergence``;
-12. the studies: ``extremes``, ``frontier``, then ``extremes_scales``,
-    ``extremes_shapes``, then ``extremes_table``;
+12. the studies: ``extremes``, ``frontier``, ``conforming``, ``validation3d``,
+    then ``extremes_scales``, ``extremes_shapes``, then ``extremes_table``;
 13. drawing: ``plotting``, then ``figstyle``, ``plot_space``, ``render3d``,
     then ``figures``, ``contact_plots``, ``plot_supports``, ``frontier_plots``;
 14. ``reproduce``, ``cli``.
