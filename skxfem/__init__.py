@@ -46,7 +46,8 @@ contract is in ``pyproject.toml``):
 12. the studies: ``extremes``, ``frontier``, ``conforming``, ``validation3d``,
     then ``extremes_scales``, ``extremes_shapes``, then ``extremes_table``;
 13. drawing: ``plotting``, then ``figstyle``, ``plot_space``, ``render3d``,
-    then ``figures``, ``contact_plots``, ``plot_supports``, ``frontier_plots``;
+    then ``figures``, ``contact_plots``, ``plot_supports``, ``frontier_plots``,
+    ``validation3d_plots``;
 14. ``reproduce``, ``cli``.
 """
 from importlib.metadata import PackageNotFoundError
