@@ -286,7 +286,9 @@ def plot_space_3d(mesh, cut, space, ax=None, title: str | None = None,
     ax.add_collection3d(Poly3DCollection(triangles[triangles.mean(axis=1)[:, 2] <= top],
                                          facecolor=COLORS["gamma"], alpha=0.15,
                                          edgecolor=COLORS["gamma"], linewidths=0.2))
-    handles = [Line2D([], [], color=color, lw=2, label=f"{space.name}: independent λ_e")]
+    own = {"naive": "naive: each λ_e its own μ", "winner": "winner: λ_e = μ of a winner node",
+           "vital": "vital edge: λ_e = μ of its group"}.get(space.name, space.name)
+    handles = [Line2D([], [], color=color, lw=2, label=own)]
     if np.any(shown & ~solid):
         ax.add_collection3d(Line3DCollection(ends[shown & ~solid], colors="#969696",
                                              linewidths=0.6))
