@@ -281,27 +281,31 @@ def fig_inf_sup(h_scaled: Mapping[tuple, Sequence], l2_scaled: Mapping[tuple, Se
     return fig
 
 
-def fig_vital_3d(n: int = 6, radius: float = 0.37) -> Figure:
+def fig_vital_3d(n: int = 6, radius: float = 0.37,
+                 spaces: Sequence[str] = ("naive", "winner", "vital")) -> Figure:
     """The multiplier spaces on a truly 3D cut: a sphere through tetrahedra.
 
     The unit cube in n³ × 6 tetrahedra, Γ the sphere of ``radius`` about its
-    centre (Ω⁻ inside); one panel per space (naive, winner nodes = algo1,
-    vital edges = algo2), each the lower half of Γ (a cutaway at z = ½) with
-    its cut edges (:func:`~skxfem.plot_space.plot_space_3d`).
+    centre (Ω⁻ inside); one panel per space of ``spaces`` (naive, winner
+    nodes = algo1, vital edges = algo2), each the lower half of Γ (a cutaway
+    at z = ½) with its cut edges (:func:`~skxfem.plot_space.plot_space_3d`).
 
     >>> fig = fig_vital_3d(n=3, radius=0.4)
     >>> [ax.get_title().split(":")[0] for ax in fig.axes]
     ['naive', 'winner (algo1)', 'vital (algo2)']
     """
+    names = {"naive": "naive", "winner": "winner (algo1)", "vital": "vital (algo2)"}
+    unknown = [s for s in spaces if s not in names]
+    if unknown or not spaces:
+        raise ValueError(f"spaces must be some of {tuple(names)}, got {spaces!r}")
     mesh = box(n, "tet")
     c = cut_mesh(mesh, sphere((0.5, 0.5, 0.5), radius))
-    fig = Figure(figsize=(15, 5.6), layout="constrained")
-    for k, (space, name) in enumerate((("naive", "naive"), ("winner", "winner (algo1)"),
-                                       ("vital", "vital (algo2)"))):
+    fig = Figure(figsize=(5 * len(spaces), 5.6), layout="constrained")
+    for k, space in enumerate(spaces):
         S = multiplier_space(space, mesh, c)
-        ax = fig.add_subplot(1, 3, k + 1, projection="3d")
-        plot_space_3d(mesh, c, S, ax=ax, below=0.5,
-                      title=f"{name}: {S.size} multipliers on {c.edges.shape[1]} cut edges")
+        ax = fig.add_subplot(1, len(spaces), k + 1, projection="3d")
+        plot_space_3d(mesh, c, S, ax=ax, below=0.5, title=f"{names[space]}: {S.size} "
+                      f"multipliers on {c.edges.shape[1]} cut edges")
     fig.suptitle(f"a sphere (r = {radius:g}) through {mesh.nelements} tetrahedra "
                  f"({n}³ cubes): its lower half and cut edges", fontsize="medium")
     return fig

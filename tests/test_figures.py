@@ -231,3 +231,10 @@ def test_plot_space_2d_into_given_axes():
     fig = Figure()
     ax = fig.add_subplot(121)
     assert plot_space_2d(m, c, multiplier_space("vital", m, c), ax=ax) is fig
+
+
+def test_fig_vital_3d_chosen_spaces_and_refusal():
+    fig = fig_vital_3d(n=3, radius=0.4, spaces=("naive", "vital"))
+    assert [ax.get_title().split(":")[0] for ax in fig.axes] == ["naive", "vital (algo2)"]
+    with pytest.raises(ValueError, match="spaces must be some of"):
+        fig_vital_3d(n=3, spaces=("fancy",))
