@@ -2,10 +2,15 @@
 #
 #   make figures   create .venv, install skxfem, reproduce the paper's figures in out/
 #   make test      create .venv, install skxfem, lint (ruff, import floors), run pytest,
-#                  then build the book
-#   make book      build the book (executes every chapter) into book/_build/html
+#                  then build and check the students' and the instructors' books
+#   make book      build the students' book (executes every chapter) into
+#                  book/_build/html and check it: no page shows a graded solution
+#   make book-instructor
+#                  build the instructors' book, with the solutions, into
+#                  book/_build/instructor/_build/html and check it shows them all
+#   make notebooks write every chapter as a notebook (.ipynb) into notebooks/
 #   make install   only create .venv and install skxfem[viz,book,dev]
-#   make clean     remove the built book
+#   make clean     remove the built books and notebooks
 #
 # Everything is non-interactive.  PYTHON picks the interpreter for the venv.
 
@@ -29,7 +34,9 @@ export PIP_DISABLE_PIP_VERSION_CHECK := 1
 export OPENBLAS_NUM_THREADS := 1
 export PATH := $(abspath $(BIN)):$(PATH)
 
-.PHONY: help install figures test book clean
+INSTRUCTOR_BUILD := book/_build/instructor
+
+.PHONY: help install figures test book book-instructor notebooks clean
 
 help:
 	@sed -n 's/^#   //p' Makefile
@@ -51,15 +58,29 @@ test: $(STAMP)
 	$(BIN)/ruff check skxfem tests exercises
 	$(BIN)/lint-imports
 	$(BIN)/pytest -q
-	$(MAKE) --no-print-directory book
+	$(MAKE) --no-print-directory book book-instructor
 
 $(MATHJAX):
 	bash scripts/fetch_mathjax.sh book/_mathjax
 
 # --all: re-read every page, so every chapter is executed against the current
-# library; a cell that raises or any Sphinx warning fails the build.
+# library; a cell that raises or any Sphinx warning fails the build.  Then the
+# checks of the built pages: no page shows the code of a graded exercise's
+# solution (skxfem.graded), every chapter offers its notebook for download.
 book: $(STAMP) $(MATHJAX)
 	$(BIN)/jupyter-book build book/ --all --warningiserror --keep-going
+	$(BIN)/python -m skxfem.graded book/_build/html
+	$(BIN)/python scripts/notebooks.py --check book/_build/html
+
+# The same book with SKXFEM_SOLUTIONS set: the chapters print the graded
+# functions' code and the reference solutions, and the check wants them all.
+book-instructor: $(STAMP) $(MATHJAX)
+	SKXFEM_SOLUTIONS=1 $(BIN)/jupyter-book build book/ --all --warningiserror --keep-going \
+	    --path-output $(INSTRUCTOR_BUILD)
+	$(BIN)/python -m skxfem.graded --instructor $(INSTRUCTOR_BUILD)/_build/html
+
+notebooks: $(STAMP)
+	$(BIN)/python scripts/notebooks.py notebooks/
 
 clean:
-	rm -rf book/_build
+	rm -rf book/_build notebooks

@@ -33,12 +33,12 @@ imports only from lower floors (import-linter checks it in ``make test``; the
 contract is in ``pyproject.toml``):
 
 1. kernels: ``simplex``, ``expr``, ``saddle``, ``vtu``, ``progress``, ``grade``,
-   ``linear`` (which solve), ``threads`` (the BLAS threads of a solve), ``files``
-   (checked reads, a set of files written as one); then ``amg``, ``smoothest``,
-   ``pcg``, then ``iterative`` (the scalable linear solve);
+   ``graded`` (the course's tooling), ``linear`` (which solve), ``threads`` (the BLAS
+   threads of a solve), ``files`` (checked reads, a set of files written as one); then
+   ``amg``, ``smoothest``, ``pcg``, then ``iterative`` (the scalable linear solve);
 2. ``levelset`` (the sign convention), ``meshes``, ``cells``, ``material``,
    ``quadrature``, ``evaluate``, ``contact_laws``;
-3. ``cut``, ``exact``;  4. ``enrich``, ``loads``;
+3. ``cut``, ``exact``, ``exact3d``;  4. ``enrich``, ``loads``;
 5. ``multipliers``, ``cutgraph``;  6. ``stabilised``;
 7. the scene: ``scene_parts``, ``tomlcheck``, ``boundary``, ``scene``, then
    ``scenes``, ``scenefile``;
@@ -46,10 +46,11 @@ contract is in ``pyproject.toml``):
    every solve returns);  9. ``contact_linear``, then ``contact_interface``,
    ``contact_newton``, ``contact_fixed_point``;  10. ``lbb``, ``contact``, then ``solver``;
 11. ``io`` (on ``io_contact``), ``budget`` (on ``counts``), ``convergence``;
-12. the studies: ``extremes``, ``frontier``, then ``extremes_scales``,
-    ``extremes_shapes``, then ``extremes_table``;
+12. the studies: ``extremes``, ``frontier``, ``conforming``, ``validation3d``,
+    then ``extremes_scales``, ``extremes_shapes``, then ``extremes_table``;
 13. drawing: ``plotting``, then ``figstyle``, ``plot_space``, ``render3d``,
-    then ``figures``, ``contact_plots``, ``plot_supports``, ``frontier_plots``;
+    ``schematics``, then ``figures``, ``contact_plots``, ``plot_supports``, ``frontier_plots``,
+    ``validation3d_plots``;
 14. ``reproduce``, ``cli``.
 """
 from importlib.metadata import PackageNotFoundError

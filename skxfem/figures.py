@@ -5,10 +5,13 @@ r"""The paper's figures, one function each (Géniaut, Massin & Moës 2007, §5).
 * :func:`fig6`, Figure 6: the graph example, vital edges, groups, winner nodes
   and the P0/P1 multipliers of both algorithms (drawn by :mod:`skxfem.plot_space`);
 * :func:`fig7`, Figure 7: vital edges on prisms as the mesh is refined;
-* :func:`fig8`, Figure 8: algo1 vs algo2 on half the length, two meshes;
-* :func:`fig9`, Figure 9: energy error vs 1/h, per space and cell;
+* :func:`fig8`, Figure 8: algo1 vs algo2 along the whole length, two meshes;
+* :func:`fig9`, Figure 9: energy error vs 1/h, per space and cell, and of
+  classical FEM on a mesh that follows Γ (:mod:`skxfem.conforming`);
 * :func:`fig10`, Figure 10: L² error of the contact pressure vs 1/h;
 * :func:`fig_inf_sup` (ours): the inf-sup constant β_h vs h, in two norms;
+* :func:`fig_vital_3d` (ours): the multiplier spaces on a truly 3D cut, a
+  sphere through tetrahedra (drawn by :func:`~skxfem.plot_space.plot_space_3d`);
 * :func:`plot_space_2d` (ours, :mod:`skxfem.plot_space`): a multiplier space
   drawn on a 2D mesh.
 
@@ -35,6 +38,7 @@ from dataclasses import replace
 import numpy as np
 from matplotlib.figure import Figure
 
+from .cut import cut as cut_mesh
 from .evaluate import pressure_along
 from .figstyle import (
     CELL_DIM,
@@ -45,14 +49,17 @@ from .figstyle import (
     shades,
     slope_label,
 )
+from .levelset import sphere
+from .meshes import box
 from .multipliers import SPACES
-from .plot_space import FIG6_EDGES, FIG6_XY, fig6, figure6_graph, plot_space_2d
+from .plot_space import FIG6_EDGES, FIG6_XY, fig6, figure6_graph, plot_space_2d, plot_space_3d
 from .plotting import COLORS
 from .scenes import exact_scene, exact_strip, paper_plate
 from .solver import solve
+from .stabilised import multiplier_space
 
 __all__ = ["FIG6_XY", "FIG6_EDGES", "figure6_graph", "fig5", "fig6", "fig7", "fig8",
-           "fig9", "fig10", "fig_inf_sup", "plot_space_2d"]
+           "fig9", "fig10", "fig_inf_sup", "fig_vital_3d", "plot_space_2d"]
 
 def fig5(n: int = 8, nx: int | None = None) -> Figure:
     """Figure 5: the naive space oscillates on prisms, not on hexahedra.
@@ -132,11 +139,13 @@ def _plural(cell: str) -> str:
             "hex": "hexahedra", "prism": "prisms"}[cell]
 
 
-def fig8(ns: Sequence[int] = (8, 16), cell: str = "prism", half: bool = True) -> Figure:
+def fig8(ns: Sequence[int] = (8, 16), cell: str = "prism", half: bool = False) -> Figure:
     """Figure 8: algo1 (winner nodes) vs algo2 (vital edges), one panel per mesh.
 
-    Same benchmark as :func:`fig7`; only the first half of the interface is
-    drawn when ``half`` (the paper's "half-length of the structure").
+    Same benchmark as :func:`fig7`, along the whole length of Γ: the paper
+    draws "half-length of the structure" (``half=True``: the first half),
+    which leaves out the end y = 1, where Γ meets the side of the plate and
+    both algorithms undershoot most.
 
     >>> fig = fig8(ns=(4,))
     >>> [line.get_label() for line in fig.axes[0].lines]
@@ -160,9 +169,11 @@ def fig8(ns: Sequence[int] = (8, 16), cell: str = "prism", half: bool = True) ->
 
 
 # ----------------------------------------------------------- Figures 9, 10
-def _loglog(studies, value, ylabel, title) -> Figure:
+def _loglog(studies, value, ylabel, title, extra=None) -> Figure:
     """One log-log panel per dimension: ``value(row)`` vs 1/h for each (cell,
-    space); the slope of the last segment is in the legend."""
+    space); the slope of the last segment is in the legend.  ``extra``
+    ``{cell: rows}`` of space ``"fem"``: one black curve each, in its
+    dimension's panel."""
     dims = sorted({CELL_DIM.get(cell, 3) for cell in studies}, reverse=True)
     fig = Figure(figsize=(4.6 * len(dims), 4.0), layout="constrained")
     for ax, dim in zip(np.atleast_1d(fig.subplots(1, len(dims))), dims):
@@ -178,13 +189,24 @@ def _loglog(studies, value, ylabel, title) -> Figure:
                 slope = slope_label(1 / h, y)
                 curve(ax, 1 / h, y, space, cell, f"{space}, {cell}{slope}")
                 ticks |= {round(1 / x, 6) for x in h}
+        for cell, rows in (extra or {}).items():
+            if CELL_DIM.get(cell, 3) != dim:
+                continue
+            mine = sorted(rows, key=lambda r: r.h, reverse=True)
+            h = np.array([r.h for r in mine])
+            y = np.array([value(r) for r in mine])
+            curve(ax, 1 / h, y, "fem", cell,
+                  f"FEM, conforming {cell}{slope_label(1 / h, y)}",
+                  color=COLORS["reference"])
+            ticks |= {round(1 / x, 6) for x in h}
         log_axes(ax)
         ax.set_xticks(sorted(ticks), [f"{t:g}" for t in sorted(ticks)])
         finish(ax, "1/h", f"{title} ({dim}D)", ylabel)
     return fig
 
 
-def fig9(studies: Mapping[str, Sequence]) -> Figure:
+def fig9(studies: Mapping[str, Sequence], fem: Mapping[str, Sequence] | None = None
+         ) -> Figure:
     """Figure 9: relative energy error W(u_h) vs 1/h, log-log, slopes in the legend.
 
     Parameters
@@ -192,6 +214,10 @@ def fig9(studies: Mapping[str, Sequence]) -> Figure:
     studies
         ``{cell: rows}``, rows from :func:`skxfem.convergence.study`; 3D cells
         (hex, prism) are drawn left, 2D cells (quad, tri) right.
+    fem
+        ``{cell: rows}`` of classical FEM on a mesh that follows Γ
+        (:func:`skxfem.conforming.study_conforming`), drawn in black: the
+        paper's FEM curve.
 
     >>> from skxfem.convergence import StudyRow
     >>> rows = [StudyRow(n, 1 / n, "vital", 0.5, 0, 1 / n, 1 / n, 1 / n, 0, 0, 0.0)
@@ -199,9 +225,12 @@ def fig9(studies: Mapping[str, Sequence]) -> Figure:
     >>> fig = fig9({"prism": rows})
     >>> fig.axes[0].lines[0].get_label()
     'vital, prism, slope -1.00'
+    >>> fem = [StudyRow(n, 1 / n, "fem", 0.0, -1, 0.0, 0.0, 2 / n, 0, 0, 0.0) for n in (4, 8)]
+    >>> fig9({"prism": rows}, fem={"hex": fem}).axes[0].lines[1].get_label()
+    'FEM, conforming hex, slope -1.00'
     """
     return _loglog(studies, lambda r: r.energy, "energy error W(u_h)",
-                   "energy error")
+                   "energy error", fem)
 
 
 def fig10(studies: Mapping[str, Sequence]) -> Figure:
@@ -249,4 +278,34 @@ def fig_inf_sup(h_scaled: Mapping[tuple, Sequence], l2_scaled: Mapping[tuple, Se
             curve(ax, h, beta, space, cell, f"{space}, {cell}{slope}")
         log_axes(ax)
         finish(ax, "h (mean length of the cut edges)", f"β_h, {name}", "β_h")
+    return fig
+
+
+def fig_vital_3d(n: int = 6, radius: float = 0.37,
+                 spaces: Sequence[str] = ("naive", "winner", "vital")) -> Figure:
+    """The multiplier spaces on a truly 3D cut: a sphere through tetrahedra.
+
+    The unit cube in n³ × 6 tetrahedra, Γ the sphere of ``radius`` about its
+    centre (Ω⁻ inside); one panel per space of ``spaces`` (naive, winner
+    nodes = algo1, vital edges = algo2), each the lower half of Γ (a cutaway
+    at z = ½) with its cut edges (:func:`~skxfem.plot_space.plot_space_3d`).
+
+    >>> fig = fig_vital_3d(n=3, radius=0.4)
+    >>> [ax.get_title().split(":")[0] for ax in fig.axes]
+    ['naive', 'winner (algo1)', 'vital (algo2)']
+    """
+    names = {"naive": "naive", "winner": "winner (algo1)", "vital": "vital (algo2)"}
+    unknown = [s for s in spaces if s not in names]
+    if unknown or not spaces:
+        raise ValueError(f"spaces must be some of {tuple(names)}, got {spaces!r}")
+    mesh = box(n, "tet")
+    c = cut_mesh(mesh, sphere((0.5, 0.5, 0.5), radius))
+    fig = Figure(figsize=(5 * len(spaces), 5.6), layout="constrained")
+    for k, space in enumerate(spaces):
+        S = multiplier_space(space, mesh, c)
+        ax = fig.add_subplot(1, len(spaces), k + 1, projection="3d")
+        plot_space_3d(mesh, c, S, ax=ax, below=0.5, title=f"{names[space]}: {S.size} "
+                      f"multipliers on {c.edges.shape[1]} cut edges")
+    fig.suptitle(f"a sphere (r = {radius:g}) through {mesh.nelements} tetrahedra "
+                 f"({n}³ cubes): its lower half and cut edges", fontsize="medium")
     return fig

@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import subprocess
 import sys
 import tempfile
@@ -38,7 +37,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 
 __all__ = ["Result", "Score", "find_exercises", "wrong_solutions", "check_impl",
-           "default_report", "read_junit", "table", "hints", "grade", "main", "show_reference"]
+           "default_report", "read_junit", "table", "hints", "grade", "main"]
 
 REPORTS = Path("out") / "grades"
 """Where the reports go by default, under the current folder (``out/`` is git-ignored)."""
@@ -274,31 +273,6 @@ def grade(path: Path, impl: str = "student", pytest_args: tuple[str, ...] = ()) 
                 f"pip install 'skxfem[dev]' (or: pip install pytest)")
         results = read_junit(xml_path, names)
     return [Score(n, tuple(results[n])) for n in names]
-
-
-class _Markdown(str):
-    """Text that Jupyter renders as Markdown (no IPython import needed)."""
-
-    def _repr_markdown_(self) -> str:
-        return str(self)
-
-
-def show_reference(exercise: str, root: str | Path = "../exercises",
-                   environ=os.environ) -> _Markdown | None:
-    """For the book: the reference solution of ``exercise``, shown to instructors only.
-
-    Returns None (the page shows nothing) unless ``SKXFEM_SOLUTIONS`` is set in
-    ``environ``: ``SKXFEM_SOLUTIONS=1 make book`` builds the instructors' book.
-
-    >>> show_reference("01_levelset", environ={}) is None
-    True
-    """
-    if not environ.get("SKXFEM_SOLUTIONS"):
-        return None
-    path = Path(root) / "solutions" / exercise / "reference.py"
-    return _Markdown(f"**Reference solution** (`exercises/solutions/{exercise}/reference.py`, "
-                     f"instructors' build):\n\n```python\n"
-                     f"{path.read_text(encoding='utf-8').rstrip()}\n```\n")
 
 
 class _Parser(argparse.ArgumentParser):

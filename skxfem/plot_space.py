@@ -2,6 +2,7 @@
 
 * :func:`plot_space_2d` (ours): which cut edges of a 2D mesh carry an
   independent multiplier, for any space of :mod:`skxfem.stabilised`;
+* :func:`plot_space_3d` (ours): the same on a 3D mesh (matplotlib's 3D axes);
 * :func:`fig6`, Figure 6 of the paper: its graph example (:data:`FIG6_XY`,
   :data:`FIG6_EDGES`, :func:`figure6_graph`), vital edges, groups, winner
   nodes and the P0/P1 multipliers of both algorithms.
@@ -17,13 +18,14 @@ import numpy as np
 from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
-from matplotlib.patches import Ellipse
+from matplotlib.patches import Ellipse, Patch
+from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
 from .plotting import COLORS
 from .simplex import edge_point
 from .stabilised import vital_edges, winner_nodes
 
-__all__ = ["FIG6_XY", "FIG6_EDGES", "figure6_graph", "fig6", "plot_space_2d"]
+__all__ = ["FIG6_XY", "FIG6_EDGES", "figure6_graph", "fig6", "plot_space_2d", "plot_space_3d"]
 
 #: The paper's Figure 6: node (numbered from 1 as in the paper) -> (x, y).
 #: Γ is the line y = 0 (ψ = y): nodes 1-7 lie in Ω⁻, 8-13 in Ω⁺.
@@ -229,4 +231,93 @@ def plot_space_2d(mesh, cut, space, ax=None, title: str | None = None) -> Figure
     ax.legend(handles=handles, fontsize="small", loc="upper center",
               bbox_to_anchor=(0.5, -0.05), ncol=2, frameon=False)
     ax.set_axis_off()
+    return fig
+
+
+def plot_space_3d(mesh, cut, space, ax=None, title: str | None = None,
+                  below: float | None = None,
+                  view: tuple[float, float] = (38.0, -60.0)) -> Figure:
+    """A multiplier space on a 3D mesh: the cut edges that carry their own μ.
+
+    Γ_h (the interface triangles) is drawn translucent in the colour of Γ;
+    the cut edges that carry an independent multiplier (vital edges; naive:
+    all; winner: edges with one winner end) solid in the colour of the space,
+    the others (interpolated) thin and grey; the common node of each group of
+    ≥ 2 vital edges, and each winner node, as a dot in the space's colour.
+    Drawn with matplotlib's 3D axes (no pyvista needed).
+
+    Parameters
+    ----------
+    mesh, cut, space
+        A 3D scikit-fem mesh, its :class:`skxfem.cut.Cut` and a
+        :class:`skxfem.multipliers.Space` built on it.
+    ax
+        A 3D axes to draw into (``projection="3d"``); default a new figure.
+    title
+        Axes title; default the space's name and size.
+    below
+        A cutaway: draw only the edges, facets and nodes whose midpoint has
+        z ≤ ``below`` (default: everything).
+    view
+        Elevation and azimuth of the camera, in degrees.
+
+    >>> from skxfem.meshes import box
+    >>> from skxfem.levelset import sphere
+    >>> from skxfem.cut import cut
+    >>> from skxfem.stabilised import multiplier_space
+    >>> m = box(3, "tet")
+    >>> c = cut(m, sphere((0.5, 0.5, 0.5), 0.4))
+    >>> fig = plot_space_3d(m, c, multiplier_space("vital", m, c), below=0.5)
+    >>> fig.axes[0].name
+    '3d'
+    """
+    if mesh.dim() != 3:
+        raise ValueError(f"plot_space_3d needs a 3D mesh, got {mesh.dim()}D; use plot_space_2d")
+    if ax is None:
+        fig = Figure(figsize=(6.0, 5.6), layout="constrained")
+        ax = fig.add_subplot(projection="3d")
+    fig = ax.figure
+    top = np.inf if below is None else below
+    color = COLORS[space.name]
+    solid = space.vital if space.vital is not None else _single(space)
+    ends = np.transpose(mesh.p[:, cut.edges], (2, 1, 0))             # (ne, 2, 3)
+    shown = ends.mean(axis=1)[:, 2] <= top
+    triangles = np.transpose(cut.points[:, cut.facets], (2, 1, 0))   # (nf, 3, 3)
+    ax.add_collection3d(Poly3DCollection(triangles[triangles.mean(axis=1)[:, 2] <= top],
+                                         facecolor=COLORS["gamma"], alpha=0.15,
+                                         edgecolor=COLORS["gamma"], linewidths=0.2))
+    own = {"naive": "naive: each λ_e its own μ", "winner": "winner: λ_e = μ of a winner node",
+           "vital": "vital edge: λ_e = μ of its group"}.get(space.name, space.name)
+    handles = [Line2D([], [], color=color, lw=2, label=own)]
+    if np.any(shown & ~solid):
+        ax.add_collection3d(Line3DCollection(ends[shown & ~solid], colors="#969696",
+                                             linewidths=0.6))
+        handles.append(Line2D([], [], color="#969696", lw=0.6, label="interpolated λ_e"))
+    if np.any(shown & solid):
+        ax.add_collection3d(Line3DCollection(ends[shown & solid], colors=color, linewidths=2))
+    centres = []
+    if space.groups is not None:
+        centres = [np.bincount(cut.edges[:, space.groups == g].ravel()).argmax()
+                   for g in range(space.size) if np.count_nonzero(space.groups == g) >= 2]
+    if space.winners is not None:
+        centres = list(space.winners)
+    centres = [k for k in centres if mesh.p[2, k] <= top]
+    if centres:
+        ax.scatter(*mesh.p[:, centres], s=22, color=color, depthshade=False)
+        handles.append(Line2D([], [], ls="", marker="o", ms=4.5, color=color,
+                              label="winner node" if space.winners is not None
+                              else "common node of a group (one μ)"))
+    handles.append(Patch(facecolor=COLORS["gamma"], alpha=0.3, label="Γ_h"))
+    drawn = ends[shown].reshape(-1, 3)
+    lo, hi = drawn.min(axis=0), drawn.max(axis=0)
+    for set_lim, a, b in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), lo, hi):
+        set_lim(a, b)
+    ax.set_box_aspect(hi - lo)
+    ax.view_init(*view)
+    for set_label, name in zip((ax.set_xlabel, ax.set_ylabel, ax.set_zlabel), "xyz"):
+        set_label(name)
+    ax.set_title(title or f"{space.name}: {space.size} multipliers on "
+                 f"{cut.edges.shape[1]} cut edges", fontsize="medium")
+    ax.legend(handles=handles, fontsize="small", loc="upper center",
+              bbox_to_anchor=(0.5, 0.02), ncol=2, frameon=False)
     return fig

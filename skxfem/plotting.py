@@ -136,7 +136,8 @@ def plot_levelset_2d(mesh, psi, ax=None, title: str | None = None) -> Figure:
     span = max(np.abs(psi).max(), 1e-300)
     image = ax.tripcolor(triangulation, psi, shading="gouraud", cmap=cmap,
                          norm=TwoSlopeNorm(0.0, -span, span))
-    fig.colorbar(image, ax=ax, label="ψ", shrink=0.7)
+    bar = fig.colorbar(image, ax=ax, shrink=0.7)
+    bar.ax.set_title("ψ")      # upright: a label along the bar turns ψ on its side
     _draw_mesh_edges(ax, mesh)
     if psi.min() < 0 < psi.max():
         ax.tricontour(triangulation, psi, levels=[0.0], colors=COLORS["gamma"],

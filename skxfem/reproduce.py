@@ -3,6 +3,8 @@ r"""Reproduce the paper's figures and numbers: ``python -m skxfem.reproduce``.
 ``make figures`` runs ``python -m skxfem.reproduce --quick --out out/``.  It
 writes into ``--out``
 
+* ``fig1.png`` ... ``fig4.png``: schematics of the paper's Figures 1-4
+  (:mod:`skxfem.schematics`);
 * ``fig5.png`` ... ``fig10.png``: the paper's Figures 5-10 (see
   :mod:`skxfem.figures`), ``fig7_2d.png`` and ``fig8_2d.png``: Figures 7
   and 8 on the 2D strip of triangles, and ``inf_sup.png``: β_h vs h (our
@@ -12,7 +14,13 @@ writes into ``--out``
   both norms of :func:`skxfem.lbb.inf_sup`, ``n_zero`` its zero modes) and
   of the bonded tie the scenes solve (``beta_h_bonded``, ``n_zero_bonded``),
   the relative L² error of the contact pressure and the relative energy
-  error with their observed rates, sizes and timings;
+  error with their observed rates, sizes and timings; ``fem_conforming``:
+  the energy error of classical FEM on hexahedra that follow Γ (the
+  paper's FEM curve of Figure 9, :mod:`skxfem.conforming`); ``block3d``: the
+  genuinely 3D validation (:mod:`skxfem.validation3d`);
+* ``block3d.png`` (its errors against h) and ``block3d_pressure.png`` (its
+  pressures against the exact ones), ``vital_3d.png`` (the multiplier
+  spaces on a sphere through tetrahedra, :func:`skxfem.figures.fig_vital_3d`);
 * ``frontier_energy.png``, ``frontier_pressure.png``, ``frontier.json``: the
   speed-accuracy frontier (:mod:`skxfem.frontier`): error against wall time
   for every method a user can choose, with the Pareto front; its per-method
@@ -25,12 +33,18 @@ Errors are measured against the exact solution of :mod:`skxfem.exact`
 which the paper's reference p(y) = 4y(1 - y) is the exact contact pressure.
 3D uses prisms (all three spaces) and hexahedra (the naive space: on this
 structured mesh cut by a plane every space is the naive one), 2D triangles and
-quadrilaterals (all three spaces).
+quadrilaterals (all three spaces).  The plate does not depend on x, so its
+prisms give the triangles' numbers; the block of
+:func:`~skxfem.scenes.exact_block` (Γ slanted against all three axes, an
+exact solution varying in x, y and z) is solved on hexahedra, prisms and
+tetrahedra with all three spaces.
 
-``--quick`` takes about half a minute (2D up to 1/h = 64, 3D up to 32); the
+``--quick`` takes about a minute (2D up to 1/h = 64, 3D up to 32, the block
+up to 16 cells per side); the
 default goes one mesh further in each and sweeps a larger frontier (about
 eight minutes and 2.4 GB, measured once on 2 shared cores).  ``--sizes``
-replaces every list of meshes (for tests).
+replaces every list of meshes (for tests; the block, n³ cells, takes the
+smallest size and its half).
 
 >>> parser().parse_args(["--quick", "--sizes", "8", "16"]).sizes
 [8, 16]
@@ -45,24 +59,29 @@ from pathlib import Path
 
 import numpy as np
 
-from . import figures
+from . import figures, schematics
+from .conforming import study_conforming
 from .convergence import observed_rates, study
 from .frontier_plots import reproduce_frontier
 from .lbb import inf_sup
 from .progress import Progress
 from .scenes import exact_scene
 from .stabilised import vital_edges, winner_nodes
+from .validation3d import study_block
+from .validation3d import summary as block_summary
+from .validation3d_plots import fig_block, fig_block_pressure
 
 __all__ = ["main", "parser", "plan"]
 
 SETS = {
     "quick": {"d2": (8, 16, 32, 64), "d3": (8, 16, 32), "fig5": 8, "fig7": (4, 8, 16, 32),
-              "fig8": (8, 16)},
+              "fig8": (8, 16), "block": (4, 8, 16)},
     "full": {"d2": (8, 16, 32, 64, 128), "d3": (8, 16, 32, 64), "fig5": 16,
-             "fig7": (4, 8, 16, 32, 64), "fig8": (16, 32)},
+             "fig7": (4, 8, 16, 32, 64), "fig8": (16, 32), "block": (4, 8, 16, 32)},
 }
 PARTS = ("fig5", "fig6", "fig7", "fig8", "fig7_2d", "fig8_2d", "study_tri", "study_quad",
-         "study_prism", "study_hex", "frontier")
+         "study_prism", "study_hex", "fem_conforming", "study_block", "block_pressure",
+         "vital_3d", "frontier")
 """The timed parts of a run, in order (one progress line each, on a terminal)."""
 CELLS = {"tri": ("naive", "winner", "vital"), "quad": ("naive", "winner", "vital"),
          "prism": ("naive", "winner", "vital"), "hex": ("naive",)}
@@ -88,16 +107,17 @@ def parser() -> argparse.ArgumentParser:
 
 
 def plan(quick: bool, sizes=None) -> dict:
-    """The meshes of each part: ``d2``/``d3`` study sizes, ``fig5`` n, ``fig7``/``fig8`` ns.
+    """The meshes of each part: ``d2``/``d3`` study sizes, ``fig5`` n, ``fig7``/``fig8`` ns,
+    ``block`` the cells per side of the 3D block.
 
     >>> plan(True, [8, 16])
-    {'d2': (8, 16), 'd3': (8, 16), 'fig5': 8, 'fig7': (8, 16), 'fig8': (8, 16)}
+    {'d2': (8, 16), 'd3': (8, 16), 'fig5': 8, 'fig7': (8, 16), 'fig8': (8, 16), 'block': (4, 8)}
     """
     if not sizes:
         return dict(SETS["quick" if quick else "full"])
     sizes = tuple(sorted(set(sizes)))
     return {"d2": sizes, "d3": sizes, "fig5": min(8, sizes[-1]), "fig7": sizes,
-            "fig8": sizes[-2:]}
+            "fig8": sizes[-2:], "block": tuple(sorted({max(2, sizes[0] // 2), sizes[0]}))}
 
 
 def _measure(cell, ns):
@@ -153,6 +173,20 @@ def _print_table(studies: dict) -> None:
                       f"{t['pressure_l2'][k]:9.2e} {pr} {t['energy'][k]:9.2e} {er}")
 
 
+def _print_block(block: dict) -> None:
+    print(f"block  {'space':7} {'1/h':>4} {'W(u)':>9} {'rate':>5} {'L2(p)':>9} {'rate':>5} "
+          f"{'max(p)':>9}")
+    for cell, spaces in block["studies"].items():
+        for space, t in spaces.items():
+            for k, n in enumerate(t["n"]):
+                er = f"{t['energy_rates'][k - 1]:5.2f}" if k else "     "
+                pr = f"{t['pressure_l2_rates'][k - 1]:5.2f}" if k else "     "
+                print(f"{cell:6} {space:7} {n:4d} {t['energy'][k]:9.2e} {er} "
+                      f"{t['pressure_l2'][k]:9.2e} {pr} {t['pressure_max'][k]:9.2e}")
+    for f in block["failures"]:
+        print(f"{f['cell']:6} {f['space']:7} {f['n']:4d} {f['reason'][:70]}")
+
+
 def main(argv=None) -> int:
     """Compute, draw and write everything; returns the exit code 0."""
     args = parser().parse_args(argv)
@@ -174,6 +208,8 @@ def main(argv=None) -> int:
         progress.step(name)
         return value
 
+    for name in ("fig1", "fig2", "fig3", "fig4"):     # the schematics of Figures 1-4
+        save(getattr(schematics, name)(), name)
     save(timed("fig5", lambda: figures.fig5(sizes["fig5"])), "fig5")
     save(timed("fig6", figures.fig6), "fig6")
     graph = figures.figure6_graph()
@@ -191,11 +227,20 @@ def main(argv=None) -> int:
     rows = {cell: m[0] for cell, m in measured.items()}
     shown = {"tri": ("naive", "winner", "vital"), "prism": ("naive", "winner", "vital"),
              "quad": ("naive",), "hex": ("naive",)}
-    save(figures.fig9({c: [r for r in rows[c] if r.space in shown[c]] for c in rows}), "fig9")
+    fem = timed("fem_conforming", lambda: study_conforming(
+        sorted({2 * max(1, n // 2) for n in sizes["d3"]})))
+    save(figures.fig9({c: [r for r in rows[c] if r.space in shown[c]] for c in rows},
+                      fem={"hex": fem}), "fig9")
     save(figures.fig10({c: [r for r in rows[c] if r.space in shown[c]] for c in rows}), "fig10")
     inf_sup = [{(c, s): measured[c][1][scaling, s] for c in ("tri", "quad", "prism")
                 for s in shown[c]} for scaling in ("h", "l2", "bonded")]
     save(figures.fig_inf_sup(*inf_sup), "inf_sup")
+
+    block = timed("study_block", lambda: study_block(sizes["block"]))
+    save(fig_block(block), "block3d")
+    save(timed("block_pressure", lambda: fig_block_pressure(min(8, sizes["block"][-1]))),
+         "block3d_pressure")
+    save(timed("vital_3d", figures.fig_vital_3d), "vital_3d")
 
     frontier = timed("frontier", lambda: reproduce_frontier(out, args.quick, args.sizes))
 
@@ -214,12 +259,20 @@ def main(argv=None) -> int:
             np.ptp([quad[s][k][i] for s in quad]) for k in ("beta_h", "pressure_l2")
             for i in range(len(quad["naive"]["n"])))),
         "studies": studies,
+        "fem_conforming": {"hex": {
+            "scene": "exact_plate(n, 'hex', nx=1) on 1 x n x n cells: Γ on mesh faces",
+            "n": [r.n for r in fem], "h": [r.h for r in fem],
+            "energy": [r.energy for r in fem],
+            "energy_rates": _rates([r.h for r in fem], [r.energy for r in fem]),
+            "n_dofs": [r.n_dofs for r in fem]}},
+        "block3d": block_summary(block),
         "frontier": frontier,
         "timings": timings,
     }
     timings["total"] = round(time.perf_counter() - start, 2)
     (out / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
     _print_table(studies)
+    _print_block(summary["block3d"])
     print(f"wrote {len(list(out.glob('*.png')))} figures and summary.json to {out}/ "
           f"in {timings['total']:.0f} s")
     return 0

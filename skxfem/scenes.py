@@ -4,6 +4,8 @@ r"""Built-in benchmark scenes.
 * :func:`strip`: its 2D plane-strain analogue;
 * :func:`exact_plate`, :func:`exact_strip`: the same with the loads of
   :mod:`skxfem.exact`, under which the paper's reference p(y) is exact;
+* :func:`exact_block`: not in the paper, a genuinely 3D check: a cube cut
+  by a slanted plane under the loads of :mod:`skxfem.exact3d`.
 * :func:`sliding`, :func:`uniaxial` and :func:`uniform_block`: blocks in a
   uniform contact state (:class:`skxfem.exact.UniformContact`) — sliding at
   the slip limit in any direction, on a horizontal or slanted Γ, or pressed —
@@ -24,13 +26,14 @@ from dataclasses import replace
 import numpy as np
 
 from .exact import ExactPlate, UniformContact
+from .exact3d import GAMMA_NORMAL, GAMMA_POINT, ExactBlock
 from .expr import Expression
 from .levelset import plane
 from .material import Material
 from .scene import Box, Displacement, Scene, SurfaceLoad, clamped, rollers
 
-__all__ = ["paper_plate", "strip", "exact_plate", "exact_strip", "exact_scene", "P_MAX",
-           "sliding", "uniaxial", "uniform_block", "DRIVES"]
+__all__ = ["paper_plate", "strip", "exact_plate", "exact_strip", "exact_scene", "exact_block",
+           "P_MAX", "sliding", "uniaxial", "uniform_block", "DRIVES"]
 
 P_MAX = 1.0
 """Peak of the parabolic pressure, P_max = 1 Pa as in the paper."""
@@ -205,6 +208,47 @@ def exact_scene(n: int, cell: str, space: str = "vital") -> Scene:
     if cell in ("tri", "quad"):
         return exact_strip(n, cell, space=space)
     return exact_plate(n, cell, nx=1, space=space)
+
+
+def exact_block(n: int = 4, cell: str = "hex", law: str = "bonded",
+                space: str = "vital") -> Scene:
+    """A genuinely 3D benchmark: the unit cube under the loads of :mod:`skxfem.exact3d`.
+
+    n × n × n cells (hexahedra, prisms or tetrahedra of :class:`~skxfem.scene.Box`),
+    Γ the plane through :data:`~skxfem.exact3d.GAMMA_POINT` with normal
+    :data:`~skxfem.exact3d.GAMMA_NORMAL` (slanted against all three axes,
+    it cuts the four side faces), E = 1, ν = 0.3; the bottom z = 0 held at
+    the exact displacement, the five other faces loaded by the exact
+    traction σ·n.  The exact contact pressure on Γ varies along x, y and z
+    (:meth:`~skxfem.exact3d.ExactBlock.pressure`); the field is continuous,
+    so the tie law is ``bonded``, or ``bilateral`` for its normal part only
+    when the tangential traction is not needed (it is not zero here: use
+    ``bonded`` to compare with the exact solution).
+
+    >>> scene = exact_block(3, "tet")
+    >>> scene.mesh, len(scene.loads)
+    (Box(n=(3, 3, 3), cell='tet', size=(1.0, 1.0, 1.0)), 5)
+    """
+    if cell not in ("hex", "prism", "tet"):
+        raise ValueError(f"cell must be 'hex', 'prism' or 'tet' for the block, got {cell!r}")
+    if not (isinstance(n, int) and not isinstance(n, bool) and n >= 1):
+        raise ValueError(f"n must be a positive integer, got {n!r}")
+    material = Material(E=1.0, nu=0.3)
+    sol = ExactBlock(material, P_MAX)
+    bottom = Displacement("zmin", {c: (lambda x, i=i: sol.displacement(x)[i])
+                                   for i, c in enumerate("xyz")})
+    loads = []
+    for face in ("xmin", "xmax", "ymin", "ymax", "zmax"):
+        axis, sign = "xyz".index(face[0]), (1.0 if face.endswith("max") else -1.0)
+        normal = sign * np.eye(3)[:, axis]
+        loads.append(SurfaceLoad(face, traction=tuple(
+            (lambda x, i=i, m=normal: sol.traction(x, m.reshape((3,) + (1,) * (x.ndim - 1))
+                                                   + 0 * x)[i])
+            for i in range(3))))
+    return Scene(mesh=Box((n, n, n), cell, (1.0, 1.0, 1.0)),
+                 levelset=plane(point=GAMMA_POINT, normal=GAMMA_NORMAL),
+                 material=material, displacements=(bottom,), loads=tuple(loads),
+                 law=law, space=space, name=f"exact_block_{cell}_{n}")
 
 
 DRIVES = ("displacement", "mixed", "free")

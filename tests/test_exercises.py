@@ -148,14 +148,15 @@ def test_reusing_the_library_fails_the_grade(tmp_path, name, source):
 def test_a_student_goes_from_the_readme_to_a_score_table(tmp_path):
     """The README's commands, run on a copy of exercise 03: stub, then filled in."""
     readme = (EXERCISES / "03_enrich" / "README.md").read_text(encoding="utf-8")
-    commands = ["pytest exercises/03_enrich", "python -m skxfem.grade exercises/03_enrich"]
+    commands = [".venv/bin/pytest exercises/03_enrich",
+                ".venv/bin/skxfem grade exercises/03_enrich"]
     assert all(c in readme for c in commands), "the README shows the commands run here"
     folder = copy_exercise(tmp_path, "03_enrich")
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(
         [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
 
-    def shell(command):
-        args = command.removeprefix("python -m ").split()
+    def shell(command):   # .venv/bin/X: this interpreter's X (the clone's is tested apart)
+        args = command.removeprefix(".venv/bin/").split()
         return subprocess.run([sys.executable, "-m", *args], cwd=tmp_path, env=env,
                               capture_output=True, text=True)
 

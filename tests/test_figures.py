@@ -3,6 +3,7 @@
 What is drawn is checked (axes, lines, labels, colours and the data of the
 curves), not pixels.  Figure 6 is also checked against the paper's numbers.
 """
+import io
 import re
 
 import numpy as np
@@ -21,12 +22,14 @@ from skxfem.figures import (
     fig9,
     fig10,
     fig_inf_sup,
+    fig_vital_3d,
     figure6_graph,
     plot_space_2d,
 )
 from skxfem.lbb import InfSup
-from skxfem.levelset import plane
+from skxfem.levelset import plane, sphere
 from skxfem.meshes import box
+from skxfem.plot_space import plot_space_3d
 from skxfem.plotting import COLORS
 from skxfem.stabilised import multiplier_space, vital_edges, winner_nodes
 
@@ -91,16 +94,27 @@ def test_fig7_converges_to_the_exact_pressure(cell):
 
 
 @pytest.mark.parametrize("cell", ["prism", "tri"])
-def test_fig8_half_length_two_algorithms(cell):
+def test_fig8_whole_length_two_algorithms(cell):
     fig = fig8(ns=(4, 8), cell=cell)
     assert len(fig.axes) == 2
     for ax in fig.axes:
-        winner, vital, _ = ax.lines
+        winner, vital, exact_line = ax.lines
         assert same_colour(winner.get_color(), COLORS["winner"])
         assert same_colour(vital.get_color(), COLORS["vital"])
-        assert winner.get_xdata().max() == pytest.approx(0.5), "only the first half is drawn"
-        exact = 4 * vital.get_xdata() * (1 - vital.get_xdata())
-        assert np.abs(vital.get_ydata() - exact).mean() < 0.1, "algo2 follows p"
+        for line in ax.lines:
+            s = line.get_xdata()
+            assert s.min() < 0.1 and s.max() > 0.9, "the whole length, both ends of Γ"
+        assert exact_line.get_xdata().max() == pytest.approx(1.0)
+        s = vital.get_xdata()
+        error = np.abs(vital.get_ydata() - 4 * s * (1 - s))
+        assert error.mean() < 0.2, "algo2 follows p"
+        assert s[np.argmax(error)] > 0.5, \
+            "the half the paper leaves out, where algo2 is worst (toward s = 1), is drawn"
+
+
+def test_fig8_half_is_the_papers_first_half():
+    ax = fig8(ns=(4,), half=True).axes[0]
+    assert all(line.get_xdata().max() == pytest.approx(0.5) for line in ax.lines)
 
 
 # 3. convergence and inf-sup plots from data
@@ -119,6 +133,20 @@ def test_fig9_fig10_one_panel_per_dimension_with_slopes():
         assert labels == ["naive, prism, slope 0.00", "vital, prism, slope -1.00"]
         assert fig.axes[1].lines[0].get_label() == "winner, tri, slope -2.00"
         assert np.allclose(fig.axes[1].lines[0].get_xdata(), [4, 8, 16]), "abscissa 1/h"
+
+
+def test_fig9_draws_the_conforming_fem_curve_in_its_dimension():
+    data = {"hex": rows("naive", [0.4, 0.2, 0.1]), "quad": rows("naive", [0.3, 0.15, 0.075])}
+    fem = [StudyRow(n, 1 / n, "fem", np.nan, -1, np.nan, np.nan, e, 0, 0, 0.0)
+           for n, e in zip((4, 8, 16), (0.5, 0.25, 0.125))]
+    fig = fig9(data, fem={"hex": fem})
+    three, two = fig.axes
+    line = three.lines[-1]
+    assert line.get_label() == "FEM, conforming hex, slope -1.00"
+    assert same_colour(line.get_color(), COLORS["reference"]), "the FEM curve is black"
+    assert np.allclose(line.get_ydata(), [0.5, 0.25, 0.125])
+    assert not any("FEM" in ln.get_label() for ln in two.lines), "not in the 2D panel"
+    assert len(fig10(data).axes[0].lines) == 1, "fig10 has no FEM curve (no multiplier)"
 
 
 def test_inf_sup_plot_two_norms():
@@ -154,9 +182,59 @@ def test_plot_space_2d_solid_and_dotted_edges(name):
     assert str(space.size) in ax.get_title()
 
 
+# 5. a space on a 3D mesh: a sphere through tetrahedra
+@pytest.mark.parametrize("name", ["naive", "winner", "vital"])
+def test_plot_space_3d_draws_every_cut_edge_once(name):
+    m = box(4, "tet")
+    c = cut(m, sphere((0.5, 0.5, 0.5), 0.37))
+    space = multiplier_space(name, m, c)
+    fig = plot_space_3d(m, c, space)
+    fig.savefig(io.BytesIO())              # draws: the 3D segments are projected
+    ax = fig.axes[0]
+    lines = [col for col in ax.collections if type(col).__name__ == "Line3DCollection"]
+    counts = {same_colour(col.get_color()[0], COLORS[name]): len(col.get_segments())
+              for col in lines}
+    assert sum(counts.values()) == c.edges.shape[1], "one segment per cut edge"
+    if name == "naive":
+        assert counts == {True: c.edges.shape[1]}, "every naive multiplier is free"
+    if name == "vital":
+        assert counts[True] == space.vital.sum(), "vital edges in the space's colour"
+    assert str(space.size) in ax.get_title()
+    fig = plot_space_3d(m, c, space, below=0.5)
+    fig.savefig(io.BytesIO())
+    drawn = sum(len(col.get_segments()) for col in fig.axes[0].collections
+                if type(col).__name__ == "Line3DCollection")
+    assert 0 < drawn < c.edges.shape[1], "the cutaway draws part of the edges"
+
+
+def test_plot_space_3d_refuses_2d():
+    m = box(3, "tri")
+    c = cut(m, plane((0, 0.52), (0.25, 1)))
+    with pytest.raises(ValueError, match="plot_space_2d"):
+        plot_space_3d(m, c, multiplier_space("vital", m, c))
+
+
+def test_fig_vital_3d_three_spaces_on_a_sphere():
+    fig = fig_vital_3d(n=4)
+    assert [ax.name for ax in fig.axes] == ["3d"] * 3
+    sizes = [int(re.search(r": (\d+) multipliers", ax.get_title()).group(1))
+             for ax in fig.axes]
+    edges = int(re.search(r"on (\d+) cut edges", fig.axes[0].get_title()).group(1))
+    assert sizes[0] == edges, "naive: one multiplier per cut edge"
+    assert sizes[2] < edges // 3, "vital: far fewer multipliers than cut edges"
+    assert "sphere" in fig.get_suptitle()
+
+
 def test_plot_space_2d_into_given_axes():
     m = box(4, "quad")
     c = cut(m, plane((0, 0.55), (0, 1)))
     fig = Figure()
     ax = fig.add_subplot(121)
     assert plot_space_2d(m, c, multiplier_space("vital", m, c), ax=ax) is fig
+
+
+def test_fig_vital_3d_chosen_spaces_and_refusal():
+    fig = fig_vital_3d(n=3, radius=0.4, spaces=("naive", "vital"))
+    assert [ax.get_title().split(":")[0] for ax in fig.axes] == ["naive", "vital (algo2)"]
+    with pytest.raises(ValueError, match="spaces must be some of"):
+        fig_vital_3d(n=3, spaces=("fancy",))

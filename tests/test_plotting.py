@@ -73,6 +73,9 @@ def test_levelset_figure_has_plot_and_colorbar():
     m = box(6, "quad")
     fig = plot_levelset_2d(m, nodal_values(circle((0.5, 0.5), 0.3), m))
     assert len(fig.axes) == 2
+    bar = fig.axes[1]                  # ψ stands upright above the bar, not along it
+    assert bar.get_title() == "ψ" and bar.get_ylabel() == ""
+    assert bar.title.get_rotation() == 0
     with pytest.raises(ValueError, match="one value per vertex"):
         plot_levelset_2d(m, np.zeros(3))
 

@@ -1,0 +1,86 @@
+"""The chapters as standalone notebooks (scripts/notebooks.py, `make notebooks`).
+
+Every chapter is converted to an .ipynb in an empty folder and executed there by
+nbclient, as a student who downloaded it would run it: no book, no build, no
+relative path.  The notebooks run two at a time (the machine has 2 cores): about
+40 s for the ten chapters, against 65 s one after the other.
+"""
+import importlib.util
+import os
+import subprocess
+import sys
+import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import nbformat
+
+ROOT = Path(__file__).resolve().parents[1]
+_spec = importlib.util.spec_from_file_location("book_notebooks", ROOT / "scripts" / "notebooks.py")
+notebooks = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(notebooks)
+
+
+def test_every_chapter_with_code_is_a_notebook():
+    toc = (ROOT / "book" / "_toc.yml").read_text(encoding="utf-8")
+    with_code = {p.stem for p in (ROOT / "book").glob("*.md")
+                 if "```{code-cell}" in p.read_text(encoding="utf-8") and p.stem in toc}
+    names = [p.stem for p in notebooks.chapters()]
+    assert set(names) == with_code and len(names) == len(set(names)) >= 10
+    assert names[:2] == ["levelset", "cut"]                 # in the order of the book
+
+
+def test_a_notebook_is_the_chapter_without_outputs(tmp_path):
+    page = ROOT / "book" / "cut.md"
+    nb = notebooks.notebook(page)
+    code = [c.source for c in nb.cells if c.cell_type == "code"]
+    assert code and all(c.strip() in page.read_text(encoding="utf-8") for c in code)
+    assert all(c.outputs == [] for c in nb.cells if c.cell_type == "code")
+    assert "make install" in nb.cells[0].source and "Cutting the mesh" in nb.cells[0].source
+    assert set(nb.metadata) == {"kernelspec", "language_info"}      # no jupytext pairing
+    assert notebooks.notebook(page) == nb                           # stable, cell ids too
+
+
+def test_the_check_of_the_built_book(tmp_path):
+    html = tmp_path / "html"
+    (html / "_sources").mkdir(parents=True)
+    pages = notebooks.chapters()
+    for page in pages:
+        (html / f"{page.stem}.html").write_text(f'<a href="_sources/{page.stem}.ipynb">')
+        nbformat.write(notebooks.notebook(page), html / "_sources" / f"{page.stem}.ipynb")
+    assert notebooks.check(html) == []
+    (html / "_sources" / "cut.ipynb").write_text(
+        nbformat.writes(notebooks.notebook(ROOT / "book" / "lbb.md")))
+    (html / "lbb.html").write_text("<p>no button</p>")
+    (html / "enrich.html").unlink()
+    problems = notebooks.check(html)
+    assert len(problems) == 3
+    assert any("cut.ipynb is not the notebook of cut.md" in p for p in problems)
+    assert any("lbb.html has no download button" in p for p in problems)
+    assert any("enrich.html is missing" in p for p in problems)
+    assert notebooks.main(["--check", str(html)]) == 1
+
+
+def run(path: Path, env: dict) -> tuple[str, float, str]:
+    """Execute one notebook as a student would (``jupyter execute NAME.ipynb``, nbclient's
+    command line) in its own process and folder; its name, seconds and error ('' if none)."""
+    start = time.perf_counter()
+    done = subprocess.run([sys.executable, "-m", "jupyter", "execute", "--timeout=600",
+                           path.name], cwd=path.parent, env=env, capture_output=True, text=True)
+    error = "" if done.returncode == 0 else (done.stdout + done.stderr)[-4000:]
+    return path.stem, time.perf_counter() - start, error
+
+
+def test_every_chapter_runs_as_a_standalone_notebook(tmp_path):
+    env = {k: v for k, v in os.environ.items() if k != "SKXFEM_SOLUTIONS"}   # students'
+    env.setdefault("MPLBACKEND", "Agg")
+    env.setdefault("OPENBLAS_NUM_THREADS", "1")
+    env.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+    assert notebooks.main([str(tmp_path)]) == 0
+    paths = sorted(tmp_path.glob("*.ipynb"))
+    assert [p.stem for p in paths] == sorted(p.stem for p in notebooks.chapters())
+    with ThreadPoolExecutor(max_workers=2) as pool:      # two kernels at a time
+        results = list(pool.map(lambda path: run(path, env), paths))
+    print("\n".join(f"{name:16} {seconds:5.1f} s" for name, seconds, _ in results))
+    failed = [f"{name}: {error}" for name, _, error in results if error]
+    assert not failed, "\n\n".join(failed)
