@@ -112,7 +112,7 @@ class Step:
     """One converged load step, all at the m multiplier dofs.
 
     ``pressure`` (m,) p = -λ; ``traction`` (m, k) the tangential traction
-    r_τ (components on ``ContactResult.ops.Bt``'s tangents); ``gap`` (m,)
+    r_τ (components on ``Result.ops.Bt``'s tangents); ``gap`` (m,)
     the weighted normal jump d (≤ 0 admissible); ``slip`` (m, k) the
     weighted tangential jump (total); ``status`` (m,) 0 open, 1 stick,
     2 slip; ``Lambda`` (m, k) the semi-multiplier Λ = r_τ/(μλ) of eq. 9a

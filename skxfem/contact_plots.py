@@ -30,7 +30,7 @@ def plot_status_2d(result, step: int = -1, title: str | None = None) -> Figure:
     Parameters
     ----------
     result
-        A :class:`skxfem.contact.ContactResult` of a 2D scene.
+        A contact :class:`skxfem.result.Result` of a 2D scene.
     step
         Which load step (default: the last).
     """

@@ -42,7 +42,7 @@ class PressureError:
 
 
 def pressure_error(result, exact: Callable) -> PressureError:
-    """Pressure error of a :class:`skxfem.solver.Result` against ``exact(x)``."""
+    """Pressure error of a :class:`skxfem.result.Result` against ``exact(x)``."""
     V = result.space
     rule = interface_rule(V.mesh, V.cut)
     ph = rule.N @ result.pressure

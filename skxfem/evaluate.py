@@ -80,7 +80,7 @@ def pressure_along(result, axis: str | int = "y", where: Mapping | None = None,
     Parameters
     ----------
     result
-        A :class:`skxfem.solver.Result`, or anything with ``points``
+        A :class:`skxfem.result.Result`, or anything with ``points``
         ``(dim, n)`` and ``pressure`` ``(n,)``.
     axis
         The coordinate to sort by: ``"x"``, ``"y"``, ``"z"`` or 0, 1, 2.

@@ -10,7 +10,7 @@ relative L² error of the contact pressure against :mod:`skxfem.exact`.
 :func:`pareto` marks the points no other point beats in both time and error.
 
 The solvers are the entries of :data:`SOLVERS`: a name and a function from an
-assembled :class:`~skxfem.problem.Problem` to a :class:`~skxfem.solver.Result`.
+assembled :class:`~skxfem.problem.Problem` to a :class:`~skxfem.result.Result`.
 The direct and the iterative solve are there; another is one entry; :data:`PLANS` lists it
 per benchmark.
 

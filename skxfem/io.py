@@ -5,7 +5,7 @@
   whole vector), ``pressure``, ``jump`` ([[u]] = u⁻ - u⁺), ``max_jump``,
   ``n_dofs``, ``n_multipliers``, the ``timings`` in seconds per stage and
   ``linear_solve``: the solve taken (``linear``) and how it went
-  (:attr:`skxfem.solver.Result.linear_info`: residual, balance, and the
+  (:attr:`skxfem.result.Result.linear_info`: residual, balance, and the
   iterations and residuals of an iterative solve).  NaN or inf become ``null``.
 * ``displacement.vtu``: each side of Γ as its own piece of mesh with its own
   field ``displacement``, so that ParaView's *Warp By Vector* shows the
@@ -34,7 +34,7 @@ start, then after each iteration).  ``interface.vtu`` adds the point data
 ``status`` (0 open, 1 stick, 2 slip).  The VTU files hold the last step only
 (the JSON has every step).
 
-**Array shapes.**  :class:`skxfem.solver.Result` follows scikit-fem: a set of
+**Array shapes.**  :class:`skxfem.result.Result` follows scikit-fem: a set of
 points or vectors is ``(dim, n)`` (``mesh.p``, ``result.points``,
 ``result.traction``).  The files follow meshio, VTK and JSON readers, where a
 point is a row: ``result.json``'s ``points``, ``normals`` and ``traction`` are

@@ -1,13 +1,15 @@
-"""What the files of a contact result hold: every load step in JSON, the last one in VTU.
+"""What ``result.json`` adds for a contact result: the law, and every load step at the dofs.
 
-:func:`skxfem.io.write_result` writes a :class:`skxfem.contact.ContactResult`
-into the same three files as a tie result, atomically; this module gives their
-content (the file layout is described in :mod:`skxfem.io`).  Every interface
-value is one value per multiplier dof (the points where the laws are imposed,
-:mod:`skxfem.contact_interface`): ``pressure`` p = -λ (≥ 0), ``gap`` the
-weighted normal jump d (≤ 0 admissible), ``slip`` and ``tangential_traction``
-the components of the weighted tangential jump and of r_τ on the ``tangents``
-of the point (k = 1 in 2D, 2 in 3D), ``status`` open / stick / slip.
+:func:`skxfem.io.write_result` writes a contact result into the same three
+files as a tie result, with the same fields at the cut edges' points (the last
+step's); this module gives what a contact ``result.json`` adds (the file layout
+is described in :mod:`skxfem.io`): the law's parameters, the ``status`` of each
+point, and ``dofs`` and ``steps``, the values at the multiplier dofs (the
+points where the laws are imposed, :mod:`skxfem.contact_interface`):
+``pressure`` p = -λ (≥ 0), ``gap`` the weighted normal jump d (≤ 0
+admissible), ``slip`` and ``tangential_traction`` the components of the
+weighted tangential jump and of r_τ on the ``tangents`` of the dof (k = 1 in
+2D, 2 in 3D), ``status`` open / stick / slip.
 
 >>> from dataclasses import replace
 >>> from skxfem import contact
@@ -19,7 +21,7 @@ of the point (k = 1 in 2D, 2 in 3D), ``status`` open / stick / slip.
 >>> data = contact_summary(contact.solve(s))
 >>> data["steps"][-1]["status"], data["status_codes"]["slip"]
 (['slip', 'slip', 'slip', 'slip'], 2)
->>> data["status"] == data["steps"][-1]["status"]   # the naive space: dofs = points
+>>> data["status"] == data["steps"][-1]["status"]   # quads: one dof per cut edge
 True
 """
 from __future__ import annotations

@@ -62,7 +62,7 @@ def plot_result_3d(result, scale: float | None = None,
     Parameters
     ----------
     result
-        A :class:`skxfem.solver.Result` of a 3D scene.
+        A :class:`skxfem.result.Result` of a 3D scene.
     scale
         Displacement magnification; default: the largest displacement drawn
         as 10 % of the mesh size.
