@@ -32,7 +32,8 @@ The package is flat; its modules stand on floors, lowest first.  A module
 imports only from lower floors (import-linter checks it in ``make test``; the
 contract is in ``pyproject.toml``):
 
-1. kernels: ``simplex``, ``expr``, ``saddle``, ``vtu``, ``progress``, ``grade``,
+1. ``laws`` (the interface laws, one table); the kernels: ``simplex``, ``expr``,
+   ``saddle``, ``vtu``, ``progress``, ``grade``,
    ``graded`` (the course's tooling), ``linear`` (which solve), ``threads`` (the BLAS
    threads of a solve), ``files`` (checked reads, a set of files written as one); then
    ``amg``, ``smoothest``, ``pcg``, then ``iterative`` (the scalable linear solve);

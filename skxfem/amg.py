@@ -23,7 +23,7 @@ import importlib
 import numpy as np
 import scipy.sparse as sp
 
-from .saddle import SingularSystemError
+from .saddle import SingularSystemError, floating
 
 __all__ = ["rigid_modes", "axis_name", "motion_name", "free_motion_name", "amg", "check_held",
            "scaled_tie", "augmented", "check_tie_held"]
@@ -177,12 +177,8 @@ def check_held(Kr, Z, rigid_tol: float = 1e-11):
     energies, vectors = np.linalg.eigh(Q.T @ (Kr @ Q))
     if energies[0] < rigid_tol:
         c = np.linalg.lstsq(Z, Q @ vectors[:, 0], rcond=None)[0]
-        raise SingularSystemError(
-            f"the tied system is singular ({free_motion_name(c)}: a rigid motion of "
-            f"energy {energies[0]:.1e}): a part of the body can move freely.  Either the "
-            f"displacements do not remove every rigid motion of the body, or a frictionless "
-            f"(bilateral) tie lets the part on the other side of Γ slide; add displacements "
-            f"(supports) on each side")
+        raise floating(f"{free_motion_name(c)}: a rigid motion of energy {energies[0]:.1e}",
+                       "the tied system")
 
 
 def free_motion_name(c) -> str:

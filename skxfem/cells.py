@@ -1,4 +1,8 @@
-"""The five cell types' reference topology: local edges, faces and simplex splits.
+"""The five cell types: the one table of their facts, and their reference topology.
+
+:data:`CELL_TYPES` holds, once, what the rest of skxfem knows of each cell type
+(its name, dimension, scikit-fem mesh class, vertices, cells per cube of a box
+mesh, meshio name, plural).
 
 What :mod:`skxfem.cut` needs to know about a cell, read off scikit-fem's own
 reference domains (``mesh.elem().refdom``) and mesh connectivity: the local
@@ -9,15 +13,48 @@ into 2 triangles, a prism into 3 and a hexahedron into 6 tetrahedra).
 >>> from skfem import MeshHex1
 >>> reference_simplices(MeshHex1()).shape
 (6, 4)
+>>> CELL_TYPES["prism"].dim, CELL_TYPES["prism"].meshio, CELL_TYPES["prism"].nverts
+(3, 'wedge', 6)
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
-from skfem import MeshQuad1, MeshTet1, MeshTri1, MeshWedge1
+from skfem import MeshHex1, MeshQuad1, MeshTet1, MeshTri1, MeshWedge1
 
 from .simplex import WEDGE_TO_TETS
 
-__all__ = ["reference_simplices", "cell_edges", "faces_of_edges"]
+__all__ = ["CellType", "CELL_TYPES", "CELLS", "reference_simplices", "cell_edges",
+           "faces_of_edges"]
+
+
+@dataclass(frozen=True)
+class CellType:
+    """A cell type: ``name`` (skxfem's), ``dim``, scikit-fem's ``mesh`` class,
+    ``nverts``, ``per_cube`` cells per square or cube of :func:`skxfem.meshes.box`,
+    the ``meshio`` cell name and the ``plural`` for text."""
+
+    name: str
+    dim: int
+    mesh: type
+    nverts: int
+    per_cube: int
+    meshio: str
+    plural: str
+
+
+CELL_TYPES = {c.name: c for c in (
+    CellType("tri", 2, MeshTri1, 3, 2, "triangle", "triangles"),
+    CellType("quad", 2, MeshQuad1, 4, 1, "quad", "quadrilaterals"),
+    CellType("tet", 3, MeshTet1, 4, 6, "tetra", "tetrahedra"),
+    CellType("hex", 3, MeshHex1, 8, 1, "hexahedron", "hexahedra"),
+    CellType("prism", 3, MeshWedge1, 6, 2, "wedge", "prisms"),
+)}
+"""Every cell type skxfem supports, by name: the one table."""
+
+CELLS = tuple(CELL_TYPES)
+"""Their names, in the order of the tables of the book."""
 
 
 def reference_simplices(mesh) -> np.ndarray:

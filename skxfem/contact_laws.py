@@ -44,45 +44,21 @@ the tangential one (k = 1 in 2D, 2 in 3D).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
+
+from .laws import CONTACT_LAWS, LAWS, LawKind
 
 __all__ = ["CONTACT_LAWS", "HISTORY_LAWS", "LawKind", "KINDS", "OPEN", "STICK", "SLIP",
            "STATUS_NAMES", "indicator", "normal_update", "ball_projection",
            "disk_projection", "status"]
 
-CONTACT_LAWS = ("frictionless", "coulomb", "adhesive")
-"""Unilateral laws: no friction, Coulomb friction (μ), no slip in contact."""
+KINDS = LAWS
+"""Every law the contact solver imposes, by name (:data:`skxfem.laws.LAWS`): the
+contact laws and, within a load history, the two ties: a state may switch an
+interface to ``bilateral`` (tension carried, free sliding) or ``bonded`` (no
+further slip), from the jump it has reached."""
 
-
-@dataclass(frozen=True)
-class LawKind:
-    """What a law imposes at a point of Γ.
-
-    ``unilateral``: Signorini (eq. 5) on the normal, else the normal jump is
-    tied (d_n = 0, λ of either sign).  ``tangential``: ``"free"`` (r_τ = 0),
-    ``"stick"`` (no slip increment where closed) or ``"coulomb"`` (eq. 8).
-    """
-
-    name: str
-    unilateral: bool
-    tangential: str
-
-
-KINDS = {
-    "frictionless": LawKind("frictionless", True, "free"),
-    "coulomb": LawKind("coulomb", True, "coulomb"),
-    "adhesive": LawKind("adhesive", True, "stick"),
-    "bilateral": LawKind("bilateral", False, "free"),
-    "bonded": LawKind("bonded", False, "stick"),
-}
-"""Every law the contact solver imposes, by name.  The contact laws
-(:data:`CONTACT_LAWS`) and, within a load history, the two ties: a state may
-switch an interface to ``bilateral`` (tension carried, free sliding) or
-``bonded`` (no further slip), from the jump it has reached."""
-
-HISTORY_LAWS = tuple(KINDS)
+HISTORY_LAWS = tuple(LAWS)
 
 OPEN, STICK, SLIP = 0, 1, 2
 STATUS_NAMES = ("open", "stick", "slip")

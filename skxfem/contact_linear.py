@@ -43,7 +43,7 @@ from .amg import pyamg
 from .contact_laws import disk_projection
 from .iterative import ConvergenceError
 from .iterative import solve as tie_solve
-from .saddle import SingularSystemError
+from .saddle import SingularSystemError, factorise, floating
 
 __all__ = ["scales", "direct", "iterative", "TieStep", "NEAR_STICK", "SingularStepError"]
 
@@ -83,21 +83,14 @@ def direct(A, R, nu, reuse=None):
         _, r, c, lu = reuse
         return c * lu.solve(-r * R), r, reuse
     r, c = scales(A, nu)
-    As = sp.diags(r) @ A @ sp.diags(c)
-    try:
-        lu = spla.splu(As.tocsc(), permc_spec="COLAMD")
-        pivots = np.abs(lu.U.diagonal())
-        if pivots.min() < 1e-11 * pivots.max():
-            raise RuntimeError(f"smallest LU pivot {pivots.min() / pivots.max():.1e} "
-                               f"of the largest")
-    except RuntimeError as e:  # SuperLU: "Factor is exactly singular"
-        raise SingularStepError(
-            f"the contact Newton matrix is singular ({e}): either a part of the body can "
-            f"move freely (a frictionless or open interface leaves a rigid motion of one "
-            f"side: add supports on each side), or some multipliers depend on the others "
-            f"(the naive space on tetrahedra, or a support acting on a face that Γ cuts: "
-            f"use space='vital' or move the support)") from e
+    lu = factorise(sp.diags(r) @ A @ sp.diags(c), floating=_singular_step)
     return c * lu.solve(-r * R), r, (A, r, c, lu)
+
+
+def _singular_step(detail: str) -> SingularStepError:
+    error = floating(detail, "the contact Newton matrix", "; or some multipliers depend on "
+                     "the others (the naive space on tetrahedra): use space='vital'")
+    return SingularStepError(str(error))
 
 
 def iterative(step, it, res, A, modes=None, blocksize=1, close=None, tol=1e-12, maxiter=50,

@@ -16,14 +16,15 @@ import math
 
 import numpy as np
 
+from .cells import CELL_TYPES
 from .levelset import nodal_values
 from .scene import Box
 
 __all__ = ["box_counts", "box_size", "mesh_counts", "NVERTS", "PER_CUBE"]
 
 # vertices per cell, cells per hypercube of a Box, edge directions of a Box
-NVERTS = {"tri": 3, "quad": 4, "tet": 4, "hex": 8, "prism": 6}
-PER_CUBE = {"tri": 2, "quad": 1, "tet": 6, "hex": 1, "prism": 2}
+NVERTS = {name: c.nverts for name, c in CELL_TYPES.items()}
+PER_CUBE = {name: c.per_cube for name, c in CELL_TYPES.items()}
 _AXES = {2: [(1, 0), (0, 1)], 3: [(1, 0, 0), (0, 1, 0), (0, 0, 1)]}
 _DIAG2 = [(1, 1), (1, -1)]
 _DIRECTIONS = {

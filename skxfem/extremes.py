@@ -32,6 +32,7 @@ from typing import Callable
 import numpy as np
 import scipy.sparse as sp
 
+from .cells import CELLS
 from .contact_newton import ContactConvergenceError
 from .convergence import energy_error
 from .cut import SnapWarning
@@ -49,7 +50,7 @@ from .stabilised import multiplier_space
 __all__ = ["Row", "Conditioning", "attempt", "patch_scene", "uniform_strain", "patch_error",
            "OFFSETS", "position_rows", "conditioning", "CELL_TYPES"]
 
-CELL_TYPES = ("tri", "quad", "tet", "hex", "prism")
+CELL_TYPES = CELLS
 OFFSETS = (1e-14, 1e-10, 1e-6, 1e-3, 0.5)
 """Distances of Γ from a row of nodes, in units of h (:func:`position_rows`)."""
 PATCH_TOL = 1e-8

@@ -18,6 +18,7 @@ import numpy as np
 from matplotlib.colors import to_rgb
 from matplotlib.ticker import NullFormatter
 
+from .cells import CELL_TYPES
 from .convergence import observed_rates
 from .plotting import COLORS
 
@@ -27,7 +28,7 @@ __all__ = ["CELL_STYLE", "CELL_DIM", "p_ref", "curve", "reference", "shades", "f
 #: Line style and marker of each cell type.
 CELL_STYLE = {"tri": ("-", "^"), "quad": ("--", "s"), "prism": ("-.", "v"),
               "hex": (":", "D"), "tet": ((0, (1, 1)), "x")}
-CELL_DIM = {"tri": 2, "quad": 2, "hex": 3, "prism": 3, "tet": 3}
+CELL_DIM = {name: c.dim for name, c in CELL_TYPES.items()}
 
 
 def p_ref(s):

@@ -38,6 +38,7 @@ from dataclasses import replace
 import numpy as np
 from matplotlib.figure import Figure
 
+from .cells import CELL_TYPES
 from .cut import cut as cut_mesh
 from .evaluate import pressure_along
 from .figstyle import (
@@ -135,8 +136,7 @@ def _interface_axis(cell: str) -> str:
 
 
 def _plural(cell: str) -> str:
-    return {"tri": "triangles", "quad": "quadrilaterals", "tet": "tetrahedra",
-            "hex": "hexahedra", "prism": "prisms"}[cell]
+    return CELL_TYPES[cell].plural
 
 
 def fig8(ns: Sequence[int] = (8, 16), cell: str = "prism", half: bool = False) -> Figure:

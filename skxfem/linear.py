@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import importlib.util
 
+from .laws import ALL_LAWS, AUTO_ITERATIVE_LAWS
+
 __all__ = ["LINEAR", "AUTO_ITERATIVE", "ITERATIVE_LAWS", "AUTO_LAWS", "LINEAR_TOL",
            "choose_linear", "check_linear_tol"]
 
@@ -39,10 +41,10 @@ Measured (one run): a bonded block in uniform compression, 5 × 20 × 20
 hexahedra, λ exact to 3.7e-10 at 1e-10 (36 CG iterations, 4.1 s), 1.8e-12 at
 1e-12 (43, 4.6 s), 2.9e-13 at 1e-13 (46, 5.0 s); the direct solve 3.5e-14."""
 
-ITERATIVE_LAWS = ("bonded", "bilateral", "frictionless", "adhesive", "coulomb")
+ITERATIVE_LAWS = ALL_LAWS
 """The laws whose linear systems the iterative path solves (all of them)."""
 
-AUTO_LAWS = ("bonded", "bilateral", "frictionless", "adhesive")
+AUTO_LAWS = AUTO_ITERATIVE_LAWS
 """The laws ``auto`` may solve iteratively (Coulomb: only when asked)."""
 
 

@@ -32,16 +32,16 @@ from pathlib import Path
 
 import meshio
 import numpy as np
-from skfem import Mesh, MeshHex1, MeshQuad1, MeshTet1, MeshTri1, MeshWedge1
+from skfem import Mesh, MeshTri1, MeshWedge1
 from skfem.io.meshio import from_meshio
 
+from .cells import CELL_TYPES
 from .files import quiet, regular_file
 
 __all__ = ["CELLS", "box", "cell_name", "check_mesh", "read"]
 
-#: The supported cell names and their scikit-fem mesh classes.
-CELLS = {"tri": MeshTri1, "quad": MeshQuad1, "tet": MeshTet1,
-         "hex": MeshHex1, "prism": MeshWedge1}
+CELLS = {name: c.mesh for name, c in CELL_TYPES.items()}
+"""The supported cell names and their scikit-fem mesh classes (:data:`skxfem.cells.CELL_TYPES`)."""
 
 
 def cell_name(mesh: Mesh) -> str:
@@ -197,8 +197,7 @@ def check_mesh(mesh: Mesh, dim: int | None = None) -> Mesh:
     return mesh
 
 
-_MESHIO_CELLS = {"tetra": "tet", "hexahedron": "hex", "wedge": "prism",
-                 "triangle": "tri", "quad": "quad"}
+_MESHIO_CELLS = {c.meshio: name for name, c in CELL_TYPES.items()}
 
 
 def _cell_type(m: meshio.Mesh, path: Path) -> str:

@@ -29,6 +29,7 @@ from .boundary import imposed
 from .cut import Cut
 from .cut import cut as cut_mesh
 from .enrich import XSpace, enriched_load, jump_matrix, space, stiffness
+from .laws import COUPLING
 from .loads import boundary_quadrature, surface_load
 from .multipliers import (
     InterfaceRule,
@@ -45,10 +46,7 @@ from .stabilised import multiplier_space
 
 __all__ = ["Problem", "assemble", "constrained_dofs", "COUPLING", "check_law"]
 
-COUPLING = {"bonded": "bonded", "bilateral": "bilateral"}
-"""For each law :func:`assemble` accepts, the coupling it is built on
-(:func:`skxfem.multipliers.coupling`): ``"bonded"``, the vector jump, or
-``"bilateral"``, the normal jump.  The one place where laws are validated."""
+
 
 
 def check_law(law: str) -> str:

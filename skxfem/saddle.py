@@ -12,15 +12,16 @@ Rather than letting the sparse LU return whatever its pivoting makes of a
 singular matrix, we
 
 1. find a maximal set of independent rows with a rank-revealing (pivoted) QR
-   of the dense interface block of Bᵀ,
-2. solve the reduced, non-singular saddle system with SuperLU,
+   of the dense interface block of Bᵀ (:func:`reduce`),
+2. solve the reduced, non-singular saddle system with SuperLU
+   (:func:`factorise`, :func:`refined_solve`),
 3. recover the multipliers from U: they balance it (Bᵀμ = KU - F on the free
    unknowns); where that does not fix them — dependent multipliers, or
    multipliers so nearly dependent (Γ a tiny distance from a node) that
    round-off would decide — take the *smoothest*, minimising ‖G μ‖ with G the
    differences between neighbouring multipliers (:func:`smoothest_multipliers`).
    A constant traction has G μ = 0, so it is recovered exactly whenever it
-   balances U (the patch test).
+   balances U (the patch test; :func:`recover`).
 4. check that the reported multipliers balance U (Bᵀμ = KU - F to ``tol``).
    They may not when rows of B are *nearly* dependent — kept by the QR (its
    pivots exceed 1e-10 of the largest) but with a singular value below the
@@ -49,7 +50,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 __all__ = ["SaddleInfo", "SingularSystemError", "NearlyDependentError", "independent_rows",
-           "smoothest_multipliers", "solve"]
+           "smoothest_multipliers", "floating", "factorise", "reduce", "refined_solve", "recover",
+           "solve"]
 
 SMOOTH_TOL = 1e-6
 """Singular values of B below this fraction of the largest are not trusted to fix
@@ -166,20 +168,116 @@ def _unbalanced(B, r, mu, balance: float, tol: float, scale: float) -> Exception
         f"please report this scene")
 
 
-def _floating(detail: str) -> SingularSystemError:
-    """The error of a singular factorisation; ``detail`` (what was measured) is
-    kept as its attribute, for a caller that knows more of the cause."""
+def floating(detail: str, system: str = "the saddle-point system",
+             also: str = "") -> SingularSystemError:
+    """The error of a singular system (the one message of every solve): ``detail``
+    (what was measured) is kept as its attribute, for a caller that knows more of
+    the cause; ``also``: another possible cause, said after the free motion.
+
+    >>> str(floating("a zero pivot", "the tied system"))[:57]
+    'the tied system is singular (a zero pivot): a part of the'
+    """
     error = SingularSystemError(
-        f"the saddle-point system is singular ({detail}): a part of the body can move "
-        f"freely.  Either the displacements do not remove every rigid motion of the "
-        f"body, or a frictionless (bilateral) tie lets the part on the other side of "
-        f"Γ slide; add displacements (supports) on each side")
+        f"{system} is singular ({detail}): a part of the body can move freely.  Either "
+        f"the displacements do not remove every rigid motion of the body, or a "
+        f"frictionless (bilateral) tie lets the part on the other side of Γ slide; add "
+        f"displacements (supports) on each side{also}")
     error.detail = detail
     return error
 
 
+_floating = floating
+
+
+def factorise(A: sp.spmatrix, pivot_tol: float = 1e-11, floating=_floating):
+    """SuperLU of the (scaled) sparse matrix ``A``, refused as singular if SuperLU
+    finds an exactly zero pivot or a pivot below ``pivot_tol`` times the largest.
+
+    ``floating(detail)`` makes the error raised (default: a
+    :class:`SingularSystemError` saying a part of the body can move freely);
+    the contact Newton step gives its own.
+
+    >>> lu = factorise(sp.csc_matrix([[2.0, 1.0], [1.0, 0.0]]))
+    >>> lu.solve(np.array([1.0, 1.0])).tolist()
+    [1.0, -1.0]
+    """
+    try:
+        lu = spla.splu(sp.csc_matrix(A), permc_spec="COLAMD")  # least fill here
+    except RuntimeError as e:  # SuperLU: "Factor is exactly singular"
+        raise floating(str(e)) from e
+    pivots = np.abs(lu.U.diagonal())
+    if pivots.min() < pivot_tol * pivots.max():
+        raise floating(f"smallest LU pivot {pivots.min() / pivots.max():.1e} of the largest")
+    return lu
+
+
+@dataclass(frozen=True)
+class Reduced:
+    """Step 1 of :func:`solve`: the Jacobi-scaled system on the free unknowns and the
+    independent rows of B, ``A`` [[K_f, B_kᵀ], [B_k, 0]] and its right-hand side.
+    ``s`` the unknowns' scales, ``keep`` the rows of B kept and ``r`` their scales."""
+
+    A: sp.csc_matrix
+    rhs: np.ndarray
+    s: np.ndarray
+    keep: np.ndarray
+    r: np.ndarray
+
+
+def reduce(K, B, F, U, free) -> Reduced:
+    """Step 1: symmetric diagonal (Jacobi) scaling — an enriched function whose
+    support Γ barely cuts has a tiny stiffness; scaling restores the
+    conditioning — and the independent rows of B (:func:`independent_rows`)."""
+    diag = np.abs(K.diagonal()[free])
+    if np.any(diag == 0):
+        raise SingularSystemError(
+            f"{int(np.sum(diag == 0))} unknown(s) have no stiffness at all (a node that "
+            f"no cell uses, or an enriched function with an empty support): remove "
+            f"unused nodes from the mesh or impose those unknowns")
+    s = 1.0 / np.sqrt(diag)
+    S = sp.diags(s)
+    Kf = S @ K[free][:, free] @ S
+    Bf = B[:, free] @ S
+    keep = independent_rows(Bf)
+    r = 1.0 / np.maximum(abs(Bf[keep]).max(axis=1).toarray().ravel(), 1e-300)
+    Bk = sp.diags(r) @ Bf[keep]
+    rhs = np.concatenate([s * (F - K @ U)[free], -r * (B @ U)[keep]])
+    return Reduced(sp.bmat([[Kf, Bk.T], [Bk, None]], format="csc"), rhs, s, keep, r)
+
+
+def refined_solve(lu, A, rhs, tol: float) -> tuple[np.ndarray, float]:
+    """Steps 2: x = A⁻¹ rhs with three steps of iterative refinement (X-FEM
+    slivers cost digits in the LU), and its relative residual, which must be
+    below ``tol``."""
+    x = lu.solve(rhs)
+    for _ in range(3):
+        x += lu.solve(rhs - A @ x)
+    residual = np.linalg.norm(A @ x - rhs) / max(np.linalg.norm(rhs), 1e-300)
+    if not np.all(np.isfinite(x)) or residual > tol:
+        raise _floating(f"the solve leaves a relative residual {residual:.2e}")
+    return x, float(residual)
+
+
+def recover(Bf, reaction, mu, G, imbalance, tol: float) -> np.ndarray:
+    """Step 3: the multipliers from U, the smoothest that balance it
+    (:func:`smoothest_multipliers`), as the module notes say; without ``G``,
+    those of the reduced solve ``mu``."""
+    if G is None:
+        return mu
+    mu = smoothest_multipliers(Bf, reaction, G)
+    if not imbalance(mu) <= tol:
+        # singular values between FIXED_TOL and SMOOTH_TOL can be genuine and
+        # loaded (the vital prism plate, 8.7e-7 at n = 24): let the equilibrium
+        # fix them, smooth only below FIXED_TOL, if that adjusts the multipliers
+        # (by < 10 %) rather than adding the spike of a near-dependence
+        retry = smoothest_multipliers(Bf, reaction, G, FIXED_TOL)
+        if np.linalg.norm(retry - mu) <= 0.1 * np.linalg.norm(mu):
+            mu = retry
+    return mu
+
+
 def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float = 1e-11):
-    """Solve the saddle-point system; see the module notes.
+    """Solve the saddle-point system in the four steps of the module notes.
 
     Parameters
     ----------
@@ -223,58 +321,19 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float =
     K, B = sp.csr_matrix(K), sp.csr_matrix(B)
     U = np.zeros(N)
     U[D] = g
-    # symmetric diagonal (Jacobi) scaling: an enriched function whose support
-    # Γ barely cuts has a tiny stiffness; scaling restores the conditioning
-    diag = np.abs(K.diagonal()[free])
-    if np.any(diag == 0):
-        raise SingularSystemError(
-            f"{int(np.sum(diag == 0))} unknown(s) have no stiffness at all (a node that "
-            f"no cell uses, or an enriched function with an empty support): remove "
-            f"unused nodes from the mesh or impose those unknowns")
-    s = 1.0 / np.sqrt(diag)
-    S = sp.diags(s)
-    Kf = S @ K[free][:, free] @ S
-    Bf = B[:, free] @ S
-    keep = independent_rows(Bf)
-    r = 1.0 / np.maximum(abs(Bf[keep]).max(axis=1).toarray().ravel(), 1e-300)
-    Bk = sp.diags(r) @ Bf[keep]
-    rhs = np.concatenate([s * (F - K @ U)[free], -r * (B @ U)[keep]])
-    A = sp.bmat([[Kf, Bk.T], [Bk, None]], format="csc")
-    try:
-        lu = spla.splu(A, permc_spec="COLAMD")  # least fill here (3D plate: 4x faster than MMD)
-    except RuntimeError as e:  # SuperLU: "Factor is exactly singular"
-        raise _floating(str(e)) from e
-    pivots = np.abs(lu.U.diagonal())
-    if pivots.min() < pivot_tol * pivots.max():
-        raise _floating(f"smallest LU pivot {pivots.min() / pivots.max():.1e} "
-                        f"of the largest")
-    x = lu.solve(rhs)
-    for _ in range(3):  # iterative refinement: X-FEM slivers cost digits in the LU
-        x += lu.solve(rhs - A @ x)
-    residual = np.linalg.norm(A @ x - rhs) / max(np.linalg.norm(rhs), 1e-300)
-    if not np.all(np.isfinite(x)) or residual > tol:
-        raise _floating(f"the solve leaves a relative residual {residual:.2e}")
-    U[free] = s * x[:free.size]
+    red = reduce(K, B, F, U, free)                               # 1. independent rows
+    x, residual = refined_solve(factorise(red.A, pivot_tol), red.A, red.rhs, tol)  # 2.
+    U[free] = red.s * x[:free.size]
     mu = np.zeros(m)
-    mu[keep] = -r * x[free.size:]
+    mu[red.keep] = -red.r * x[free.size:]
     reaction = (K @ U - F)[free]
     scale = max(np.linalg.norm(reaction), np.linalg.norm(F[free]), 1e-300)
 
     def imbalance(mu):
         return np.linalg.norm(B[:, free].T @ mu - reaction) / scale
 
-    if G is not None:
-        mu = smoothest_multipliers(B[:, free], reaction, G)
-        if not imbalance(mu) <= tol:
-            # singular values between FIXED_TOL and SMOOTH_TOL can be genuine and
-            # loaded (the vital prism plate, 8.7e-7 at n = 24): let the equilibrium
-            # fix them, smooth only below FIXED_TOL, if that adjusts the multipliers
-            # (by < 10 %) rather than adding the spike of a near-dependence
-            retry = smoothest_multipliers(B[:, free], reaction, G, FIXED_TOL)
-            if np.linalg.norm(retry - mu) <= 0.1 * np.linalg.norm(mu):
-                mu = retry
-    # the multipliers reported must balance U: huge or wrong ones would not
-    balance = imbalance(mu)
+    mu = recover(B[:, free], reaction, mu, G, imbalance, tol)      # 3. the multipliers
+    balance = imbalance(mu)                                        # 4. they balance U
     if not np.isfinite(balance) or balance > tol:
         raise _unbalanced(B[:, free], reaction, mu, balance, tol, scale)
-    return U, mu, SaddleInfo(int(m - keep.size), float(residual), float(balance))
+    return U, mu, SaddleInfo(int(m - red.keep.size), float(residual), float(balance))

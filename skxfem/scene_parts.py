@@ -21,6 +21,7 @@ from typing import Callable, Mapping, Union
 
 import numpy as np
 
+from .cells import CELL_TYPES
 from .expr import Expression
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "clamped", "rollers", "CELLS", "SIZE_RANGE",
@@ -29,8 +30,8 @@ __all__ = ["Box", "Displacement", "SurfaceLoad", "clamped", "rollers", "CELLS", 
 COMPONENTS = ("x", "y", "z")
 FACES = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
 
-CELLS = {"tri": 2, "quad": 2, "tet": 3, "hex": 3, "prism": 3}
-"""Cell types of :class:`Box` and their dimension."""
+CELLS = {name: c.dim for name, c in CELL_TYPES.items()}
+"""Cell types of :class:`Box` and their dimension (:data:`skxfem.cells.CELL_TYPES`)."""
 
 SIZE_RANGE = (1e-50, 1e50)
 """The box lengths a :class:`Box` accepts.  Measured on the patch test of every
