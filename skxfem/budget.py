@@ -57,6 +57,7 @@ import numpy as np
 
 from .contact_laws import CONTACT_LAWS
 from .counts import NVERTS, box_counts, box_size, mesh_counts
+from .laws import LAWS
 from .linear import choose_linear
 from .meshes import CELLS, cell_name
 from .quadrature import cell_rule
@@ -220,7 +221,7 @@ def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell) -> Es
     n_dofs = dim * n_nodes + n_enr
     m = (1 if scene.law == "bilateral" else dim) * n_edges  # contact: λ_n and friction
     law = "frictionless" if scene.law == "coulomb" and scene.friction == 0 else scene.law
-    chosen = choose_linear(linear, dim, n_dofs, law)
+    chosen = choose_linear(linear, dim, n_dofs, LAWS[law].auto_iterative)
     if chosen == "iterative":
         per = (CONTACT_ITERATIVE_BYTES if law in CONTACT_LAWS else ITERATIVE_BYTES)[dim]
         per += FGMRES_BYTES if law == "coulomb" else 0

@@ -81,6 +81,7 @@ from .contact_newton import (
     newton,
     point_laws,
 )
+from .laws import LAWS
 from .levelset import point_normals
 from .linear import LINEAR_TOL, check_linear_tol, choose_linear
 from .problem import Problem, assemble
@@ -270,7 +271,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     states = _states(scene, pb, scene.steps if history is None else history, ops.h)
     laws = [s.law.name for s in states]
     linear = choose_linear(linear, pb.mesh.dim(), pb.V.N,
-                           "coulomb" if "coulomb" in laws else laws[0])
+                           all(LAWS[name].auto_iterative for name in laws))
     linear_tol = check_linear_tol(linear_tol)
     modes = rigid_modes(pb.V)
     solve_kw = {"linear": linear} if linear == "direct" else {

@@ -1,4 +1,5 @@
-"""The interface laws, once: each one's name and what it imposes, read everywhere else.
+"""The interface laws, once: each one's name and what it imposes, read everywhere else;
+and the names of the multiplier spaces.
 
 A law says what holds on Γ.  The *ties* (``bonded``, ``bilateral``) are linear:
 the solver of :mod:`skxfem.solver` imposes them with multipliers on the jump
@@ -17,7 +18,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 __all__ = ["LawKind", "LAWS", "TIE_LAWS", "CONTACT_LAWS", "ALL_LAWS", "AUTO_ITERATIVE_LAWS",
-           "COUPLING"]
+           "COUPLING", "SPACES"]
 
 
 @dataclass(frozen=True)
@@ -59,3 +60,7 @@ ALL_LAWS = tuple(LAWS)
 AUTO_ITERATIVE_LAWS = tuple(name for name, law in LAWS.items() if law.auto_iterative)
 COUPLING = {name: LAWS[name].coupling for name in TIE_LAWS}
 """For each tie law, the coupling its multipliers are built on."""
+
+SPACES = ("naive", "winner", "vital")
+"""The multiplier spaces a scene may choose (paper §4.2 and §5): one multiplier per cut
+edge, algo1 (winner nodes), algo2 (vital edges: the default)."""

@@ -12,17 +12,14 @@ not.
 
 >>> choose_linear("auto", 2, 1000), choose_linear("direct", 3, 10**6)
 ('direct', 'direct')
->>> choose_linear("auto", 3, 10**6, law="coulomb")
+>>> choose_linear("auto", 3, 10**6, auto_iterative=False)   # Coulomb
 'direct'
 """
 from __future__ import annotations
 
 import importlib.util
 
-from .laws import ALL_LAWS, AUTO_ITERATIVE_LAWS
-
-__all__ = ["LINEAR", "AUTO_ITERATIVE", "ITERATIVE_LAWS", "AUTO_LAWS", "LINEAR_TOL",
-           "choose_linear", "check_linear_tol"]
+__all__ = ["LINEAR", "AUTO_ITERATIVE", "LINEAR_TOL", "choose_linear", "check_linear_tol"]
 
 LINEAR = ("auto", "direct", "iterative")
 """The linear solves: SuperLU on the saddle system (:func:`skxfem.saddle.solve`),
@@ -41,33 +38,22 @@ Measured (one run): a bonded block in uniform compression, 5 × 20 × 20
 hexahedra, λ exact to 3.7e-10 at 1e-10 (36 CG iterations, 4.1 s), 1.8e-12 at
 1e-12 (43, 4.6 s), 2.9e-13 at 1e-13 (46, 5.0 s); the direct solve 3.5e-14."""
 
-ITERATIVE_LAWS = ALL_LAWS
-"""The laws whose linear systems the iterative path solves (all of them)."""
-
-AUTO_LAWS = AUTO_ITERATIVE_LAWS
-"""The laws ``auto`` may solve iteratively (Coulomb: only when asked)."""
-
-
-def choose_linear(method: str, dim: int, n_unknowns: int, law: str = "bonded") -> str:
-    """The linear solve ``method`` resolves to for ``n_unknowns`` in ``dim`` D
-    under ``law``: ``auto`` is ``iterative`` from :data:`AUTO_ITERATIVE`
-    unknowns if pyamg is there and the law is one of :data:`AUTO_LAWS`.
+def choose_linear(method: str, dim: int, n_unknowns: int, auto_iterative: bool = True) -> str:
+    """The linear solve ``method`` resolves to for ``n_unknowns`` in ``dim`` D:
+    ``auto`` is ``iterative`` from :data:`AUTO_ITERATIVE` unknowns if pyamg is
+    there and the law allows it (``auto_iterative``: the law's
+    :attr:`skxfem.laws.LawKind.auto_iterative`, False for Coulomb).
 
     Raises
     ------
     ValueError
-        An unknown ``method``, or ``"iterative"`` for a law not in
-        :data:`ITERATIVE_LAWS`.
+        An unknown ``method``.
     """
     if method not in LINEAR:
         raise ValueError(f"linear must be one of {LINEAR}, got {method!r}")
-    if method == "iterative" and law not in ITERATIVE_LAWS:
-        raise ValueError(f"linear='iterative' solves the laws {ITERATIVE_LAWS}, not "
-                         f"{law!r} (its Newton step couples pressure and friction): use "
-                         f"linear='direct' or 'auto'")
     if method != "auto":
         return method
-    big = n_unknowns >= AUTO_ITERATIVE[dim] and law in AUTO_LAWS
+    big = n_unknowns >= AUTO_ITERATIVE[dim] and auto_iterative
     return "iterative" if big and importlib.util.find_spec("pyamg") else "direct"
 
 

@@ -35,13 +35,16 @@ few sub-simplices of low order and keep them (:data:`FITTED` has no entry).
 from __future__ import annotations
 
 import itertools
+from typing import TYPE_CHECKING
 
 import numpy as np
 from skfem.quadrature import get_quadrature
 from skfem.refdom import RefHex, RefLine, RefTri, RefWedge
 
-from .cut import Cut
 from .quadrature import SubcellRule, subcell_rule
+
+if TYPE_CHECKING:  # the type only: sides need no cut to be computed
+    from .cut import Cut
 
 __all__ = ["FITTED", "fitted_rule"]
 

@@ -33,13 +33,12 @@ from skfem.refdom import RefLine, RefTri
 
 from .cut import Cut
 from .enrich import XSpace, jump_matrix
-from .laws import TIE_LAWS
+from .laws import SPACES, TIE_LAWS
 
 __all__ = ["Space", "naive", "fixed_jumps", "normal_fixed", "direction_fixed", "SPACES",
            "InterfaceRule", "interface_rule", "coupling", "interface_mass", "LAWS"]
 
 LAWS = TIE_LAWS
-SPACES = ("naive", "winner", "vital")
 
 
 @dataclass(frozen=True)

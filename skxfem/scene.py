@@ -27,11 +27,11 @@ from skfem import Mesh
 
 from . import meshes
 from .boundary import dirichlet, load_facets, traction
-from .contact_laws import CONTACT_LAWS
 from .expr import Expression
+from .laws import CONTACT_LAWS, SPACES
+from .laws import TIE_LAWS as LAWS
 from .levelset import LevelSet
 from .material import Material
-from .multipliers import LAWS, SPACES
 from .scene_parts import CELLS, Box, Displacement, SurfaceLoad, clamped, rollers
 from .scene_parts import is_number as _is_number
 

@@ -37,14 +37,17 @@ on the sub-simplices of :mod:`skxfem.cut`.  Two ways to cover the mesh:
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from skfem import Basis
 from skfem.assembly import CellBasis
 
-from .cut import Cut
 from .moments import fitted_rule
 from .quadrature import cell_rule, exact_orders, subcell_rule
+
+if TYPE_CHECKING:  # the type only: sides need no cut to be computed
+    from .cut import Cut
 
 __all__ = ["side_bases", "Parts", "parts"]
 

@@ -31,6 +31,7 @@ import scipy.sparse as sp
 from . import contact, iterative, saddle
 from .amg import rigid_modes
 from .contact_laws import CONTACT_LAWS
+from .laws import LAWS
 from .levelset import point_normals
 from .linear import AUTO_ITERATIVE, LINEAR, LINEAR_TOL, check_linear_tol, choose_linear
 from .problem import Problem, assemble, constrained_dofs
@@ -46,7 +47,7 @@ __all__ = ["Result", "solve", "solve_problem", "constrained_dofs", "LINEAR", "AU
 
 def _linear(method: str, p: Problem) -> str:
     """The linear solve ``method`` resolves to for ``p``."""
-    return choose_linear(method, p.mesh.dim(), p.V.N, p.law)
+    return choose_linear(method, p.mesh.dim(), p.V.N, LAWS[p.law].auto_iterative)
 
 
 def _differences(c, ncomp: int) -> sp.csr_matrix:
