@@ -121,7 +121,7 @@ def strictly_cut_edges(edges, psi, x) -> tuple[np.ndarray, np.ndarray]:
     >>> ids.tolist(), pts.tolist()
     ([0], [[0.5]])
     """
-    edge_ids = np.flatnonzero(psi[edges[0]] * psi[edges[1]] < 0)
+    edge_ids = np.flatnonzero(np.sign(psi[edges[0]]) * np.sign(psi[edges[1]]) < 0)  # no underflow
     a, b = edges[:, edge_ids]
     return edge_ids, edge_point(x[:, a].T, x[:, b].T, psi[a], psi[b]).T
 
