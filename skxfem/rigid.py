@@ -57,6 +57,7 @@ skxfem.saddle.SingularSystemError: Ω⁺ (the part of the body where ψ > 0) can
 """
 from __future__ import annotations
 
+import itertools
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -277,17 +278,23 @@ def describe(p: Problem, N: np.ndarray, centre, length: float) -> str:
 
 def _describe_regions(p: Problem, N: np.ndarray, centre, length: float) -> str:
     """:func:`describe` of a problem with several interfaces (R regions, the columns
-    of a motion of region r at R i + r)."""
+    of a motion of region r at R i + r): the whole body, else the fewest regions
+    that move as one body, else each region that moves."""
     names = region_names(p)
     R, dim, I = len(names), p.mesh.dim(), np.eye(N.shape[0])
-    looks = [("the whole body", np.vstack([I[0::R] - I[r::R] for r in range(1, R)]), 0)]
-    looks += [(names[r], np.vstack([I[j::R] for j in range(R) if j != r]), r)
-              for r in range(R)]
-    for who, E, r in looks:
+    groups = [tuple(range(R))] + [g for size in range(1, R) for g in
+                                  itertools.combinations(range(R), size)]
+    for group in groups:
+        E = np.vstack([I[group[0]::R] - I[r::R] for r in group[1:]]
+                      + [I[r::R] for r in range(R) if r not in group] or [I[:0]])
         _, sv, Vt = np.linalg.svd(E @ N, full_matrices=True)
         S = N @ Vt[np.r_[sv, np.zeros(Vt.shape[0] - sv.size)] < 1e-6].T
         if S.shape[1]:
-            return f"{who} can {_side_motions(S[r::R], dim, centre, length)}"
+            who = ("the whole body" if len(group) == R else names[group[0]] if
+                   len(group) == 1 else "the parts of the body where " + " and where ".join(
+                       names[r].removeprefix("the part of the body where ") for r in group)
+                   + ", together,")
+            return f"{who} can {_side_motions(S[group[0]::R], dim, centre, length)}"
     c = N[:, 0]
     moving = [r for r in range(R) if np.abs(c[r::R]).max() > 1e-6 * np.abs(c).max()]
     return " as ".join(f"{names[r]} {motion_name(c[r::R], dim, centre, length, verb=False)}"

@@ -175,3 +175,117 @@ def test_a_free_middle_piece_is_named():
         skxfem.solve(scene)
     held = dataclasses.replace(scene, displacements=scene.displacements + (rollers("xmin"),))
     assert skxfem.solve(held).max_jump < 1e-12
+
+
+# --- contact --------------------------------------------------------------------------
+
+@pytest.mark.parametrize("cell", ["quad", "tri", "hex", "tet"])
+@pytest.mark.parametrize("laws", [("frictionless", "coulomb"), ("adhesive", "bonded"),
+                                  ("bilateral", "frictionless")])
+def test_pressed_column_closes_every_interface(cell, laws):
+    """Top pressed: both closed, the pressure the load at every point of both."""
+    r = skxfem.solve(column(cell, laws, friction=(0.0, 0.3)))
+    assert r.is_contact and len(r.law) == 2 and [law.name for law in r.law] == list(laws)
+    assert np.abs(r.pressure - P).max() < 1e-12 and np.abs(r.gap).max() < 1e-12
+    assert (r.status > 0).all() and set(r.interface.tolist()) == {0, 1}
+    assert r.iterations <= 3
+
+
+@pytest.mark.parametrize("cell", ["quad", "tri", "hex", "tet"])
+def test_lifted_top_opens_the_frictionless_interface_only(cell):
+    """Top lifted by δ, Γ₀ frictionless, Γ₁ bonded: Γ₀ opens by δ, Γ₁ carries nothing."""
+    r = skxfem.solve(column(cell, ("frictionless", "bonded"), top="lifted"))
+    low, high = on(r, 0), on(r, 1)
+    assert np.abs(r.gap[low] + LIFT).max() < 1e-12 and np.abs(r.pressure[low]).max() < 1e-12
+    assert (r.status[low] == 0).all() and (r.status[high] == 1).all()
+    assert np.abs(r.traction[:, high]).max() < 1e-12 and np.abs(r.jump[:, high]).max() < 1e-12
+    assert r.iterations <= 3
+
+
+@pytest.mark.parametrize("cell", ["quad", "tri", "hex", "tet"])
+@pytest.mark.parametrize("upper", ["frictionless", "coulomb"])
+def test_one_compressed_one_opening_at_once(cell, upper):
+    """The middle piece pushed down by a support, the top lifted: Γ₀ closed under
+    2Eδ₁, Γ₁ open by δ + δ₁, in one solve."""
+    r = skxfem.solve(column(cell, ("frictionless", upper), top="lifted", middle=True,
+                            friction=(0.0, 0.4)))
+    low, high = on(r, 0), on(r, 1)
+    assert np.abs(r.pressure[low] - 2 * E * PUSH).max() < 1e-12 and (r.status[low] > 0).all()
+    assert np.abs(r.gap[high] + LIFT + PUSH).max() < 1e-12 and (r.status[high] == 0).all()
+    assert np.abs(r.pressure[high]).max() < 1e-12 and np.abs(r.gap[low]).max() < 1e-12
+
+
+@pytest.mark.parametrize("cell", ["quad", "hex", "tet"])
+def test_a_tie_beside_a_contact_interface(cell):
+    """Γ₀ Coulomb, Γ₁ the bilateral tie: Γ₀ pressed by 2Eδ₁ while the tie carries the
+    tension 2E(δ + δ₁) that would open a contact interface."""
+    r = skxfem.solve(column(cell, ("coulomb", "bilateral"), top="lifted", middle=True,
+                            friction=(0.5, 0.0)))
+    low, high = on(r, 0), on(r, 1)
+    assert np.abs(r.pressure[low] - 2 * E * PUSH).max() < 1e-12
+    assert np.abs(r.pressure[high] + 2 * E * (LIFT + PUSH)).max() < 1e-12
+    assert np.abs(r.gap[high]).max() < 1e-12 and (r.status[high] > 0).all()
+
+
+@pytest.mark.parametrize("cell", CELLS)
+def test_two_non_parallel_interfaces_pressed(cell):
+    """Γ₀ tilted by 0.2 rad with Coulomb μ = 0.5 > tan 0.2 (it sticks), Γ₁ flat and
+    frictionless (it slides, with nothing to slide it): r = -p n_z e_z on both."""
+    r = skxfem.solve(column(cell, ("coulomb", "frictionless"), tilt=0.2, friction=(0.5, 0)))
+    exact = np.zeros_like(r.traction)
+    exact[-1] = -P * r.normals[-1]
+    assert np.abs(r.traction - exact).max() < 1e-12 * 10
+    assert (r.status[on(r, 0)] == 1).all() and (r.status[on(r, 1)] == 2).all()
+    tilted = r.normals[:, on(r, 0)]
+    assert np.allclose(np.linalg.norm(r.tangential_traction[:, on(r, 0)], axis=0),
+                       P * np.abs(tilted[-1] * tilted[0]), atol=1e-12)
+
+
+@pytest.mark.parametrize("cell", ["quad", "hex"])
+def test_a_load_state_changes_one_interfaces_law(cell):
+    """Half the load with both frictionless (Γ₁ opens), then Γ₁ tied (bilateral): it
+    closes and carries the tension, Γ₀ the same pressure as before, doubled."""
+    s = column(cell, ("frictionless", "frictionless"), top="lifted", middle=True)
+    tied = dataclasses.replace(s, name="tied", interfaces=(
+        s.interfaces[0], dataclasses.replace(s.interfaces[1], law="bilateral")))
+    r = skxfem.contact.solve(s, history=[0.5, tied])
+    first, last = r.steps
+    assert first.law == ("frictionless", "frictionless") and last.law == (
+        "frictionless", "bilateral")
+    assert [law.name for law in r.law] == ["frictionless", "frictionless"]
+    dof0 = r.ops.interface == 0
+    assert np.abs(first.pressure[dof0] - E * PUSH).max() < 1e-12
+    assert np.abs(first.gap[~dof0] + (LIFT + PUSH) / 2).max() < 1e-12
+    assert np.abs(r.pressure[on(r, 1)] + 2 * E * (LIFT + PUSH)).max() < 1e-12
+    assert np.abs(r.pressure[on(r, 0)] - 2 * E * PUSH).max() < 1e-12
+    other = dataclasses.replace(tied, interfaces=(tied.interfaces[1], tied.interfaces[0]))
+    with pytest.raises(ValueError, match=r"history\[1\]: a load state must keep the mesh, Γ"):
+        skxfem.contact.solve(s, history=[0.5, other])
+
+
+def test_contact_names_a_free_middle_piece():
+    """Frictionless interfaces and no support beside the pieces above Γ₀: with Γ closed
+    everywhere they still slide along x, the middle alone or with the top."""
+    s = column("quad", ("frictionless", "frictionless"))
+    s = dataclasses.replace(s, displacements=(clamped("ymin"), rollers("ymax")))
+    with pytest.raises(SingularSystemError, match=r"the part of the body where ψ₀ > 0 and "
+                                                  r"ψ₁ < 0 can translate along x: neither "
+                                                  r"the displacements nor the frictionless"):
+        skxfem.solve(s)
+    s = dataclasses.replace(column("quad", ("frictionless", "bonded")),
+                            displacements=(clamped("ymin"),))
+    with pytest.raises(SingularSystemError, match=r"the parts of the body where ψ₀ > 0 and "
+                                                  r"ψ₁ < 0 and where ψ₀ > 0 and ψ₁ > 0, "
+                                                  r"together, can translate along x: .*the "
+                                                  r"laws frictionless, bonded"):
+        skxfem.solve(s)
+
+
+def test_iterative_and_fixed_point_solves_of_several_interfaces():
+    """The AMG solve takes the motions of every region; the fixed point every law."""
+    tie = skxfem.solve(column("hex", ("bonded", "bilateral")), linear="iterative")
+    assert tie.linear == "iterative" and np.abs(tie.pressure - P).max() < 1e-10
+    s = column("hex", ("coulomb", "frictionless"), friction=(0.5, 0.0), tilt=0.2)
+    for kw in ({"linear": "iterative"}, {"method": "fixed_point"}):
+        r = skxfem.contact.solve(s, **kw)
+        assert np.abs(r.pressure[on(r, 1)] - P).max() < 1e-10, kw
