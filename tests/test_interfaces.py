@@ -13,12 +13,16 @@ x = 0 (and y = 0) on rollers, which hold every piece sideways:
   the tension 2E(δ + δ₁), a contact Γ₁ opens by δ + δ₁.
 """
 import dataclasses
+import json
 
+import meshio
 import numpy as np
 import pytest
 
 import skxfem
 from skxfem.amg import rigid_modes
+from skxfem.budget import estimate
+from skxfem.io import write_result
 from skxfem.levelset import circle, plane, sphere
 from skxfem.material import Material
 from skxfem.problem import assemble
@@ -289,3 +293,52 @@ def test_iterative_and_fixed_point_solves_of_several_interfaces():
     for kw in ({"linear": "iterative"}, {"method": "fixed_point"}):
         r = skxfem.contact.solve(s, **kw)
         assert np.abs(r.pressure[on(r, 1)] - P).max() < 1e-10, kw
+
+
+# --- results and files ----------------------------------------------------------------
+
+def test_files_of_several_interfaces(tmp_path):
+    """result.json lists the interfaces and each point's; displacement.vtu has a piece
+    per region with its own field (lifted top: 0 below Γ₀, δ above); interface.vtu
+    carries the interface of each point."""
+    r = skxfem.solve(column("quad", ("frictionless", "bonded"), top="lifted"))
+    paths = write_result(r, tmp_path / "out")
+    data = json.loads(paths["json"].read_text())
+    assert data["law"] == ["frictionless", "bonded"] and data["space"] == ["vital", "vital"]
+    assert [i["law"] for i in data["interfaces"]] == ["frictionless", "bonded"]
+    assert [i["n_points"] for i in data["interfaces"]] == np.bincount(r.interface).tolist()
+    assert data["interfaces"][0]["rho_n"] == r.law[0].rho_n and "friction" not in data
+    assert data["interface"] == r.interface.tolist() and data["regions"] == r.regions.tolist()
+    assert np.array_equal(np.array(data["points"]), r.points.T)
+    assert data["dofs"]["interface"] == r.ops.interface.tolist()
+    assert data["steps"][0]["law"] == ["frictionless", "bonded"]
+    d = meshio.read(paths["displacement"])
+    region = d.cell_data["region"][0]
+    assert sorted(set(region.tolist())) == [0, 1, 2]
+    uz = d.point_data["displacement"][:, 1]
+    for r_index, expected in enumerate((0.0, LIFT, LIFT)):
+        points = np.unique(d.cells[0].data[region == r_index])
+        assert np.abs(uz[points] - expected).max() < 1e-12
+    assert {"levelset_0", "levelset_1"} <= set(d.point_data)
+    i = meshio.read(paths["interface"])
+    assert i.point_data["interface"].tolist() == r.interface.tolist()
+    assert i.cells[0].data.max() == r.points.shape[1] - 1
+
+
+def test_one_interface_files_keep_their_form(tmp_path):
+    r = skxfem.solve(column("quad").alone(0))
+    data = json.loads(write_result(r, tmp_path / "one")["json"].read_text())
+    assert data["law"] == "bonded" and not {"interfaces", "interface", "regions"} & set(data)
+
+
+def test_size_guard_counts_each_interface():
+    two = column("tri", n=8)
+    e, e0, e1 = estimate(two), estimate(two.alone(0)), estimate(two.alone(1))
+    dim_nodes = 2 * e.n_nodes
+    assert e.n_dofs - dim_nodes == (e0.n_dofs - dim_nodes) + (e1.n_dofs - dim_nodes)
+    assert e.n_multipliers == e0.n_multipliers + e1.n_multipliers
+    p = assemble(two)
+    assert p.V.N <= e.n_dofs and p.B.shape[0] <= e.n_multipliers
+    mixed = dataclasses.replace(two, interfaces=(two.interfaces[0], dataclasses.replace(
+        two.interfaces[1], law="bilateral")))
+    assert estimate(mixed).n_multipliers == e0.n_multipliers + e1.n_multipliers // 2
