@@ -342,3 +342,20 @@ def test_size_guard_counts_each_interface():
     mixed = dataclasses.replace(two, interfaces=(two.interfaces[0], dataclasses.replace(
         two.interfaces[1], law="bilateral")))
     assert estimate(mixed).n_multipliers == e0.n_multipliers + e1.n_multipliers // 2
+
+
+def test_one_interface_tools_refuse_several_clearly():
+    from skxfem.conforming import solve_conforming
+    from skxfem.convergence import energy_error, pressure_error
+    from skxfem.lbb import inf_sup
+
+    scene = column("quad")
+    with pytest.raises(ValueError, match=r"inf_sup\(scene.alone\(k\)\)"):
+        inf_sup(scene)
+    with pytest.raises(ValueError, match="one interface"):
+        solve_conforming(scene)
+    r = skxfem.solve(scene)
+    for measure in (energy_error, pressure_error):
+        with pytest.raises(ValueError, match="one interface; this one has several"):
+            measure(r, lambda x: x)
+    assert inf_sup(scene.alone(0)).beta > 0
