@@ -257,10 +257,10 @@ def check_apart(mesh, cuts, names) -> None:
     >>> from skxfem.levelset import plane
     >>> m = MeshQuad1().refined(2)
     >>> a, b = cut(m, plane((0, 0.3), (0, 1))), cut(m, plane((0, 0.4), (0, 1)))
-    >>> check_apart(m, (a, b), ("y = 0.3", "y = 0.4"))
+    >>> check_apart(m, (a, b), ("Γ at y = 0.3", "Γ at y = 0.4"))
     Traceback (most recent call last):
     ...
-    ValueError: the interfaces y = 0.3 and y = 0.4 both cut 4 mesh cell(s) (e.g. cell ...
+    ValueError: Γ at y = 0.3 and Γ at y = 0.4 both cut 4 mesh cell(s) (e.g. cell ...
     """
     for k in range(len(cuts)):
         for j in range(k):
@@ -268,7 +268,7 @@ def check_apart(mesh, cuts, names) -> None:
             if both.size:
                 centre = mesh.p[:, mesh.t[:, both[0]]].mean(axis=1)
                 raise ValueError(
-                    f"the interfaces {names[j]} and {names[k]} both cut {both.size} mesh "
+                    f"{names[j]} and {names[k]} both cut {both.size} mesh "
                     f"cell(s) (e.g. cell {both[0]} around "
                     f"{np.round(centre, 6).tolist()}): they cross, touch or pass closer "
                     f"than a cell to each other, and each cell may be cut by one interface "
