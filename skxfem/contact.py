@@ -128,7 +128,8 @@ class Step:
     the weighted normal jump d (≤ 0 admissible); ``slip`` (m, k) the
     weighted tangential jump (total); ``status`` (m,) 0 open, 1 stick,
     2 slip; ``Lambda`` (m, k) the semi-multiplier Λ = r_τ/(μλ) of eq. 9a
-    (``coulomb``, where p > 0; 0 elsewhere); ``law`` the law of the step;
+    (``coulomb``, where p > 0; 0 elsewhere); ``law`` the law of the step
+    (several interfaces: a tuple, the law of each);
     ``increments`` how many increments the step took (1 unless cut).
     """
 

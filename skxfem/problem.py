@@ -221,9 +221,10 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
     ----------
     scene
         A :class:`skxfem.scene.Scene`; its ``quadrature_order`` sets the cell
-        rule of the stiffness (``None``: exact on affine cells).
+        rule of the stiffness (``None``: exact on affine cells).  With several
+        interfaces, one piece each (module notes).
     law
-        A key of :data:`COUPLING`; ``None`` takes the scene's.
+        A key of :data:`COUPLING`; ``None`` takes the scene's (each interface's).
 
     Returns
     -------
@@ -233,7 +234,8 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
     ------
     ValueError
         An unknown law, a scene that does not fit its mesh, a level set that
-        cuts no cell or passes through nodes (from :func:`skxfem.cut.cut`).
+        cuts no cell or vanishes on a region (from :func:`skxfem.cut.cut`), two
+        interfaces that cut one cell (:func:`skxfem.cut.check_apart`).
     """
     if check_scene(scene).several:
         return _assemble_several(scene, law)

@@ -73,8 +73,8 @@ class Scene:
     ``mesh`` is a :class:`Box`, a scikit-fem mesh or a mesh file path;
     ``law`` is one of ``LAWS`` (ties, :func:`skxfem.solver.solve`) or
     ``CONTACT_LAWS`` (unilateral, :func:`skxfem.contact.solve`), ``space`` one
-    of ``SPACES`` (``None``: ``bonded`` and ``vital``); ``quadrature_order``
-    ``None`` lets the solver choose.
+    of ``SPACES`` (left ``None``, they are ``bonded`` and ``vital``);
+    ``quadrature_order`` ``None`` lets the solver choose.
     ``friction`` is Coulomb's μ (law ``coulomb``); ``rho_n``, ``rho_t`` the
     augmentation parameters of the contact laws (``None``: the defaults of
     :func:`skxfem.contact.parameters`); ``steps`` the load factors of a
