@@ -14,6 +14,7 @@ What ``import skxfem`` gives:
   contact solve of :mod:`skxfem.contact`;
 * the scene and its parts: :class:`Scene`, :class:`Box`, :class:`Displacement`,
   :class:`SurfaceLoad`, :func:`clamped`, :func:`rollers`, :class:`Material`,
+  :class:`Interface` (one of several interfaces of a scene),
   :func:`load_scene` (a TOML scene file) and the built-in scenes
   ``skxfem.scenes`` (``paper_plate``, ``strip``, ``exact_plate`` ...);
 * the level sets :func:`plane`, :func:`circle`, :func:`sphere` and their
@@ -80,6 +81,7 @@ from .result import Result  # noqa: E402
 from .scene import (  # noqa: E402
     Box,
     Displacement,
+    Interface,
     Scene,
     SurfaceLoad,
     clamped,
@@ -99,7 +101,7 @@ def __getattr__(name: str):
 
 
 __all__ = [
-    "__version__", "solve", "Result", "assemble", "Scene", "Box", "Displacement",
+    "__version__", "solve", "Result", "assemble", "Scene", "Interface", "Box", "Displacement",
     "SurfaceLoad", "clamped", "rollers", "Material", "load_scene", "plane", "circle",
     "sphere", "union", "intersection", "complement", "scenes", "levelset", "cut", "enrich",
     "multipliers", "lbb", "stabilised", "contact", "plotting", "evaluate",

@@ -64,6 +64,14 @@ def rigid_modes(V, sides: bool = True, centre=None, length: float = 1.0) -> np.n
     (``sides=False``: (N, k), their sums); k = 3 in 2D (two translations,
     one rotation), 6 in 3D.
 
+    Several interfaces (``V`` an :class:`skxfem.enrich.XSpaces` on [a, b¹, b², …],
+    R regions, :meth:`~skxfem.enrich.XSpaces.regions`): (N, Rk), column R i + r
+    the i-th motion of region r with the others at rest.  At a node j of region
+    σ enriched by Γ_k, whose far side is the region σ' (σ with its k-th sign
+    flipped), u = a + b^k(H^k - H^k_j) must be R·[σ = r] on its side and
+    R·[σ' = r] on the far one: aⱼ = R(xⱼ)[σ = r], b^k_j = H^k_j R(xⱼ)([σ = r] -
+    [σ' = r])/2 (with R = 2 the formula above).
+
     >>> from skxfem.scenes import strip
     >>> from skxfem.problem import assemble
     >>> p = assemble(strip(3, "tri"))
@@ -84,9 +92,15 @@ def rigid_modes(V, sides: bool = True, centre=None, length: float = 1.0) -> np.n
         motions += [np.array([np.zeros_like(x[0]), -x[2], x[1]]),
                     np.array([x[2], np.zeros_like(x[0]), -x[0]]),
                     np.array([-x[1], x[0], np.zeros_like(x[0])])]
-    H = np.where(V.cut.psi < 0, -1.0, 1.0)
     node_of = np.zeros(V.n_std, dtype=np.int64)
     node_of[nd.ravel()] = np.tile(np.arange(x.shape[1]), dim)
+    if hasattr(V, "spaces"):  # several interfaces: the motions of each region
+        Z = _region_modes(V, motions, node_of)
+        if sides:
+            return Z
+        R = V.regions()[0].shape[0]
+        return sum(Z[:, r::R] for r in range(R))
+    H = np.where(V.cut.psi < 0, -1.0, 1.0)
     Z = np.zeros((V.N, 2 * len(motions)))
     for k, R in enumerate(motions):
         a = np.zeros(V.n_std)
@@ -96,6 +110,30 @@ def rigid_modes(V, sides: bool = True, centre=None, length: float = 1.0) -> np.n
             Z[:V.n_std, col] = np.where(H[node_of] == s, a, 0.0)
             Z[V.n_std:, col] = 0.5 * s * a[V.enr_dofs]
     return Z if sides else Z[:, 0::2] + Z[:, 1::2]
+
+
+def _region_modes(V, motions, node_of) -> np.ndarray:
+    """The motions of each region of an XSpaces ``V`` (:func:`rigid_modes`)."""
+    patterns, node_region = V.regions()
+    R = patterns.shape[0]
+    index = {tuple(p): r for r, p in enumerate(patterns.tolist())}
+    nd = V.basis.nodal_dofs
+    Z = np.zeros((V.N, R * len(motions)))
+    region_of = node_region[node_of]  # the region of each standard dof's node
+    for i, motion in enumerate(motions):
+        a = np.zeros(V.n_std)
+        a[nd.ravel()] = motion.ravel()
+        for r in range(R):
+            col = R * i + r
+            Z[:V.n_std, col] = np.where(region_of == r, a, 0.0)
+            for k, (Vk, start) in enumerate(zip(V.spaces, V.offsets)):
+                near = region_of[Vk.enr_dofs]
+                far = patterns[near].copy()
+                far[:, k] *= -1
+                far_r = np.array([index.get(tuple(f), -1) for f in far.tolist()])
+                on = (near == r).astype(float) - (far_r == r)
+                Z[start:start + Vk.n_enr, col] = 0.5 * Vk.H_node * a[Vk.enr_dofs] * on
+    return Z
 
 
 def axis_name(v) -> str:

@@ -20,6 +20,9 @@ The counts are upper bounds:
   directions on which ψ changes sign counts (both diagonals of a face
   where the mesh has one).
 
+With several interfaces (``Scene(interfaces=...)``) each is counted so, its
+enriched nodes and its multipliers (with its own law) added to the others'.
+
 ψ is evaluated at the nodes in slabs of about 10⁶ points, so the guard itself
 stays small.  The memory depends on the linear solver that will run
 (:func:`skxfem.linear.choose_linear`; Coulomb contact: the direct Newton solve).
@@ -206,21 +209,29 @@ def estimate(scene: Scene, linear: str = "auto") -> Estimate:
     -------
     Estimate
     """
-    if isinstance(check_scene(scene).mesh, Box):
-        counts, cell = box_counts(scene.mesh, scene.levelset), scene.mesh.cell
+    items = check_scene(scene).interface_list
+    if isinstance(scene.mesh, Box):
+        counts, cell = [box_counts(scene.mesh, i.levelset) for i in items], scene.mesh.cell
     else:
         mesh = resolve_mesh(scene)
-        counts, cell = mesh_counts(mesh, scene.levelset), cell_name(mesh)
-    return _estimate(scene, linear, *counts, cell)
+        counts, cell = [mesh_counts(mesh, i.levelset) for i in items], cell_name(mesh)
+    return _estimate(scene, linear, *counts[0][:2], [c[2] for c in counts],
+                     [c[3] for c in counts], cell)
 
 
 def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell) -> Estimate:
-    """The :class:`Estimate` of ``scene`` from its counts."""
+    """The :class:`Estimate` of ``scene`` from its counts (enriched nodes and cut
+    edges: one count per interface)."""
     dim = scene.dim
-    n_enr = dim * n_enr_nodes
+    items = scene.interface_list
+    n_enr = dim * sum(n_enr_nodes)
     n_dofs = dim * n_nodes + n_enr
-    m = (1 if scene.law == "bilateral" else dim) * n_edges  # contact: λ_n and friction
-    law = "frictionless" if scene.law == "coulomb" and scene.friction == 0 else scene.law
+    m = sum((1 if i.law == "bilateral" else dim) * e  # contact: λ_n and friction
+            for i, e in zip(items, n_edges, strict=True))
+    laws = ["frictionless" if i.law == "coulomb" and i.friction == 0 else i.law
+            for i in items]
+    law = ("coulomb" if "coulomb" in laws else
+           next((x for x in laws if x in CONTACT_LAWS), laws[0]))
     chosen = choose_linear(linear, dim, n_dofs, LAWS[law].auto_iterative)
     if chosen == "iterative":
         per = (CONTACT_ITERATIVE_BYTES if law in CONTACT_LAWS else ITERATIVE_BYTES)[dim]
@@ -239,7 +250,8 @@ def _floor(scene, linear) -> Estimate | None:
     box = scene.mesh
     if not isinstance(box, Box):
         return None
-    counts = (*box_size(box), 0, 0, box.cell)
+    none = [0] * len(scene.interface_list)
+    counts = (*box_size(box), none, none, box.cell)
     floors = []
     for pick in ("direct", "iterative") if linear == "auto" else (linear,):
         try:

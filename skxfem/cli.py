@@ -209,7 +209,9 @@ def _contact_line(result) -> str:
     its = [int(st.newton.iterations) for st in result.steps]
     p = (f"max pressure {last.pressure.max() + 0.0:.4g}"    # + 0.0: -0.0 printed as 0
          if last.pressure.size else "no interface point")
-    return (f"{result.problem.scene.name}: {result.law.name}, {len(its)} load step(s), "
+    law = result.law  # several interfaces: one law each
+    name = "+".join(x.name for x in law) if isinstance(law, tuple) else law.name
+    return (f"{result.problem.scene.name}: {name}, {len(its)} load step(s), "
             f"{sum(its)} Newton iterations ({', '.join(map(str, its))}); last step: "
             f"{counts['stick'] + counts['slip']} in contact ({counts['stick']} stick, "
             f"{counts['slip']} slip), {counts['open']} open, {p}, {result.linear} solve")
@@ -239,10 +241,11 @@ def _run(args, caught: list) -> int:
     linear_tol = check_linear_tol(args.linear_tol if args.linear_tol is not None
                                   else options.get("linear_tol", LINEAR_TOL))
     max_iter = args.max_iter if args.max_iter is not None else options.get("max_iter")
-    contact = s.law in CONTACT_LAWS
+    laws = [i.law for i in s.interface_list]
+    contact = any(law in CONTACT_LAWS for law in laws)
     if max_iter is not None and not contact:
         raise ValueError(f"--max-iter applies to the contact laws {CONTACT_LAWS}; the scene's "
-                         f"law is {s.law!r}")
+                         f"law is {s.law if len(laws) == 1 else laws!r}")
     out = io.check_output(args.out if args.out is not None else io.default_folder(s.name))
     budget.check(s, args.max_memory, "--max-memory", linear=linear)
     if contact:

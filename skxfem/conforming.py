@@ -56,6 +56,9 @@ def solve_conforming(scene: Scene) -> ConformingResult:
         sides of Γ): then the mesh does not follow Γ.
     """
     scene = check_scene(scene)
+    if scene.several:
+        raise ValueError("solve_conforming solves a scene with one interface, a mesh that "
+                         "follows it; this one has several")
     if scene.law != "bonded":
         raise ValueError(f"solve_conforming needs law='bonded' (Γ is then no interface "
                          f"at all), got {scene.law!r}; for other laws use skxfem.solve")

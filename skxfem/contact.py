@@ -47,6 +47,16 @@ displacements interpolated, the state's law throughout), and so on, each
 cut reported by a :class:`StepCutWarning`, down to 1/2^``max_cuts`` of the
 step; then the error names the step and its load factor.
 
+**Several interfaces.** A scene with several (``Scene(interfaces=...)``),
+one of them with a contact law, is solved here as one: the dofs of every
+interface, each with its own law, μ and ρ (:func:`parameters` of the scene
+with that interface alone; the ties as the kinds ``bilateral`` and
+``bonded``), their operators and laws stacked
+(:func:`skxfem.contact_interface.join`, :func:`skxfem.contact_newton.join_laws`).
+A load state gives each interface its law.  The result's fields are those of
+every interface in turn (:mod:`skxfem.result`), its ``law`` one
+:class:`~skxfem.contact_newton.Law` per interface.
+
 >>> from dataclasses import replace
 >>> from skxfem.scene import Displacement
 >>> from skxfem.scenes import strip
@@ -70,14 +80,16 @@ import scipy.sparse as sp
 from .amg import check_tie_held, rigid_modes
 from .contact_fixed_point import fixed_point
 from .contact_interface import Operators, operators, tangent_frames
-from .contact_laws import CONTACT_LAWS, HISTORY_LAWS, KINDS, OPEN, SLIP, STICK
+from .contact_laws import CONTACT_LAWS, HISTORY_LAWS, OPEN, SLIP, STICK
 from .contact_newton import (
     TOL,
     ContactConvergenceError,
     Iterate,
     Law,
     NewtonInfo,
+    PointLaws,
     StepProblem,
+    join_laws,
     newton,
     point_laws,
 )
@@ -117,7 +129,8 @@ class Step:
     the weighted normal jump d (≤ 0 admissible); ``slip`` (m, k) the
     weighted tangential jump (total); ``status`` (m,) 0 open, 1 stick,
     2 slip; ``Lambda`` (m, k) the semi-multiplier Λ = r_τ/(μλ) of eq. 9a
-    (``coulomb``, where p > 0; 0 elsewhere); ``law`` the law of the step;
+    (``coulomb``, where p > 0; 0 elsewhere); ``law`` the law of the step
+    (several interfaces: a tuple, the law of each);
     ``increments`` how many increments the step took (1 unless cut).
     """
 
@@ -165,48 +178,66 @@ def parameters(scene: Scene, h: float) -> Law:
 
 @dataclass(frozen=True)
 class _State:
-    """One entry of a load history: its label, load, imposed values and law."""
+    """One entry of a load history: its label, load, imposed values and the law of
+    each interface."""
 
     label: object
     F: np.ndarray
     g: np.ndarray
-    law: Law
+    laws: tuple[Law, ...]
+
+
+def _spaces(scene: Scene):
+    """The multiplier space of a one-interface scene, the list of each interface's."""
+    return scene.space if scene.interfaces is None else [i.space for i in scene.interfaces]
 
 
 def _same_setup(state: Scene, scene: Scene, pb: Problem, state_pb: Problem, i: int):
     """Refuse a load state that changes what one solve keeps (module notes)."""
-    for key in ("material", "space", "quadrature_order"):
-        if getattr(state, key) != getattr(scene, key):
+    for key, get in (("material", lambda s: s.material), ("space", _spaces),
+                     ("quadrature_order", lambda s: s.quadrature_order)):
+        if get(state) != get(scene):
             raise ValueError(f"history[{i}]: a load state must keep the scene's {key} "
-                             f"({getattr(scene, key)!r}), got {getattr(state, key)!r}: the "
+                             f"({get(scene)!r}), got {get(state)!r}: the "
                              f"solver keeps one stiffness and one multiplier space")
+    same_cuts = len(state_pb.per_interface) == len(pb.per_interface) and all(
+        np.array_equal(a.cut.psi, b.cut.psi)
+        for a, b in zip(state_pb.per_interface, pb.per_interface))
     if (state_pb.V.N != pb.V.N or not np.array_equal(state_pb.D, pb.D)
-            or not np.array_equal(state_pb.cut.psi, pb.cut.psi)):
+            or not same_cuts):
         raise ValueError(f"history[{i}]: a load state must keep the mesh, Γ and "
                          f"the supported boundaries of the scene (same constrained "
                          f"unknowns); give a zero displacement where a support "
                          f"is released")
 
 
-def _states(scene: Scene, pb: Problem, history, h: float) -> list[_State]:
-    """The :class:`_State` of each entry of the history."""
+def _laws(scene: Scene, hs) -> tuple[Law, ...]:
+    """The :class:`~skxfem.contact_newton.Law` of each interface of ``scene``, with the
+    mean cut-edge length ``hs[k]`` of interface k."""
+    return tuple(parameters(scene.alone(k), h) for k, h in enumerate(hs))
+
+
+def _states(scene: Scene, pb: Problem, history, hs) -> list[_State]:
+    """The :class:`_State` of each entry of the history; ``hs`` the mean cut-edge
+    length of each interface."""
     if isinstance(history, (str, bytes)) or not hasattr(history, "__len__") \
             or len(history) == 0:
         raise ValueError(f"history must be a non-empty sequence of load factors or of "
                          f"scenes (load states), got {history!r}")
-    law = parameters(scene, h)
+    laws = _laws(scene, hs)
     out = []
     for i, item in enumerate(history):
         if isinstance(item, Scene):
-            if item.law not in HISTORY_LAWS:
-                raise ValueError(f"history[{i}]: the law of a load state must be one of "
-                                 f"{HISTORY_LAWS}, got {item.law!r}")
+            for j in item.interface_list:
+                if j.law not in HISTORY_LAWS:
+                    raise ValueError(f"history[{i}]: the law of a load state must be one "
+                                     f"of {HISTORY_LAWS}, got {j.law!r}")
             state = assemble(item, law="bilateral")
             _same_setup(item, scene, pb, state, i)
-            out.append(_State(item.name, state.F, state.g, parameters(item, h)))
+            out.append(_State(item.name, state.F, state.g, _laws(item, hs)))
         elif isinstance(item, (int, float, np.integer, np.floating)) and \
                 not isinstance(item, bool) and np.isfinite(item):
-            out.append(_State(float(item), item * pb.F, item * pb.g, law))
+            out.append(_State(float(item), item * pb.F, item * pb.g, laws))
         else:
             raise ValueError(f"history[{i}] must be a finite load factor or a Scene, "
                              f"got {item!r}")
@@ -263,13 +294,15 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
             raise ValueError(f"{key} must be {what}, got {value!r}")
     if not (isinstance(tol, float) and 0 < tol < 1):
         raise ValueError(f"tol must be a float in (0, 1), got {tol!r}")
-    if check_scene(scene).law not in CONTACT_LAWS:
+    if not any(i.law in CONTACT_LAWS for i in check_scene(scene).interface_list):
+        got = scene.law if scene.law is not None else [i.law for i in scene.interfaces]
         raise ValueError(f"scene law must be one of {CONTACT_LAWS} for a contact solve, "
-                         f"got {scene.law!r} (ties are solved by skxfem.solver.solve)")
+                         f"got {got!r} (ties are solved by skxfem.solver.solve)")
     pb = assemble(scene, law="bilateral")
     ops = operators(pb)
-    states = _states(scene, pb, scene.steps if history is None else history, ops.h)
-    laws = [s.law.name for s in states]
+    hs = tuple(o.h for o in ops.pieces) or (ops.h,)
+    states = _states(scene, pb, scene.steps if history is None else history, hs)
+    laws = [law.name for s in states for law in s.laws]
     linear = choose_linear(linear, pb.mesh.dim(), pb.V.N,
                            all(LAWS[name].auto_iterative for name in laws))
     linear_tol = check_linear_tol(linear_tol)
@@ -280,18 +313,22 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     t0 = time.perf_counter()
     free = np.setdiff1d(np.arange(pb.V.N), pb.D)
     m, k = ops.w.size, len(ops.Bt)
-    rho_ref = scene.material.E / ops.h
+    # the reference ρ of the convergence test: E/h, each interface its own h
+    rho_ref = (scene.material.E / ops.h if not ops.pieces
+               else scene.material.E / np.array(hs)[ops.interface])
     it = Iterate(np.zeros(pb.V.N), np.zeros(m), np.zeros((m, k)))
     F, g = np.zeros(pb.V.N), np.zeros(pb.D.size)
     steps = []
     checked = set()
     for i, state in enumerate(states):
-        if state.law.name not in checked:  # the law holds the body with Γ closed?
-            check_closed(pb, ops, state.law, modes, state.label)
-            checked.add(state.law.name)
+        laws = _point_laws(state.laws, ops)
+        names = tuple(law.name for law in state.laws)
+        if names not in checked:  # the law holds the body with Γ closed?
+            check_closed(pb, ops, laws, modes, state.label)
+            checked.add(names)
 
-        def one(start, U_prev, F1, g1, law=state.law):
-            step = StepProblem(ops, pb.K, F1, free, U_prev, point_laws(law, ops.held), rho_ref)
+        def one(start, U_prev, F1, g1, laws=laws):
+            step = StepProblem(ops, pb.K, F1, free, U_prev, laws, rho_ref)
             U = start.U.copy()
             U[pb.D] = g1
             start = Iterate(U, start.lam, start.r)
@@ -305,20 +342,30 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
         where = f"load step {i + 1} of {len(states)} ({_describe(state.label)})"
         it, res, info, pieces = _advance(one, it, F, g, state.F, state.g,
                                          max_cuts if method == "newton" else 0, where,
-                                         state.law.name)
+                                         "+".join(names))
         F, g = state.F, state.g
-        check_determined(pb, ops, state.law, res.status, res.y, modes, state.label)
-        steps.append(_step(state, ops, it, res, info, pieces))
-    return _result(pb, ops, states[0].law, tuple(steps), linear, linear_tol,
+        check_determined(pb, ops, laws, res.status, res.y, modes, state.label)
+        steps.append(_step(state, ops, it, res, info, pieces, laws))
+    law = states[0].laws[0] if not pb.interfaces else states[0].laws
+    return _result(pb, ops, law, tuple(steps), linear, linear_tol,
                    time.perf_counter() - t0)
 
 
-def _result(pb: Problem, ops: Operators, law: Law, steps: tuple, linear: str,
+def _point_laws(laws: tuple[Law, ...], ops: Operators) -> PointLaws:
+    """The law of every dof: those of each interface (``laws``) at its dofs."""
+    if not ops.pieces:
+        return point_laws(laws[0], ops.held)
+    return join_laws([point_laws(law, ops.held[ops.interface == k])
+                      for k, law in enumerate(laws)])
+
+
+def _result(pb: Problem, ops: Operators, law, steps: tuple, linear: str,
             linear_tol: float, seconds: float) -> Result:
     """The :class:`~skxfem.result.Result` of the last step: the dofs' values carried
     to the cut edges by λ = P μ (the status: that of the dof weighing most)."""
     last = steps[-1]
-    normals = point_normals(pb.cut, pb.scene.levelset)
+    qs = pb.per_interface
+    normals = np.hstack([point_normals(q.cut, q.scene.levelset) for q in qs])
     p = on_edges(pb.P, last.pressure)
     r = np.stack([on_edges(Pa, last.traction[:, a]) for a, Pa in enumerate(ops.Pt)],
                  axis=1).reshape(p.size, len(ops.Pt))  # (n, k) on each point's frame
@@ -326,7 +373,8 @@ def _result(pb: Problem, ops: Operators, law: Law, steps: tuple, linear: str,
     traction = -p * normals + np.einsum("nk,kdn->dn", r, frames)
     owner = np.asarray(abs(pb.P).argmax(axis=1)).ravel()
     dim = pb.mesh.dim()
-    Jn = ((pb.J @ last.U).reshape(dim, -1) * pb.rule.normals).sum(0)
+    Jn = np.concatenate([((q.J @ (last.U if q.columns is None else last.U[q.columns]))
+                          .reshape(dim, -1) * q.rule.normals).sum(0) for q in qs])
     t = pb.timings
     timings = {"cut": t["cut"] + t["space"], "enrich": t["enrich"],
                "assemble": sum(t[k] for k in ("stiffness", "load", "constraints", "interface",
@@ -389,7 +437,7 @@ def _advance(one, it, F0, g0, F1, g1, max_cuts: int, where: str, law_name: str =
                          "at the edge of a contact zone, where the pressure vanishes: a point "
                          "that stays closed pulls, one that opens penetrates; coulomb with a "
                          "large friction (1e3) has one." if hasattr(e, "law") and
-                         e.law == "adhesive" else "")
+                         "adhesive" in e.law.split("+") else "")
                 err = ContactConvergenceError(
                     f"{where}: {e}{cut}. Try more load steps, another rho_n/rho_t, or "
                     f"max_iter.{hint}")
@@ -407,52 +455,60 @@ def _advance(one, it, F0, g0, F1, g1, max_cuts: int, where: str, law_name: str =
     return it, res, info, pieces
 
 
-def _step(state: _State, ops: Operators, it: Iterate, res, info, pieces) -> Step:
-    """The :class:`Step` of a converged state."""
-    law = state.law
+def _step(state: _State, ops: Operators, it: Iterate, res, info, pieces,
+          laws: PointLaws) -> Step:
+    """The :class:`Step` of a converged state (``laws`` at its dofs)."""
     m, k = it.r.shape
     slip = np.stack([B @ it.U for B in ops.Bt], axis=1).reshape(m, k) / ops.w[:, None]
     Lam = np.zeros((m, k))
-    if law.name == "coulomb":
-        p = -it.lam
-        ok = p > 0
-        Lam[ok] = -it.r[ok] / (law.mu * p[ok, None])
+    p = -it.lam
+    ok = (laws.name == "coulomb") & (p > 0)
+    Lam[ok] = -it.r[ok] / (laws.mu[ok, None] * p[ok, None])
+    names = tuple(law.name for law in state.laws)
     return Step(state.label, it.U.copy(), -it.lam, it.r.copy(), ops.Bn @ it.U / ops.w, slip,
-                res.status, Lam, info, law.name, pieces)
+                res.status, Lam, info, names[0] if len(names) == 1 else names, pieces)
 
 
-def _held_rows(ops: Operators, law: Law, status, y) -> sp.csr_matrix:
+def _sticking(laws: PointLaws, status) -> np.ndarray:
+    """(m,) the dofs whose whole jump a state holds: closed under a no-slip law, or
+    sticking under Coulomb's."""
+    return (((status != OPEN) & (laws.tangential == "stick"))
+            | ((status == STICK) & (laws.tangential == "coulomb")))
+
+
+def _held_rows(ops: Operators, laws: PointLaws, status, y) -> sp.csr_matrix:
     """The rows of the tie that a contact state imposes: the normal jump at
     closed points, the tangential jumps where they stick (not those a support
     holds); a point sliding in 3D holds the tangent across its slip direction."""
     closed = status != OPEN
     rows = [ops.Bn[closed]]
-    kind = KINDS[law.name].tangential
     k = len(ops.Bt)
     free = ~ops.held
-    if kind == "stick":
-        rows += [ops.Bt[a][closed & free[:, a]] for a in range(k)]
-    elif kind == "coulomb":
-        rows += [ops.Bt[a][(status == STICK) & free[:, a]] for a in range(k)]
-        slip = (status == SLIP) & free.all(axis=1)
-        if k == 2 and slip.any():
-            yh = y[slip] / np.linalg.norm(y[slip], axis=1)[:, None]
-            rows.append(sp.diags(-yh[:, 1]) @ ops.Bt[0][slip]
-                        + sp.diags(yh[:, 0]) @ ops.Bt[1][slip])
+    stick = _sticking(laws, status)
+    rows += [ops.Bt[a][stick & free[:, a]] for a in range(k) if (stick & free[:, a]).any()]
+    slip = (status == SLIP) & (laws.tangential == "coulomb") & free.all(axis=1)
+    if k == 2 and slip.any():
+        yh = y[slip] / np.linalg.norm(y[slip], axis=1)[:, None]
+        rows.append(sp.diags(-yh[:, 1]) @ ops.Bt[0][slip]
+                    + sp.diags(yh[:, 0]) @ ops.Bt[1][slip])
     return sp.vstack(rows, format="csr")
 
 
-def _check_rigid(pb: Problem, ops: Operators, law: Law, st, y, what: str, hint: str,
+def _names(laws: PointLaws) -> str:
+    """The law of the dofs in words: "the coulomb law", or "the laws a, b" (several)."""
+    names = list(dict.fromkeys(laws.name.tolist()))
+    return f"the {names[0]} law" if len(names) == 1 else f"the laws {', '.join(names)}"
+
+
+def _check_rigid(pb: Problem, ops: Operators, laws: PointLaws, st, y, what: str, hint: str,
                  label) -> None:
     """:func:`skxfem.rigid.check_held` of a contact state: the normal jump held at
     the edges of closed dofs, the whole jump at those of sticking ones, and a
     3D sliding point's tangent across its slip; the message names the motion."""
     closed = st != OPEN
-    kind = KINDS[law.name].tangential
-    full = closed if kind == "stick" else (st == STICK if kind == "coulomb"
-                                           else np.zeros_like(closed))
+    full = _sticking(laws, st)
     edges_of = abs(pb.P).tocsc()
-    slip = (st == SLIP) & (kind == "coulomb") & ~ops.held.any(axis=1)
+    slip = (st == SLIP) & (laws.tangential == "coulomb") & ~ops.held.any(axis=1)
     rows = sp.csr_matrix((0, pb.V.N))
     if len(ops.Bt) == 2 and y is not None and slip.any():
         yh = y[slip] / np.linalg.norm(y[slip], axis=1)[:, None]
@@ -466,24 +522,25 @@ def _check_rigid(pb: Problem, ops: Operators, law: Law, st, y, what: str, hint: 
         raise SingularSystemError(f"load step {label!r}: {e}") from None
 
 
-def check_closed(pb: Problem, ops: Operators, law: Law, modes, label=None) -> None:
+def check_closed(pb: Problem, ops: Operators, laws: PointLaws, modes, label=None) -> None:
     """Refuse a law that cannot determine a state even where Γ is closed
     everywhere (every point in contact, sticking where the law can): a side
     it leaves free to move (a frictionless Γ under a side that only Γ holds
     tangentially; :func:`skxfem.rigid.check_held` names the motion), or
-    multipliers that depend on the others (the naive space on tetrahedra)."""
-    m = ops.w.size
-    status = np.full(m, SLIP if KINDS[law.name].tangential == "free" else STICK)
-    _check_rigid(pb, ops, law, status, None, f"the {law.name} law with Γ closed everywhere",
+    multipliers that depend on the others (the naive space on tetrahedra).
+    ``laws``: the :class:`~skxfem.contact_newton.PointLaws` of the dofs."""
+    status = np.where(laws.tangential == "free", SLIP, STICK)
+    text = _names(laws)
+    _check_rigid(pb, ops, laws, status, None, f"{text} with Γ closed everywhere",
                  "hold each side of Γ, or use a law with friction", label)
     fixed = np.zeros(pb.V.N, bool)
     fixed[pb.D] = True
-    rows = _held_rows(ops, law, status, None)
+    rows = _held_rows(ops, laws, status, None)
     try:
         check_tie_held(pb.K, rows, fixed, modes)
     except SingularSystemError as e:
         raise SingularSystemError(
-            f"load step {label!r}: even with Γ closed everywhere, the {law.name} law leaves "
+            f"load step {label!r}: even with Γ closed everywhere, {text} leaves "
             f"a part of the body free to move ({e}): hold each side of Γ, or use a law "
             f"with friction") from e
     free = rows[:, ~fixed]
@@ -492,12 +549,12 @@ def check_closed(pb: Problem, ops: Operators, law: Law, modes, label=None) -> No
     if N.shape[1]:
         raise ValueError(
             f"load step {label!r}: {N.shape[1]} contact multipliers depend on the others "
-            f"(space {pb.scene.space!r}: the naive space on tetrahedra carries four "
+            f"(space {_spaces(pb.scene)!r}: the naive space on tetrahedra carries four "
             f"multipliers on a quadrilateral cut, for three parameters of a linear jump), so "
             f"the pressure is not unique where the laws must hold: use space='vital'")
 
 
-def check_determined(pb: Problem, ops: Operators, law: Law, st, y, modes, label=None
+def check_determined(pb: Problem, ops: Operators, laws: PointLaws, st, y, modes, label=None
                      ) -> None:
     """Refuse a converged contact state that leaves a side of Γ free to move.
 
@@ -510,16 +567,17 @@ def check_determined(pb: Problem, ops: Operators, law: Law, st, y, modes, label=
     direction ŷ.  :func:`skxfem.rigid.check_held` tests that with the level
     set's normals and names the motion left free; then
     :func:`skxfem.amg.check_tie_held` tests the discrete rows themselves.
+    ``laws``: the :class:`~skxfem.contact_newton.PointLaws` of the dofs.
     """
     counts = np.bincount(st, minlength=3)
     found = (f"({counts[OPEN]} open, {counts[STICK]} stick, {counts[SLIP]} slip of "
              f"{st.size} points)")
     hint = "add supports on each side of Γ or a load that closes it"
-    _check_rigid(pb, ops, law, st, y, f"the contact state found {found}", hint, label)
+    _check_rigid(pb, ops, laws, st, y, f"the contact state found {found}", hint, label)
     fixed = np.zeros(pb.V.N, bool)
     fixed[pb.D] = True
     try:
-        check_tie_held(pb.K, _held_rows(ops, law, st, y), fixed, modes)
+        check_tie_held(pb.K, _held_rows(ops, laws, st, y), fixed, modes)
     except SingularSystemError as e:
         raise SingularSystemError(
             f"load step {label!r}: the contact state found {found} leaves a part of the "

@@ -31,6 +31,12 @@ subset (tetrahedra: the stars around the held nodes are rebuilt), the normal
 space is kept for that tangent and the dofs whose every edge is held are
 released (:func:`held_tangents`): a stable space too, but not the tie's.
 
+**Several interfaces.** Each interface's operators are those of its piece of
+the problem (:attr:`skxfem.problem.Problem.interfaces`), on its own unknowns
+[a, b^k]; lifted to the whole's unknowns and stacked, interface after
+interface (:func:`join`), they are the operators of the scene: its dofs are
+those of every interface, ``interface`` says whose.
+
 >>> from skxfem.problem import assemble
 >>> from skxfem.scenes import strip
 >>> ops = operators(assemble(strip(n=2), law="bilateral"))
@@ -47,7 +53,8 @@ import scipy.sparse as sp
 from .multipliers import direction_fixed, fixed_jumps
 from .stabilised import multiplier_space
 
-__all__ = ["Operators", "operators", "tangent_frames", "held_tangents", "tangential_space"]
+__all__ = ["Operators", "operators", "join", "tangent_frames", "held_tangents",
+           "tangential_space"]
 
 
 @dataclass(frozen=True)
@@ -64,6 +71,9 @@ class Operators:
         (:func:`held_tangents`).
     Pt : tuple of k (n_edges, m), each tangent's prolongation from the dofs to
         the cut edges (the normal one, ``Problem.P``, where no support holds it).
+    interface : (m,) the interface of each dof (0 for one interface).
+    pieces : several interfaces: the operators of each, on its own unknowns
+        (module notes); empty for one.
     """
 
     Bn: sp.csr_matrix
@@ -75,6 +85,8 @@ class Operators:
     tangents: np.ndarray
     held: np.ndarray
     Pt: tuple = ()
+    interface: np.ndarray | None = None
+    pieces: tuple = ()
 
 
 def tangent_frames(normals: np.ndarray) -> np.ndarray:
@@ -94,7 +106,10 @@ def tangent_frames(normals: np.ndarray) -> np.ndarray:
 
 
 def operators(pb) -> Operators:
-    """The operators of :class:`Operators` for an assembled bilateral problem ``pb``."""
+    """The operators of :class:`Operators` for an assembled bilateral problem ``pb``
+    (several interfaces: :func:`join` of each one's)."""
+    if pb.interfaces:
+        return join(pb, [operators(q) for q in pb.interfaces])
     if pb.law != "bilateral":
         raise ValueError(f"contact needs the problem assembled with law='bilateral' "
                          f"(one multiplier component), got law={pb.law!r}")
@@ -129,7 +144,28 @@ def operators(pb) -> Operators:
             Pt.append((Pa @ rows).tocsr())
             held[:, a] = ~np.isin(np.arange(w.size), dofs)
         Bt.append((Pt[-1].T @ PT[a]).tocsr())
-    return Operators(pb.B, tuple(Bt), w, h, points, normals, T[:, :, 0], held, tuple(Pt))
+    return Operators(pb.B, tuple(Bt), w, h, points, normals, T[:, :, 0], held, tuple(Pt),
+                     np.zeros(w.size, dtype=np.int64))
+
+
+def join(pb, parts) -> Operators:
+    """The operators of a problem with several interfaces from those of each (``parts``,
+    on the unknowns of its piece of ``pb``): lifted to the whole's unknowns
+    (:meth:`skxfem.problem.Problem.lift`) and stacked, dof after dof; ``h`` is the
+    mean length of all cut edges, each interface's own in ``pieces``."""
+    k = len(parts[0].Bt)
+    sizes = [o.w.size for o in parts]
+    lengths = np.concatenate([np.full(q.cut.edge_ids.size, o.h)
+                              for q, o in zip(pb.interfaces, parts)])
+    return Operators(
+        sp.vstack([pb.lift(j, o.Bn) for j, o in enumerate(parts)], format="csr"),
+        tuple(sp.vstack([pb.lift(j, o.Bt[a]) for j, o in enumerate(parts)], format="csr")
+              for a in range(k)),
+        np.concatenate([o.w for o in parts]), float(lengths.mean()),
+        np.hstack([o.points for o in parts]), np.hstack([o.normals for o in parts]),
+        parts[0].tangents, np.vstack([o.held for o in parts]),
+        tuple(sp.block_diag([o.Pt[a] for o in parts], format="csr") for a in range(k)),
+        np.repeat(np.arange(len(parts)), sizes), tuple(parts))
 
 
 def tangential_space(pb, fixed: np.ndarray):

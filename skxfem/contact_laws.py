@@ -145,12 +145,11 @@ def disk_projection(y: np.ndarray, radius: np.ndarray):
     norm = np.linalg.norm(y, axis=1)
     out = norm > R
     P, DP, dR = y.copy(), np.broadcast_to(np.eye(k), (n, k, k)).copy(), np.zeros((n, k))
-    pos = out & (R > 0)
-    Pb, DPb = ball_projection(y[pos] / R[pos, None])
-    P[pos], DP[pos] = R[pos, None] * Pb, DPb
-    zero = out & (R <= 0)
-    P[zero], DP[zero] = 0.0, 0.0
-    dR[out] = y[out] / norm[out, None]
+    yh = y[out] / norm[out, None]  # ŷ, without dividing by R (R may underflow)
+    scale = R[out] / norm[out]
+    P[out] = R[out, None] * yh
+    DP[out] = scale[:, None, None] * (np.eye(k) - yh[:, :, None] * yh[:, None, :])
+    dR[out] = yh
     return P, DP, dR
 
 

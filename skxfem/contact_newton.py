@@ -59,7 +59,7 @@ import scipy.sparse as sp
 from . import contact_linear
 from .contact_laws import KINDS, disk_projection, status
 
-__all__ = ["Law", "PointLaws", "point_laws", "StepProblem", "Iterate", "Residual",
+__all__ = ["Law", "PointLaws", "point_laws", "join_laws", "StepProblem", "Iterate", "Residual",
            "NewtonInfo", "ContactConvergenceError", "jumps", "residual", "jacobian",
            "line_search", "relative_residuals", "newton", "LINE_SEARCH", "TOL"]
 
@@ -144,12 +144,30 @@ def point_laws(law: Law, held: np.ndarray) -> PointLaws:
                      law.threshold)
 
 
+def join_laws(parts) -> PointLaws:
+    """The :class:`PointLaws` of several interfaces' dofs, stacked in order (each
+    from :func:`point_laws`; no frozen threshold).
+
+    >>> a = point_laws(Law("frictionless", 0.0, 1.0, 1.0), np.zeros((2, 1), bool))
+    >>> b = point_laws(Law("coulomb", 0.5, 1.0, 1.0), np.zeros((3, 1), bool))
+    >>> j = join_laws([a, b])
+    >>> j.name.tolist(), j.mu.tolist()
+    (['frictionless', 'frictionless', 'coulomb', 'coulomb', 'coulomb'], [0.0, 0.0, 0.5, 0.5, 0.5])
+    """
+    if any(p.threshold is not None for p in parts):
+        raise ValueError("join_laws stacks laws without a frozen threshold")
+    return PointLaws(*(np.concatenate([getattr(p, f) for p in parts]) for f in
+                       ("name", "unilateral", "tangential", "mu", "rho_n", "rho_t")),
+                     np.vstack([p.held for p in parts]))
+
+
 @dataclass(frozen=True)
 class StepProblem:
     """What one load step solves: the interface ``ops``, the stiffness ``K``
     and load ``F`` on all unknowns, the ``free`` unknowns, ``U_prev`` (the
     converged state the slip increments start from), the ``laws`` and
-    ``rho_ref`` (the reference ρ of the convergence test, E/h)."""
+    ``rho_ref`` (the reference ρ of the convergence test, E/h; several
+    interfaces: (m,), each dof its interface's)."""
 
     ops: object
     K: sp.csr_matrix
@@ -157,7 +175,7 @@ class StepProblem:
     free: np.ndarray
     U_prev: np.ndarray
     laws: PointLaws
-    rho_ref: float
+    rho_ref: float | np.ndarray
 
     @property
     def nu(self) -> int:

@@ -21,7 +21,8 @@ __all__ = ["STATUS_COLORS", "edge_status", "plot_status_2d", "plot_status_3d",
 STATUS_COLORS = {"open": "#969696", "stick": "#1b9e77", "slip": "#d95f02"}
 
 
-def plot_status_2d(result, step: int = -1, title: str | None = None) -> Figure:
+def plot_status_2d(result, step: int = -1, title: str | None = None,
+                   interface: int | None = None) -> Figure:
     """Status map on a 2D Γ: tractions (top) and jumps (bottom) at the multiplier dofs.
 
     The abscissa is the position along Γ (the coordinate along its tangent);
@@ -33,13 +34,22 @@ def plot_status_2d(result, step: int = -1, title: str | None = None) -> Figure:
         A contact :class:`skxfem.result.Result` of a 2D scene.
     step
         Which load step (default: the last).
+    interface
+        Several interfaces: which one to draw (required).
     """
     ops, st = result.ops, result.steps[step]
     if ops.points.shape[0] != 2:
         raise ValueError("plot_status_2d needs a 2D result")
+    dofs = np.arange(ops.w.size)
+    if ops.pieces:
+        if interface not in range(len(ops.pieces)):
+            raise ValueError(f"plot_status_2d draws one interface: give interface= one of "
+                             f"0 ... {len(ops.pieces) - 1}, got {interface!r}")
+        dofs = np.flatnonzero(ops.interface == interface)
+        ops = ops.pieces[interface]
     s = ops.tangents[0] @ ops.points
-    order = np.argsort(s)
-    s = s[order]
+    order = dofs[np.argsort(s)]
+    s = np.sort(s)
     colors = [STATUS_COLORS[STATUS_NAMES[k]] for k in st.status[order]]
     fig = Figure(figsize=(7.0, 5.0), layout="constrained")
     top, bottom = fig.subplots(2, 1, sharex=True)

@@ -44,6 +44,9 @@ class PressureError:
 def pressure_error(result, exact: Callable) -> PressureError:
     """Pressure error of a :class:`skxfem.result.Result` against ``exact(x)``."""
     V = result.space
+    if result.u_minus is None:
+        raise ValueError("pressure_error measures a result with one interface; this one "
+                         "has several")
     rule = interface_rule(V.mesh, V.cut)
     ph = rule.N @ result.pressure
     p = exact(rule.points)
@@ -63,6 +66,9 @@ def energy_error(result, exact_strain: Callable, order: int = 4) -> float:
     :mod:`skxfem.exact` against P1, Q1 and prism fields on affine cells.
     """
     V, material = result.space, result.scene.material
+    if result.u_minus is None:
+        raise ValueError("energy_error measures a result with one interface; this one has "
+                         "several")
     dim = V.mesh.dim()
     a = result.U[:V.n_std]
     b = np.zeros(V.n_std)

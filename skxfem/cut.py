@@ -51,7 +51,7 @@ from .levelset import nodal_values
 from .meshes import cell_name
 from .simplex import edge_point, split
 
-__all__ = ["Cut", "cut", "strictly_cut_edges", "snap", "SNAP", "SnapWarning"]
+__all__ = ["Cut", "cut", "strictly_cut_edges", "snap", "SNAP", "SnapWarning", "check_apart"]
 
 SNAP = 1e-9
 """Vertices closer to Γ than SNAP times their shortest edge are moved to that
@@ -121,7 +121,7 @@ def strictly_cut_edges(edges, psi, x) -> tuple[np.ndarray, np.ndarray]:
     >>> ids.tolist(), pts.tolist()
     ([0], [[0.5]])
     """
-    edge_ids = np.flatnonzero(psi[edges[0]] * psi[edges[1]] < 0)
+    edge_ids = np.flatnonzero(np.sign(psi[edges[0]]) * np.sign(psi[edges[1]]) < 0)  # no underflow
     a, b = edges[:, edge_ids]
     return edge_ids, edge_point(x[:, a].T, x[:, b].T, psi[a], psi[b]).T
 
@@ -236,6 +236,43 @@ def cut(mesh, psi) -> Cut:
     sub_ref, sub_cell, sub_side = _subcells(mesh, psi, cells)
     return Cut(psi, edge_ids, edges, points, cells, side, enriched, facets, facet_cell,
                facet_ref, normals, measures, sub_ref, sub_cell, sub_side)
+
+
+def check_apart(mesh, cuts, names) -> None:
+    """Refuse interfaces that cut a common cell: each cell may be cut by one only.
+
+    Several interfaces of one scene (each its own :class:`Cut` in ``cuts``,
+    named by ``names`` in the message) are enriched each on its own cut cells
+    (:mod:`skxfem.enrich`), and a cell's sub-cells follow one level set.  Two
+    that cross or touch cut a cell together, and so do two that pass closer
+    to each other than about a cell.
+
+    Raises
+    ------
+    ValueError
+        Naming both interfaces, the number of cells they share and one of
+        them with its centre.
+
+    >>> from skfem import MeshQuad1
+    >>> from skxfem.levelset import plane
+    >>> m = MeshQuad1().refined(2)
+    >>> a, b = cut(m, plane((0, 0.3), (0, 1))), cut(m, plane((0, 0.4), (0, 1)))
+    >>> check_apart(m, (a, b), ("Γ at y = 0.3", "Γ at y = 0.4"))
+    Traceback (most recent call last):
+    ...
+    ValueError: Γ at y = 0.3 and Γ at y = 0.4 both cut 4 mesh cell(s) (e.g. cell ...
+    """
+    for k in range(len(cuts)):
+        for j in range(k):
+            both = np.intersect1d(cuts[j].cells, cuts[k].cells)
+            if both.size:
+                centre = mesh.p[:, mesh.t[:, both[0]]].mean(axis=1)
+                raise ValueError(
+                    f"{names[j]} and {names[k]} both cut {both.size} mesh "
+                    f"cell(s) (e.g. cell {both[0]} around "
+                    f"{np.round(centre, 6).tolist()}): they cross, touch or pass closer "
+                    f"than a cell to each other, and each cell may be cut by one interface "
+                    f"only: refine the mesh or move them apart")
 
 
 def _local_points(mesh, psi, local, cells):

@@ -28,6 +28,19 @@ prisms with a moment-fitted rule, :mod:`skxfem.moments`).  The stiffness runs
 on *scalar* bases (built once by :func:`space` and shared with
 :func:`far_side_fraction`), from scalar forms (:func:`skxfem.material.stiffness_matrix`).
 
+**Several interfaces** (:class:`XSpaces`): one Heaviside H^k per level set
+ψ_k, each enriching the nodes of its own cut cells,
+
+.. math:: u_h = \sum_i a_i \varphi_i + \sum_k \sum_{j \in E_k} b^k_j \varphi_j (H^k - H^k_j),
+
+unknowns [a, b¹, b², …].  No cell is cut by two interfaces
+(:func:`skxfem.cut.check_apart`), so on a cell the enrichment of Γ_k is zero
+unless Γ_k cuts it (H^k is constant there and equals H^k_j at its nodes):
+the enrichments of two interfaces never meet on a cell, their blocks in K
+are zero, and K is :func:`enriched_blocks` of each interface around the one
+standard block A.  Each interface's own space ``spaces[k]`` numbers
+[a, b^k]; :meth:`XSpaces.columns` places it among the unknowns.
+
 >>> from skfem import MeshTri1
 >>> from skxfem.levelset import plane
 >>> from skxfem.cut import cut
@@ -35,6 +48,9 @@ on *scalar* bases (built once by :func:`space` and shared with
 >>> V = space(m, cut(m, plane((0, 0.3), (0, 1))))
 >>> V.n_std, V.n_enr
 (50, 20)
+>>> W = XSpaces((V, space(m, cut(m, plane((0, 0.8), (0, 1))))))
+>>> W.N, int(W.columns(1)[-1]), W.regions()[0].tolist()   # three regions
+(90, 89, [[-1, -1], [1, -1], [1, 1]])
 """
 from __future__ import annotations
 
@@ -52,9 +68,9 @@ from .material import Material, stiffness_matrix
 from .quadrature import cell_rule, exact_orders
 from .sides import Parts, parts, side_bases
 
-__all__ = ["XSpace", "space", "stiffness", "mass", "enriched_matrix", "enriched_blocks",
-           "signed_bases", "far_side_fraction", "enriched_load",
-           "jump_matrix", "split_fields"]
+__all__ = ["XSpace", "XSpaces", "space", "stiffness", "mass", "enriched_matrix",
+           "enriched_blocks", "signed_bases", "far_side_fraction", "enriched_load",
+           "jump_matrix", "split_fields", "region_fields"]
 
 
 @dataclass(frozen=True)
@@ -98,6 +114,66 @@ class XSpace:
     @property
     def N(self) -> int:
         return self.n_std + self.n_enr
+
+
+@dataclass(frozen=True)
+class XSpaces:
+    """The X-FEM space of several interfaces: one Heaviside enrichment each.
+
+    ``spaces``: the :class:`XSpace` of each interface, on its own unknowns
+    [a, b^k]; the unknowns of the whole are [a, b¹, b², …] (module notes).
+    """
+
+    spaces: tuple[XSpace, ...]
+
+    @property
+    def mesh(self):
+        return self.spaces[0].mesh
+
+    @property
+    def basis(self) -> CellBasis:
+        return self.spaces[0].basis
+
+    @property
+    def n_std(self) -> int:
+        return self.spaces[0].n_std
+
+    @property
+    def n_enr(self) -> int:
+        return sum(V.n_enr for V in self.spaces)
+
+    @property
+    def N(self) -> int:
+        return self.n_std + self.n_enr
+
+    @property
+    def offsets(self) -> tuple[int, ...]:
+        """The unknown of the first enriched dof of each interface."""
+        sizes = np.cumsum([0] + [V.n_enr for V in self.spaces])
+        return tuple(int(self.n_std + o) for o in sizes[:-1])
+
+    def columns(self, k: int) -> np.ndarray:
+        """(n_std + n_enr_k,) the unknowns of interface k's space [a, b^k] among [a, b¹, …]."""
+        return np.r_[np.arange(self.n_std), self.offsets[k] + np.arange(self.spaces[k].n_enr)]
+
+    def select(self, k: int) -> sp.csr_matrix:
+        """(n_std + n_enr_k, N) the restriction U ↦ [a, b^k]: an operator A_k of
+        interface k's space acts on the whole as A_k @ select(k)."""
+        cols = self.columns(k)
+        return sp.csr_matrix((np.ones(cols.size), (np.arange(cols.size), cols)),
+                             shape=(cols.size, self.N))
+
+    def regions(self) -> tuple[np.ndarray, np.ndarray]:
+        """The regions the interfaces split the body into: their signs (R, n_interfaces),
+        ±1 per level set, in lexicographic order, and the region of each node (nverts,).
+
+        A region is a sign pattern taken by a node (the level sets are snapped off
+        the nodes, :func:`skxfem.cut.snap`): no cell is cut twice, so every region
+        that meets a cut cell holds one of its nodes.
+        """
+        signs = np.array([np.where(V.cut.psi < 0, -1, 1) for V in self.spaces])
+        patterns, node_region = np.unique(signs.T, axis=0, return_inverse=True)
+        return patterns, node_region.ravel()
 
 
 @LinearForm
@@ -153,16 +229,33 @@ def signed_bases(V: XSpace, orders: tuple[int, int] | None = None):
     return side_bases(V.mesh, V.cut, V.basis.elem, cell_rule(V.mesh, orders[0]), orders[1])
 
 
-def enriched_blocks(V: XSpace, A, AH) -> sp.csr_matrix:
-    """The X-FEM matrix on [a, b] from A = ∫ g(φᵢ, φⱼ) and A_H = ∫ H g(φᵢ, φⱼ)
-    on the standard dofs: the blocks of the module notes (H² = 1).  Only the
-    columns of the enriched dofs of A_H are read."""
-    A, AH = A.tocsr(), AH.tocsr()
+def _blocks(V: XSpace, A, AH):
+    """The blocks (A_ab, A_bb) of one enrichment (module notes), A and AH in CSR."""
     E = V.enr_dofs
     D = sp.diags(V.H_node)
     Aab = AH[:, E] - A[:, E] @ D
     AEE, AHEE = A[E][:, E], AH[E][:, E]
     Abb = AEE + D @ AEE @ D - D @ AHEE - AHEE @ D
+    return Aab, Abb
+
+
+def enriched_blocks(V: XSpace | XSpaces, A, AH) -> sp.csr_matrix:
+    """The X-FEM matrix on [a, b] from A = ∫ g(φᵢ, φⱼ) and A_H = ∫ H g(φᵢ, φⱼ)
+    on the standard dofs: the blocks of the module notes (H² = 1).  Only the
+    columns of the enriched dofs of A_H are read.
+
+    For :class:`XSpaces`, ``AH`` holds one A_H per interface (its own H^k) and
+    the matrix is on [a, b¹, b², …]: A, the blocks of each enrichment with A,
+    and zero between two enrichments (module notes)."""
+    if isinstance(V, XSpaces):
+        A = A.tocsr()
+        parts = [_blocks(Vk, A, AHk.tocsr()) for Vk, AHk in zip(V.spaces, AH, strict=True)]
+        rows = [[A] + [Aab for Aab, _ in parts]]
+        for k, (Aab, Abb) in enumerate(parts):
+            rows.append([Aab.T] + [Abb if j == k else None for j in range(len(parts))])
+        return sp.bmat(rows, format="csr")
+    A, AH = A.tocsr(), AH.tocsr()
+    Aab, Abb = _blocks(V, A, AH)
     return sp.bmat([[A, Aab], [Aab.T, Abb]], format="csr")
 
 
@@ -180,11 +273,22 @@ def enriched_matrix(V: XSpace, form, orders: tuple[int, int] | None = None) -> s
     return enriched_blocks(V, A, AH)
 
 
-def stiffness(V: XSpace, material: Material) -> sp.csr_matrix:
+def stiffness(V: XSpace | XSpaces, material: Material) -> sp.csr_matrix:
     """The X-FEM stiffness on the unknowns [a, b]: ∫ σ(u):ε(v), each part
-    assembled from scalar forms (:func:`skxfem.material.stiffness_matrix`)."""
+    assembled from scalar forms (:func:`skxfem.material.stiffness_matrix`).
+    Several interfaces: on [a, b¹, b², …], A assembled once and A_H per interface."""
+    def form(b):
+        return stiffness_matrix(material, b)
+
+    if isinstance(V, XSpaces):
+        A, AH = None, []
+        for Vk in V.spaces:
+            p = Vk.parts or parts(Vk.mesh, Vk.cut, Vk.basis.elem.elem, Vk.rule)
+            A, AHk = p.signed(form, A)
+            AH.append(AHk)
+        return enriched_blocks(V, A, AH)
     p = V.parts or parts(V.mesh, V.cut, V.basis.elem.elem, V.rule)
-    A, AH = p.signed(lambda b: stiffness_matrix(material, b))
+    A, AH = p.signed(form)
     return enriched_blocks(V, A, AH)
 
 
@@ -200,8 +304,12 @@ def mass(V: XSpace) -> sp.csr_matrix:
     return enriched_matrix(V, _signed_vector_mass, exact_orders(V.mesh, "mass"))
 
 
-def enriched_load(V: XSpace, f: np.ndarray, f_H: np.ndarray) -> np.ndarray:
-    """Load on [a, b] from f = ∫ t·φ and f_H = ∫ H t·φ (standard dofs)."""
+def enriched_load(V: XSpace | XSpaces, f: np.ndarray, f_H) -> np.ndarray:
+    """Load on [a, b] from f = ∫ t·φ and f_H = ∫ H t·φ (standard dofs); for
+    :class:`XSpaces`, on [a, b¹, b², …] from one f_H per interface (its own H^k)."""
+    if isinstance(V, XSpaces):
+        return np.concatenate([f] + [fk[Vk.enr_dofs] - Vk.H_node * f[Vk.enr_dofs]
+                                     for Vk, fk in zip(V.spaces, f_H, strict=True)])
     E = V.enr_dofs
     return np.concatenate([f, f_H[E] - V.H_node * f[E]])
 
@@ -222,3 +330,35 @@ def split_fields(V: XSpace, U: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     plus[V.enr_dofs] += b * (1.0 - V.H_node)
     nd = V.basis.nodal_dofs
     return minus[nd], plus[nd]
+
+
+def region_fields(V: XSpace | XSpaces, U: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The regions and the nodal values (R, dim, nverts) of each region's field.
+
+    In region σ (its sign σ_k = ±1 for each level set), u = a + Σ_k b^k (σ_k - H^k_j)
+    at the nodes: the field of that region continued over the cells it meets.
+    One interface: the regions [[-1], [1]], Ω⁻ and Ω⁺, and :func:`split_fields`.
+    Several: :meth:`XSpaces.regions`.
+
+    >>> from skfem import MeshQuad1
+    >>> from skxfem.cut import cut
+    >>> from skxfem.levelset import plane
+    >>> m = MeshQuad1().refined(2)
+    >>> W = XSpaces(tuple(space(m, cut(m, plane((0, y), (0, 1)))) for y in (0.3, 0.8)))
+    >>> U = np.zeros(W.N); U[W.offsets[1]:] = -0.5    # b² = -1/2: [[u]] = 1 across Γ₂
+    >>> signs, fields = region_fields(W, U)
+    >>> jumps = fields[:-1] - fields[1:]                 # across Γ₁, then Γ₂
+    >>> signs.tolist(), [float(abs(j).max()) for j in jumps]
+    ([[-1, -1], [1, -1], [1, 1]], [0.0, 1.0])
+    """
+    if not isinstance(V, XSpaces):
+        return np.array([[-1], [1]]), np.array(split_fields(V, U))
+    patterns, _ = V.regions()
+    a = U[:V.n_std]
+    fields = []
+    for sigma in patterns:
+        u = a.copy()
+        for k, (Vk, start) in enumerate(zip(V.spaces, V.offsets)):
+            u[Vk.enr_dofs] += U[start:start + Vk.n_enr] * (sigma[k] - Vk.H_node)
+        fields.append(u[V.basis.nodal_dofs])
+    return patterns, np.array(fields)

@@ -34,6 +34,19 @@ start, then after each iteration).  ``interface.vtu`` adds the point data
 ``status`` (0 open, 1 stick, 2 slip).  The VTU files hold the last step only
 (the JSON has every step).
 
+**Several interfaces** (:mod:`skxfem.result`): ``result.json``'s ``law`` and
+``space`` are lists, one per interface, and it adds ``interfaces``, one entry
+per interface (``levelset``: the level set's name, ``law``, ``space``,
+``friction`` μ, ``rho_n``, ``rho_t``: those given, or for a contact solve
+those used; ``n_points``), ``interface``, the interface of each point, and
+``regions``, the sign of each level set in each region; a contact file has μ
+and ρ there only, and its ``dofs`` add ``interface``.  ``displacement.vtu``
+has a piece per region (the cells with a vertex in it, with its field:
+cell data ``region``, the index into ``regions``, and ``cut``; point data
+``levelset_0``, ``levelset_1``, ... the nodal ψ of each interface as the
+solve used it); ``interface.vtu`` adds the point data ``interface``.  A
+scene with one interface writes the files above, unchanged.
+
 **Array shapes.**  :class:`skxfem.result.Result` follows scikit-fem: a set of
 points or vectors is ``(dim, n)`` (``mesh.p``, ``result.points``,
 ``result.traction``).  The files follow meshio, VTK and JSON readers, where a
@@ -65,7 +78,7 @@ import numpy as np
 from .files import check_folder, quiet, write_set
 from .io_contact import contact_summary, is_contact
 from .levelset import nodal_values
-from .vtu import cell_sides, pad3, side_pieces, vectors3, vtk_cells
+from .vtu import cell_sides, pad3, region_pieces, side_pieces, vectors3, vtk_cells
 
 __all__ = ["write_result", "result_summary", "cell_sides", "vtk_cells", "check_output",
            "side_pieces", "default_folder"]
@@ -99,10 +112,12 @@ def result_summary(result) -> dict:
     missing = [s for s in _STAGES if s not in timings]
     if missing:
         raise ValueError(f"result.timings lacks the stages {missing}; expected {_STAGES}")
+    several = getattr(result, "u_minus", 0) is None
+    items = result.scene.interface_list if several else ()
     data = {
         "scene": result.scene.name,
-        "law": result.scene.law,
-        "space": result.scene.space,
+        "law": [i.law for i in items] if several else result.scene.law,
+        "space": [i.space for i in items] if several else result.scene.space,
         "points": _plain(np.asarray(result.points).T),
         "normals": _plain(np.asarray(result.normals).T),
         "traction": _plain(np.asarray(result.traction).T),
@@ -116,7 +131,27 @@ def result_summary(result) -> dict:
     }
     if is_contact(result):
         data.update(_jsonable(contact_summary(result)))
+    if several:
+        data.update(_interfaces(result, items, data))
     return data
+
+
+def _interfaces(result, items, data: dict) -> dict:
+    """What ``result.json`` adds for several interfaces (module notes); ``data`` the
+    rest of it, whose contact ``friction`` and ρ move into ``interfaces``."""
+    counts = np.bincount(result.interface, minlength=len(items))
+    laws = result.law if is_contact(result) else [None] * len(items)
+    entries = []
+    for i, law, n in zip(items, laws, counts):
+        entries.append({"levelset": i.levelset.name, "law": i.law, "space": i.space,
+                        "friction": float(i.friction) if law is None else float(law.mu),
+                        "rho_n": _plain(i.rho_n if law is None else law.rho_n),
+                        "rho_t": _plain(i.rho_t if law is None else law.rho_t),
+                        "n_points": int(n)})
+    for key in ("friction", "rho_n", "rho_t"):
+        data.pop(key, None)
+    return {"interfaces": entries, "interface": np.asarray(result.interface).tolist(),
+            "regions": np.asarray(result.regions).tolist()}
 
 
 def check_output(out_dir: str | Path) -> Path:
@@ -175,6 +210,18 @@ def _write_json(result, path: Path):
 def _write_displacement(result, path: Path):
     mesh = result.mesh
     cell_type, _ = vtk_cells(mesh)
+    if result.u_minus is None:  # several interfaces: a piece per region
+        V = result.problem.V
+        node_region = V.regions()[1]
+        points, cells, region, cut, disp, nodes = region_pieces(mesh, node_region,
+                                                                result.u_regions)
+        psi = {f"levelset_{k}": Vk.cut.psi[nodes] for k, Vk in enumerate(V.spaces)}
+        with quiet():
+            meshio.write(path, meshio.Mesh(
+                pad3(points), [(cell_type, cells)],
+                point_data={"displacement": pad3(disp), **psi},
+                cell_data={"region": [region], "cut": [cut]}), file_format="vtu")
+        return
     levelset = getattr(result.scene, "levelset", None)
     if levelset is None:  # no level set known: every cell on both sides
         psi_nodes = np.zeros(mesh.nvertices)
@@ -203,6 +250,8 @@ def _write_interface(result, path: Path):
             "gap": (jump * n).sum(0)}
     if is_contact(result):
         data["status"] = np.asarray(result.status, dtype=np.int64)
+    if result.u_minus is None:  # several interfaces
+        data["interface"] = np.asarray(result.interface, dtype=np.int64)
     with quiet():
         meshio.write(path, meshio.Mesh(vectors3(points),
                                        [(kind, facets.T.reshape(-1, points.shape[0]))],

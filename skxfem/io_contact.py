@@ -57,7 +57,7 @@ def _step(step) -> dict:
     status = [STATUS_NAMES[k] for k in np.asarray(step.status)]
     return {
         "load": step.load if isinstance(step.load, str) else float(step.load),
-        "law": step.law,
+        "law": step.law if isinstance(step.law, str) else list(step.law),
         "increments": int(step.increments),
         "pressure": np.asarray(step.pressure, dtype=float),
         "tangential_traction": np.asarray(step.traction, dtype=float),
@@ -87,16 +87,20 @@ def contact_summary(result) -> dict:
     if len(result.steps) == 0:
         raise ValueError("the contact result has no load step; give a non-empty history")
     ops, law = result.ops, result.law
+    dofs = {"points": np.asarray(ops.points, dtype=float).T,
+            "normals": np.asarray(ops.normals, dtype=float).T,
+            "tangents": _tangents(result),
+            "weights": np.asarray(ops.w, dtype=float)}
+    if isinstance(law, tuple):  # several interfaces: μ and ρ per interface (skxfem.io)
+        dofs["interface"] = np.asarray(ops.interface).tolist()
+        law = law[0]
     return {
         "friction": float(law.mu),
         "rho_n": float(law.rho_n),
         "rho_t": float(law.rho_t),
         "status_codes": {name: code for code, name in enumerate(STATUS_NAMES)},
         "status": [STATUS_NAMES[k] for k in np.asarray(result.status)],
-        "dofs": {"points": np.asarray(ops.points, dtype=float).T,
-                 "normals": np.asarray(ops.normals, dtype=float).T,
-                 "tangents": _tangents(result),
-                 "weights": np.asarray(ops.w, dtype=float)},
+        "dofs": dofs,
         "n_steps": len(result.steps),
         "newton_iterations": result.iterations,
         "steps": [_step(st) for st in result.steps],

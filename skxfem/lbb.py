@@ -33,6 +33,7 @@ import scipy.sparse.linalg as spla
 
 from .enrich import mass
 from .problem import assemble
+from .scene import check_scene
 
 __all__ = ["InfSup", "inf_sup_constant", "inf_sup"]
 
@@ -131,6 +132,9 @@ def inf_sup(scene, scaling: str = "h", law: str | None = None) -> InfSup:
     """
     if scaling not in ("h", "l2"):
         raise ValueError(f"scaling must be 'h' or 'l2', got {scaling!r}")
+    if check_scene(scene).several:
+        raise ValueError("inf_sup measures the multiplier space of one interface; for a "
+                         "scene with several, measure each: inf_sup(scene.alone(k))")
     p = assemble(scene, law)
     mesh, c, V = p.mesh, p.cut, p.V
     L = np.ptp(mesh.p, axis=1).max()

@@ -12,6 +12,16 @@ The law decides which jump the multipliers act on (:data:`COUPLING`):
 ``bonded`` the vector jump [[u]] (dim multipliers per edge), ``bilateral``
 the normal jump [[u]]·n (one).  A new law (contact) adds one entry there.
 
+**Several interfaces.** A scene with several (:attr:`skxfem.scene.Scene.interface_list`)
+is one problem too: K, F, D, g on the unknowns [a, b¹, b², …] of
+:class:`skxfem.enrich.XSpaces`, and, in ``interfaces``, one :class:`Problem`
+per interface, built by the same steps as a scene with that interface alone
+(its cut, rule, jump operator, multiplier spaces, coupling, on its own
+unknowns [a, b^k]; ``columns`` places them among the whole's).  The whole's B
+stacks the interfaces' couplings and P is block-diagonal; the fields of one
+interface (``cut``, ``rule``, ``J``, ``space``, ``ncomp``, ``M_edges``,
+``held``) are those of the pieces.
+
 >>> from skxfem.scenes import strip
 >>> p = assemble(strip(3, cell="tri"))
 >>> p.law, p.ncomp, p.B.shape[0] == p.P.shape[1], p.J.shape[1] == p.K.shape[0]
@@ -26,9 +36,9 @@ import numpy as np
 import scipy.sparse as sp
 
 from .boundary import imposed
-from .cut import Cut
+from .cut import Cut, check_apart
 from .cut import cut as cut_mesh
-from .enrich import XSpace, enriched_load, jump_matrix, space, stiffness
+from .enrich import XSpace, XSpaces, enriched_load, jump_matrix, space, stiffness
 from .laws import COUPLING
 from .loads import boundary_quadrature, surface_load
 from .multipliers import (
@@ -107,6 +117,15 @@ class Problem:
     per_edge : (n_edges,) bool or None, the edges of the pieces of Γ too small
         for the stable space, which get a multiplier each
         (:func:`skxfem.rigid.short_pieces`).
+    interfaces : several interfaces (module notes): the :class:`Problem` of
+        each, on its own unknowns [a, b^k] (its ``K`` and ``F`` None: the
+        whole's are here); then ``V`` is an :class:`~skxfem.enrich.XSpaces`,
+        ``B`` (Σm, N) stacks theirs, ``P`` is block-diagonal, ``law`` is the law
+        they were assembled for if it is one for all (else None), and ``cut``,
+        ``rule``, ``J``, ``space``, ``ncomp``, ``M_edges``, ``held`` are None.
+        Empty for one interface.
+    columns : for a piece of ``interfaces``, the whole's unknowns its own
+        [a, b^k] are (:meth:`skxfem.enrich.XSpaces.columns`); None otherwise.
     """
 
     scene: Scene
@@ -129,6 +148,21 @@ class Problem:
     spaces: tuple
     timings: dict = field(default_factory=dict)
     per_edge: np.ndarray | None = None
+    interfaces: tuple = ()
+    columns: np.ndarray | None = None
+
+    @property
+    def per_interface(self) -> tuple:
+        """The problem of each interface: ``interfaces``, or ``(self,)`` for one."""
+        return self.interfaces or (self,)
+
+    def lift(self, k: int, A) -> sp.csr_matrix:
+        """An operator on the unknowns of interface ``k``'s piece, [a, b^k], as one on
+        the whole's, A @ select(k) (:meth:`skxfem.enrich.XSpaces.select`); A itself
+        for one interface."""
+        if not self.interfaces:
+            return sp.csr_matrix(A)
+        return (sp.csr_matrix(A) @ self.V.select(k)).tocsr()
 
 
 def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndarray]:
@@ -185,9 +219,10 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
     ----------
     scene
         A :class:`skxfem.scene.Scene`; its ``quadrature_order`` sets the cell
-        rule of the stiffness (``None``: exact on affine cells).
+        rule of the stiffness (``None``: exact on affine cells).  With several
+        interfaces, one piece each (module notes).
     law
-        A key of :data:`COUPLING`; ``None`` takes the scene's.
+        A key of :data:`COUPLING`; ``None`` takes the scene's (each interface's).
 
     Returns
     -------
@@ -197,17 +232,14 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
     ------
     ValueError
         An unknown law, a scene that does not fit its mesh, a level set that
-        cuts no cell or passes through nodes (from :func:`skxfem.cut.cut`).
+        cuts no cell or vanishes on a region (from :func:`skxfem.cut.cut`), two
+        interfaces that cut one cell (:func:`skxfem.cut.check_apart`).
     """
-    law = check_law(check_scene(scene).law if law is None else law)
-    timings = {}
-    clock = [time.perf_counter()]
-
-    def lap(name):
-        now = time.perf_counter()
-        timings[name] = now - clock[0]
-        clock[0] = now
-
+    if check_scene(scene).several:
+        return _assemble_several(scene, law)
+    scene = scene.alone(0)  # a scene given one Interface: its one-interface form
+    law = check_law(scene.law if law is None else law)
+    timings, lap = _clock()
     mesh = resolve_mesh(scene)
     c = cut_mesh(mesh, scene.levelset)
     lap("cut")
@@ -226,6 +258,27 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
     lap("load")
     D, g = constrained_dofs(V, scene, mesh)
     lap("constraints")
+    return _interface_problem(scene, mesh, c, S, V, K, F, D, g, law, timings, lap)
+
+
+def _clock():
+    """A dict of seconds per stage and ``lap(name)``, which adds the time since the
+    last lap to ``name``."""
+    timings = {}
+    clock = [time.perf_counter()]
+
+    def lap(name):
+        now = time.perf_counter()
+        timings[name] = timings.get(name, 0.0) + now - clock[0]
+        clock[0] = now
+
+    return timings, lap
+
+
+def _interface_problem(scene, mesh, c, S, V, K, F, D, g, law, timings, lap, columns=None):
+    """The :class:`Problem` of one interface: its rule, jump operator, coupling and
+    multiplier spaces (per component, with the supports' fixed nodes; a
+    multiplier per edge on the pieces of Γ the space leaves loose)."""
     rule = interface_rule(mesh, c)
     J = jump_matrix(V, rule.cells, rule.ref)
     B_edges = coupling(V, rule, COUPLING[law], J=J)
@@ -240,7 +293,8 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
         spaces = _component_spaces(scene.space, mesh, c, S, fixed, per_edge)
         P = sp.block_diag([s.P for s in spaces], format="csr")  # component-major
         return Problem(scene, mesh, c, V, K, F, D, g, rule, J, S, law, held.shape[0], P,
-                       (P.T @ B_edges).tocsr(), M_edges, held, spaces, timings, per_edge)
+                       (P.T @ B_edges).tocsr(), M_edges, held, spaces, timings, per_edge,
+                       columns=columns)
 
     p = problem(S)
     short = short_pieces(p, B_edges)  # pieces of Γ the stable space leaves loose
@@ -248,6 +302,48 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
         p = problem(multiplier_space(scene.space, mesh, c, per_edge=short), short)
     lap("prolongation")
     return p
+
+
+def _assemble_several(scene: Scene, law: str | None) -> Problem:
+    """:func:`assemble` of a scene with several interfaces (module notes)."""
+    items = scene.interface_list
+    laws = [check_law(i.law if law is None else law) for i in items]
+    timings, lap = _clock()
+    mesh = resolve_mesh(scene)
+    cuts = tuple(cut_mesh(mesh, i.levelset) for i in items)
+    check_apart(mesh, cuts, [f"interfaces[{k}] ({i.levelset.name!r})"
+                             for k, i in enumerate(items)])
+    lap("cut")
+    alone = [scene.alone(k) for k in range(len(items))]
+    S = [multiplier_space(i.space, mesh, c) for i, c in zip(items, cuts)]
+    lap("space")
+    V = XSpaces(tuple(space(mesh, c, scene.quadrature_order) for c in cuts))
+    lap("enrich")
+    K = stiffness(V, scene.material)
+    lap("stiffness")
+    f, f_H = np.zeros(V.n_std), [np.zeros(V.n_std) for _ in cuts]
+    for facets, traction in load_facets(scene, mesh):
+        for k, c in enumerate(cuts):
+            q = boundary_quadrature(mesh, facets, 4, psi_nodes=c.psi)
+            df, df_H = surface_load(V.basis, q, traction)
+            f = f + df if k == 0 else f
+            f_H[k] = f_H[k] + df_H
+    F = enriched_load(V, f, f_H)
+    lap("load")
+    local = [constrained_dofs(Vk, s, mesh) for Vk, s in zip(V.spaces, alone)]
+    std = local[0][0] < V.n_std  # the supports' standard dofs: the same for every interface
+    D = np.concatenate([local[0][0][std]] + [V.columns(k)[Dk[Dk >= V.n_std]]
+                                             for k, (Dk, _) in enumerate(local)])
+    g = np.concatenate([local[0][1][std]] + [gk[Dk >= V.n_std] for Dk, gk in local])
+    lap("constraints")
+    pieces = tuple(_interface_problem(alone[k], mesh, cuts[k], S[k], V.spaces[k], None, None,
+                                      *local[k], laws[k], timings, lap, V.columns(k))
+                   for k in range(len(items)))
+    B = sp.vstack([p.B @ V.select(k) for k, p in enumerate(pieces)], format="csr")
+    P = sp.block_diag([p.P for p in pieces], format="csr")
+    return Problem(scene, mesh, None, V, K, F, D, g, None, None, None,
+                   laws[0] if len(set(laws)) == 1 else None, None, P, B, None, None, (),
+                   timings, interfaces=pieces)
 
 
 def _component_spaces(name, mesh, c, S, fixed, per_edge=None) -> tuple:

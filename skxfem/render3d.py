@@ -13,7 +13,11 @@ from matplotlib.figure import Figure
 
 from .cells import cell_edges
 from .plotting import COLORS
-from .vtu import side_pieces, vtk_cells
+from .vtu import region_pieces, side_pieces, vtk_cells
+
+REGION_COLORS = ("#c7e9c0", "#dadaeb", "#fcbba1")
+"""The regions between the first and the last of a result with several interfaces
+(the first and the last take Ω⁻'s and Ω⁺'s colours)."""
 
 __all__ = ["plot_cut_3d", "plot_result_3d"]
 
@@ -50,14 +54,15 @@ def _figure(images, window_size, title) -> Figure:
 def plot_result_3d(result, scale: float | None = None,
                    window_size: tuple[int, int] = (640, 480),
                    view: tuple = (1.0, -0.6, 0.45), title: str | None = None) -> Figure:
-    """A tied 3D result: each side warped by its own displacement, and the pressure on Γ.
+    """A 3D result: each side warped by its own displacement, and the pressure on Γ.
 
     Left: Ω⁻ and Ω⁺ (colours of :data:`~skxfem.plotting.COLORS`), each the
     part of its own piece of :func:`skxfem.vtu.side_pieces` where ψ has its
     sign (the cut cells clipped at ψ = 0), moved by ``scale`` times its
     displacement: what ParaView's *Warp By Vector* shows of
     ``displacement.vtu``.  Right: the interface facets coloured by the contact
-    pressure p = -λ.
+    pressure p = -λ.  Several interfaces: each region, clipped where every ψ
+    has its sign (:data:`REGION_COLORS` between the first and the last).
 
     Parameters
     ----------
@@ -79,21 +84,35 @@ def plot_result_3d(result, scale: float | None = None,
     if mesh.dim() != 3:
         raise ValueError(f"plot_result_3d needs a 3D result, got {mesh.dim()}D; plot "
                          f"result.pressure against result.points instead")
-    psi = result.space.cut.psi
-    points, cells, side, _, disp, levelset = side_pieces(mesh, psi, result.u_minus,
-                                                         result.u_plus)
+    if result.u_minus is None:  # several interfaces: a piece per region
+        V = result.space
+        points, cells, side, _, disp, nodes = region_pieces(mesh, V.regions()[1],
+                                                            result.u_regions)
+        psis = [Vk.cut.psi[nodes] for Vk in V.spaces]
+        signs = result.regions
+        colors = [COLORS["minus"]] + [REGION_COLORS[r % len(REGION_COLORS)]
+                                      for r in range(len(signs) - 2)] + [COLORS["plus"]]
+    else:
+        points, cells, side, _, disp, levelset = side_pieces(mesh, result.space.cut.psi,
+                                                             result.u_minus, result.u_plus)
+        psis, signs, colors = [levelset], np.array([[-1], [1]]), [COLORS["minus"],
+                                                                   COLORS["plus"]]
+        side = (side > 0).astype(int)  # the piece: 0 for Ω⁻, 1 for Ω⁺
     size = float(np.ptp(mesh.p, axis=1).max())
     if scale is None:
         scale = 0.1 * size / max(float(np.abs(disp).max()), 1e-300)
     kind = {"hexahedron": pv.CellType.HEXAHEDRON, "tetra": pv.CellType.TETRA,
             "wedge": pv.CellType.WEDGE}[vtk_cells(mesh)[0]]
     plotter = pv.Plotter(off_screen=True, window_size=list(window_size))
-    for s, color in ((-1, COLORS["minus"]), (1, COLORS["plus"])):
-        keep = side == s
-        grid = pv.UnstructuredGrid({kind: cells[keep]}, points)
+    for r, (sign, color) in enumerate(zip(signs, colors)):
+        grid = pv.UnstructuredGrid({kind: cells[side == r]}, points)
         grid.point_data["displacement"] = disp
-        grid.point_data["levelset"] = levelset
-        part = grid.clip_scalar(scalars="levelset", invert=s < 0, value=0.0)
+        for k, psi in enumerate(psis):
+            grid.point_data[f"levelset_{k}"] = psi
+        part = grid
+        for k in range(len(psis)):  # the piece where each ψ has the region's sign
+            part = part.clip_scalar(scalars=f"levelset_{k}", invert=bool(sign[k] < 0),
+                                    value=0.0)
         plotter.add_mesh(part.warp_by_vector("displacement", factor=scale), color=color,
                          show_edges=True, edge_color=COLORS["mesh"], line_width=0.5)
     plotter.add_text(f"displacement x {scale:.3g}", font_size=10, color="black")

@@ -27,6 +27,16 @@ the dof that carries most of its multiplier) and the total ``iterations``.
 (True, [1, 1, 1, 1])
 >>> bool(abs(tie.pressure - glued.pressure).max() < 1e-12)
 True
+
+**Several interfaces.** The interface fields of all interfaces are
+concatenated, interface after interface, with ``interface`` (n,) the index
+of each point's interface and ``facets`` indexing the concatenated points.
+The body is split into more than two regions, so a result has the
+displacement of each region: ``regions`` (R, n_interfaces), the side (±1)
+of each level set in each region, and ``u_regions`` (R, dim, nverts), each
+region's field at the nodes (:func:`skxfem.enrich.region_fields`).  With one
+interface they are Ω⁻ and Ω⁺ (``[[-1], [1]]``, ``u_minus`` and ``u_plus``);
+with several, ``u_minus`` and ``u_plus`` are None.
 """
 from __future__ import annotations
 
@@ -35,7 +45,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .enrich import XSpace, split_fields
+from .enrich import XSpace, XSpaces, region_fields, split_fields
 from .levelset import point_normals
 
 __all__ = ["Result", "edge_jumps", "result"]
@@ -57,13 +67,17 @@ class Result:
     the iterative solve, its CG ``iterations`` and ``residuals``.
     Contact adds ``steps`` (:class:`skxfem.contact.Step`), ``status`` (n,)
     (0 open, 1 stick, 2 slip), the interface operators ``ops`` and the
-    ``law`` (:class:`skxfem.contact_newton.Law`); for a tie they are empty.
+    ``law`` (:class:`skxfem.contact_newton.Law`; several interfaces: a tuple,
+    one per interface); for a tie they are empty.
+    ``interface`` (n,) is the interface of each point, ``regions`` and
+    ``u_regions`` the regions and their fields (module notes; several
+    interfaces: ``u_minus`` and ``u_plus`` are None).
     """
 
     scene: object
     mesh: object
-    u_minus: np.ndarray
-    u_plus: np.ndarray
+    u_minus: np.ndarray | None
+    u_plus: np.ndarray | None
     points: np.ndarray
     normals: np.ndarray
     traction: np.ndarray
@@ -83,6 +97,9 @@ class Result:
     status: np.ndarray | None = None
     ops: object = field(default=None, repr=False)
     law: object = None
+    interface: np.ndarray | None = None
+    regions: np.ndarray | None = None
+    u_regions: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def normal_traction(self) -> np.ndarray:
@@ -143,15 +160,30 @@ def edge_jumps(V: XSpace, U: np.ndarray) -> np.ndarray:
 def result(pb, U: np.ndarray, traction: np.ndarray, max_jump: float, n_multipliers: int,
            timings: dict, linear: str, linear_info: dict, **contact) -> Result:
     """The :class:`Result` of the assembled problem ``pb`` solved as U, with the
-    ``traction`` (dim, n) at the cut edges' points; ``contact``: the keywords
-    ``steps``, ``status``, ``ops``, ``law``, ``removed``."""
+    ``traction`` (dim, n) at the cut edges' points (of every interface in turn);
+    ``contact``: the keywords ``steps``, ``status``, ``ops``, ``law``, ``removed``."""
+    regions, fields = region_fields(pb.V, U)
+    if isinstance(pb.V, XSpaces):
+        qs = pb.interfaces
+        sizes = [q.cut.edge_ids.size for q in qs]
+        offsets = np.cumsum([0] + sizes[:-1])
+        return Result(
+            pb.scene, pb.mesh, None, None, np.hstack([q.cut.points for q in qs]),
+            np.hstack([point_normals(q.cut, q.scene.levelset) for q in qs]), traction,
+            np.hstack([edge_jumps(q.V, U[q.columns]) for q in qs]),
+            np.hstack([q.cut.facets + o for q, o in zip(qs, offsets)]), float(max_jump),
+            pb.V.N, int(n_multipliers), timings=timings, U=U, space=pb.V, linear=linear,
+            linear_info=linear_info, problem=pb,
+            interface=np.repeat(np.arange(len(qs)), sizes), regions=regions,
+            u_regions=fields, **contact)
     c, V = pb.cut, pb.V
     u_minus, u_plus = split_fields(V, U)
     normals = point_normals(c, pb.scene.levelset)
     return Result(pb.scene, pb.mesh, u_minus, u_plus, c.points, normals, traction,
                   edge_jumps(V, U), c.facets, float(max_jump), V.N, int(n_multipliers),
                   timings=timings, U=U, space=V, linear=linear, linear_info=linear_info,
-                  problem=pb, **contact)
+                  problem=pb, interface=np.zeros(c.points.shape[1], dtype=np.int64),
+                  regions=regions, u_regions=fields, **contact)
 
 
 def on_edges(P: sp.spmatrix, values: np.ndarray) -> np.ndarray:

@@ -39,6 +39,13 @@ allows and its rotations ("can translate along y", "can translate in every
 direction normal to z and rotate about an axis along z through (0.5, 0.5,
 0.5)", "can rotate about z (about the point (0.5, 0.5))").
 
+**Several interfaces.** The modes are those of each region
+(:func:`skxfem.amg.rigid_modes` on :class:`skxfem.enrich.XSpaces`), each
+interface holds the relative motion of the two regions beside it (its piece of
+the problem, :attr:`skxfem.problem.Problem.interfaces`, on its own columns of
+the modes), and the message names a region by its signs, "the part of the
+body where ψ₀ > 0 and ψ₁ < 0" (ψ_k the level set of ``interfaces[k]``).
+
 >>> from skxfem.problem import assemble
 >>> from skxfem.scenes import strip
 >>> from dataclasses import replace
@@ -50,6 +57,7 @@ skxfem.saddle.SingularSystemError: Ω⁺ (the part of the body where ψ > 0) can
 """
 from __future__ import annotations
 
+import itertools
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -62,8 +70,8 @@ from .saddle import SingularSystemError
 if TYPE_CHECKING:  # the problem is read through its attributes: rigid stands below it
     from .problem import Problem
 
-__all__ = ["TOL", "frame", "law_rows", "free_motions", "side_names", "describe", "check_held",
-           "pieces", "short_pieces"]
+__all__ = ["TOL", "frame", "law_rows", "free_motions", "side_names", "region_names",
+           "describe", "check_held", "pieces", "short_pieces"]
 
 TOL = 1e-8
 """A combination of the modes moved by less than this fraction of the most
@@ -154,7 +162,11 @@ def free_motions(p: Problem, normal=None, full=None, rows=None, tol: float = TOL
     if Z is None:
         centre, length = frame(p)
         Z = rigid_modes(p.V, centre=centre, length=length)
-    blocks = [Z[p.D], law_rows(p, Z, normal, full)]
+    if p.interfaces:  # several: each interface holds what its law holds, on its columns
+        blocks = [Z[p.D]] + [law_rows(q, Z[q.columns], n, f) for q, n, f in
+                             zip(p.interfaces, _split(p, normal), _split(p, full))]
+    else:
+        blocks = [Z[p.D], law_rows(p, Z, normal, full)]
     if rows is not None and rows.shape[0]:
         R = sp.csr_matrix(rows)
         norms = np.sqrt(np.asarray(R.multiply(R).sum(axis=1)).ravel())
@@ -166,6 +178,34 @@ def free_motions(p: Problem, normal=None, full=None, rows=None, tol: float = TOL
     # its nodes lost their enrichment, skxfem.enrich.space) is no motion at all
     _, sv, Vt = np.linalg.svd(Z @ N, full_matrices=False)
     return N @ Vt[sv > tol * np.linalg.norm(Z, axis=0).max()].T
+
+
+def _split(p: Problem, mask) -> list:
+    """A mask over the cut edges of every interface in turn (or True / None / False
+    for all, or a list of one such per interface) as one per interface."""
+    if mask is None or mask is True or mask is False:
+        return [mask] * len(p.interfaces)
+    if isinstance(mask, (list, tuple)) and len(mask) == len(p.interfaces):
+        return list(mask)
+    mask = np.asarray(mask, dtype=bool)
+    ends = np.cumsum([q.cut.edge_ids.size for q in p.interfaces])
+    if mask.shape != (ends[-1],):
+        raise ValueError(f"the held edges must be one bool per cut edge of every interface "
+                         f"({ends[-1]}), got shape {mask.shape}")
+    return np.split(mask, ends[:-1])
+
+
+_SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def region_names(p: Problem) -> list[str]:
+    """How a message names each region of a problem with several interfaces (in the
+    order of :meth:`skxfem.enrich.XSpaces.regions`): "the part of the body where
+    ψ₀ > 0 and ψ₁ < 0", ψ_k the level set of ``interfaces[k]``."""
+    patterns = p.V.regions()[0]
+    return ["the part of the body where " + " and ".join(
+        f"ψ{str(k).translate(_SUB)} {'<' if s < 0 else '>'} 0" for k, s in enumerate(row))
+        for row in patterns.tolist()]
 
 
 def side_names(p: Problem) -> tuple[str, str]:
@@ -216,7 +256,11 @@ def describe(p: Problem, N: np.ndarray, centre, length: float) -> str:
     """The free motions of the basis ``N`` (orthonormal columns of mode
     coefficients, Ω⁻ and Ω⁺ interleaved as :func:`skxfem.amg.rigid_modes`
     orders them), in words: those of the whole body, else of Ω⁻ alone, else
-    of Ω⁺ alone (their translations and rotations), else of the two apart."""
+    of Ω⁺ alone (their translations and rotations), else of the two apart.
+    Several interfaces: of the whole body, else of one region alone, else of
+    each region that moves."""
+    if p.interfaces:
+        return _describe_regions(p, N, centre, length)
     minus, plus = side_names(p)
     dim, I = p.mesh.dim(), np.eye(N.shape[0])
     looks = [("the whole body", I[0::2] - I[1::2], 0),   # c⁻ = c⁺
@@ -230,6 +274,32 @@ def describe(p: Problem, N: np.ndarray, centre, length: float) -> str:
     c = N[:, 0]
     return (f"{minus} can {motion_name(c[0::2], dim, centre, length)} as {plus} "
             f"{motion_name(c[1::2], dim, centre, length, verb=False)}")
+
+
+def _describe_regions(p: Problem, N: np.ndarray, centre, length: float) -> str:
+    """:func:`describe` of a problem with several interfaces (R regions, the columns
+    of a motion of region r at R i + r): the whole body, else the fewest regions
+    that move as one body, else each region that moves."""
+    names = region_names(p)
+    R, dim, I = len(names), p.mesh.dim(), np.eye(N.shape[0])
+    groups = [tuple(range(R))] + [g for size in range(1, R) for g in
+                                  itertools.combinations(range(R), size)]
+    for group in groups:
+        E = np.vstack([I[group[0]::R] - I[r::R] for r in group[1:]]
+                      + [I[r::R] for r in range(R) if r not in group] or [I[:0]])
+        _, sv, Vt = np.linalg.svd(E @ N, full_matrices=True)
+        S = N @ Vt[np.r_[sv, np.zeros(Vt.shape[0] - sv.size)] < 1e-6].T
+        if S.shape[1]:
+            who = ("the whole body" if len(group) == R else names[group[0]] if
+                   len(group) == 1 else "the parts of the body where " + " and where ".join(
+                       names[r].removeprefix("the part of the body where ") for r in group)
+                   + ", together,")
+            return f"{who} can {_side_motions(S[group[0]::R], dim, centre, length)}"
+    c = N[:, 0]
+    moving = [r for r in range(R) if np.abs(c[r::R]).max() > 1e-6 * np.abs(c).max()]
+    return " as ".join(f"{names[r]} {motion_name(c[r::R], dim, centre, length, verb=False)}"
+                       if i else f"{names[r]} can {motion_name(c[r::R], dim, centre, length)}"
+                       for i, r in enumerate(moving))
 
 
 def check_held(p: Problem, normal=None, full=None, rows=None, what: str | None = None,
@@ -253,10 +323,15 @@ def check_held(p: Problem, normal=None, full=None, rows=None, what: str | None =
     text = describe(p, N, centre, length)
     if hint is None:
         hint = ("add a displacement (support) that holds it" if "whole body" in text else
-                "hold that side with a displacement (support), or tie it with a law that "
-                "holds the tangential jump too (bonded)")
+                f"hold that {'part' if p.interfaces else 'side'} with a displacement "
+                f"(support), or tie it with a law that holds the tangential jump too "
+                f"(bonded)")
+    if what is None:
+        laws = [q.law for q in p.per_interface]
+        what = (f"the {laws[0]} tie" if len(laws) == 1 else
+                f"the interfaces' ties ({', '.join(laws)})")
     raise SingularSystemError(
-        f"{text}: neither the displacements nor {what or f'the {p.law} tie'} hold it, so "
+        f"{text}: neither the displacements nor {what} hold it, so "
         f"the problem is singular (a part of the body can move freely, its displacement "
         f"is not unique); {hint}")
 

@@ -1,4 +1,4 @@
-"""The parts of a scene: the mesh box, imposed displacements, surface loads.
+"""The parts of a scene: the mesh box, imposed displacements, surface loads, interfaces.
 
 Boundaries are named (``"xmin"``, ``"xmax"``, ``"ymin"`` ... ``"zmax"`` or a name
 stored in ``mesh.boundaries``) or given as a selection ``x -> bool``.  An imposed
@@ -13,6 +13,10 @@ for its dimension.
 
 >>> SurfaceLoad("ymax", pressure="4*x*(1 - x)").pressure.text
 '4*x*(1 - x)'
+
+An :class:`Interface` is one Γ of a scene with several: its level set, its law
+and the law's parameters (a scene with one interface gives them to the
+:class:`~skxfem.scene.Scene` itself).
 """
 from __future__ import annotations
 
@@ -23,9 +27,12 @@ import numpy as np
 
 from .cells import CELL_TYPES
 from .expr import Expression
+from .laws import CONTACT_LAWS, SPACES
+from .laws import TIE_LAWS as LAWS
+from .levelset import LevelSet
 
-__all__ = ["Box", "Displacement", "SurfaceLoad", "clamped", "rollers", "CELLS", "SIZE_RANGE",
-           "COMPONENTS", "FACES", "is_number"]
+__all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "clamped", "rollers", "CELLS",
+           "SIZE_RANGE", "COMPONENTS", "FACES", "is_number", "check_law_fields"]
 
 COMPONENTS = ("x", "y", "z")
 FACES = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
@@ -183,3 +190,57 @@ class SurfaceLoad:
             object.__setattr__(self, "traction", tuple(
                 _check_value(t, f"SurfaceLoad traction[{i}]")
                 for i, t in enumerate(self.traction)))
+
+
+def check_law_fields(who: str, law, space, friction, rho_n, rho_t) -> None:
+    """Refuse a law, space, Coulomb μ or augmentation ρ that no solve takes; ``who``
+    names the owner in the message (``"Scene"``, ``"Interface"``).
+
+    >>> check_law_fields("Interface", "glued", "vital", 0.0, None, None)
+    Traceback (most recent call last):
+    ...
+    ValueError: Interface law must be one of ('bonded', 'bilateral', 'frictionless', ...
+    """
+    if law not in LAWS + CONTACT_LAWS:
+        raise ValueError(f"{who} law must be one of {LAWS + CONTACT_LAWS}, got {law!r}")
+    if not (is_number(friction) and np.isfinite(friction) and friction >= 0):
+        raise ValueError(f"{who} friction (Coulomb's mu) must be a number >= 0, "
+                         f"got {friction!r}")
+    for key, rho in (("rho_n", rho_n), ("rho_t", rho_t)):
+        if rho is not None and not (is_number(rho) and np.isfinite(rho) and rho > 0):
+            raise ValueError(f"{who} {key} must be a positive number or None (default "
+                             f"scaled by E/h), got {rho!r}")
+    if space not in SPACES:
+        raise ValueError(f"{who} space must be one of {SPACES}, got {space!r}")
+
+
+@dataclass(frozen=True)
+class Interface:
+    """One interface Γ = {ψ = 0} of a scene with several, and its law.
+
+    ``levelset`` ψ (Ω⁻ = {ψ < 0} on its side, n = ∇ψ/|∇ψ|); ``law`` one of
+    ``LAWS`` (ties) or ``CONTACT_LAWS``; ``space`` its multiplier space;
+    ``friction`` Coulomb's μ (law ``coulomb``); ``rho_n``, ``rho_t`` the
+    augmentations of a contact law (``None``: E/h).  The fields and their
+    checks are those of a one-interface :class:`~skxfem.scene.Scene`.
+
+    >>> from skxfem.levelset import plane
+    >>> i = Interface(plane((0, 0.3), (0, 1)), law="frictionless")
+    >>> i.law, i.space, i.friction
+    ('frictionless', 'vital', 0.0)
+    """
+
+    levelset: LevelSet
+    law: str = "bonded"
+    space: str = "vital"
+    friction: float = 0.0
+    rho_n: float | None = None
+    rho_t: float | None = None
+
+    def __post_init__(self):
+        if not isinstance(self.levelset, LevelSet):
+            raise TypeError("Interface levelset must be a skxfem.levelset.LevelSet, "
+                            f"got {type(self.levelset).__name__}")
+        check_law_fields("Interface", self.law, self.space, self.friction, self.rho_n,
+                         self.rho_t)
+        object.__setattr__(self, "friction", float(self.friction))

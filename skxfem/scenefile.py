@@ -46,6 +46,22 @@ The schema in short (all of it, with units: ``skxfem schema``, :data:`SCHEMA`)::
     # linear = "iterative"             # auto (default), direct or iterative
     # max_iter = 40                    # contact laws: Newton iterations per load step
 
+Several interfaces, each with its own level set, law, μ and ρ: instead of
+``[levelset]`` and ``[interface]``, one ``[[interface]]`` table per interface,
+with the keys of both (``steps`` then at the top level); their Γ must not
+cross or touch (:func:`skxfem.problem.assemble` refuses a cell cut by two)::
+
+    steps = [0.5, 1.0]                 # optional: the load factors of a contact solve
+
+    [[interface]]
+    plane = {point = [0, 0.35], normal = [0, 1]}
+    law = "frictionless"
+
+    [[interface]]
+    expr = "y - 0.7"
+    law = "coulomb"
+    friction = 0.5
+
 ``linear`` and ``max_iter`` are options of the solve, not of the scene: :func:`load_options`
 reads them (``skxfem run``'s ``--linear`` and ``--max-iter`` override them).
 
@@ -128,11 +144,15 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
     Table("the top level", "", (
         Key("name", "string", "the scene's name (default: the file name)", "plate"),
         Key("mesh", "table", "required: [mesh]", {}),
-        Key("levelset", "table", "required: [levelset]", {}),
+        Key("levelset", "table", "[levelset]: required, unless [[interface]] tables give "
+            "each interface its own", {}),
         Key("material", "table", "[material] (default: E = 1, nu = 0.3)", {}),
         Key("displacement", "array of tables", "[[displacement]], any number", []),
         Key("load", "array of tables", "[[load]], any number", []),
-        Key("interface", "table", "[interface] (default: bonded, vital)", {}),
+        Key("interface", "table, or array of tables", "[interface] (default: bonded, "
+            "vital), or several interfaces: [[interface]], one table each", {}),
+        Key("steps", "list of numbers", "the load factors of a contact solve, in order "
+            "(default [1]; or [interface] steps)", [0.5, 1.0]),
         Key("solver", "table", "[solver] (optional)", {}),
     )),
     Table("[mesh]", "the mesh", (
@@ -208,6 +228,24 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
         Key("steps", "list of numbers", "the load factors of a contact solve, in order "
             "(default [1])", [0.5, 1.0]),
     )),
+    Table("[[interface]]", "several interfaces, one table each (in place of [levelset] "
+          "and [interface]) with its level set (a key of [levelset], as there) and its "
+          "law (the keys of [interface] but steps); no two may cut one mesh cell", (
+        Key("plane", "table {point, normal}", "as [levelset] plane",
+            {"point": [0.0, 0.35], "normal": [0.0, 1.0]}),
+        Key("circle", "table {center, radius}", "as [levelset] circle",
+            {"center": [0.5, 0.5], "radius": 0.3}),
+        Key("sphere", "table {center, radius}", "as [levelset] sphere",
+            {"center": [0.5, 0.5, 0.5], "radius": 0.3}),
+        Key("expr", "formula [L]", "as [levelset] expr", "y - 0.7"),
+        Key("law", "one of " + " ".join(sc.LAWS + sc.CONTACT_LAWS), "its law (default "
+            "bonded)", "frictionless"),
+        Key("space", "one of " + " ".join(sc.SPACES), "its multiplier space (default "
+            "vital)", "vital"),
+        Key("friction", "number >= 0", "its Coulomb's mu (law coulomb)", 0.5),
+        Key("rho_n", "number > 0 [F/L³]", "its contact augmentation (default E/h)", 10.0),
+        Key("rho_t", "number > 0 [F/L³]", "its friction augmentation (default E/h)", 10.0),
+    ), (("plane", "circle", "sphere", "expr"),)),
     Table("[solver]", "options (skxfem run's --linear and --max-iter override them)", (
         Key("quadrature_order", "integer >= 1", "the cell rule of the stiffness (default: "
             "the minimal exact rule)", 2),
@@ -341,33 +379,75 @@ def _options(solver: dict) -> dict:
     return out
 
 
+def _law_fields(t: dict, where: str) -> dict:
+    """The law, space, friction, rho_n and rho_t of an [interface] (or [[interface]])
+    table, checked, as keywords of a Scene (or an Interface)."""
+    fields = {"law": choice(t.get("law", "bonded"), sc.LAWS + sc.CONTACT_LAWS,
+                            f"{where} law")}
+    fields.update({k: number(t[k], f"{where} {k}")
+                   for k in ("friction", "rho_n", "rho_t") if k in t})
+    if "friction" in fields and fields["friction"] < 0:
+        raise ValueError(f"{where} friction must be >= 0, got {fields['friction']!r}")
+    for key in ("rho_n", "rho_t"):
+        if key in fields and not fields[key] > 0:
+            raise ValueError(f"{where} {key} must be > 0, got {fields[key]!r}")
+    fields["space"] = choice(t.get("space", "vital"), sc.SPACES, f"{where} space")
+    return fields
+
+
+def _steps(steps, where: str) -> tuple:
+    if not (isinstance(steps, list) and steps and all(
+            isinstance(f, (int, float)) and not isinstance(f, bool) for f in steps)):
+        raise ValueError(f"{where} must be a non-empty list of load factors, got {steps!r}")
+    return tuple(steps)
+
+
+def _interfaces(data: dict, dim: int) -> tuple[sc.Interface, ...]:
+    """The [[interface]] tables of a scene file with several interfaces."""
+    if "levelset" in data:
+        raise ValueError("[levelset] with [[interface]] tables: with [[interface]] tables "
+                         "each gives its own level set (plane, circle, sphere or expr); "
+                         "remove [levelset]")
+    out = []
+    for k, t in enumerate(array(data, "interface")):
+        where = f"[[interface]] #{k + 1}"
+        t = table(t, where, _names("[[interface]]"))
+        kind = one_of(t, _exclusive("[[interface]]"), where)
+        levelset = _levelset({kind: t[kind]}, dim, where)
+        fields = _law_fields(t, where)
+        out.append(tomlcheck.labelled(where, lambda: sc.Interface(levelset, **fields)))
+    if not out:
+        raise ValueError("interface is an empty list: give [[interface]] tables, one per "
+                         "interface, or [levelset] and [interface] for one")
+    return tuple(out)
+
+
 def _scene(data: dict, path: Path) -> sc.Scene:
     keys(data, _TOP, "the top level")
-    for key in ("mesh", "levelset"):
+    several = isinstance(data.get("interface"), list)
+    for key in ("mesh",) + (() if several else ("levelset",)):
         if key not in data:
             raise ValueError(f"missing table [{key}]")
     mesh, dim, checked = _mesh(table(data["mesh"], "[mesh]", _names("[mesh]")), path.parent)
-    interface = table(data.get("interface", {}), "[interface]", _names("[interface]"))
     solver = table(data.get("solver", {}), "[solver]", _names("[solver]"))
-    law = choice(interface.get("law", "bonded"), sc.LAWS + sc.CONTACT_LAWS, "[interface] law")
-    contact = {k: number(interface[k], f"[interface] {k}")
-               for k in ("friction", "rho_n", "rho_t") if k in interface}
-    if "friction" in contact and contact["friction"] < 0:
-        raise ValueError(f"[interface] friction must be >= 0, got {contact['friction']!r}")
-    for key in ("rho_n", "rho_t"):
-        if key in contact and not contact[key] > 0:
-            raise ValueError(f"[interface] {key} must be > 0, got {contact[key]!r}")
-    if "steps" in interface:
-        steps = interface["steps"]
-        if not (isinstance(steps, list) and steps and all(
-                isinstance(f, (int, float)) and not isinstance(f, bool) for f in steps)):
-            raise ValueError(f"[interface] steps must be a non-empty list of load "
-                             f"factors, got {steps!r}")
-        contact["steps"] = tuple(steps)
-    space = choice(interface.get("space", "vital"), sc.SPACES, "[interface] space")
-    if "max_iter" in _options(solver) and law not in sc.CONTACT_LAWS:
+    if several:
+        interfaces = _interfaces(data, dim)
+        fields, laws = {"interfaces": interfaces}, [i.law for i in interfaces]
+    else:
+        interface = table(data.get("interface", {}), "[interface]", _names("[interface]"))
+        fields = _law_fields(interface, "[interface]")
+        laws = [fields["law"]]
+        if "steps" in interface:
+            if "steps" in data:
+                raise ValueError("steps is given twice, in [interface] and at the top "
+                                 "level: keep one")
+            fields["steps"] = _steps(interface["steps"], "[interface] steps")
+        fields["levelset"] = _levelset(data["levelset"], dim)
+    if "steps" in data:
+        fields["steps"] = _steps(data["steps"], "steps")
+    if "max_iter" in _options(solver) and not any(law in sc.CONTACT_LAWS for law in laws):
         raise ValueError(f"[solver] max_iter applies to the contact laws {sc.CONTACT_LAWS}; "
-                         f"the law is {law!r}")
+                         f"the law is {laws[0] if len(laws) == 1 else laws!r}")
     order = solver.get("quadrature_order")
     if order is not None and (type(order) is not int or order < 1):
         raise ValueError(f"[solver] quadrature_order must be a positive integer, got {order!r}")
@@ -385,11 +465,10 @@ def _scene(data: dict, path: Path) -> sc.Scene:
     _check_magnitudes(items, material.E, _length(checked))
     return sc.Scene(
         mesh=mesh,
-        levelset=_levelset(data["levelset"], dim),
         material=material,
         displacements=tuple(d for _, d in items["displacement"]),
         loads=tuple(load for _, load in items["load"]),
-        law=law, space=space, quadrature_order=order, name=name, **contact)
+        quadrature_order=order, name=name, **fields)
 
 
 def _length(mesh) -> float:
@@ -484,11 +563,13 @@ def _mesh(t: dict, folder: Path) -> tuple[sc.Box | Path, int, object]:
     return path, mesh.dim(), mesh
 
 
-def _levelset(t: dict, dim: int) -> ls.LevelSet:
+def _levelset(t: dict, dim: int, where: str = "[levelset]") -> ls.LevelSet:
+    """The level set of a [levelset] table (or of the level-set key of the
+    [[interface]] table ``where``)."""
     kinds = _exclusive("[levelset]")
-    t = table(t, "[levelset]", _names("[levelset]"))
-    kind = one_of(t, kinds, "[levelset]")
-    key = f"[levelset] {kind}"
+    t = table(t, where, _names("[levelset]"))
+    kind = one_of(t, kinds, where)
+    key = f"{where} {kind}"
     if kind == "expr":
         if not isinstance(t[kind], str):
             raise TypeError(f"{key} must be a formula string, got {t[kind]!r}")

@@ -100,9 +100,10 @@ class Parts:
     side: int
     near: tuple
 
-    def signed(self, assemble):
-        """(A, A_H) from ``assemble(basis) -> matrix or vector``."""
-        A = assemble(self.whole)
+    def signed(self, assemble, A=None):
+        """(A, A_H) from ``assemble(basis) -> matrix or vector``; ``A``, if
+        given, is the standard one, already assembled (another level set's)."""
+        A = assemble(self.whole) if A is None else A
         As = sum(assemble(b) for b in self.near)
         return A, self.side * (2 * As - A)
 

@@ -46,8 +46,9 @@ __all__ = ["Result", "solve", "solve_problem", "constrained_dofs", "LINEAR", "AU
 
 
 def _linear(method: str, p: Problem) -> str:
-    """The linear solve ``method`` resolves to for ``p``."""
-    return choose_linear(method, p.mesh.dim(), p.V.N, LAWS[p.law].auto_iterative)
+    """The linear solve ``method`` resolves to for ``p`` (several interfaces with
+    different ties: as for ``bonded``, which solves as they do)."""
+    return choose_linear(method, p.mesh.dim(), p.V.N, LAWS[p.law or "bonded"].auto_iterative)
 
 
 def _differences(c, ncomp: int) -> sp.csr_matrix:
@@ -103,7 +104,7 @@ def solve(scene: Scene, dependent: str = "remove", linear: str = "auto",
     """
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
-    if check_scene(scene).law in CONTACT_LAWS:
+    if any(i.law in CONTACT_LAWS for i in check_scene(scene).interface_list):
         return contact.solve(scene, linear=linear, linear_tol=linear_tol)
     p = assemble(scene)
     return solve_problem(p, dependent, linear, linear_tol)
@@ -117,7 +118,7 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str = "auto",
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
     linear = _linear(linear, p)
     linear_tol = check_linear_tol(linear_tol)
-    scene, mesh, c, V, B, P, D, ncomp = p.scene, p.mesh, p.cut, p.V, p.B, p.P, p.D, p.ncomp
+    mesh, V, B, P, D = p.mesh, p.V, p.B, p.P, p.D
     t = p.timings
     timings = {"cut": t["cut"] + t["space"], "enrich": t["enrich"],
                "assemble": sum(t[k] for k in ("stiffness", "load", "constraints", "interface",
@@ -128,15 +129,24 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str = "auto",
         removed = (dependencies(Bf).shape[1] if linear == "iterative"
                    else B.shape[0] - saddle.independent_rows(Bf).size)
         if removed:
+            spaces = ", ".join(repr(q.scene.space) for q in p.per_interface)
+            laws = ", ".join(repr(q.law) for q in p.per_interface)
             raise ValueError(
                 f"the multiplier space is rank deficient: {removed} of {B.shape[0]} "
-                f"multipliers depend on the others (space {scene.space!r}, law "
-                f"{p.law!r}); use a stabilised space or dependent='remove'")
-    check_held(p, normal=p.law == "bilateral", full=p.law == "bonded")
-    G = _differences(c, ncomp) @ P
-    if linear == "iterative":
+                f"multipliers depend on the others (space {spaces}, law "
+                f"{laws}); use a stabilised space or dependent='remove'")
+    if p.interfaces:
+        check_held(p, normal=[q.law == "bilateral" for q in p.interfaces],
+                   full=[q.law == "bonded" for q in p.interfaces])
+        G = sp.block_diag([_differences(q.cut, q.ncomp) @ q.P for q in p.interfaces],
+                          format="csr")
+    else:
+        check_held(p, normal=p.law == "bilateral", full=p.law == "bonded")
+        G = _differences(p.cut, p.ncomp) @ P
+    if linear == "iterative":  # several interfaces: the motions of every region for the AMG
         U, mu, info = iterative.solve(p.K, B, p.F, D, p.g, G=G, modes=rigid_modes(V),
-                                      blocksize=mesh.dim(), bonded=p.law == "bonded",
+                                      blocksize=mesh.dim(),
+                                      bonded=p.law == "bonded" and not p.interfaces,
                                       tol=linear_tol)
     else:
         try:
@@ -150,16 +160,21 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str = "auto",
                 f"of Γ: its conditioning is beyond double precision (a part of the body, "
                 f"or a material, far stiffer or smaller than the rest); refine the mesh "
                 f"there or rescale the scene") from e
-    lam = (P @ mu).reshape(ncomp, -1)
     timings["solve"] = time.perf_counter() - t0
     its = getattr(info, "iterations", None)
     linear_info = {"residual": float(info.residual), "balance": float(info.balance),
                    "tol": linear_tol, "iterations": its, "residuals": None if its is None
                    else [float(r) for r in info.residuals]}
-    normals = point_normals(c, scene.levelset)
-    traction = lam if ncomp > 1 else lam * normals
-    J = (p.J @ U).reshape(mesh.dim(), -1)
-    jn = np.abs((J * p.rule.normals).sum(0)) if p.law == "bilateral" \
-        else np.linalg.norm(J, axis=0)
-    return result(p, U, traction, float(jn.max()), B.shape[0] - info.removed, timings,
+    tractions, jumps = [], []
+    ends = np.cumsum([0] + [q.P.shape[1] for q in p.per_interface])
+    for q, start, end in zip(p.per_interface, ends[:-1], ends[1:]):  # each interface
+        lam = (q.P @ mu[start:end]).reshape(q.ncomp, -1)
+        normals = point_normals(q.cut, q.scene.levelset)
+        tractions.append(lam if q.ncomp > 1 else lam * normals)
+        J = (q.J @ (U if q.columns is None else U[q.columns])).reshape(mesh.dim(), -1)
+        jn = np.abs((J * q.rule.normals).sum(0)) if q.law == "bilateral" \
+            else np.linalg.norm(J, axis=0)
+        jumps.append(float(jn.max()))
+    traction = tractions[0] if len(tractions) == 1 else np.hstack(tractions)
+    return result(p, U, traction, max(jumps), B.shape[0] - info.removed, timings,
                   linear, linear_info, removed=info.removed)

@@ -1,4 +1,5 @@
-"""VTK cells for the VTU files: positively oriented, one piece of mesh per side of Γ.
+"""VTK cells for the VTU files: positively oriented, one piece of mesh per side of Γ
+(per region, with several interfaces).
 
 Shared by the writers of :mod:`skxfem.io` and :mod:`skxfem.io_contact`.
 VTU vectors are ``(n, 3)``: 2D vectors get a zero z component.
@@ -11,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 from skfem.io.meshio import to_meshio
 
-__all__ = ["cell_sides", "vtk_cells", "side_pieces", "pad3", "vectors3"]
+__all__ = ["cell_sides", "vtk_cells", "side_pieces", "region_pieces", "pad3", "vectors3"]
 
 # VTK wants cells positively oriented: the simplex of these corners has det > 0
 # (a wedge's face (0, 1, 2) has its right-hand normal pointing *away* from (3, 4, 5));
@@ -100,3 +101,41 @@ def side_pieces(mesh, psi_nodes: np.ndarray, u_minus: np.ndarray, u_plus: np.nda
         offset += nodes.size
     return (np.vstack(points), np.vstack(cells), np.concatenate(side), np.concatenate(cut),
             np.vstack(disp), np.concatenate(psi))
+
+
+def region_pieces(mesh, node_region: np.ndarray, fields: np.ndarray):
+    """The mesh as one piece per region (several interfaces), each on its own copy of
+    its nodes: :func:`side_pieces` with R regions.
+
+    Piece r holds the cells with a vertex in region r (``node_region`` (nverts,)),
+    with its field ``fields[r]`` (dim, nverts) at its nodes; a cell that an
+    interface cuts is in the pieces of both its sides.
+
+    Returns
+    -------
+    points : (n, dim); cells : (ncells_written, nverts), VTK-oriented;
+    region : the piece of each written cell; cut : 1 on the cells of two regions;
+    displacement : (n, dim); nodes : (n,) the mesh vertex of each point
+
+    >>> from skfem import MeshTri1                # cells (0, 1, 2) and (1, 3, 2)
+    >>> u = np.zeros((2, 2, 4))
+    >>> p, c, region, cut, d, nodes = region_pieces(MeshTri1(), np.array([0, 0, 0, 1]), u)
+    >>> c.tolist(), region.tolist(), cut.tolist(), nodes.tolist()
+    ([[0, 1, 2], [1, 3, 2], [4, 6, 5]], [0, 0, 1], [0, 1, 1], [0, 1, 2, 3, 1, 2, 3])
+    """
+    _, t = vtk_cells(mesh)
+    regions_of = node_region[mesh.t]                          # (nverts, ncells)
+    points, cells, region, cut, disp, ids = [], [], [], [], [], []
+    offset = 0
+    for r, u in enumerate(fields):
+        keep = (regions_of == r).any(axis=0)
+        nodes, local = np.unique(t[keep], return_inverse=True)
+        points.append(mesh.p[:, nodes].T)
+        cells.append(local.reshape(-1, t.shape[1]) + offset)
+        region.append(np.full(int(keep.sum()), r))
+        cut.append((regions_of[:, keep] != r).any(axis=0).astype(np.int64))
+        disp.append(np.asarray(u)[:, nodes].T)
+        ids.append(nodes)
+        offset += nodes.size
+    return (np.vstack(points), np.vstack(cells), np.concatenate(region), np.concatenate(cut),
+            np.vstack(disp), np.concatenate(ids))

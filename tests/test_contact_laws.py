@@ -101,3 +101,21 @@ def test_disk_projection_of_radius_zero():
     assert np.all(P == 0)
     assert np.all(DP[0] == 0) and np.allclose(dR[0], np.array([1.0, 2.0]) / np.sqrt(5))
     assert np.array_equal(DP[1], np.eye(2)) and np.all(dR[1] == 0)
+
+
+def test_a_vanishing_friction_coefficient_is_frictionless():
+    """μ = 1e-308 (issue 18: the Newton matrix was 'exactly singular', y/R overflowing):
+    the ball of radius μp is computed without dividing by the radius."""
+    from dataclasses import replace
+
+    from skxfem import contact
+    from skxfem.scene import Displacement, SurfaceLoad, clamped
+    from skxfem.scenes import strip
+
+    s = replace(strip(n=3), law="coulomb", loads=(SurfaceLoad("ymax", pressure=1.0),),
+                displacements=(clamped("ymin"), Displacement("ymax", {"x": 0.5})))
+    ref = contact.solve(replace(s, law="frictionless")).steps[-1]
+    for mu in (1e-320, 1e-308):
+        st = contact.solve(replace(s, friction=mu)).steps[-1]
+        assert np.all(st.status == 2) and np.abs(st.traction).max() < 1e-300
+        assert np.allclose(st.pressure, ref.pressure, rtol=1e-12)

@@ -45,3 +45,20 @@ def test_edge_status_and_3d_render():
 def test_iterations_plot():
     fig = plot_iterations([1e-3, 1.0], {"a": [2, 3], "b": [4, 4]})
     assert len(fig.axes[0].lines) == 2 and fig.axes[0].get_ylim()[1] == 5
+
+
+def test_status_2d_of_one_interface_among_several():
+    """A column lifted at the top: the frictionless interface opens by 0.01."""
+    from skxfem.scene import Interface, rollers
+    from skxfem.solver import solve
+
+    r = solve(Scene(Box((2, 4), "quad"), material=Material(1.0, 0.0),
+                    displacements=(clamped("ymin"), rollers("xmin"),
+                                   Displacement("ymax", {"y": 0.01})),
+                    interfaces=(Interface(plane((0, 0.37), (0, 1)), "frictionless"),
+                                Interface(plane((0, 0.7), (0, 1)), "bonded"))))
+    fig = plot_status_2d(r, interface=0)
+    gap = fig.axes[1].lines[0].get_ydata()
+    assert np.allclose(gap, -0.01) and len(gap) == int((r.ops.interface == 0).sum())
+    with pytest.raises(ValueError, match="draws one interface: give interface= one of 0 ... 1"):
+        plot_status_2d(r)

@@ -188,3 +188,12 @@ def test_snapping_measures_distance_not_the_scale_of_psi():
     psi = 1e-13 * (m.p[1] - 0.5)
     assert snap(m, psi)[1] == 0
     assert cut(m, lambda x: 1e-13 * (x[1] - 0.5)).edge_ids.size == 6
+
+
+def test_a_tiny_level_set_cuts_the_same_edges():
+    """ψ·1e-200: the product ψ(v1)ψ(v2) underflows to 0 (issue 18); the signs do not."""
+    m = mesh_of("tri", 4)
+    big = cut(m, plane((0, 0.4), (0.3, 1)))
+    tiny = cut(m, lambda x: 1e-200 * (0.3 * x[0] + (x[1] - 0.4)) / np.hypot(0.3, 1))
+    assert np.array_equal(big.edge_ids, tiny.edge_ids)
+    assert np.allclose(big.points, tiny.points, atol=1e-14)

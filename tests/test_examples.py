@@ -14,8 +14,33 @@ EXAMPLES = sorted((Path(__file__).resolve().parents[1] / "examples").glob("*.tom
 
 def test_the_examples_cover_2d_3d_ties_and_contact():
     scenes = [load_scene(p) for p in EXAMPLES]
-    kinds = {(s.dim, s.law in ("bonded", "bilateral")) for s in scenes}
+    kinds = {(s.dim, all(i.law in ("bonded", "bilateral") for i in s.interface_list))
+             for s in scenes}
     assert kinds == {(2, True), (3, True), (2, False), (3, False)}, kinds
+    assert any(s.several for s in scenes), "an example with several interfaces"
+
+
+def test_the_column_of_three_blocks(tmp_path, capsys):
+    """column.toml: the glued and the frictionless interface each carry the whole load,
+    ∫ p = 1.5 over the width, the frictionless one no tangential traction."""
+    path = next(p for p in EXAMPLES if p.stem == "column")
+    assert main(["run", str(path), "--out", str(tmp_path)]) == 0
+    assert "bonded+frictionless" in capsys.readouterr().out
+    data = json.loads((tmp_path / "result.json").read_text())
+    assert [i["law"] for i in data["interfaces"]] == ["bonded", "frictionless"]
+    points, which = np.array(data["points"]), np.array(data["interface"])
+    traction = np.array(data["traction"])
+    for k in (0, 1):
+        x, ty = points[which == k, 0], traction[which == k, 1]
+        order = np.argsort(x)
+        # the vertical traction along Γ, integrated over its width (trapezoid on the
+        # multiplier points, the ends extended flat): the load 1.5
+        xs = np.r_[0.0, x[order], 1.0]
+        ts = np.r_[ty[order][0], ty[order], ty[order][-1]]
+        assert abs(np.trapezoid(ts, xs) + 1.5) < 0.05, k
+    n = np.array(data["normals"])[which == 1]
+    t = traction[which == 1]
+    assert np.abs(t - (t * n).sum(1)[:, None] * n).max() < 1e-10
 
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=[p.stem for p in EXAMPLES])

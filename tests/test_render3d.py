@@ -43,3 +43,22 @@ def test_result_3d_renders_both_sides_and_the_pressure():
     assert bluish > 0.05 and orange > 0.05, (bluish, orange)
     with pytest.raises(ValueError, match="3D result"):
         plot_result_3d(solve(strip(2, "quad")))
+
+
+def test_result_3d_renders_each_region_of_several_interfaces():
+    pytest.importorskip("pyvista")
+    from skxfem.levelset import plane
+    from skxfem.render3d import plot_result_3d
+    from skxfem.scene import Box, Interface, Scene, SurfaceLoad, clamped
+    from skxfem.solver import solve
+
+    scene = Scene(Box((2, 2, 4), "hex"), displacements=(clamped("zmin"),),
+                  loads=(SurfaceLoad("zmax", pressure=1.0),),
+                  interfaces=(Interface(plane((0, 0, 0.37), (0, 0, 1))),
+                              Interface(plane((0, 0, 0.7), (0.1, 0, 1)))))
+    fig = plot_result_3d(solve(scene), window_size=(320, 240))
+    left = fig.axes[0].images[0].get_array().astype(float)
+    bluish = (left[..., 2] - left[..., 0] > 30).mean()     # the bottom region, Ω⁻'s colour
+    orange = (left[..., 0] - left[..., 2] > 30).mean()     # the top one, Ω⁺'s
+    greenish = ((left[..., 1] - left[..., 0] > 15) & (left[..., 1] - left[..., 2] > 15)).mean()
+    assert min(bluish, orange, greenish) > 0.02, (bluish, orange, greenish)

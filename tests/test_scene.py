@@ -13,6 +13,7 @@ from skxfem.meshes import box
 from skxfem.scene import (
     Box,
     Displacement,
+    Interface,
     Scene,
     SurfaceLoad,
     clamped,
@@ -122,6 +123,61 @@ def test_06_scenes_are_frozen_and_replace_makes_variants(monkeypatch):
     with pytest.raises(ValueError, match="space"):
         dataclasses.replace(s, space="stable")
     assert dataclasses.replace(s, space="vital").space == "vital"
+
+
+LOW, HIGH = plane((0, 0.3), (0, 1)), plane((0, 0.7), (0, 1))
+
+
+def test_06b_several_interfaces_and_the_list_of_either_kind():
+    two = Scene(QUAD, interfaces=[Interface(LOW, "frictionless", friction=0),
+                                  Interface(HIGH, "coulomb", "winner", 0.4, 2.0)])
+    assert isinstance(two.interfaces, tuple) and two.several and two.dim == 2
+    assert [(i.law, i.space, i.friction, i.rho_n) for i in two.interface_list] == [
+        ("frictionless", "vital", 0.0, None), ("coulomb", "winner", 0.4, 2.0)]
+    assert (two.law, two.space, two.levelset) == (None, None, None)   # each Interface's
+    one = Scene(QUAD, LINE, law="bilateral", friction=0.2)
+    assert not one.several and one.interface_list == (Interface(LINE, "bilateral",
+                                                                friction=0.2),)
+    alone = two.alone(1)                       # the one-interface scene of interface 1
+    assert (alone.law, alone.space, alone.friction, alone.rho_n, alone.interfaces) == (
+        "coulomb", "winner", 0.4, 2.0, None) and alone.levelset is HIGH
+    assert dataclasses.replace(two, name="b").interfaces == two.interfaces
+    assert Scene(QUAD, interfaces=(Interface(LOW),)).interface_list[0].law == "bonded"
+
+
+@pytest.mark.parametrize("kwargs, error, message", [
+    (dict(levelset=LINE, interfaces=(Interface(LOW),)), ValueError,
+     "both a levelset and interfaces"),
+    (dict(interfaces=()), ValueError, "interfaces is empty"),
+    (dict(interfaces=(LOW, HIGH)), TypeError, "tuple of skxfem.Interface"),
+    (dict(interfaces=Interface(LOW)), TypeError, "tuple of skxfem.Interface"),
+    (dict(interfaces=(Interface(LOW),), law="coulomb"), ValueError,
+     "Scene law: with interfaces, each Interface has its own law"),
+    (dict(interfaces=(Interface(LOW),), friction=0.3, rho_n=1.0), ValueError,
+     "Scene friction, rho_n: with interfaces"),
+    (dict(interfaces=(Interface(LOW), Interface(sphere((0, 0, 0), 1.0)))), ValueError,
+     r"interfaces mix 2D and 3D level sets: .*interfaces\[1\] 'sphere.*3D"),
+    (dict(interfaces=(Interface(plane((0, 0, .5), (0, 0, 1))),)), ValueError,
+     r"interfaces\[0\] level set .* is 3D but the mesh is 2D"),
+    (dict(), TypeError, r"Scene levelset must be .* \(several interfaces: give interfaces"),
+])
+def test_06c_several_interfaces_refused(kwargs, error, message):
+    with pytest.raises(error, match=message):
+        Scene(QUAD, **kwargs)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(levelset=lambda x: x[0]), "Interface levelset must be"),
+    (dict(law="glued"), "Interface law must be one of"),
+    (dict(space="fancy"), "Interface space must be one of"),
+    (dict(friction=-0.1), "Interface friction"),
+    (dict(friction=float("nan")), "Interface friction"),
+    (dict(rho_n=0.0), "Interface rho_n must be a positive number"),
+    (dict(rho_t="big"), "Interface rho_t must be a positive number"),
+])
+def test_06d_interface_refuses_bad_fields(kwargs, message):
+    with pytest.raises((TypeError, ValueError), match=message):
+        Interface(**{"levelset": LOW, **kwargs})
 
 
 # --- 2. meshes ------------------------------------------------------------------

@@ -296,12 +296,16 @@ def toml(data: dict) -> str:
             return "[" + ", ".join(value(x) for x in v) + "]"
         return f'"{v}"' if isinstance(v, str) else repr(v)
 
-    lines = [f"{k} = {value(v)}" for k, v in data.items() if not isinstance(v, (dict, list))]
+    def tables(v):
+        return isinstance(v, list) and v and all(isinstance(x, dict) for x in v)
+
+    lines = [f"{k} = {value(v)}" for k, v in data.items()
+             if not isinstance(v, dict) and not tables(v)]
     for k, v in data.items():
         if isinstance(v, dict):
             lines += [f"[{k}]"] + [f"{a} = {value(b)}" for a, b in v.items()]
     for k, v in data.items():
-        if isinstance(v, list):
+        if tables(v):
             for item in v:
                 lines += [f"[[{k}]]"] + [f"{a} = {value(b)}" for a, b in item.items()]
     return "\n".join(lines) + "\n"
@@ -363,6 +367,8 @@ def place(table: str, key: str, example):
 
     dim = 3 if key in ("sphere", "z") or table == "[levelset] sphere" else 2
     data = base(dim)
+    if table == "[[interface]]":                  # several interfaces: its level set in it
+        data["interface"] = [dict(data.pop("levelset"))]
     if table.startswith("[levelset] "):           # a shape: all its keys are required
         data["levelset"] = {table.split()[1]: {k.name: k.example for k in SCHEMA[table].keys}}
     elif table == "the top level" and key != "name":
@@ -373,7 +379,8 @@ def place(table: str, key: str, example):
             target.pop(k, None)
         target[key] = example
     if key in ("max_iter", "friction"):           # options of the contact laws
-        data["interface"]["law"] = "coulomb"
+        part(data, "[[interface]]" if table == "[[interface]]" else "[interface]")["law"] = \
+            "coulomb"
     return data, dim
 
 
@@ -543,3 +550,80 @@ def test_17_an_absurd_box_is_not_built_to_check_its_selections(tmp_path, monkeyp
     text = MINIMAL.replace("n = 3", f"n = {n}") + \
         "[[displacement]]\nwhere = 'x < 1e-9'\nx = 0\n"
     assert load_scene(write(tmp_path, text)).mesh.n[0] > BUILT_BOX
+
+
+# Several interfaces: [[interface]] tables.
+
+TWO = '''
+steps = [0.5, 1.0]
+[mesh]
+box = {n = 3, cell = "quad"}
+[[interface]]
+plane = {point = [0, 0.3], normal = [0, 1]}
+law = "frictionless"
+[[interface]]
+expr = "y - 0.8"
+law = "coulomb"
+friction = 0.4
+rho_n = 3.0
+space = "winner"
+'''
+
+
+def test_20_interface_tables_give_each_interface_its_level_set_and_law(tmp_path):
+    s = load_scene(write(tmp_path, TWO))
+    assert s.several and s.levelset is None and s.law is None and s.steps == (0.5, 1.0)
+    low, high = s.interfaces
+    assert (low.law, low.space, low.friction, low.rho_n) == ("frictionless", "vital", 0.0,
+                                                             None)
+    assert (high.law, high.space, high.friction, high.rho_n) == ("coulomb", "winner", 0.4,
+                                                                 3.0)
+    x = np.array([[0.2], [0.5]])
+    assert np.allclose([low.levelset(x), high.levelset(x)], [[0.2], [-0.3]])
+    old = load_scene(write(tmp_path, MINIMAL))
+    assert old.interfaces is None and old.law == "bonded"          # the old form reads
+    top = MINIMAL.replace("[mesh]", "steps = [0.5, 1.0]\n[mesh]")
+    assert load_scene(write(tmp_path, top)).steps == (0.5, 1.0)
+
+
+@pytest.mark.parametrize("change, message", [
+    (lambda t: t.replace("[mesh]", '[levelset]\nexpr = "y"\n[mesh]'),
+     r"\[levelset\] with \[\[interface\]\] tables: .* remove \[levelset\]"),
+    (lambda t: t.replace('expr = "y - 0.8"', 'expr = "y - 0.8"\ncircle = {center = [0, 0], '
+                         'radius = 1}'),
+     r"\[\[interface\]\] #2 needs exactly one of plane, circle, sphere, expr; got circle, "
+     r"expr"),
+    (lambda t: t.replace('expr = "y - 0.8"\n', ''),
+     r"\[\[interface\]\] #2 needs exactly one of plane, circle, sphere, expr; got none"),
+    (lambda t: t.replace('law = "coulomb"', 'law = "glued"'),
+     r"\[\[interface\]\] #2 law must be one of"),
+    (lambda t: t.replace("friction = 0.4", "friction = -0.4"),
+     r"\[\[interface\]\] #2 friction must be >= 0"),
+    (lambda t: t.replace("rho_n = 3.0", "steps = [1.0]"),
+     r"\[\[interface\]\] #2: unknown key 'steps'"),
+    (lambda t: t.replace('expr = "y - 0.8"', 'expr = "y - 0.8 + z"'),
+     r"\[\[interface\]\] #2 expr"),
+    (lambda t: t.replace('normal = [0, 1]', 'normal = [0, 0, 1]'),
+     r"\[\[interface\]\] #1 plane.normal must be a list of 2 numbers"),
+])
+def test_21_interface_tables_refused_naming_the_table(tmp_path, change, message):
+    with pytest.raises((ValueError, TypeError), match=message):
+        load_scene(write(tmp_path, change(TWO)))
+
+
+def test_22_interface_forms_refused_together(tmp_path):
+    with pytest.raises(ValueError, match="missing table \\[levelset\\]"):
+        load_scene(write(tmp_path, MINIMAL.replace('[levelset]\nexpr = "y - 0.5"\n', "")))
+    with pytest.raises(ValueError, match="interface is an empty list"):
+        load_scene(write(tmp_path, "interface = []\n" + TWO.split("[[interface]]")[0]))
+    twice = MINIMAL.replace("[mesh]", "steps = [1.0]\n[mesh]") + "[interface]\nsteps = [1.0]\n"
+    with pytest.raises(ValueError, match="steps is given twice"):
+        load_scene(write(tmp_path, twice))
+    ties = TWO.replace('law = "frictionless"', 'law = "bonded"').replace(
+        'law = "coulomb"', 'law = "bilateral"') + "[solver]\nmax_iter = 5\n"
+    with pytest.raises(ValueError, match=r"max_iter applies to the contact laws .* the law "
+                                         r"is \['bonded', 'bilateral'\]"):
+        load_scene(write(tmp_path, ties))
+    with_contact = TWO + "[solver]\nmax_iter = 5\n"
+    assert load_options(write(tmp_path, with_contact)) == {"max_iter": 5}
+    load_scene(write(tmp_path, with_contact))
