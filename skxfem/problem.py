@@ -22,7 +22,7 @@ stacks the interfaces' couplings and P is block-diagonal; the fields of one
 interface (``cut``, ``rule``, ``J``, ``space``, ``ncomp``, ``M_edges``,
 ``held``) are those of the pieces.
 
->>> from skxfem.scenes import strip
+>>> from skxfem.scene.benchmarks import strip
 >>> p = assemble(strip(3, cell="tri"))
 >>> p.law, p.ncomp, p.B.shape[0] == p.P.shape[1], p.J.shape[1] == p.K.shape[0]
 ('bonded', 2, True, True)
@@ -35,12 +35,11 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .boundary import imposed
 from .cut import Cut, check_apart
 from .cut import cut as cut_mesh
 from .enrich import XSpace, XSpaces, enriched_load, jump_matrix, space, stiffness
-from .laws import COUPLING
-from .loads import boundary_quadrature, surface_load
+from .fem.loads import boundary_quadrature, surface_load
+from .linalg.rigid import short_pieces
 from .multipliers import (
     InterfaceRule,
     Space,
@@ -50,8 +49,9 @@ from .multipliers import (
     interface_rule,
     normal_fixed,
 )
-from .rigid import short_pieces
-from .scene import Scene, check_scene, dirichlet, load_facets, resolve_mesh
+from .scene.boundary import imposed
+from .scene.laws import COUPLING
+from .scene.model import Scene, check_scene, dirichlet, load_facets, resolve_mesh
 from .stabilised import multiplier_space
 
 __all__ = ["Problem", "assemble", "constrained_dofs", "COUPLING", "check_law"]
@@ -116,7 +116,7 @@ class Problem:
     timings : seconds per stage.
     per_edge : (n_edges,) bool or None, the edges of the pieces of Γ too small
         for the stable space, which get a multiplier each
-        (:func:`skxfem.rigid.short_pieces`).
+        (:func:`skxfem.linalg.rigid.short_pieces`).
     interfaces : several interfaces (module notes): the :class:`Problem` of
         each, on its own unknowns [a, b^k] (its ``K`` and ``F`` None: the
         whole's are here); then ``V`` is an :class:`~skxfem.enrich.XSpaces`,
@@ -213,7 +213,7 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
     The multiplier space is the scene's, per component with the supports'
     fixed nodes (:func:`skxfem.stabilised.multiplier_space`); a piece of Γ on
     which it holds fewer rigid motions than the law (a corner cut off inside
-    one cell: :func:`skxfem.rigid.short_pieces`) gets a multiplier per edge.
+    one cell: :func:`skxfem.linalg.rigid.short_pieces`) gets a multiplier per edge.
 
     Parameters
     ----------

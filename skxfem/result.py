@@ -67,7 +67,7 @@ class Result:
     the iterative solve, its CG ``iterations`` and ``residuals``.
     Contact adds ``steps`` (:class:`skxfem.contact.Step`), ``status`` (n,)
     (0 open, 1 stick, 2 slip), the interface operators ``ops`` and the
-    ``law`` (:class:`skxfem.contact_newton.Law`; several interfaces: a tuple,
+    ``law`` (:class:`skxfem.contact.newton.Law`; several interfaces: a tuple,
     one per interface); for a tie they are empty.
     ``interface`` (n,) is the interface of each point, ``regions`` and
     ``u_regions`` the regions and their fields (module notes; several

@@ -20,7 +20,7 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components, min_weight_full_bipartite_matching
 
 from .cut import Cut
-from .cutgraph import check_fixed, check_graph, edges_at, incidence, interpolate, nearest
+from .fem.cutgraph import check_fixed, check_graph, edges_at, incidence, interpolate, nearest
 from .multipliers import SPACES, Space, naive
 
 __all__ = ["Space", "minimum_edge_cover", "star_groups", "relations", "vital_edges",
@@ -310,7 +310,7 @@ def multiplier_space(name: str, mesh, cut: Cut, fixed=None, per_edge=None) -> Sp
 
     ``per_edge`` (n_edges,) bool: edges that get a multiplier each, as in the
     naive space, the stable one being built on the others (the pieces of Γ
-    too small for it to hold them: :func:`skxfem.rigid.short_pieces`).
+    too small for it to hold them: :func:`skxfem.linalg.rigid.short_pieces`).
     Default: none.
     """
     if name not in SPACES:
