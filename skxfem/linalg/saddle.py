@@ -49,6 +49,8 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .smoothest import along
+
 __all__ = ["SaddleInfo", "SingularSystemError", "NearlyDependentError", "independent_rows",
            "smoothest_multipliers", "floating", "factorise", "reduce", "refined_solve", "recover",
            "solve"]
@@ -124,12 +126,7 @@ def smoothest_multipliers(B, r, G, tol: float = SMOOTH_TOL) -> np.ndarray:
     U, sv, Vt = sla.svd(B[:, cols].toarray(), full_matrices=True)
     k = int(np.sum(sv > tol * sv[0])) if sv.size else 0
     mu = U[:, :k] @ ((Vt[:k] @ r[cols]) / sv[:k])
-    N = U[:, k:]
-    if N.shape[1]:
-        GN = G @ N
-        c = np.linalg.lstsq(GN, -(G @ mu), rcond=None)[0]
-        mu = mu + N @ c
-    return mu
+    return along(mu, U[:, k:], G)
 
 
 def _unbalanced(B, r, mu, balance: float, tol: float, scale: float) -> Exception:

@@ -33,7 +33,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import ArpackNoConvergence, eigsh
 
-__all__ = ["smoothest", "dependencies"]
+__all__ = ["smoothest", "dependencies", "along"]
 
 
 def dependencies(B, tol: float = 1e-6, k: int = 8) -> np.ndarray:
@@ -108,6 +108,21 @@ def smoothest(B, mu, G=None, tol: float = 1e-6, N=None) -> np.ndarray:
     """
     mu = np.asarray(mu, float)
     N = dependencies(sp.csr_matrix(B), tol) if N is None else N
+    return along(mu, N, G)
+
+
+def along(mu, N, G=None) -> np.ndarray:
+    """μ + N c, c = argmin ‖G(μ + N c)‖ (‖μ + N c‖ without G; N orthonormal):
+    the smoothest of the multipliers that differ from ``mu`` by a dependency.
+
+    The last step of both paths: :func:`smoothest` (N from :func:`dependencies`)
+    and :func:`skxfem.linalg.saddle.smoothest_multipliers` (N from a dense SVD).
+
+    >>> N = np.array([[1.0], [-1.0]]) / np.sqrt(2)   # μ₀ - μ₁ is free
+    >>> along(np.array([2.0, 0.0]), N).round(12).tolist()
+    [1.0, 1.0]
+    """
+    mu = np.asarray(mu, float)
     if N.shape[1] == 0:
         return mu.copy()
     if G is None:
