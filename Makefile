@@ -52,7 +52,7 @@ $(STAMP): pyproject.toml | $(BIN)/python
 	touch $@
 
 figures: $(STAMP)
-	$(BIN)/python -m skxfem.reproduce --quick --out out/
+	$(BIN)/python -m skxfem.app.reproduce --quick --out out/
 
 test: $(STAMP)
 	$(BIN)/ruff check skxfem tests exercises
@@ -66,10 +66,10 @@ $(MATHJAX):
 # --all: re-read every page, so every chapter is executed against the current
 # library; a cell that raises or any Sphinx warning fails the build.  Then the
 # checks of the built pages: no page shows the code of a graded exercise's
-# solution (skxfem.graded), every chapter offers its notebook for download.
+# solution (skxfem.app.graded), every chapter offers its notebook for download.
 book: $(STAMP) $(MATHJAX)
 	$(BIN)/jupyter-book build book/ --all --warningiserror --keep-going
-	$(BIN)/python -m skxfem.graded book/_build/html
+	$(BIN)/python -m skxfem.app.graded book/_build/html
 	$(BIN)/python scripts/notebooks.py --check book/_build/html
 
 # The same book with SKXFEM_SOLUTIONS set: the chapters print the graded
@@ -77,7 +77,7 @@ book: $(STAMP) $(MATHJAX)
 book-instructor: $(STAMP) $(MATHJAX)
 	SKXFEM_SOLUTIONS=1 $(BIN)/jupyter-book build book/ --all --warningiserror --keep-going \
 	    --path-output $(INSTRUCTOR_BUILD)
-	$(BIN)/python -m skxfem.graded --instructor $(INSTRUCTOR_BUILD)/_build/html
+	$(BIN)/python -m skxfem.app.graded --instructor $(INSTRUCTOR_BUILD)/_build/html
 
 notebooks: $(STAMP)
 	$(BIN)/python scripts/notebooks.py notebooks/

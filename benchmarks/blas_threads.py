@@ -1,7 +1,7 @@
 """Benchmark: skxfem's solves with a threaded BLAS against one BLAS thread.
 
 skxfem limits the BLAS libraries to one thread during its solves
-(:mod:`skxfem.threads`, ``SKXFEM_THREADS``).  For each case this prints the
+(:mod:`skxfem.linalg.threads`, ``SKXFEM_THREADS``).  For each case this prints the
 wall time of the solve with BLAS threaded over every core (what a notebook
 or a shell without ``OPENBLAS_NUM_THREADS=1`` gets: ``SKXFEM_THREADS=off``)
 and limited (the default), the least and the median of ``--repeat`` runs,
@@ -24,7 +24,7 @@ from threadpoolctl import threadpool_info, threadpool_limits
 
 import skxfem
 from skxfem import scenes
-from skxfem.threads import using
+from skxfem.linalg.threads import using
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 

@@ -2,10 +2,10 @@
 
 For the paper's plate (hex and prism, vital space) and the 2D strip (tri,
 vital), each size prints the unknowns, the X-FEM tie solve by the direct
-path (:func:`skxfem.saddle.solve`) and by the iterative one
-(:func:`skxfem.iterative.solve`), the plain scikit-fem elasticity solve of
+path (:func:`skxfem.linalg.saddle.solve`) and by the iterative one
+(:func:`skxfem.linalg.iterative.solve`), the plain scikit-fem elasticity solve of
 the same mesh without interface (minimal exact quadrature, the same
-stiffness kernel :func:`skxfem.material.stiffness_matrix`, pyamg smoothed
+stiffness kernel :func:`skxfem.fem.material.stiffness_matrix`, pyamg smoothed
 aggregation with the rigid-body modes, SuperLU coarse solve, CG to 1e-10),
 their ratios, the iterations, the peak memory and the assembly stages
 (``Problem.timings``).  Each case runs in its own process, so that its peak
@@ -34,11 +34,11 @@ import time
 
 import numpy as np
 
-from skxfem.progress import Progress
+from skxfem.studies.progress import Progress
 
 
 def _scene(kind: str, cell: str, n: int):
-    from skxfem.scenes import paper_plate, strip
+    from skxfem.scene.benchmarks import paper_plate, strip
     return (paper_plate(n, cell, space="vital") if kind == "plate"
             else strip(n, cell, space="vital"))
 
@@ -69,11 +69,11 @@ def plain(kind: str, cell: str, n: int) -> dict:
     import scipy.sparse.linalg as spla
     from skfem import Basis, ElementVector
 
-    from skxfem.boundary import dirichlet, load_facets
-    from skxfem.loads import boundary_quadrature, surface_load
-    from skxfem.material import stiffness_matrix
-    from skxfem.quadrature import cell_rule, exact_orders
+    from skxfem.fem.loads import boundary_quadrature, surface_load
+    from skxfem.fem.material import stiffness_matrix
+    from skxfem.fem.quadrature import cell_rule, exact_orders
     from skxfem.scene import resolve_mesh
+    from skxfem.scene.boundary import dirichlet, load_facets
 
     scene = _scene(kind, cell, n)
     t = {}
@@ -115,8 +115,8 @@ def plain(kind: str, cell: str, n: int) -> dict:
 def xfem(kind: str, cell: str, n: int, solver: str, save: str) -> dict:
     """The tied X-FEM problem: assembly (Problem.timings) and the saddle solve;
     U and the edge tractions λ = Pμ are saved to ``save`` (.npz)."""
-    from skxfem import iterative, saddle
-    from skxfem.amg import rigid_modes
+    from skxfem.linalg import iterative, saddle
+    from skxfem.linalg.amg import rigid_modes
     from skxfem.problem import assemble
     from skxfem.solver import _differences
 

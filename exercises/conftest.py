@@ -100,7 +100,7 @@ def pytest_runtest_makereport(item, call):
 
 @pytest.fixture(autouse=True)
 def _points(request):
-    """Record each test's points for the score table (skxfem.grade reads them)."""
+    """Record each test's points for the score table (skxfem.app.grade reads them)."""
     marker = request.node.get_closest_marker("points")
     request.node.user_properties.append(("points", marker.args[0] if marker else 1))
 

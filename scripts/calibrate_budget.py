@@ -1,4 +1,4 @@
-"""Measure the peak memory of solves, to calibrate and check skxfem.budget.
+"""Measure the peak memory of solves, to calibrate and check skxfem.studies.budget.
 
     python scripts/calibrate_budget.py strip:tri:64 plate:prism:8 ...
     python scripts/calibrate_budget.py --linear iterative plate:hex:16 strip:tri:256 ...
@@ -10,7 +10,7 @@ across the middle (n even), the bottom clamped, the top pressed and held tangent
 Each case runs in its own subprocess; printed per case (one JSON line): the
 sizes the solve met (nodes, cells, unknowns, enriched dofs, multipliers, the
 non-zeros of L + U), the peak resident memory the solve added (the peak VmHWM, reset
-just before the solve, minus the resident memory before it) and skxfem.budget's
+just before the solve, minus the resident memory before it) and skxfem.studies.budget's
 estimate, for the linear solver ``--linear`` (default ``auto``, as ``skxfem.solve``;
 ``bytes_per_unknown`` is the measured peak over N + m, what
 ``budget.ITERATIVE_BYTES`` bounds).  Not a test: it takes seconds to minutes and
@@ -23,7 +23,9 @@ CHILD = r"""
 import dataclasses, json, sys
 import numpy as np
 import scipy.sparse.linalg as spla
-from skxfem import budget, saddle, scenes
+from skxfem import scenes
+from skxfem.studies import budget
+from skxfem.linalg import saddle
 from skxfem.levelset import plane
 from skxfem.scene import Box, Displacement, Scene, SurfaceLoad, clamped
 from skxfem.solver import solve

@@ -24,35 +24,40 @@ What ``import skxfem`` gives:
   ``enrich``, ``multipliers``, ``lbb``, ``stabilised``, ``contact``; and
   ``plotting`` (imported when first used: a solve does not import matplotlib) and
   ``evaluate`` (``pressure_along``) to look at a result.
-  The paper's figures are ``skxfem.figures`` (imported on demand).
+  The paper's figures are ``skxfem.viz.figures`` (imported on demand).
 
 The stable multiplier space (vital edges, the paper's algo2) is what a scene
 gets unless it asks for another.
 
-The package is flat; its modules stand on floors, lowest first.  A module
-imports only from lower floors (import-linter checks it in ``make test``; the
-contract is in ``pyproject.toml``):
+**The tree.** The top level holds the steps of the method in the order of the
+book — ``levelset``, ``cut``, ``enrich``, ``multipliers``, ``lbb``,
+``stabilised`` — then ``problem`` (the one assembled interface problem),
+``result`` (what every solve returns) and ``solver``; the rest is grouped in
+subpackages, one layer each.  A module imports only from the layers below its
+own (import-linter checks it in ``make test``; the contract is in
+``pyproject.toml``), lowest first:
 
-1. kernels: ``simplex``, ``expr``, ``saddle``, ``vtu``, ``progress``, ``grade``,
-   ``graded`` (the course's tooling), ``linear`` (which solve), ``threads`` (the BLAS
-   threads of a solve), ``files`` (checked reads, a set of files written as one); then
-   ``amg``, ``smoothest``, ``pcg``, then ``iterative`` (the scalable linear solve);
-2. ``levelset`` (the sign convention), ``meshes``, ``cells``, ``material``,
-   ``quadrature``, ``evaluate``, ``contact_laws``;
-3. ``cut``, ``exact``, ``exact3d``;  4. ``enrich``, ``loads``;
-5. ``multipliers``, ``cutgraph``;  6. ``stabilised``;
-7. the scene: ``scene_parts``, ``tomlcheck``, ``boundary``, ``scene``, then
-   ``scenes``, ``scenefile``;
-8. ``rigid`` (the rigid motions left free), then ``problem``, then ``result`` (what
-   every solve returns);  9. ``contact_linear``, then ``contact_interface``,
-   ``contact_newton``, ``contact_fixed_point``;  10. ``lbb``, ``contact``, then ``solver``;
-11. ``io`` (on ``io_contact``), ``budget`` (on ``counts``), ``convergence``;
-12. the studies: ``extremes``, ``frontier``, ``conforming``, ``validation3d``,
-    then ``extremes_scales``, ``extremes_shapes``, then ``extremes_table``;
-13. drawing: ``plotting``, then ``figstyle``, ``plot_space``, ``render3d``,
-    ``schematics``, then ``figures``, ``contact_plots``, ``plot_supports``, ``frontier_plots``,
-    ``validation3d_plots``;
-14. ``reproduce``, ``cli``.
+1. ``linalg``: the linear solves (``saddle``, ``iterative``, ``amg``, ``pcg``,
+   ``smoothest``), which one a problem gets (``linear``), BLAS ``threads``, and
+   the rigid motions left free (``rigid``);
+2. ``fem``: ``simplex``, ``cells`` (the cell types, one table), ``meshes``,
+   ``quadrature``, ``moments``, ``sides``, ``material``, ``loads``,
+   ``evaluate``, ``vtu``, ``files``, ``cutgraph``, the exact solutions;
+3. ``levelset`` (the sign convention);
+4. ``scene``: ``laws`` (the laws and spaces, one table), ``parts``, ``expr``,
+   ``boundary``, ``model`` (the :class:`Scene`), ``benchmarks``
+   (``skxfem.scenes``), ``file`` and ``tomlcheck`` (scene files);
+5. ``cut``;  6. ``enrich``;  7. ``multipliers``;  8. ``stabilised``;
+9. ``problem``;  10. ``result``;
+11. ``contact``: ``laws``, ``interface``, ``step`` (the linear solve of a
+    Newton step), ``newton``, ``fixed_point``, ``history`` (``solve``);
+12. ``lbb``, ``solver``;
+13. ``studies``: ``convergence``, ``conforming``, ``validation3d``, the
+    ``extremes`` tables, ``frontier``, ``budget`` and ``counts`` (the size
+    guard), ``progress``;
+14. ``viz``: every module that draws (matplotlib, pyvista; a second contract);
+15. ``app``: ``cli``, ``reproduce``, ``grade`` and ``graded``, ``io`` and
+    ``io_contact`` (the result files).
 """
 from importlib.metadata import PackageNotFoundError
 from importlib.metadata import version as _version
@@ -66,18 +71,19 @@ from . import (  # noqa: E402  (the steps, in the order of the book)
     contact,
     cut,
     enrich,
-    evaluate,
     lbb,
     levelset,
     multipliers,
-    scenes,
     stabilised,
 )
+from .fem import evaluate  # noqa: E402
+from .fem.material import Material  # noqa: E402
 from .levelset import circle, complement, intersection, plane, sphere, union  # noqa: E402
-from .material import Material  # noqa: E402
 from .problem import assemble  # noqa: E402
 from .result import Result  # noqa: E402
-from .scene import (  # noqa: E402
+from .scene import benchmarks as scenes  # noqa: E402
+from .scene.file import load_scene  # noqa: E402
+from .scene.model import (  # noqa: E402
     Box,
     Displacement,
     Interface,
@@ -86,16 +92,16 @@ from .scene import (  # noqa: E402
     clamped,
     rollers,
 )
-from .scenefile import load_scene  # noqa: E402
 from .solver import solve  # noqa: E402
 
 
 def __getattr__(name: str):
-    """``skxfem.plotting`` and ``skxfem.figures``, imported when first used: they import
-    matplotlib, which a solve (and ``skxfem run``) does without."""
+    """``skxfem.plotting`` and ``skxfem.figures`` (:mod:`skxfem.viz.plotting`,
+    :mod:`skxfem.viz.figures`), imported when first used: they import matplotlib,
+    which a solve (and ``skxfem run``) does without."""
     if name in ("plotting", "figures"):
         import importlib
-        return importlib.import_module(f"{__name__}.{name}")
+        return importlib.import_module(f"{__name__}.viz.{name}")
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 

@@ -12,8 +12,8 @@ Given nodal values ψ_i of the level set (sign convention in :mod:`skxfem.levels
   into triangles by a fan from its first vertex.  Normals point into Ω⁺.
 * The **sub-cells** split each cut cell into pieces on either side, for
   integrating discontinuous integrands.  The reference cell is split into
-  simplices (:func:`skxfem.cells.reference_simplices`), and each simplex is
-  split by :func:`skxfem.simplex.split`.  Everything is done in the parent's
+  simplices (:func:`skxfem.fem.cells.reference_simplices`), and each simplex is
+  split by :func:`skxfem.fem.simplex.split`.  Everything is done in the parent's
   reference coordinates, ready for per-cell quadrature.
 
 For a plane ψ and affine cells (every structured box mesh) the interface
@@ -46,10 +46,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .cells import cell_edges, faces_of_edges, reference_simplices
+from .fem.cells import cell_edges, faces_of_edges, reference_simplices
+from .fem.meshes import cell_name
+from .fem.simplex import edge_point, split
 from .levelset import nodal_values
-from .meshes import cell_name
-from .simplex import edge_point, split
 
 __all__ = ["Cut", "cut", "strictly_cut_edges", "snap", "SNAP", "SnapWarning", "check_apart"]
 
@@ -114,7 +114,7 @@ def strictly_cut_edges(edges, psi, x) -> tuple[np.ndarray, np.ndarray]:
     -------
     edge_ids, points
         Indices of the strictly cut edges and their points (dim, ne), where
-        the linear interpolant of ψ vanishes (:func:`skxfem.simplex.edge_point`).
+        the linear interpolant of ψ vanishes (:func:`skxfem.fem.simplex.edge_point`).
 
     >>> ids, pts = strictly_cut_edges(np.array([[0, 1], [1, 2]]), np.array([-1., 1., 3.]),
     ...                               np.array([[0., 1., 2.]]))

@@ -33,7 +33,7 @@ import scipy.sparse.linalg as spla
 
 from .enrich import mass
 from .problem import assemble
-from .scene import check_scene
+from .scene.model import check_scene
 
 __all__ = ["InfSup", "inf_sup_constant", "inf_sup"]
 

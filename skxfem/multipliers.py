@@ -33,12 +33,12 @@ from skfem.refdom import RefLine, RefTri
 
 from .cut import Cut
 from .enrich import XSpace, jump_matrix
+from .scene.laws import SPACES, TIE_LAWS
 
 __all__ = ["Space", "naive", "fixed_jumps", "normal_fixed", "direction_fixed", "SPACES",
            "InterfaceRule", "interface_rule", "coupling", "interface_mass", "LAWS"]
 
-LAWS = ("bonded", "bilateral")
-SPACES = ("naive", "winner", "vital")
+LAWS = TIE_LAWS
 
 
 @dataclass(frozen=True)

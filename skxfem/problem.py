@@ -22,7 +22,7 @@ stacks the interfaces' couplings and P is block-diagonal; the fields of one
 interface (``cut``, ``rule``, ``J``, ``space``, ``ncomp``, ``M_edges``,
 ``held``) are those of the pieces.
 
->>> from skxfem.scenes import strip
+>>> from skxfem.scene.benchmarks import strip
 >>> p = assemble(strip(3, cell="tri"))
 >>> p.law, p.ncomp, p.B.shape[0] == p.P.shape[1], p.J.shape[1] == p.K.shape[0]
 ('bonded', 2, True, True)
@@ -35,11 +35,11 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .boundary import imposed
 from .cut import Cut, check_apart
 from .cut import cut as cut_mesh
 from .enrich import XSpace, XSpaces, enriched_load, jump_matrix, space, stiffness
-from .loads import boundary_quadrature, surface_load
+from .fem.loads import boundary_quadrature, surface_load
+from .linalg.rigid import short_pieces
 from .multipliers import (
     InterfaceRule,
     Space,
@@ -49,16 +49,12 @@ from .multipliers import (
     interface_rule,
     normal_fixed,
 )
-from .rigid import short_pieces
-from .scene import Scene, check_scene, dirichlet, load_facets, resolve_mesh
+from .scene.boundary import imposed
+from .scene.laws import COUPLING
+from .scene.model import Scene, check_scene, dirichlet, load_facets, resolve_mesh
 from .stabilised import multiplier_space
 
 __all__ = ["Problem", "assemble", "constrained_dofs", "COUPLING", "check_law"]
-
-COUPLING = {"bonded": "bonded", "bilateral": "bilateral"}
-"""For each law :func:`assemble` accepts, the coupling it is built on
-(:func:`skxfem.multipliers.coupling`): ``"bonded"``, the vector jump, or
-``"bilateral"``, the normal jump.  The one place where laws are validated."""
 
 
 def check_law(law: str) -> str:
@@ -118,7 +114,7 @@ class Problem:
     timings : seconds per stage.
     per_edge : (n_edges,) bool or None, the edges of the pieces of Γ too small
         for the stable space, which get a multiplier each
-        (:func:`skxfem.rigid.short_pieces`).
+        (:func:`skxfem.linalg.rigid.short_pieces`).
     interfaces : several interfaces (module notes): the :class:`Problem` of
         each, on its own unknowns [a, b^k] (its ``K`` and ``F`` None: the
         whole's are here); then ``V`` is an :class:`~skxfem.enrich.XSpaces`,
@@ -201,8 +197,8 @@ def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndar
         selected = np.zeros(mesh.p.shape[1], dtype=bool)
         selected[held] = True
         nodes = np.unique(cut_bf[:, selected[cut_bf].all(axis=0)])
-        for c in components:
-            b = pos[V.basis.nodal_dofs[c, nodes]]
+        for comp in components:
+            b = pos[V.basis.nodal_dofs[comp, nodes]]
             enr.append(V.n_std + b[b >= 0])
     enr = np.unique(np.concatenate(enr))
     return (np.concatenate([dofs, enr]),
@@ -215,7 +211,7 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
     The multiplier space is the scene's, per component with the supports'
     fixed nodes (:func:`skxfem.stabilised.multiplier_space`); a piece of Γ on
     which it holds fewer rigid motions than the law (a corner cut off inside
-    one cell: :func:`skxfem.rigid.short_pieces`) gets a multiplier per edge.
+    one cell: :func:`skxfem.linalg.rigid.short_pieces`) gets a multiplier per edge.
 
     Parameters
     ----------
@@ -243,24 +239,22 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
     law = check_law(scene.law if law is None else law)
     timings, lap = _clock()
     mesh = resolve_mesh(scene)
-    c = cut_mesh(mesh, scene.levelset)
+    cut = cut_mesh(mesh, scene.levelset)
     lap("cut")
-    S = multiplier_space(scene.space, mesh, c)
-    lap("space")
-    V = space(mesh, c, scene.quadrature_order)
+    V = space(mesh, cut, scene.quadrature_order)
     lap("enrich")
     K = stiffness(V, scene.material)
     lap("stiffness")
     f, f_H = np.zeros(V.n_std), np.zeros(V.n_std)
     for facets, traction in load_facets(scene, mesh):
-        q = boundary_quadrature(mesh, facets, 4, psi_nodes=c.psi)
+        q = boundary_quadrature(mesh, facets, 4, psi_nodes=cut.psi)
         df, df_H = surface_load(V.basis, q, traction)
         f, f_H = f + df, f_H + df_H
     F = enriched_load(V, f, f_H)
     lap("load")
     D, g = constrained_dofs(V, scene, mesh)
     lap("constraints")
-    return _interface_problem(scene, mesh, c, S, V, K, F, D, g, law, timings, lap)
+    return _interface_problem(scene, mesh, cut, V, K, F, D, g, law, timings, lap)
 
 
 def _clock():
@@ -277,31 +271,35 @@ def _clock():
     return timings, lap
 
 
-def _interface_problem(scene, mesh, c, S, V, K, F, D, g, law, timings, lap, columns=None):
-    """The :class:`Problem` of one interface: its rule, jump operator, coupling and
-    multiplier spaces (per component, with the supports' fixed nodes; a
-    multiplier per edge on the pieces of Γ the space leaves loose)."""
-    rule = interface_rule(mesh, c)
+def _interface_problem(scene, mesh, cut, V, K, F, D, g, law, timings, lap, columns=None):
+    """The :class:`Problem` of one interface, after its X-FEM space: its multiplier
+    space (§4.2, §5), rule, jump operator, coupling and the spaces of each
+    component (with the supports' fixed nodes; a multiplier per edge on the pieces
+    of Γ the space leaves loose)."""
+    lam_space = multiplier_space(scene.space, mesh, cut)
+    lap("space")
+    rule = interface_rule(mesh, cut)
     J = jump_matrix(V, rule.cells, rule.ref)
     B_edges = coupling(V, rule, COUPLING[law], J=J)
     M_edges = interface_mass(rule)
     lap("interface")
     fixed = fixed_jumps(V, D)
     if COUPLING[law] == "bilateral":
-        fixed = normal_fixed(fixed, c)[None, :]
-    held = fixed[:, c.edges[0]] & fixed[:, c.edges[1]]
+        fixed = normal_fixed(fixed, cut)[None, :]
+    held = fixed[:, cut.edges[0]] & fixed[:, cut.edges[1]]
 
-    def problem(S, per_edge=None):
-        spaces = _component_spaces(scene.space, mesh, c, S, fixed, per_edge)
+    def problem(lam_space, per_edge=None):
+        spaces = _component_spaces(scene.space, mesh, cut, lam_space, fixed, per_edge)
         P = sp.block_diag([s.P for s in spaces], format="csr")  # component-major
-        return Problem(scene, mesh, c, V, K, F, D, g, rule, J, S, law, held.shape[0], P,
-                       (P.T @ B_edges).tocsr(), M_edges, held, spaces, timings, per_edge,
-                       columns=columns)
+        return Problem(scene=scene, mesh=mesh, cut=cut, V=V, K=K, F=F, D=D, g=g, rule=rule,
+                       J=J, space=lam_space, law=law, ncomp=held.shape[0], P=P,
+                       B=(P.T @ B_edges).tocsr(), M_edges=M_edges, held=held,
+                       spaces=spaces, timings=timings, per_edge=per_edge, columns=columns)
 
-    p = problem(S)
+    p = problem(lam_space)
     short = short_pieces(p, B_edges)  # pieces of Γ the stable space leaves loose
     if short.any():
-        p = problem(multiplier_space(scene.space, mesh, c, per_edge=short), short)
+        p = problem(multiplier_space(scene.space, mesh, cut, per_edge=short), short)
     lap("prolongation")
     return p
 
@@ -317,16 +315,14 @@ def _assemble_several(scene: Scene, law: str | None) -> Problem:
                              for k, i in enumerate(items)])
     lap("cut")
     alone = [scene.alone(k) for k in range(len(items))]
-    S = [multiplier_space(i.space, mesh, c) for i, c in zip(items, cuts)]
-    lap("space")
-    V = XSpaces(tuple(space(mesh, c, scene.quadrature_order) for c in cuts))
+    V = XSpaces(tuple(space(mesh, cut, scene.quadrature_order) for cut in cuts))
     lap("enrich")
     K = stiffness(V, scene.material)
     lap("stiffness")
     f, f_H = np.zeros(V.n_std), [np.zeros(V.n_std) for _ in cuts]
     for facets, traction in load_facets(scene, mesh):
-        for k, c in enumerate(cuts):
-            q = boundary_quadrature(mesh, facets, 4, psi_nodes=c.psi)
+        for k, cut in enumerate(cuts):
+            q = boundary_quadrature(mesh, facets, 4, psi_nodes=cut.psi)
             df, df_H = surface_load(V.basis, q, traction)
             f = f + df if k == 0 else f
             f_H[k] = f_H[k] + df_H
@@ -338,24 +334,25 @@ def _assemble_several(scene: Scene, law: str | None) -> Problem:
                                              for k, (Dk, _) in enumerate(local)])
     g = np.concatenate([local[0][1][std]] + [gk[Dk >= V.n_std] for Dk, gk in local])
     lap("constraints")
-    pieces = tuple(_interface_problem(alone[k], mesh, cuts[k], S[k], V.spaces[k], None, None,
+    pieces = tuple(_interface_problem(alone[k], mesh, cuts[k], V.spaces[k], None, None,
                                       *local[k], laws[k], timings, lap, V.columns(k))
                    for k in range(len(items)))
     B = sp.vstack([p.B @ V.select(k) for k, p in enumerate(pieces)], format="csr")
     P = sp.block_diag([p.P for p in pieces], format="csr")
-    return Problem(scene, mesh, None, V, K, F, D, g, None, None, None,
-                   laws[0] if len(set(laws)) == 1 else None, None, P, B, None, None, (),
-                   timings, interfaces=pieces)
+    return Problem(scene=scene, mesh=mesh, cut=None, V=V, K=K, F=F, D=D, g=g, rule=None,
+                   J=None, space=None, law=laws[0] if len(set(laws)) == 1 else None,
+                   ncomp=None, P=P, B=B, M_edges=None, held=None, spaces=(),
+                   timings=timings, interfaces=pieces)
 
 
-def _component_spaces(name, mesh, c, S, fixed, per_edge=None) -> tuple:
+def _component_spaces(name, mesh, cut, lam_space, fixed, per_edge=None) -> tuple:
     """The multiplier space of each component, built with that component's
-    fixed nodes (``S``, the space of all edges, where none is fixed; one
+    fixed nodes (``lam_space``, the space of all edges, where none is fixed; one
     build per distinct set of fixed nodes) and a multiplier per ``per_edge`` edge."""
     built = {}
     for row in fixed:
         key = row.tobytes()
         if key not in built:
-            built[key] = S if not row.any() else multiplier_space(name, mesh, c, fixed=row,
-                                                                  per_edge=per_edge)
+            built[key] = (lam_space if not row.any() else
+                          multiplier_space(name, mesh, cut, fixed=row, per_edge=per_edge))
     return tuple(built[row.tobytes()] for row in fixed)

@@ -67,7 +67,7 @@ class Result:
     the iterative solve, its CG ``iterations`` and ``residuals``.
     Contact adds ``steps`` (:class:`skxfem.contact.Step`), ``status`` (n,)
     (0 open, 1 stick, 2 slip), the interface operators ``ops`` and the
-    ``law`` (:class:`skxfem.contact_newton.Law`; several interfaces: a tuple,
+    ``law`` (:class:`skxfem.contact.newton.Law`; several interfaces: a tuple,
     one per interface); for a tie they are empty.
     ``interface`` (n,) is the interface of each point, ``regions`` and
     ``u_regions`` the regions and their fields (module notes; several
@@ -163,27 +163,26 @@ def result(pb, U: np.ndarray, traction: np.ndarray, max_jump: float, n_multiplie
     ``traction`` (dim, n) at the cut edges' points (of every interface in turn);
     ``contact``: the keywords ``steps``, ``status``, ``ops``, ``law``, ``removed``."""
     regions, fields = region_fields(pb.V, U)
+    common = dict(scene=pb.scene, mesh=pb.mesh, traction=traction, max_jump=float(max_jump),
+                  n_dofs=pb.V.N, n_multipliers=int(n_multipliers), timings=timings, U=U,
+                  space=pb.V, linear=linear, linear_info=linear_info, problem=pb,
+                  regions=regions, u_regions=fields, **contact)
     if isinstance(pb.V, XSpaces):
         qs = pb.interfaces
         sizes = [q.cut.edge_ids.size for q in qs]
         offsets = np.cumsum([0] + sizes[:-1])
         return Result(
-            pb.scene, pb.mesh, None, None, np.hstack([q.cut.points for q in qs]),
-            np.hstack([point_normals(q.cut, q.scene.levelset) for q in qs]), traction,
-            np.hstack([edge_jumps(q.V, U[q.columns]) for q in qs]),
-            np.hstack([q.cut.facets + o for q, o in zip(qs, offsets)]), float(max_jump),
-            pb.V.N, int(n_multipliers), timings=timings, U=U, space=pb.V, linear=linear,
-            linear_info=linear_info, problem=pb,
-            interface=np.repeat(np.arange(len(qs)), sizes), regions=regions,
-            u_regions=fields, **contact)
-    c, V = pb.cut, pb.V
-    u_minus, u_plus = split_fields(V, U)
-    normals = point_normals(c, pb.scene.levelset)
-    return Result(pb.scene, pb.mesh, u_minus, u_plus, c.points, normals, traction,
-                  edge_jumps(V, U), c.facets, float(max_jump), V.N, int(n_multipliers),
-                  timings=timings, U=U, space=V, linear=linear, linear_info=linear_info,
-                  problem=pb, interface=np.zeros(c.points.shape[1], dtype=np.int64),
-                  regions=regions, u_regions=fields, **contact)
+            u_minus=None, u_plus=None,
+            points=np.hstack([q.cut.points for q in qs]),
+            normals=np.hstack([point_normals(q.cut, q.scene.levelset) for q in qs]),
+            jump=np.hstack([edge_jumps(q.V, U[q.columns]) for q in qs]),
+            facets=np.hstack([q.cut.facets + o for q, o in zip(qs, offsets)]),
+            interface=np.repeat(np.arange(len(qs)), sizes), **common)
+    u_minus, u_plus = split_fields(pb.V, U)
+    return Result(u_minus=u_minus, u_plus=u_plus, points=pb.cut.points,
+                  normals=point_normals(pb.cut, pb.scene.levelset), jump=edge_jumps(pb.V, U),
+                  facets=pb.cut.facets,
+                  interface=np.zeros(pb.cut.points.shape[1], dtype=np.int64), **common)
 
 
 def on_edges(P: sp.spmatrix, values: np.ndarray) -> np.ndarray:

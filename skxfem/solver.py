@@ -17,7 +17,7 @@ quadrilateral cut carries four multipliers for a three-parameter linear jump)
 are found by a rank-revealing QR of B and, by default, removed from the space
 (``dependent="remove"``) — the displacement is then unique and the edge
 tractions reported are the smoothest ones that balance it (see
-:func:`skxfem.saddle.smoothest_multipliers`); with
+:func:`skxfem.linalg.saddle.smoothest_multipliers`); with
 ``dependent="raise"`` a ValueError says how many there are.  After the solve the residual
 is checked.
 """
@@ -28,17 +28,19 @@ import time
 import numpy as np
 import scipy.sparse as sp
 
-from . import contact, iterative, saddle
-from .amg import rigid_modes
-from .contact_laws import CONTACT_LAWS
+from .contact import history as contact
+from .contact.laws import CONTACT_LAWS
 from .levelset import point_normals
-from .linear import AUTO_ITERATIVE, LINEAR, LINEAR_TOL, check_linear_tol, choose_linear
+from .linalg import iterative, saddle
+from .linalg.amg import rigid_modes
+from .linalg.linear import AUTO_ITERATIVE, LINEAR, LINEAR_TOL, check_linear_tol, choose_linear
+from .linalg.rigid import check_held
+from .linalg.smoothest import dependencies
+from .linalg.threads import limited
 from .problem import Problem, assemble, constrained_dofs
 from .result import Result, result
-from .rigid import check_held
-from .scene import Scene, check_scene
-from .smoothest import dependencies
-from .threads import limited
+from .scene.laws import LAWS
+from .scene.model import Scene, check_scene
 
 __all__ = ["Result", "solve", "solve_problem", "constrained_dofs", "LINEAR", "AUTO_ITERATIVE",
            "choose_linear"]
@@ -47,7 +49,7 @@ __all__ = ["Result", "solve", "solve_problem", "constrained_dofs", "LINEAR", "AU
 def _linear(method: str, p: Problem) -> str:
     """The linear solve ``method`` resolves to for ``p`` (several interfaces with
     different ties: as for ``bonded``, which solves as they do)."""
-    return choose_linear(method, p.mesh.dim(), p.V.N, p.law or "bonded")
+    return choose_linear(method, p.mesh.dim(), p.V.N, LAWS[p.law or "bonded"].auto_iterative)
 
 
 def _differences(c, ncomp: int) -> sp.csr_matrix:
@@ -85,10 +87,10 @@ def solve(scene: Scene, dependent: str = "remove", linear: str = "auto",
         iterative one from :data:`AUTO_ITERATIVE` unknowns if pyamg is there.
     linear_tol
         The relative residual of the iterative solve (default
-        :data:`skxfem.linear.LINEAR_TOL`), recorded in ``linear_info``.
+        :data:`skxfem.linalg.linear.LINEAR_TOL`), recorded in ``linear_info``.
 
-    The BLAS libraries run one thread during the solve (:mod:`skxfem.threads`:
-    ``SKXFEM_THREADS`` or :func:`skxfem.threads.using` choose another number).
+    The BLAS libraries run one thread during the solve (:mod:`skxfem.linalg.threads`:
+    ``SKXFEM_THREADS`` or :func:`skxfem.linalg.threads.using` choose another number).
 
     Raises
     ------
@@ -96,9 +98,9 @@ def solve(scene: Scene, dependent: str = "remove", linear: str = "auto",
         A scene that does not fit its mesh, a level set that cuts no cell
         or passes through nodes (from :func:`skxfem.cut.cut`), a rank
         deficient space with ``dependent="raise"``.
-    skxfem.saddle.SingularSystemError
+    skxfem.linalg.saddle.SingularSystemError
         (a ValueError) The supports and the law leave a rigid motion of a side
-        free (:func:`skxfem.rigid.check_held`, which names it), or the
+        free (:func:`skxfem.linalg.rigid.check_held`, which names it), or the
         system is singular for another reason.
     """
     if dependent not in ("remove", "raise"):

@@ -20,11 +20,11 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components, min_weight_full_bipartite_matching
 
 from .cut import Cut
-from .cutgraph import check_fixed, check_graph, edges_at, incidence, interpolate, nearest
+from .fem.cutgraph import check_fixed, check_graph, edges_at, incidence, interpolate, nearest
 from .multipliers import SPACES, Space, naive
 
-__all__ = ["Space", "minimum_edge_cover", "vital_edges", "winner_nodes", "multiplier_space",
-           "extend_to_held"]
+__all__ = ["Space", "minimum_edge_cover", "star_groups", "relations", "vital_edges",
+           "winner_nodes", "multiplier_space", "extend_to_held"]
 
 
 def minimum_edge_cover(edges, psi, length, fixed=None) -> np.ndarray:
@@ -130,33 +130,69 @@ def vital_edges(edges, psi, points, nodes, fixed=None) -> Space:
     if ne == 0:
         return Space("vital", sp.csr_matrix((0, 0)), np.zeros(0, bool), np.zeros(0, int))
     length = np.linalg.norm(nodes[:, edges[0]] - nodes[:, edges[1]], axis=0)
-    vital = minimum_edge_cover(edges, psi, length, fixed)
+    vital = minimum_edge_cover(edges, psi, length, fixed)      # 1. the vital edges S_ve
+    groups = star_groups(edges, vital, fixed)                   # 2. the groups G^i_cve
+    return Space("vital", relations(edges, points, vital, groups), vital=vital,
+                 groups=groups)                                 # 3. the relations
 
+
+def star_groups(edges, vital, fixed=None) -> np.ndarray:
+    """Step 2 of :func:`vital_edges`: the group of each vital edge, -1 elsewhere.
+
+    The groups G^i_cve are the connected components of the vital edges (a
+    minimum cover is a union of stars), numbered in the order of their lowest
+    edge; a ``fixed`` end (nnodes,) bool, default none, joins no star (it is a
+    node of its own).
+
+    >>> star_groups(np.array([[0, 2, 4], [1, 1, 5]]), np.array([True, True, True])).tolist()
+    [0, 0, 1]
+    """
+    edges, vital = np.asarray(edges), np.asarray(vital, bool)
+    nnodes = int(edges.max()) + 1 if edges.size else 0
+    fixed = np.zeros(nnodes, bool) if fixed is None else np.asarray(fixed, bool)
+    nnodes = max(nnodes, fixed.size)
     iv = np.flatnonzero(vital)
-    ends = edges[:, iv].copy()                               # a fixed end joins no star:
-    alone = fixed[ends]                                      # it becomes a node of its own
-    ends[alone] = psi.size + np.flatnonzero(alone.ravel())
-    nn = psi.size + 2 * iv.size
+    ends = edges[:, iv].copy()
+    alone = fixed[ends]
+    ends[alone] = nnodes + np.flatnonzero(alone.ravel())
+    nn = nnodes + 2 * iv.size
     star = sp.coo_matrix((np.ones(iv.size), tuple(ends)), shape=(nn, nn))
     label = connected_components(star, directed=False)[1][ends[0]]
     _, first, inverse = np.unique(label, return_index=True, return_inverse=True)
     rank = np.empty_like(first)
     rank[np.argsort(first)] = np.arange(first.size)          # order of lowest edge
-    groups = np.full(ne, -1)
+    groups = np.full(edges.shape[1], -1)
     groups[iv] = rank[inverse]
+    return groups
 
-    nv = np.flatnonzero(~vital)
-    inc = incidence(edges, psi.size, vital)
+
+def relations(edges, points, vital, groups) -> sp.csr_matrix:
+    """Step 3 of :func:`vital_edges`: the prolongation P (n_edges, n_groups).
+
+    A vital edge takes its group's multiplier; a non-vital edge e = (v1, v2) the
+    distance-weighted mean of the vital edges k_i at its ends nearest to x_e,
+    λ_e = d2/(d1+d2) λ_k1 + d1/(d1+d2) λ_k2 (d_i = |x_e - x_ki|), or the one of
+    its free end where the other is fixed.
+
+    >>> e = np.array([[0, 0, 2], [1, 3, 3]]); x = np.array([[0.0, 1.0, 2.0]])
+    >>> relations(e, x, np.array([True, False, True]), np.array([0, -1, 1])).toarray()
+    array([[1. , 0. ],
+           [0.5, 0.5],
+           [0. , 1. ]])
+    """
+    ne = edges.shape[1]
+    nnodes = int(edges.max()) + 1 if ne else 0
+    iv, nv = np.flatnonzero(vital), np.flatnonzero(~vital)
+    inc = incidence(edges, nnodes, vital)
     k1, k2 = (nearest(points, nv, edges[i, nv], inc) for i in (0, 1))
     both = (k1 >= 0) & (k2 >= 0)                             # else a fixed end: none there
     r, c, w = interpolate(points, nv[both], k1[both], k2[both], groups[k1[both]],
-                           groups[k2[both]])
+                          groups[k2[both]])
     one = nv[~both]
-    P = sp.csr_matrix((np.r_[np.ones(iv.size + one.size), w],
-                       (np.r_[iv, one, r],
-                        np.r_[groups[iv], groups[np.maximum(k1, k2)[~both]], c])),
-                      shape=(ne, first.size))
-    return Space("vital", P, vital=vital, groups=groups)
+    return sp.csr_matrix((np.r_[np.ones(iv.size + one.size), w],
+                          (np.r_[iv, one, r],
+                           np.r_[groups[iv], groups[np.maximum(k1, k2)[~both]], c])),
+                         shape=(ne, int(groups.max()) + 1 if iv.size else 0))
 
 
 def _pick_winners(edges, psi, fixed):
@@ -274,7 +310,7 @@ def multiplier_space(name: str, mesh, cut: Cut, fixed=None, per_edge=None) -> Sp
 
     ``per_edge`` (n_edges,) bool: edges that get a multiplier each, as in the
     naive space, the stable one being built on the others (the pieces of Γ
-    too small for it to hold them: :func:`skxfem.rigid.short_pieces`).
+    too small for it to hold them: :func:`skxfem.linalg.rigid.short_pieces`).
     Default: none.
     """
     if name not in SPACES:

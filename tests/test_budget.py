@@ -9,11 +9,13 @@ import meshio
 import numpy as np
 import pytest
 
-from skxfem import budget, meshes, scenes
-from skxfem.budget import Estimate, TooLargeError, check, estimate, parse_bytes
+from skxfem import scenes
+from skxfem.fem import meshes
 from skxfem.levelset import circle, plane, sphere
 from skxfem.scene import Box, Scene, clamped, resolve_mesh
 from skxfem.solver import solve
+from skxfem.studies import budget
+from skxfem.studies.budget import Estimate, TooLargeError, check, estimate, parse_bytes
 
 FACTOR = 4
 """The estimate is at most this many times the measured peak (measured 1.1-3.1)."""
@@ -44,7 +46,7 @@ def test_01_counts_are_exact_or_upper_bounds(cell):
 @pytest.mark.parametrize("law", ["bonded", "bilateral"])
 def test_02_a_curved_interface_and_a_mesh_object_give_the_same_bounds(law):
     # the circle crosses the clamped bottom: a disc inside, tied by its normal jump
-    # alone (bilateral), could turn about its centre and is refused (skxfem.rigid)
+    # alone (bilateral), could turn about its centre and is refused (skxfem.linalg.rigid)
     s = Scene(Box((7, 6), "tri"), circle((0.5, 0.2), 0.31), law=law,
               displacements=(clamped("ymin"),))
     from_box = estimate(s)
@@ -104,7 +106,8 @@ def test_07_bad_sizes_are_refused(text):
 
 PEAK = r"""
 import json, sys
-from skxfem import budget, scenes
+from skxfem import scenes
+from skxfem.studies import budget
 from skxfem.solver import solve
 
 def status(key):                             # kB in /proc/self/status
@@ -140,7 +143,7 @@ def test_08_memory_is_an_upper_bound_within_the_stated_factor(case):
 
 
 def test_11_the_estimate_follows_the_linear_solver():
-    """auto resolves as the solve does (skxfem.linear.choose_linear); the
+    """auto resolves as the solve does (skxfem.linalg.linear.choose_linear); the
     iterative path needs far less than the direct one in 3D; frictionless
     contact takes it too, Coulomb contact is solved directly unless asked (then
     its FGMRES basis counts)."""
@@ -181,7 +184,7 @@ def test_12_a_huge_box_is_refused_before_its_levelset_is_evaluated(n, cell, monk
     """Without an interface the box already needs more than the limit: refused from
     its cell counts alone ('at least'), ψ never evaluated (the grid sweep took 40 s
     and 1.7 GB at 3000³, and hung at 10⁸ × 10⁸)."""
-    import skxfem.budget as b
+    import skxfem.studies.budget as b
     from skxfem.levelset import plane
     from skxfem.scene import Box, Scene
     monkeypatch.setattr(b, "box_counts", lambda *a: pytest.fail("ψ was evaluated"))
@@ -201,7 +204,7 @@ def test_12_a_huge_box_is_refused_before_its_levelset_is_evaluated(n, cell, monk
 ])
 def test_13_absurd_sizes_are_counted_exactly_and_refused_alike(n, cell, nodes, monkeypatch):
     """Counts in exact integers: refused as any box above the limit, nothing built."""
-    import skxfem.budget as b
+    import skxfem.studies.budget as b
     monkeypatch.setattr(b, "box_counts", lambda *a: pytest.fail("ψ was evaluated"))
     monkeypatch.setattr(meshes, "box", lambda *a, **k: pytest.fail("the box was built"))
     dim = Box(1, cell).dim

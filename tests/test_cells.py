@@ -1,11 +1,11 @@
-"""skxfem.cells: reference topology of the five cell types."""
+"""skxfem.fem.cells: reference topology of the five cell types."""
 import math
 
 import numpy as np
 import pytest
 from skfem import MeshHex1, MeshQuad1, MeshTet1, MeshTri1, MeshWedge1
 
-from skxfem.cells import cell_edges, faces_of_edges, reference_simplices
+from skxfem.fem.cells import cell_edges, faces_of_edges, reference_simplices
 
 MESHES = {"tri": MeshTri1, "quad": MeshQuad1, "tet": MeshTet1, "hex": MeshHex1,
           "prism": MeshWedge1}

@@ -15,10 +15,10 @@ import numpy as np
 import pytest
 
 import skxfem
-from skxfem import cli, io, reproduce
-from skxfem.cli import main
-from skxfem.contact_newton import ContactConvergenceError
-from skxfem.scenefile import load_scene
+from skxfem.app import cli, io, reproduce
+from skxfem.app.cli import main
+from skxfem.contact.newton import ContactConvergenceError
+from skxfem.scene.file import load_scene
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -362,7 +362,7 @@ def test_22_max_iter_is_for_contact_scenes(tmp_path, capsys, no_solve):
 
 
 def test_23_grade_is_a_subcommand(tmp_path, capsys):
-    """`skxfem grade PATH` is python -m skxfem.grade: a score table and grade.json;
+    """`skxfem grade PATH` is python -m skxfem.app.grade: a score table and grade.json;
     the untouched stub of an exercise fails the grade (exit 1)."""
     import shutil
 
@@ -557,7 +557,7 @@ def test_29_a_run_neither_imports_matplotlib_nor_prints_its_warnings(tmp_path):
     """With its config folder unwritable, matplotlib printed two lines on every run (the
     command imported it to solve a scene); `reproduce --bogus` printed argparse's usage."""
     env = {**os.environ, "MPLCONFIGDIR": "/dev/null/unwritable"}
-    code = ("import sys; from skxfem.cli import main; "
+    code = ("import sys; from skxfem.app.cli import main; "
             f"c = main(['run', {STRIP!r}, '--out', 'o']); "
             "print(c, sorted(m for m in sys.modules if m.split('.')[0] == 'matplotlib'))")
     done = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env,

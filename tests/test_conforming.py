@@ -1,4 +1,4 @@
-"""Tests for skxfem/conforming.py: classical FEM on a mesh that follows Γ.
+"""Tests for skxfem/studies/conforming.py: classical FEM on a mesh that follows Γ.
 
 1. A patch test on every cell type: a uniform compression is exact to round-off.
 2. It refuses what it cannot do: a mesh that Γ cuts, a law other than bonded,
@@ -11,11 +11,11 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from skxfem.conforming import energy_error, solve_conforming, study_conforming
-from skxfem.convergence import observed_rates, study
 from skxfem.levelset import plane
 from skxfem.scene import Box, Scene, SurfaceLoad, rollers
-from skxfem.scenes import exact_scene
+from skxfem.scene.benchmarks import exact_scene
+from skxfem.studies.conforming import energy_error, solve_conforming, study_conforming
+from skxfem.studies.convergence import observed_rates, study
 
 
 def compression(cell, n=2):

@@ -4,13 +4,14 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from skxfem import contact, saddle, solver
-from skxfem.contact_newton import ContactConvergenceError
+from skxfem import contact, solver
+from skxfem.contact.newton import ContactConvergenceError
 from skxfem.enrich import split_fields
+from skxfem.fem.material import Material
 from skxfem.levelset import plane
-from skxfem.material import Material
+from skxfem.linalg import saddle
 from skxfem.scene import Box, Displacement, Scene, SurfaceLoad, clamped
-from skxfem.scenes import strip
+from skxfem.scene.benchmarks import strip
 
 RHOS = (1e-3, 1.0, 1e6)  # × E/h
 
@@ -280,7 +281,7 @@ def test_fixed_point_agrees_with_newton_where_it_converges():
 def test_fixed_point_fails_where_friction_moves_the_pressure_and_stops_with_a_wrong_force():
     """μ = 5, the top pushed 5 sideways: the bonded start's threshold μp is frozen at
     points that must open, and the first pass does not settle (the module notes of
-    skxfem.contact_fixed_point); Newton solves it.  The last state of the pass,
+    skxfem.contact.fixed_point); Newton solves it.  The last state of the pass,
     which a code stopping after a fixed number of passes would return, has the
     wrong friction force."""
     s = tilted_block(mu=5.0, delta=5.0, n=4)
@@ -302,7 +303,7 @@ def test_fixed_point_starts_from_the_bonded_state():
     """A block on a slanted Γ with free sides, held sideways by friction alone: a
     frictionless first pass would leave it free to slide; the bonded start's
     threshold holds it, and the passes reach the exact (sticking) state."""
-    from skxfem.scenes import uniaxial, uniform_block
+    from skxfem.scene.benchmarks import uniaxial, uniform_block
 
     sol = uniaxial(2, tilt=0.2)
     s = uniform_block(sol, n=3, mu=0.5, drive="free")
@@ -333,7 +334,7 @@ def test_dependent_multipliers_are_refused():
 
 
 def test_scene_file_keys(tmp_path):
-    from skxfem.scenefile import load_scene
+    from skxfem.scene.file import load_scene
 
     text = """
 [mesh]
@@ -382,7 +383,7 @@ def test_lbb_story_holds_through_the_contact_solver():
     """The paper's plate on prisms, adhesive (its top pressure only; the bottom clamped
     holds both halves): naive oscillates, vital is smooth, each equal to its bonded tie;
     the iterations stay ≤ 15 over ρ_n."""
-    from skxfem.scenes import paper_plate
+    from skxfem.scene.benchmarks import paper_plate
 
     rough = {}
     for space in ("naive", "vital"):
@@ -441,7 +442,7 @@ def test_coulomb_does_not_depend_on_rho():
 def test_the_paper_plate_with_its_rollers_sticks_as_the_bonded_tie(cell, space, law):
     """Γ crosses the faces x = 0, 1 that carry rollers: each tangent gets the space the
     tie gives that component, so the sticking plate is the bonded tie exactly."""
-    from skxfem.scenes import paper_plate
+    from skxfem.scene.benchmarks import paper_plate
 
     s = paper_plate(5, cell=cell, space=space)
     tie = solver.solve(s, linear="direct")
@@ -459,10 +460,10 @@ def test_the_paper_plate_on_tetrahedra_sticks_with_a_stable_space(space):
     the contact laws cannot share with the pressure (Coulomb needs both at one point);
     contact keeps the normal space for that tangent.  Both are stable: the plate
     sticks everywhere, within 1e-3 of the tie; against the exact plate
-    (skxfem.exact), contact's energy error is the tie's within 10 % and falls as fast."""
-    from skxfem.convergence import energy_error
-    from skxfem.exact import ExactPlate
-    from skxfem.scenes import exact_plate, paper_plate
+    (skxfem.fem.exact), contact's energy error is the tie's within 10 % and falls as fast."""
+    from skxfem.fem.exact import ExactPlate
+    from skxfem.scene.benchmarks import exact_plate, paper_plate
+    from skxfem.studies.convergence import energy_error
 
     s = paper_plate(4, cell="tet", space=space)
     st = contact.solve(replace(s, law="adhesive"), linear="direct").steps[-1]
@@ -481,7 +482,7 @@ def test_the_paper_plate_on_tetrahedra_sticks_with_a_stable_space(space):
 
 
 def test_a_frictionless_plate_on_rollers_is_refused_naming_the_motion():
-    from skxfem.scenes import paper_plate
+    from skxfem.scene.benchmarks import paper_plate
 
     with pytest.raises(saddle.SingularSystemError, match=r"(?s)Ω⁺ .*can translate along y.*"
                        r"frictionless law with Γ closed everywhere.*use a law with friction"):
@@ -554,7 +555,8 @@ def test_unloading_a_sticking_slanted_block_is_linear():
 def test_one_result_for_every_law():
     """The tie and the contact result of a sticking strip: the same type, points,
     traction (whole vector and its parts), pressure and jump, and every reader works."""
-    from skxfem import evaluate, io
+    from skxfem.app import io
+    from skxfem.fem import evaluate
 
     s = strip(3, sides="rollers")
     tie, stuck = solver.solve(s), solver.solve(replace(s, law="adhesive"))

@@ -1,8 +1,8 @@
-"""The local laws of skxfem.contact_laws: values and Jacobians against finite differences."""
+"""The local laws of skxfem.contact.laws: values and Jacobians against finite differences."""
 import numpy as np
 import pytest
 
-from skxfem.contact_laws import (
+from skxfem.contact.laws import (
     OPEN,
     SLIP,
     STICK,
@@ -110,7 +110,7 @@ def test_a_vanishing_friction_coefficient_is_frictionless():
 
     from skxfem import contact
     from skxfem.scene import Displacement, SurfaceLoad, clamped
-    from skxfem.scenes import strip
+    from skxfem.scene.benchmarks import strip
 
     s = replace(strip(n=3), law="coulomb", loads=(SurfaceLoad("ymax", pressure=1.0),),
                 displacements=(clamped("ymin"), Displacement("ymax", {"x": 0.5})))

@@ -1,4 +1,4 @@
-"""Tests for skxfem/contact_linear.py: the Newton step of a frictionless or adhesive
+"""Tests for skxfem/contact/step.py: the Newton step of a frictionless or adhesive
 law solved as a tie by AMG + projected CG, and a Coulomb step by FGMRES on ties,
 give the direct step's answer.
 
@@ -18,8 +18,8 @@ import pytest
 
 import skxfem
 from skxfem import contact
+from skxfem.fem.material import Material
 from skxfem.levelset import plane
-from skxfem.material import Material
 from skxfem.scene import Box, Displacement, Scene, SurfaceLoad, clamped
 
 pytest.importorskip("pyamg")
@@ -118,7 +118,7 @@ def test_linear_reaches_the_contact_solve_and_auto_follows_the_law(monkeypatch):
     s = scene("partial", 2, "frictionless")
     assert skxfem.solve(s, linear="iterative").linear == "iterative"
     assert skxfem.solve(s).linear == "direct", "auto: small scenes are solved directly"
-    monkeypatch.setitem(skxfem.linear.AUTO_ITERATIVE, 2, 10)
+    monkeypatch.setitem(skxfem.linalg.linear.AUTO_ITERATIVE, 2, 10)
     assert skxfem.solve(s).linear == "iterative", "auto: large frictionless scenes"
     coulomb = replace(s, law="coulomb", friction=0.3)
     assert skxfem.solve(coulomb).linear == "direct", "auto: Coulomb is solved directly"

@@ -1,10 +1,10 @@
-"""The contact Newton method (skxfem/contact_newton.py) against known answers.
+"""The contact Newton method (skxfem/contact/newton.py) against known answers.
 
 1. The sweep of issue 17: uniform and oblique slip of a pressed block, a block
    sliding on a slanted Γ, a block pushed to exactly the slip limit, a block
    driven by a top pressure and a tangential displacement, in 2D and 3D, for
    μ ∈ {0.1, 0.3, 0.6, 1, 2, 5} and ρ_n, ρ_τ from 1e-3 to 1e6 × E/h: every run
-   gives the exact state (a uniform stress, :class:`skxfem.exact.UniformContact`)
+   gives the exact state (a uniform stress, :class:`skxfem.fem.exact.UniformContact`)
    to 1e-8, in at most 15 iterations at the default ρ and 30 at any, uncut.
 2. The convergence test means something when forces vanish: an interface opened
    by imposed displacements converges in at most 3 iterations.
@@ -18,8 +18,8 @@ import numpy as np
 import pytest
 
 from skxfem import contact
-from skxfem.contact_interface import tangent_frames
-from skxfem.contact_newton import (
+from skxfem.contact.interface import tangent_frames
+from skxfem.contact.newton import (
     Iterate,
     StepProblem,
     jacobian,
@@ -28,10 +28,10 @@ from skxfem.contact_newton import (
     residual,
 )
 from skxfem.enrich import split_fields
+from skxfem.fem.material import Material
 from skxfem.levelset import plane
-from skxfem.material import Material
 from skxfem.scene import Box, Displacement, Scene, clamped
-from skxfem.scenes import sliding, uniaxial, uniform_block
+from skxfem.scene.benchmarks import sliding, uniaxial, uniform_block
 
 MUS = (0.1, 0.3, 0.6, 1.0, 2.0, 5.0)
 RHOS = ((1e-3, 1e-3), (1e-3, 1e6), (1e6, 1e-3), (1e6, 1e6), (1e-3, 1.0), (1.0, 1e-3),

@@ -1,15 +1,15 @@
-"""Figures of the contact chapter (skxfem.contact_plots)."""
+"""Figures of the contact chapter (skxfem.viz.contact_plots)."""
 from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from skxfem import contact
-from skxfem.contact_plots import edge_status, plot_iterations, plot_status_2d, plot_status_3d
+from skxfem.fem.material import Material
 from skxfem.levelset import plane
-from skxfem.material import Material
 from skxfem.scene import Box, Displacement, Scene, clamped
-from skxfem.scenes import strip
+from skxfem.scene.benchmarks import strip
+from skxfem.viz.contact_plots import edge_status, plot_iterations, plot_status_2d, plot_status_3d
 
 
 def turned(dim):

@@ -1,4 +1,4 @@
-"""Convergence (skxfem/convergence.py) on the exact plate: the paper's
+"""Convergence (skxfem/studies/convergence.py) on the exact plate: the paper's
 Figures 9-10, quantitatively.  Naive multipliers on triangles/prisms do not
 converge in pressure; winner nodes (algo1) and vital edges (algo2) do, at a
 rate of at least 1, with algo2 the more accurate; displacements converge at
@@ -6,11 +6,11 @@ rate 1 in energy for every space."""
 import numpy as np
 import pytest
 
-from skxfem.convergence import observed_rates, study
-from skxfem.exact import ExactPlate
-from skxfem.material import Material
-from skxfem.scenes import exact_plate, exact_strip
+from skxfem.fem.exact import ExactPlate
+from skxfem.fem.material import Material
+from skxfem.scene.benchmarks import exact_plate, exact_strip
 from skxfem.solver import solve
+from skxfem.studies.convergence import observed_rates, study
 
 NS = [8, 16, 32, 64]
 

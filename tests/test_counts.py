@@ -1,11 +1,11 @@
-"""skxfem.counts: the sizes of a Box in exact integers, equal to the built mesh's."""
+"""skxfem.studies.counts: the sizes of a Box in exact integers, equal to the built mesh's."""
 import math
 
 import pytest
 
-from skxfem.counts import box_size
-from skxfem.meshes import box
+from skxfem.fem.meshes import box
 from skxfem.scene import Box
+from skxfem.studies.counts import box_size
 
 
 @pytest.mark.parametrize("n", [1, 3, (2, 5), (2, 3, 4)])

@@ -7,9 +7,9 @@ import pytest
 from skfem import Basis, MeshLine1, MeshTri2
 
 from skxfem.cut import cut
+from skxfem.fem.meshes import box
+from skxfem.fem.quadrature import cell_rule, subcell_rule
 from skxfem.levelset import circle, plane, sphere
-from skxfem.meshes import box
-from skxfem.quadrature import cell_rule, subcell_rule
 
 
 def dim_of(cell):

@@ -1,8 +1,8 @@
-"""The shared queries on the graph of the cut edges (skxfem/cutgraph.py)."""
+"""The shared queries on the graph of the cut edges (skxfem/fem/cutgraph.py)."""
 import numpy as np
 import pytest
 
-from skxfem.cutgraph import check_fixed, edges_at, incidence, interpolate, nearest
+from skxfem.fem.cutgraph import check_fixed, edges_at, incidence, interpolate, nearest
 
 # nodes 0, 2, 4 below Γ, 1, 3 above; edges 0-1, 2-1, 2-3, 4-3
 EDGES = np.array([[0, 2, 2, 4], [1, 1, 3, 3]])

@@ -37,12 +37,12 @@ from skxfem.enrich import (
     split_fields,
     stiffness,
 )
-from skxfem.evaluate import evaluation_matrix
+from skxfem.fem.evaluate import evaluation_matrix
+from skxfem.fem.loads import boundary_quadrature, surface_load
+from skxfem.fem.material import Material, stiffness_form
+from skxfem.fem.meshes import box
+from skxfem.fem.quadrature import cell_rule
 from skxfem.levelset import complement, plane
-from skxfem.loads import boundary_quadrature, surface_load
-from skxfem.material import Material, stiffness_form
-from skxfem.meshes import box
-from skxfem.quadrature import cell_rule
 
 MATERIAL = Material(E=1.0, nu=0.3)
 

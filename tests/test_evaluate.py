@@ -1,4 +1,4 @@
-"""Tests for skxfem/evaluate.py: the vector basis at points of known cells.
+"""Tests for skxfem/fem/evaluate.py: the vector basis at points of known cells.
 
 1. A linear vector field u(x) = Gx + d is in every P1/Q1 space, so the
    evaluation matrix applied to its nodal values reproduces it exactly at
@@ -15,9 +15,9 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementVector
 
-from skxfem.evaluate import evaluation_matrix, pressure_along
-from skxfem.meshes import box, check_mesh
-from skxfem.scenes import paper_plate, strip
+from skxfem.fem.evaluate import evaluation_matrix, pressure_along
+from skxfem.fem.meshes import box, check_mesh
+from skxfem.scene.benchmarks import paper_plate, strip
 from skxfem.solver import solve
 
 

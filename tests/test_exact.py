@@ -1,4 +1,4 @@
-"""Tests for skxfem/exact.py: the Airy solution of the plate is an elasticity solution.
+"""Tests for skxfem/fem/exact.py: the Airy solution of the plate is an elasticity solution.
 
 What is checked, at random points, for the 2D strip (plane strain and plane
 stress) and the 3D plate, with several E, ν and P:
@@ -20,10 +20,10 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementVector
 
-from skxfem.exact import ExactPlate
-from skxfem.material import Material
+from skxfem.fem.exact import ExactPlate
+from skxfem.fem.material import Material
 from skxfem.scene import dirichlet, load_facets, resolve_mesh, traction
-from skxfem.scenes import P_MAX, exact_plate, exact_strip
+from skxfem.scene.benchmarks import P_MAX, exact_plate, exact_strip
 
 CASES = [
     (2, Material(1.0, 0.3, "strain"), 1.0),

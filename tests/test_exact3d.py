@@ -1,4 +1,4 @@
-"""Tests for skxfem/exact3d.py: Love's solution on the block is an elasticity solution
+"""Tests for skxfem/fem/exact3d.py: Love's solution on the block is an elasticity solution
 that varies in all three directions, and exact_block imposes exactly its values.
 
 What is checked, at random points, for several E, ν and P:
@@ -19,10 +19,10 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementVector
 
-from skxfem.exact3d import CENTRE, GAMMA_NORMAL, GAMMA_POINT, ExactBlock
-from skxfem.material import Material
+from skxfem.fem.exact3d import CENTRE, GAMMA_NORMAL, GAMMA_POINT, ExactBlock
+from skxfem.fem.material import Material
 from skxfem.scene import dirichlet, resolve_mesh, traction
-from skxfem.scenes import P_MAX, exact_block
+from skxfem.scene.benchmarks import P_MAX, exact_block
 
 CASES = [(Material(1.0, 0.3), 1.0), (Material(2.5, 0.2), 1.7), (Material(3.0, 0.45), 0.4),
          (Material(1e3, -0.5), 2.0)]

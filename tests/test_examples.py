@@ -6,8 +6,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from skxfem.cli import main
-from skxfem.scenefile import load_scene
+from skxfem.app.cli import main
+from skxfem.scene.file import load_scene
 
 EXAMPLES = sorted((Path(__file__).resolve().parents[1] / "examples").glob("*.toml"))
 

@@ -1,4 +1,4 @@
-"""The graders of exercises/ proved right (issue 10), and skxfem.grade.
+"""The graders of exercises/ proved right (issue 10), and skxfem.app.grade.
 
 The exercises are not in the main suite's testpaths (their stubs raise); these
 tests drive them: every reference passes, every untouched stub fails test by
@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from skxfem.grade import Result, Score, _exercise_of, find_exercises, hints, main, table
+from skxfem.app.grade import Result, Score, _exercise_of, find_exercises, hints, main, table
 
 ROOT = Path(__file__).resolve().parents[1]
 EXERCISES = ROOT / "exercises"
@@ -126,7 +126,7 @@ def copy_exercise(tmp_path, name, student_source=None) -> Path:
     ("01_levelset", "import skxfem.levelset as L\n\n\ndef plane(point, normal):\n"
                     "    return L.plane(point, normal)\n\n\n"
                     "circle = L.circle\nsphere = L.sphere\n"),
-    ("07_contact", "import numpy as np\nfrom skxfem import contact_laws\n\n\n"
+    ("07_contact", "import numpy as np\nfrom skxfem.contact import laws as contact_laws\n\n\n"
                    "def augmented_multiplier(lam, d_n, rho_n):\n    return lam - rho_n * d_n\n\n\n"
                    "normal_update = contact_laws.normal_update\n"
                    "ball_projection = contact_laws.ball_projection\n"),
@@ -220,7 +220,7 @@ def test_grade_usage_errors_name_the_choices(tmp_path, capsys, monkeypatch):
         capsys.readouterr()
     assert not (tmp_path / "out").exists(), "a usage error writes no report"
     # the command line's subcommand is the same; so is an unknown option (argparse)
-    from skxfem.cli import main as cli
+    from skxfem.app.cli import main as cli
     assert cli(["grade", str(EXERCISES), "--impl=bogus"]) == 2
     assert len(capsys.readouterr().err.splitlines()) == 1
     with pytest.raises(SystemExit) as done:

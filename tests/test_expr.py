@@ -5,8 +5,8 @@ import inspect
 import numpy as np
 import pytest
 
-from skxfem import expr
-from skxfem.expr import MAX_DEPTH, MAX_LENGTH, Expression, compile_expression
+from skxfem.scene import expr
+from skxfem.scene.expr import MAX_DEPTH, MAX_LENGTH, Expression, compile_expression
 
 X2 = np.array([[0.0, 0.25, 0.5, 1.0], [1.0, 0.5, 0.0, 2.0]])
 X3 = np.vstack([X2, [3.0, -1.0, 0.5, 0.0]])

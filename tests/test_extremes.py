@@ -4,12 +4,25 @@ import math
 
 import pytest
 
-from skxfem.extremes import Row, attempt, conditioning, patch_error, patch_scene, position_rows
-from skxfem.extremes_scales import modulus_rows, poisson_rows, rho_rows
-from skxfem.extremes_shapes import largest, memory_rows, one_cell_rows, shape_rows, space_rows
-from skxfem.extremes_table import format_rows
 from skxfem.levelset import plane
 from skxfem.scene import Box
+from skxfem.studies.extremes import (
+    Row,
+    attempt,
+    conditioning,
+    patch_error,
+    patch_scene,
+    position_rows,
+)
+from skxfem.studies.extremes_scales import modulus_rows, poisson_rows, rho_rows
+from skxfem.studies.extremes_shapes import (
+    largest,
+    memory_rows,
+    one_cell_rows,
+    shape_rows,
+    space_rows,
+)
+from skxfem.studies.extremes_table import format_rows
 
 
 def check_rows(rows):
@@ -134,7 +147,7 @@ def test_a_slanted_gamma_crossing_the_supported_bottom_passes_the_patch_test(n):
 
 
 def test_support_and_piece_rows_are_solved_to_round_off():
-    from skxfem.extremes_shapes import CROSSINGS, PIECES, piece_rows, support_rows
+    from skxfem.studies.extremes_shapes import CROSSINGS, PIECES, piece_rows, support_rows
 
     rows = check_rows(support_rows(["quad", "hex"]) + piece_rows(["tri", "prism"]))
     assert len(rows) == 2 * len(CROSSINGS) + 2 * len(PIECES)
@@ -142,7 +155,7 @@ def test_support_and_piece_rows_are_solved_to_round_off():
 
 
 def test_refused_rows_are_refused_and_the_limits_solved():
-    from skxfem.extremes_refused import limit_rows, refused_rows
+    from skxfem.studies.extremes_refused import limit_rows, refused_rows
 
     refused = check_rows(refused_rows())
     assert all(r.outcome == "refused" for r in refused.values())

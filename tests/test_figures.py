@@ -1,4 +1,4 @@
-"""Tests for skxfem.figures: one function per paper figure, each a returned Figure.
+"""Tests for skxfem.viz.figures: one function per paper figure, each a returned Figure.
 
 What is drawn is checked (axes, lines, labels, colours and the data of the
 curves), not pixels.  Figure 6 is also checked against the paper's numbers.
@@ -11,9 +11,13 @@ import pytest
 from matplotlib.colors import to_rgba
 from matplotlib.figure import Figure
 
-from skxfem.convergence import StudyRow
 from skxfem.cut import cut
-from skxfem.figures import (
+from skxfem.fem.meshes import box
+from skxfem.lbb import InfSup
+from skxfem.levelset import plane, sphere
+from skxfem.stabilised import multiplier_space, vital_edges, winner_nodes
+from skxfem.studies.convergence import StudyRow
+from skxfem.viz.figures import (
     FIG6_EDGES,
     fig5,
     fig6,
@@ -26,12 +30,8 @@ from skxfem.figures import (
     figure6_graph,
     plot_space_2d,
 )
-from skxfem.lbb import InfSup
-from skxfem.levelset import plane, sphere
-from skxfem.meshes import box
-from skxfem.plot_space import plot_space_3d
-from skxfem.plotting import COLORS
-from skxfem.stabilised import multiplier_space, vital_edges, winner_nodes
+from skxfem.viz.plot_space import plot_space_3d
+from skxfem.viz.plotting import COLORS
 
 
 def same_colour(a, b):

@@ -7,7 +7,7 @@ import threading
 
 import pytest
 
-from skxfem.files import check_folder, quiet, read_bytes, regular_file, write_set
+from skxfem.fem.files import check_folder, quiet, read_bytes, regular_file, write_set
 
 
 def test_01_what_is_not_a_regular_file_is_named(tmp_path):
@@ -111,7 +111,7 @@ def test_07_check_folder_names_what_is_in_the_way(tmp_path, monkeypatch):
 
 def test_08_a_file_system_without_locks_still_gets_its_set(tmp_path, monkeypatch):
     """Some network mounts refuse flock (ENOLCK): the set is written, unlocked."""
-    from skxfem import files
+    from skxfem.fem import files
 
     def flock_fails(code, text):
         def flock(fd, operation):

@@ -3,8 +3,8 @@ import json
 import pytest
 from matplotlib.figure import Figure
 
-from skxfem.frontier import PLANS, SOLVERS, Plan, Point, pareto, summary, sweep
-from skxfem.frontier_plots import plot_frontier, reproduce_frontier
+from skxfem.studies.frontier import PLANS, SOLVERS, Plan, Point, pareto, summary, sweep
+from skxfem.viz.frontier_plots import plot_frontier, reproduce_frontier
 
 TINY = (Plan("strip", ("quad", "tri"), ("vital",), (None, 4), ("direct",), (4, 8)),
         Plan("plate", ("hex",), ("naive",), (None,), ("direct",), (2,)))
@@ -76,7 +76,7 @@ def test_summary_takes_the_front_of_each_benchmark_separately():
 
 
 def test_reproduce_sizes_give_small_plans_of_both_benchmarks():
-    from skxfem.frontier import plans
+    from skxfem.studies.frontier import plans
 
     small = plans(True, [8, 4, 8])
     assert [p.problem for p in small] == ["plate", "strip"]

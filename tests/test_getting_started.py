@@ -80,7 +80,7 @@ def test_readme_book_and_exercises_have_no_other_path():
              *(ROOT / "book").glob("*.md")]
     for path in texts:
         text = path.read_text(encoding="utf-8")
-        for other in ("pip install -e", "python -m skxfem.grade ", "`pytest exercises"):
+        for other in ("pip install -e", "python -m skxfem.app.grade ", "`pytest exercises"):
             assert other not in text, f"{path.relative_to(ROOT)} says {other!r}"
 
 

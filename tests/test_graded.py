@@ -1,4 +1,4 @@
-"""skxfem.graded: which functions are graded, what answers them, and the book check."""
+"""skxfem.app.graded: which functions are graded, what answers them, and the book check."""
 import ast
 import html
 import inspect
@@ -10,7 +10,7 @@ from pygments import highlight
 from pygments.formatters import HtmlFormatter
 from pygments.lexers import PythonLexer
 
-from skxfem.graded import (
+from skxfem.app.graded import (
     INSTRUCTORS,
     answers,
     check_book,
@@ -62,13 +62,13 @@ def test_answers_hold_the_library_code_the_book_printed():
     """The functions issue 20 found printed in the book are among the answers,
     and so is the reference of every graded function."""
     expected = {"01_levelset": ["skxfem.levelset.plane", "skxfem.levelset._ball"],
-                "02_cut": ["skxfem.cut.strictly_cut_edges", "skxfem.simplex.edge_point",
-                           "skxfem.simplex.split"],
+                "02_cut": ["skxfem.cut.strictly_cut_edges", "skxfem.fem.simplex.edge_point",
+                           "skxfem.fem.simplex.split"],
                 "05_lbb": ["skxfem.lbb.inf_sup_constant"],
                 "06_stabilised": ["skxfem.stabilised.minimum_edge_cover"],
-                "07_contact": ["skxfem.contact_laws.normal_update",
-                               "skxfem.contact_laws.ball_projection",
-                               "skxfem.contact_laws.indicator"]}
+                "07_contact": ["skxfem.contact.laws.normal_update",
+                               "skxfem.contact.laws.ball_projection",
+                               "skxfem.contact.laws.indicator"]}
     for exercise, names in graded().items():
         found = answers(exercise)
         assert set(expected.get(exercise, [])) <= set(found), exercise
@@ -91,22 +91,22 @@ def test_the_contract_hides_the_code_and_the_instructors_listing_shows_it(exerci
 
 
 def test_listing_names_the_exercise():
-    from skxfem.contact_laws import ball_projection
-    from skxfem.contact_newton import residual
+    from skxfem.contact.laws import ball_projection
+    from skxfem.contact.newton import residual
     assert "exercise 07_contact" in listing(ball_projection, environ={})
     assert "ball_projection" in listing(ball_projection, environ={}).splitlines()[0]
     assert "an exercise's answer" in listing(residual, environ={})   # not graded: no name
 
 
 def test_check_book_finds_a_shown_answer(tmp_path):
-    from skxfem.simplex import edge_point
+    from skxfem.fem.simplex import edge_point
     book = write_book(tmp_path / "html", {
         "index.html": page("print('hello')"),
         "cut.html": page(inspect.getsource(edge_point)),
         "levelset.html": page(contract(edge_point))})          # the contract is fine
     problems = check_book(book)
     assert len(problems) == 1
-    assert problems[0].startswith("cut.html") and "skxfem.simplex.edge_point" in problems[0]
+    assert problems[0].startswith("cut.html") and "skxfem.fem.simplex.edge_point" in problems[0]
     assert "02_cut" in problems[0]
 
 

@@ -20,14 +20,14 @@ import numpy as np
 import pytest
 
 import skxfem
-from skxfem.amg import rigid_modes
-from skxfem.budget import estimate
-from skxfem.io import write_result
+from skxfem.app.io import write_result
+from skxfem.fem.material import Material
 from skxfem.levelset import circle, plane, sphere
-from skxfem.material import Material
+from skxfem.linalg.amg import rigid_modes
+from skxfem.linalg.saddle import SingularSystemError
 from skxfem.problem import assemble
-from skxfem.saddle import SingularSystemError
 from skxfem.scene import Box, Displacement, Interface, Scene, SurfaceLoad, clamped, rollers
+from skxfem.studies.budget import estimate
 
 CELLS = ("quad", "tri", "hex", "tet", "prism")
 E, P, LIFT, PUSH = 2.0, 1.5, 0.01, 0.004
@@ -345,9 +345,9 @@ def test_size_guard_counts_each_interface():
 
 
 def test_one_interface_tools_refuse_several_clearly():
-    from skxfem.conforming import solve_conforming
-    from skxfem.convergence import energy_error, pressure_error
     from skxfem.lbb import inf_sup
+    from skxfem.studies.conforming import solve_conforming
+    from skxfem.studies.convergence import energy_error, pressure_error
 
     scene = column("quad")
     with pytest.raises(ValueError, match=r"inf_sup\(scene.alone\(k\)\)"):

@@ -15,14 +15,16 @@ import meshio
 import numpy as np
 import pytest
 
-from skxfem import contact, files, io
+from skxfem import contact
+from skxfem.app import io
+from skxfem.app.io import cell_sides, check_output, side_pieces, vtk_cells, write_result
 from skxfem.enrich import split_fields
-from skxfem.io import cell_sides, check_output, side_pieces, vtk_cells, write_result
+from skxfem.fem import files
+from skxfem.fem.material import Material
+from skxfem.fem.meshes import box
 from skxfem.levelset import nodal_values, plane
-from skxfem.material import Material
-from skxfem.meshes import box
 from skxfem.scene import Box, Displacement, Scene, SurfaceLoad, clamped
-from skxfem.scenes import strip
+from skxfem.scene.benchmarks import strip
 
 MESHIO_TYPE = {"tri": "triangle", "quad": "quad", "tet": "tetra", "hex": "hexahedron",
                "prism": "wedge"}

@@ -1,4 +1,4 @@
-"""Tests for skxfem/iterative.py (and skxfem/smoothest.py): the AMG-preconditioned
+"""Tests for skxfem/linalg/iterative.py (and skxfem/linalg/smoothest.py): the AMG-preconditioned
 projected CG solve of the tied saddle system gives the direct solve's answer.
 
 1. ``rigid_modes``: each side's rigid motion has zero energy, vanishes on the
@@ -22,13 +22,13 @@ import pytest
 import scipy.sparse as sp
 from scipy.sparse.linalg import eigsh
 
-from skxfem import iterative, saddle
-from skxfem.amg import rigid_modes
 from skxfem.enrich import split_fields
+from skxfem.linalg import iterative, saddle
+from skxfem.linalg.amg import rigid_modes
+from skxfem.linalg.smoothest import dependencies, smoothest
 from skxfem.problem import assemble
 from skxfem.scene import Displacement
-from skxfem.scenes import exact_plate, exact_strip, paper_plate
-from skxfem.smoothest import dependencies, smoothest
+from skxfem.scene.benchmarks import exact_plate, exact_strip, paper_plate
 from skxfem.solver import _differences
 
 CELLS = ["tri", "quad", "tet", "hex", "prism"]

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from skxfem.convergence import observed_rates
 from skxfem.lbb import inf_sup, inf_sup_constant
-from skxfem.scenes import exact_plate, exact_strip
+from skxfem.scene.benchmarks import exact_plate, exact_strip
+from skxfem.studies.convergence import observed_rates
 
 NS = [8, 16, 32, 64]
 
@@ -127,7 +127,7 @@ def supported_betas():
     """β_h and zero modes where Γ meets the rollers: the paper's plate (two
     layers of cells along x, so that the x-faces hold some nodes of the cut
     and not others) and the strip with rollers on x = 0 and x = 1."""
-    from skxfem.scenes import paper_plate, strip
+    from skxfem.scene.benchmarks import paper_plate, strip
 
     scenes = {"prism": lambda n, s: paper_plate(n, "prism", space=s, nx=2),
               "tet": lambda n, s: paper_plate(n, "tet", space=s, nx=2),
@@ -154,7 +154,7 @@ def test_stable_spaces_stay_stable_where_gamma_meets_a_support(supported_betas, 
 
 def test_the_papers_plate_on_prisms_is_stable_bonded_and_bilateral():
     """paper_plate(n, "prism", space="vital") as in issue 7 (n cells along x)."""
-    from skxfem.scenes import paper_plate
+    from skxfem.scene.benchmarks import paper_plate
 
     for n in (3, 5):
         for law in ("bonded", "bilateral"):
@@ -165,7 +165,7 @@ def test_the_papers_plate_on_prisms_is_stable_bonded_and_bilateral():
 def test_hexahedra_lose_their_zero_modes():
     """Bonded hexahedra had 8, 12 zero modes for n = 3, 5 (the x-multipliers
     of the edges in the roller faces, which see no jump)."""
-    from skxfem.scenes import paper_plate
+    from skxfem.scene.benchmarks import paper_plate
 
     for n in (3, 5):
         r = inf_sup(paper_plate(n, "hex", space="naive"))

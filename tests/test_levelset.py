@@ -19,6 +19,7 @@
 import numpy as np
 import pytest
 
+from skxfem.fem.meshes import box
 from skxfem.levelset import (
     LevelSet,
     circle,
@@ -30,7 +31,6 @@ from skxfem.levelset import (
     sphere,
     union,
 )
-from skxfem.meshes import box
 
 
 def dim_of(cell):
@@ -367,8 +367,8 @@ def test_a_level_set_without_gradient_gets_central_differences(scale):
     """A scene-file formula has no analytic gradient: the difference step is
     ε^(1/3) max|x|, so the error stays near ε^(2/3) whatever the units (8e-11
     measured at each scale)."""
-    from skxfem.expr import Expression
     from skxfem.levelset import gradient
+    from skxfem.scene.expr import Expression
 
     c, r = 0.5 * scale, 0.3 * scale
     formula = LevelSet(Expression(f"((x - {c})**2 + (y - {c})**2)**0.5 - {r}", 2), 2, "formula")

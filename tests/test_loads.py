@@ -1,4 +1,4 @@
-"""Tests for skxfem.loads: boundary quadrature, cut facets and surface loads."""
+"""Tests for skxfem.fem.loads: boundary quadrature, cut facets and surface loads."""
 import numpy as np
 import pytest
 from skfem import (
@@ -18,10 +18,10 @@ from skfem import (
 )
 from skfem.helpers import dot
 
-from skxfem.loads import BoundaryQuadrature, boundary_quadrature, pressure, surface_load
-from skxfem.material import Material, stiffness_form
-from skxfem.meshes import box
-from skxfem.quadrature import cell_rule
+from skxfem.fem.loads import BoundaryQuadrature, boundary_quadrature, pressure, surface_load
+from skxfem.fem.material import Material, stiffness_form
+from skxfem.fem.meshes import box
+from skxfem.fem.quadrature import cell_rule
 from skxfem.scene import CELLS
 
 ELEM = {"tri": ElementTriP1, "quad": ElementQuad1, "tet": ElementTetP1,

@@ -1,11 +1,11 @@
-"""skxfem.material: Hooke's law on scikit-fem's elasticity model."""
+"""skxfem.fem.material: Hooke's law on scikit-fem's elasticity model."""
 import numpy as np
 import pytest
 from skfem import Basis, ElementTriP1, ElementVector, MeshTri1
 
-from skxfem.material import Material, signed_stiffness_form, stiffness_form, stiffness_matrix
-from skxfem.meshes import box
-from skxfem.quadrature import cell_rule, subcell_rule
+from skxfem.fem.material import Material, signed_stiffness_form, stiffness_form, stiffness_matrix
+from skxfem.fem.meshes import box
+from skxfem.fem.quadrature import cell_rule, subcell_rule
 
 
 def test_lame_constants_plane_strain_and_stress():
@@ -115,10 +115,10 @@ def test_a_nearly_incompressible_material_is_refused_saying_why(nu):
 
 def test_the_largest_accepted_poisson_ratio_solves_the_patch_test(cell):
     """At NU_MAX (λ/μ = 5e5) every cell still passes the patch test."""
-    from skxfem.extremes import patch_error, patch_scene
+    from skxfem.fem.material import NU_MAX
     from skxfem.levelset import plane
-    from skxfem.material import NU_MAX
     from skxfem.scene import Box
+    from skxfem.studies.extremes import patch_error, patch_scene
 
     dim = 2 if cell in ("tri", "quad") else 3
     psi = plane((0.5,) * (dim - 1) + (0.53,), (0.0,) * (dim - 1) + (1.0,))

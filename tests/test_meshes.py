@@ -1,12 +1,12 @@
-"""Tests for skxfem.meshes: boxes of five cell types, mesh checks, file input."""
+"""Tests for skxfem.fem.meshes: boxes of five cell types, mesh checks, file input."""
 import meshio
 import numpy as np
 import pytest
 from skfem import Basis, MeshHex1, MeshLine1, MeshQuad1, MeshTet1, MeshTri1, MeshTri2, MeshWedge1
 from skfem.io.meshio import to_meshio
 
-from skxfem.meshes import CELLS, box, cell_name, check_mesh, read
-from skxfem.quadrature import cell_rule, wedge_rule
+from skxfem.fem.meshes import CELLS, box, cell_name, check_mesh, read
+from skxfem.fem.quadrature import cell_rule, wedge_rule
 
 N3, SIZE3 = (2, 3, 5), (1.5, 2.0, 0.5)
 N2, SIZE2 = (3, 4), (1.5, 2.0)

@@ -19,11 +19,11 @@ unit square/cube (so that the normal is not a mesh direction):
 import numpy as np
 import pytest
 
-from skxfem.cells import cell_edges
 from skxfem.cut import cut
 from skxfem.enrich import space
+from skxfem.fem.cells import cell_edges
+from skxfem.fem.meshes import box
 from skxfem.levelset import plane
-from skxfem.meshes import box
 from skxfem.multipliers import (
     LAWS,
     SPACES,
@@ -259,7 +259,7 @@ def test_rollers_hold_the_tangential_jump_on_the_strips_sides():
     own, but the λ_x of the cut edge next to them on Γ (their hat function
     still meets the free jump of their cell); the y-jump (the normal one,
     bilateral) is held nowhere."""
-    from skxfem.scenes import strip
+    from skxfem.scene.benchmarks import strip
 
     p, pn = _assembled(strip(5, cell="tri", space="vital", sides="rollers"))
     fixed = fixed_jumps(p.V, p.D)

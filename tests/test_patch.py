@@ -20,12 +20,12 @@ import dataclasses
 import numpy as np
 import pytest
 
-from skxfem.convergence import energy_error
+from skxfem.fem.material import Material
 from skxfem.levelset import LevelSet, plane
-from skxfem.material import Material
-from skxfem.saddle import SingularSystemError
+from skxfem.linalg.saddle import SingularSystemError
 from skxfem.scene import Box, Displacement, Scene, SurfaceLoad, rollers
 from skxfem.solver import solve
+from skxfem.studies.convergence import energy_error
 
 P = 1.0
 
@@ -275,7 +275,7 @@ def test_gamma_crossing_a_supported_face_in_the_other_spaces(cell, space):
 # stable space gave that piece of Γ one star of vital edges (one μ per component):
 # its mean jump cannot hold the piece's turning, and the tied system was refused as
 # singular ("a part of the body can move freely").  Such a piece gets a multiplier
-# per edge (skxfem.rigid.short_pieces), and the patch test holds to round-off, down
+# per edge (skxfem.linalg.rigid.short_pieces), and the patch test holds to round-off, down
 # to pieces whose nodes lose their enrichment (skxfem.enrich.space's sliver rule).
 
 @pytest.mark.parametrize("size", [0.05, 1e-3, 1e-6])
@@ -292,7 +292,7 @@ def test_a_small_corner_piece_held_by_the_tie_alone_is_solved(cell, size, space)
 
 
 def uniform_strain_of(material, sigma):
-    from skxfem.extremes import uniform_strain
+    from skxfem.studies.extremes import uniform_strain
 
     return uniform_strain(material, sigma.shape[0], sigma)
 

@@ -1,11 +1,11 @@
-"""The figure of the edges that lose a multiplier component (skxfem/plot_supports.py)."""
+"""The figure of the edges that lose a multiplier component (skxfem/viz/plot_supports.py)."""
 import numpy as np
 import pytest
 from matplotlib.collections import LineCollection
 
-from skxfem.plot_supports import KINDS, plot_held_edges
 from skxfem.problem import assemble
-from skxfem.scenes import paper_plate, strip
+from skxfem.scene.benchmarks import paper_plate, strip
+from skxfem.viz.plot_supports import KINDS, plot_held_edges
 
 
 def drawn(ax):

@@ -9,10 +9,10 @@ from matplotlib.colors import to_rgba
 from matplotlib.figure import Figure
 
 from skxfem.cut import cut
+from skxfem.fem.meshes import box
 from skxfem.levelset import circle, nodal_values, plane
-from skxfem.meshes import box
 from skxfem.multipliers import SPACES
-from skxfem.plotting import (
+from skxfem.viz.plotting import (
     COLORS,
     plot_cut_2d,
     plot_levelset_2d,

@@ -9,11 +9,11 @@ import skxfem.lbb as lbb
 import skxfem.solver as solver
 from skxfem.cut import cut as cut_mesh
 from skxfem.enrich import jump_matrix, space, stiffness
+from skxfem.fem.quadrature import cell_rule
 from skxfem.multipliers import coupling, interface_rule
 from skxfem.problem import COUPLING, assemble, check_law, constrained_dofs
-from skxfem.quadrature import cell_rule
 from skxfem.scene import resolve_mesh
-from skxfem.scenes import paper_plate, strip
+from skxfem.scene.benchmarks import paper_plate, strip
 from skxfem.stabilised import multiplier_space
 
 
@@ -100,9 +100,9 @@ def test_builds_only_what_the_scene_requires(monkeypatch):
     frictionless contact solve carries no friction unknowns."""
     import scipy.sparse.linalg as spla
 
-    import skxfem.contact_newton as contact_newton
-    import skxfem.saddle as saddle
-    from skxfem.contact_laws import CONTACT_LAWS
+    import skxfem.contact.newton as contact_newton
+    import skxfem.linalg.saddle as saddle
+    from skxfem.contact.laws import CONTACT_LAWS
 
     scene = strip(6, cell="tri", space="vital")
     p = assemble(scene)
@@ -120,8 +120,8 @@ def test_builds_only_what_the_scene_requires(monkeypatch):
 
     assert "frictionless" in CONTACT_LAWS
     shapes = []
-    real_solve = contact_newton.contact_linear.direct
-    monkeypatch.setattr(contact_newton.contact_linear, "direct",
+    real_solve = contact_newton.linear_step.direct
+    monkeypatch.setattr(contact_newton.linear_step, "direct",
                         lambda A, R, nu, reuse=None: shapes.append((A.shape[0], nu))
                         or real_solve(A, R, nu, reuse))
     from skxfem.scene import Displacement
@@ -142,10 +142,10 @@ def test_contact_newton_factorises_a_matrix_once(monkeypatch, law, linear):
     a fresh one; a pressed strip takes one iteration, one factorisation."""
     import scipy.sparse.linalg as spla
 
-    import skxfem.contact_linear as contact_linear
-    import skxfem.iterative as iterative
+    import skxfem.contact.step as linear_step
+    import skxfem.linalg.iterative as iterative
     from skxfem import contact
-    from skxfem.contact_newton import Iterate, StepProblem, jacobian, point_laws, residual
+    from skxfem.contact.newton import Iterate, StepProblem, jacobian, point_laws, residual
     from skxfem.scene import Displacement, SurfaceLoad
 
     if linear == "iterative":
@@ -157,7 +157,7 @@ def test_contact_newton_factorises_a_matrix_once(monkeypatch, law, linear):
     calls = []
     if linear == "direct":
         real = spla.splu
-        monkeypatch.setattr(contact_linear.spla, "splu",
+        monkeypatch.setattr(linear_step.spla, "splu",
                             lambda *a, **k: calls.append(1) or real(*a, **k))
     else:
         real = iterative._setup
@@ -175,11 +175,11 @@ def test_contact_newton_factorises_a_matrix_once(monkeypatch, law, linear):
     A = jacobian(step, it, r)
     calls.clear()
     if linear == "direct":
-        x1, _, factor = contact_linear.direct(A, r.vector, step.nu)
-        x2, _, _ = contact_linear.direct(A, 2 * r.vector, step.nu, reuse=factor)
+        x1, _, factor = linear_step.direct(A, r.vector, step.nu)
+        x2, _, _ = linear_step.direct(A, 2 * r.vector, step.nu, reuse=factor)
         x1 = 2 * x1  # the second right-hand side is twice the first
     else:
-        x1, setup = contact_linear.iterative(step, it, r, A, reuse=None)
-        x2, _ = contact_linear.iterative(step, it, r, A, reuse=setup)
+        x1, setup = linear_step.iterative(step, it, r, A, reuse=None)
+        x2, _ = linear_step.iterative(step, it, r, A, reuse=setup)
     assert len(calls) == 1, "the same matrix: one factorisation (set-up)"
     assert np.abs(x2 - x1).max() <= 1e-8 * np.abs(x1).max()

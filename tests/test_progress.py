@@ -2,7 +2,7 @@ import io
 
 import pytest
 
-from skxfem.progress import Progress, steps
+from skxfem.studies.progress import Progress, steps
 
 
 def test_progress_is_off_when_the_stream_is_not_a_terminal():

@@ -1,4 +1,4 @@
-"""Tests for skxfem.quadrature: wedge rule, per-cell rules, sub-cell rules."""
+"""Tests for skxfem.fem.quadrature: wedge rule, per-cell rules, sub-cell rules."""
 from itertools import permutations
 from math import factorial
 
@@ -26,9 +26,9 @@ from skfem.helpers import dot
 from skfem.quadrature import get_quadrature
 from skfem.refdom import RefTet, RefWedge
 
-from skxfem.material import Material, stiffness_form
-from skxfem.meshes import box
-from skxfem.quadrature import SubcellRule, cell_rule, exact_orders, subcell_rule, wedge_rule
+from skxfem.fem.material import Material, stiffness_form
+from skxfem.fem.meshes import box
+from skxfem.fem.quadrature import SubcellRule, cell_rule, exact_orders, subcell_rule, wedge_rule
 
 
 def exact_monomial(cell, a, b, c=0):

@@ -1,13 +1,13 @@
-"""skxfem.render3d: 3D renders with pyvista, off-screen."""
+"""skxfem.viz.render3d: 3D renders with pyvista, off-screen."""
 import numpy as np
 import pytest
 from matplotlib.colors import to_rgba
 
 from skxfem.cut import cut
+from skxfem.fem.meshes import box
 from skxfem.levelset import plane
-from skxfem.meshes import box
-from skxfem.plotting import COLORS
-from skxfem.render3d import plot_cut_3d
+from skxfem.viz.plotting import COLORS
+from skxfem.viz.render3d import plot_cut_3d
 
 
 def test_cut_3d_renders_the_interface():
@@ -29,9 +29,9 @@ def test_cut_3d_refuses_2d():
 
 def test_result_3d_renders_both_sides_and_the_pressure():
     pytest.importorskip("pyvista")
-    from skxfem.render3d import plot_result_3d
-    from skxfem.scenes import paper_plate, strip
+    from skxfem.scene.benchmarks import paper_plate, strip
     from skxfem.solver import solve
+    from skxfem.viz.render3d import plot_result_3d
 
     fig = plot_result_3d(solve(paper_plate(2, "hex")), window_size=(320, 240))
     assert len(fig.axes) == 2
@@ -48,9 +48,9 @@ def test_result_3d_renders_both_sides_and_the_pressure():
 def test_result_3d_renders_each_region_of_several_interfaces():
     pytest.importorskip("pyvista")
     from skxfem.levelset import plane
-    from skxfem.render3d import plot_result_3d
     from skxfem.scene import Box, Interface, Scene, SurfaceLoad, clamped
     from skxfem.solver import solve
+    from skxfem.viz.render3d import plot_result_3d
 
     scene = Scene(Box((2, 2, 4), "hex"), displacements=(clamped("zmin"),),
                   loads=(SurfaceLoad("zmax", pressure=1.0),),

@@ -1,4 +1,4 @@
-"""Tests for skxfem.reproduce: the main job writes every figure and sane numbers.
+"""Tests for skxfem.app.reproduce: the main job writes every figure and sane numbers.
 
 One reduced run (meshes 1/h = 8 and 16) is shared by the tests of this file.
 """
@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from skxfem.reproduce import main
+from skxfem.app.reproduce import main
 
 FIGURES = ["fig5", "fig6", "fig7", "fig8", "fig7_2d", "fig8_2d", "fig9", "fig10", "inf_sup",
            "frontier_energy", "frontier_pressure", "fig1", "fig2", "fig3", "fig4", "block3d",

@@ -1,4 +1,4 @@
-"""Tests for skxfem/rigid.py: the rigid motions the supports and the law leave free.
+"""Tests for skxfem/linalg/rigid.py: the rigid motions the supports and the law leave free.
 
 1. A normal-only tie (bilateral, or frictionless contact) on a circle or a
    sphere leaves the inclusion free to turn: refused before any solve, direct
@@ -20,14 +20,14 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
+from skxfem.fem.material import Material
 from skxfem.levelset import plane, sphere
-from skxfem.material import Material
+from skxfem.linalg.rigid import free_motions, side_names
+from skxfem.linalg.saddle import SingularSystemError
 from skxfem.problem import assemble
-from skxfem.rigid import free_motions, side_names
-from skxfem.saddle import SingularSystemError
 from skxfem.scene import Box, Displacement, Scene, SurfaceLoad, clamped, rollers
-from skxfem.scenefile import load_scene
-from skxfem.scenes import paper_plate, strip
+from skxfem.scene.benchmarks import paper_plate, strip
+from skxfem.scene.file import load_scene
 from skxfem.solver import solve
 
 INCLUSION = "examples/inclusion.toml"
@@ -145,8 +145,8 @@ def test_a_corner_piece_that_one_star_cannot_hold_gets_a_multiplier_per_edge():
     vital edges, one μ per component, whose mean jump cannot hold the corner's
     turning; the law (bonded) holds it.  short_pieces finds the piece, and the
     assembled space gives each of its edges a μ of its own."""
+    from skxfem.linalg.rigid import pieces, short_pieces
     from skxfem.multipliers import coupling
-    from skxfem.rigid import pieces, short_pieces
     from skxfem.stabilised import multiplier_space
 
     scene = Scene(Box(4, "quad"), plane((1.95, 0.0), (1.0, 1.0)), Material(1.0, 0.3),
@@ -163,8 +163,8 @@ def test_a_corner_piece_that_one_star_cannot_hold_gets_a_multiplier_per_edge():
 
 @pytest.mark.parametrize("law", ["bonded", "bilateral"])
 def test_a_stable_space_on_a_long_gamma_is_never_short(law):
+    from skxfem.linalg.rigid import short_pieces
     from skxfem.multipliers import coupling
-    from skxfem.rigid import short_pieces
 
     for scene in (strip(8, "tri"), strip(8, "quad"), paper_plate(3, "prism"),
                   paper_plate(3, "tet"), inclusion("bonded")):

@@ -1,4 +1,4 @@
-"""Tests for skxfem/saddle.py: the saddle-point solve K U - Bᵀμ = F, B U = 0, U[D] = g.
+"""Tests for skxfem/linalg/saddle.py: the saddle-point solve K U - Bᵀμ = F, B U = 0, U[D] = g.
 
 What is checked, on small systems whose answer a dense solve gives:
 
@@ -22,9 +22,9 @@ import pytest
 import scipy.sparse as sp
 from skfem import Basis, ElementVector
 
-from skxfem.material import Material, stiffness_form
-from skxfem.meshes import box
-from skxfem.saddle import SingularSystemError, independent_rows, solve
+from skxfem.fem.material import Material, stiffness_form
+from skxfem.fem.meshes import box
+from skxfem.linalg.saddle import SingularSystemError, independent_rows, solve
 
 
 def spd(n, rng):
@@ -216,7 +216,7 @@ def test_an_unknown_without_stiffness_is_refused():
 def test_multipliers_that_do_not_balance_u_are_never_returned(monkeypatch):
     """Bᵀμ = K U - F is checked after the recovery: reported multipliers that
     did not balance the displacement (here a sabotaged recovery) stop the solve."""
-    import skxfem.saddle as saddle
+    import skxfem.linalg.saddle as saddle
 
     K = spd(4, np.random.default_rng(3))
     B = sp.csr_matrix([[1.0, -1.0, 0.0, 0.0]])
@@ -249,7 +249,7 @@ def test_nearly_dependent_rows_that_carry_a_reaction_are_refused():
     """σ_min/σ_max ≈ δ/2 = 5e-8 is above the QR's 1e-10 (both rows kept) but below
     the recovery's 1e-6: the smoothest μ cannot balance a reaction along the
     weak combination, and the solve says why instead of a RuntimeError."""
-    from skxfem.saddle import NearlyDependentError
+    from skxfem.linalg.saddle import NearlyDependentError
 
     K, B, F, G = nearly_dependent(True)
     with pytest.raises(NearlyDependentError, match=r"rows \[0, 1\].*5\.0e-08.*1\.4e\+07.*vital"):

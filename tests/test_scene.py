@@ -6,10 +6,9 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementVector, MeshTri1
 
-from skxfem.expr import Expression
+from skxfem.fem.material import Material
+from skxfem.fem.meshes import box
 from skxfem.levelset import circle, nodal_values, plane, sphere
-from skxfem.material import Material
-from skxfem.meshes import box
 from skxfem.scene import (
     Box,
     Displacement,
@@ -23,7 +22,8 @@ from skxfem.scene import (
     rollers,
     traction,
 )
-from skxfem.scenes import paper_plate, strip
+from skxfem.scene.benchmarks import paper_plate, strip
+from skxfem.scene.expr import Expression
 
 DIM = {"tri": 2, "quad": 2, "tet": 3, "hex": 3, "prism": 3}
 
@@ -358,7 +358,7 @@ def test_20_a_level_set_that_cuts_no_cell_is_refused_by_the_solver():
 
 def test_21_formula_strings_work_in_python_as_in_a_scene_file(tmp_path):
     """The same string gives the same scene, the same values and the same solve."""
-    from skxfem.scenefile import load_scene
+    from skxfem.scene.file import load_scene
     from skxfem.solver import solve
 
     f = tmp_path / "s.toml"
@@ -397,16 +397,16 @@ def test_every_entry_point_says_what_a_scene_is(call, bad):
     """A path, None or a number where a Scene belongs: one TypeError that says how to
     get a Scene, from every public call that takes one (not an AttributeError)."""
     import skxfem
-    import skxfem.budget
+    import skxfem.studies.budget
     fn = {"solve": skxfem.solve, "assemble": skxfem.assemble, "inf_sup": skxfem.lbb.inf_sup,
-          "contact": skxfem.contact.solve, "estimate": skxfem.budget.estimate}[call]
+          "contact": skxfem.contact.solve, "estimate": skxfem.studies.budget.estimate}[call]
     with pytest.raises(TypeError, match=r"scene must be a skxfem.Scene, got .*load_scene"):
         fn(bad)
 
 
 def test_a_box_cell_or_a_law_of_the_wrong_type_is_named():
     from skxfem import assemble
-    from skxfem.scenes import strip
+    from skxfem.scene.benchmarks import strip
     with pytest.raises(ValueError, match="Box cell must be one of"):
         Box(2, ["quad"])
     with pytest.raises(ValueError, match="law must be one of"):
@@ -421,7 +421,7 @@ def test_the_highest_quadrature_order_solves_and_one_more_is_refused(cell, top):
     scikit-fem's NotImplementedError)."""
     from skxfem import solve
     from skxfem.scene import MAX_QUADRATURE_ORDER
-    from skxfem.scenes import paper_plate, strip
+    from skxfem.scene.benchmarks import paper_plate, strip
     s = strip(2, cell=cell) if cell in ("tri", "quad") else paper_plate(2, cell)
     assert MAX_QUADRATURE_ORDER[s.dim] == top
     assert np.isfinite(solve(dataclasses.replace(s, quadrature_order=top)).pressure).all()
@@ -449,8 +449,8 @@ def test_box_sizes_outside_the_range_are_refused_naming_it(size):
 
 @pytest.mark.parametrize("size", [1e-50, 1e50])
 def test_the_ends_of_the_size_range_pass_the_patch_test(cell, size):
-    from skxfem.extremes import patch_error
-    from skxfem.scene_parts import SIZE_RANGE
+    from skxfem.scene.parts import SIZE_RANGE
+    from skxfem.studies.extremes import patch_error
 
     assert SIZE_RANGE == (1e-50, 1e50)
     dim = DIM[cell]

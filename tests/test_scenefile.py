@@ -6,12 +6,12 @@ import meshio
 import numpy as np
 import pytest
 
-from skxfem import scenefile
-from skxfem.expr import Expression
-from skxfem.material import Material
-from skxfem.meshes import box
+from skxfem.fem.material import Material
+from skxfem.fem.meshes import box
 from skxfem.scene import Box, Scene, clamped, resolve_mesh, rollers
-from skxfem.scenefile import BUILT_BOX, MAX_MAGNITUDE, load_options, load_scene
+from skxfem.scene import file as scenefile
+from skxfem.scene.expr import Expression
+from skxfem.scene.file import BUILT_BOX, MAX_MAGNITUDE, load_options, load_scene
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -325,7 +325,7 @@ def base(dim: int) -> dict:
 
 def schema_tables(text: str) -> dict[str, list[str]]:
     """The keys printed under each table heading of the schema text."""
-    from skxfem.scenefile import SCHEMA
+    from skxfem.scene.file import SCHEMA
 
     tables, current = {}, None
     for line in text.splitlines():
@@ -349,7 +349,7 @@ def part(data: dict, table: str) -> dict:
 
 def rivals(table: str, key: str) -> list[str]:
     """The keys of ``table`` that cannot be given with ``key`` (its exclusive groups)."""
-    from skxfem.scenefile import SCHEMA
+    from skxfem.scene.file import SCHEMA
 
     out = []
     for group in SCHEMA[table].exclusive:
@@ -363,7 +363,7 @@ def rivals(table: str, key: str) -> list[str]:
 
 def place(table: str, key: str, example):
     """The scene (and its dimension) that uses ``key`` of ``table`` with ``example``."""
-    from skxfem.scenefile import SCHEMA
+    from skxfem.scene.file import SCHEMA
 
     dim = 3 if key in ("sphere", "z") or table == "[levelset] sphere" else 2
     data = base(dim)
@@ -387,7 +387,7 @@ def place(table: str, key: str, example):
 def test_14_the_schema_prints_every_key_the_reader_accepts(tmp_path):
     """For every table, the keys the reader lists when it refuses an unknown key are the
     keys `skxfem schema` prints under that table, in order."""
-    from skxfem.scenefile import SCHEMA, schema
+    from skxfem.scene.file import SCHEMA, schema
 
     printed = schema_tables(schema())
     assert list(printed) == list(SCHEMA)
@@ -403,7 +403,7 @@ def test_14_the_schema_prints_every_key_the_reader_accepts(tmp_path):
 
 def test_15_every_key_of_the_schema_is_accepted_with_its_example(tmp_path):
     """Each key, given its example value where it belongs, makes a scene that loads."""
-    from skxfem.scenefile import SCHEMA
+    from skxfem.scene.file import SCHEMA
 
     example_file = SCHEMA["[mesh]"].keys[1].example
     box((4, 5), "quad").save(tmp_path / example_file)        # [mesh] file's example
@@ -422,10 +422,10 @@ def test_15_every_key_of_the_schema_is_accepted_with_its_example(tmp_path):
 
 
 def test_16_the_schema_states_units_choices_and_functions():
-    from skxfem.expr import FUNCTIONS
-    from skxfem.linear import LINEAR
+    from skxfem.linalg.linear import LINEAR
     from skxfem.scene import CELLS, CONTACT_LAWS, LAWS, SPACES
-    from skxfem.scenefile import schema
+    from skxfem.scene.expr import FUNCTIONS
+    from skxfem.scene.file import schema
 
     text = schema()
     flat = " ".join(text.split())
@@ -441,8 +441,8 @@ def test_16_the_schema_states_units_choices_and_functions():
 
 
 def test_17_skxfem_schema_prints_it_and_run_help_points_to_it(capsys):
-    from skxfem.cli import main
-    from skxfem.scenefile import schema
+    from skxfem.app.cli import main
+    from skxfem.scene.file import schema
 
     assert main(["schema"]) == 0
     assert capsys.readouterr().out == schema()
@@ -478,7 +478,7 @@ def test_18_formulas_with_functions_solve_like_the_built_in_shapes(tmp_path, dim
 
 def test_19_a_formula_outside_its_domain_is_refused_not_solved(tmp_path, capsys):
     """sqrt(x - 0.5) on the top of [0, 1]²: one line naming sqrt, exit 2, nothing written."""
-    from skxfem.cli import main
+    from skxfem.app.cli import main
 
     data = base(2)
     data["load"][0]["pressure"] = "sqrt(x - 0.5)"

@@ -1,4 +1,4 @@
-"""Tests for skxfem/scenes.py: the benchmark scenes are built as documented.
+"""Tests for skxfem/scene/benchmarks.py: the benchmark scenes are built as documented.
 
 What is checked for ``paper_plate(n, "hex" | "prism")`` and ``strip(n, "quad" | "tri")``:
 
@@ -23,11 +23,11 @@ import pytest
 from skfem import Basis, ElementVector
 
 from skxfem.cut import cut
+from skxfem.fem.loads import boundary_quadrature
+from skxfem.fem.material import Material
 from skxfem.levelset import nodal_values
-from skxfem.loads import boundary_quadrature
-from skxfem.material import Material
 from skxfem.scene import Box, dirichlet, load_facets, resolve_mesh
-from skxfem.scenes import P_MAX, exact_plate, paper_plate, strip
+from skxfem.scene.benchmarks import P_MAX, exact_plate, paper_plate, strip
 
 PLATES = [(n, cell) for cell in ("hex", "prism") for n in (2, 3, 4)]
 STRIPS = [(n, cell) for cell in ("quad", "tri") for n in (2, 3, 4)]

@@ -1,12 +1,12 @@
-"""skxfem.schematics: the paper's Figures 1-4 drawn from the library's objects."""
+"""skxfem.viz.schematics: the paper's Figures 1-4 drawn from the library's objects."""
 import re
 
 import numpy as np
 import pytest
 from matplotlib.figure import Figure
 
-from skxfem.plotting import COLORS
-from skxfem.schematics import fig1, fig2, fig3, fig4
+from skxfem.viz.plotting import COLORS
+from skxfem.viz.schematics import fig1, fig2, fig3, fig4
 
 
 def texts(fig):

@@ -1,4 +1,4 @@
-"""skxfem.sides: the two ways of covering the sides of Γ give one X-FEM matrix.
+"""skxfem.fem.sides: the two ways of covering the sides of Γ give one X-FEM matrix.
 
 1. parts: A_H = s(2Aˢ - A) equals A⁺ - A⁻ of side_bases in every column of an
    enriched node, and A (every cell whole) equals A⁺ + A⁻, on all five cells
@@ -10,9 +10,9 @@ import numpy as np
 from skfem import BilinearForm
 
 from skxfem.cut import cut
+from skxfem.fem.meshes import box
+from skxfem.fem.sides import parts, side_bases
 from skxfem.levelset import plane
-from skxfem.meshes import box
-from skxfem.sides import parts, side_bases
 
 
 @BilinearForm

@@ -1,10 +1,10 @@
-"""skxfem.simplex: the one clipping kernel (cut sub-cells and load pieces)."""
+"""skxfem.fem.simplex: the one clipping kernel (cut sub-cells and load pieces)."""
 import math
 
 import numpy as np
 import pytest
 
-from skxfem.simplex import edge_point, split
+from skxfem.fem.simplex import edge_point, split
 
 
 def measure(S):

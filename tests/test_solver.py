@@ -26,15 +26,15 @@ import pytest
 from skfem import Basis, ElementVector, condense
 from skfem import solve as skfem_solve
 
-from skxfem import meshes
 from skxfem.cut import SNAP, SnapWarning
 from skxfem.cut import cut as cut_mesh
 from skxfem.enrich import space, stiffness
+from skxfem.fem import meshes
+from skxfem.fem.loads import boundary_quadrature, surface_load
+from skxfem.fem.material import Material, stiffness_form
+from skxfem.fem.quadrature import cell_rule
 from skxfem.levelset import circle, plane
-from skxfem.loads import boundary_quadrature, surface_load
-from skxfem.material import Material, stiffness_form
 from skxfem.multipliers import interface_mass, interface_rule
-from skxfem.quadrature import cell_rule
 from skxfem.scene import (
     Box,
     Displacement,
@@ -46,7 +46,7 @@ from skxfem.scene import (
     resolve_mesh,
     rollers,
 )
-from skxfem.scenes import P_MAX, paper_plate, strip
+from skxfem.scene.benchmarks import P_MAX, paper_plate, strip
 from skxfem.solver import constrained_dofs, solve
 from skxfem.stabilised import multiplier_space
 
@@ -624,7 +624,7 @@ def test_a_nearly_dependent_naive_space_is_refused_and_stable_spaces_solve_it():
     traction: the solve refuses with a ValueError naming the cause and the
     remedy.  The stable spaces solve the same scene, and their traction on Γ
     balances the top load: ∫_Γ r = (0, -∫ p) = (0, -2P/3)."""
-    from skxfem.saddle import NearlyDependentError
+    from skxfem.linalg.saddle import NearlyDependentError
 
     scene = dataclasses.replace(strip(128, "tri", space="naive"),
                                 levelset=plane((0.0, 0.37), (-0.21, 1.0)))

@@ -1,4 +1,4 @@
-"""skxfem.threads: the solves run BLAS on one thread, whatever the caller's setting,
+"""skxfem.linalg.threads: the solves run BLAS on one thread, whatever the caller's setting,
 unless SKXFEM_THREADS or threads.using choose another number; the caller's setting
 is given back afterwards."""
 from pathlib import Path
@@ -7,8 +7,11 @@ import pytest
 from threadpoolctl import threadpool_info, threadpool_limits
 
 import skxfem
-from skxfem import budget, cli, contact, saddle, scenes, threads
-from skxfem.threads import ENV, limited, using
+from skxfem import contact, scenes
+from skxfem.app import cli
+from skxfem.linalg import saddle, threads
+from skxfem.linalg.threads import ENV, limited, using
+from skxfem.studies import budget
 
 STRIP = scenes.strip(2, cell="quad")
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -72,7 +75,7 @@ def test_using_overrides_the_environment_and_nests(monkeypatch, spy):
 
 def test_a_contact_solve_and_the_command_line_run_one_thread(monkeypatch, spy, tmp_path):
     monkeypatch.delenv(ENV, raising=False)
-    spy(contact, "assemble")
+    spy(contact.history, "assemble")
     spy(budget, "check")                        # skxfem run: before its solve
     with threadpool_limits(4):
         contact.solve(skxfem.load_scene(EXAMPLES / "contact.toml"))

@@ -1,11 +1,11 @@
-"""skxfem.tomlcheck: each check names the key and what it should be."""
+"""skxfem.scene.tomlcheck: each check names the key and what it should be."""
 import os
 import threading
 
 import pytest
 
-from skxfem.expr import Expression
-from skxfem.tomlcheck import (
+from skxfem.scene.expr import Expression
+from skxfem.scene.tomlcheck import (
     MAX_BYTES,
     array,
     choice,

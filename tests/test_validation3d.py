@@ -1,6 +1,6 @@
-"""Tests for skxfem/validation3d.py: the genuinely 3D validation converges where it should.
+"""Tests for skxfem/studies/validation3d.py: the genuinely 3D validation converges where it should.
 
-On the block of skxfem.exact3d (Γ slanted against all three axes), small
+On the block of skxfem.fem.exact3d (Γ slanted against all three axes), small
 meshes n = 6 and 12 cells per side:
 
 1. The stable spaces (winner, vital) converge on hexahedra, prisms and
@@ -19,8 +19,8 @@ import json
 import numpy as np
 import pytest
 
-from skxfem.convergence import observed_rates
-from skxfem.validation3d import (
+from skxfem.studies.convergence import observed_rates
+from skxfem.studies.validation3d import (
     CELLS,
     EXPECTED_RATES,
     NAIVE_TET_MAX_N,

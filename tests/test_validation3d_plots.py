@@ -1,4 +1,4 @@
-"""Tests for skxfem/validation3d_plots.py: the figures of the 3D validation.
+"""Tests for skxfem/viz/validation3d_plots.py: the figures of the 3D validation.
 
 What is drawn is checked (panels, curves, colours, the data and the notes),
 not pixels.
@@ -6,12 +6,12 @@ not pixels.
 import numpy as np
 from matplotlib.colors import to_rgba
 
-from skxfem.exact3d import ExactBlock
-from skxfem.plotting import COLORS
-from skxfem.scenes import P_MAX, exact_block
+from skxfem.fem.exact3d import ExactBlock
+from skxfem.scene.benchmarks import P_MAX, exact_block
 from skxfem.solver import solve
-from skxfem.validation3d import study_block
-from skxfem.validation3d_plots import fig_block, fig_block_pressure
+from skxfem.studies.validation3d import study_block
+from skxfem.viz.plotting import COLORS
+from skxfem.viz.validation3d_plots import fig_block, fig_block_pressure
 
 
 def same_colour(a, b):

@@ -1,6 +1,6 @@
 """Exercise 02: cut edges, intersection points and sub-cell volumes (see README.md).
 
-You may import numpy; not skxfem.cut or skxfem.simplex (they hold the answers).
+You may import numpy; not skxfem.cut or skxfem.fem.simplex (they hold the answers).
 """
 import numpy as np  # noqa: F401  (you will need it)
 

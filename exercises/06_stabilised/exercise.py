@@ -2,7 +2,7 @@
 
 The cut edges S_e form a bipartite graph: each edge joins a node of
 N_e⁻ (ψ < 0) to a node of N_e⁺ (ψ > 0).  You may import numpy, scipy and
-itertools; not skxfem.stabilised (it holds the answer).  skxfem.figures'
+itertools; not skxfem.stabilised (it holds the answer).  skxfem.viz.figures'
 ``figure6_graph`` (the paper's Figure 6) is there for you to try things on.
 """
 import numpy as np  # noqa: F401  (you will need it)

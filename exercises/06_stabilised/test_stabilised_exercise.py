@@ -4,7 +4,7 @@ import itertools
 import numpy as np
 import pytest
 
-from skxfem.figures import FIG6_EDGES, figure6_graph
+from skxfem.viz.figures import FIG6_EDGES, figure6_graph
 
 ASKED = ("minimum_edge_cover", "star_groups")
 LIBRARY = ("skxfem.stabilised",)   # it holds the answer: write your own

@@ -1,7 +1,7 @@
 """Exercise 07: the contact and friction updates of the paper's eq. 6-9 (see README.md).
 
 Every function works on many law points at once: one point per row.  You may
-import numpy; not skxfem.contact_laws or skxfem.contact (they hold the answers).
+import numpy; not skxfem.contact.laws or skxfem.contact (they hold the answers).
 """
 import numpy as np  # noqa: F401  (you will need it)
 

@@ -3,7 +3,7 @@
 import numpy as np
 
 ASKED = ("augmented_multiplier", "normal_update", "ball_projection")
-LIBRARY = ("skxfem.contact_laws", "skxfem.contact")   # they hold the answers
+LIBRARY = ("skxfem.contact.laws", "skxfem.contact")   # they hold the answers
 
 RNG = np.random.default_rng(7)
 

@@ -1,11 +1,11 @@
 """Reference for exercise 02, built on the library: skxfem.cut.strictly_cut_edges
-(S_e and the intersection points) and skxfem.simplex.split (the sub-cells)."""
+(S_e and the intersection points) and skxfem.fem.simplex.split (the sub-cells)."""
 import math
 
 import numpy as np
 
 from skxfem.cut import strictly_cut_edges
-from skxfem.simplex import split
+from skxfem.fem.simplex import split
 
 
 def cut_edges(edges, psi):

@@ -3,7 +3,7 @@ import math
 
 import numpy as np
 
-from skxfem.simplex import split
+from skxfem.fem.simplex import split
 
 EXPECT = "Ω⁻ and Ω⁺ are swapped"
 

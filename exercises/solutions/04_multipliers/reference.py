@@ -2,7 +2,7 @@
 import numpy as np
 
 # the library's interface mass computes M too (with a quadrature rule): the book shows
-# its contract only (skxfem.graded reads this list)
+# its contract only (skxfem.app.graded reads this list)
 LIBRARY_ANSWERS = ("skxfem.multipliers.interface_mass",)
 
 

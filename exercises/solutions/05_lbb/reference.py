@@ -8,7 +8,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 
 # the library's inf_sup_constant computes β too (zero modes apart): the book shows its
-# contract only (skxfem.graded reads this list)
+# contract only (skxfem.app.graded reads this list)
 LIBRARY_ANSWERS = ("skxfem.lbb.inf_sup_constant",)
 
 

@@ -1,8 +1,8 @@
-"""Reference for exercise 07: the library's skxfem.contact_laws has the same contract
+"""Reference for exercise 07: the library's skxfem.contact.laws has the same contract
 (normal_update, ball_projection); the augmented multiplier is one line."""
 import numpy as np
 
-from skxfem.contact_laws import ball_projection, normal_update
+from skxfem.contact.laws import ball_projection, normal_update
 
 __all__ = ["augmented_multiplier", "normal_update", "ball_projection"]
 

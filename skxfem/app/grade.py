@@ -1,0 +1,343 @@
+"""Grade the exercises: run their tests, print a score table, write a JSON report.
+
+    skxfem grade [PATH] [--impl student] [--report FILE]   # = python -m skxfem.app.grade
+
+PATH is the ``exercises`` folder (the default) or one exercise in it
+(``exercises/02_cut``).  The tests run in a ``python -m pytest`` subprocess
+with a JUnit XML report, which this module reads back: pytest is a development
+extra, so importing skxfem never needs it, and a crash in a student's file
+cannot take the grader down with it.  ``--impl`` is passed on to the
+exercises' ``conftest.py``: ``student`` (the default), ``solution`` or
+``wrong:NAME``, checked here first (:func:`check_impl`), so that a misspelt
+choice is one line naming the valid ones, not a column of pytest errors.
+
+The score table has one row per exercise; the message of each exercise's first
+failure (its hint, e.g. "Did you normalise the normal?") is printed in full
+below the table.  The JSON report of a run is one file, by default
+``out/grades/NAME.json`` under the current folder, NAME the folder graded
+(``01_levelset``, or ``exercises`` for all): grading one exercise never
+overwrites another's report, and ``out/`` is ignored by git.  ``--report FILE``
+writes it elsewhere.
+
+A test is worth the points of its ``@pytest.mark.points(n)`` marker, 1
+without one.  The exit status is 0 when every test passed, 1 when any failed
+and 2 for a usage error (a bad PATH or ``--impl``, a report that cannot be
+written; one line on stderr) or when no test could be run at all.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+import tempfile
+import textwrap
+import xml.etree.ElementTree as ET
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+__all__ = ["Result", "Score", "find_exercises", "wrong_solutions", "check_impl",
+           "default_report", "read_junit", "table", "hints", "grade", "main"]
+
+REPORTS = Path("out") / "grades"
+"""Where the reports go by default, under the current folder (``out/`` is git-ignored)."""
+
+WIDTH = 88
+"""Width the hints below the score table are wrapped to (whole words, nothing cut)."""
+
+
+@dataclass(frozen=True)
+class Result:
+    """One test: its name, ``passed`` / ``failed`` / ``error`` / ``skipped``,
+    its points and the first line of its failure message."""
+
+    name: str
+    outcome: str
+    points: float = 1.0
+    message: str = ""
+
+
+@dataclass(frozen=True)
+class Score:
+    """The results of one exercise's tests, in the order they ran."""
+
+    exercise: str
+    results: tuple[Result, ...]
+
+    @property
+    def passed(self) -> int:
+        return sum(r.outcome == "passed" for r in self.results)
+
+    @property
+    def total(self) -> int:
+        return len(self.results)
+
+    @property
+    def points(self) -> float:
+        return sum((r.points for r in self.results if r.outcome == "passed"), 0.0)
+
+    @property
+    def max_points(self) -> float:
+        return sum((r.points for r in self.results), 0.0)
+
+
+def find_exercises(path: Path) -> list[Path]:
+    """The exercise folders under ``path`` (or ``path`` itself): those holding test files."""
+    path = Path(path)
+    if any(path.glob("test_*.py")):
+        return [path]
+    return sorted(p for p in path.iterdir() if p.is_dir() and any(p.glob("test_*.py")))
+
+
+def wrong_solutions(exercises: list[Path]) -> dict[str, list[str]]:
+    """The wrong solutions kept for ``exercises``: NAME -> the exercises that have
+    ``solutions/<exercise>/wrong_NAME.py`` (beside the exercise folders).
+
+    >>> exercises = Path(__file__).parents[2] / "exercises"   # the repository's
+    >>> wrong_solutions([exercises / "01_levelset"])["unnormalised"]
+    ['01_levelset']
+    """
+    found: dict[str, list[str]] = {}
+    for e in exercises:
+        for f in sorted((Path(e).parent / "solutions" / Path(e).name).glob("wrong_*.py")):
+            found.setdefault(f.stem.removeprefix("wrong_"), []).append(Path(e).name)
+    return dict(sorted(found.items()))
+
+
+def check_impl(impl: str, exercises: list[Path]) -> list[Path]:
+    """The exercises to grade for ``--impl``; a ValueError naming the valid choices.
+
+    ``wrong:NAME`` grades the exercises that have that wrong solution (the others
+    have nothing to grade); ``solution`` needs the ``solutions`` folder beside them.
+
+    >>> all_ = find_exercises(Path(__file__).parents[2] / "exercises")
+    >>> [e.name for e in check_impl("wrong:unnormalised", all_)]
+    ['01_levelset']
+    >>> check_impl("bogus", all_)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: --impl must be student, solution or wrong:NAME ...; got 'bogus'
+    """
+    wrong = wrong_solutions(exercises)
+    listed = ", ".join(wrong) or "none here"
+    usage = (f"--impl must be student, solution or wrong:NAME (NAME one of: {listed}); "
+             f"got {impl!r}")
+    if impl == "student":
+        return exercises
+    if impl == "solution":
+        missing = [e for e in exercises
+                   if not (e.parent / "solutions" / e.name / "reference.py").is_file()]
+        if missing:
+            raise ValueError(f"--impl=solution: no reference solution for "
+                             f"{', '.join(e.name for e in missing)} (looked in "
+                             f"{missing[0].parent / 'solutions'}); the solutions stay with "
+                             f"the instructor: grade your own files with --impl=student")
+        return exercises
+    if impl.startswith("wrong:") and impl.removeprefix("wrong:") in wrong:
+        having = wrong[impl.removeprefix("wrong:")]
+        return [e for e in exercises if e.name in having]
+    raise ValueError(usage)
+
+
+def default_report(path: Path) -> Path:
+    """The default report of grading ``path``: ``out/grades/NAME.json``, NAME its folder.
+
+    >>> default_report(Path("exercises/02_cut/")).as_posix()
+    'out/grades/02_cut.json'
+    """
+    return REPORTS / f"{Path(path).resolve().name or 'exercises'}.json"
+
+
+def _exercise_of(classname: str, names: list[str]) -> str | None:
+    """The exercise a JUnit classname belongs to (its dotted path names the folder).
+
+    >>> _exercise_of("exercises.02_cut.test_cut_exercise", ["01_levelset", "02_cut"])
+    '02_cut'
+    """
+    parts = classname.split(".")
+    return next((n for n in names if n in parts), None)
+
+
+def read_junit(xml_path: Path, names: list[str]) -> dict[str, list[Result]]:
+    """The results of a JUnit XML report, grouped by exercise folder name."""
+    results: dict[str, list[Result]] = {n: [] for n in names}
+    for case in ET.parse(xml_path).getroot().iter("testcase"):
+        exercise = _exercise_of(case.get("classname", ""), names)
+        if exercise is None:
+            continue
+        outcome, message = "passed", ""
+        for tag in ("failure", "error", "skipped"):
+            node = case.find(tag)
+            if node is not None:
+                outcome = {"failure": "failed"}.get(tag, tag)
+                message = (node.get("message") or node.text or "").strip().splitlines()
+                message = message[0] if message else ""
+                break
+        points = 1.0
+        for prop in case.iter("property"):
+            if prop.get("name") == "points":
+                points = float(prop.get("value"))
+        results[exercise].append(Result(case.get("name", "?"), outcome, points, message))
+    return results
+
+
+def _number(x: float) -> str:
+    return f"{x:g}"
+
+
+def table(scores: list[Score]) -> str:
+    """The score table: one row per exercise, then the total.
+
+    The messages of the failures are not in it: :func:`hints` prints them in full.
+
+    >>> print(table([Score("01_levelset", (Result("test_01", "passed", 2.0),
+    ...                                    Result("test_02", "failed", 1.0, "no")))]))
+    exercise           tests   points
+    01_levelset          1/2      2/3   first failure: test_02 (below)
+    total                1/2      2/3
+    """
+    def row(name, passed, total, points, best, note=""):
+        return (f"{name:16} {f'{passed}/{total}':>7} "
+                f"{f'{_number(points)}/{_number(best)}':>8}{note}")
+
+    rows = [f"{'exercise':16} {'tests':>7} {'points':>8}"]
+    for s in scores:
+        failed = next((r for r in s.results if r.outcome != "passed"), None)
+        note = f"   first failure: {failed.name} (below)" if failed else ""
+        if s.total == 0:
+            note = "   no test ran (see the pytest output above)"
+        rows.append(row(s.exercise, s.passed, s.total, s.points, s.max_points, note))
+    rows.append(row("total", sum(s.passed for s in scores), sum(s.total for s in scores),
+                    sum(s.points for s in scores), sum(s.max_points for s in scores)))
+    return "\n".join(rows)
+
+
+def hints(scores: list[Score], width: int = WIDTH) -> str:
+    """The first failure of each exercise with its whole message, wrapped to ``width``
+    columns between words (a hint is never cut), or '' if nothing failed.
+
+    >>> print(hints([Score("01_levelset", (Result("test_02", "failed", 1.0,
+    ...     "AssertionError: psi should be 0.5, got 1. Did you normalise the normal?"),))],
+    ...     width=40))
+    01_levelset: test_02 failed:
+        AssertionError: psi should be 0.5,
+        got 1. Did you normalise the normal?
+    """
+    blocks = []
+    for s in scores:
+        failed = next((r for r in s.results if r.outcome != "passed"), None)
+        if failed is None:
+            continue
+        said = {"failed": "failed", "error": "could not run", "skipped": "was skipped"}
+        text = textwrap.fill(failed.message or "(no message)", width, initial_indent="    ",
+                             subsequent_indent="    ", break_long_words=False,
+                             break_on_hyphens=False)
+        blocks.append(f"{s.exercise}: {failed.name} {said.get(failed.outcome, failed.outcome)}"
+                      f":\n{text}")
+    return "\n".join(blocks)
+
+
+def grade(path: Path, impl: str = "student", pytest_args: tuple[str, ...] = ()) -> list[Score]:
+    """Run the exercises under ``path`` with pytest in a subprocess; their scores.
+
+    Raises
+    ------
+    FileNotFoundError
+        If ``path`` holds no exercise (no folder with test files).
+    ValueError
+        If ``impl`` is not a valid choice for these exercises (:func:`check_impl`).
+    RuntimeError
+        If pytest could not run (not installed, or a usage error): no report.
+    """
+    path = Path(path)
+    if not path.is_dir():
+        raise FileNotFoundError(f"{path} is not a folder: give the exercises folder or one "
+                                f"exercise in it, e.g. exercises/01_levelset")
+    exercises = find_exercises(path)
+    if not exercises:
+        raise FileNotFoundError(f"no exercise under {path}: an exercise is a folder with "
+                                f"test_*.py files, e.g. exercises/01_levelset")
+    exercises = check_impl(impl, exercises)
+    names = [e.name for e in exercises]
+    root = exercises[0].parent   # where exercises/conftest.py is: it defines --impl
+    with tempfile.TemporaryDirectory() as tmp:
+        xml_path = Path(tmp) / "junit.xml"
+        command = [sys.executable, "-m", "pytest", *map(str, exercises), f"--impl={impl}",
+                   f"--junitxml={xml_path}", "-o", "junit_family=xunit1",
+                   f"--rootdir={root}", "-p", "no:cacheprovider", "-q", "--tb=line",
+                   *pytest_args]
+        done = subprocess.run(command)
+        if not xml_path.exists():
+            raise RuntimeError(
+                f"pytest did not run (exit status {done.returncode}); is it installed? "
+                f"pip install 'skxfem[dev]' (or: pip install pytest)")
+        results = read_junit(xml_path, names)
+    return [Score(n, tuple(results[n])) for n in names]
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, with a usage error in one line (exit 2)."""
+
+    def error(self, message):
+        self.exit(2, f"skxfem grade: error: {message} (see skxfem grade --help)\n")
+
+
+def _usage_error(message: str) -> int:
+    print(f"skxfem grade: error: {' '.join(str(message).split())}", file=sys.stderr)
+    return 2
+
+
+def main(argv: list[str] | None = None) -> int:
+    """The command line: ``skxfem grade [PATH] [--impl ...] [--report ...]``.
+
+    >>> main(["no-such-folder"])
+    2
+    """
+    parser = _Parser(
+        prog="skxfem grade",
+        description="Run the exercises' tests, print a score table per exercise and the "
+                    "message of each exercise's first failure, and write a JSON report.")
+    parser.add_argument("path", nargs="?", default="exercises",
+                        help="the exercises folder or one exercise (default: exercises)")
+    parser.add_argument("--impl", default="student",
+                        help="student (default: NN_name/exercise.py), solution, or "
+                             "wrong:NAME (a known wrong solution, instructors' test data)")
+    parser.add_argument("--report", type=Path, default=None, metavar="FILE",
+                        help=f"where to write the JSON report (default: "
+                             f"{REPORTS}/NAME.json under the current folder, NAME the "
+                             f"folder graded; out/ is ignored by git)")
+    args = parser.parse_args(argv)
+    try:
+        scores = grade(Path(args.path), args.impl)
+    except (FileNotFoundError, RuntimeError, ValueError) as error:
+        return _usage_error(error)
+    print()
+    print(table(scores))
+    if any(s.passed < s.total for s in scores):
+        print()
+        print(hints(scores))
+    report = {
+        "path": str(args.path), "impl": args.impl,
+        "passed": sum(s.passed for s in scores), "total": sum(s.total for s in scores),
+        "points": sum((s.points for s in scores), 0.0),
+        "max_points": sum((s.max_points for s in scores), 0.0),
+        "exercises": {s.exercise: {"passed": s.passed, "total": s.total, "points": s.points,
+                                   "max_points": s.max_points,
+                                   "tests": [asdict(r) for r in s.results]} for s in scores},
+    }
+    where = args.report if args.report is not None else default_report(Path(args.path))
+    try:
+        where.parent.mkdir(parents=True, exist_ok=True)
+        where.write_text(json.dumps(report, indent=2, ensure_ascii=False) + "\n",
+                         encoding="utf-8")
+    except OSError as e:
+        return _usage_error(f"cannot write the report to {str(where)!r} "
+                            f"({e.strerror or e}); give another --report FILE")
+    print(f"report: {where}")
+    if report["total"] == 0:
+        return 2
+    return 0 if report["passed"] == report["total"] else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,296 @@
+"""Write a solver result to disk: ``result.json`` and two VTU files for ParaView.
+
+* ``result.json``: the scene name, ``law`` and ``space``, the multiplier
+  ``points`` (where Γ cuts the mesh edges), ``normals``, ``traction`` (the
+  whole vector), ``pressure``, ``jump`` ([[u]] = u⁻ - u⁺), ``max_jump``,
+  ``n_dofs``, ``n_multipliers``, the ``timings`` in seconds per stage and
+  ``linear_solve``: the solve taken (``linear``) and how it went
+  (:attr:`skxfem.result.Result.linear_info`: residual, balance, and the
+  iterations and residuals of an iterative solve).  NaN or inf become ``null``.
+* ``displacement.vtu``: each side of Γ as its own piece of mesh with its own
+  field ``displacement``, so that ParaView's *Warp By Vector* shows the
+  discontinuity: the cells of Ω⁻ and the cut cells with ``u_minus`` on one copy
+  of their nodes, the cells of Ω⁺ and the cut cells with ``u_plus`` on a
+  second copy.  A cut cell is thus written twice, once per side, each copy
+  moving with its side's field; cell data ``side`` (-1 or +1: the copy) and
+  ``cut`` (1 on cut cells), point data ``levelset`` (ψ at the nodes: clip a
+  side's copy at ψ = 0 to see only its own part of the cut cells).
+* ``interface.vtu``: the interface facets (``line`` cells in 2D, ``triangle``
+  cells in 3D) on the multiplier points, with point data ``pressure``,
+  ``traction``, ``tangential_traction``, ``normal``, ``jump`` and ``gap``.
+
+**A contact result** (content from :mod:`skxfem.app.io_contact`) goes into the
+same three files with the same fields, those of the last load step, and a
+``status`` per point.  ``result.json`` adds the law (``friction``, the
+``rho_n``, ``rho_t`` used, ``status_codes``), ``newton_iterations``, the
+multiplier ``dofs`` (``points``, ``normals``, ``tangents``, ``weights``: where
+the laws are imposed; with the winner or vital space they are not the cut
+edges' points) and a list ``steps``, one entry per load step, at the dofs:
+``load``, ``law``, ``pressure``, ``tangential_traction``, ``gap``, ``slip``,
+``Lambda``, ``status`` (strings ``"open"``, ``"stick"``, ``"slip"``), their
+``counts`` and ``newton``: ``iterations`` and ``residuals`` (one list per
+equation, equilibrium, contact and friction: the relative residual at the
+start, then after each iteration).  ``interface.vtu`` adds the point data
+``status`` (0 open, 1 stick, 2 slip).  The VTU files hold the last step only
+(the JSON has every step).
+
+**Several interfaces** (:mod:`skxfem.result`): ``result.json``'s ``law`` and
+``space`` are lists, one per interface, and it adds ``interfaces``, one entry
+per interface (``levelset``: the level set's name, ``law``, ``space``,
+``friction`` μ, ``rho_n``, ``rho_t``: those given, or for a contact solve
+those used; ``n_points``), ``interface``, the interface of each point, and
+``regions``, the sign of each level set in each region; a contact file has μ
+and ρ there only, and its ``dofs`` add ``interface``.  ``displacement.vtu``
+has a piece per region (the cells with a vertex in it, with its field:
+cell data ``region``, the index into ``regions``, and ``cut``; point data
+``levelset_0``, ``levelset_1``, ... the nodal ψ of each interface as the
+solve used it); ``interface.vtu`` adds the point data ``interface``.  A
+scene with one interface writes the files above, unchanged.
+
+**Array shapes.**  :class:`skxfem.result.Result` follows scikit-fem: a set of
+points or vectors is ``(dim, n)`` (``mesh.p``, ``result.points``,
+``result.traction``).  The files follow meshio, VTK and JSON readers, where a
+point is a row: ``result.json``'s ``points``, ``normals`` and ``traction`` are
+``(n, dim)`` (one list per point, ``np.array(data["points"]) ==
+result.points.T``), and VTU vectors are ``(n, 3)`` (z = 0 in 2D, so ParaView
+can draw them).
+
+**One set.**  :func:`write_result` writes the three files as one set
+(:func:`skxfem.fem.files.write_set`): into a new hidden folder beside ``out_dir``
+that then takes its place, under a lock on the parent folder.  A failed write
+(a full disk, an error in the middle, a process killed at any moment) leaves
+the previous result whole, or nothing, never a mix of two runs or a truncated
+file; two writers to one folder take turns; what killed writers left is
+removed by the next one.  So ``out_dir`` holds the three files only
+(:func:`check_output` checks it, and the rest, before a solve).
+:func:`default_folder` is the folder of a scene without ``--out``.
+"""
+from __future__ import annotations
+
+import json
+import os
+import re
+from pathlib import Path
+
+import meshio
+import numpy as np
+
+from ..fem.files import check_folder, quiet, write_set
+from ..fem.vtu import cell_sides, pad3, region_pieces, side_pieces, vectors3, vtk_cells
+from ..levelset import nodal_values
+from .io_contact import contact_summary, is_contact
+
+__all__ = ["write_result", "result_summary", "cell_sides", "vtk_cells", "check_output",
+           "side_pieces", "default_folder"]
+
+_STAGES = ("cut", "enrich", "assemble", "solve")
+_FILES = {"json": "result.json", "displacement": "displacement.vtu",
+          "interface": "interface.vtu"}
+
+
+def _plain(a) -> list | float | None:
+    """A number or an array as plain Python floats (nested lists), NaN/inf as None."""
+    a = np.asarray(a, dtype=float)
+    return np.where(np.isfinite(a), a, None).tolist()
+
+
+def _jsonable(value):
+    """Arrays and numpy numbers inside dicts and lists as plain Python values."""
+    if isinstance(value, dict):
+        return {k: _jsonable(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_jsonable(v) for v in value]
+    return _plain(value) if isinstance(value, (np.ndarray, float, np.floating)) else value
+
+
+def result_summary(result) -> dict:
+    """The content of ``result.json`` as a dict of plain Python values.
+
+    A contact result gives :func:`skxfem.app.io_contact.contact_summary`.
+    """
+    timings = {k: float(v) for k, v in dict(result.timings).items()}
+    missing = [s for s in _STAGES if s not in timings]
+    if missing:
+        raise ValueError(f"result.timings lacks the stages {missing}; expected {_STAGES}")
+    several = getattr(result, "u_minus", 0) is None
+    items = result.scene.interface_list if several else ()
+    data = {
+        "scene": result.scene.name,
+        "law": [i.law for i in items] if several else result.scene.law,
+        "space": [i.space for i in items] if several else result.scene.space,
+        "points": _plain(np.asarray(result.points).T),
+        "normals": _plain(np.asarray(result.normals).T),
+        "traction": _plain(np.asarray(result.traction).T),
+        "pressure": _plain(result.pressure),
+        "jump": _plain(np.asarray(result.jump).T),
+        "max_jump": _plain(result.max_jump),
+        "n_dofs": int(result.n_dofs),
+        "n_multipliers": int(result.n_multipliers),
+        "timings": timings,
+        "linear_solve": _jsonable({"linear": result.linear, **dict(result.linear_info)}),
+    }
+    if is_contact(result):
+        data.update(_jsonable(contact_summary(result)))
+    if several:
+        data.update(_interfaces(result, items, data))
+    return data
+
+
+def _interfaces(result, items, data: dict) -> dict:
+    """What ``result.json`` adds for several interfaces (module notes); ``data`` the
+    rest of it, whose contact ``friction`` and ρ move into ``interfaces``."""
+    counts = np.bincount(result.interface, minlength=len(items))
+    laws = result.law if is_contact(result) else [None] * len(items)
+    entries = []
+    for i, law, n in zip(items, laws, counts):
+        entries.append({"levelset": i.levelset.name, "law": i.law, "space": i.space,
+                        "friction": float(i.friction) if law is None else float(law.mu),
+                        "rho_n": _plain(i.rho_n if law is None else law.rho_n),
+                        "rho_t": _plain(i.rho_t if law is None else law.rho_t),
+                        "n_points": int(n)})
+    for key in ("friction", "rho_n", "rho_t"):
+        data.pop(key, None)
+    return {"interfaces": entries, "interface": np.asarray(result.interface).tolist(),
+            "regions": np.asarray(result.regions).tolist()}
+
+
+def check_output(out_dir: str | Path) -> Path:
+    """Check, without creating anything, that results can be written into ``out_dir``.
+
+    The folder may be missing (it is created by :func:`write_result`, with its
+    parents) or hold an earlier result only (which is replaced).
+
+    Raises
+    ------
+    ValueError
+        If ``out_dir`` or one of its parents is an existing file, it holds
+        other files or is the current folder (:func:`skxfem.fem.files.check_folder`),
+        or the folder that would receive it is not writable.
+
+    >>> check_output("results/plate").name
+    'plate'
+    """
+    out = Path(out_dir)
+    if str(out_dir) == "":
+        raise ValueError("the output folder is empty; give a folder name such as "
+                         "results/plate")
+    check_folder(out, _FILES.values())
+    existing = Path(os.path.realpath(out)).parent
+    while not existing.exists() and existing != existing.parent:
+        existing = existing.parent
+    if not existing.is_dir():
+        raise ValueError(f"output folder {str(out)!r} is below the file {str(existing)!r}; "
+                         f"give another output folder")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise ValueError(f"output folder {str(out)!r} cannot be written: "
+                         f"{str(existing)!r} is not writable; give another output folder")
+    return out
+
+
+def default_folder(name: str) -> Path:
+    """The output folder of a scene named ``name`` when none is given: one folder
+    below the current one, whatever the name holds.
+
+    Every run of characters other than letters, digits, ``-``, ``_`` and ``.``
+    (path separators, spaces, control characters) becomes ``_``; leading and
+    trailing dots and ``_`` go, so that neither ``..`` nor a hidden folder can
+    result; at most 100 characters; ``result`` if nothing is left.
+
+    >>> [str(default_folder(s)) for s in ("../../escaped", "/etc/plate 2", "..", "été")]
+    ['escaped', 'etc_plate_2', 'result', 'été']
+    """
+    safe = re.sub(r"[^\w.-]+", "_", str(name)).strip("._")[:100].strip("._")
+    return Path(safe or "result")
+
+
+def _write_json(result, path: Path):
+    path.write_text(json.dumps(result_summary(result), indent=1, allow_nan=False))
+
+
+def _write_displacement(result, path: Path):
+    mesh = result.mesh
+    cell_type, _ = vtk_cells(mesh)
+    if result.u_minus is None:  # several interfaces: a piece per region
+        V = result.problem.V
+        node_region = V.regions()[1]
+        points, cells, region, cut, disp, nodes = region_pieces(mesh, node_region,
+                                                                result.u_regions)
+        psi = {f"levelset_{k}": Vk.cut.psi[nodes] for k, Vk in enumerate(V.spaces)}
+        with quiet():
+            meshio.write(path, meshio.Mesh(
+                pad3(points), [(cell_type, cells)],
+                point_data={"displacement": pad3(disp), **psi},
+                cell_data={"region": [region], "cut": [cut]}), file_format="vtu")
+        return
+    levelset = getattr(result.scene, "levelset", None)
+    if levelset is None:  # no level set known: every cell on both sides
+        psi_nodes = np.zeros(mesh.nvertices)
+    else:
+        psi_nodes = nodal_values(levelset, mesh)
+    points, cells, side, cut, disp, psi = side_pieces(mesh, psi_nodes, result.u_minus,
+                                                      result.u_plus)
+    with quiet():  # meshio's own messages are not ours to print
+        meshio.write(path, meshio.Mesh(
+            pad3(points), [(cell_type, cells)],
+            point_data={"displacement": pad3(disp), "levelset": psi},
+            cell_data={"side": [side], "cut": [cut]}), file_format="vtu")
+
+
+def _write_interface(result, path: Path):
+    points = np.asarray(result.points, dtype=float)
+    facets = np.asarray(result.facets, dtype=np.int64)
+    kind = {2: "line", 3: "triangle"}[points.shape[0]]
+    n, r, jump = (np.asarray(a, dtype=float) for a in (result.normals, result.traction,
+                                                        result.jump))
+    data = {"pressure": np.asarray(result.pressure, dtype=float),
+            "traction": vectors3(r),
+            "tangential_traction": vectors3(r - (r * n).sum(0) * n),
+            "normal": vectors3(n),
+            "jump": vectors3(jump),
+            "gap": (jump * n).sum(0)}
+    if is_contact(result):
+        data["status"] = np.asarray(result.status, dtype=np.int64)
+    if result.u_minus is None:  # several interfaces
+        data["interface"] = np.asarray(result.interface, dtype=np.int64)
+    with quiet():
+        meshio.write(path, meshio.Mesh(vectors3(points),
+                                       [(kind, facets.T.reshape(-1, points.shape[0]))],
+                                       point_data=data), file_format="vtu")
+
+
+_WRITERS = {"json": _write_json, "displacement": _write_displacement,
+            "interface": _write_interface}
+
+
+def write_result(result, out_dir: str | Path) -> dict[str, Path]:
+    """Write ``result.json``, ``displacement.vtu`` and ``interface.vtu`` into ``out_dir``.
+
+    All or nothing, as one set (see the module notes): ``out_dir`` is replaced
+    by a folder holding the three new files once all are complete.
+
+    Parameters
+    ----------
+    result
+        A :class:`skxfem.result.Result` (or any object with the same
+        attributes), of a tie or of contact.
+    out_dir
+        Folder to write into; created if missing (and removed again if the
+        writing fails); it may hold an earlier result only.
+
+    Returns
+    -------
+    dict
+        ``{"json": ..., "displacement": ..., "interface": ...}`` paths.
+
+    Raises
+    ------
+    ValueError
+        From :func:`check_output` or :func:`result_summary`.
+    OSError
+        If a file cannot be written (e.g. the disk is full); nothing is left.
+    """
+    out = check_output(out_dir)
+    result_summary(result)                      # refuse a bad result before touching disk
+    written = write_set(out, {name: (lambda path, key=key: _WRITERS[key](result, path))
+                              for key, name in _FILES.items()})
+    return {key: written[name] for key, name in _FILES.items()}

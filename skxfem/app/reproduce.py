@@ -1,0 +1,282 @@
+r"""Reproduce the paper's figures and numbers: ``python -m skxfem.app.reproduce``.
+
+``make figures`` runs ``python -m skxfem.app.reproduce --quick --out out/``.  It
+writes into ``--out``
+
+* ``fig1.png`` ... ``fig4.png``: schematics of the paper's Figures 1-4
+  (:mod:`skxfem.viz.schematics`);
+* ``fig5.png`` ... ``fig10.png``: the paper's Figures 5-10 (see
+  :mod:`skxfem.viz.figures`), ``fig7_2d.png`` and ``fig8_2d.png``: Figures 7
+  and 8 on the 2D strip of triangles, and ``inf_sup.png``: β_h vs h (our
+  addition);
+* ``summary.json``: the measured numbers — per cell and space, for every n:
+  the inf-sup constant β_h of the bilateral tie (``beta_h``, ``beta_l2``:
+  both norms of :func:`skxfem.lbb.inf_sup`, ``n_zero`` its zero modes) and
+  of the bonded tie the scenes solve (``beta_h_bonded``, ``n_zero_bonded``),
+  the relative L² error of the contact pressure and the relative energy
+  error with their observed rates, sizes and timings; ``fem_conforming``:
+  the energy error of classical FEM on hexahedra that follow Γ (the
+  paper's FEM curve of Figure 9, :mod:`skxfem.studies.conforming`); ``block3d``: the
+  genuinely 3D validation (:mod:`skxfem.studies.validation3d`);
+* ``block3d.png`` (its errors against h) and ``block3d_pressure.png`` (its
+  pressures against the exact ones), ``vital_3d.png`` (the multiplier
+  spaces on a sphere through tetrahedra, :func:`skxfem.viz.figures.fig_vital_3d`);
+* ``frontier_energy.png``, ``frontier_pressure.png``, ``frontier.json``: the
+  speed-accuracy frontier (:mod:`skxfem.studies.frontier`): error against wall time
+  for every method a user can choose, with the Pareto front; its per-method
+  summary is also under ``frontier`` in ``summary.json``;
+
+and prints a short table (and, on a terminal, one progress line per part).
+Errors are measured against the exact solution of :mod:`skxfem.fem.exact`
+(scenes :func:`~skxfem.scenes.exact_strip` and
+:func:`~skxfem.scenes.exact_plate` with one layer of cells along x), under
+which the paper's reference p(y) = 4y(1 - y) is the exact contact pressure.
+3D uses prisms (all three spaces) and hexahedra (the naive space: on this
+structured mesh cut by a plane every space is the naive one), 2D triangles and
+quadrilaterals (all three spaces).  The plate does not depend on x, so its
+prisms give the triangles' numbers; the block of
+:func:`~skxfem.scenes.exact_block` (Γ slanted against all three axes, an
+exact solution varying in x, y and z) is solved on hexahedra, prisms and
+tetrahedra with all three spaces.
+
+``--quick`` takes about a minute (2D up to 1/h = 64, 3D up to 32, the block
+up to 16 cells per side); the
+default goes one mesh further in each and sweeps a larger frontier (about
+eight minutes and 2.4 GB, measured once on 2 shared cores).  ``--sizes``
+replaces every list of meshes (for tests; the block, n³ cells, takes the
+smallest size and its half).
+
+>>> parser().parse_args(["--quick", "--sizes", "8", "16"]).sizes
+[8, 16]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from ..lbb import inf_sup
+from ..scene.benchmarks import exact_scene
+from ..stabilised import vital_edges, winner_nodes
+from ..studies.conforming import study_conforming
+from ..studies.convergence import observed_rates, study
+from ..studies.progress import Progress
+from ..studies.validation3d import study_block
+from ..studies.validation3d import summary as block_summary
+from ..viz import figures, schematics
+from ..viz.frontier_plots import reproduce_frontier
+from ..viz.validation3d_plots import fig_block, fig_block_pressure
+
+__all__ = ["main", "parser", "plan"]
+
+SETS = {
+    "quick": {"d2": (8, 16, 32, 64), "d3": (8, 16, 32), "fig5": 8, "fig7": (4, 8, 16, 32),
+              "fig8": (8, 16), "block": (4, 8, 16)},
+    "full": {"d2": (8, 16, 32, 64, 128), "d3": (8, 16, 32, 64), "fig5": 16,
+             "fig7": (4, 8, 16, 32, 64), "fig8": (16, 32), "block": (4, 8, 16, 32)},
+}
+PARTS = ("fig5", "fig6", "fig7", "fig8", "fig7_2d", "fig8_2d", "study_tri", "study_quad",
+         "study_prism", "study_hex", "fem_conforming", "study_block", "block_pressure",
+         "vital_3d", "frontier")
+"""The timed parts of a run, in order (one progress line each, on a terminal)."""
+CELLS = {"tri": ("naive", "winner", "vital"), "quad": ("naive", "winner", "vital"),
+         "prism": ("naive", "winner", "vital"), "hex": ("naive",)}
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, with a usage error in one line (exit 2), as ``skxfem`` reports errors."""
+
+    def error(self, message):
+        self.exit(2, f"skxfem: error: reproduce: {message} (see {self.prog} --help)\n")
+
+
+def parser() -> argparse.ArgumentParser:
+    """The command line of ``python -m skxfem.app.reproduce``."""
+    p = _Parser(prog="python -m skxfem.app.reproduce",
+                                description="Reproduce Figures 5-10 of Géniaut, Massin & "
+                                            "Moës (2007) and write summary.json.")
+    p.add_argument("--out", type=Path, default=Path("out"), help="output folder (created)")
+    p.add_argument("--quick", action="store_true", help="coarser meshes, about half a minute")
+    p.add_argument("--sizes", type=int, nargs="+", metavar="N",
+                   help="1/h of every study and of Figures 5, 7, 8 (e.g. 8 16, for tests)")
+    return p
+
+
+def plan(quick: bool, sizes=None) -> dict:
+    """The meshes of each part: ``d2``/``d3`` study sizes, ``fig5`` n, ``fig7``/``fig8`` ns,
+    ``block`` the cells per side of the 3D block.
+
+    >>> plan(True, [8, 16])
+    {'d2': (8, 16), 'd3': (8, 16), 'fig5': 8, 'fig7': (8, 16), 'fig8': (8, 16), 'block': (4, 8)}
+    """
+    if not sizes:
+        return dict(SETS["quick" if quick else "full"])
+    sizes = tuple(sorted(set(sizes)))
+    return {"d2": sizes, "d3": sizes, "fig5": min(8, sizes[-1]), "fig7": sizes,
+            "fig8": sizes[-2:], "block": tuple(sorted({max(2, sizes[0] // 2), sizes[0]}))}
+
+
+def _measure(cell, ns):
+    """Study rows and inf-sup results (both norms) of ``cell`` for its spaces."""
+    rows = study(lambda n, s: exact_scene(n, cell, s), ns, CELLS[cell], with_inf_sup=False)
+    betas = {(scaling, space): [inf_sup(exact_scene(n, cell, space), scaling, "bilateral")
+                                for n in ns]
+             for scaling in ("h", "l2") for space in CELLS[cell]}
+    betas.update({("bonded", space): [inf_sup(exact_scene(n, cell, space), "h", "bonded")
+                                      for n in ns] for space in CELLS[cell]})
+    return rows, betas
+
+
+def _rates(h, e):
+    return [round(float(r), 4) for r in observed_rates(h, e)] if len(h) > 1 else []
+
+
+def _table(cell, rows, betas) -> dict:
+    out = {}
+    for space in CELLS[cell]:
+        mine = [r for r in rows if r.space == space]
+        h = [r.h for r in mine]
+        out[space] = {
+            "n": [r.n for r in mine], "h": h,
+            "beta_h": [r.beta for r in betas["h", space]],
+            "beta_l2": [r.beta for r in betas["l2", space]],
+            "h_cut_edges": [r.h for r in betas["h", space]],
+            "n_zero": [r.n_zero for r in betas["h", space]],
+            "beta_h_bonded": [r.beta for r in betas["bonded", space]],
+            "n_zero_bonded": [r.n_zero for r in betas["bonded", space]],
+            "pressure_l2": [r.pressure_l2 for r in mine],
+            "pressure_l2_rates": _rates(h, [r.pressure_l2 for r in mine]),
+            "pressure_max": [r.pressure_max for r in mine],
+            "energy": [r.energy for r in mine],
+            "energy_rates": _rates(h, [r.energy for r in mine]),
+            "n_dofs": [r.n_dofs for r in mine],
+            "n_multipliers": [r.n_multipliers for r in mine],
+            "seconds_solve": [round(r.seconds, 3) for r in mine],
+        }
+    return out
+
+
+def _print_table(studies: dict) -> None:
+    print(f"{'cell':6} {'space':7} {'1/h':>4} {'beta_h':>8} {'bonded':>8} {'L2(p)':>9} "
+          f"{'rate':>5} {'W(u)':>9} {'rate':>5}")
+    for cell, spaces in studies.items():
+        for space, t in spaces.items():
+            for k, n in enumerate(t["n"]):
+                pr = f"{t['pressure_l2_rates'][k - 1]:5.2f}" if k else "     "
+                er = f"{t['energy_rates'][k - 1]:5.2f}" if k else "     "
+                print(f"{cell:6} {space:7} {n:4d} {t['beta_h'][k]:8.4f} "
+                      f"{t['beta_h_bonded'][k]:8.4f} "
+                      f"{t['pressure_l2'][k]:9.2e} {pr} {t['energy'][k]:9.2e} {er}")
+
+
+def _print_block(block: dict) -> None:
+    print(f"block  {'space':7} {'1/h':>4} {'W(u)':>9} {'rate':>5} {'L2(p)':>9} {'rate':>5} "
+          f"{'max(p)':>9}")
+    for cell, spaces in block["studies"].items():
+        for space, t in spaces.items():
+            for k, n in enumerate(t["n"]):
+                er = f"{t['energy_rates'][k - 1]:5.2f}" if k else "     "
+                pr = f"{t['pressure_l2_rates'][k - 1]:5.2f}" if k else "     "
+                print(f"{cell:6} {space:7} {n:4d} {t['energy'][k]:9.2e} {er} "
+                      f"{t['pressure_l2'][k]:9.2e} {pr} {t['pressure_max'][k]:9.2e}")
+    for f in block["failures"]:
+        print(f"{f['cell']:6} {f['space']:7} {f['n']:4d} {f['reason'][:70]}")
+
+
+def main(argv=None) -> int:
+    """Compute, draw and write everything; returns the exit code 0."""
+    args = parser().parse_args(argv)
+    sizes = plan(args.quick, args.sizes)
+    out = args.out
+    out.mkdir(parents=True, exist_ok=True)
+    timings = {}
+    start = time.perf_counter()
+
+    def save(fig, name):
+        fig.savefig(out / f"{name}.png", dpi=120, bbox_inches="tight")
+
+    progress = Progress(len(PARTS), "reproduce")
+
+    def timed(name, make):
+        t0 = time.perf_counter()
+        value = make()
+        timings[name] = round(time.perf_counter() - t0, 2)
+        progress.step(name)
+        return value
+
+    for name in ("fig1", "fig2", "fig3", "fig4"):     # the schematics of Figures 1-4
+        save(getattr(schematics, name)(), name)
+    save(timed("fig5", lambda: figures.fig5(sizes["fig5"])), "fig5")
+    save(timed("fig6", figures.fig6), "fig6")
+    graph = figures.figure6_graph()
+    algo1, algo2 = winner_nodes(*graph), vital_edges(*graph)
+    save(timed("fig7", lambda: figures.fig7(sizes["fig7"])), "fig7")
+    save(timed("fig8", lambda: figures.fig8(sizes["fig8"])), "fig8")
+    save(timed("fig7_2d", lambda: figures.fig7(sizes["fig7"], cell="tri")), "fig7_2d")
+    save(timed("fig8_2d", lambda: figures.fig8(sizes["fig8"], cell="tri")), "fig8_2d")
+
+    measured = {}
+    for cell in ("tri", "quad", "prism", "hex"):
+        ns = sizes["d2"] if cell in ("tri", "quad") else sizes["d3"]
+        measured[cell] = timed(f"study_{cell}", lambda c=cell, ns=ns: _measure(c, ns))
+    studies = {cell: _table(cell, *m) for cell, m in measured.items()}
+    rows = {cell: m[0] for cell, m in measured.items()}
+    shown = {"tri": ("naive", "winner", "vital"), "prism": ("naive", "winner", "vital"),
+             "quad": ("naive",), "hex": ("naive",)}
+    fem = timed("fem_conforming", lambda: study_conforming(
+        sorted({2 * max(1, n // 2) for n in sizes["d3"]})))
+    save(figures.fig9({c: [r for r in rows[c] if r.space in shown[c]] for c in rows},
+                      fem={"hex": fem}), "fig9")
+    save(figures.fig10({c: [r for r in rows[c] if r.space in shown[c]] for c in rows}), "fig10")
+    inf_sup = [{(c, s): measured[c][1][scaling, s] for c in ("tri", "quad", "prism")
+                for s in shown[c]} for scaling in ("h", "l2", "bonded")]
+    save(figures.fig_inf_sup(*inf_sup), "inf_sup")
+
+    block = timed("study_block", lambda: study_block(sizes["block"]))
+    save(fig_block(block), "block3d")
+    save(timed("block_pressure", lambda: fig_block_pressure(min(8, sizes["block"][-1]))),
+         "block3d_pressure")
+    save(timed("vital_3d", figures.fig_vital_3d), "vital_3d")
+
+    frontier = timed("frontier", lambda: reproduce_frontier(out, args.quick, args.sizes))
+
+    quad = studies["quad"]
+    summary = {
+        "paper": "Géniaut, Massin & Moës (2007), §5, Figures 5-10",
+        "quick": bool(args.quick), "sizes": sizes,
+        "reference": "exact: skxfem.fem.exact.ExactPlate, contact pressure p = 4 s (1 - s) on Γ",
+        "scenes": {"tri": "exact_strip(n, 'tri')", "quad": "exact_strip(n, 'quad')",
+                   "prism": "exact_plate(n, 'prism', nx=1)", "hex": "exact_plate(n, 'hex', nx=1)"},
+        "figure6": {"winner": {"multipliers": algo1.size, "winner_nodes": algo1.winners.tolist()},
+                    "vital": {"multipliers": algo2.size,
+                              "vital_edges": [list(figures.FIG6_EDGES[e]) for e in
+                                              np.flatnonzero(algo2.vital)]}},
+        "quad_spaces_coincide": float(max(
+            np.ptp([quad[s][k][i] for s in quad]) for k in ("beta_h", "pressure_l2")
+            for i in range(len(quad["naive"]["n"])))),
+        "studies": studies,
+        "fem_conforming": {"hex": {
+            "scene": "exact_plate(n, 'hex', nx=1) on 1 x n x n cells: Γ on mesh faces",
+            "n": [r.n for r in fem], "h": [r.h for r in fem],
+            "energy": [r.energy for r in fem],
+            "energy_rates": _rates([r.h for r in fem], [r.energy for r in fem]),
+            "n_dofs": [r.n_dofs for r in fem]}},
+        "block3d": block_summary(block),
+        "frontier": frontier,
+        "timings": timings,
+    }
+    timings["total"] = round(time.perf_counter() - start, 2)
+    (out / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
+    _print_table(studies)
+    _print_block(summary["block3d"])
+    print(f"wrote {len(list(out.glob('*.png')))} figures and summary.json to {out}/ "
+          f"in {timings['total']:.0f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,585 @@
+r"""Unilateral contact and Coulomb friction on Γ over a load history (paper §2–3, eq. 5–9).
+
+:func:`solve` takes a scene whose ``law`` is one of
+:data:`~skxfem.contact.laws.CONTACT_LAWS` and a load history, and returns the
+:class:`~skxfem.result.Result` of every law, its fields those of the last
+step, with one :class:`Step` per load step (the values at the multiplier
+dofs).  Each step is
+solved by the globalised semi-smooth Newton method of
+:mod:`skxfem.contact.newton` (every equation at once) or, with
+``method="fixed_point"``, by the paper's scheme
+(:mod:`skxfem.contact.fixed_point`).
+
+**Where the laws are imposed.** At the multiplier dofs, with the weighted
+jumps d_j = ∫ψ_j [[u]]·n / ∫ψ_j (:mod:`skxfem.contact.interface`): the
+pressure is a multiplier dof, the gap is tested by the same function, so the
+discrete Signorini conditions λ_j ≤ 0, d_j ≤ 0, λ_j d_j = 0 hold *exactly*
+at every dof, the contact residual is a function of dof values only, and the
+Newton matrix is the sparse bilateral saddle matrix with rows switched
+between "d_j = 0" and "λ_j = 0".  Evaluating χ at the quadrature points
+instead would mix the two states inside a facet, and the pointwise
+conditions could not all hold for a linear λ_h.
+
+**ρ_n, ρ_τ.** Both are tractions per length and default to E/h, h the mean
+length of the cut edges.  The solution does not depend on them (an
+augmentation, not a penalty); only the iterations do.
+
+**Load history.** A sequence of load factors (the scene's loads and imposed
+displacements scaled) or of load states (scenes on the same mesh, Γ,
+supports, material and space, e.g. press, then shear, then unload), each
+with its own law: a state may switch the interface to another contact law,
+or to ``bilateral`` (tension carried, free sliding) or ``bonded`` (no
+further slip), e.g. once it is closed.  The slip rate of eq. 9b is v_τ Δt =
+the increment of the tangential jump over a step.
+
+**Rescue and step cutting.** A step whose Newton iteration does not
+converge is solved again from the same start: by Newton with the default
+ρ = E/h where the scene chose another (an extreme ρ_τ makes a sticking point
+look sliding for many iterations), then, for Coulomb, by the paper's fixed
+point, whose passes freeze the radius μp of the friction ball (Newton may
+stall at a lightly pressed point on the slip limit, where that radius moves
+with the pressure); from the first answer found, Newton with the scene's own
+ρ confirms it (``rescued`` in the step's
+:class:`~skxfem.contact.newton.NewtonInfo` counts the iterations of the first
+attempt).  A step that still does not converge in ``max_iter``
+iterations is solved again in two halves (loads and imposed
+displacements interpolated, the state's law throughout), and so on, each
+cut reported by a :class:`StepCutWarning`, down to 1/2^``max_cuts`` of the
+step; then the error names the step and its load factor.
+
+**Several interfaces.** A scene with several (``Scene(interfaces=...)``),
+one of them with a contact law, is solved here as one: the dofs of every
+interface, each with its own law, μ and ρ (:func:`parameters` of the scene
+with that interface alone; the ties as the kinds ``bilateral`` and
+``bonded``), their operators and laws stacked
+(:func:`skxfem.contact.interface.join`, :func:`skxfem.contact.newton.join_laws`).
+A load state gives each interface its law.  The result's fields are those of
+every interface in turn (:mod:`skxfem.result`), its ``law`` one
+:class:`~skxfem.contact.newton.Law` per interface.
+
+>>> from dataclasses import replace
+>>> from skxfem.scene import Displacement
+>>> from skxfem.scene.benchmarks import strip
+>>> s = strip(n=3)   # the top must be held in x: a frictionless Γ lets it slide
+>>> s = replace(s, law="frictionless",
+...             displacements=s.displacements + (Displacement("ymax", {"x": 0.0}),))
+>>> result = solve(s)
+>>> step = result.steps[-1]
+>>> bool(step.pressure.min() > 0), step.newton.iterations <= 4
+(True, True)
+"""
+from __future__ import annotations
+
+import time
+import warnings
+from dataclasses import dataclass, replace
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..levelset import point_normals
+from ..linalg.amg import check_tie_held, rigid_modes
+from ..linalg.linear import LINEAR_TOL, check_linear_tol, choose_linear
+from ..linalg.rigid import check_held
+from ..linalg.saddle import SingularSystemError
+from ..linalg.smoothest import dependencies
+from ..linalg.threads import limited
+from ..problem import Problem, assemble
+from ..result import Result, on_edges, result
+from ..scene.laws import LAWS
+from ..scene.model import Scene, check_scene
+from .fixed_point import fixed_point
+from .interface import Operators, operators, tangent_frames
+from .laws import CONTACT_LAWS, HISTORY_LAWS, OPEN, SLIP, STICK
+from .newton import (
+    TOL,
+    ContactConvergenceError,
+    Iterate,
+    Law,
+    NewtonInfo,
+    PointLaws,
+    StepProblem,
+    join_laws,
+    newton,
+    point_laws,
+)
+
+__all__ = ["Step", "parameters", "solve", "ContactConvergenceError",
+           "StepCutWarning", "METHODS", "RHO_RANGE", "MAX_CUTS"]
+
+METHODS = ("newton", "fixed_point")
+
+RHO_RANGE = (1e-9, 1e12)
+"""The ρ_n, ρ_τ accepted, relative to their defaults E/h."""
+
+MAX_CUTS = 6
+"""A load step is cut down to 1/2^MAX_CUTS of its increment before it is refused."""
+
+
+class StepCutWarning(UserWarning):
+    """A load step did not converge and is solved again in smaller increments."""
+
+
+@dataclass(frozen=True)
+class Step:
+    """One converged load step, all at the m multiplier dofs.
+
+    ``pressure`` (m,) p = -λ; ``traction`` (m, k) the tangential traction
+    r_τ (components on ``Result.ops.Bt``'s tangents); ``gap`` (m,)
+    the weighted normal jump d (≤ 0 admissible); ``slip`` (m, k) the
+    weighted tangential jump (total); ``status`` (m,) 0 open, 1 stick,
+    2 slip; ``Lambda`` (m, k) the semi-multiplier Λ = r_τ/(μλ) of eq. 9a
+    (``coulomb``, where p > 0; 0 elsewhere); ``law`` the law of the step
+    (several interfaces: a tuple, the law of each);
+    ``increments`` how many increments the step took (1 unless cut).
+    """
+
+    load: object
+    U: np.ndarray
+    pressure: np.ndarray
+    traction: np.ndarray
+    gap: np.ndarray
+    slip: np.ndarray
+    status: np.ndarray
+    Lambda: np.ndarray
+    newton: NewtonInfo
+    law: str = ""
+    increments: int = 1
+
+
+def parameters(scene: Scene, h: float) -> Law:
+    """The :class:`~skxfem.contact.newton.Law` of ``scene`` with ρ defaults for mesh size h.
+
+    ``coulomb`` with μ = 0 is ``frictionless``.
+
+    >>> from skxfem.scene.benchmarks import strip
+    >>> from dataclasses import replace
+    >>> law = parameters(replace(strip(), law="coulomb", friction=0.5), h=0.25)
+    >>> law.name, law.mu, law.rho_n, law.rho_t
+    ('coulomb', 0.5, 4.0, 4.0)
+    """
+    if scene.law not in HISTORY_LAWS:
+        raise ValueError(f"scene law must be one of {CONTACT_LAWS} for a contact solve, "
+                         f"got {scene.law!r} (ties are solved by skxfem.solver.solve)")
+    default = scene.material.E / h
+    rho = {}
+    for key in ("rho_n", "rho_t"):
+        given = getattr(scene, key)
+        rho[key] = default if given is None else given
+        if not RHO_RANGE[0] <= rho[key] / default <= RHO_RANGE[1]:
+            raise ValueError(
+                f"scene {key} = {rho[key]:g} is {rho[key] / default:.1e} x its default "
+                f"E/h = {default:g}; it is an augmentation (the solution does not depend "
+                f"on it) and outside {RHO_RANGE[0]:g}..{RHO_RANGE[1]:g} x the default the "
+                f"Newton iteration loses its digits: leave it None or choose it near E/h")
+    name = "frictionless" if scene.law == "coulomb" and scene.friction == 0 else scene.law
+    return Law(name, float(scene.friction), float(rho["rho_n"]), float(rho["rho_t"]))
+
+
+@dataclass(frozen=True)
+class _State:
+    """One entry of a load history: its label, load, imposed values and the law of
+    each interface."""
+
+    label: object
+    F: np.ndarray
+    g: np.ndarray
+    laws: tuple[Law, ...]
+
+
+def _spaces(scene: Scene):
+    """The multiplier space of a one-interface scene, the list of each interface's."""
+    return scene.space if scene.interfaces is None else [i.space for i in scene.interfaces]
+
+
+def _same_setup(state: Scene, scene: Scene, pb: Problem, state_pb: Problem, i: int):
+    """Refuse a load state that changes what one solve keeps (module notes)."""
+    for key, get in (("material", lambda s: s.material), ("space", _spaces),
+                     ("quadrature_order", lambda s: s.quadrature_order)):
+        if get(state) != get(scene):
+            raise ValueError(f"history[{i}]: a load state must keep the scene's {key} "
+                             f"({get(scene)!r}), got {get(state)!r}: the "
+                             f"solver keeps one stiffness and one multiplier space")
+    same_cuts = len(state_pb.per_interface) == len(pb.per_interface) and all(
+        np.array_equal(a.cut.psi, b.cut.psi)
+        for a, b in zip(state_pb.per_interface, pb.per_interface))
+    if (state_pb.V.N != pb.V.N or not np.array_equal(state_pb.D, pb.D)
+            or not same_cuts):
+        raise ValueError(f"history[{i}]: a load state must keep the mesh, Γ and "
+                         f"the supported boundaries of the scene (same constrained "
+                         f"unknowns); give a zero displacement where a support "
+                         f"is released")
+
+
+def _laws(scene: Scene, hs) -> tuple[Law, ...]:
+    """The :class:`~skxfem.contact.newton.Law` of each interface of ``scene``, with the
+    mean cut-edge length ``hs[k]`` of interface k."""
+    return tuple(parameters(scene.alone(k), h) for k, h in enumerate(hs))
+
+
+def _states(scene: Scene, pb: Problem, history, hs) -> list[_State]:
+    """The :class:`_State` of each entry of the history; ``hs`` the mean cut-edge
+    length of each interface."""
+    if isinstance(history, (str, bytes)) or not hasattr(history, "__len__") \
+            or len(history) == 0:
+        raise ValueError(f"history must be a non-empty sequence of load factors or of "
+                         f"scenes (load states), got {history!r}")
+    laws = _laws(scene, hs)
+    out = []
+    for i, item in enumerate(history):
+        if isinstance(item, Scene):
+            for j in item.interface_list:
+                if j.law not in HISTORY_LAWS:
+                    raise ValueError(f"history[{i}]: the law of a load state must be one "
+                                     f"of {HISTORY_LAWS}, got {j.law!r}")
+            state = assemble(item, law="bilateral")
+            _same_setup(item, scene, pb, state, i)
+            out.append(_State(item.name, state.F, state.g, _laws(item, hs)))
+        elif isinstance(item, (int, float, np.integer, np.floating)) and \
+                not isinstance(item, bool) and np.isfinite(item):
+            out.append(_State(float(item), item * pb.F, item * pb.g, laws))
+        else:
+            raise ValueError(f"history[{i}] must be a finite load factor or a Scene, "
+                             f"got {item!r}")
+    return out
+
+
+@limited
+def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
+          max_iter: int = 30, linear: str = "auto", max_cuts: int = MAX_CUTS,
+          linear_tol: float = LINEAR_TOL) -> Result:
+    """Solve the contact ``scene`` over the load ``history``.
+
+    Parameters
+    ----------
+    scene
+        A scene with ``law`` in ``CONTACT_LAWS`` (and ``friction`` μ for coulomb).
+    history
+        Load factors (floats) and/or load states (scenes), applied in order;
+        ``None``: the scene's ``steps``.
+    method
+        ``"newton"`` (semi-smooth Newton on all equations) or ``"fixed_point"``.
+    tol, max_iter
+        Relative residual tolerance of every equation
+        (:func:`skxfem.contact.newton.relative_residuals`); iteration limit of
+        one (sub)step.
+    linear
+        The linear solve of each Newton step (:data:`skxfem.linalg.linear.LINEAR`):
+        ``"direct"``, ``"iterative"`` (pyamg) or ``"auto"``:
+        :func:`skxfem.linalg.linear.choose_linear`.
+    max_cuts
+        How many times a failing step may be halved (module notes); 0: never.
+    linear_tol
+        The relative residual of each iterative linear solve.
+
+    Raises
+    ------
+    ValueError
+        A tie law, an empty or bad history, an unknown method, a load state
+        that changes the set-up.
+    ContactConvergenceError
+        A step that does not converge, cut down to 1/2^max_cuts: the message
+        names the step and its load factor.
+    skxfem.linalg.saddle.SingularSystemError
+        (a ValueError) A law that leaves a side free to move even with Γ
+        closed everywhere (a frictionless Γ under a side that only Γ holds),
+        or a converged step whose displacement is not unique (the open or
+        sliding interface leaves a side free, :func:`check_determined`).
+    """
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
+    for key, value, low, what in (("max_iter", max_iter, 1, "a positive integer"),
+                                  ("max_cuts", max_cuts, 0, "an integer >= 0")):
+        if not (isinstance(value, int) and not isinstance(value, bool) and value >= low):
+            raise ValueError(f"{key} must be {what}, got {value!r}")
+    if not (isinstance(tol, float) and 0 < tol < 1):
+        raise ValueError(f"tol must be a float in (0, 1), got {tol!r}")
+    if not any(i.law in CONTACT_LAWS for i in check_scene(scene).interface_list):
+        got = scene.law if scene.law is not None else [i.law for i in scene.interfaces]
+        raise ValueError(f"scene law must be one of {CONTACT_LAWS} for a contact solve, "
+                         f"got {got!r} (ties are solved by skxfem.solver.solve)")
+    pb = assemble(scene, law="bilateral")
+    ops = operators(pb)
+    hs = tuple(o.h for o in ops.pieces) or (ops.h,)
+    states = _states(scene, pb, scene.steps if history is None else history, hs)
+    laws = [law.name for s in states for law in s.laws]
+    linear = choose_linear(linear, pb.mesh.dim(), pb.V.N,
+                           all(LAWS[name].auto_iterative for name in laws))
+    linear_tol = check_linear_tol(linear_tol)
+    modes = rigid_modes(pb.V)
+    solve_kw = {"linear": linear} if linear == "direct" else {
+        "linear": linear, "modes": modes, "blocksize": pb.mesh.dim(),
+        "linear_tol": linear_tol}
+    t0 = time.perf_counter()
+    free = np.setdiff1d(np.arange(pb.V.N), pb.D)
+    m, k = ops.w.size, len(ops.Bt)
+    # the reference ρ of the convergence test: E/h, each interface its own h
+    rho_ref = (scene.material.E / ops.h if not ops.pieces
+               else scene.material.E / np.array(hs)[ops.interface])
+    it = Iterate(np.zeros(pb.V.N), np.zeros(m), np.zeros((m, k)))
+    F, g = np.zeros(pb.V.N), np.zeros(pb.D.size)
+    steps = []
+    checked = set()
+    for i, state in enumerate(states):
+        laws = _point_laws(state.laws, ops)
+        names = tuple(law.name for law in state.laws)
+        if names not in checked:  # the law holds the body with Γ closed?
+            check_closed(pb, ops, laws, modes, state.label)
+            checked.add(names)
+
+        def one(start, U_prev, F1, g1, laws=laws):
+            step = StepProblem(ops, pb.K, F1, free, U_prev, laws, rho_ref)
+            U = start.U.copy()
+            U[pb.D] = g1
+            start = Iterate(U, start.lam, start.r)
+            if method == "fixed_point":
+                return fixed_point(step, start, tol=tol, max_iter=max_iter, **solve_kw)
+            try:
+                return newton(step, start, tol=tol, max_iter=max_iter, **solve_kw)
+            except ContactConvergenceError as failed:
+                return _rescue(step, start, failed, tol, max_iter, solve_kw)
+
+        where = f"load step {i + 1} of {len(states)} ({_describe(state.label)})"
+        it, res, info, pieces = _advance(one, it, F, g, state.F, state.g,
+                                         max_cuts if method == "newton" else 0, where,
+                                         "+".join(names))
+        F, g = state.F, state.g
+        check_determined(pb, ops, laws, res.status, res.y, modes, state.label)
+        steps.append(_step(state, ops, it, res, info, pieces, laws))
+    law = states[0].laws[0] if not pb.interfaces else states[0].laws
+    return _result(pb, ops, law, tuple(steps), linear, linear_tol,
+                   time.perf_counter() - t0)
+
+
+def _point_laws(laws: tuple[Law, ...], ops: Operators) -> PointLaws:
+    """The law of every dof: those of each interface (``laws``) at its dofs."""
+    if not ops.pieces:
+        return point_laws(laws[0], ops.held)
+    return join_laws([point_laws(law, ops.held[ops.interface == k])
+                      for k, law in enumerate(laws)])
+
+
+def _result(pb: Problem, ops: Operators, law, steps: tuple, linear: str,
+            linear_tol: float, seconds: float) -> Result:
+    """The :class:`~skxfem.result.Result` of the last step: the dofs' values carried
+    to the cut edges by λ = P μ (the status: that of the dof weighing most)."""
+    last = steps[-1]
+    qs = pb.per_interface
+    normals = np.hstack([point_normals(q.cut, q.scene.levelset) for q in qs])
+    p = on_edges(pb.P, last.pressure)
+    r = np.stack([on_edges(Pa, last.traction[:, a]) for a, Pa in enumerate(ops.Pt)],
+                 axis=1).reshape(p.size, len(ops.Pt))  # (n, k) on each point's frame
+    frames = tangent_frames(normals)  # (k, dim, n)
+    traction = -p * normals + np.einsum("nk,kdn->dn", r, frames)
+    owner = np.asarray(abs(pb.P).argmax(axis=1)).ravel()
+    dim = pb.mesh.dim()
+    Jn = np.concatenate([((q.J @ (last.U if q.columns is None else last.U[q.columns]))
+                          .reshape(dim, -1) * q.rule.normals).sum(0) for q in qs])
+    t = pb.timings
+    timings = {"cut": t["cut"] + t["space"], "enrich": t["enrich"],
+               "assemble": sum(t[k] for k in ("stiffness", "load", "constraints", "interface",
+                                              "prolongation")), "solve": seconds}
+    return result(pb, last.U, traction, max(0.0, float(Jn.max())), ops.w.size, timings,
+                  linear, {"tol": linear_tol}, steps=steps, status=last.status[owner],
+                  ops=ops, law=law)
+
+
+def _rescue(step: StepProblem, start: Iterate, failed: ContactConvergenceError, tol: float,
+            max_iter: int, solve_kw: dict):
+    """A step whose Newton iteration failed (module notes): Newton again from the same
+    start with the default augmentation ρ = E/h where the step's is another (an
+    extreme ρ_τ makes a sticking point look sliding for many iterations), then, for
+    Coulomb, the paper's fixed point, whose passes freeze the radius μp of the
+    friction ball (the hard part near the slip limit of a lightly pressed point);
+    from the first answer found, Newton with the step's own ρ.  Re-raises
+    ``failed`` if none converges."""
+    laws = step.laws
+    attempts = []
+    if not (np.allclose(laws.rho_n, step.rho_ref) and np.allclose(laws.rho_t, step.rho_ref)):
+        reference = replace(step, laws=replace(laws, rho_n=np.full_like(laws.rho_n,
+                                                                        step.rho_ref),
+                                               rho_t=np.full_like(laws.rho_t, step.rho_ref)))
+        attempts.append(lambda: newton(reference, start, tol=tol, max_iter=max_iter,
+                                       **solve_kw))
+    if np.any(laws.tangential == "coulomb"):
+        attempts.append(lambda: fixed_point(step, start, tol=tol, max_iter=max_iter,
+                                            **solve_kw))
+    for attempt in attempts:
+        try:
+            near = attempt()[0]
+            it, res, info = newton(step, near, tol=tol, max_iter=max_iter, **solve_kw)
+        except ContactConvergenceError:
+            continue
+        return it, res, replace(info, rescued=len(failed.statuses) - 1)
+    raise failed
+
+
+def _describe(label) -> str:
+    return f"load factor {label:g}" if isinstance(label, float) else f"state {label!r}"
+
+
+def _advance(one, it, F0, g0, F1, g1, max_cuts: int, where: str, law_name: str = ""):
+    """Solve from the converged ``it`` (under F0, g0) to F1, g1, halving the
+    increment where a step fails (module notes).  Returns the iterate, its
+    residual, the NewtonInfo of the last increment and the number of increments."""
+    done, size, pieces = 0.0, 1.0, 0
+    smallest = 0.5 ** max_cuts
+    while done < 1.0:
+        target = min(1.0, done + size)
+        try:
+            new, res, info = one(it, it.U, F0 + target * (F1 - F0), g0 + target * (g1 - g0))
+        except ContactConvergenceError as e:
+            e.law = law_name
+            if size / 2 < smallest * (1 - 1e-12):
+                cut = f" after cutting it down to 1/{round(1 / size)} of its increment" \
+                    if max_cuts and size < 1 else ""
+                hint = (" The adhesive law (no slip wherever closed) may have no solution "
+                         "at the edge of a contact zone, where the pressure vanishes: a point "
+                         "that stays closed pulls, one that opens penetrates; coulomb with a "
+                         "large friction (1e3) has one." if hasattr(e, "law") and
+                         "adhesive" in e.law.split("+") else "")
+                err = ContactConvergenceError(
+                    f"{where}: {e}{cut}. Try more load steps, another rho_n/rho_t, or "
+                    f"max_iter.{hint}")
+                err.last, err.statuses = e.last, e.statuses
+                for key in ("thresholds",):
+                    if hasattr(e, key):
+                        setattr(err, key, getattr(e, key))
+                raise err from e
+            size /= 2
+            warnings.warn(f"{where}: {str(e).split(':')[0]}; cut: solving it in increments "
+                          f"of 1/{round(1 / size)}", StepCutWarning, stacklevel=3)
+            continue
+        it, done, pieces = new, target, pieces + 1
+        size = min(1.0, 2 * size) if size < 1 else size
+    return it, res, info, pieces
+
+
+def _step(state: _State, ops: Operators, it: Iterate, res, info, pieces,
+          laws: PointLaws) -> Step:
+    """The :class:`Step` of a converged state (``laws`` at its dofs)."""
+    m, k = it.r.shape
+    slip = np.stack([B @ it.U for B in ops.Bt], axis=1).reshape(m, k) / ops.w[:, None]
+    Lam = np.zeros((m, k))
+    p = -it.lam
+    ok = (laws.name == "coulomb") & (p > 0)
+    Lam[ok] = -it.r[ok] / (laws.mu[ok, None] * p[ok, None])
+    names = tuple(law.name for law in state.laws)
+    return Step(state.label, it.U.copy(), -it.lam, it.r.copy(), ops.Bn @ it.U / ops.w, slip,
+                res.status, Lam, info, names[0] if len(names) == 1 else names, pieces)
+
+
+def _sticking(laws: PointLaws, status) -> np.ndarray:
+    """(m,) the dofs whose whole jump a state holds: closed under a no-slip law, or
+    sticking under Coulomb's."""
+    return (((status != OPEN) & (laws.tangential == "stick"))
+            | ((status == STICK) & (laws.tangential == "coulomb")))
+
+
+def _held_rows(ops: Operators, laws: PointLaws, status, y) -> sp.csr_matrix:
+    """The rows of the tie that a contact state imposes: the normal jump at
+    closed points, the tangential jumps where they stick (not those a support
+    holds); a point sliding in 3D holds the tangent across its slip direction."""
+    closed = status != OPEN
+    rows = [ops.Bn[closed]]
+    k = len(ops.Bt)
+    free = ~ops.held
+    stick = _sticking(laws, status)
+    rows += [ops.Bt[a][stick & free[:, a]] for a in range(k) if (stick & free[:, a]).any()]
+    slip = (status == SLIP) & (laws.tangential == "coulomb") & free.all(axis=1)
+    if k == 2 and slip.any():
+        yh = y[slip] / np.linalg.norm(y[slip], axis=1)[:, None]
+        rows.append(sp.diags(-yh[:, 1]) @ ops.Bt[0][slip]
+                    + sp.diags(yh[:, 0]) @ ops.Bt[1][slip])
+    return sp.vstack(rows, format="csr")
+
+
+def _names(laws: PointLaws) -> str:
+    """The law of the dofs in words: "the coulomb law", or "the laws a, b" (several)."""
+    names = list(dict.fromkeys(laws.name.tolist()))
+    return f"the {names[0]} law" if len(names) == 1 else f"the laws {', '.join(names)}"
+
+
+def _check_rigid(pb: Problem, ops: Operators, laws: PointLaws, st, y, what: str, hint: str,
+                 label) -> None:
+    """:func:`skxfem.linalg.rigid.check_held` of a contact state: the normal jump held at
+    the edges of closed dofs, the whole jump at those of sticking ones, and a
+    3D sliding point's tangent across its slip; the message names the motion."""
+    closed = st != OPEN
+    full = _sticking(laws, st)
+    edges_of = abs(pb.P).tocsc()
+    slip = (st == SLIP) & (laws.tangential == "coulomb") & ~ops.held.any(axis=1)
+    rows = sp.csr_matrix((0, pb.V.N))
+    if len(ops.Bt) == 2 and y is not None and slip.any():
+        yh = y[slip] / np.linalg.norm(y[slip], axis=1)[:, None]
+        rows = (sp.diags(-yh[:, 1]) @ ops.Bt[0][slip]
+                + sp.diags(yh[:, 0]) @ ops.Bt[1][slip]).tocsr()
+    try:
+        check_held(pb, normal=np.asarray(edges_of[:, closed].sum(axis=1)).ravel() > 0,
+                   full=np.asarray(edges_of[:, full].sum(axis=1)).ravel() > 0,
+                   rows=rows, what=what, hint=hint)
+    except SingularSystemError as e:
+        raise SingularSystemError(f"load step {label!r}: {e}") from None
+
+
+def check_closed(pb: Problem, ops: Operators, laws: PointLaws, modes, label=None) -> None:
+    """Refuse a law that cannot determine a state even where Γ is closed
+    everywhere (every point in contact, sticking where the law can): a side
+    it leaves free to move (a frictionless Γ under a side that only Γ holds
+    tangentially; :func:`skxfem.linalg.rigid.check_held` names the motion), or
+    multipliers that depend on the others (the naive space on tetrahedra).
+    ``laws``: the :class:`~skxfem.contact.newton.PointLaws` of the dofs."""
+    status = np.where(laws.tangential == "free", SLIP, STICK)
+    text = _names(laws)
+    _check_rigid(pb, ops, laws, status, None, f"{text} with Γ closed everywhere",
+                 "hold each side of Γ, or use a law with friction", label)
+    fixed = np.zeros(pb.V.N, bool)
+    fixed[pb.D] = True
+    rows = _held_rows(ops, laws, status, None)
+    try:
+        check_tie_held(pb.K, rows, fixed, modes)
+    except SingularSystemError as e:
+        raise SingularSystemError(
+            f"load step {label!r}: even with Γ closed everywhere, {text} leaves "
+            f"a part of the body free to move ({e}): hold each side of Γ, or use a law "
+            f"with friction") from e
+    free = rows[:, ~fixed]
+    norms = np.sqrt(np.asarray(free.multiply(free).sum(axis=1)).ravel())
+    N = dependencies(sp.diags(1.0 / np.where(norms > 0, norms, 1.0)) @ free)
+    if N.shape[1]:
+        raise ValueError(
+            f"load step {label!r}: {N.shape[1]} contact multipliers depend on the others "
+            f"(space {_spaces(pb.scene)!r}: the naive space on tetrahedra carries four "
+            f"multipliers on a quadrilateral cut, for three parameters of a linear jump), so "
+            f"the pressure is not unique where the laws must hold: use space='vital'")
+
+
+def check_determined(pb: Problem, ops: Operators, laws: PointLaws, st, y, modes, label=None
+                     ) -> None:
+    """Refuse a converged contact state that leaves a side of Γ free to move.
+
+    Newton may converge to a state whose displacement is not unique: an
+    unloaded side held only by an interface that ends up open (``st`` all
+    OPEN) may slide by any rigid motion, and a disc in contact all round
+    may turn about its centre.  The state holds what its closed points hold:
+    the normal jump, and the whole jump where they stick (``adhesive``:
+    wherever closed); a point sliding in 3D holds the tangent across its slip
+    direction ŷ.  :func:`skxfem.linalg.rigid.check_held` tests that with the level
+    set's normals and names the motion left free; then
+    :func:`skxfem.linalg.amg.check_tie_held` tests the discrete rows themselves.
+    ``laws``: the :class:`~skxfem.contact.newton.PointLaws` of the dofs.
+    """
+    counts = np.bincount(st, minlength=3)
+    found = (f"({counts[OPEN]} open, {counts[STICK]} stick, {counts[SLIP]} slip of "
+             f"{st.size} points)")
+    hint = "add supports on each side of Γ or a load that closes it"
+    _check_rigid(pb, ops, laws, st, y, f"the contact state found {found}", hint, label)
+    fixed = np.zeros(pb.V.N, bool)
+    fixed[pb.D] = True
+    try:
+        check_tie_held(pb.K, _held_rows(ops, laws, st, y), fixed, modes)
+    except SingularSystemError as e:
+        raise SingularSystemError(
+            f"load step {label!r}: the contact state found {found} leaves a part of the "
+            f"body free to move, so its displacement is not unique (a side that only the "
+            f"interface holds, while Γ opens or slides): {hint}") from e

@@ -1,0 +1,501 @@
+r"""One load step of unilateral contact with friction by a globalised semi-smooth Newton method.
+
+Unknowns: the free displacement unknowns U, the contact pressure λ (one value
+per multiplier dof, λ ≤ 0 in contact) and the tangential traction r_τ (m, k),
+k = dim - 1 (Coulomb's r_τ = μλΛ, eq. 9a: the solver keeps the traction,
+which stays bounded where the pressure vanishes, and reports Λ).  The
+equations, all solved at once (paper §3), at every multiplier dof j:
+
+* equilibrium  K U - Bnᵀλ - Σ_a Bt_aᵀ r_τa - F = 0 on the free unknowns;
+* contact      λ - χ(g_n) g_n = 0,  g_n = λ - ρ_n d  (a tied normal: ρ_n d = 0);
+* friction     r_τ - P_{B(0,R)}(r_τ - ρ_τ s) = 0,  R = μ max(0, -g_n)  (Coulomb);
+  r_τ - χ(g_n)(r_τ - ρ_τ s) = 0 (no slip where closed); r_τ = 0 (free sliding),
+
+with d, s the weighted normal jump and tangential jump increment of
+:mod:`skxfem.contact.interface` (s = v_τ Δt: the increment over the step) and
+the laws of :mod:`skxfem.contact.laws`.  Tangential components that a support
+holds (:attr:`~skxfem.contact.interface.Operators.held`) carry r_τa = 0: the
+support takes that force.
+
+**The iteration** (:func:`newton`), one pass of five named steps:
+
+1. :func:`residual` of every equation at the iterate;
+2. :func:`jacobian`, the exact generalised Jacobian (χ taken as 1 at g_n = 0,
+   so that the first iteration from an untouched interface is the bonded
+   solve);
+3. the linear step J Δx = -R (:mod:`skxfem.contact.step`; a matrix
+   unchanged since the last iteration is not factorised again; a singular
+   one, an active set that leaves a part of the body free, is replaced by the
+   Jacobian that keeps the points closed at the last iterate, then every point
+   closed; if that is singular too, the law or the space is at fault and the
+   :class:`~skxfem.contact.step.SingularStepError`, a ValueError, is raised);
+4. :func:`line_search`: the largest α ∈ {1, ½, …, 2⁻⁸} that decreases the
+   merit ‖D R‖ by the Armijo factor (1 - 10⁻⁴α), D the row scales of the
+   step's first Newton matrix, kept for the whole step (a merit that changed
+   with the iterate would let a cycle of active sets decrease it); if none
+   does, the α of the smallest merit, and the full step if no α decreases it
+   (the active set has to change) — unless that step returns to an active set
+   already left: then a step down the merit's gradient (:func:`descent`), off
+   the kink the cycle turns around;
+5. :func:`relative_residuals`, the convergence test: the residual of every
+   equation in force units (the interface rows times the lumped weight w)
+   divided by a force that cannot vanish, max(|F|, |K U|, max diag K · |U|),
+   each ≤ ``tol``.  The interface equations are measured with the *reference*
+   ρ = E/h, not the step's ρ: their zeros are the same for every ρ > 0, so the
+   test does not depend on the augmentation, and it does not look at the
+   statuses, which may flip at a point exactly on the slip limit.
+
+>>> law = Law("coulomb", mu=0.5, rho_n=1.0, rho_t=1.0)
+>>> law.friction, law.threshold is None
+(True, True)
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+import scipy.sparse as sp
+
+from . import step as linear_step
+from .laws import KINDS, disk_projection, status
+
+__all__ = ["Law", "PointLaws", "point_laws", "join_laws", "StepProblem", "Iterate", "Residual",
+           "NewtonInfo", "ContactConvergenceError", "jumps", "residual", "jacobian",
+           "line_search", "relative_residuals", "newton", "LINE_SEARCH", "TOL"]
+
+TOL = 1e-12
+"""The default tolerance of :func:`relative_residuals`.  Measured on the known
+answers of ``tests/test_contact_newton.py``: at 1e-10, Newton may stop one
+iteration early with tractions 1e-8 to 6e-8 off (3D slip, μ = 5); at 1e-12 every
+case is exact to 1e-12, at the cost of that one iteration."""
+
+LINE_SEARCH = tuple(0.5 ** np.arange(9))
+"""The step lengths tried by :func:`line_search`, longest first."""
+
+
+class ContactConvergenceError(RuntimeError):
+    """The contact iteration did not converge; the message says how far it got.
+
+    ``last`` holds the last (:class:`Iterate`, :class:`Residual`, :class:`NewtonInfo`)
+    and ``statuses`` the status of every point at every iteration, to show what
+    went wrong.
+    """
+
+
+@dataclass(frozen=True)
+class Law:
+    """A law of :data:`skxfem.contact.laws.KINDS` with its parameters (μ: ``coulomb``).
+
+    ``rho_n``, ``rho_t``: the augmentations, tractions per length.
+    ``threshold`` (m,), if given, freezes the friction threshold: the radius
+    of the Coulomb ball is ``threshold`` at a closed point instead of μp (the
+    paper's fixed point, :mod:`skxfem.contact.fixed_point`).
+    """
+
+    name: str
+    mu: float
+    rho_n: float
+    rho_t: float
+    threshold: np.ndarray | None = None
+
+    @property
+    def friction(self) -> bool:
+        return KINDS[self.name].tangential != "free"
+
+
+@dataclass(frozen=True)
+class PointLaws:
+    """The law at each of the m multiplier dofs, as arrays.
+
+    ``name`` (m,) law names, ``unilateral`` (m,) Signorini or a tied normal,
+    ``tangential`` (m,) ``"free"``, ``"stick"`` or ``"coulomb"``; ``mu``,
+    ``rho_n``, ``rho_t`` (m,); ``threshold`` (m,) the frozen radius of the
+    fixed point or None; ``held`` (m, k) the tangential components a support
+    holds (their r_τ is 0).
+    """
+
+    name: np.ndarray
+    unilateral: np.ndarray
+    tangential: np.ndarray
+    mu: np.ndarray
+    rho_n: np.ndarray
+    rho_t: np.ndarray
+    held: np.ndarray
+    threshold: np.ndarray | None = None
+
+    @property
+    def k(self) -> int:
+        return self.held.shape[1]
+
+
+def point_laws(law: Law, held: np.ndarray) -> PointLaws:
+    """One :class:`Law` at every dof; ``held`` (m, k) as :attr:`PointLaws.held`.
+
+    >>> pl = point_laws(Law("adhesive", 0.0, 2.0, 3.0), np.zeros((4, 1), bool))
+    >>> bool(pl.unilateral.all()), pl.tangential[0], float(pl.rho_t[0])
+    (True, 'stick', 3.0)
+    """
+    m = held.shape[0]
+    kind = KINDS[law.name]
+    full = lambda v: np.full(m, float(v))  # noqa: E731
+    return PointLaws(np.full(m, law.name, dtype=object), np.full(m, kind.unilateral),
+                     np.full(m, kind.tangential, dtype=object), full(law.mu),
+                     full(law.rho_n), full(law.rho_t), np.asarray(held, bool),
+                     law.threshold)
+
+
+def join_laws(parts) -> PointLaws:
+    """The :class:`PointLaws` of several interfaces' dofs, stacked in order (each
+    from :func:`point_laws`; no frozen threshold).
+
+    >>> a = point_laws(Law("frictionless", 0.0, 1.0, 1.0), np.zeros((2, 1), bool))
+    >>> b = point_laws(Law("coulomb", 0.5, 1.0, 1.0), np.zeros((3, 1), bool))
+    >>> j = join_laws([a, b])
+    >>> j.name.tolist(), j.mu.tolist()
+    (['frictionless', 'frictionless', 'coulomb', 'coulomb', 'coulomb'], [0.0, 0.0, 0.5, 0.5, 0.5])
+    """
+    if any(p.threshold is not None for p in parts):
+        raise ValueError("join_laws stacks laws without a frozen threshold")
+    return PointLaws(*(np.concatenate([getattr(p, f) for p in parts]) for f in
+                       ("name", "unilateral", "tangential", "mu", "rho_n", "rho_t")),
+                     np.vstack([p.held for p in parts]))
+
+
+@dataclass(frozen=True)
+class StepProblem:
+    """What one load step solves: the interface ``ops``, the stiffness ``K``
+    and load ``F`` on all unknowns, the ``free`` unknowns, ``U_prev`` (the
+    converged state the slip increments start from), the ``laws`` and
+    ``rho_ref`` (the reference ρ of the convergence test, E/h; several
+    interfaces: (m,), each dof its interface's)."""
+
+    ops: object
+    K: sp.csr_matrix
+    F: np.ndarray
+    free: np.ndarray
+    U_prev: np.ndarray
+    laws: PointLaws
+    rho_ref: float | np.ndarray
+
+    @property
+    def nu(self) -> int:
+        return len(self.free)
+
+
+@dataclass(frozen=True)
+class Iterate:
+    """U (N,) with the imposed values, λ (m,), r_τ (m, k)."""
+
+    U: np.ndarray
+    lam: np.ndarray
+    r: np.ndarray
+
+    def moved(self, free, dx, alpha: float) -> Iterate:
+        """The iterate x + α Δx, Δx = (ΔU_free, Δλ, Δr_τ component-major)."""
+        nu, (m, k) = len(free), self.r.shape
+        U = self.U.copy()
+        U[free] += alpha * dx[:nu]
+        return Iterate(U, self.lam + alpha * dx[nu:nu + m],
+                       self.r + alpha * dx[nu + m:].reshape(k, m).T)
+
+
+@dataclass(frozen=True)
+class Residual:
+    """The residuals at an iterate: R_u (free unknowns), R_n (m,), R_t (m, k)
+    (tractions), and what the laws saw: g_n (m,), y = r_τ - ρ_τ s on the
+    components not held (m, k), the Coulomb radius R (m,) and its derivatives
+    dR/dλ (m,) and dR/dU = ``dR_dU`` ρ_n B_n/w, the status (m,)."""
+
+    R_u: np.ndarray
+    R_n: np.ndarray
+    R_t: np.ndarray
+    g_n: np.ndarray
+    y: np.ndarray
+    radius: np.ndarray
+    status: np.ndarray
+    dR_dlam: np.ndarray = None
+    dR_dU: np.ndarray = None
+
+    @property
+    def vector(self) -> np.ndarray:
+        """(R_u, R_n, R_t component-major), the order of the unknowns."""
+        return np.concatenate([self.R_u, self.R_n, self.R_t.T.ravel()])
+
+
+@dataclass(frozen=True)
+class NewtonInfo:
+    """``iterations`` (linear solves), ``residuals`` (iterations + 1, 3): the
+    relative residuals of equilibrium, contact and friction, first the start;
+    ``steps`` the line-search step length α of each iteration; ``rescued``: the
+    Newton iterations of a first attempt that failed before the fixed point
+    took over (:func:`skxfem.contact.solve`), 0 if none."""
+
+    iterations: int
+    residuals: np.ndarray
+    steps: tuple = ()
+    rescued: int = 0
+
+
+def jumps(ops, U, U_prev):
+    """d (m,) and s (m, k): the weighted normal jump and tangential jump increment."""
+    d = ops.Bn @ U / ops.w
+    s = np.stack([Bt @ (U - U_prev) for Bt in ops.Bt], axis=1) / ops.w[:, None]
+    return d, s.reshape(d.size, len(ops.Bt))
+
+
+RADIUS = "pressure"
+
+
+def _radius(laws: PointLaws, lam, g_n):
+    """The radius R of the friction ball, dR/dλ and the coefficient c of dR/dU =
+    c ρ_n B_n/w: μ max(0, -λ) (Coulomb; slope -μ where λ < 0), or the frozen
+    threshold where g_n < 0 (slope 0)."""
+    m = g_n.size
+    if laws.threshold is not None:
+        return np.where(g_n < 0, laws.threshold, 0.0), np.zeros(m), np.zeros(m)
+    if RADIUS == "augmented":
+        closed = g_n <= 0
+        return laws.mu * np.maximum(0.0, -g_n), np.where(closed, -laws.mu, 0.0), np.where(
+            closed, laws.mu, 0.0)
+    return laws.mu * np.maximum(0.0, -lam), np.where(lam < 0, -laws.mu, 0.0), np.zeros(m)
+
+
+def residual(step: StepProblem, it: Iterate, rho_n=None, rho_t=None) -> Residual:
+    """Step 1: the residual of every equation at ``it``; ρ defaults to the laws'."""
+    laws, ops = step.laws, step.ops
+    rho_n = laws.rho_n if rho_n is None else rho_n
+    rho_t = laws.rho_t if rho_t is None else rho_t
+    d, s = jumps(ops, it.U, step.U_prev)
+    g_n = it.lam - rho_n * d
+    chi = np.where(laws.unilateral, g_n < 0, True)
+    R_n = it.lam - chi * g_n
+    y = np.where(laws.held, 0.0, it.r - rho_t[:, None] * s)
+    radius, dR_dlam, dR_dU = _radius(laws, it.lam, g_n)
+    Q = np.zeros_like(y)
+    stick, coulomb = laws.tangential == "stick", laws.tangential == "coulomb"
+    Q[stick] = chi[stick, None] * y[stick]
+    if coulomb.any():
+        Q[coulomb] = disk_projection(y[coulomb], radius[coulomb])[0]
+    R_t = it.r - Q
+    tau = it.r
+    R_u = (step.K @ it.U - ops.Bn.T @ it.lam
+           - sum(ops.Bt[a].T @ tau[:, a] for a in range(laws.k)) - step.F)[step.free]
+    st = status(g_n, y, radius, laws.name)
+    return Residual(R_u, R_n, R_t, g_n, y, radius, st, dR_dlam, dR_dU)
+
+
+def jacobian(step: StepProblem, it: Iterate, res: Residual, close=None) -> sp.csr_matrix:
+    """Step 2: the generalised Jacobian of (R_u, R_n, R_t) in (U_free, λ, r_τ).
+
+    ``close`` (m,) bool: points whose unilateral normal takes the contact
+    branch whatever g_n (the fallback of a singular step, see the module notes).
+    """
+    laws, ops, free = step.laws, step.ops, step.free
+    m, k = res.y.shape
+    iw = 1.0 / ops.w
+    chi = np.where(laws.unilateral, res.g_n <= 0, True)  # χ, and 1 at g_n = 0
+    if close is not None:
+        chi = chi | close
+    Bn = ops.Bn[:, free]
+    Bt = [B[:, free] for B in ops.Bt]
+    rows_u = [step.K[free][:, free], -Bn.T] + [-Bt[a].T for a in range(k)]
+    rows_n = [sp.diags(chi * laws.rho_n * iw) @ Bn, sp.diags(1.0 - chi)] + [None] * k
+    # R_t = r - Q(y, R): dQ/dy (m, k, k) and dQ/dR (m, k) by law
+    DQ = np.zeros((m, k, k))
+    qR = np.zeros((m, k))
+    stick, coulomb = laws.tangential == "stick", laws.tangential == "coulomb"
+    DQ[stick] = chi[stick, None, None] * np.eye(k)
+    dR_dlam, dR_dU = res.dR_dlam, res.dR_dU
+    # the ball's derivative where the point is closed or still pressed (λ < 0);
+    # elsewhere r_τ = 0 whatever y: DQ = 0
+    c = coulomb & (chi | (dR_dlam != 0))
+    if c.any():
+        y = res.y[c]
+        if close is not None:  # a point closed by force: its ball holds it (stick)
+            y = np.where((res.g_n[c] > 0)[:, None], 0.0, y)
+        _, DQ[c], qR[c] = disk_projection(y, res.radius[c])
+    mask = ~laws.held  # y sees r and s on the components not held
+    DQ = DQ * mask[:, None, :] * mask[:, :, None]
+    # dR_t/dU = DQ ρ_t Bt/w - qR dR/dU;  dR_t/dλ = -qR dR/dλ
+    rows_t = []
+    for a in range(k):
+        du = sum(sp.diags(DQ[:, a, b] * laws.rho_t * iw) @ Bt[b] for b in range(k))
+        du = du - sp.diags(qR[:, a] * dR_dU * laws.rho_n * iw) @ Bn
+        rows_t.append([du, sp.diags(-qR[:, a] * dR_dlam)]
+                      + [sp.diags((a == b) - DQ[:, a, b]) for b in range(k)])
+    return sp.bmat([rows_u, rows_n] + rows_t, format="csr")
+
+
+def line_search(step: StepProblem, it: Iterate, dx, merit0: float, rows,
+                alphas=LINE_SEARCH):
+    """Step 4: the iterate along ``dx`` whose merit ‖rows·R‖ decreases (module notes).
+
+    Returns the new iterate, its residual, the step length α and whether the
+    merit decreased (if not: the full step, its residual and α = 1).
+    """
+    best = None
+    for alpha in alphas:
+        trial = it.moved(step.free, dx, alpha)
+        res = residual(step, trial)
+        merit = np.linalg.norm(rows * res.vector)
+        if merit <= (1 - 1e-4 * alpha) * merit0:
+            return trial, res, alpha, True
+        if best is None or merit < best[0]:
+            best = (merit, trial, res, alpha)
+    if best[0] < merit0:
+        return best[1], best[2], best[3], True
+    trial = it.moved(step.free, dx, 1.0)
+    return trial, residual(step, trial), 1.0, False
+
+
+def descent(A, R, rows, cols, dx) -> np.ndarray:
+    """The steepest descent of the merit ½‖rows·R‖² in the scaled unknowns,
+    -cols²·Aᵀ(rows²·R), as long as the Newton step ``dx`` (scaled): the way off a
+    kink where the Newton step decreases no merit (module notes)."""
+    g = -cols ** 2 * (A.T @ (rows ** 2 * R))
+    norm = np.linalg.norm(g / cols)
+    return g * (np.linalg.norm(dx / cols) / norm if norm > 0 else 0.0)
+
+
+def force_scale(step: StepProblem, U) -> float:
+    """A force that cannot vanish unless the whole state does: max(|F|, |K U|,
+    max diag K · |U|) (an interface opened by imposed displacements has F = 0
+    and K U = 0 on the free unknowns, but not U)."""
+    diag = np.abs(step.K.diagonal()).max() if step.K.shape[0] else 0.0
+    return max(_max(step.F), _max(step.K @ U), diag * _max(U), 1e-300)
+
+
+def relative_residuals(step: StepProblem, it: Iterate) -> np.ndarray:
+    """Step 5: (equilibrium, contact, friction) residuals relative to :func:`force_scale`,
+    the interface equations at the reference ρ (module notes)."""
+    ref = np.full(it.lam.size, step.rho_ref)
+    res = residual(step, it, ref, ref)
+    w = step.ops.w
+    scale = force_scale(step, it.U)
+    return np.array([_max(res.R_u), _max(w * res.R_n), _max(w[:, None] * res.R_t)]) / scale
+
+
+def _max(a) -> float:
+    return float(np.abs(a).max()) if np.size(a) else 0.0
+
+
+def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 30,
+           linear: str = "direct", modes=None, blocksize: int = 1, linear_tol: float = 1e-12):
+    """Solve one load step from ``start`` (its U holds the imposed values).
+
+    ``linear``: each Newton step solved by ``"direct"`` SuperLU or
+    ``"iterative"`` ties, AMG + projected CG (``modes``, ``blocksize`` as
+    :func:`skxfem.linalg.iterative.solve`, to the relative residual ``linear_tol``),
+    see :mod:`skxfem.contact.step`.
+
+    Returns
+    -------
+    Iterate, Residual, NewtonInfo
+
+    Raises
+    ------
+    ContactConvergenceError
+        After ``max_iter`` iterations without convergence: the message gives
+        the iterations, the residual of each equation and the points whose
+        status kept changing.
+    skxfem.contact.step.SingularStepError
+        (a ValueError) A Newton matrix singular even with every point closed.
+    """
+    it = start
+    res = residual(step, it)
+    history = [relative_residuals(step, it)]
+    statuses, alphas = [res.status], []
+    closed_before = res.status != 0
+    factor = None  # the last LU or tie set-up, reused while the matrix is unchanged
+    merit_rows = None
+    for n in range(1, max_iter + 1):
+        if np.all(history[-1] <= tol):
+            return it, res, NewtonInfo(n - 1, np.array(history), tuple(alphas))
+        try:
+            dx, rows, cols, A, factor = _linear_step(step, it, res, None, linear, modes,
+                                                     blocksize, factor, linear_tol)
+        except linear_step.SingularStepError as e:
+            dx, rows, cols, A, factor = _singular_fallback(step, it, res, closed_before,
+                                                           linear, modes, blocksize, e,
+                                                           linear_tol)
+        if merit_rows is None:  # one merit for the whole step: no cycle can decrease it
+            merit_rows = rows
+        merit0 = np.linalg.norm(merit_rows * res.vector)
+        closed_before = res.status != 0
+        new = line_search(step, it, dx, merit0, merit_rows)
+        if not new[3] and any(np.array_equal(new[1].status, st) for st in statuses):
+            # no step along Newton's decreases the merit, and the full step returns to
+            # an active set already left: a cycle; descend the merit instead
+            down = line_search(step, it, descent(A, res.vector, merit_rows, cols, dx), merit0,
+                               merit_rows, 0.5 ** np.arange(20))
+            new = down if down[3] else new
+        it, res, alpha = new[:3]
+        alphas.append(alpha)
+        history.append(relative_residuals(step, it))
+        statuses.append(res.status)
+    if np.all(history[-1] <= tol):
+        return it, res, NewtonInfo(max_iter, np.array(history), tuple(alphas))
+    raise _not_converged(f"did not converge in {max_iter} iterations", history, statuses,
+                         tol, (it, res, NewtonInfo(max_iter, np.array(history),
+                                                   tuple(alphas))))
+
+
+def _linear_step(step, it, res, close, linear, modes, blocksize, factor, linear_tol=1e-12):
+    """Step 3: Δx = -J⁻¹R, the row and column scales of J, J and the factorisation
+    to reuse."""
+    A = jacobian(step, it, res, close)
+    if linear == "iterative":
+        dx, factor = linear_step.iterative(step, it, res, A, modes, blocksize,
+                                              close=close, reuse=factor, tol=linear_tol)
+        return (dx, *linear_step.scales(A, step.nu), A, factor)
+    n = step.nu + res.R_n.size
+    if np.all(step.laws.tangential == "free"):  # no friction: r_τ = 0 is known, Δr = -R_t
+        dx, rows, factor = linear_step.direct(A[:n, :n], res.vector[:n], step.nu,
+                                                 reuse=factor)
+        ones = np.ones(res.R_t.size)
+        return np.r_[dx, -res.R_t.T.ravel()], np.r_[rows, ones], np.r_[factor[2], ones], \
+            A, factor
+    dx, rows, factor = linear_step.direct(A, res.vector, step.nu, reuse=factor)
+    return dx, rows, factor[2], A, factor
+
+
+def _singular_fallback(step, it, res, closed_before, linear, modes, blocksize, error,
+                       linear_tol=1e-12):
+    """A singular Newton matrix (the active set leaves a part of the body free):
+    the Jacobian that keeps closed the points closed at the last iterate, then
+    the one with every unilateral point closed.  If that one is singular too,
+    no active set helps: the law or the space is at fault (``error`` re-raised)."""
+    chi = np.where(step.laws.unilateral, res.g_n <= 0, True)
+    tried = [chi]
+    for close in (closed_before, np.ones(chi.size, bool)):
+        if any(np.array_equal(chi | close, t) for t in tried):
+            continue
+        tried.append(chi | close)
+        try:
+            return _linear_step(step, it, res, close, linear, modes, blocksize, None,
+                                linear_tol)
+        except linear_step.SingularStepError as e:
+            error = e
+    raise error
+
+
+def _not_converged(what, history, statuses, tol, last, detail=""):
+    """The ContactConvergenceError of a step: residuals and the points that kept flipping."""
+    r = history[-1]
+    st = np.array(statuses)
+    changes = (st[1:] != st[:-1]).sum(axis=0) if len(st) > 1 else np.zeros(st.shape[1], int)
+    moving = np.flatnonzero(changes > 1)
+    err = ContactConvergenceError(
+        f"contact Newton {what}{detail}: relative residuals equilibrium {r[0]:.1e}, "
+        f"contact {r[1]:.1e}, friction {r[2]:.1e}"
+        f"{'' if not np.isfinite(tol) else f' (tolerance {tol:.0e})'}; {moving.size} "
+        f"point(s) changed status more than once"
+        f"{': dofs ' + str(moving[:10].tolist()) if moving.size else ''}")
+    err.last = last
+    err.statuses = st
+    return err
+
+
+def with_threshold(step: StepProblem, threshold) -> StepProblem:
+    """``step`` with the friction radius frozen at ``threshold`` (m,) where closed."""
+    return replace(step, laws=replace(step.laws, threshold=np.asarray(threshold, float)))

@@ -1,0 +1,282 @@
+r"""Algebraic multigrid for the X-FEM stiffness: its near-null space and the hierarchy.
+
+Smoothed aggregation (pyamg) builds its coarse spaces from a few vectors the
+operator nearly annihilates.  For plain elasticity these are the rigid
+motions of the body.  The X-FEM stiffness K on [a, b] has twice as many: a
+rigid motion of Ω⁻ with Ω⁺ at rest, and one of Ω⁺ with Ω⁻ at rest
+(:func:`rigid_modes`); their sums are the rigid motions of the body.
+:func:`amg` builds the hierarchy on nodal blocks (the unknowns of a node,
+standard or enriched, aggregate together) with a SuperLU coarse solve.
+
+pyamg is an optional dependency (``pip install pyamg`` or ``skxfem[amg]``),
+imported when a hierarchy is built.
+
+>>> import scipy.sparse as sp, numpy as np
+>>> A = sp.diags([-np.ones(99), 2 * np.ones(100), -np.ones(99)], [-1, 0, 1])
+>>> amg(A).levels[0].A.shape
+(100, 100)
+"""
+from __future__ import annotations
+
+import importlib
+
+import numpy as np
+import scipy.sparse as sp
+
+from .saddle import SingularSystemError, floating
+
+__all__ = ["rigid_modes", "axis_name", "motion_name", "free_motion_name", "amg", "check_held",
+           "scaled_tie", "augmented", "check_tie_held"]
+
+
+def pyamg():
+    """The pyamg module, or an ImportError that says how to install it."""
+    try:
+        return importlib.import_module("pyamg")
+    except ImportError as e:
+        raise ImportError("the iterative solver needs pyamg: pip install pyamg "
+                          "(or pip install skxfem[amg])") from e
+
+
+def rigid_modes(V, sides: bool = True, centre=None, length: float = 1.0) -> np.ndarray:
+    """The rigid motions of Ω⁻ and of Ω⁺, each with the other side at rest, on [a, b].
+
+    With the shifted enrichment u = Σ aᵢφᵢ + Σ bⱼφⱼ(H - Hⱼ) and R a rigid
+    motion, "R on the side s, 0 on the other" has aᵢ = R(xᵢ) at the nodes of
+    side s (Hᵢ = s), aᵢ = 0 elsewhere, and bⱼ = s R(xⱼ)/2 at every enriched
+    node (its far side gets R or -R from the jump 2bⱼ).  The two sum to R on
+    the whole body, with b = 0.
+
+    Parameters
+    ----------
+    V
+        An :class:`skxfem.enrich.XSpace`.
+    sides
+        ``False``: only the k rigid motions of the whole body (their sums).
+    centre, length
+        The rotations turn about ``centre`` (default the origin) and move a
+        point at distance ``length`` from it by 1 (default 1): the same span,
+        columns of comparable size wherever the mesh lies.
+
+    Returns
+    -------
+    (N, 2k) array, columns 2i and 2i+1 the i-th motion of Ω⁻ and of Ω⁺
+    (``sides=False``: (N, k), their sums); k = 3 in 2D (two translations,
+    one rotation), 6 in 3D.
+
+    Several interfaces (``V`` an :class:`skxfem.enrich.XSpaces` on [a, b¹, b², …],
+    R regions, :meth:`~skxfem.enrich.XSpaces.regions`): (N, Rk), column R i + r
+    the i-th motion of region r with the others at rest.  At a node j of region
+    σ enriched by Γ_k, whose far side is the region σ' (σ with its k-th sign
+    flipped), u = a + b^k(H^k - H^k_j) must be R·[σ = r] on its side and
+    R·[σ' = r] on the far one: aⱼ = R(xⱼ)[σ = r], b^k_j = H^k_j R(xⱼ)([σ = r] -
+    [σ' = r])/2 (with R = 2 the formula above).
+
+    >>> from skxfem.scene.benchmarks import strip
+    >>> from skxfem.problem import assemble
+    >>> p = assemble(strip(3, "tri"))
+    >>> Z = rigid_modes(p.V)
+    >>> Z.shape, float(abs(p.K @ Z).max()) < 1e-12
+    ((48, 6), True)
+    """
+    dim = V.mesh.p.shape[0]
+    x = V.mesh.p - (np.zeros((dim, 1)) if centre is None
+                    else np.asarray(centre, float).reshape(dim, 1))
+    x = x / length
+    nd = V.basis.nodal_dofs  # (dim, nverts)
+    if dim == 2:
+        motions = [np.eye(2)[:, [c]] * np.ones(x.shape[1]) for c in range(2)]
+        motions.append(np.array([-x[1], x[0]]))
+    else:
+        motions = [np.eye(3)[:, [c]] * np.ones(x.shape[1]) for c in range(3)]
+        motions += [np.array([np.zeros_like(x[0]), -x[2], x[1]]),
+                    np.array([x[2], np.zeros_like(x[0]), -x[0]]),
+                    np.array([-x[1], x[0], np.zeros_like(x[0])])]
+    node_of = np.zeros(V.n_std, dtype=np.int64)
+    node_of[nd.ravel()] = np.tile(np.arange(x.shape[1]), dim)
+    if hasattr(V, "spaces"):  # several interfaces: the motions of each region
+        Z = _region_modes(V, motions, node_of)
+        if sides:
+            return Z
+        R = V.regions()[0].shape[0]
+        return sum(Z[:, r::R] for r in range(R))
+    H = np.where(V.cut.psi < 0, -1.0, 1.0)
+    Z = np.zeros((V.N, 2 * len(motions)))
+    for k, R in enumerate(motions):
+        a = np.zeros(V.n_std)
+        a[nd.ravel()] = R.ravel()
+        for j, s in enumerate((-1.0, 1.0)):
+            col = 2 * k + j
+            Z[:V.n_std, col] = np.where(H[node_of] == s, a, 0.0)
+            Z[V.n_std:, col] = 0.5 * s * a[V.enr_dofs]
+    return Z if sides else Z[:, 0::2] + Z[:, 1::2]
+
+
+def _region_modes(V, motions, node_of) -> np.ndarray:
+    """The motions of each region of an XSpaces ``V`` (:func:`rigid_modes`)."""
+    patterns, node_region = V.regions()
+    R = patterns.shape[0]
+    index = {tuple(p): r for r, p in enumerate(patterns.tolist())}
+    nd = V.basis.nodal_dofs
+    Z = np.zeros((V.N, R * len(motions)))
+    region_of = node_region[node_of]  # the region of each standard dof's node
+    for i, motion in enumerate(motions):
+        a = np.zeros(V.n_std)
+        a[nd.ravel()] = motion.ravel()
+        for r in range(R):
+            col = R * i + r
+            Z[:V.n_std, col] = np.where(region_of == r, a, 0.0)
+            for k, (Vk, start) in enumerate(zip(V.spaces, V.offsets)):
+                near = region_of[Vk.enr_dofs]
+                far = patterns[near].copy()
+                far[:, k] *= -1
+                far_r = np.array([index.get(tuple(f), -1) for f in far.tolist()])
+                on = (near == r).astype(float) - (far_r == r)
+                Z[start:start + Vk.n_enr, col] = 0.5 * Vk.H_node * a[Vk.enr_dofs] * on
+    return Z
+
+
+def axis_name(v) -> str:
+    """The name of the direction of ``v`` (either way along it): an axis, else
+    its rounded unit components, the first non-zero one positive.
+
+    >>> axis_name([0.0, -2.0]), axis_name([-1.0, 1.0])
+    ('y', '(0.707, -0.707)')
+    """
+    v = np.asarray(v, float)
+    v = v / np.linalg.norm(v)
+    v = v * np.sign(v[np.flatnonzero(np.abs(v) > 1e-9)[0]])
+    axis = int(np.argmax(np.abs(v)))
+    if abs(abs(v[axis]) - 1.0) < 1e-9:
+        return "xyz"[axis]
+    return "(" + ", ".join(f"{x:.3g}" for x in v) + ")"
+
+
+def motion_name(c, dim: int, centre=None, length: float = 1.0, verb: bool = True) -> str:
+    """A rigid motion in words, from its coefficients ``c`` on the k motions of
+    :func:`rigid_modes` (translations along x, y (, z), then the rotations)
+    with the same ``centre`` and ``length``.
+
+    >>> motion_name([0.0, 1.0, 0.0], 2)
+    'translate along y'
+    >>> motion_name([0.5, -0.5, 1.0], 2)        # turning about the origin, then shifted
+    'rotate about z (about the point (0.5, 0.5))'
+    """
+    c = np.asarray(c, float)
+    centre = np.zeros(dim) if centre is None else np.asarray(centre, float)
+    t, w = c[:dim], c[dim:]
+    if dim == 2:
+        if abs(w[0]) > 1e-6 * max(np.abs(c).max(), 1e-300):
+            x0 = centre + length * np.array([-t[1], t[0]]) / w[0]
+            point = ", ".join(f"{x:.3g}" for x in x0)
+            return f"{'rotate' if verb else 'rotates'} about z (about the point ({point}))"
+    elif np.linalg.norm(w) > 1e-6 * max(np.abs(c).max(), 1e-300):
+        x0 = centre + length * np.cross(w, t) / (w @ w)
+        point = ", ".join(f"{x:.3g}" for x in x0)
+        return (f"{'rotate' if verb else 'rotates'} about an axis along {axis_name(w)} "
+                f"through ({point})")
+    return f"{'translate' if verb else 'translates'} along {axis_name(t)}"
+
+
+def amg(A: sp.spmatrix, modes: np.ndarray | None = None, blocksize: int = 1):
+    """pyamg smoothed aggregation for the SPD ``A`` with near-null space ``modes``.
+
+    Nodal blocks of ``blocksize`` unknowns are aggregated together (the
+    unknowns of a node must be interleaved); the coarsest level is solved by
+    SuperLU, or by a pseudo-inverse if it is singular (an aggregate whose
+    nodes lie on a line, where a rotation vanishes).  The modes are used as
+    they are (pyamg's smoothing of candidates is off: rigid modes are exact).
+    Returns the pyamg ``MultilevelSolver``.
+    """
+    amg_module = pyamg()
+    A = sp.bsr_matrix(A, blocksize=(blocksize, blocksize)) if blocksize > 1 \
+        else sp.csr_matrix(A)
+    try:
+        return amg_module.smoothed_aggregation_solver(
+            A, B=modes, coarse_solver="splu", improve_candidates=None)
+    except RuntimeError:  # a singular coarsest matrix: an aggregate on which the modes
+        return amg_module.smoothed_aggregation_solver(  # are dependent (nodes on a line)
+            A, B=modes, coarse_solver="pinv", improve_candidates=None)
+
+
+def check_held(Kr, Z, rigid_tol: float = 1e-11):
+    """Refuse a rigid motion of a side that ``Kr`` leaves free.
+
+    The smallest Rayleigh quotient of ``Kr`` (scaled to unit diagonal) over
+    the span of the modes ``Z`` (orthonormalised) must reach ``rigid_tol``;
+    otherwise a :class:`skxfem.linalg.saddle.SingularSystemError` naming the motion
+    (:func:`free_motion_name`; ``Z`` as :func:`rigid_modes` orders them).
+    """
+    Q, R = np.linalg.qr(Z)
+    d = np.abs(np.diag(R))
+    Q = Q[:, d > 1e-12 * d.max()] if d.size and d.max() > 0 else Q[:, :0]
+    if Q.shape[1] == 0:
+        return
+    energies, vectors = np.linalg.eigh(Q.T @ (Kr @ Q))
+    if energies[0] < rigid_tol:
+        c = np.linalg.lstsq(Z, Q @ vectors[:, 0], rcond=None)[0]
+        raise floating(f"{free_motion_name(c)}: a rigid motion of energy {energies[0]:.1e}",
+                       "the tied system")
+
+
+def free_motion_name(c) -> str:
+    """Who moves how, for coefficients ``c`` on the 2k columns of :func:`rigid_modes`
+    (the whole body, Ω⁻ or Ω⁺ alone, or the two apart).
+
+    >>> free_motion_name([0.0, 1.0, 0.0, 0.0, 0.0, 0.0])   # Ω⁺ along x
+    'Ω⁺ can translate along x'
+    """
+    c = np.asarray(c, float)
+    if c.size not in (6, 12):                                # not the layout of rigid_modes
+        return "a combination of the modes"
+    minus, plus = c[0::2], c[1::2]
+    dim = 2 if minus.size == 3 else 3
+    size = max(np.abs(c).max(), 1e-300)
+    if np.abs(plus).max() < 1e-6 * size:
+        return f"Ω⁻ can {motion_name(minus, dim)}"
+    if np.abs(minus).max() < 1e-6 * size:
+        return f"Ω⁺ can {motion_name(plus, dim)}"
+    if np.abs(minus - plus).max() < 1e-6 * size:
+        return f"the whole body can {motion_name(minus, dim)}"
+    return f"Ω⁻ can {motion_name(minus, dim)} as Ω⁺ {motion_name(plus, dim, verb=False)}"
+
+
+def scaled_tie(K, B, fixed):
+    """Jacobi-scaled K (imposed unknowns as identity rows, so nodal blocks stay
+    whole) and B with unit rows: s, K_s = S K S, B_n = R B S, the row scales R."""
+    diag = np.abs(K.diagonal())
+    if np.any(diag[~fixed] == 0):
+        raise SingularSystemError(
+            f"{int(np.sum(diag[~fixed] == 0))} unknown(s) have no stiffness at all (a node "
+            f"that no cell uses, or an enriched function with an empty support): remove "
+            f"unused nodes from the mesh or impose those unknowns")
+    s = np.where(fixed, 1.0, 1.0 / np.sqrt(np.where(diag > 0, diag, 1.0)))
+    keep = sp.diags(np.where(fixed, 0.0, s))
+    Ks = (keep @ K @ keep + sp.diags(fixed.astype(float))).tocsr()
+    Bs = (B @ keep).tocsr()
+    norms = np.sqrt(np.asarray(Bs.multiply(Bs).sum(axis=1)).ravel())
+    rows = 1.0 / np.where(norms > 0, norms, 1.0)
+    return s, Ks, (sp.diags(rows) @ Bs).tocsr(), rows
+
+
+def augmented(K, B, fixed, r: float):
+    """:func:`scaled_tie` and the augmented K_r = K_s + r B_nᵀB_n: s, B_n, the row scales, K_r."""
+    s, Ks, Bn, rows = scaled_tie(K, B, fixed)
+    return s, Bn, rows, (Ks + r * (Bn.T @ Bn)).tocsr()
+
+
+def check_tie_held(K, B, fixed, modes, r: float = 3.0, rigid_tol: float = 1e-11):
+    """Refuse a rigid motion of a side (of ``modes``) that neither the imposed
+    unknowns (boolean ``fixed``) nor the rows of ``B`` hold: :func:`check_held`
+    on the K_r of :func:`augmented`.
+
+    >>> import scipy.sparse as sp, numpy as np
+    >>> K = sp.csr_matrix([[1.0, -1.0], [-1.0, 1.0]]); Z = np.ones((2, 1))
+    >>> check_tie_held(K, sp.csr_matrix([[1.0, 0.0]]), np.zeros(2, bool), Z)
+    >>> check_tie_held(K, sp.csr_matrix((0, 2)), np.zeros(2, bool), Z)
+    Traceback (most recent call last):
+    ...
+    skxfem.linalg.saddle.SingularSystemError: the tied system is singular (a combination of the ...
+    """
+    s, _, _, Kr = augmented(K, B, fixed, r)
+    check_held(Kr, modes / s[:, None], rigid_tol)

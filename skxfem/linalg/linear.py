@@ -1,0 +1,69 @@
+"""Which linear solve a problem gets: direct (SuperLU) or iterative (AMG + projected CG).
+
+The direct solve factorises the whole saddle matrix: simple, exact, and the
+faster one on small systems, but its fill grows like dofs² in 3D.  The
+iterative one (:mod:`skxfem.linalg.iterative`) grows like a plain elasticity solve;
+it needs pyamg.  It solves the ties and each contact Newton step as ties
+(:mod:`skxfem.contact.step`): a frictionless or adhesive step is one tie,
+a Coulomb step a few (FGMRES, the tie as preconditioner).  ``auto`` leaves
+Coulomb direct: its iterative step was measured slower than SuperLU at the
+sizes that fit a direct solve (``book/contact.md``), and is for those that do
+not.
+
+>>> choose_linear("auto", 2, 1000), choose_linear("direct", 3, 10**6)
+('direct', 'direct')
+>>> choose_linear("auto", 3, 10**6, auto_iterative=False)   # Coulomb
+'direct'
+"""
+from __future__ import annotations
+
+import importlib.util
+
+__all__ = ["LINEAR", "AUTO_ITERATIVE", "LINEAR_TOL", "choose_linear", "check_linear_tol"]
+
+LINEAR = ("auto", "direct", "iterative")
+"""The linear solves: SuperLU on the saddle system (:func:`skxfem.linalg.saddle.solve`),
+AMG-preconditioned projected CG (:func:`skxfem.linalg.iterative.solve`, needs pyamg),
+or ``auto``."""
+
+AUTO_ITERATIVE = {2: 100_000, 3: 5_000}
+"""``auto`` takes the iterative path from this many unknowns (per dimension),
+when pyamg is installed: measured break-even on 2 cores, 3D near 3k unknowns
+(5.5x faster at 17k), 2D near 100k (1.6x faster at 529k),
+``benchmarks/tie_solve.py``."""
+
+LINEAR_TOL = 1e-12
+"""The relative residual the iterative solve reaches by default (``linear_tol``).
+Measured (one run): a bonded block in uniform compression, 5 × 20 × 20
+hexahedra, λ exact to 3.7e-10 at 1e-10 (36 CG iterations, 4.1 s), 1.8e-12 at
+1e-12 (43, 4.6 s), 2.9e-13 at 1e-13 (46, 5.0 s); the direct solve 3.5e-14."""
+
+def choose_linear(method: str, dim: int, n_unknowns: int, auto_iterative: bool = True) -> str:
+    """The linear solve ``method`` resolves to for ``n_unknowns`` in ``dim`` D:
+    ``auto`` is ``iterative`` from :data:`AUTO_ITERATIVE` unknowns if pyamg is
+    there and the law allows it (``auto_iterative``: the law's
+    :attr:`skxfem.scene.laws.LawKind.auto_iterative`, False for Coulomb).
+
+    Raises
+    ------
+    ValueError
+        An unknown ``method``.
+    """
+    if method not in LINEAR:
+        raise ValueError(f"linear must be one of {LINEAR}, got {method!r}")
+    if method != "auto":
+        return method
+    big = n_unknowns >= AUTO_ITERATIVE[dim] and auto_iterative
+    return "iterative" if big and importlib.util.find_spec("pyamg") else "direct"
+
+
+def check_linear_tol(tol) -> float:
+    """``tol`` as a float if it is a number in (0, 1), else a ValueError.
+
+    >>> check_linear_tol(1e-8)
+    1e-08
+    """
+    if isinstance(tol, bool) or not isinstance(tol, (int, float)) or not 0 < tol < 1:
+        raise ValueError(f"linear_tol must be a number in (0, 1), the relative residual of "
+                         f"the iterative linear solve (default {LINEAR_TOL:g}), got {tol!r}")
+    return float(tol)

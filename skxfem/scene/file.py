@@ -1,0 +1,643 @@
+'''Scene files: a :class:`~skxfem.scene.Scene` written in TOML.
+
+A scene file never runs code: formulas are strings checked by
+:mod:`skxfem.scene.expr` (numbers, x, y, z, pi, + - * / **, functions such as sqrt, abs,
+sin, cos, exp; selections may also use comparisons and and/or/not).  Every key is
+checked; an unknown key or a wrong type is refused with an error naming the key.
+The schema in short (all of it, with units: ``skxfem schema``, :data:`SCHEMA`)::
+
+    name = "plate"                     # optional, default: the file name
+
+    [mesh]                             # exactly one of:
+    box = {n = [4, 4, 5], cell = "hex", size = [1, 1, 1]}  # cell: tri quad tet hex prism
+    # file = "plate.msh"               # any meshio format, relative to this file
+
+    [levelset]                         # exactly one of (Ω⁻ = {ψ < 0}):
+    plane = {point = [0, 0, 0.5], normal = [0, 0, 1]}       # normal points into Ω⁺
+    # circle = {center = [0.5, 0.5], radius = 0.3}         # 2D meshes
+    # sphere = {center = [0.5, 0.5, 0.5], radius = 0.3}    # 3D meshes
+    # expr = "z - 0.5 - 0.2*x"
+
+    [material]                         # optional; defaults E = 1, nu = 0.3
+    E = 1.0
+    nu = 0.3
+    plane = "strain"                   # or "stress" (2D only)
+
+    [[displacement]]                   # any number; on the nodes of a boundary
+    boundary = "zmin"                  # a face xmin..zmax, or where = "x < 1e-9"
+    kind = "clamped"                   # or "rollers", or components:
+    # x = 0.0                          # a number or a formula such as "0.01*y"
+
+    [[load]]                           # any number; on boundary facets
+    boundary = "zmax"                  # or where = "..." (tested at facet midpoints)
+    pressure = "4*y*(1 - y)"           # positive in compression: t = -p n
+    # traction = [0, 0, "-1"]          # or a traction vector
+
+    [interface]
+    law = "bonded"                     # one of skxfem.scene.LAWS or CONTACT_LAWS
+    space = "vital"                    # one of skxfem.scene.SPACES (default vital)
+    # friction = 0.5                   # Coulomb's mu (law "coulomb"), >= 0
+    # rho_n = 10.0                     # contact augmentation, > 0 (default E/h)
+    # rho_t = 10.0                     # friction augmentation, > 0
+    # steps = [0.5, 1.0]               # load factors of a contact solve
+
+    [solver]                           # optional
+    quadrature_order = 2               # default: the minimal exact rule
+    # linear = "iterative"             # auto (default), direct or iterative
+    # max_iter = 40                    # contact laws: Newton iterations per load step
+
+Several interfaces, each with its own level set, law, μ and ρ: instead of
+``[levelset]`` and ``[interface]``, one ``[[interface]]`` table per interface,
+with the keys of both (``steps`` then at the top level); their Γ must not
+cross or touch (:func:`skxfem.problem.assemble` refuses a cell cut by two)::
+
+    steps = [0.5, 1.0]                 # optional: the load factors of a contact solve
+
+    [[interface]]
+    plane = {point = [0, 0.35], normal = [0, 1]}
+    law = "frictionless"
+
+    [[interface]]
+    expr = "y - 0.7"
+    law = "coulomb"
+    friction = 0.5
+
+``linear`` and ``max_iter`` are options of the solve, not of the scene: :func:`load_options`
+reads them (``skxfem run``'s ``--linear`` and ``--max-iter`` override them).
+
+Every table and key, what it takes, its unit and default are in :data:`SCHEMA`,
+which the reader checks against (the keys allowed, the ones exclusive of each
+other) and :func:`schema` prints (``skxfem schema``).  Units are consistent and
+the user's choice (:data:`UNITS`).
+
+Numbers the solve cannot handle in double precision are refused when read: a load
+above :data:`MAX_MAGNITUDE` (or one whose displacements |p| L / E would be), an
+imposed displacement above :data:`MAX_SHIFT` sizes of the body.  A mesh file that
+is a folder, a FIFO, a device or a loop of symbolic links is named as such,
+unread.
+
+Errors name items as the file numbers them (``[[load]] #2``).  Every boundary is
+checked on reading, except the ``where`` selections on a box whose grid has more
+than :data:`BUILT_BOX` squares or cubes (not built before the size guard).
+'''
+from __future__ import annotations
+
+import functools
+import math
+import os
+import textwrap
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .. import levelset as ls
+from ..fem import meshes
+from ..fem.files import regular_file
+from ..fem.material import Material
+from ..linalg.linear import LINEAR, check_linear_tol
+from . import model as sc
+from . import tomlcheck
+from .boundary import select_facets, select_nodes
+from .parts import COMPONENTS, FACES
+from .tomlcheck import array, choice, formula, keys, number, one_of, table, vector
+
+__all__ = ["load_scene", "load_options", "Key", "Table", "SCHEMA", "UNITS", "schema"]
+
+#: A box grid of at most this many squares or cubes is built to check ``where`` selections.
+BUILT_BOX = 10_000
+
+
+@dataclass(frozen=True)
+class Key:
+    """One key of a scene-file table: what it takes (with its unit in brackets), what it
+    means and its default, and an example value (TOML, as Python reads it)."""
+
+    name: str
+    takes: str
+    text: str
+    example: object
+
+
+@dataclass(frozen=True)
+class Table:
+    """A scene-file table: its keys, in order, and the groups of keys of which exactly
+    one must be given (``exclusive``; a group ending in ``...`` needs one or more)."""
+
+    name: str
+    text: str
+    keys: tuple[Key, ...]
+    exclusive: tuple[tuple[str, ...], ...] = ()
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return tuple(k.name for k in self.keys)
+
+
+_FORMULA = "number or formula"   # a formula: a string checked by skxfem.scene.expr
+UNITS = ("Units are consistent and your choice: with lengths in L and forces in F, the "
+         "coordinates x, y, z, sizes, radii and displacements are in L; E, pressures and "
+         "tractions in F/L²; rho_n in F/L³; nu, friction and load factors have no unit.  "
+         "E = 210e9 with lengths in m gives tractions in Pa; E = 210e3 with mm, in MPa.")
+"""The units of a scene file, stated by :func:`schema`."""
+
+SCHEMA: dict[str, Table] = {t.name: t for t in (
+    Table("the top level", "", (
+        Key("name", "string", "the scene's name (default: the file name)", "plate"),
+        Key("mesh", "table", "required: [mesh]", {}),
+        Key("levelset", "table", "[levelset]: required, unless [[interface]] tables give "
+            "each interface its own", {}),
+        Key("material", "table", "[material] (default: E = 1, nu = 0.3)", {}),
+        Key("displacement", "array of tables", "[[displacement]], any number", []),
+        Key("load", "array of tables", "[[load]], any number", []),
+        Key("interface", "table, or array of tables", "[interface] (default: bonded, "
+            "vital), or several interfaces: [[interface]], one table each", {}),
+        Key("steps", "list of numbers", "the load factors of a contact solve, in order "
+            "(default [1]; or [interface] steps)", [0.5, 1.0]),
+        Key("solver", "table", "[solver] (optional)", {}),
+    )),
+    Table("[mesh]", "the mesh", (
+        Key("box", "table {n, cell, size}", "a box [0, size] meshed here: [mesh] box",
+            {"n": 4, "cell": "quad"}),
+        Key("file", "path string", "a mesh file in any meshio format, relative to the "
+            "scene file", "plate.msh"),
+    ), (("box", "file"),)),
+    Table("[mesh] box", "a structured box mesh", (
+        Key("n", "integer, or dim integers", "cells along each axis (required)", [4, 5]),
+        Key("cell", "one of " + " ".join(sc.CELLS), "the cell (required): "
+            + ", ".join(f"{c} {d}D" for c, d in sc.CELLS.items()), "quad"),
+        Key("size", "dim numbers [L]", "the lengths of the box (default: 1 each)",
+            [2.0, 1.0]),
+    )),
+    Table("[levelset]", "the interface Γ = {ψ = 0}; Ω⁻ = {ψ < 0}, Ω⁺ = {ψ > 0}", (
+        Key("plane", "table {point, normal}", "a plane (a line in 2D); its normal points "
+            "into Ω⁺", {"point": [0.0, 0.5], "normal": [0.0, 1.0]}),
+        Key("circle", "table {center, radius}", "2D: Ω⁻ inside the circle",
+            {"center": [0.5, 0.5], "radius": 0.3}),
+        Key("sphere", "table {center, radius}", "3D: Ω⁻ inside the sphere",
+            {"center": [0.5, 0.5, 0.5], "radius": 0.3}),
+        Key("expr", "formula [L]", "ψ itself, best a signed distance", "y - 0.5"),
+    ), (("plane", "circle", "sphere", "expr"),)),
+    Table("[levelset] plane", "", (
+        Key("point", "dim numbers [L]", "a point of the plane (required)", [0.0, 0.5]),
+        Key("normal", "dim numbers", "its normal, any length but not 0 (required)",
+            [0.0, 1.0]),
+    )),
+    Table("[levelset] circle", "", (
+        Key("center", "dim numbers [L]", "the centre (required)", [0.5, 0.5]),
+        Key("radius", "number > 0 [L]", "the radius (required)", 0.3),
+    )),
+    Table("[levelset] sphere", "", (
+        Key("center", "dim numbers [L]", "the centre (required)", [0.5, 0.5, 0.5]),
+        Key("radius", "number > 0 [L]", "the radius (required)", 0.3),
+    )),
+    Table("[material]", "linear isotropic elasticity, the same on both sides", (
+        Key("E", "number > 0 [F/L²]", "Young's modulus (default 1)", 210e3),
+        Key("nu", "number in (-1, 0.5)", "Poisson's ratio (default 0.3)", 0.3),
+        Key("plane", "strain or stress", "2D only: plane strain or plane stress "
+            "(default strain)", "stress"),
+    )),
+    Table("[[displacement]]", "imposed displacements, on the nodes of a boundary", (
+        Key("boundary", "one of " + " ".join(FACES), "a face of the box (or a named "
+            "boundary of the mesh file)", "xmin"),
+        Key("where", "condition on x, y, z", "the nodes where it holds", "x < 1e-9"),
+        Key("kind", "clamped or rollers", "clamped: u = 0; rollers: the normal component "
+            "of u is 0 (a named face)", "clamped"),
+        Key("x", f"{_FORMULA} [L]", "the imposed u_x (those of x, y, z given)", 0.0),
+        Key("y", f"{_FORMULA} [L]", "the imposed u_y", "0.01*x"),
+        Key("z", f"{_FORMULA} [L]", "the imposed u_z (3D)", 0.0),
+    ), (("boundary", "where"), ("kind", "x", "y", "z", "..."))),
+    Table("[[load]]", "surface loads, on boundary facets (where: at facet midpoints)", (
+        Key("boundary", "one of " + " ".join(FACES), "a face of the box (or a named "
+            "boundary of the mesh file)", "ymax"),
+        Key("where", "condition on x, y, z", "the boundary facets whose midpoint it "
+            "holds at", "y > 1 - 1e-9"),
+        Key("pressure", f"{_FORMULA} [F/L²]", "positive in compression: t = -p n",
+            "4*x*(1 - x)"),
+        Key("traction", "dim numbers or formulas [F/L²]", "the traction vector t", [0.0, "-1"]),
+    ), (("boundary", "where"), ("pressure", "traction"))),
+    Table("[interface]", "the law on Γ and its multiplier space", (
+        Key("law", "one of " + " ".join(sc.LAWS + sc.CONTACT_LAWS), "ties: bonded "
+            "(default), bilateral; contact: frictionless, coulomb, adhesive", "coulomb"),
+        Key("space", "one of " + " ".join(sc.SPACES), "the multiplier space (default "
+            "vital, the stable one)", "vital"),
+        Key("friction", "number >= 0", "Coulomb's mu (law coulomb)", 0.5),
+        Key("rho_n", "number > 0 [F/L³]", "contact augmentation (default E/h, h the cell "
+            "size)", 10.0),
+        Key("rho_t", "number > 0 [F/L³]", "friction augmentation (default E/h, h the mean "
+            "cut-edge size)", 10.0),
+        Key("steps", "list of numbers", "the load factors of a contact solve, in order "
+            "(default [1])", [0.5, 1.0]),
+    )),
+    Table("[[interface]]", "several interfaces, one table each (in place of [levelset] "
+          "and [interface]) with its level set (a key of [levelset], as there) and its "
+          "law (the keys of [interface] but steps); no two may cut one mesh cell", (
+        Key("plane", "table {point, normal}", "as [levelset] plane",
+            {"point": [0.0, 0.35], "normal": [0.0, 1.0]}),
+        Key("circle", "table {center, radius}", "as [levelset] circle",
+            {"center": [0.5, 0.5], "radius": 0.3}),
+        Key("sphere", "table {center, radius}", "as [levelset] sphere",
+            {"center": [0.5, 0.5, 0.5], "radius": 0.3}),
+        Key("expr", "formula [L]", "as [levelset] expr", "y - 0.7"),
+        Key("law", "one of " + " ".join(sc.LAWS + sc.CONTACT_LAWS), "its law (default "
+            "bonded)", "frictionless"),
+        Key("space", "one of " + " ".join(sc.SPACES), "its multiplier space (default "
+            "vital)", "vital"),
+        Key("friction", "number >= 0", "its Coulomb's mu (law coulomb)", 0.5),
+        Key("rho_n", "number > 0 [F/L³]", "its contact augmentation (default E/h)", 10.0),
+        Key("rho_t", "number > 0 [F/L³]", "its friction augmentation (default E/h)", 10.0),
+    ), (("plane", "circle", "sphere", "expr"),)),
+    Table("[solver]", "options (skxfem run's --linear and --max-iter override them)", (
+        Key("quadrature_order", "integer >= 1", "the cell rule of the stiffness (default: "
+            "the minimal exact rule)", 2),
+        Key("linear", "one of " + " ".join(LINEAR), "the linear solve: direct (SuperLU), "
+            "iterative (AMG + CG, needs pyamg) or auto (default)", "direct"),
+        Key("max_iter", "integer >= 1", "contact laws: Newton iterations per load step "
+            "(default 30)", 40),
+        Key("linear_tol", "number in (0, 1)", "the relative residual of the iterative "
+            "linear solve (default 1e-12), recorded in result.json", 1e-10),
+    )),
+)}
+"""The scene-file schema: every table and key the reader accepts, by table name
+(``[mesh]``, ``[mesh] box`` ...).  :func:`load_scene` takes its allowed keys and
+exclusive groups from here; :func:`schema` prints it."""
+
+
+def _names(table: str) -> tuple[str, ...]:
+    return SCHEMA[table].names
+
+
+def _exclusive(table: str, i: int = 0) -> tuple[str, ...]:
+    return tuple(k for k in SCHEMA[table].exclusive[i] if k != "...")
+
+
+_TOP = _names("the top level")
+
+
+def schema(width: int = 88) -> str:
+    """The scene-file schema as text: what ``skxfem schema`` prints.
+
+    >>> text = schema()
+    >>> "[mesh] box" in text and "rho_n" in text and "F/L³" in text
+    True
+    """
+    from .expr import FUNCTIONS
+
+    wrap = functools.partial(textwrap.fill, width=width, break_long_words=False,
+                             break_on_hyphens=False)
+    out = [wrap("The scene file of skxfem run (TOML): every table and key, what it takes "
+                "[its unit], what it means and its default.  Unknown keys are refused."),
+           "", wrap(UNITS), "",
+           wrap("A formula is a string in the coordinates x, y, z with numbers, pi, "
+                "+ - * / ** and the functions " + " ".join(FUNCTIONS) + " (angles in "
+                "radians); a condition (where) may also use < <= > >= == != and, or, not.  "
+                "No formula runs code.  'dim' is the dimension of the mesh, 2 or 3."), ""]
+    name_w = max(len(k.name) for t in SCHEMA.values() for k in t.keys) + 2
+    takes_w = 30
+    for t in SCHEMA.values():
+        head = t.name + (f": {t.text}" if t.text else "")
+        for group in t.exclusive:
+            keys = [k for k in group if k != "..."]
+            head += (f"; one or more of {', '.join(keys[1:])}, or {keys[0]}" if "..." in group
+                     else f"; exactly one of {', '.join(keys)}")
+        out.append(wrap(head))
+        for k in t.keys:
+            indent = " " * (2 + name_w + takes_w + 1)
+            text = textwrap.fill(k.text, width=width, initial_indent=indent,
+                                 subsequent_indent=indent, break_long_words=False)
+            row = f"  {k.name:<{name_w}}{k.takes:<{takes_w}} "
+            if len(row) > len(indent):      # a long 'takes': the meaning on the next line
+                out += [row.rstrip(), text]
+            else:
+                out.append(row + text.lstrip())
+        out.append("")
+    return "\n".join(out).rstrip() + "\n"
+
+
+MAX_MAGNITUDE = 1e150
+"""The largest load, and displacement from a load, a scene file may give.  Measured: the
+strip (E = 1) solves with pressure = 1e154; at 1e155 the norms of the saddle solve
+overflow (a sum of squares above 1.8e308); 1e150 leaves a factor 10⁴ for the
+square root of the number of unknowns."""
+MAX_SHIFT = 1000
+"""The largest imposed displacement, in sizes of the body.  Measured: a corner of
+``examples/inclusion.toml`` moved by 1e6 (n = 8), 1e5 (n = 32), 1e4 (n = 64) breaks
+the balance check of the multipliers (1e-8); 1e3 holds for n = 8 ... 128."""
+
+
+
+def load_scene(path: str | Path) -> sc.Scene:
+    """Read and check a scene file.
+
+    Raises
+    ------
+    ValueError, TypeError
+        For a bad file; the message starts with the file name and names the key.
+
+    >>> import pathlib, tempfile
+    >>> f = pathlib.Path(tempfile.mkdtemp()) / "strip.toml"
+    >>> _ = f.write_text('''
+    ... [mesh]
+    ... box = {n = 3, cell = "quad"}
+    ... [levelset]
+    ... expr = "y - 0.5"
+    ... ''')
+    >>> load_scene(f).name
+    'strip'
+    """
+    path, data = tomlcheck.read_toml(path)
+    try:
+        return _scene(data, path)
+    except (ValueError, TypeError) as e:
+        raise type(e)(f"{path.name}: {e}") from e
+
+
+def load_options(path: str | Path) -> dict:
+    r"""The solve options of a scene file's ``[solver]`` table, ``linear``, ``max_iter``
+    and ``linear_tol``,
+    those given only: keywords of ``skxfem.solve`` or ``skxfem.contact.solve``.
+
+    >>> import pathlib, tempfile
+    >>> f = pathlib.Path(tempfile.mkdtemp()) / "s.toml"
+    >>> _ = f.write_text('[solver]\nlinear = "direct"\n')
+    >>> load_options(f)
+    {'linear': 'direct'}
+    """
+    path, data = tomlcheck.read_toml(path)
+    solver = data.get("solver", {})  # not a table: load_scene refuses it
+    return tomlcheck.labelled(path.name, _options, solver if isinstance(solver, dict) else {})
+
+
+def _options(solver: dict) -> dict:
+    """The ``linear`` and ``max_iter`` of a ``[solver]`` table, checked."""
+    out = {k: solver[k] for k in ("linear", "max_iter", "linear_tol") if k in solver}
+    if "linear_tol" in out:
+        out["linear_tol"] = check_linear_tol(out["linear_tol"])
+    if "linear" in out and out["linear"] not in LINEAR:
+        raise ValueError(f"[solver] linear must be one of {LINEAR}, got {out['linear']!r}")
+    if "max_iter" in out and (type(out["max_iter"]) is not int or out["max_iter"] < 1):
+        raise ValueError(f"[solver] max_iter must be a positive integer, got {out['max_iter']!r}")
+    return out
+
+
+def _law_fields(t: dict, where: str) -> dict:
+    """The law, space, friction, rho_n and rho_t of an [interface] (or [[interface]])
+    table, checked, as keywords of a Scene (or an Interface)."""
+    fields = {"law": choice(t.get("law", "bonded"), sc.LAWS + sc.CONTACT_LAWS,
+                            f"{where} law")}
+    fields.update({k: number(t[k], f"{where} {k}")
+                   for k in ("friction", "rho_n", "rho_t") if k in t})
+    if "friction" in fields and fields["friction"] < 0:
+        raise ValueError(f"{where} friction must be >= 0, got {fields['friction']!r}")
+    for key in ("rho_n", "rho_t"):
+        if key in fields and not fields[key] > 0:
+            raise ValueError(f"{where} {key} must be > 0, got {fields[key]!r}")
+    fields["space"] = choice(t.get("space", "vital"), sc.SPACES, f"{where} space")
+    return fields
+
+
+def _steps(steps, where: str) -> tuple:
+    if not (isinstance(steps, list) and steps and all(
+            isinstance(f, (int, float)) and not isinstance(f, bool) for f in steps)):
+        raise ValueError(f"{where} must be a non-empty list of load factors, got {steps!r}")
+    return tuple(steps)
+
+
+def _interfaces(data: dict, dim: int) -> tuple[sc.Interface, ...]:
+    """The [[interface]] tables of a scene file with several interfaces."""
+    if "levelset" in data:
+        raise ValueError("[levelset] with [[interface]] tables: with [[interface]] tables "
+                         "each gives its own level set (plane, circle, sphere or expr); "
+                         "remove [levelset]")
+    out = []
+    for k, t in enumerate(array(data, "interface")):
+        where = f"[[interface]] #{k + 1}"
+        t = table(t, where, _names("[[interface]]"))
+        kind = one_of(t, _exclusive("[[interface]]"), where)
+        levelset = _levelset({kind: t[kind]}, dim, where)
+        fields = _law_fields(t, where)
+        out.append(tomlcheck.labelled(where, lambda: sc.Interface(levelset, **fields)))
+    if not out:
+        raise ValueError("interface is an empty list: give [[interface]] tables, one per "
+                         "interface, or [levelset] and [interface] for one")
+    return tuple(out)
+
+
+def _scene(data: dict, path: Path) -> sc.Scene:
+    keys(data, _TOP, "the top level")
+    several = isinstance(data.get("interface"), list)
+    for key in ("mesh",) + (() if several else ("levelset",)):
+        if key not in data:
+            raise ValueError(f"missing table [{key}]")
+    mesh, dim, checked = _mesh(table(data["mesh"], "[mesh]", _names("[mesh]")), path.parent)
+    solver = table(data.get("solver", {}), "[solver]", _names("[solver]"))
+    if several:
+        interfaces = _interfaces(data, dim)
+        fields, laws = {"interfaces": interfaces}, [i.law for i in interfaces]
+    else:
+        interface = table(data.get("interface", {}), "[interface]", _names("[interface]"))
+        fields = _law_fields(interface, "[interface]")
+        laws = [fields["law"]]
+        if "steps" in interface:
+            if "steps" in data:
+                raise ValueError("steps is given twice, in [interface] and at the top "
+                                 "level: keep one")
+            fields["steps"] = _steps(interface["steps"], "[interface] steps")
+        fields["levelset"] = _levelset(data["levelset"], dim)
+    if "steps" in data:
+        fields["steps"] = _steps(data["steps"], "steps")
+    if "max_iter" in _options(solver) and not any(law in sc.CONTACT_LAWS for law in laws):
+        raise ValueError(f"[solver] max_iter applies to the contact laws {sc.CONTACT_LAWS}; "
+                         f"the law is {laws[0] if len(laws) == 1 else laws!r}")
+    order = solver.get("quadrature_order")
+    if order is not None and (type(order) is not int or order < 1):
+        raise ValueError(f"[solver] quadrature_order must be a positive integer, got {order!r}")
+    name = data.get("name", path.stem)
+    if not isinstance(name, str) or not name:
+        raise TypeError(f"name must be a non-empty string, got {name!r}")
+    items = {"displacement": [], "load": []}           # (name in the file, item) pairs
+    for key, build in (("displacement", _displacement), ("load", _load)):
+        for i, t in enumerate(array(data, key)):
+            where = f"[[{key}]] #{i + 1}"
+            items[key].append((where, tomlcheck.labelled(where, build, t, dim, where)))
+    _check_boundaries(items, checked, dim)
+    material = _material(table(data.get("material", {}), "[material]",
+                               _names("[material]")))
+    _check_magnitudes(items, material.E, _length(checked))
+    return sc.Scene(
+        mesh=mesh,
+        material=material,
+        displacements=tuple(d for _, d in items["displacement"]),
+        loads=tuple(load for _, load in items["load"]),
+        quadrature_order=order, name=name, **fields)
+
+
+def _length(mesh) -> float:
+    """The largest side of the body's bounding box (a Box or a read mesh)."""
+    if isinstance(mesh, sc.Box):
+        return max(mesh.size or (1.0,))
+    return float(np.ptp(mesh.p, axis=1).max())
+
+
+def _numbers(item) -> list[tuple[str, float]]:
+    """(key, number) of the values of a load or displacement given as numbers."""
+    if isinstance(item, sc.SurfaceLoad):
+        values = ({"pressure": item.pressure} if item.pressure is not None else
+                  {f"traction[{i}]": v for i, v in enumerate(item.traction)})
+    else:
+        values = dict(item.components)
+    return [(k, float(v)) for k, v in values.items() if isinstance(v, (int, float))]
+
+
+def _check_magnitudes(items: dict, E: float, length: float):
+    """Loads and imposed displacements the solve handles in double precision.
+
+    Refused: a load above :data:`MAX_MAGNITUDE`, or one whose displacements
+    (about ``|p| L / E``) exceed it; an imposed displacement above
+    :data:`MAX_SHIFT` times the size ``L`` of the body.
+    """
+    for where, load in items["load"]:
+        for key, v in _numbers(load):
+            if abs(v) > MAX_MAGNITUDE:
+                raise ValueError(f"{where} {key}: {v:g} is beyond the largest load the solver "
+                                 f"handles, {MAX_MAGNITUDE:g} in magnitude; scale the units")
+            if abs(v) * length / E > MAX_MAGNITUDE:
+                raise ValueError(f"{where} {key}: {v:g} with E = {E:g} on a body of size "
+                                 f"{length:g} gives displacements of about |p| L / E = "
+                                 f"{abs(v) * length / E:.3g}, beyond the largest magnitude the "
+                                 f"solver handles, {MAX_MAGNITUDE:g}; scale the units")
+    for where, displacement in items["displacement"]:
+        for key, v in _numbers(displacement):
+            if abs(v) > MAX_SHIFT * length:
+                raise ValueError(f"{where} {key}: {v:g} is more than {MAX_SHIFT:g} times the "
+                                 f"size of the body ({length:g}); linear elasticity is a "
+                                 f"theory of small displacements, and a larger imposed one "
+                                 f"drowns the strains in round-off: give it in the units "
+                                 f"of the mesh")
+
+
+def _check_boundaries(items: dict, mesh, dim: int):
+    """Each boundary exists and selects nodes (facets for a load); see the module notes."""
+    if isinstance(mesh, sc.Box):
+        faces, boundaries = FACES[:2 * dim], [i.boundary for v in items.values() for _, i in v]
+        for where, item in items["displacement"] + items["load"]:
+            if isinstance(item.boundary, str) and item.boundary not in faces:
+                raise ValueError(f"{where} boundary {item.boundary!r} is not a face of the "
+                                 f"box; use one of {', '.join(faces)}, or where")
+        if all(isinstance(b, str) for b in boundaries) or math.prod(mesh.n) > BUILT_BOX:
+            return
+        mesh = meshes.box(mesh.n, mesh.cell, mesh.size)
+    for key, select in (("displacement", select_nodes), ("load", select_facets)):
+        for where, item in items[key]:
+            tomlcheck.labelled(where, select, mesh, item.boundary, where)
+
+
+def _mesh(t: dict, folder: Path) -> tuple[sc.Box | Path, int, object]:
+    """The scene's mesh, its dimension, and what to check boundaries on (Box or Mesh)."""
+    if one_of(t, _exclusive("[mesh]"), "[mesh]") == "box":
+        box = table(t["box"], "[mesh] box", _names("[mesh] box"))
+        if "n" not in box or "cell" not in box:
+            raise ValueError("[mesh] box needs n and cell, e.g. {n = 4, cell = \"quad\"}")
+        n, cell, size = box["n"], box["cell"], box.get("size")
+        if not (type(n) is int or isinstance(n, list) and all(type(k) is int for k in n)):
+            raise TypeError(f"[mesh] box.n must be an integer or a list of integers, got {n!r}")
+        choice(cell, tuple(sc.CELLS), "[mesh] box.cell")
+        if size is not None:
+            size = vector(size, "[mesh] box.size", sc.CELLS[cell])
+        b = tomlcheck.labelled("[mesh] box", sc.Box, tuple(n) if isinstance(n, list) else n,
+                               cell, size)
+        return b, sc.CELLS[cell], b
+    if not isinstance(t["file"], str):
+        raise TypeError(f"[mesh] file must be a path string, got {t['file']!r}")
+    path = Path(os.path.abspath(folder / t["file"]))
+    try:
+        path = regular_file(path, f"[mesh] file {t['file']!r}").resolve()
+    except FileNotFoundError:
+        raise ValueError(f"[mesh] file {t['file']!r} not found (looked for {path})") from None
+    except IsADirectoryError:
+        raise ValueError(f"[mesh] file {t['file']!r} is a folder ({path}); give the path "
+                         f"of a mesh file") from None
+    try:
+        mesh = meshes.read(path)
+    except Exception as e:  # any reader error is a bad scene file
+        raise ValueError(f"[mesh] file {t['file']!r}: {e}") from None
+    return path, mesh.dim(), mesh
+
+
+def _levelset(t: dict, dim: int, where: str = "[levelset]") -> ls.LevelSet:
+    """The level set of a [levelset] table (or of the level-set key of the
+    [[interface]] table ``where``)."""
+    kinds = _exclusive("[levelset]")
+    t = table(t, where, _names("[levelset]"))
+    kind = one_of(t, kinds, where)
+    key = f"{where} {kind}"
+    if kind == "expr":
+        if not isinstance(t[kind], str):
+            raise TypeError(f"{key} must be a formula string, got {t[kind]!r}")
+        return ls.LevelSet(formula(t[kind], key, dim), dim, t[kind])
+    if kind in ("circle", "sphere") and dim != {"circle": 2, "sphere": 3}[kind]:
+        other = "sphere" if kind == "circle" else "circle"
+        raise ValueError(f"{key} is a {5 - dim}D shape but the mesh is {dim}D; "
+                         f"use {other} or expr")
+    args = _names(f"[levelset] {kind}")
+    spec = table(t[kind], key, args)
+    for a in args:
+        if a not in spec:
+            raise ValueError(f"{key} needs {a}")
+    if kind == "plane":
+        args = (vector(spec["point"], f"{key}.point", dim),
+                vector(spec["normal"], f"{key}.normal", dim))
+    else:
+        args = (vector(spec["center"], f"{key}.center", dim),
+                number(spec["radius"], f"{key}.radius"))
+    return tomlcheck.labelled(key, getattr(ls, kind), *args)
+
+
+def _material(t: dict) -> Material:
+    args = {k: number(t[k], f"[material] {k}") for k in ("E", "nu") if k in t}
+    try:
+        return Material(**args, plane=t.get("plane", "strain"))
+    except ValueError as e:
+        raise ValueError(f"[material] {e}") from None
+
+
+def _where(t: dict, dim: int, where: str, table: str):
+    kind = one_of(t, _exclusive(table), where)
+    if kind == "where":
+        return formula(t["where"], f"{where} where", dim, boolean=True)
+    if not isinstance(t["boundary"], str):
+        raise TypeError(f"{where} boundary must be a name such as 'xmin', "
+                        f"got {t['boundary']!r}")
+    return t["boundary"]
+
+
+def _displacement(t: dict, dim: int, where: str) -> sc.Displacement:
+    keys(t, _names("[[displacement]]"), where)
+    boundary = _where(t, dim, where, "[[displacement]]")
+    given = [c for c in COMPONENTS if c in t]
+    if "z" in given and dim == 2:
+        raise ValueError(f"{where} z: component 'z' does not exist on a 2D mesh")
+    if "kind" in t:
+        if given:
+            raise ValueError(f"{where}: give either kind or components ({', '.join(given)})")
+        kind = choice(t["kind"], ("clamped", "rollers"), f"{where} kind")
+        if kind == "rollers" and not isinstance(boundary, str):
+            raise ValueError(f"{where} kind: rollers needs a named boundary, not where")
+        return sc.clamped(boundary) if kind == "clamped" else sc.rollers(boundary)
+    if not given:
+        raise ValueError(f"{where} needs kind or at least one of x, y, z")
+    return sc.Displacement(boundary, {c: formula(t[c], f"{where} {c}", dim) for c in given})
+
+
+def _load(t: dict, dim: int, where: str) -> sc.SurfaceLoad:
+    keys(t, _names("[[load]]"), where)
+    boundary = _where(t, dim, where, "[[load]]")
+    if one_of(t, _exclusive("[[load]]", 1), where) == "pressure":
+        return sc.SurfaceLoad(boundary, pressure=formula(t["pressure"], f"{where} pressure",
+                                                          dim))
+    v = t["traction"]
+    if not isinstance(v, list) or len(v) != dim:
+        raise ValueError(f"{where} traction must be a list of {dim} numbers or formulas "
+                         f"on a {dim}D mesh, got {v!r}")
+    return sc.SurfaceLoad(boundary, traction=tuple(
+        formula(c, f"{where} traction[{i}]", dim) for i, c in enumerate(v)))

@@ -1,0 +1,66 @@
+"""The interface laws, once: each one's name and what it imposes, read everywhere else;
+and the names of the multiplier spaces.
+
+A law says what holds on Γ.  The *ties* (``bonded``, ``bilateral``) are linear:
+the solver of :mod:`skxfem.solver` imposes them with multipliers on the jump
+(the vector jump, or its normal part: their ``coupling``).  The *contact* laws
+are unilateral (Signorini's conditions on the normal, with no friction,
+Coulomb's or no slip): :mod:`skxfem.contact` solves them by Newton's method, and
+within a load history a state may also switch an interface to a tie.
+
+>>> [law.name for law in LAWS.values() if law.tie]
+['bonded', 'bilateral']
+>>> LAWS["coulomb"].unilateral, LAWS["coulomb"].tangential
+(True, 'coulomb')
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["LawKind", "LAWS", "TIE_LAWS", "CONTACT_LAWS", "ALL_LAWS", "AUTO_ITERATIVE_LAWS",
+           "COUPLING", "SPACES"]
+
+
+@dataclass(frozen=True)
+class LawKind:
+    """What a law imposes at a point of Γ.
+
+    ``tie``: imposed by the tie solver (else by the contact solver).
+    ``unilateral``: Signorini on the normal (eq. 5), else the normal jump is
+    tied (d_n = 0, λ of either sign).  ``tangential``: ``"free"`` (r_τ = 0),
+    ``"stick"`` (no slip, or no slip increment where closed) or ``"coulomb"``
+    (eq. 8).  ``coupling``: the jump a tie's multipliers act on, ``"bonded"``
+    (the vector [[u]]) or ``"bilateral"`` (its normal part); the contact laws'
+    normal multipliers are those of the bilateral tie.  ``auto_iterative``:
+    ``linear="auto"`` may solve it iteratively (:mod:`skxfem.linalg.linear`).
+    """
+
+    name: str
+    tie: bool
+    unilateral: bool
+    tangential: str
+    coupling: str
+    auto_iterative: bool = True
+
+
+LAWS = {law.name: law for law in (
+    LawKind("bonded", tie=True, unilateral=False, tangential="stick", coupling="bonded"),
+    LawKind("bilateral", tie=True, unilateral=False, tangential="free", coupling="bilateral"),
+    LawKind("frictionless", tie=False, unilateral=True, tangential="free",
+            coupling="bilateral"),
+    LawKind("coulomb", tie=False, unilateral=True, tangential="coulomb", coupling="bilateral",
+            auto_iterative=False),
+    LawKind("adhesive", tie=False, unilateral=True, tangential="stick", coupling="bilateral"),
+)}
+"""Every law, by name: the one table."""
+
+TIE_LAWS = tuple(name for name, law in LAWS.items() if law.tie)
+CONTACT_LAWS = tuple(name for name, law in LAWS.items() if not law.tie)
+ALL_LAWS = tuple(LAWS)
+AUTO_ITERATIVE_LAWS = tuple(name for name, law in LAWS.items() if law.auto_iterative)
+COUPLING = {name: LAWS[name].coupling for name in TIE_LAWS}
+"""For each tie law, the coupling its multipliers are built on."""
+
+SPACES = ("naive", "winner", "vital")
+"""The multiplier spaces a scene may choose (paper §4.2 and §5): one multiplier per cut
+edge, algo1 (winner nodes), algo2 (vital edges: the default)."""

@@ -1,0 +1,284 @@
+"""Problem set-ups: mesh, level set, material, boundary conditions, interface law.
+
+A :class:`Scene` holds everything :func:`skxfem.solver.solve` needs.  Scenes are
+frozen dataclasses, so ``dataclasses.replace(scene, law="bilateral")`` makes a
+variant.  They are written in Python (see :mod:`skxfem.scenes`) or read from a
+TOML file by :func:`skxfem.scene.file.load_scene` (schema there).
+
+Its parts — :class:`Box`, :class:`Displacement`, :class:`SurfaceLoad`,
+:func:`clamped`, :func:`rollers` — are defined in :mod:`skxfem.scene.parts` and
+importable from here.  A formula string in a part is compiled for the scene's
+dimension.
+
+>>> from skxfem.levelset import plane
+>>> scene = Scene(Box(3, "quad"), plane((0, 0.5), (0, 1)),
+...               displacements=(clamped("ymin"),),
+...               loads=(SurfaceLoad("ymax", pressure=1.0),))
+>>> scene.law, scene.space          # the stable space unless asked otherwise
+('bonded', 'vital')
+
+**Several interfaces.** ``Scene(mesh, interfaces=(Interface(ψ₁, law=...),
+Interface(ψ₂, ...)))`` gives each Γ its own level set, law, μ and ρ (an
+:class:`Interface` each) instead of the scene's ``levelset``, ``law``,
+``space``, ``friction``, ``rho_n``, ``rho_t``, which then stay unset (None).
+Their Γ must not cross or touch: :func:`skxfem.problem.assemble` refuses a
+mesh cell that two of them cut.  :attr:`Scene.interface_list` lists the
+interfaces of either kind of scene.
+
+>>> two = Scene(Box(3, "quad"), interfaces=(Interface(plane((0, 0.3), (0, 1))),
+...                                          Interface(plane((0, 0.7), (0, 1)), "bilateral")))
+>>> [i.law for i in two.interface_list], [i.law for i in scene.interface_list]
+(['bonded', 'bilateral'], ['bonded'])
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+from skfem import Mesh
+
+from ..fem import meshes
+from ..fem.material import Material
+from ..levelset import LevelSet
+from .boundary import dirichlet, load_facets, traction
+from .expr import Expression
+from .laws import CONTACT_LAWS, SPACES
+from .laws import TIE_LAWS as LAWS
+from .parts import (
+    CELLS,
+    Box,
+    Displacement,
+    Interface,
+    SurfaceLoad,
+    check_law_fields,
+    clamped,
+    rollers,
+)
+from .parts import is_number as _is_number
+
+__all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "Scene", "clamped", "rollers",
+           "resolve_mesh", "dirichlet", "load_facets", "traction", "LAWS", "CONTACT_LAWS",
+           "SPACES", "CELLS", "check_scene", "MAX_QUADRATURE_ORDER"]
+
+MAX_QUADRATURE_ORDER = {2: 19, 3: 8}
+"""The highest ``Scene.quadrature_order`` per dimension: scikit-fem's triangle
+rules stop at 19 and its tetrahedron rules (the sub-cells of a cut 3D cell) at
+9, which :mod:`skxfem.fem.quadrature` takes for order 8."""
+
+@dataclass(frozen=True)
+class Scene:
+    """One contact problem: what :func:`skxfem.solver.solve` takes.
+
+    ``mesh`` is a :class:`Box`, a scikit-fem mesh or a mesh file path;
+    ``law`` is one of ``LAWS`` (ties, :func:`skxfem.solver.solve`) or
+    ``CONTACT_LAWS`` (unilateral, :func:`skxfem.contact.solve`), ``space`` one
+    of ``SPACES`` (left ``None``, they are ``bonded`` and ``vital``);
+    ``quadrature_order`` ``None`` lets the solver choose.
+    ``friction`` is Coulomb's μ (law ``coulomb``); ``rho_n``, ``rho_t`` the
+    augmentation parameters of the contact laws (``None``: the defaults of
+    :func:`skxfem.contact.parameters`); ``steps`` the load factors of a
+    contact solve, in order.
+
+    ``interfaces``: several interfaces, an :class:`Interface` each (its level
+    set, law, space, μ and ρ), given instead of ``levelset`` and the law's
+    fields (module notes).
+    """
+
+    mesh: Box | Mesh | str | Path
+    levelset: LevelSet | None = None
+    material: Material = Material()
+    displacements: tuple[Displacement, ...] = ()
+    loads: tuple[SurfaceLoad, ...] = ()
+    law: str | None = None
+    space: str | None = None
+    quadrature_order: int | None = None
+    name: str = "scene"
+    friction: float = 0.0
+    rho_n: float | None = None
+    rho_t: float | None = None
+    steps: tuple[float, ...] = (1.0,)
+    interfaces: tuple[Interface, ...] | None = None
+
+    def __post_init__(self):
+        if not isinstance(self.mesh, (Box, Mesh, str, Path)):
+            raise TypeError(f"Scene mesh must be a Box, a skfem Mesh or a file path, "
+                            f"got {type(self.mesh).__name__}")
+        if self.interfaces is not None:
+            self._check_interfaces()
+        else:
+            if not isinstance(self.levelset, LevelSet):
+                raise TypeError("Scene levelset must be a skxfem.levelset.LevelSet, "
+                                f"got {type(self.levelset).__name__} (several interfaces: "
+                                f"give interfaces=(Interface(...), ...) instead)")
+            object.__setattr__(self, "law", "bonded" if self.law is None else self.law)
+            object.__setattr__(self, "space", "vital" if self.space is None else self.space)
+        if not isinstance(self.material, Material):
+            raise TypeError(f"Scene material must be a Material, got {self.material!r}")
+        for field, kind in (("displacements", Displacement), ("loads", SurfaceLoad)):
+            items = getattr(self, field)
+            if not isinstance(items, (tuple, list)) or not all(
+                    isinstance(i, kind) for i in items):
+                raise TypeError(f"Scene {field} must be a tuple of {kind.__name__}")
+            object.__setattr__(self, field, tuple(items))
+        if self.interfaces is None:
+            check_law_fields("Scene", self.law, self.space, self.friction, self.rho_n,
+                             self.rho_t)
+        if (not isinstance(self.steps, (tuple, list)) or not self.steps
+                or not all(_is_number(f) and np.isfinite(f) for f in self.steps)):
+            raise ValueError(f"Scene steps must be a non-empty sequence of finite load "
+                             f"factors, got {self.steps!r}")
+        object.__setattr__(self, "steps", tuple(float(f) for f in self.steps))
+        q, top = self.quadrature_order, MAX_QUADRATURE_ORDER.get(self.dim, 8)
+        if q is not None and not (isinstance(q, int) and not isinstance(q, bool)
+                                  and 1 <= q <= top):
+            raise ValueError(f"Scene quadrature_order must be an integer from 1 to {top} in "
+                             f"{self.dim}D, or None (the minimal exact rule, which affine "
+                             f"cells need), got {q!r}")
+        if not (isinstance(self.name, str) and self.name):
+            raise ValueError(f"Scene name must be a non-empty string, got {self.name!r}")
+        object.__setattr__(self, "displacements", tuple(
+            _for_dim(d, self.dim, f"displacements[{k}]")
+            for k, d in enumerate(self.displacements)))
+        object.__setattr__(self, "loads", tuple(
+            _for_dim(load, self.dim, f"loads[{k}]") for k, load in enumerate(self.loads)))
+        if isinstance(self.mesh, (Box, Mesh)):
+            _check_dims(self, self.mesh.dim if isinstance(self.mesh, Box) else self.mesh.dim())
+
+    def _check_interfaces(self):
+        """The checks of ``interfaces`` (several interfaces, module notes)."""
+        items = self.interfaces
+        if not isinstance(items, (tuple, list)) or not all(
+                isinstance(i, Interface) for i in items):
+            raise TypeError(f"Scene interfaces must be a tuple of skxfem.Interface, "
+                            f"got {items!r:.80}")
+        if not items:
+            raise ValueError("Scene interfaces is empty: give one Interface per interface "
+                             "(or a levelset for a scene with one)")
+        object.__setattr__(self, "interfaces", tuple(items))
+        if self.levelset is not None:
+            raise ValueError("Scene got both a levelset and interfaces: give either "
+                             "levelset= (one interface, its law in law=) or interfaces=("
+                             "Interface(levelset, law=...), ...), not both")
+        given = [k for k, unset in (("law", None), ("space", None), ("friction", 0.0),
+                                    ("rho_n", None), ("rho_t", None))
+                 if getattr(self, k) != unset]
+        if given:
+            raise ValueError(f"Scene {', '.join(given)}: with interfaces, each Interface "
+                             f"has its own law, space, friction, rho_n and rho_t; give "
+                             f"them there (Interface(levelset, law=..., friction=...))")
+        dims = {i.levelset.dim for i in items}
+        if len(dims) > 1:
+            raise ValueError("Scene interfaces mix 2D and 3D level sets: "
+                             + ", ".join(f"interfaces[{k}] {i.levelset.name!r} is "
+                                         f"{i.levelset.dim}D" for k, i in enumerate(items)))
+
+    @property
+    def dim(self) -> int:
+        """The dimension of the problem (that of the level sets)."""
+        return (self.levelset if self.interfaces is None else self.interfaces[0].levelset).dim
+
+    @property
+    def interface_list(self) -> tuple[Interface, ...]:
+        """The interfaces of the scene, an :class:`Interface` each: ``interfaces``, or,
+        for a scene with one, the one made of ``levelset``, ``law``, ``space``,
+        ``friction``, ``rho_n`` and ``rho_t``."""
+        if self.interfaces is not None:
+            return self.interfaces
+        return (Interface(self.levelset, self.law, self.space, self.friction, self.rho_n,
+                          self.rho_t),)
+
+    @property
+    def several(self) -> bool:
+        """True for a scene with more than one interface."""
+        return len(self.interface_list) > 1
+
+    def alone(self, k: int) -> Scene:
+        """The scene with its interface ``k`` only (a one-interface scene, the
+        same mesh, material, supports, loads and steps).
+
+        >>> from skxfem.levelset import plane
+        >>> s = Scene(Box(3, "quad"), interfaces=(Interface(plane((0, 0.3), (0, 1))),
+        ...           Interface(plane((0, 0.7), (0, 1)), "frictionless")))
+        >>> s.alone(1).law, s.alone(1).levelset.name == s.interfaces[1].levelset.name
+        ('frictionless', True)
+        """
+        if self.interfaces is None:
+            if k != 0:
+                raise IndexError(f"the scene has one interface, no interface {k}")
+            return self
+        i = self.interfaces[k]
+        return replace(self, levelset=i.levelset, law=i.law, space=i.space,
+                       friction=i.friction, rho_n=i.rho_n, rho_t=i.rho_t, interfaces=None)
+
+
+def _for_dim(item: Displacement | SurfaceLoad, dim: int, where: str):
+    """A displacement or load whose formula strings evaluate on ``dim``-D points.
+
+    >>> load = SurfaceLoad("ymax", pressure="4*x*(1 - x)")
+    >>> load.pressure.dim, _for_dim(load, 2, "loads[0]").pressure.dim
+    (3, 2)
+    """
+    def fit(v, what: str):
+        if not isinstance(v, Expression) or v.dim == dim:
+            return v
+        try:
+            return Expression(v.text, dim)
+        except ValueError as e:
+            raise ValueError(f"{where} {what}: {e}") from None
+
+    if isinstance(item, Displacement):
+        return replace(item, components={c: fit(v, f"component {c!r}")
+                                         for c, v in item.components.items()})
+    if item.pressure is not None:
+        return replace(item, pressure=fit(item.pressure, "pressure"))
+    return replace(item, traction=tuple(fit(v, f"traction[{i}]")
+                                        for i, v in enumerate(item.traction)))
+
+
+def _check_dims(scene: Scene, dim: int):
+    """Raise if the level set, components or tractions do not fit a ``dim``-D mesh."""
+    if scene.interfaces is None and scene.levelset.dim != dim:
+        raise ValueError(f"Scene levelset {scene.levelset.name!r} is {scene.levelset.dim}D "
+                         f"but the mesh is {dim}D")
+    for k, i in enumerate(scene.interfaces or ()):
+        if i.levelset.dim != dim:
+            raise ValueError(f"Scene interfaces[{k}] level set {i.levelset.name!r} is "
+                             f"{i.levelset.dim}D but the mesh is {dim}D")
+    for k, d in enumerate(scene.displacements):
+        if "z" in d.components and dim == 2:
+            raise ValueError(f"displacements[{k}]: component 'z' does not exist on a 2D "
+                             "mesh (allowed: 'x', 'y')")
+    for k, load in enumerate(scene.loads):
+        if load.traction is not None and len(load.traction) != dim:
+            raise ValueError(f"loads[{k}]: traction has {len(load.traction)} components "
+                             f"but the mesh is {dim}D")
+
+
+def resolve_mesh(scene: Scene) -> Mesh:
+    """Build, check or read the scene's mesh and check that the scene fits it."""
+    if isinstance(scene.mesh, Box):
+        mesh = meshes.box(scene.mesh.n, scene.mesh.cell, scene.mesh.size)
+    elif isinstance(scene.mesh, Mesh):
+        mesh = scene.mesh
+        meshes.check_mesh(mesh)
+    else:
+        mesh = meshes.read(scene.mesh)
+    _check_dims(scene, mesh.dim())
+    return mesh
+
+
+def check_scene(scene) -> Scene:
+    """``scene`` if it is a :class:`Scene`, else a TypeError that says how to get one.
+
+    >>> check_scene("plate.toml")
+    Traceback (most recent call last):
+    ...
+    TypeError: scene must be a skxfem.Scene, got str 'plate.toml': build one with ...
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a skxfem.Scene, got {type(scene).__name__} "
+                        f"{scene!r:.60}: build one with skxfem.Scene(...), take a built-in "
+                        f"one (skxfem.scenes.strip()) or read a scene file with "
+                        f"skxfem.load_scene(path)")
+    return scene

@@ -1,0 +1,246 @@
+"""The parts of a scene: the mesh box, imposed displacements, surface loads, interfaces.
+
+Boundaries are named (``"xmin"``, ``"xmax"``, ``"ymin"`` ... ``"zmax"`` or a name
+stored in ``mesh.boundaries``) or given as a selection ``x -> bool``.  An imposed
+:class:`Displacement` acts on the *nodes* of its boundary; a :class:`SurfaceLoad`
+acts on its boundary *facets*.  The pressure is positive in compression: the
+traction is t = -p n with n the outward unit normal.
+
+A value (displacement component, pressure, traction component) is a number, a
+callable ``x -> array`` or a formula string such as ``"4*x*(1 - x)"``, checked
+as in scene files (:mod:`skxfem.scene.expr`); :class:`skxfem.scene.Scene` compiles it
+for its dimension.
+
+>>> SurfaceLoad("ymax", pressure="4*x*(1 - x)").pressure.text
+'4*x*(1 - x)'
+
+An :class:`Interface` is one Γ of a scene with several: its level set, its law
+and the law's parameters (a scene with one interface gives them to the
+:class:`~skxfem.scene.Scene` itself).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Mapping, Union
+
+import numpy as np
+
+from ..fem.cells import CELL_TYPES
+from ..levelset import LevelSet
+from .expr import Expression
+from .laws import CONTACT_LAWS, SPACES
+from .laws import TIE_LAWS as LAWS
+
+__all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "clamped", "rollers", "CELLS",
+           "SIZE_RANGE", "COMPONENTS", "FACES", "is_number", "check_law_fields"]
+
+COMPONENTS = ("x", "y", "z")
+FACES = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
+
+CELLS = {name: c.dim for name, c in CELL_TYPES.items()}
+"""Cell types of :class:`Box` and their dimension (:data:`skxfem.fem.cells.CELL_TYPES`)."""
+
+SIZE_RANGE = (1e-50, 1e50)
+"""The box lengths a :class:`Box` accepts.  Measured on the patch test of every
+cell type (4 to 16 cells a side, with E from 1e-100 to 1e100): exact from 1e-60
+to 1e60; beyond, the cut loses cut edges to underflowing products of ψ (from
+1e-150 on quadrilaterals), the stiffness of tetrahedra, hexahedra and prisms
+overflows or divides by zero (1e±80), or, on hexahedra at 1e-80, the answer is
+silently wrong (energy error 6e-3).  Express the lengths in another unit."""
+
+Value = Union[float, str, Callable[[np.ndarray], np.ndarray]]
+
+
+def is_number(v) -> bool:
+    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool)
+
+
+def _check_value(v, what: str) -> float | Callable:
+    """A finite number (as float), a callable ``x -> array`` or a formula string
+    (as a 3D :class:`~skxfem.scene.expr.Expression`; :class:`Scene` fits it to its dim)."""
+    if isinstance(v, str):
+        try:
+            return Expression(v, 3)
+        except ValueError as e:
+            raise ValueError(f"{what}: {e}") from None
+    if callable(v):
+        return v
+    if not is_number(v):
+        raise TypeError(f"{what} must be a number, a formula string such as '4*x*(1 - x)' "
+                        f"or a callable x -> array, got {v!r}")
+    if not np.isfinite(v):
+        raise ValueError(f"{what} must be finite, got {v!r}")
+    return float(v)
+
+
+def _check_boundary(b, what: str):
+    if not (callable(b) or (isinstance(b, str) and b)):
+        raise TypeError(f"{what} boundary must be a name such as 'xmin' or a "
+                        f"callable x -> bool, got {b!r}")
+
+
+@dataclass(frozen=True)
+class Box:
+    """A built-in structured mesh of a box, built by :func:`skxfem.fem.meshes.box`.
+
+    ``n`` cells per direction (an int or one int per direction), ``cell`` one of
+    ``CELLS``, ``size`` the box lengths (default 1 in every direction).
+    """
+
+    n: int | tuple[int, ...]
+    cell: str
+    size: tuple[float, ...] | None = None
+
+    def __post_init__(self):
+        if not isinstance(self.cell, str) or self.cell not in CELLS:
+            raise ValueError(f"Box cell must be one of {tuple(CELLS)}, got {self.cell!r}")
+        n = (self.n,) * self.dim if is_number(self.n) else self.n
+        if (not isinstance(n, (tuple, list)) or len(n) != self.dim
+                or not all(isinstance(k, (int, np.integer)) and not isinstance(k, bool)
+                           and k >= 1 for k in n)):
+            raise ValueError(f"Box n must be a positive integer or {self.dim} of them "
+                             f"for cell {self.cell!r}, got {self.n!r}")
+        object.__setattr__(self, "n", tuple(int(k) for k in n))
+        if self.size is not None:
+            if (not isinstance(self.size, (tuple, list)) or len(self.size) != self.dim
+                    or not all(is_number(s) and np.isfinite(s) and s > 0 for s in self.size)):
+                raise ValueError(f"Box size must be {self.dim} positive numbers, "
+                                 f"got {self.size!r}")
+            lo, hi = SIZE_RANGE
+            if not all(lo <= s <= hi for s in self.size):
+                raise ValueError(f"Box size must lie in [{lo:.0e}, {hi:.0e}] (beyond, the "
+                                 f"cut and the stiffness leave floating point), got "
+                                 f"{self.size!r}: express the lengths in another unit")
+            object.__setattr__(self, "size", tuple(float(s) for s in self.size))
+
+    @property
+    def dim(self) -> int:
+        return CELLS[self.cell]
+
+
+@dataclass(frozen=True)
+class Displacement:
+    """Imposed displacement components on the nodes of a boundary.
+
+    ``components`` maps ``"x"``/``"y"``/``"z"`` (or 0/1/2, or ``"all"``) to a number
+    or a callable ``x -> array``; it is stored with the keys ``"x"``, ``"y"``,
+    ``"z"`` or ``"all"``.
+
+    >>> Displacement("xmin", {0: 0.0, "y": 1}).components
+    {'x': 0.0, 'y': 1.0}
+    """
+
+    boundary: str | Callable[[np.ndarray], np.ndarray]
+    components: Mapping[str | int, Value]
+
+    def __post_init__(self):
+        _check_boundary(self.boundary, "Displacement")
+        if not isinstance(self.components, Mapping) or not self.components:
+            raise TypeError("Displacement components must be a non-empty mapping such as "
+                            f"{{'x': 0.0}}, got {self.components!r}")
+        comps = {}
+        for key, value in self.components.items():
+            name = COMPONENTS[key] if key in (0, 1, 2) and not isinstance(key, bool) else key
+            if name not in COMPONENTS + ("all",):
+                raise ValueError(f"Displacement component {key!r} is not one of "
+                                 "'x', 'y', 'z', 0, 1, 2, 'all'")
+            comps[name] = _check_value(value, f"Displacement component {name!r}")
+        if "all" in comps and len(comps) > 1:
+            raise ValueError("Displacement components: use either 'all' or single components")
+        object.__setattr__(self, "components", comps)
+
+
+def clamped(boundary: str | Callable) -> Displacement:
+    """All displacement components zero on ``boundary``."""
+    return Displacement(boundary, {"all": 0.0})
+
+
+def rollers(boundary: str) -> Displacement:
+    """Normal displacement zero on an axis-aligned named face such as ``"xmin"``.
+
+    >>> rollers("zmax").components
+    {'z': 0.0}
+    """
+    if boundary not in FACES:
+        raise ValueError(f"rollers needs an axis-aligned face {FACES}, got {boundary!r}")
+    return Displacement(boundary, {boundary[0]: 0.0})
+
+
+@dataclass(frozen=True)
+class SurfaceLoad:
+    """A pressure (positive in compression, t = -p n) or a traction vector on facets."""
+
+    boundary: str | Callable[[np.ndarray], np.ndarray]
+    pressure: Value | None = None
+    traction: tuple[Value, ...] | None = None
+
+    def __post_init__(self):
+        _check_boundary(self.boundary, "SurfaceLoad")
+        if (self.pressure is None) == (self.traction is None):
+            raise ValueError("SurfaceLoad needs exactly one of pressure= or traction=")
+        if self.pressure is not None:
+            object.__setattr__(self, "pressure",
+                               _check_value(self.pressure, "SurfaceLoad pressure"))
+        else:
+            if isinstance(self.traction, np.ndarray) and self.traction.ndim == 1:
+                object.__setattr__(self, "traction", tuple(self.traction.tolist()))
+            if not isinstance(self.traction, (tuple, list)) or len(self.traction) not in (2, 3):
+                raise TypeError("SurfaceLoad traction must be 2 or 3 components, "
+                                f"got {self.traction!r}")
+            object.__setattr__(self, "traction", tuple(
+                _check_value(t, f"SurfaceLoad traction[{i}]")
+                for i, t in enumerate(self.traction)))
+
+
+def check_law_fields(who: str, law, space, friction, rho_n, rho_t) -> None:
+    """Refuse a law, space, Coulomb μ or augmentation ρ that no solve takes; ``who``
+    names the owner in the message (``"Scene"``, ``"Interface"``).
+
+    >>> check_law_fields("Interface", "glued", "vital", 0.0, None, None)
+    Traceback (most recent call last):
+    ...
+    ValueError: Interface law must be one of ('bonded', 'bilateral', 'frictionless', ...
+    """
+    if law not in LAWS + CONTACT_LAWS:
+        raise ValueError(f"{who} law must be one of {LAWS + CONTACT_LAWS}, got {law!r}")
+    if not (is_number(friction) and np.isfinite(friction) and friction >= 0):
+        raise ValueError(f"{who} friction (Coulomb's mu) must be a number >= 0, "
+                         f"got {friction!r}")
+    for key, rho in (("rho_n", rho_n), ("rho_t", rho_t)):
+        if rho is not None and not (is_number(rho) and np.isfinite(rho) and rho > 0):
+            raise ValueError(f"{who} {key} must be a positive number or None (default "
+                             f"scaled by E/h), got {rho!r}")
+    if space not in SPACES:
+        raise ValueError(f"{who} space must be one of {SPACES}, got {space!r}")
+
+
+@dataclass(frozen=True)
+class Interface:
+    """One interface Γ = {ψ = 0} of a scene with several, and its law.
+
+    ``levelset`` ψ (Ω⁻ = {ψ < 0} on its side, n = ∇ψ/|∇ψ|); ``law`` one of
+    ``LAWS`` (ties) or ``CONTACT_LAWS``; ``space`` its multiplier space;
+    ``friction`` Coulomb's μ (law ``coulomb``); ``rho_n``, ``rho_t`` the
+    augmentations of a contact law (``None``: E/h).  The fields and their
+    checks are those of a one-interface :class:`~skxfem.scene.Scene`.
+
+    >>> from skxfem.levelset import plane
+    >>> i = Interface(plane((0, 0.3), (0, 1)), law="frictionless")
+    >>> i.law, i.space, i.friction
+    ('frictionless', 'vital', 0.0)
+    """
+
+    levelset: LevelSet
+    law: str = "bonded"
+    space: str = "vital"
+    friction: float = 0.0
+    rho_n: float | None = None
+    rho_t: float | None = None
+
+    def __post_init__(self):
+        if not isinstance(self.levelset, LevelSet):
+            raise TypeError("Interface levelset must be a skxfem.levelset.LevelSet, "
+                            f"got {type(self.levelset).__name__}")
+        check_law_fields("Interface", self.law, self.space, self.friction, self.rho_n,
+                         self.rho_t)
+        object.__setattr__(self, "friction", float(self.friction))

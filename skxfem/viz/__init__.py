@@ -1,0 +1,2 @@
+"""Drawing (matplotlib, pyvista): plots, the paper's figures, the schematics,
+3D renders."""
