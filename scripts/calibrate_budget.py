@@ -65,11 +65,11 @@ peak = status("VmHWM:")
 if kind == "press":  # a ContactResult: the sizes of its bilateral problem
     p = r.problem
     r = dataclasses.make_dataclass("R", [])()
-    r.mesh, r.n_dofs, r.space, r.n_multipliers = p.mesh, p.V.N, p.V, p.B.shape[0]
+    r.mesh, r.n_dofs, r.V, r.n_multipliers = p.mesh, p.V.N, p.V, p.B.shape[0]
     r.removed = 0
 print(json.dumps({"case": f"{kind}:{cell}:{n}", "nodes": int(r.mesh.nvertices),
                   "cells": int(r.mesh.nelements), "N": int(r.n_dofs),
-                  "n_enr": int(r.space.n_enr), "m": int(r.n_multipliers + r.removed),
+                  "n_enr": int(r.V.n_enr), "m": int(r.n_multipliers + r.removed),
                   **seen, "measured_MB": round((peak - before) / 2**20, 1),
                   "estimate_MB": round(est.bytes / 2**20, 1), "linear": est.linear,
                   "bytes_per_unknown": round((peak - before)

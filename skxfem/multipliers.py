@@ -80,10 +80,10 @@ def fixed_jumps(V: XSpace, dofs: np.ndarray) -> np.ndarray:
     the jump [[u_h]]_c = -2 Σⱼ φⱼ bⱼ_c at the point of a cut edge whose two
     ends are fixed for c is zero for every admissible U: a support holds it.
     """
-    held = np.zeros(V.n_std, dtype=bool)
+    fixed = np.zeros(V.n_std, dtype=bool)
     enr = np.asarray(dofs)
-    held[V.enr_dofs[enr[enr >= V.n_std] - V.n_std]] = True
-    return held[V.basis.nodal_dofs]
+    fixed[V.enr_dofs[enr[enr >= V.n_std] - V.n_std]] = True
+    return fixed[V.basis.nodal_dofs]
 
 
 def normal_fixed(fixed: np.ndarray, cut: Cut, tol: float = 1e-12) -> np.ndarray:

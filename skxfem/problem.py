@@ -20,7 +20,7 @@ per interface, built by the same steps as a scene with that interface alone
 unknowns [a, b^k]; ``columns`` places them among the whole's).  The whole's B
 stacks the interfaces' couplings and P is block-diagonal; the fields of one
 interface (``cut``, ``rule``, ``J``, ``space``, ``ncomp``, ``M_edges``,
-``held``) are those of the pieces.
+``held_edges``) are those of the pieces.
 
 >>> from skxfem.scene.benchmarks import strip
 >>> p = assemble(strip(3, cell="tri"))
@@ -103,7 +103,7 @@ class Problem:
         with a tie law in place of the contact law [6].
     M_edges : (n_edges, n_edges) CSR, the interface mass ∫_Γ N_e N_f (the
         L² norm of λ_h; §5's inf-sup test scales it by h).
-    held : (ncomp, n_edges) bool, the (component, edge) pairs whose jump a
+    held_edges : (ncomp, n_edges) bool, the (component, edge) pairs whose jump a
         support holds: both ends of the edge are fixed for that component
         (:func:`skxfem.multipliers.fixed_jumps`, from ``D``; bilateral: the
         normal jump, :func:`skxfem.multipliers.normal_fixed`).  They carry
@@ -120,7 +120,7 @@ class Problem:
         whole's are here); then ``V`` is an :class:`~skxfem.enrich.XSpaces`,
         ``B`` (Σm, N) stacks theirs, ``P`` is block-diagonal, ``law`` is the law
         they were assembled for if it is one for all (else None), and ``cut``,
-        ``rule``, ``J``, ``space``, ``ncomp``, ``M_edges``, ``held`` are None.
+        ``rule``, ``J``, ``space``, ``ncomp``, ``M_edges``, ``held_edges`` are None.
         Empty for one interface.
     columns : for a piece of ``interfaces``, the whole's unknowns its own
         [a, b^k] are (:meth:`skxfem.enrich.XSpaces.columns`); None otherwise.
@@ -142,7 +142,7 @@ class Problem:
     P: sp.csr_matrix
     B: sp.csr_matrix
     M_edges: sp.csr_matrix
-    held: np.ndarray
+    held_edges: np.ndarray
     spaces: tuple
     timings: dict = field(default_factory=dict)
     per_edge: np.ndarray | None = None
@@ -193,9 +193,9 @@ def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndar
     pos = np.full(V.n_std, -1)
     pos[V.enr_dofs] = np.arange(V.n_enr)
     enr = [np.zeros(0, dtype=np.int64)]
-    for held, components in imposed(scene, mesh):
+    for support_nodes, components in imposed(scene, mesh):
         selected = np.zeros(mesh.p.shape[1], dtype=bool)
-        selected[held] = True
+        selected[support_nodes] = True
         nodes = np.unique(cut_bf[:, selected[cut_bf].all(axis=0)])
         for comp in components:
             b = pos[V.basis.nodal_dofs[comp, nodes]]
@@ -286,14 +286,14 @@ def _interface_problem(scene, mesh, cut, V, K, F, D, g, law, timings, lap, colum
     fixed = fixed_jumps(V, D)
     if COUPLING[law] == "bilateral":
         fixed = normal_fixed(fixed, cut)[None, :]
-    held = fixed[:, cut.edges[0]] & fixed[:, cut.edges[1]]
+    held_edges = fixed[:, cut.edges[0]] & fixed[:, cut.edges[1]]
 
     def problem(lam_space, per_edge=None):
         spaces = _component_spaces(scene.space, mesh, cut, lam_space, fixed, per_edge)
         P = sp.block_diag([s.P for s in spaces], format="csr")  # component-major
         return Problem(scene=scene, mesh=mesh, cut=cut, V=V, K=K, F=F, D=D, g=g, rule=rule,
-                       J=J, space=lam_space, law=law, ncomp=held.shape[0], P=P,
-                       B=(P.T @ B_edges).tocsr(), M_edges=M_edges, held=held,
+                       J=J, space=lam_space, law=law, ncomp=held_edges.shape[0], P=P,
+                       B=(P.T @ B_edges).tocsr(), M_edges=M_edges, held_edges=held_edges,
                        spaces=spaces, timings=timings, per_edge=per_edge, columns=columns)
 
     p = problem(lam_space)
@@ -341,7 +341,7 @@ def _assemble_several(scene: Scene, law: str | None) -> Problem:
     P = sp.block_diag([p.P for p in pieces], format="csr")
     return Problem(scene=scene, mesh=mesh, cut=None, V=V, K=K, F=F, D=D, g=g, rule=None,
                    J=None, space=None, law=laws[0] if len(set(laws)) == 1 else None,
-                   ncomp=None, P=P, B=B, M_edges=None, held=None, spaces=(),
+                   ncomp=None, P=P, B=B, M_edges=None, held_edges=None, spaces=(),
                    timings=timings, interfaces=pieces)
 
 

@@ -71,7 +71,9 @@ class Result:
     one per interface); for a tie they are empty.
     ``interface`` (n,) is the interface of each point, ``regions`` and
     ``u_regions`` the regions and their fields (module notes; several
-    interfaces: ``u_minus`` and ``u_plus`` are None).
+    interfaces: ``u_minus`` and ``u_plus`` are None).  ``U`` holds the
+    unknowns [a, b] of the X-FEM space ``V`` (:class:`skxfem.enrich.XSpace`, as
+    :attr:`skxfem.problem.Problem.V`) and ``problem`` the assembled problem.
     """
 
     scene: object
@@ -89,7 +91,7 @@ class Result:
     removed: int = 0
     timings: dict = field(default_factory=dict)
     U: np.ndarray | None = field(default=None, repr=False)
-    space: XSpace | None = field(default=None, repr=False)
+    V: XSpace | None = field(default=None, repr=False)
     linear: str = "direct"
     linear_info: dict = field(default_factory=dict)
     problem: object = field(default=None, repr=False)
@@ -165,7 +167,7 @@ def result(pb, U: np.ndarray, traction: np.ndarray, max_jump: float, n_multiplie
     regions, fields = region_fields(pb.V, U)
     common = dict(scene=pb.scene, mesh=pb.mesh, traction=traction, max_jump=float(max_jump),
                   n_dofs=pb.V.N, n_multipliers=int(n_multipliers), timings=timings, U=U,
-                  space=pb.V, linear=linear, linear_info=linear_info, problem=pb,
+                  V=pb.V, linear=linear, linear_info=linear_info, problem=pb,
                   regions=regions, u_regions=fields, **contact)
     if isinstance(pb.V, XSpaces):
         qs = pb.interfaces

@@ -451,7 +451,7 @@ def test_the_paper_plate_with_its_rollers_sticks_as_the_bonded_tie(cell, space, 
     assert np.all(st.status == 1) and st.newton.iterations <= 2
     assert rel(st.U, tie.U) < 1e-8
     assert rel(res.pressure, tie.pressure) < 1e-8 and rel(res.traction, tie.traction) < 1e-8
-    assert res.ops.held[:, 0].sum() > 0, "the rollers hold the tangent e_x"
+    assert res.ops.tangent_held[:, 0].sum() > 0, "the rollers hold the tangent e_x"
 
 
 @pytest.mark.parametrize("space", ["vital", "winner"])

@@ -152,7 +152,7 @@ def exact_step(mu=0.6, rho=(1.0, 1.0)):
     law = replace(res.law, rho_n=rho[0] * res.law.rho_n, rho_t=rho[1] * res.law.rho_t)
     free = np.setdiff1d(np.arange(pb.V.N), pb.D)
     step = StepProblem(ops, pb.K, pb.F, free, np.zeros(pb.V.N),
-                       point_laws(law, ops.held), res.law.rho_n)
+                       point_laws(law, ops.tangent_held), res.law.rho_n)
     return step, Iterate(st.U, -st.pressure, st.traction)
 
 

@@ -268,8 +268,8 @@ def test_rollers_hold_the_tangential_jump_on_the_strips_sides():
     assert not fixed[1].any()
     in_side = np.isclose(p.cut.points[0], 0) | np.isclose(p.cut.points[0], 1)
     assert in_side.sum() == 2
-    assert np.array_equal(p.held[0], in_side) and not p.held[1].any()
-    assert not pn.held.any() and not normal_fixed(fixed, p.cut).any()
+    assert np.array_equal(p.held_edges[0], in_side) and not p.held_edges[1].any()
+    assert not pn.held_edges.any() and not normal_fixed(fixed, p.cut).any()
     ne = p.cut.edge_ids.size
     Px = p.P[:ne, :p.spaces[0].size]
     assert all(_takes_a_neighbours_row(Px, p.cut, e, in_side) for e in np.flatnonzero(in_side))
@@ -294,11 +294,11 @@ def test_a_support_holding_the_normal_jump_removes_the_normal_multiplier():
 
     p, _ = _assembled(scene("x"))
     bottom = np.isclose(p.cut.points[1], 0)
-    assert bottom.sum() == 1 and np.array_equal(p.held[0], bottom)
+    assert bottom.sum() == 1 and np.array_equal(p.held_edges[0], bottom)
     assert _takes_a_neighbours_row(p.P, p.cut, np.flatnonzero(bottom)[0], bottom)
     assert p.P.shape[1] == p.space.size - 1, "one multiplier fewer than without the support"
     q, _ = _assembled(scene("y"))
-    assert not q.held.any() and abs(q.P - q.space.P).max() == 0
+    assert not q.held_edges.any() and abs(q.P - q.space.P).max() == 0
 
 
 @pytest.mark.parametrize("name", SPACES)

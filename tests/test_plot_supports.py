@@ -16,7 +16,7 @@ def drawn(ax):
 
 def test_roller_faces_lose_the_x_component_only():
     p = assemble(paper_plate(3, "tet", space="vital", nx=2))
-    fig = plot_held_edges(p.mesh, p.cut, [s.P for s in p.spaces], held=p.held)
+    fig = plot_held_edges(p.mesh, p.cut, [s.P for s in p.spaces], held_edges=p.held_edges)
     assert len(fig.axes) == 6
     for face in (0, 1):
         x = p.cut.points[0]
@@ -30,8 +30,8 @@ def test_roller_faces_lose_the_x_component_only():
     assert KINDS[0][0].startswith("no λ of its own")
     default = plot_held_edges(p.mesh, p.cut, [s.P for s in p.spaces])  # by P's rows alone:
     assert drawn(default.axes[0])[0] == 0, "held edges take a neighbour's λ: no empty row"
-    with pytest.raises(ValueError, match="held must be"):
-        plot_held_edges(p.mesh, p.cut, [s.P for s in p.spaces], held=p.held[:1])
+    with pytest.raises(ValueError, match="held_edges must be"):
+        plot_held_edges(p.mesh, p.cut, [s.P for s in p.spaces], held_edges=p.held_edges[:1])
 
 
 def test_bad_input_is_refused():

@@ -61,7 +61,7 @@ def at(*coords):
 
 def physical(result):
     """Nodal displacement (dim, nverts): u⁻ at the nodes of Ω⁻, u⁺ at those of Ω⁺."""
-    below = result.space.cut.psi < 0
+    below = result.V.cut.psi < 0
     return np.where(below[None, :], result.u_minus, result.u_plus)
 
 
@@ -239,7 +239,7 @@ def test_bonded_equals_conforming_mesh(cell):
     u = physical(result)
     assert np.abs(u - u_fine[:, same_points(result.mesh.p, fine.p)]).max() < 1e-9 * scale
     # on Γ: each side's field, interpolated along the cut edges (linear on an edge)
-    c = result.space.cut
+    c = result.V.cut
     a, b = c.edges
     p = result.mesh.p
     t = (c.points[axis] - p[axis, a]) / (p[axis, b] - p[axis, a])
@@ -275,7 +275,7 @@ def test_bonded_tractions_are_the_conforming_reactions(cell):
         if facets.size:
             reaction -= surface_load(basis, boundary_quadrature(fine, facets, 4), traction)[0]
     reaction = reaction[basis.nodal_dofs]  # (dim, nverts)
-    c = result.space.cut
+    c = result.V.cut
     M = interface_mass(interface_rule(result.mesh, c))
     node = same_points(c.points, fine.p)
     free = ~np.isin(basis.nodal_dofs[:, node], dirichlet(scene, fine, basis)[0]).any(axis=0)
@@ -322,10 +322,10 @@ def test_simplices_tie_pointwise_and_lower_energy(cell):
     u = physical(result)
     assert result.max_jump < 1e-12 * np.abs(u).max()
     _, energy_plain = plain_solve(scene, result.mesh)
-    K = stiffness(result.space, scene.material)
+    K = stiffness(result.V, scene.material)
     strain_energy = 0.5 * result.U @ K @ result.U
     # the top face is not cut: there the load works on the nodal displacement
-    basis = result.space.basis
+    basis = result.V.basis
     f = sum(surface_load(basis, boundary_quadrature(result.mesh, facets, 4), t)[0]
             for facets, t in load_facets(scene, result.mesh))
     u_dofs = np.zeros(basis.N)
@@ -344,7 +344,7 @@ def test_a_clamped_face_that_gamma_does_not_cut_leaves_the_enrichment_free():
     scene = tet_scene(normal=(0.2, 0.3, 1.0))
     result = solve(scene)
     _, energy_plain = plain_solve(scene, result.mesh)
-    K = stiffness(result.space, scene.material)
+    K = stiffness(result.V, scene.material)
     energy = -0.5 * result.U @ K @ result.U  # = ½uᵀKu - f·u at equilibrium
     assert energy < energy_plain - 1e-6 * abs(energy_plain)
 
@@ -417,7 +417,7 @@ def profile(result):
 
 def force_on_gamma(result):
     """∫_Γ p for the P1 pressure on the interface facets."""
-    return np.sum(result.space.cut.measures * result.pressure[result.facets].mean(axis=0))
+    return np.sum(result.V.cut.measures * result.pressure[result.facets].mean(axis=0))
 
 
 SMOOTH = [("strip", 4, "quad"), ("strip", 8, "quad"), ("plate", 4, "hex")]
@@ -587,7 +587,7 @@ def test_a_selection_holding_one_side_of_a_cut_face_leaves_the_other_free():
     result = solve(scene)
     held = below(result.mesh.p)
     assert np.abs(result.u_minus[:, held]).max() == 0.0
-    cut_face = held & np.isin(np.arange(held.size), result.space.cut.enriched)
+    cut_face = held & np.isin(np.arange(held.size), result.V.cut.enriched)
     assert cut_face.any() and np.abs(result.u_plus[:, cut_face]).max() > 0.0
 
 
@@ -633,7 +633,7 @@ def test_a_nearly_dependent_naive_space_is_refused_and_stable_spaces_solve_it():
     for name in ("vital", "winner"):
         result = solve(dataclasses.replace(scene, space=name))
         r = result.traction[:, result.facets].mean(axis=1)
-        force = (r * result.space.cut.measures).sum(axis=1)
+        force = (r * result.V.cut.measures).sum(axis=1)
         assert np.abs(force - (0.0, -2 * P_MAX / 3)).max() < 1e-8, \
             f"{name}: the traction on Γ must balance the top load, ∫_Γ r = {force}"
 

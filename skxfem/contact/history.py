@@ -354,8 +354,8 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
 def _point_laws(laws: tuple[Law, ...], ops: Operators) -> PointLaws:
     """The law of every dof: those of each interface (``laws``) at its dofs."""
     if not ops.pieces:
-        return point_laws(laws[0], ops.held)
-    return join_laws([point_laws(law, ops.held[ops.interface == k])
+        return point_laws(laws[0], ops.tangent_held)
+    return join_laws([point_laws(law, ops.tangent_held[ops.interface == k])
                       for k, law in enumerate(laws)])
 
 
@@ -483,7 +483,7 @@ def _held_rows(ops: Operators, laws: PointLaws, status, y) -> sp.csr_matrix:
     closed = status != OPEN
     rows = [ops.Bn[closed]]
     k = len(ops.Bt)
-    free = ~ops.held
+    free = ~ops.tangent_held
     stick = _sticking(laws, status)
     rows += [ops.Bt[a][stick & free[:, a]] for a in range(k) if (stick & free[:, a]).any()]
     slip = (status == SLIP) & (laws.tangential == "coulomb") & free.all(axis=1)
@@ -508,7 +508,7 @@ def _check_rigid(pb: Problem, ops: Operators, laws: PointLaws, st, y, what: str,
     closed = st != OPEN
     full = _sticking(laws, st)
     edges_of = abs(pb.P).tocsc()
-    slip = (st == SLIP) & (laws.tangential == "coulomb") & ~ops.held.any(axis=1)
+    slip = (st == SLIP) & (laws.tangential == "coulomb") & ~ops.tangent_held.any(axis=1)
     rows = sp.csr_matrix((0, pb.V.N))
     if len(ops.Bt) == 2 and y is not None and slip.any():
         yh = y[slip] / np.linalg.norm(y[slip], axis=1)[:, None]

@@ -67,7 +67,7 @@ class Operators:
     w : (m,) lumped interface mass.   h : mean length of the cut edges.
     points, normals : (dim, m) mean position and unit normal of each dof.
     tangents : (k, dim) the tangents of the first dof (the frame of a plane Γ).
-    held : (m, k) bool, the tangential components a support holds
+    tangent_held : (m, k) bool, the tangential components a support holds
         (:func:`held_tangents`).
     Pt : tuple of k (n_edges, m), each tangent's prolongation from the dofs to
         the cut edges (the normal one, ``Problem.P``, where no support holds it).
@@ -83,7 +83,7 @@ class Operators:
     points: np.ndarray
     normals: np.ndarray
     tangents: np.ndarray
-    held: np.ndarray
+    tangent_held: np.ndarray
     Pt: tuple = ()
     interface: np.ndarray | None = None
     pieces: tuple = ()
@@ -132,19 +132,19 @@ def operators(pb) -> Operators:
     fixed = fixed_jumps(pb.V, pb.D)
     facet_frames = tangent_frames(pb.cut.normals)  # (k, dim, n_facets)
     fallback = held_tangents(fixed, e, P, normals)
-    Bt, Pt, held = [], [], np.zeros((w.size, dim - 1), bool)
+    Bt, Pt, tangent_held = [], [], np.zeros((w.size, dim - 1), bool)
     for a in range(dim - 1):
         dofs, Pa = tangential_space(pb, direction_fixed(fixed, pb.cut, facet_frames[a]))
         if dofs is None:  # the normal space, its wholly held dofs released
             Pt.append(sp.csr_matrix(P))
-            held[:, a] = fallback[:, a]
+            tangent_held[:, a] = fallback[:, a]
         else:
             rows = sp.csr_matrix((np.ones(dofs.size), (np.arange(dofs.size), dofs)),
                                  shape=(dofs.size, w.size))
             Pt.append((Pa @ rows).tocsr())
-            held[:, a] = ~np.isin(np.arange(w.size), dofs)
+            tangent_held[:, a] = ~np.isin(np.arange(w.size), dofs)
         Bt.append((Pt[-1].T @ PT[a]).tocsr())
-    return Operators(pb.B, tuple(Bt), w, h, points, normals, T[:, :, 0], held, tuple(Pt),
+    return Operators(pb.B, tuple(Bt), w, h, points, normals, T[:, :, 0], tangent_held, tuple(Pt),
                      np.zeros(w.size, dtype=np.int64))
 
 
@@ -163,7 +163,7 @@ def join(pb, parts) -> Operators:
               for a in range(k)),
         np.concatenate([o.w for o in parts]), float(lengths.mean()),
         np.hstack([o.points for o in parts]), np.hstack([o.normals for o in parts]),
-        parts[0].tangents, np.vstack([o.held for o in parts]),
+        parts[0].tangents, np.vstack([o.tangent_held for o in parts]),
         tuple(sp.block_diag([o.Pt[a] for o in parts], format="csr") for a in range(k)),
         np.repeat(np.arange(len(parts)), sizes), tuple(parts))
 

@@ -14,7 +14,7 @@ equations, all solved at once (paper §3), at every multiplier dof j:
 with d, s the weighted normal jump and tangential jump increment of
 :mod:`skxfem.contact.interface` (s = v_τ Δt: the increment over the step) and
 the laws of :mod:`skxfem.contact.laws`.  Tangential components that a support
-holds (:attr:`~skxfem.contact.interface.Operators.held`) carry r_τa = 0: the
+holds (:attr:`~skxfem.contact.interface.Operators.tangent_held`) carry r_τa = 0: the
 support takes that force.
 
 **The iteration** (:func:`newton`), one pass of five named steps:
@@ -110,7 +110,7 @@ class PointLaws:
     ``name`` (m,) law names, ``unilateral`` (m,) Signorini or a tied normal,
     ``tangential`` (m,) ``"free"``, ``"stick"`` or ``"coulomb"``; ``mu``,
     ``rho_n``, ``rho_t`` (m,); ``threshold`` (m,) the frozen radius of the
-    fixed point or None; ``held`` (m, k) the tangential components a support
+    fixed point or None; ``tangent_held`` (m, k) the tangential components a support
     holds (their r_τ is 0).
     """
 
@@ -120,27 +120,27 @@ class PointLaws:
     mu: np.ndarray
     rho_n: np.ndarray
     rho_t: np.ndarray
-    held: np.ndarray
+    tangent_held: np.ndarray
     threshold: np.ndarray | None = None
 
     @property
     def k(self) -> int:
-        return self.held.shape[1]
+        return self.tangent_held.shape[1]
 
 
-def point_laws(law: Law, held: np.ndarray) -> PointLaws:
-    """One :class:`Law` at every dof; ``held`` (m, k) as :attr:`PointLaws.held`.
+def point_laws(law: Law, tangent_held: np.ndarray) -> PointLaws:
+    """One :class:`Law` at every dof; ``tangent_held`` (m, k) as :attr:`PointLaws.tangent_held`.
 
     >>> pl = point_laws(Law("adhesive", 0.0, 2.0, 3.0), np.zeros((4, 1), bool))
     >>> bool(pl.unilateral.all()), pl.tangential[0], float(pl.rho_t[0])
     (True, 'stick', 3.0)
     """
-    m = held.shape[0]
+    m = tangent_held.shape[0]
     kind = KINDS[law.name]
     full = lambda v: np.full(m, float(v))  # noqa: E731
     return PointLaws(np.full(m, law.name, dtype=object), np.full(m, kind.unilateral),
                      np.full(m, kind.tangential, dtype=object), full(law.mu),
-                     full(law.rho_n), full(law.rho_t), np.asarray(held, bool),
+                     full(law.rho_n), full(law.rho_t), np.asarray(tangent_held, bool),
                      law.threshold)
 
 
@@ -158,7 +158,7 @@ def join_laws(parts) -> PointLaws:
         raise ValueError("join_laws stacks laws without a frozen threshold")
     return PointLaws(*(np.concatenate([getattr(p, f) for p in parts]) for f in
                        ("name", "unilateral", "tangential", "mu", "rho_n", "rho_t")),
-                     np.vstack([p.held for p in parts]))
+                     np.vstack([p.tangent_held for p in parts]))
 
 
 @dataclass(frozen=True)
@@ -269,7 +269,7 @@ def residual(step: StepProblem, it: Iterate, rho_n=None, rho_t=None) -> Residual
     g_n = it.lam - rho_n * d
     chi = np.where(laws.unilateral, g_n < 0, True)
     R_n = it.lam - chi * g_n
-    y = np.where(laws.held, 0.0, it.r - rho_t[:, None] * s)
+    y = np.where(laws.tangent_held, 0.0, it.r - rho_t[:, None] * s)
     radius, dR_dlam, dR_dU = _radius(laws, it.lam, g_n)
     Q = np.zeros_like(y)
     stick, coulomb = laws.tangential == "stick", laws.tangential == "coulomb"
@@ -314,7 +314,7 @@ def jacobian(step: StepProblem, it: Iterate, res: Residual, close=None) -> sp.cs
         if close is not None:  # a point closed by force: its ball holds it (stick)
             y = np.where((res.g_n[c] > 0)[:, None], 0.0, y)
         _, DQ[c], qR[c] = disk_projection(y, res.radius[c])
-    mask = ~laws.held  # y sees r and s on the components not held
+    mask = ~laws.tangent_held  # y sees r and s on the components not held
     DQ = DQ * mask[:, None, :] * mask[:, :, None]
     # dR_t/dU = DQ ρ_t Bt/w - qR dR/dU;  dR_t/dλ = -qR dR/dλ
     rows_t = []

@@ -182,7 +182,7 @@ class TieStep:
             approximated = c & (norm > res.radius) & (norm <= (1 + near) * res.radius)
             DQ[approximated] = eye
             qR[approximated] = 0.0
-        mask = ~laws.held
+        mask = ~laws.tangent_held
         DQ = DQ * mask[:, None, :] * mask[:, :, None]
         dR_dlam = np.where(c, res.dR_dlam, 0.0)
         dR_dU = np.where(c, res.dR_dU, 0.0)

@@ -140,12 +140,12 @@ def strip(n: int = 4, cell: str = "quad", ny: int | None = None,
     if sides not in ("free", "rollers"):
         raise ValueError(f"sides must be 'free' or 'rollers', got {sides!r}")
     ny = _odd_cells(n, ny, "ny")
-    held = (rollers("xmin"), rollers("xmax")) if sides == "rollers" else ()
+    supports = (rollers("xmin"), rollers("xmax")) if sides == "rollers" else ()
     return Scene(
         mesh=Box((n, ny), cell, (1.0, 1.0)),
         levelset=plane(point=(0.0, 0.5), normal=(0.0, 1.0)),
         material=Material(E=1.0, nu=0.3, plane="strain"),
-        displacements=(clamped("ymin"),) + held,
+        displacements=(clamped("ymin"),) + supports,
         loads=(SurfaceLoad("ymax", pressure=Expression(f"4*{P_MAX}*x*(1 - x)", 2)),),
         law=law, space=space,
         name=f"strip_{cell}_{n}x{ny}" + ("_rollers" if sides == "rollers" else ""))

@@ -43,7 +43,7 @@ class PressureError:
 
 def pressure_error(result, exact: Callable) -> PressureError:
     """Pressure error of a :class:`skxfem.result.Result` against ``exact(x)``."""
-    V = result.space
+    V = result.V
     if result.u_minus is None:
         raise ValueError("pressure_error measures a result with one interface; this one "
                          "has several")
@@ -65,7 +65,7 @@ def energy_error(result, exact_strain: Callable, order: int = 4) -> float:
     stiffness): the default 4 is exact for the quadratic strain of
     :mod:`skxfem.fem.exact` against P1, Q1 and prism fields on affine cells.
     """
-    V, material = result.space, result.scene.material
+    V, material = result.V, result.scene.material
     if result.u_minus is None:
         raise ValueError("energy_error measures a result with one interface; this one has "
                          "several")

@@ -173,7 +173,7 @@ def patch_error(scene: Scene, load: float = P) -> tuple[float, str]:
         return np.broadcast_to(eps.reshape(dim, dim, *([1] * (x.ndim - 1))),
                                (dim, dim) + x.shape[1:])
 
-    V = result.space
+    V = result.V
     dropped = V.cut.enriched.size - V.n_enr // dim
     note = f"{result.removed} dependent multipliers removed" if result.removed else ""
     if dropped:

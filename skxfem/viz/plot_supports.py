@@ -5,14 +5,14 @@ faces x = 0 and x = 1), one row per face and one column per multiplier
 component, with the cut edges lying in the face drawn by what the
 component's prolongation P gives them (:attr:`skxfem.problem.Problem.P`,
 one block per component): no multiplier of its own (a support holds that
-jump at both ends: :attr:`skxfem.problem.Problem.held`; it takes the λ of a
+jump at both ends: :attr:`skxfem.problem.Problem.held_edges`; it takes the λ of a
 neighbour on Γ, or none where the supports hold the whole jump), a μ of its
 own or of its group (one weight), or interpolated between two μ.
 
 >>> from skxfem.problem import assemble
 >>> from skxfem.scene.benchmarks import paper_plate
 >>> p = assemble(paper_plate(3, "prism", space="vital", nx=2))
->>> fig = plot_held_edges(p.mesh, p.cut, [s.P for s in p.spaces], held=p.held)
+>>> fig = plot_held_edges(p.mesh, p.cut, [s.P for s in p.spaces], held_edges=p.held_edges)
 >>> len(fig.axes), fig.axes[0].get_title()
 (6, 'λ_x on x = 0')
 """
@@ -34,7 +34,7 @@ KINDS = {0: ("no λ of its own (jump held)", COLORS["gamma"], (0, (3, 2)), 2.2),
 
 
 def plot_held_edges(mesh, cut, prolongations, axis: int = 0, values=None,
-                    labels=None, held=None) -> Figure:
+                    labels=None, held_edges=None) -> Figure:
     """The cut edges of the faces ``x_axis = value`` of a 3D mesh, per component.
 
     Parameters
@@ -52,9 +52,9 @@ def plot_held_edges(mesh, cut, prolongations, axis: int = 0, values=None,
         The faces' coordinates; default the smallest and largest.
     labels
         The components' names; default x, y, z (three blocks) or n (one).
-    held
+    held_edges
         (components, n_edges) bool, the edges whose jump in each component a
-        support holds (``problem.held``); default: those with an empty row of P.
+        support holds (``problem.held_edges``); default: those with an empty row of P.
 
     Returns
     -------
@@ -67,12 +67,12 @@ def plot_held_edges(mesh, cut, prolongations, axis: int = 0, values=None,
     kinds = [np.diff(P.tocsr().indptr) for P in prolongations]
     if any(k.size != ne for k in kinds):
         raise ValueError(f"prolongations must have one row per cut edge ({ne})")
-    if held is not None:
-        held = np.asarray(held, dtype=bool)
-        if held.shape != (len(kinds), ne):
-            raise ValueError(f"held must be one row of {ne} bools per component, got "
-                             f"shape {held.shape}")
-        kinds = [np.where(h, 0, np.maximum(k, 1)) for k, h in zip(kinds, held)]
+    if held_edges is not None:
+        held_edges = np.asarray(held_edges, dtype=bool)
+        if held_edges.shape != (len(kinds), ne):
+            raise ValueError(f"held_edges must be one row of {ne} bools per component, got "
+                             f"shape {held_edges.shape}")
+        kinds = [np.where(h, 0, np.maximum(k, 1)) for k, h in zip(kinds, held_edges)]
     labels = labels or ("xyz" if len(kinds) == 3 else ("n",) * len(kinds))
     values = values if values is not None else (mesh.p[axis].min(), mesh.p[axis].max())
     u, v = [a for a in range(3) if a != axis]

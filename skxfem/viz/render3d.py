@@ -85,7 +85,7 @@ def plot_result_3d(result, scale: float | None = None,
         raise ValueError(f"plot_result_3d needs a 3D result, got {mesh.dim()}D; plot "
                          f"result.pressure against result.points instead")
     if result.u_minus is None:  # several interfaces: a piece per region
-        V = result.space
+        V = result.V
         points, cells, side, _, disp, nodes = region_pieces(mesh, V.regions()[1],
                                                             result.u_regions)
         psis = [Vk.cut.psi[nodes] for Vk in V.spaces]
@@ -93,7 +93,7 @@ def plot_result_3d(result, scale: float | None = None,
         colors = [COLORS["minus"]] + [REGION_COLORS[r % len(REGION_COLORS)]
                                       for r in range(len(signs) - 2)] + [COLORS["plus"]]
     else:
-        points, cells, side, _, disp, levelset = side_pieces(mesh, result.space.cut.psi,
+        points, cells, side, _, disp, levelset = side_pieces(mesh, result.V.cut.psi,
                                                              result.u_minus, result.u_plus)
         psis, signs, colors = [levelset], np.array([[-1], [1]]), [COLORS["minus"],
                                                                    COLORS["plus"]]
