@@ -78,15 +78,15 @@ def fixed_point(step, start, tol=TOL, max_iter=30, **linear):
             it, res, info = newton(with_threshold(step, S), it, tol=tol, max_iter=max_iter,
                                    **linear)
         except ContactConvergenceError as e:
-            st = e.statuses
-            two = len(st) > 3 and np.array_equal(st[-1], st[-3]) and np.array_equal(
-                st[-2], st[-4])
+            seen = e.statuses
+            two = len(seen) > 3 and np.array_equal(seen[-1], seen[-3]) and np.array_equal(
+                seen[-2], seen[-4])
             err = ContactConvergenceError(
                 f"the fixed point on the friction threshold failed in pass {n}: with the "
                 f"threshold frozen, the active-set iteration "
                 f"{'alternates between two states' if two else 'does not settle'} "
-                f"({len(st) - 1} iterations). Use method='newton'")
-            err.last, err.statuses = e.last, st
+                f"({len(seen) - 1} iterations). Use method='newton'")
+            err.last, err.statuses = e.last, seen
             err.thresholds = np.array(thresholds)
             raise err from e
         S_new = laws.mu * np.maximum(-it.lam, 0.0)

@@ -500,15 +500,15 @@ def _names(laws: PointLaws) -> str:
     return f"the {names[0]} law" if len(names) == 1 else f"the laws {', '.join(names)}"
 
 
-def _check_rigid(pb: Problem, ops: Operators, laws: PointLaws, st, y, what: str, hint: str,
+def _check_rigid(pb: Problem, ops: Operators, laws: PointLaws, status, y, what: str, hint: str,
                  label) -> None:
     """:func:`skxfem.linalg.rigid.check_held` of a contact state: the normal jump held at
     the edges of closed dofs, the whole jump at those of sticking ones, and a
     3D sliding point's tangent across its slip; the message names the motion."""
-    closed = st != OPEN
-    full = _sticking(laws, st)
+    closed = status != OPEN
+    full = _sticking(laws, status)
     edges_of = abs(pb.P).tocsc()
-    slip = (st == SLIP) & (laws.tangential == "coulomb") & ~ops.tangent_held.any(axis=1)
+    slip = (status == SLIP) & (laws.tangential == "coulomb") & ~ops.tangent_held.any(axis=1)
     rows = sp.csr_matrix((0, pb.V.N))
     if len(ops.Bt) == 2 and y is not None and slip.any():
         yh = y[slip] / np.linalg.norm(y[slip], axis=1)[:, None]
@@ -554,12 +554,12 @@ def check_closed(pb: Problem, ops: Operators, laws: PointLaws, modes, label=None
             f"the pressure is not unique where the laws must hold: use space='vital'")
 
 
-def check_determined(pb: Problem, ops: Operators, laws: PointLaws, st, y, modes, label=None
+def check_determined(pb: Problem, ops: Operators, laws: PointLaws, status, y, modes, label=None
                      ) -> None:
     """Refuse a converged contact state that leaves a side of Γ free to move.
 
     Newton may converge to a state whose displacement is not unique: an
-    unloaded side held only by an interface that ends up open (``st`` all
+    unloaded side held only by an interface that ends up open (``status`` all
     OPEN) may slide by any rigid motion, and a disc in contact all round
     may turn about its centre.  The state holds what its closed points hold:
     the normal jump, and the whole jump where they stick (``adhesive``:
@@ -569,15 +569,15 @@ def check_determined(pb: Problem, ops: Operators, laws: PointLaws, st, y, modes,
     :func:`skxfem.linalg.amg.check_tie_held` tests the discrete rows themselves.
     ``laws``: the :class:`~skxfem.contact.newton.PointLaws` of the dofs.
     """
-    counts = np.bincount(st, minlength=3)
+    counts = np.bincount(status, minlength=3)
     found = (f"({counts[OPEN]} open, {counts[STICK]} stick, {counts[SLIP]} slip of "
-             f"{st.size} points)")
+             f"{status.size} points)")
     hint = "add supports on each side of Γ or a load that closes it"
-    _check_rigid(pb, ops, laws, st, y, f"the contact state found {found}", hint, label)
+    _check_rigid(pb, ops, laws, status, y, f"the contact state found {found}", hint, label)
     fixed = np.zeros(pb.V.N, bool)
     fixed[pb.D] = True
     try:
-        check_tie_held(pb.K, _held_rows(ops, laws, st, y), fixed, modes)
+        check_tie_held(pb.K, _held_rows(ops, laws, status, y), fixed, modes)
     except SingularSystemError as e:
         raise SingularSystemError(
             f"load step {label!r}: the contact state found {found} leaves a part of the "

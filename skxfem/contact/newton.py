@@ -280,8 +280,8 @@ def residual(step: StepProblem, it: Iterate, rho_n=None, rho_t=None) -> Residual
     tau = it.r
     R_u = (step.K @ it.U - ops.Bn.T @ it.lam
            - sum(ops.Bt[a].T @ tau[:, a] for a in range(laws.k)) - step.F)[step.free]
-    st = status(g_n, y, radius, laws.name)
-    return Residual(R_u, R_n, R_t, g_n, y, radius, st, dR_dlam, dR_dU)
+    point_status = status(g_n, y, radius, laws.name)
+    return Residual(R_u, R_n, R_t, g_n, y, radius, point_status, dR_dlam, dR_dU)
 
 
 def jacobian(step: StepProblem, it: Iterate, res: Residual, close=None) -> sp.csr_matrix:
@@ -423,7 +423,7 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
         merit0 = np.linalg.norm(merit_rows * res.vector)
         closed_before = res.status != 0
         new = line_search(step, it, dx, merit0, merit_rows)
-        if not new[3] and any(np.array_equal(new[1].status, st) for st in statuses):
+        if not new[3] and any(np.array_equal(new[1].status, seen) for seen in statuses):
             # no step along Newton's decreases the merit, and the full step returns to
             # an active set already left: a cycle; descend the merit instead
             down = line_search(step, it, descent(A, res.vector, merit_rows, cols, dx), merit0,
@@ -482,8 +482,9 @@ def _singular_fallback(step, it, res, closed_before, linear, modes, blocksize, e
 def _not_converged(what, history, statuses, tol, last, detail=""):
     """The ContactConvergenceError of a step: residuals and the points that kept flipping."""
     r = history[-1]
-    st = np.array(statuses)
-    changes = (st[1:] != st[:-1]).sum(axis=0) if len(st) > 1 else np.zeros(st.shape[1], int)
+    seen = np.array(statuses)
+    changes = ((seen[1:] != seen[:-1]).sum(axis=0) if len(seen) > 1
+               else np.zeros(seen.shape[1], int))
     moving = np.flatnonzero(changes > 1)
     err = ContactConvergenceError(
         f"contact Newton {what}{detail}: relative residuals equilibrium {r[0]:.1e}, "
@@ -492,7 +493,7 @@ def _not_converged(what, history, statuses, tol, last, detail=""):
         f"point(s) changed status more than once"
         f"{': dofs ' + str(moving[:10].tolist()) if moving.size else ''}")
     err.last = last
-    err.statuses = st
+    err.statuses = seen
     return err
 
 

@@ -217,32 +217,32 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
     D = np.zeros(0, int) if D is None else np.asarray(D, int)
     fixed, U0 = np.zeros(N, dtype=bool), np.zeros(N)
     fixed[D], U0[D] = True, (0.0 if g is None else np.asarray(g, float))
-    st = reuse if reuse is not None and reuse.serves(K, B, fixed, r, bonded) else \
+    setup = reuse if reuse is not None and reuse.serves(K, B, fixed, r, bonded) else \
         _setup(K, B, fixed, modes, blocksize, bonded, r, delta, refine, rigid_tol)
     t1 = time.perf_counter()
-    x, history, scale, residual = _krylov(st, F, c, U0, tol, maxiter)
+    x, history, scale, residual = _krylov(setup, F, c, U0, tol, maxiter)
     t2 = time.perf_counter()
-    U = U0 + st.s * np.where(fixed, 0.0, x)
-    mu, balance = _multipliers(st, K, B, F, U, G, dependent_tol, tol, len(history) - 1,
+    U = U0 + setup.s * np.where(fixed, 0.0, x)
+    mu, balance = _multipliers(setup, K, B, F, U, G, dependent_tol, tol, len(history) - 1,
                                residual)
     timings = {"setup": t1 - t0, "krylov": t2 - t1, "multipliers": time.perf_counter() - t2}
-    return U, mu, IterativeInfo(len(history) - 1, residual, balance, st.dependent.shape[1],
-                                len(st.ml.levels), float(st.ml.operator_complexity()),
-                                float(r), tuple(np.asarray(history) / scale), timings, st)
+    return U, mu, IterativeInfo(len(history) - 1, residual, balance, setup.dependent.shape[1],
+                                len(setup.ml.levels), float(setup.ml.operator_complexity()),
+                                float(r), tuple(np.asarray(history) / scale), timings, setup)
 
 
-def _krylov(st: Setup, F, c, U0, tol: float, maxiter: int):
+def _krylov(setup: Setup, F, c, U0, tol: float, maxiter: int):
     """The scaled system K_s x + B_nᵀ y = b, B_n x = c by projected CG from the
     particular x_p = B_nᵀ(B_n B_nᵀ)⁻¹c (B_n x_p = c): x, the residual history,
     its scale ‖(b, c)‖ and the relative residual reached (else ConvergenceError)."""
-    fixed, s, Bn, Kr, interface = st.fixed, st.s, st.Bn, st.Kr, st.interface
-    M = st.ml.aspreconditioner(cycle="V")
+    fixed, s, Bn, Kr, interface = setup.fixed, setup.s, setup.Bn, setup.Kr, setup.interface
+    M = setup.ml.aspreconditioner(cycle="V")
 
     def project(v):  # Π v = v - B_nᵀ (B_n B_nᵀ)⁻¹ B_n v, onto ker B
         return v - Bn.T @ interface(Bn @ v)
 
-    b = np.where(fixed, 0.0, s * (F - st.K @ U0))
-    c = st.rows * ((0.0 if c is None else np.asarray(c, float)) - st.B @ U0)
+    b = np.where(fixed, 0.0, s * (F - setup.K @ U0))
+    c = setup.rows * ((0.0 if c is None else np.asarray(c, float)) - setup.B @ U0)
     x = Bn.T @ interface(c)
     scale = max(np.linalg.norm(np.concatenate([b, c])), 1e-300)
     x, history = projected_cg(Kr, M, project, b, x, tol * scale, maxiter)
@@ -261,18 +261,18 @@ def _krylov(st: Setup, F, c, U0, tol: float, maxiter: int):
     return x, history, scale, residual
 
 
-def _multipliers(st: Setup, K, B, F, U, G, dependent_tol: float, tol: float,
+def _multipliers(setup: Setup, K, B, F, U, G, dependent_tol: float, tol: float,
                  iterations: int, residual: float):
     """The multipliers that balance U, B_nᵀ y = b - K_s x in the least-squares sense,
     made the smoothest along B's dependencies, and their relative balance (else
     ConvergenceError)."""
-    fixed = st.fixed
+    fixed = setup.fixed
     free = np.flatnonzero(~fixed)
     reaction = (K @ U - F)[free]
-    y = st.interface(st.Bn @ np.where(fixed, 0.0, st.s * (F - K @ U)))
-    if st.dependent is None:  # B alone decides them: once per set-up
-        st.dependent = dependencies(B[:, free], dependent_tol)
-    mu = smoothest(B[:, free], -st.rows * y, G, N=st.dependent)
+    y = setup.interface(setup.Bn @ np.where(fixed, 0.0, setup.s * (F - K @ U)))
+    if setup.dependent is None:  # B alone decides them: once per set-up
+        setup.dependent = dependencies(B[:, free], dependent_tol)
+    mu = smoothest(B[:, free], -setup.rows * y, G, N=setup.dependent)
     balance = float(np.linalg.norm(B[:, free].T @ mu - reaction) / max(
         np.linalg.norm(reaction), np.linalg.norm(F[free]), 1e-300))
     if not balance <= max(10 * tol, 1e-8):

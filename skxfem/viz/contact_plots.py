@@ -37,7 +37,7 @@ def plot_status_2d(result, step: int = -1, title: str | None = None,
     interface
         Several interfaces: which one to draw (required).
     """
-    ops, st = result.ops, result.steps[step]
+    ops, last = result.ops, result.steps[step]
     if ops.points.shape[0] != 2:
         raise ValueError("plot_status_2d needs a 2D result")
     dofs = np.arange(ops.w.size)
@@ -50,16 +50,16 @@ def plot_status_2d(result, step: int = -1, title: str | None = None,
     s = ops.tangents[0] @ ops.points
     order = dofs[np.argsort(s)]
     s = np.sort(s)
-    colors = [STATUS_COLORS[STATUS_NAMES[k]] for k in st.status[order]]
+    colors = [STATUS_COLORS[STATUS_NAMES[k]] for k in last.status[order]]
     fig = Figure(figsize=(7.0, 5.0), layout="constrained")
     top, bottom = fig.subplots(2, 1, sharex=True)
-    top.plot(s, st.pressure[order], "-", color=CURVE_COLORS[0], label="pressure p = -λ")
-    top.plot(s, st.traction[order, 0], "--", color=CURVE_COLORS[1], label="tangential r_τ")
-    bottom.plot(s, st.gap[order], "-", color=COLORS["gamma"], label="normal jump d_n")
-    bottom.plot(s, st.slip[order, 0], "--", color=CURVE_COLORS[2],
+    top.plot(s, last.pressure[order], "-", color=CURVE_COLORS[0], label="pressure p = -λ")
+    top.plot(s, last.traction[order, 0], "--", color=CURVE_COLORS[1], label="tangential r_τ")
+    bottom.plot(s, last.gap[order], "-", color=COLORS["gamma"], label="normal jump d_n")
+    bottom.plot(s, last.slip[order, 0], "--", color=CURVE_COLORS[2],
                 label="tangential jump [[u]]·t")
-    for ax, values in ((top, (st.pressure, st.traction[:, 0])),
-                       (bottom, (st.gap, st.slip[:, 0]))):
+    for ax, values in ((top, (last.pressure, last.traction[:, 0])),
+                       (bottom, (last.gap, last.slip[:, 0]))):
         for v in values:
             ax.scatter(s, v[order], c=colors, s=28, zorder=3, edgecolors="k", linewidths=0.4)
         ax.axhline(0.0, color=COLORS["mesh"], lw=0.6)
@@ -71,7 +71,7 @@ def plot_status_2d(result, step: int = -1, title: str | None = None,
                for name, c in STATUS_COLORS.items()]
     top.legend(handles=top.get_legend_handles_labels()[0] + handles, fontsize=8, ncol=2)
     bottom.legend(fontsize=8)
-    top.set_title(title or f"status on Γ, step {st.load}")
+    top.set_title(title or f"status on Γ, step {last.load}")
     return fig
 
 
@@ -101,14 +101,14 @@ def plot_iterations(rhos, iterations: dict, title: str | None = None) -> Figure:
 def edge_status(result, step: int = -1) -> np.ndarray:
     """Status (n_edges,) of every cut edge: that of the multiplier dof it depends on most."""
     P = result.problem.P.tocsr()
-    st = result.steps[step].status
+    status = result.steps[step].status
     rows = np.repeat(np.arange(P.shape[0]), np.diff(P.indptr))
     best = np.zeros(P.shape[0], int)
     weight = np.full(P.shape[0], -np.inf)
     for r, c, v in zip(rows, P.indices, np.abs(P.data)):  # nnz ~ n_edges
         if v > weight[r]:
             weight[r], best[r] = v, c
-    return st[best]
+    return status[best]
 
 
 def plot_status_3d(result, step: int = -1, window_size: tuple[int, int] = (800, 600),
