@@ -136,13 +136,13 @@ def inf_sup(scene, scaling: str = "h", law: str | None = None) -> InfSup:
         raise ValueError("inf_sup measures the multiplier space of one interface; for a "
                          "scene with several, measure each: inf_sup(scene.alone(k))")
     p = assemble(scene, law)
-    mesh, c, V = p.mesh, p.cut, p.V
+    mesh, cut, V = p.mesh, p.cut, p.V
     L = np.ptp(mesh.p, axis=1).max()
     A = p.K + (scene.material.E / L ** 2) * mass(V)
     M = sp.kron(sp.identity(p.ncomp), p.M_edges)
     free = np.setdiff1d(np.arange(V.N), p.D)   # the solver's, enriched ones included
     # mesh size across Γ: the mean length of the cut edges (anisotropic
     # meshes, such as one layer of prisms along x, are measured where it matters)
-    h = float(np.mean(np.linalg.norm(mesh.p[:, c.edges[0]] - mesh.p[:, c.edges[1]], axis=0)))
+    h = float(np.mean(np.linalg.norm(mesh.p[:, cut.edges[0]] - mesh.p[:, cut.edges[1]], axis=0)))
     Mr = p.P.T @ M @ p.P * (h if scaling == "h" else 1.0)
     return inf_sup_constant(A[free][:, free], p.B[:, free], Mr, h=h)

@@ -185,21 +185,21 @@ def plane(point: ArrayLike, normal: ArrayLike) -> LevelSet:
 
 
 def _ball(center: ArrayLike, radius: float, dim: int, kind: str) -> LevelSet:
-    c = _vector("center", center)
-    if c.size != dim:
+    x0 = _vector("center", center)
+    if x0.size != dim:
         raise ValueError(f"{kind} center must have {dim} coordinates, got {center!r}")
     if isinstance(radius, bool) or not isinstance(radius, numbers.Real):
         raise TypeError(f"{kind} radius must be a real number, got {radius!r}; pass e.g. 0.3")
     if not (np.isfinite(radius := float(radius)) and radius > 0):
         raise ValueError(f"{kind} radius must be a positive number, got {radius!r}")
 
-    def grad(x):  # (x - c)/|x - c|; 0 at the centre, where ψ has no gradient
-        d = x - c.reshape((dim,) + (1,) * (x.ndim - 1))
+    def grad(x):  # (x - x0)/|x - x0|; 0 at the centre, where ψ has no gradient
+        d = x - x0.reshape((dim,) + (1,) * (x.ndim - 1))
         r = np.sqrt((d ** 2).sum(axis=0))
         return d / np.where(r > 0, r, 1.0)
 
-    return LevelSet(lambda x: np.sqrt(sum((x[i] - c[i]) ** 2 for i in range(dim))) - radius,
-                    dim, f"{kind}(center={c.tolist()}, radius={radius})", grad)
+    return LevelSet(lambda x: np.sqrt(sum((x[i] - x0[i]) ** 2 for i in range(dim))) - radius,
+                    dim, f"{kind}(center={x0.tolist()}, radius={radius})", grad)
 
 
 def circle(center: ArrayLike, radius: float) -> LevelSet:

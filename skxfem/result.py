@@ -150,9 +150,9 @@ def edge_jumps(V: XSpace, U: np.ndarray) -> np.ndarray:
     >>> edge_jumps(V, U).round(12).tolist()[0]
     [1.0, 1.0, 1.0]
     """
-    c = V.cut
-    a, b = c.edges
-    t = c.psi[a] / (c.psi[a] - c.psi[b])
+    cut = V.cut
+    a, b = cut.edges
+    t = cut.psi[a] / (cut.psi[a] - cut.psi[b])
     bvals = np.zeros(V.n_std)
     bvals[V.enr_dofs] = U[V.n_std:]
     nodal = bvals[V.basis.nodal_dofs]  # (dim, nverts)

@@ -52,15 +52,15 @@ def _linear(method: str, p: Problem) -> str:
     return choose_linear(method, p.mesh.dim(), p.V.N, LAWS[p.law or "bonded"].auto_iterative)
 
 
-def _differences(c, ncomp: int) -> sp.csr_matrix:
+def _differences(cut, ncomp: int) -> sp.csr_matrix:
     """G: λ_i - λ_j over the sides (i, j) of the interface facets, per component."""
-    nv = c.facets.shape[0]
-    pairs = np.hstack([c.facets[[i, (i + 1) % nv]] for i in range(nv if nv > 2 else 1)])
+    nv = cut.facets.shape[0]
+    pairs = np.hstack([cut.facets[[i, (i + 1) % nv]] for i in range(nv if nv > 2 else 1)])
     pairs = np.unique(np.sort(pairs, axis=0), axis=1)
     k = pairs.shape[1]
     G = sp.csr_matrix((np.r_[np.ones(k), -np.ones(k)],
                        (np.r_[np.arange(k), np.arange(k)], np.r_[pairs[0], pairs[1]])),
-                      shape=(k, c.points.shape[1]))
+                      shape=(k, cut.points.shape[1]))
     return sp.kron(sp.identity(ncomp), G, format="csr")
 
 
