@@ -19,7 +19,7 @@ per interface, built by the same steps as a scene with that interface alone
 (its cut, rule, jump operator, multiplier spaces, coupling, on its own
 unknowns [a, b^k]; ``columns`` places them among the whole's).  The whole's B
 stacks the interfaces' couplings and P is block-diagonal; the fields of one
-interface (``cut``, ``rule``, ``J``, ``space``, ``ncomp``, ``M_edges``,
+interface (``cut``, ``rule``, ``J``, ``multiplier_space``, ``ncomp``, ``M_edges``,
 ``held_edges``) are those of the pieces.
 
 >>> from skxfem.scene.benchmarks import strip
@@ -90,8 +90,8 @@ class Problem:
     J : (dim·nq, N) CSR, U ↦ [[u_h]] at the rule's points, component-major: the
         jump of §4.1 written with the enriched dofs of [11]
         (:func:`skxfem.enrich.jump_matrix`).
-    space : :class:`~skxfem.multipliers.Space`, the scene's multiplier space
-        on all cut edges (§4.2 naive, §5 winner nodes / vital edges).
+    multiplier_space : :class:`~skxfem.multipliers.Space`, the scene's multiplier
+        space on all cut edges (§4.2 naive, §5 winner nodes / vital edges).
     law : the tie law P and B are built for (``"bonded"`` or ``"bilateral"``).
     ncomp : multiplier components per edge: dim (bonded) or 1 (bilateral).
     P : (ncomp·n_edges, m) CSR, the prolongation λ = P μ of the law's
@@ -110,7 +110,7 @@ class Problem:
         no multiplier of their own: their rows of P are those of a neighbour
         on Γ (:func:`skxfem.stabilised.extend_to_held`).
     spaces : the ncomp spaces of the law's components, each built on the
-        edges it keeps (``space`` itself where a component has no fixed node).
+        edges it keeps (``multiplier_space`` itself where a component has no fixed node).
     timings : seconds per stage.
     per_edge : (n_edges,) bool or None, the edges of the pieces of Γ too small
         for the stable space, which get a multiplier each
@@ -120,7 +120,7 @@ class Problem:
         whole's are here); then ``V`` is an :class:`~skxfem.enrich.XSpaces`,
         ``B`` (Σm, N) stacks theirs, ``P`` is block-diagonal, ``law`` is the law
         they were assembled for if it is one for all (else None), and ``cut``,
-        ``rule``, ``J``, ``space``, ``ncomp``, ``M_edges``, ``held_edges`` are None.
+        ``rule``, ``J``, ``multiplier_space``, ``ncomp``, ``M_edges``, ``held_edges`` are None.
         Empty for one interface.
     columns : for a piece of ``interfaces``, the whole's unknowns its own
         [a, b^k] are (:meth:`skxfem.enrich.XSpaces.columns`); None otherwise.
@@ -136,7 +136,7 @@ class Problem:
     g: np.ndarray
     rule: InterfaceRule
     J: sp.csr_matrix
-    space: Space
+    multiplier_space: Space
     law: str
     ncomp: int
     P: sp.csr_matrix
@@ -292,7 +292,7 @@ def _interface_problem(scene, mesh, cut, V, K, F, D, g, law, timings, lap, colum
         spaces = _component_spaces(scene.space, mesh, cut, lam_space, fixed, per_edge)
         P = sp.block_diag([s.P for s in spaces], format="csr")  # component-major
         return Problem(scene=scene, mesh=mesh, cut=cut, V=V, K=K, F=F, D=D, g=g, rule=rule,
-                       J=J, space=lam_space, law=law, ncomp=held_edges.shape[0], P=P,
+                       J=J, multiplier_space=lam_space, law=law, ncomp=held_edges.shape[0], P=P,
                        B=(P.T @ B_edges).tocsr(), M_edges=M_edges, held_edges=held_edges,
                        spaces=spaces, timings=timings, per_edge=per_edge, columns=columns)
 
@@ -340,7 +340,7 @@ def _assemble_several(scene: Scene, law: str | None) -> Problem:
     B = sp.vstack([p.B @ V.select(k) for k, p in enumerate(pieces)], format="csr")
     P = sp.block_diag([p.P for p in pieces], format="csr")
     return Problem(scene=scene, mesh=mesh, cut=None, V=V, K=K, F=F, D=D, g=g, rule=None,
-                   J=None, space=None, law=laws[0] if len(set(laws)) == 1 else None,
+                   J=None, multiplier_space=None, law=laws[0] if len(set(laws)) == 1 else None,
                    ncomp=None, P=P, B=B, M_edges=None, held_edges=None, spaces=(),
                    timings=timings, interfaces=pieces)
 

@@ -274,7 +274,7 @@ def test_rollers_hold_the_tangential_jump_on_the_strips_sides():
     Px = p.P[:ne, :p.spaces[0].size]
     assert all(_takes_a_neighbours_row(Px, p.cut, e, in_side) for e in np.flatnonzero(in_side))
     assert np.allclose(Px.sum(axis=1), 1.0, rtol=1e-12), "a constant λ_x stays in the space"
-    assert abs(p.P[ne:, p.spaces[0].size:] - p.space.P).max() == 0, "y keeps the space"
+    assert abs(p.P[ne:, p.spaces[0].size:] - p.multiplier_space.P).max() == 0, "y keeps the space"
 
 
 def test_a_support_holding_the_normal_jump_removes_the_normal_multiplier():
@@ -296,9 +296,9 @@ def test_a_support_holding_the_normal_jump_removes_the_normal_multiplier():
     bottom = np.isclose(p.cut.points[1], 0)
     assert bottom.sum() == 1 and np.array_equal(p.held_edges[0], bottom)
     assert _takes_a_neighbours_row(p.P, p.cut, np.flatnonzero(bottom)[0], bottom)
-    assert p.P.shape[1] == p.space.size - 1, "one multiplier fewer than without the support"
+    assert p.P.shape[1] == p.multiplier_space.size - 1, "one multiplier fewer than unsupported"
     q, _ = _assembled(scene("y"))
-    assert not q.held_edges.any() and abs(q.P - q.space.P).max() == 0
+    assert not q.held_edges.any() and abs(q.P - q.multiplier_space.P).max() == 0
 
 
 @pytest.mark.parametrize("name", SPACES)

@@ -75,7 +75,7 @@ def test_fields_agree_with_the_steps(law):
     assert _same(p.J, jump_matrix(V, rule.cells, rule.ref))
     assert _same(p.B, (p.P.T @ coupling(V, rule, law)).tocsr())
     assert p.P.shape[0] == p.ncomp * c.edge_ids.size
-    assert _same(p.space.P, multiplier_space("vital", mesh, c).P)
+    assert _same(p.multiplier_space.P, multiplier_space("vital", mesh, c).P)
     assert set(p.timings) >= {"cut", "space", "enrich", "stiffness", "load", "interface"}
     assert all(t >= 0 for t in p.timings.values())
 

@@ -157,7 +157,7 @@ def test_a_corner_piece_that_one_star_cannot_hold_gets_a_multiplier_per_edge():
     assert one_star.size == 1
     loose = dataclasses.replace(p, P=sp.block_diag([one_star.P] * 2, format="csr"))
     assert short_pieces(loose, coupling(p.V, p.rule, "bonded", J=p.J)).all()
-    assert p.P.shape[1] == 4 and p.space.size == 2, "a μ per edge and component"
+    assert p.P.shape[1] == 4 and p.multiplier_space.size == 2, "a μ per edge and component"
     assert np.isfinite(solve(scene).max_jump)
 
 
