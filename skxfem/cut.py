@@ -35,8 +35,9 @@ saddle) is refused: refine the mesh.
 
 >>> from skfem import MeshQuad1
 >>> from skxfem.levelset import plane
->>> c = cut(MeshQuad1().refined(1), plane((0, 0.4), (0, 1)))
->>> c.points.shape, round(float(c.measures.sum()), 12)
+>>> from skxfem.cut import cut as cut_mesh
+>>> cut = cut_mesh(MeshQuad1().refined(1), plane((0, 0.4), (0, 1)))
+>>> cut.points.shape, round(float(cut.measures.sum()), 12)
 ((2, 3), 1.0)
 """
 from __future__ import annotations

@@ -25,7 +25,7 @@ columns of enriched dofs of K_H enter, so K is assembled on every cell whole
 (the integrand is a polynomial on a cut cell too) and Kˢ on one side, on the
 cells of enriched nodes only (:func:`skxfem.fem.sides.parts`; on hexahedra and
 prisms with a moment-fitted rule, :mod:`skxfem.fem.moments`).  The stiffness runs
-on *scalar* bases (built once by :func:`space` and shared with
+on *scalar* bases (built once by :func:`xfem_space` and shared with
 :func:`far_side_fraction`), from scalar forms (:func:`skxfem.fem.material.stiffness_matrix`).
 
 **Several interfaces** (:class:`XSpaces`): one Heaviside H^k per level set
@@ -38,17 +38,17 @@ unknowns [a, b¹, b², …].  No cell is cut by two interfaces
 unless Γ_k cuts it (H^k is constant there and equals H^k_j at its nodes):
 the enrichments of two interfaces never meet on a cell, their blocks in K
 are zero, and K is :func:`enriched_blocks` of each interface around the one
-standard block A.  Each interface's own space ``spaces[k]`` numbers
+standard block A.  Each interface's own space ``per_interface[k]`` numbers
 [a, b^k]; :meth:`XSpaces.columns` places it among the unknowns.
 
 >>> from skfem import MeshTri1
 >>> from skxfem.levelset import plane
 >>> from skxfem.cut import cut
 >>> m = MeshTri1().refined(2)
->>> V = space(m, cut(m, plane((0, 0.3), (0, 1))))
+>>> V = xfem_space(m, cut(m, plane((0, 0.3), (0, 1))))
 >>> V.n_std, V.n_enr
 (50, 20)
->>> W = XSpaces((V, space(m, cut(m, plane((0, 0.8), (0, 1))))))
+>>> W = XSpaces((V, xfem_space(m, cut(m, plane((0, 0.8), (0, 1))))))
 >>> W.N, int(W.columns(1)[-1]), W.regions()[0].tolist()   # three regions
 (90, 89, [[-1, -1], [1, -1], [1, 1]])
 """
@@ -68,7 +68,7 @@ from .fem.material import Material, stiffness_matrix
 from .fem.quadrature import cell_rule, exact_orders
 from .fem.sides import Parts, parts, side_bases
 
-__all__ = ["XSpace", "XSpaces", "space", "stiffness", "mass", "enriched_matrix",
+__all__ = ["XSpace", "XSpaces", "xfem_space", "stiffness", "mass", "enriched_matrix",
            "enriched_blocks", "signed_bases", "far_side_fraction", "enriched_load",
            "jump_matrix", "split_fields", "region_fields"]
 
@@ -120,27 +120,27 @@ class XSpace:
 class XSpaces:
     """The X-FEM space of several interfaces: one Heaviside enrichment each.
 
-    ``spaces``: the :class:`XSpace` of each interface, on its own unknowns
+    ``per_interface``: the :class:`XSpace` of each interface, on its own unknowns
     [a, b^k]; the unknowns of the whole are [a, b¹, b², …] (module notes).
     """
 
-    spaces: tuple[XSpace, ...]
+    per_interface: tuple[XSpace, ...]
 
     @property
     def mesh(self):
-        return self.spaces[0].mesh
+        return self.per_interface[0].mesh
 
     @property
     def basis(self) -> CellBasis:
-        return self.spaces[0].basis
+        return self.per_interface[0].basis
 
     @property
     def n_std(self) -> int:
-        return self.spaces[0].n_std
+        return self.per_interface[0].n_std
 
     @property
     def n_enr(self) -> int:
-        return sum(V.n_enr for V in self.spaces)
+        return sum(V.n_enr for V in self.per_interface)
 
     @property
     def N(self) -> int:
@@ -149,12 +149,13 @@ class XSpaces:
     @property
     def offsets(self) -> tuple[int, ...]:
         """The unknown of the first enriched dof of each interface."""
-        sizes = np.cumsum([0] + [V.n_enr for V in self.spaces])
+        sizes = np.cumsum([0] + [V.n_enr for V in self.per_interface])
         return tuple(int(self.n_std + o) for o in sizes[:-1])
 
     def columns(self, k: int) -> np.ndarray:
         """(n_std + n_enr_k,) the unknowns of interface k's space [a, b^k] among [a, b¹, …]."""
-        return np.r_[np.arange(self.n_std), self.offsets[k] + np.arange(self.spaces[k].n_enr)]
+        own = self.offsets[k] + np.arange(self.per_interface[k].n_enr)
+        return np.r_[np.arange(self.n_std), own]
 
     def select(self, k: int) -> sp.csr_matrix:
         """(n_std + n_enr_k, N) the restriction U ↦ [a, b^k]: an operator A_k of
@@ -171,7 +172,7 @@ class XSpaces:
         the nodes, :func:`skxfem.cut.snap`): no cell is cut twice, so every region
         that meets a cut cell holds one of its nodes.
         """
-        signs = np.array([np.where(V.cut.psi < 0, -1, 1) for V in self.spaces])
+        signs = np.array([np.where(V.cut.psi < 0, -1, 1) for V in self.per_interface])
         patterns, node_region = np.unique(signs.T, axis=0, return_inverse=True)
         return patterns, node_region.ravel()
 
@@ -186,7 +187,7 @@ def far_side_fraction(mesh, cut: Cut, scalar_parts: Parts | None = None) -> np.n
 
     The shifted enrichment φⱼ(H - Hⱼ) lives on that far side only; where it is
     a sliver the enriched dof carries no information but spoils the
-    conditioning (see :func:`space`).  A node of no cut cell has no far
+    conditioning (see :func:`xfem_space`).  A node of no cut cell has no far
     side: 0.  ``scalar_parts``: :func:`skxfem.fem.sides.parts` of the scalar
     element at a rule exact for φⱼ (default: the stiffness' rule).
     """
@@ -198,7 +199,7 @@ def far_side_fraction(mesh, cut: Cut, scalar_parts: Parts | None = None) -> np.n
     return np.clip(frac, 0.0, 1.0)
 
 
-def space(mesh, cut: Cut, order: int | None = None, sliver: float = 1e-8) -> XSpace:
+def xfem_space(mesh, cut: Cut, order: int | None = None, sliver: float = 1e-8) -> XSpace:
     """Build the X-FEM space of ``mesh`` cut by ``cut``.
 
     Nodes of cut cells are enriched, except those whose far-side fraction
@@ -249,7 +250,7 @@ def enriched_blocks(V: XSpace | XSpaces, A, AH) -> sp.csr_matrix:
     and zero between two enrichments (module notes)."""
     if isinstance(V, XSpaces):
         A = A.tocsr()
-        parts = [_blocks(Vk, A, AHk.tocsr()) for Vk, AHk in zip(V.spaces, AH, strict=True)]
+        parts = [_blocks(Vk, A, AHk.tocsr()) for Vk, AHk in zip(V.per_interface, AH, strict=True)]
         rows = [[A] + [Aab for Aab, _ in parts]]
         for k, (Aab, Abb) in enumerate(parts):
             rows.append([Aab.T] + [Abb if j == k else None for j in range(len(parts))])
@@ -282,7 +283,7 @@ def stiffness(V: XSpace | XSpaces, material: Material) -> sp.csr_matrix:
 
     if isinstance(V, XSpaces):
         A, AH = None, []
-        for Vk in V.spaces:
+        for Vk in V.per_interface:
             p = Vk.parts or parts(Vk.mesh, Vk.cut, Vk.basis.elem.elem, Vk.rule)
             A, AHk = p.signed(form, A)
             AH.append(AHk)
@@ -309,7 +310,7 @@ def enriched_load(V: XSpace | XSpaces, f: np.ndarray, f_H) -> np.ndarray:
     :class:`XSpaces`, on [a, b¹, b², …] from one f_H per interface (its own H^k)."""
     if isinstance(V, XSpaces):
         return np.concatenate([f] + [fk[Vk.enr_dofs] - Vk.H_node * f[Vk.enr_dofs]
-                                     for Vk, fk in zip(V.spaces, f_H, strict=True)])
+                                     for Vk, fk in zip(V.per_interface, f_H, strict=True)])
     E = V.enr_dofs
     return np.concatenate([f, f_H[E] - V.H_node * f[E]])
 
@@ -344,7 +345,7 @@ def region_fields(V: XSpace | XSpaces, U: np.ndarray) -> tuple[np.ndarray, np.nd
     >>> from skxfem.cut import cut
     >>> from skxfem.levelset import plane
     >>> m = MeshQuad1().refined(2)
-    >>> W = XSpaces(tuple(space(m, cut(m, plane((0, y), (0, 1)))) for y in (0.3, 0.8)))
+    >>> W = XSpaces(tuple(xfem_space(m, cut(m, plane((0, y), (0, 1)))) for y in (0.3, 0.8)))
     >>> U = np.zeros(W.N); U[W.offsets[1]:] = -0.5    # b² = -1/2: [[u]] = 1 across Γ₂
     >>> signs, fields = region_fields(W, U)
     >>> jumps = fields[:-1] - fields[1:]                 # across Γ₁, then Γ₂
@@ -358,7 +359,7 @@ def region_fields(V: XSpace | XSpaces, U: np.ndarray) -> tuple[np.ndarray, np.nd
     fields = []
     for sigma in patterns:
         u = a.copy()
-        for k, (Vk, start) in enumerate(zip(V.spaces, V.offsets)):
+        for k, (Vk, start) in enumerate(zip(V.per_interface, V.offsets)):
             u[Vk.enr_dofs] += U[start:start + Vk.n_enr] * (sigma[k] - Vk.H_node)
         fields.append(u[V.basis.nodal_dofs])
     return patterns, np.array(fields)

@@ -285,10 +285,10 @@ def point_normals(cut, psi=None) -> np.ndarray:
     area-weighted mean normal of its facets.  A ValueError if ∇ψ vanishes (or is not finite).
 
     >>> from skfem import MeshTri1
-    >>> from skxfem.cut import cut
-    >>> c = cut(MeshTri1().refined(3), circle((0.5, 0.5), 0.3))
-    >>> n = point_normals(c, circle((0.5, 0.5), 0.3))
-    >>> r = c.points - 0.5
+    >>> from skxfem.cut import cut as cut_mesh
+    >>> cut = cut_mesh(MeshTri1().refined(3), circle((0.5, 0.5), 0.3))
+    >>> n = point_normals(cut, circle((0.5, 0.5), 0.3))
+    >>> r = cut.points - 0.5
     >>> bool(np.allclose(n, r / np.linalg.norm(r, axis=0), atol=1e-14))
     True
     """

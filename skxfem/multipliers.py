@@ -106,11 +106,11 @@ def direction_fixed(fixed: np.ndarray, cut: Cut, directions: np.ndarray,
     >>> from skxfem.levelset import plane
     >>> from skxfem.cut import cut as cut_mesh
     >>> m = MeshQuad1().refined(1)
-    >>> c = cut_mesh(m, plane((0, 0.3), (0, 1)))
+    >>> cut = cut_mesh(m, plane((0, 0.3), (0, 1)))
     >>> fixed = np.zeros((2, m.p.shape[1]), bool); fixed[0, m.p[0] == 0] = True
-    >>> t = np.array([[1.0], [0.0]]) * np.ones(c.facets.shape[1])   # the tangent e_x
-    >>> np.flatnonzero(direction_fixed(fixed, c, t)).tolist() == np.flatnonzero(
-    ...     (m.p[0] == 0) & np.isin(np.arange(m.p.shape[1]), c.edges)).tolist()
+    >>> t = np.array([[1.0], [0.0]]) * np.ones(cut.facets.shape[1])   # the tangent e_x
+    >>> np.flatnonzero(direction_fixed(fixed, cut, t)).tolist() == np.flatnonzero(
+    ...     (m.p[0] == 0) & np.isin(np.arange(m.p.shape[1]), cut.edges)).tolist()
     True
     """
     dim = fixed.shape[0]

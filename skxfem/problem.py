@@ -37,7 +37,7 @@ import scipy.sparse as sp
 
 from .cut import Cut, check_apart
 from .cut import cut as cut_mesh
-from .enrich import XSpace, XSpaces, enriched_load, jump_matrix, space, stiffness
+from .enrich import XSpace, XSpaces, enriched_load, jump_matrix, stiffness, xfem_space
 from .fem.loads import boundary_quadrature, surface_load
 from .linalg.rigid import short_pieces
 from .multipliers import (
@@ -97,7 +97,7 @@ class Problem:
     P : (ncomp·n_edges, m) CSR, the prolongation λ = P μ of the law's
         multipliers, component-major (λ_h of [12] on the cut edges, §5's
         equalities and linear relations):
-        block-diagonal, one block per component, ``spaces[k].P``.
+        block-diagonal, one block per component, ``component_spaces[k].P``.
     B : (m, N) CSR, Pᵀ B_edges, the coupling ∫_Γ λ_h·[[v]] (or λ_h [[v]]·n)
         reduced to the space: the interface terms of §3's mixed formulation,
         with a tie law in place of the contact law [6].
@@ -109,8 +109,9 @@ class Problem:
         normal jump, :func:`skxfem.multipliers.normal_fixed`).  They carry
         no multiplier of their own: their rows of P are those of a neighbour
         on Γ (:func:`skxfem.stabilised.extend_to_held`).
-    spaces : the ncomp spaces of the law's components, each built on the
-        edges it keeps (``multiplier_space`` itself where a component has no fixed node).
+    component_spaces : the ncomp multiplier spaces of the law's components, each
+        built on the edges it keeps (``multiplier_space`` itself where a
+        component has no fixed node).
     timings : seconds per stage.
     per_edge : (n_edges,) bool or None, the edges of the pieces of Γ too small
         for the stable space, which get a multiplier each
@@ -143,7 +144,7 @@ class Problem:
     B: sp.csr_matrix
     M_edges: sp.csr_matrix
     held_edges: np.ndarray
-    spaces: tuple
+    component_spaces: tuple
     timings: dict = field(default_factory=dict)
     per_edge: np.ndarray | None = None
     interfaces: tuple = ()
@@ -177,7 +178,7 @@ def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndar
     Parameters
     ----------
     V
-        The X-FEM space (:func:`skxfem.enrich.space`).
+        The X-FEM space (:func:`skxfem.enrich.xfem_space`).
     scene, mesh
         The scene and its resolved mesh.
 
@@ -241,7 +242,7 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
     mesh = resolve_mesh(scene)
     cut = cut_mesh(mesh, scene.levelset)
     lap("cut")
-    V = space(mesh, cut, scene.quadrature_order)
+    V = xfem_space(mesh, cut, scene.quadrature_order)
     lap("enrich")
     K = stiffness(V, scene.material)
     lap("stiffness")
@@ -294,7 +295,8 @@ def _interface_problem(scene, mesh, cut, V, K, F, D, g, law, timings, lap, colum
         return Problem(scene=scene, mesh=mesh, cut=cut, V=V, K=K, F=F, D=D, g=g, rule=rule,
                        J=J, multiplier_space=lam_space, law=law, ncomp=held_edges.shape[0], P=P,
                        B=(P.T @ B_edges).tocsr(), M_edges=M_edges, held_edges=held_edges,
-                       spaces=spaces, timings=timings, per_edge=per_edge, columns=columns)
+                       component_spaces=spaces, timings=timings, per_edge=per_edge,
+                       columns=columns)
 
     p = problem(lam_space)
     short = short_pieces(p, B_edges)  # pieces of Γ the stable space leaves loose
@@ -315,7 +317,7 @@ def _assemble_several(scene: Scene, law: str | None) -> Problem:
                              for k, i in enumerate(items)])
     lap("cut")
     alone = [scene.alone(k) for k in range(len(items))]
-    V = XSpaces(tuple(space(mesh, cut, scene.quadrature_order) for cut in cuts))
+    V = XSpaces(tuple(xfem_space(mesh, cut, scene.quadrature_order) for cut in cuts))
     lap("enrich")
     K = stiffness(V, scene.material)
     lap("stiffness")
@@ -328,20 +330,20 @@ def _assemble_several(scene: Scene, law: str | None) -> Problem:
             f_H[k] = f_H[k] + df_H
     F = enriched_load(V, f, f_H)
     lap("load")
-    local = [constrained_dofs(Vk, s, mesh) for Vk, s in zip(V.spaces, alone)]
+    local = [constrained_dofs(Vk, s, mesh) for Vk, s in zip(V.per_interface, alone)]
     std = local[0][0] < V.n_std  # the supports' standard dofs: the same for every interface
     D = np.concatenate([local[0][0][std]] + [V.columns(k)[Dk[Dk >= V.n_std]]
                                              for k, (Dk, _) in enumerate(local)])
     g = np.concatenate([local[0][1][std]] + [gk[Dk >= V.n_std] for Dk, gk in local])
     lap("constraints")
-    pieces = tuple(_interface_problem(alone[k], mesh, cuts[k], V.spaces[k], None, None,
+    pieces = tuple(_interface_problem(alone[k], mesh, cuts[k], V.per_interface[k], None, None,
                                       *local[k], laws[k], timings, lap, V.columns(k))
                    for k in range(len(items)))
     B = sp.vstack([p.B @ V.select(k) for k, p in enumerate(pieces)], format="csr")
     P = sp.block_diag([p.P for p in pieces], format="csr")
     return Problem(scene=scene, mesh=mesh, cut=None, V=V, K=K, F=F, D=D, g=g, rule=None,
                    J=None, multiplier_space=None, law=laws[0] if len(set(laws)) == 1 else None,
-                   ncomp=None, P=P, B=B, M_edges=None, held_edges=None, spaces=(),
+                   ncomp=None, P=P, B=B, M_edges=None, held_edges=None, component_spaces=(),
                    timings=timings, interfaces=pieces)
 
 

@@ -142,10 +142,10 @@ def edge_jumps(V: XSpace, U: np.ndarray) -> np.ndarray:
 
     >>> from skfem import MeshQuad1
     >>> from skxfem.cut import cut
-    >>> from skxfem.enrich import space
+    >>> from skxfem.enrich import xfem_space
     >>> from skxfem.levelset import plane
     >>> m = MeshQuad1().refined(1)
-    >>> V = space(m, cut(m, plane((0, 0.3), (0, 1))))
+    >>> V = xfem_space(m, cut(m, plane((0, 0.3), (0, 1))))
     >>> U = np.zeros(V.N); U[V.n_std:] = -0.5          # b = -1/2: [[u]] = 1
     >>> edge_jumps(V, U).round(12).tolist()[0]
     [1.0, 1.0, 1.0]

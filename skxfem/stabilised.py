@@ -330,38 +330,38 @@ def multiplier_space(name: str, mesh, cut: Cut, fixed=None, per_edge=None) -> Sp
                              f"got {fixed.shape}")
         sub = np.flatnonzero(~(fixed[cut.edges[0]] & fixed[cut.edges[1]]))
     if name == "naive" or own[sub].all():
-        S = naive(cut) if sub.size == ne else \
+        lam_space = naive(cut) if sub.size == ne else \
             Space("naive", sp.identity(sub.size, format="csr"))
         if name != "naive":
-            S = Space(name, S.P, np.ones(sub.size, bool), np.arange(sub.size),
+            lam_space = Space(name, lam_space.P, np.ones(sub.size, bool), np.arange(sub.size),
                       np.zeros(0, int) if name == "winner" else None)
     else:
         build = winner_nodes if name == "winner" else vital_edges
         stable, solo = sub[~own[sub]], sub[own[sub]]
-        S = build(cut.edges[:, stable], cut.psi, cut.points[:, stable], mesh.p, fixed)
+        lam_space = build(cut.edges[:, stable], cut.psi, cut.points[:, stable], mesh.p, fixed)
         if solo.size:                                        # one μ per edge there
             order = np.argsort(np.r_[stable, solo])
-            P = sp.block_diag([S.P, sp.identity(solo.size)], format="csr")[order]
+            P = sp.block_diag([lam_space.P, sp.identity(solo.size)], format="csr")[order]
             vital = groups = None
-            if S.vital is not None:
-                vital = np.r_[S.vital, np.ones(solo.size, bool)][order]
-                groups = np.r_[S.groups, S.size + np.arange(solo.size)][order]
-            S = Space(name, P.tocsr(), vital, groups, S.winners)
+            if lam_space.vital is not None:
+                vital = np.r_[lam_space.vital, np.ones(solo.size, bool)][order]
+                groups = np.r_[lam_space.groups, lam_space.size + np.arange(solo.size)][order]
+            lam_space = Space(name, P.tocsr(), vital, groups, lam_space.winners)
     if sub.size == ne:
-        return S
+        return lam_space
     embed = sp.csr_matrix((np.ones(sub.size), (sub, np.arange(sub.size))), shape=(ne, sub.size))
     held = np.ones(ne, dtype=bool)
     held[sub] = False
     vital = groups = None
-    if S.vital is not None:
+    if lam_space.vital is not None:
         vital, groups = np.zeros(ne, dtype=bool), np.full(ne, -1)
-        vital[sub], groups[sub] = S.vital, S.groups
+        vital[sub], groups[sub] = lam_space.vital, lam_space.groups
     cell_nodes = mesh.t[:, cut.facet_cell]                   # (nloc, nf)
     free_cell = ~fixed[cell_nodes].all(axis=0)               # a jump left to control there
     loose = np.zeros(ne, dtype=bool)
     loose[cut.facets[:, free_cell].ravel()] = True
-    return Space(name, extend_to_held((embed @ S.P).tocsr(), held, cut, loose), vital,
-                 groups, S.winners)
+    return Space(name, extend_to_held((embed @ lam_space.P).tocsr(), held, cut, loose), vital,
+                 groups, lam_space.winners)
 
 
 def extend_to_held(P, held, cut: Cut, loose=None) -> sp.csr_matrix:
@@ -394,10 +394,10 @@ def extend_to_held(P, held, cut: Cut, loose=None) -> sp.csr_matrix:
     >>> from skxfem.cut import cut as cut_mesh
     >>> from skxfem.levelset import plane
     >>> m = MeshTri1().refined(1)
-    >>> c = cut_mesh(m, plane((0.3, 0.0), (-0.47, 1.0)))   # crosses the bottom at x = 0.3
-    >>> held = np.isclose(c.points[1], 0)                    # a support holds that edge
-    >>> P = extend_to_held(sp.identity(5, format="csr")[:, ~held], held, c)
-    >>> P.toarray()[0], c.points[:, 3].round(3)   # it takes the μ of its neighbour, edge 3
+    >>> cut = cut_mesh(m, plane((0.3, 0.0), (-0.47, 1.0)))   # crosses the bottom at x = 0.3
+    >>> held = np.isclose(cut.points[1], 0)                    # a support holds that edge
+    >>> P = extend_to_held(sp.identity(5, format="csr")[:, ~held], held, cut)
+    >>> P.toarray()[0], cut.points[:, 3].round(3)   # it takes the μ of its neighbour, edge 3
     (array([0., 0., 1., 0.]), array([0.436, 0.064]))
     """
     P, held = sp.csr_matrix(P), np.asarray(held, dtype=bool)

@@ -33,9 +33,9 @@ from skxfem.enrich import (
     far_side_fraction,
     jump_matrix,
     mass,
-    space,
     split_fields,
     stiffness,
+    xfem_space,
 )
 from skxfem.fem.evaluate import evaluation_matrix
 from skxfem.fem.loads import boundary_quadrature, surface_load
@@ -67,7 +67,7 @@ def split_box(cell):
         mesh, x0, n, layers = box(2, cell), (0.35, 0.5, 0.5), (1.0, 0.12, 0.07), (0.0, 0.5)
     psi = plane(x0, n)
     c = cut(mesh, psi)
-    return mesh, psi, c, space(mesh, c), x0[0], layers
+    return mesh, psi, c, xfem_space(mesh, c), x0[0], layers
 
 
 def dof_table(V):
@@ -145,7 +145,7 @@ def test_enriched_nodes_are_the_nodes_of_cut_cells(cell):
 def test_docstring_counts():
     from skfem import MeshTri1
     m = MeshTri1().refined(2)                      # 5 x 5 nodes
-    V = space(m, cut(m, plane((0, 0.3), (0, 1))))
+    V = xfem_space(m, cut(m, plane((0, 0.3), (0, 1))))
     # Γ: y = 0.3 cuts the row of cells between y = 0.25 and y = 0.5: 10 nodes
     assert (V.n_std, V.n_enr) == (50, 20)
 
@@ -164,11 +164,11 @@ def test_sliver_nodes_are_not_enriched(cell):
         f"{frac[far].max():.3g} should be ~ (3e-5)²/2")
     assert frac[near].min() > 0.2, (
         "the x = 1/3 nodes have a large part of their support beyond Γ (1/4 to 3/4)")
-    V = space(mesh, c)
+    V = xfem_space(mesh, c)
     enriched_nodes = np.unique(dof_table(V)[1][V.enr_dofs])
     assert np.array_equal(enriched_nodes, np.flatnonzero(near)), (
-        "space() must drop the enrichment of nodes whose far-side fraction < sliver")
-    V0 = space(mesh, c, sliver=0.0)
+        "xfem_space() must drop the enrichment of nodes whose far-side fraction < sliver")
+    V0 = xfem_space(mesh, c, sliver=0.0)
     assert V0.n_enr == mesh.dim() * c.enriched.size, "sliver=0 keeps every node of a cut cell"
 
 
@@ -176,7 +176,7 @@ def test_bad_sliver_is_refused():
     mesh, _, c, _, _, _ = split_box("quad")
     for bad in (-1e-3, float("nan")):
         with pytest.raises(ValueError, match="sliver must be a non-negative fraction"):
-            space(mesh, c, sliver=bad)
+            xfem_space(mesh, c, sliver=bad)
 
 
 # 2. far-side fraction ----------------------------------------------------------------

@@ -77,8 +77,8 @@ def on(r, k):
 def test_each_interface_block_is_that_interface_alone_bit_for_bit(cell):
     scene = column(cell)
     p = assemble(scene)
-    assert p.V.N == p.V.n_std + sum(V.n_enr for V in p.V.spaces) == p.K.shape[0]
-    shared = np.intersect1d(*[V.cut.enriched for V in p.V.spaces])
+    assert p.V.N == p.V.n_std + sum(V.n_enr for V in p.V.per_interface) == p.K.shape[0]
+    shared = np.intersect1d(*[V.cut.enriched for V in p.V.per_interface])
     assert shared.size > 0, "the two interfaces share enriched nodes (the row z = 1/2)"
     for k in range(2):
         alone = assemble(scene.alone(k))
@@ -86,8 +86,8 @@ def test_each_interface_block_is_that_interface_alone_bit_for_bit(cell):
         assert (p.K[cols][:, cols] != alone.K).nnz == 0
         assert np.array_equal(p.F[cols], alone.F)
         assert (p.interfaces[k].B != alone.B).nnz == 0 and (p.interfaces[k].P != alone.P).nnz == 0
-    b0, b1 = (p.V.offsets[0] + np.arange(p.V.spaces[0].n_enr),
-              p.V.offsets[1] + np.arange(p.V.spaces[1].n_enr))
+    b0, b1 = (p.V.offsets[0] + np.arange(p.V.per_interface[0].n_enr),
+              p.V.offsets[1] + np.arange(p.V.per_interface[1].n_enr))
     assert p.K[b0][:, b1].nnz == 0                      # the enrichments never meet
     Z = rigid_modes(p.V)                                # each of the three regions moves
     assert Z.shape[1] == 3 * (3 if dim_of(cell) == 2 else 6)

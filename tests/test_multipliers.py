@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 from skxfem.cut import cut
-from skxfem.enrich import space
+from skxfem.enrich import xfem_space
 from skxfem.fem.cells import cell_edges
 from skxfem.fem.meshes import box
 from skxfem.levelset import plane
@@ -199,7 +199,7 @@ def test_coupling_of_a_known_jump(cell, jump):
     mesh, _, normal, _, c = setup(cell)
     dim = mesh.dim()
     rng = np.random.default_rng(3)
-    V = space(mesh, c)
+    V = xfem_space(mesh, c)
     assert V.n_enr == dim * c.enriched.size, "no node should be dropped as a sliver here"
     rule = interface_rule(mesh, c)
     M = interface_mass(rule)
@@ -226,7 +226,7 @@ def test_coupling_of_a_known_jump(cell, jump):
 
 def test_unknown_law_or_space_is_refused():
     mesh, _, _, _, c = setup("quad")
-    V = space(mesh, c)
+    V = xfem_space(mesh, c)
     rule = interface_rule(mesh, c)
     with pytest.raises(ValueError, match="law must be one of") as err:
         coupling(V, rule, "sticky")
@@ -271,10 +271,11 @@ def test_rollers_hold_the_tangential_jump_on_the_strips_sides():
     assert np.array_equal(p.held_edges[0], in_side) and not p.held_edges[1].any()
     assert not pn.held_edges.any() and not normal_fixed(fixed, p.cut).any()
     ne = p.cut.edge_ids.size
-    Px = p.P[:ne, :p.spaces[0].size]
+    Px = p.P[:ne, :p.component_spaces[0].size]
     assert all(_takes_a_neighbours_row(Px, p.cut, e, in_side) for e in np.flatnonzero(in_side))
     assert np.allclose(Px.sum(axis=1), 1.0, rtol=1e-12), "a constant λ_x stays in the space"
-    assert abs(p.P[ne:, p.spaces[0].size:] - p.multiplier_space.P).max() == 0, "y keeps the space"
+    Py = p.P[ne:, p.component_spaces[0].size:]
+    assert abs(Py - p.multiplier_space.P).max() == 0, "y keeps the space"
 
 
 def test_a_support_holding_the_normal_jump_removes_the_normal_multiplier():

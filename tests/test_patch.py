@@ -276,7 +276,7 @@ def test_gamma_crossing_a_supported_face_in_the_other_spaces(cell, space):
 # its mean jump cannot hold the piece's turning, and the tied system was refused as
 # singular ("a part of the body can move freely").  Such a piece gets a multiplier
 # per edge (skxfem.linalg.rigid.short_pieces), and the patch test holds to round-off, down
-# to pieces whose nodes lose their enrichment (skxfem.enrich.space's sliver rule).
+# to pieces whose nodes lose their enrichment (skxfem.enrich.xfem_space's sliver rule).
 
 @pytest.mark.parametrize("size", [0.05, 1e-3, 1e-6])
 @pytest.mark.parametrize("space", ["winner", "vital"])

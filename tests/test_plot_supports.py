@@ -16,7 +16,8 @@ def drawn(ax):
 
 def test_roller_faces_lose_the_x_component_only():
     p = assemble(paper_plate(3, "tet", space="vital", nx=2))
-    fig = plot_held_edges(p.mesh, p.cut, [s.P for s in p.spaces], held_edges=p.held_edges)
+    Ps = [s.P for s in p.component_spaces]
+    fig = plot_held_edges(p.mesh, p.cut, Ps, held_edges=p.held_edges)
     assert len(fig.axes) == 6
     for face in (0, 1):
         x = p.cut.points[0]
@@ -28,16 +29,16 @@ def test_roller_faces_lose_the_x_component_only():
             assert held == 0 and own + interpolated == n_face and own > 0
     assert fig.axes[1].get_title() == "λ_y on x = 0"
     assert KINDS[0][0].startswith("no λ of its own")
-    default = plot_held_edges(p.mesh, p.cut, [s.P for s in p.spaces])  # by P's rows alone:
+    default = plot_held_edges(p.mesh, p.cut, Ps)  # by P's rows alone:
     assert drawn(default.axes[0])[0] == 0, "held edges take a neighbour's λ: no empty row"
     with pytest.raises(ValueError, match="held_edges must be"):
-        plot_held_edges(p.mesh, p.cut, [s.P for s in p.spaces], held_edges=p.held_edges[:1])
+        plot_held_edges(p.mesh, p.cut, Ps, held_edges=p.held_edges[:1])
 
 
 def test_bad_input_is_refused():
     p = assemble(strip(3, "tri", sides="rollers"))
     with pytest.raises(ValueError, match="3D"):
-        plot_held_edges(p.mesh, p.cut, [s.P for s in p.spaces])
+        plot_held_edges(p.mesh, p.cut, [s.P for s in p.component_spaces])
     q = assemble(paper_plate(3, "prism"))
     with pytest.raises(ValueError, match="one row per cut edge"):
         plot_held_edges(q.mesh, q.cut, [q.P])

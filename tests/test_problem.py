@@ -8,7 +8,7 @@ import scipy.sparse as sp
 import skxfem.lbb as lbb
 import skxfem.solver as solver
 from skxfem.cut import cut as cut_mesh
-from skxfem.enrich import jump_matrix, space, stiffness
+from skxfem.enrich import jump_matrix, stiffness, xfem_space
 from skxfem.fem.quadrature import cell_rule
 from skxfem.multipliers import coupling, interface_rule
 from skxfem.problem import COUPLING, assemble, check_law, constrained_dofs
@@ -52,7 +52,7 @@ def test_solve_and_inf_sup_see_the_same_problem(monkeypatch):
     for name in ("K", "B", "D", "g", "P", "F", "J"):
         assert _same(getattr(s, name), getattr(i, name)), name
     mesh = resolve_mesh(scene)
-    V = space(mesh, cut_mesh(mesh, scene.levelset), 4)
+    V = xfem_space(mesh, cut_mesh(mesh, scene.levelset), 4)
     assert s.V.rule[0].shape == cell_rule(mesh, 4)[0].shape != cell_rule(mesh)[0].shape
     assert _same(s.K, stiffness(V, scene.material))
     free = np.setdiff1d(np.arange(s.V.N), s.D)
@@ -66,7 +66,7 @@ def test_fields_agree_with_the_steps(law):
     p = assemble(scene, law)
     mesh = resolve_mesh(scene)
     c = cut_mesh(mesh, scene.levelset)
-    V = space(mesh, c)
+    V = xfem_space(mesh, c)
     rule = interface_rule(mesh, c)
     assert p.law == law and p.ncomp == (3 if law == "bonded" else 1)
     assert _same(p.K, stiffness(V, scene.material))

@@ -28,7 +28,7 @@ from skfem import solve as skfem_solve
 
 from skxfem.cut import SNAP, SnapWarning
 from skxfem.cut import cut as cut_mesh
-from skxfem.enrich import space, stiffness
+from skxfem.enrich import stiffness, xfem_space
 from skxfem.fem import meshes
 from skxfem.fem.loads import boundary_quadrature, surface_load
 from skxfem.fem.material import Material, stiffness_form
@@ -570,7 +570,7 @@ def test_separate_supports_do_not_constrain_a_facet_they_share():
                   (rollers("xmin"), rollers("xmax"), Displacement(at(0.0, 0.0), {"y": 0.0})),
                   (SurfaceLoad("ymax", pressure=1.0),))
     mesh = resolve_mesh(scene)
-    V = space(mesh, cut_mesh(mesh, scene.levelset))
+    V = xfem_space(mesh, cut_mesh(mesh, scene.levelset))
     dofs, _ = constrained_dofs(V, scene, mesh)
     assert np.all(dofs < V.n_std), "no enriched dof is constrained"
 

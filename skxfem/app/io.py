@@ -215,7 +215,7 @@ def _write_displacement(result, path: Path):
         node_region = V.regions()[1]
         points, cells, region, cut, disp, nodes = region_pieces(mesh, node_region,
                                                                 result.u_regions)
-        psi = {f"levelset_{k}": Vk.cut.psi[nodes] for k, Vk in enumerate(V.spaces)}
+        psi = {f"levelset_{k}": Vk.cut.psi[nodes] for k, Vk in enumerate(V.per_interface)}
         with quiet():
             meshio.write(path, meshio.Mesh(
                 pad3(points), [(cell_type, cells)],

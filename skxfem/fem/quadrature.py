@@ -247,14 +247,15 @@ def subcell_rule(ref_simplices: ArrayLike, parent: ArrayLike, order: int,
     >>> rule.V.tolist()      # 3 points per half
     [[-1.0, -1.0, -1.0, 1.0, 1.0, 1.0]]
     """
-    S = np.asarray(ref_simplices, dtype=float)
-    if S.ndim != 3 or S.shape[2] not in (2, 3) or S.shape[1] != S.shape[2] + 1:
+    simplices = np.asarray(ref_simplices, dtype=float)
+    shape = simplices.shape
+    if simplices.ndim != 3 or shape[2] not in (2, 3) or shape[1] != shape[2] + 1:
         raise ValueError(
             "ref_simplices must have shape (nsub, dim + 1, dim) with dim 2 "
-            f"(triangles) or 3 (tetrahedra), got {S.shape}")
-    if not np.all(np.isfinite(S)):
+            f"(triangles) or 3 (tetrahedra), got {simplices.shape}")
+    if not np.all(np.isfinite(simplices)):
         raise ValueError("ref_simplices contains NaN or inf; check the cut")
-    nsub, dim = S.shape[0], S.shape[2]
+    nsub, dim = simplices.shape[0], simplices.shape[2]
     parent = np.asarray(parent)
     if parent.shape != (nsub,) or not np.issubdtype(parent.dtype, np.integer) \
             or (nsub and parent.min() < 0):
@@ -271,8 +272,8 @@ def subcell_rule(ref_simplices: ArrayLike, parent: ArrayLike, order: int,
     nq0 = Ws.size
 
     # affine map of every sub-simplex: points (nsub, nq0, dim), weights (nsub, nq0)
-    A = np.transpose(S[:, 1:] - S[:, :1], (0, 2, 1))      # columns V_i - V_0
-    pts = S[:, None, 0] + np.einsum("kij,jq->kqi", A, Xs)
+    A = np.transpose(simplices[:, 1:] - simplices[:, :1], (0, 2, 1))  # columns V_i - V_0
+    pts = simplices[:, None, 0] + np.einsum("kij,jq->kqi", A, Xs)
     wts = np.abs(np.linalg.det(A))[:, None] * Ws
 
     # slot of each sub-simplex within its parent: rank in the sorted order

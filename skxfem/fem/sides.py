@@ -24,13 +24,13 @@ on the sub-simplices of :mod:`skxfem.cut`.  Two ways to cover the mesh:
   moment-fitted rule (:mod:`skxfem.fem.moments`) instead of their sub-simplices.
 
 >>> from skfem import MeshTri1
->>> from skxfem.cut import cut
+>>> from skxfem.cut import cut as cut_mesh
 >>> from skxfem.levelset import plane
 >>> m = MeshTri1().refined(2)
->>> c = cut(m, plane((0, 0.3), (0, 1)))
->>> [s for _, s in side_bases(m, c, m.elem())]
+>>> cut = cut_mesh(m, plane((0, 0.3), (0, 1)))
+>>> [s for _, s in side_bases(m, cut, m.elem())]
 [-1, -1, 1, 1]
->>> p = parts(m, c, m.elem())
+>>> p = parts(m, cut, m.elem())
 >>> p.whole.nelems, p.side
 (32, -1)
 """

@@ -94,7 +94,7 @@ def rigid_modes(V, sides: bool = True, centre=None, length: float = 1.0) -> np.n
                     np.array([-x[1], x[0], np.zeros_like(x[0])])]
     node_of = np.zeros(V.n_std, dtype=np.int64)
     node_of[nd.ravel()] = np.tile(np.arange(x.shape[1]), dim)
-    if hasattr(V, "spaces"):  # several interfaces: the motions of each region
+    if hasattr(V, "per_interface"):  # several interfaces: the motions of each region
         Z = _region_modes(V, motions, node_of)
         if sides:
             return Z
@@ -126,7 +126,7 @@ def _region_modes(V, motions, node_of) -> np.ndarray:
         for r in range(R):
             col = R * i + r
             Z[:V.n_std, col] = np.where(region_of == r, a, 0.0)
-            for k, (Vk, start) in enumerate(zip(V.spaces, V.offsets)):
+            for k, (Vk, start) in enumerate(zip(V.per_interface, V.offsets)):
                 near = region_of[Vk.enr_dofs]
                 far = patterns[near].copy()
                 far[:, k] *= -1

@@ -175,7 +175,7 @@ def free_motions(p: Problem, normal=None, full=None, rows=None, tol: float = TOL
     if N.shape[1] == 0:
         return N
     # a combination the space cannot represent (Z c = 0: a piece of Γ so small that
-    # its nodes lost their enrichment, skxfem.enrich.space) is no motion at all
+    # its nodes lost their enrichment, skxfem.enrich.xfem_space) is no motion at all
     _, sv, Vt = np.linalg.svd(Z @ N, full_matrices=False)
     return N @ Vt[sv > tol * np.linalg.norm(Z, axis=0).max()].T
 
@@ -230,12 +230,12 @@ def _orth(A: np.ndarray, tol: float = 1e-6) -> np.ndarray:
     return U[:, sv > tol * max(sv.max(), 1e-300)]
 
 
-def _side_motions(S: np.ndarray, dim: int, centre, length: float) -> str:
-    """The motions ``S`` (k, d) of one side, in words: the translations they
+def _side_motions(motions: np.ndarray, dim: int, centre, length: float) -> str:
+    """The ``motions`` (k, d) of one side, in words: the translations they
     allow (a direction, a plane, every direction) and each rotation, about
     an axis through the point it leaves at rest (:func:`skxfem.linalg.amg.motion_name`)."""
-    T, W = S[:dim], S[dim:]
-    Y = _null(W, 1e-6) if W.any() else np.eye(S.shape[1])     # combinations that only translate
+    T, W = motions[:dim], motions[dim:]
+    Y = _null(W, 1e-6) if W.any() else np.eye(motions.shape[1])  # combinations that only translate
     moves = _orth(T @ Y)
     words = []
     if moves.shape[1] == dim:
@@ -244,9 +244,9 @@ def _side_motions(S: np.ndarray, dim: int, centre, length: float) -> str:
         words.append(f"translate in every direction normal to "
                      f"{axis_name(np.cross(moves[:, 0], moves[:, 1]))}")
     elif moves.shape[1] == 1:
-        words.append(motion_name(np.r_[moves[:, 0], np.zeros(S.shape[0] - dim)], dim))
-    rest = _null(Y.T, 1e-6) if Y.shape[1] else np.eye(S.shape[1])  # the rest: rotations
-    for y in (S @ rest).T:
+        words.append(motion_name(np.r_[moves[:, 0], np.zeros(motions.shape[0] - dim)], dim))
+    rest = _null(Y.T, 1e-6) if Y.shape[1] else np.eye(motions.shape[1])  # the rest: rotations
+    for y in (motions @ rest).T:
         t = y[:dim] - moves @ (moves.T @ y[:dim])               # no free translation in it
         words.append(motion_name(np.r_[t, y[dim:]], dim, centre, length))
     return " and ".join(words)
@@ -268,9 +268,9 @@ def describe(p: Problem, N: np.ndarray, centre, length: float) -> str:
              (plus, I[0::2], 1)]                          # c⁻ = 0
     for who, E, side in looks:
         _, sv, Vt = np.linalg.svd(E @ N, full_matrices=True)
-        S = N @ Vt[np.r_[sv, np.zeros(Vt.shape[0] - sv.size)] < 1e-6].T
-        if S.shape[1]:
-            return f"{who} can {_side_motions(S[side::2], dim, centre, length)}"
+        motions = N @ Vt[np.r_[sv, np.zeros(Vt.shape[0] - sv.size)] < 1e-6].T
+        if motions.shape[1]:
+            return f"{who} can {_side_motions(motions[side::2], dim, centre, length)}"
     c = N[:, 0]
     return (f"{minus} can {motion_name(c[0::2], dim, centre, length)} as {plus} "
             f"{motion_name(c[1::2], dim, centre, length, verb=False)}")
@@ -288,13 +288,13 @@ def _describe_regions(p: Problem, N: np.ndarray, centre, length: float) -> str:
         E = np.vstack([I[group[0]::R] - I[r::R] for r in group[1:]]
                       + [I[r::R] for r in range(R) if r not in group] or [I[:0]])
         _, sv, Vt = np.linalg.svd(E @ N, full_matrices=True)
-        S = N @ Vt[np.r_[sv, np.zeros(Vt.shape[0] - sv.size)] < 1e-6].T
-        if S.shape[1]:
+        motions = N @ Vt[np.r_[sv, np.zeros(Vt.shape[0] - sv.size)] < 1e-6].T
+        if motions.shape[1]:
             who = ("the whole body" if len(group) == R else names[group[0]] if
                    len(group) == 1 else "the parts of the body where " + " and where ".join(
                        names[r].removeprefix("the part of the body where ") for r in group)
                    + ", together,")
-            return f"{who} can {_side_motions(S[group[0]::R], dim, centre, length)}"
+            return f"{who} can {_side_motions(motions[group[0]::R], dim, centre, length)}"
     c = N[:, 0]
     moving = [r for r in range(R) if np.abs(c[r::R]).max() > 1e-6 * np.abs(c).max()]
     return " as ".join(f"{names[r]} {motion_name(c[r::R], dim, centre, length, verb=False)}"
@@ -395,7 +395,7 @@ def short_pieces(p: Problem, B_edges, tol: float = TOL) -> np.ndarray:
         Pk = P[rows]
         used = np.flatnonzero(np.asarray(abs(Pk).sum(axis=0)).ravel() > 0)
         w = Pk[:, used].T @ np.tile(weight, ncomp)[rows]
-        held = (sp.diags(1.0 / w) @ (Pk[:, used].T @ B_edges[rows])) @ Z
-        if _rank(np.vstack([supports, held]), tol) < _rank(np.vstack([supports, law]), tol):
+        restrained = (sp.diags(1.0 / w) @ (Pk[:, used].T @ B_edges[rows])) @ Z
+        if _rank(np.vstack([supports, restrained]), tol) < _rank(np.vstack([supports, law]), tol):
             short |= edges
     return short

@@ -232,9 +232,9 @@ def reduce(K, B, F, U, free) -> Reduced:
             f"no cell uses, or an enriched function with an empty support): remove "
             f"unused nodes from the mesh or impose those unknowns")
     s = 1.0 / np.sqrt(diag)
-    S = sp.diags(s)
-    Kf = S @ K[free][:, free] @ S
-    Bf = B[:, free] @ S
+    scaling = sp.diags(s)
+    Kf = scaling @ K[free][:, free] @ scaling
+    Bf = B[:, free] @ scaling
     keep = independent_rows(Bf)
     r = 1.0 / np.maximum(abs(Bf[keep]).max(axis=1).toarray().ravel(), 1e-300)
     Bk = sp.diags(r) @ Bf[keep]

@@ -35,7 +35,7 @@ import scipy.sparse as sp
 from ..contact.newton import ContactConvergenceError
 from ..cut import SnapWarning
 from ..cut import cut as cut_mesh
-from ..enrich import far_side_fraction, space, stiffness
+from ..enrich import far_side_fraction, stiffness, xfem_space
 from ..fem.cells import CELLS
 from ..fem.material import Material
 from ..levelset import plane
@@ -161,7 +161,7 @@ def patch_error(scene: Scene, load: float = P) -> tuple[float, str]:
     """Solve a :func:`patch_scene` and return its relative energy error and a note.
 
     The note counts the multipliers removed as dependent and the enriched
-    nodes the small-cut rule dropped (:func:`skxfem.enrich.space`).
+    nodes the small-cut rule dropped (:func:`skxfem.enrich.xfem_space`).
     """
     result = solve(scene)
     dim = scene.dim
@@ -244,17 +244,17 @@ def _condition(scene: Scene, sliver: float) -> tuple[float | None, int, float]:
     """cond₂ of the scaled saddle matrix as :func:`skxfem.linalg.saddle.solve` factors it
     (``None``: singular, an unknown without stiffness), nodes dropped, least fraction."""
     mesh = resolve_mesh(scene)
-    c = cut_mesh(mesh, scene.levelset)
-    V = space(mesh, c, scene.quadrature_order, sliver=sliver)
+    cut = cut_mesh(mesh, scene.levelset)
+    V = xfem_space(mesh, cut, scene.quadrature_order, sliver=sliver)
     K = stiffness(V, scene.material)
     D, _ = constrained_dofs(V, scene, mesh)
-    S = multiplier_space(scene.space, mesh, c)
-    B_edges = coupling(V, interface_rule(mesh, c), scene.law)
-    ncomp = B_edges.shape[0] // c.points.shape[1]
-    B = sp.kron(sp.identity(ncomp), S.P, format="csr").T @ B_edges
+    lam_space = multiplier_space(scene.space, mesh, cut)
+    B_edges = coupling(V, interface_rule(mesh, cut), scene.law)
+    ncomp = B_edges.shape[0] // cut.points.shape[1]
+    B = sp.kron(sp.identity(ncomp), lam_space.P, format="csr").T @ B_edges
     free = np.setdiff1d(np.arange(V.N), D)
-    frac = float(far_side_fraction(mesh, c)[c.enriched].min())
-    dropped = c.enriched.size - V.n_enr // mesh.dim()
+    frac = float(far_side_fraction(mesh, cut)[cut.enriched].min())
+    dropped = cut.enriched.size - V.n_enr // mesh.dim()
     diag = np.abs(K.diagonal()[free])
     if np.any(diag == 0):  # an enriched function whose far side has zero measure
         return None, dropped, frac

@@ -299,13 +299,14 @@ def fig_vital_3d(n: int = 6, radius: float = 0.37,
     if unknown or not spaces:
         raise ValueError(f"spaces must be some of {tuple(names)}, got {spaces!r}")
     mesh = box(n, "tet")
-    c = cut_mesh(mesh, sphere((0.5, 0.5, 0.5), radius))
+    cut = cut_mesh(mesh, sphere((0.5, 0.5, 0.5), radius))
     fig = Figure(figsize=(5 * len(spaces), 5.6), layout="constrained")
     for k, space in enumerate(spaces):
-        S = multiplier_space(space, mesh, c)
+        lam_space = multiplier_space(space, mesh, cut)
         ax = fig.add_subplot(1, len(spaces), k + 1, projection="3d")
-        plot_space_3d(mesh, c, S, ax=ax, below=0.5, title=f"{names[space]}: {S.size} "
-                      f"multipliers on {c.edges.shape[1]} cut edges")
+        plot_space_3d(mesh, cut, lam_space, ax=ax, below=0.5,
+                      title=f"{names[space]}: {lam_space.size} multipliers on "
+                            f"{cut.edges.shape[1]} cut edges")
     fig.suptitle(f"a sphere (r = {radius:g}) through {mesh.nelements} tetrahedra "
                  f"({n}³ cubes): its lower half and cut edges", fontsize="medium")
     return fig

@@ -202,11 +202,11 @@ def plot_space_2d(mesh, cut, space, ax=None, title: str | None = None) -> Figure
 
     >>> from skxfem.fem.meshes import box
     >>> from skxfem.levelset import plane
-    >>> from skxfem.cut import cut
+    >>> from skxfem.cut import cut as cut_mesh
     >>> from skxfem.stabilised import multiplier_space
     >>> m = box(4, "tri")
-    >>> c = cut(m, plane((0, 0.52), (0.25, 1)))
-    >>> fig = plot_space_2d(m, c, multiplier_space("vital", m, c))
+    >>> cut = cut_mesh(m, plane((0, 0.52), (0.25, 1)))
+    >>> fig = plot_space_2d(m, cut, multiplier_space("vital", m, cut))
     >>> len(fig.axes)
     1
     """
@@ -263,11 +263,11 @@ def plot_space_3d(mesh, cut, space, ax=None, title: str | None = None,
 
     >>> from skxfem.fem.meshes import box
     >>> from skxfem.levelset import sphere
-    >>> from skxfem.cut import cut
+    >>> from skxfem.cut import cut as cut_mesh
     >>> from skxfem.stabilised import multiplier_space
     >>> m = box(3, "tet")
-    >>> c = cut(m, sphere((0.5, 0.5, 0.5), 0.4))
-    >>> fig = plot_space_3d(m, c, multiplier_space("vital", m, c), below=0.5)
+    >>> cut = cut_mesh(m, sphere((0.5, 0.5, 0.5), 0.4))
+    >>> fig = plot_space_3d(m, cut, multiplier_space("vital", m, cut), below=0.5)
     >>> fig.axes[0].name
     '3d'
     """

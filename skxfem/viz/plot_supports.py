@@ -12,7 +12,8 @@ own or of its group (one weight), or interpolated between two μ.
 >>> from skxfem.problem import assemble
 >>> from skxfem.scene.benchmarks import paper_plate
 >>> p = assemble(paper_plate(3, "prism", space="vital", nx=2))
->>> fig = plot_held_edges(p.mesh, p.cut, [s.P for s in p.spaces], held_edges=p.held_edges)
+>>> Ps = [s.P for s in p.component_spaces]
+>>> fig = plot_held_edges(p.mesh, p.cut, Ps, held_edges=p.held_edges)
 >>> len(fig.axes), fig.axes[0].get_title()
 (6, 'λ_x on x = 0')
 """
@@ -45,7 +46,7 @@ def plot_held_edges(mesh, cut, prolongations, axis: int = 0, values=None,
         Its :class:`skxfem.cut.Cut`.
     prolongations
         One (n_edges, m_k) sparse P per multiplier component
-        (``[s.P for s in problem.spaces]``).
+        (``[s.P for s in problem.component_spaces]``).
     axis
         The coordinate normal to the faces (0: x).
     values

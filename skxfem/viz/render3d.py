@@ -88,7 +88,7 @@ def plot_result_3d(result, scale: float | None = None,
         V = result.V
         points, cells, side, _, disp, nodes = region_pieces(mesh, V.regions()[1],
                                                             result.u_regions)
-        psis = [Vk.cut.psi[nodes] for Vk in V.spaces]
+        psis = [Vk.cut.psi[nodes] for Vk in V.per_interface]
         signs = result.regions
         colors = [COLORS["minus"]] + [REGION_COLORS[r % len(REGION_COLORS)]
                                       for r in range(len(signs) - 2)] + [COLORS["plus"]]
