@@ -271,8 +271,8 @@ def winner_nodes(edges, psi, points, nodes, fixed=None) -> Space:
 
     >>> import numpy as np
     >>> nodes = np.array([[0., 1., 2.], [0., 1., 0.]])
-    >>> space = winner_nodes([[0, 2], [1, 1]], nodes[1] - 0.5, [[0.5, 1.5], [0.5, 0.5]], nodes)
-    >>> space.winners.tolist(), space.P.toarray().ravel().tolist()
+    >>> lam_space = winner_nodes([[0, 2], [1, 1]], nodes[1] - 0.5, [[0.5, 1.5], [0.5, 0.5]], nodes)
+    >>> lam_space.winners.tolist(), lam_space.P.toarray().ravel().tolist()
     ([1], [1.0, 1.0])
     """
     edges, psi, points, nodes = check_graph(edges, psi, points, nodes)

@@ -59,32 +59,32 @@ def figure6_graph(xy: Mapping | None = None):
     return edges, psi, points, nodes
 
 
-def _single(space):
+def _single(lam_space):
     """True for the cut edges whose λ_e equals one μ (P row with one entry)."""
-    P = space.P.tocsr()
+    P = lam_space.P.tocsr()
     P.eliminate_zeros()
     return np.diff(P.indptr) == 1
 
 
-def _draw_space(ax, nodes, edges, psi, points, space, groups: str = "ellipse"):
-    """Cut edges, nodes and multiplier points of ``space``; returns legend handles.
+def _draw_space(ax, nodes, edges, psi, points, lam_space, groups: str = "ellipse"):
+    """Cut edges, nodes and multiplier points of ``lam_space``; returns legend handles.
 
     Solid edges carry an independent multiplier (vital edges; naive: all;
     winner: edges with one winner end), dotted ones an interpolated one.
     Groups of ≥ 2 vital edges are circled (``groups="ellipse"``) or their
     common node ringed (``"ring"``); winner nodes get a large dot.
     """
-    color = COLORS[space.name]
-    solid = space.vital if space.vital is not None else _single(space)
+    color = COLORS[lam_space.name]
+    solid = lam_space.vital if lam_space.vital is not None else _single(lam_space)
     for e in range(edges.shape[1]):
         ax.plot(*nodes[:, edges[:, e]], ls="-" if solid[e] else ":", lw=2.2 if solid[e] else 1.5,
                 color=color, zorder=2)
-    handles = [Line2D([], [], color=color, lw=2.2, label=f"{space.name}: independent λ_e")]
+    handles = [Line2D([], [], color=color, lw=2.2, label=f"{lam_space.name}: independent λ_e")]
     if not solid.all():
         handles.append(Line2D([], [], color=color, lw=1.5, ls=":", label="interpolated λ_e"))
-    if space.groups is not None:
-        for g in range(space.size):
-            ends = edges[:, space.groups == g]
+    if lam_space.groups is not None:
+        for g in range(lam_space.size):
+            ends = edges[:, lam_space.groups == g]
             if ends.shape[1] < 2:
                 continue
             if groups == "ellipse":
@@ -98,8 +98,8 @@ def _draw_space(ax, nodes, edges, psi, points, space, groups: str = "ellipse"):
         handles.append(Line2D([], [], ls="--" if groups == "ellipse" else "", marker=None
                               if groups == "ellipse" else "o", mfc="none", mec=color,
                               color=color, ms=10, label="group of vital edges (one μ)"))
-    if space.winners is not None:
-        ax.plot(*nodes[:, space.winners], "o", ms=13, color=color, alpha=0.45, zorder=3)
+    if lam_space.winners is not None:
+        ax.plot(*nodes[:, lam_space.winners], "o", ms=13, color=color, alpha=0.45, zorder=3)
         handles.append(Line2D([], [], ls="", marker="o", ms=10, color=color, alpha=0.45,
                               label="winner node (one μ)"))
     ends = np.unique(edges)
@@ -110,17 +110,17 @@ def _draw_space(ax, nodes, edges, psi, points, space, groups: str = "ellipse"):
     return handles
 
 
-def _lambda_panel(ax, points, space, letters):
+def _lambda_panel(ax, points, lam_space, letters):
     """λ_h = Pμ along Γ (y = 0) for the μ nearest to a linear pressure; P0 parts shaded."""
     x = points[0]
     target = x / x.max()
-    P = space.P.toarray()
+    P = lam_space.P.toarray()
     lam = P @ np.linalg.lstsq(P, target, rcond=None)[0]
     flat = np.all(np.isclose(P[1:], P[:-1]), axis=1)        # segment k..k+1 is P0
     for k in np.flatnonzero(flat):
-        ax.axvspan(x[k], x[k + 1], color=COLORS[space.name], alpha=0.15, lw=0)
+        ax.axvspan(x[k], x[k + 1], color=COLORS[lam_space.name], alpha=0.15, lw=0)
     ax.plot(x, target, ":", color=COLORS["reference"], lw=1.2, label="a linear pressure")
-    ax.plot(x, lam, "-o", ms=4, color=COLORS[space.name], label="λ_h = Pμ, best fit")
+    ax.plot(x, lam, "-o", ms=4, color=COLORS[lam_space.name], label="λ_h = Pμ, best fit")
     for xi, li, t in zip(x, lam, letters):
         ax.annotate(t, (xi, li), textcoords="offset points", xytext=(-4, 6), fontsize=8)
     p1 = 1.0 - np.sum(np.diff(x)[flat]) / (x[-1] - x[0])
@@ -147,13 +147,13 @@ def fig6() -> Figure:
     """
     edges, psi, points, nodes = figure6_graph()
     letters = "ABCDEFGHIJK"
-    spaces = (winner_nodes(edges, psi, points, nodes), vital_edges(edges, psi, points, nodes))
+    lam_spaces = (winner_nodes(edges, psi, points, nodes), vital_edges(edges, psi, points, nodes))
     fig = Figure(figsize=(9, 6.4), layout="constrained")
     grid = fig.add_gridspec(2, 2, height_ratios=(1.25, 1))
     top = fig.add_subplot(grid[0, :])
     top.axhline(0.0, color=COLORS["gamma"], lw=2, zorder=0)
-    handles = _draw_space(top, nodes, edges, psi, points, spaces[1])
-    winners = spaces[0].winners
+    handles = _draw_space(top, nodes, edges, psi, points, lam_spaces[1])
+    winners = lam_spaces[0].winners
     top.plot(*nodes[:, winners], "o", ms=13, color=COLORS["winner"], alpha=0.45, zorder=3)
     handles.append(Line2D([], [], ls="", marker="o", ms=10, color=COLORS["winner"],
                           alpha=0.45, label="winner node of algo1 (one μ)"))
@@ -170,15 +170,16 @@ def fig6() -> Figure:
     top.legend(handles=handles, fontsize="small", ncol=2,
                loc="upper center", bbox_to_anchor=(0.5, -0.08), frameon=False)
     top.set_axis_off()
-    for k, (space, name) in enumerate(zip(spaces, ("algo1, winner nodes", "algo2, vital edges"))):
+    names = ("algo1, winner nodes", "algo2, vital edges")
+    for k, (lam_space, name) in enumerate(zip(lam_spaces, names)):
         ax = fig.add_subplot(grid[1, k])
-        p1 = _lambda_panel(ax, points, space, letters)
-        ax.set_title(f"{name}: {space.size} multipliers, P1 on {100 * p1:.0f}% of Γ",
+        p1 = _lambda_panel(ax, points, lam_space, letters)
+        ax.set_title(f"{name}: {lam_space.size} multipliers, P1 on {100 * p1:.0f}% of Γ",
                      fontsize="medium")
     return fig
 
 
-def plot_space_2d(mesh, cut, space, ax=None, title: str | None = None) -> Figure:
+def plot_space_2d(mesh, cut, lam_space, ax=None, title: str | None = None) -> Figure:
     """A multiplier space on a 2D mesh: which cut edges carry independent multipliers.
 
     Solid cut edges carry their own μ (naive: every edge; vital: the vital
@@ -193,7 +194,7 @@ def plot_space_2d(mesh, cut, space, ax=None, title: str | None = None) -> Figure
         A 2D scikit-fem mesh.
     cut
         Its :class:`skxfem.cut.Cut`.
-    space
+    lam_space
         A :class:`skxfem.multipliers.Space` built on ``cut``.
     ax
         Axes to draw into; default a new figure.
@@ -218,7 +219,7 @@ def plot_space_2d(mesh, cut, space, ax=None, title: str | None = None) -> Figure
     ax.add_collection(LineCollection(segments, colors="#bdbdbd", linewidths=0.6))
     gamma = np.transpose(cut.points[:, cut.facets], (2, 1, 0))
     ax.add_collection(LineCollection(gamma, colors=COLORS["gamma"], linewidths=2.0))
-    handles = _draw_space(ax, mesh.p, cut.edges, cut.psi, cut.points, space, groups="ring")
+    handles = _draw_space(ax, mesh.p, cut.edges, cut.psi, cut.points, lam_space, groups="ring")
     handles.append(Line2D([], [], color=COLORS["gamma"], lw=2, label="Γ_h"))
     band = mesh.p[1, np.unique(cut.edges)]
     pad = 0.6 * np.ptp(band) + 1e-12
@@ -226,7 +227,7 @@ def plot_space_2d(mesh, cut, space, ax=None, title: str | None = None) -> Figure
     ax.set_ylim(max(band.min() - pad, mesh.p[1].min() - 0.02),
                 min(band.max() + pad, mesh.p[1].max() + 0.02))
     ax.set_aspect("equal")
-    ax.set_title(title or f"{space.name}: {space.size} multipliers on "
+    ax.set_title(title or f"{lam_space.name}: {lam_space.size} multipliers on "
                  f"{cut.edges.shape[1]} cut edges", fontsize="medium")
     ax.legend(handles=handles, fontsize="small", loc="upper center",
               bbox_to_anchor=(0.5, -0.05), ncol=2, frameon=False)
@@ -234,7 +235,7 @@ def plot_space_2d(mesh, cut, space, ax=None, title: str | None = None) -> Figure
     return fig
 
 
-def plot_space_3d(mesh, cut, space, ax=None, title: str | None = None,
+def plot_space_3d(mesh, cut, lam_space, ax=None, title: str | None = None,
                   below: float | None = None,
                   view: tuple[float, float] = (38.0, -60.0)) -> Figure:
     """A multiplier space on a 3D mesh: the cut edges that carry their own μ.
@@ -248,7 +249,7 @@ def plot_space_3d(mesh, cut, space, ax=None, title: str | None = None,
 
     Parameters
     ----------
-    mesh, cut, space
+    mesh, cut, lam_space
         A 3D scikit-fem mesh, its :class:`skxfem.cut.Cut` and a
         :class:`skxfem.multipliers.Space` built on it.
     ax
@@ -278,8 +279,8 @@ def plot_space_3d(mesh, cut, space, ax=None, title: str | None = None,
         ax = fig.add_subplot(projection="3d")
     fig = ax.figure
     top = np.inf if below is None else below
-    color = COLORS[space.name]
-    solid = space.vital if space.vital is not None else _single(space)
+    color = COLORS[lam_space.name]
+    solid = lam_space.vital if lam_space.vital is not None else _single(lam_space)
     ends = np.transpose(mesh.p[:, cut.edges], (2, 1, 0))             # (ne, 2, 3)
     shown = ends.mean(axis=1)[:, 2] <= top
     triangles = np.transpose(cut.points[:, cut.facets], (2, 1, 0))   # (nf, 3, 3)
@@ -287,7 +288,7 @@ def plot_space_3d(mesh, cut, space, ax=None, title: str | None = None,
                                          facecolor=COLORS["gamma"], alpha=0.15,
                                          edgecolor=COLORS["gamma"], linewidths=0.2))
     own = {"naive": "naive: each λ_e its own μ", "winner": "winner: λ_e = μ of a winner node",
-           "vital": "vital edge: λ_e = μ of its group"}.get(space.name, space.name)
+           "vital": "vital edge: λ_e = μ of its group"}.get(lam_space.name, lam_space.name)
     handles = [Line2D([], [], color=color, lw=2, label=own)]
     if np.any(shown & ~solid):
         ax.add_collection3d(Line3DCollection(ends[shown & ~solid], colors="#969696",
@@ -296,16 +297,16 @@ def plot_space_3d(mesh, cut, space, ax=None, title: str | None = None,
     if np.any(shown & solid):
         ax.add_collection3d(Line3DCollection(ends[shown & solid], colors=color, linewidths=2))
     centres = []
-    if space.groups is not None:
-        centres = [np.bincount(cut.edges[:, space.groups == g].ravel()).argmax()
-                   for g in range(space.size) if np.count_nonzero(space.groups == g) >= 2]
-    if space.winners is not None:
-        centres = list(space.winners)
+    if lam_space.groups is not None:
+        centres = [np.bincount(cut.edges[:, lam_space.groups == g].ravel()).argmax()
+                   for g in range(lam_space.size) if np.count_nonzero(lam_space.groups == g) >= 2]
+    if lam_space.winners is not None:
+        centres = list(lam_space.winners)
     centres = [k for k in centres if mesh.p[2, k] <= top]
     if centres:
         ax.scatter(*mesh.p[:, centres], s=22, color=color, depthshade=False)
         handles.append(Line2D([], [], ls="", marker="o", ms=4.5, color=color,
-                              label="winner node" if space.winners is not None
+                              label="winner node" if lam_space.winners is not None
                               else "common node of a group (one μ)"))
     handles.append(Patch(facecolor=COLORS["gamma"], alpha=0.3, label="Γ_h"))
     drawn = ends[shown].reshape(-1, 3)
@@ -316,7 +317,7 @@ def plot_space_3d(mesh, cut, space, ax=None, title: str | None = None,
     ax.view_init(*view)
     for set_label, name in zip((ax.set_xlabel, ax.set_ylabel, ax.set_zlabel), "xyz"):
         set_label(name)
-    ax.set_title(title or f"{space.name}: {space.size} multipliers on "
+    ax.set_title(title or f"{lam_space.name}: {lam_space.size} multipliers on "
                  f"{cut.edges.shape[1]} cut edges", fontsize="medium")
     ax.legend(handles=handles, fontsize="small", loc="upper center",
               bbox_to_anchor=(0.5, 0.02), ncol=2, frameon=False)
