@@ -38,10 +38,12 @@ own (import-linter checks it in ``make test``; the contract is in
 ``pyproject.toml``), lowest first:
 
 1. ``linalg``: the linear solves (``saddle``, ``iterative``, ``amg``, ``pcg``,
-   ``smoothest``), which one a problem gets (``linear``), BLAS ``threads``, and
-   the rigid motions left free (``rigid``);
+   ``dependent``: the dependent multipliers and the smoothest choice among
+   them), which one a problem gets (``choice``), BLAS ``threads``, and the
+   rigid motions left free (``rigid``);
 2. ``fem``: ``simplex``, ``cells`` (the cell types, one table), ``meshes``,
-   ``quadrature``, ``moments``, ``sides``, ``material``, ``loads``,
+   ``quadrature``, ``fitted`` (moment-fitted rules), ``side_bases`` (the bases
+   of each side of Γ), ``material``, ``loads``,
    ``evaluate``, ``vtu``, ``files``, ``cutgraph``, the exact solutions;
 3. ``levelset`` (the sign convention);
 4. ``scene``: ``laws`` (the laws and spaces, one table), ``parts``, ``expr``,
@@ -56,8 +58,8 @@ own (import-linter checks it in ``make test``; the contract is in
     ``extremes`` tables, ``frontier``, ``budget`` and ``counts`` (the size
     guard), ``progress``;
 14. ``viz``: every module that draws (matplotlib, pyvista; a second contract);
-15. ``app``: ``cli``, ``reproduce``, ``grade`` and ``graded``, ``io`` and
-    ``io_contact`` (the result files).
+15. ``app``: ``cli``, ``reproduce``, ``grade`` and ``graded``, ``io`` (the
+    result files).
 """
 from importlib.metadata import PackageNotFoundError
 from importlib.metadata import version as _version

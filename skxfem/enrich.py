@@ -23,8 +23,8 @@ uncut cells H is the cell's constant side.  With K^± the stiffness of Ω^±,
 K = K⁺ + K⁻ and K_H = K⁺ - K⁻ = s(2Kˢ - K) for either side s.  Only the
 columns of enriched dofs of K_H enter, so K is assembled on every cell whole
 (the integrand is a polynomial on a cut cell too) and Kˢ on one side, on the
-cells of enriched nodes only (:func:`skxfem.fem.sides.parts`; on hexahedra and
-prisms with a moment-fitted rule, :mod:`skxfem.fem.moments`).  The stiffness runs
+cells of enriched nodes only (:func:`skxfem.fem.side_bases.parts`; on hexahedra and
+prisms with a moment-fitted rule, :mod:`skxfem.fem.fitted`).  The stiffness runs
 on *scalar* bases (built once by :func:`xfem_space` and shared with
 :func:`far_side_fraction`), from scalar forms (:func:`skxfem.fem.material.stiffness_matrix`).
 
@@ -66,7 +66,7 @@ from .cut import Cut
 from .fem.evaluate import evaluation_matrix
 from .fem.material import Material, stiffness_matrix
 from .fem.quadrature import cell_rule, exact_orders
-from .fem.sides import Parts, parts, side_bases
+from .fem.side_bases import Parts, parts, side_bases
 
 __all__ = ["XSpace", "XSpaces", "xfem_space", "stiffness", "mass", "enriched_matrix",
            "enriched_blocks", "signed_bases", "far_side_fraction", "enriched_load",
@@ -91,7 +91,7 @@ class XSpace:
         ``enr_dofs[k]``.
     H_node : (n_enr,) H(x_j) of the node of each enriched dof.
     rule : (X, W), the cell rule of the stiffness on uncut cells.
-    parts : the scalar :class:`skxfem.fem.sides.Parts` at ``rule``, which
+    parts : the scalar :class:`skxfem.fem.side_bases.Parts` at ``rule``, which
         :func:`stiffness` reuses (None: built when needed).
     """
 
@@ -188,7 +188,7 @@ def far_side_fraction(mesh, cut: Cut, scalar_parts: Parts | None = None) -> np.n
     The shifted enrichment φⱼ(H - Hⱼ) lives on that far side only; where it is
     a sliver the enriched dof carries no information but spoils the
     conditioning (see :func:`xfem_space`).  A node of no cut cell has no far
-    side: 0.  ``scalar_parts``: :func:`skxfem.fem.sides.parts` of the scalar
+    side: 0.  ``scalar_parts``: :func:`skxfem.fem.side_bases.parts` of the scalar
     element at a rule exact for φⱼ (default: the stiffness' rule).
     """
     p = scalar_parts or parts(mesh, cut, mesh.elem())
@@ -221,7 +221,7 @@ def xfem_space(mesh, cut: Cut, order: int | None = None, sliver: float = 1e-8) -
 
 def signed_bases(V: XSpace, orders: tuple[int, int] | None = None):
     """The pairs (basis, H) covering the mesh, H = ±1 the constant value of
-    the Heaviside function on that basis: see :func:`skxfem.fem.sides.side_bases`.
+    the Heaviside function on that basis: see :func:`skxfem.fem.side_bases.side_bases`.
 
     ``orders`` (cell, sub-simplex): the quadrature orders; default those of
     ``V`` (its stiffness rule and the stiffness' sub-simplex order)."""
@@ -266,7 +266,7 @@ def enriched_matrix(V: XSpace, form, orders: tuple[int, int] | None = None) -> s
     The form must be linear in H, H·g(u, v) (as the stiffness and the mass
     are).  With A = the form at H = 1 (standard) and A_H its signed version, and
     D = diag(Hⱼ), the blocks follow from H² = 1 (see the module notes); A and
-    A_H come from :func:`skxfem.fem.sides.parts`.  ``orders``: see :func:`signed_bases`.
+    A_H come from :func:`skxfem.fem.side_bases.parts`.  ``orders``: see :func:`signed_bases`.
     """
     cell_q = V.rule if orders is None else cell_rule(V.mesh, orders[0])
     p = parts(V.mesh, V.cut, V.basis.elem, cell_q, None if orders is None else orders[1])

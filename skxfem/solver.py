@@ -33,9 +33,9 @@ from .contact.laws import CONTACT_LAWS
 from .levelset import point_normals
 from .linalg import iterative, saddle
 from .linalg.amg import rigid_modes
-from .linalg.linear import AUTO_ITERATIVE, LINEAR, LINEAR_TOL, check_linear_tol, choose_linear
+from .linalg.choice import AUTO_ITERATIVE, LINEAR, LINEAR_TOL, check_linear_tol, choose_linear
+from .linalg.dependent import dependencies
 from .linalg.rigid import check_held
-from .linalg.smoothest import dependencies
 from .linalg.threads import limited
 from .problem import Problem, assemble, constrained_dofs
 from .result import Result, result
@@ -87,7 +87,7 @@ def solve(scene: Scene, dependent: str = "remove", linear: str = "auto",
         iterative one from :data:`AUTO_ITERATIVE` unknowns if pyamg is there.
     linear_tol
         The relative residual of the iterative solve (default
-        :data:`skxfem.linalg.linear.LINEAR_TOL`), recorded in ``linear_info``.
+        :data:`skxfem.linalg.choice.LINEAR_TOL`), recorded in ``linear_info``.
 
     The BLAS libraries run one thread during the solve (:mod:`skxfem.linalg.threads`:
     ``SKXFEM_THREADS`` or :func:`skxfem.linalg.threads.using` choose another number).

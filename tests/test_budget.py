@@ -143,7 +143,7 @@ def test_08_memory_is_an_upper_bound_within_the_stated_factor(case):
 
 
 def test_11_the_estimate_follows_the_linear_solver():
-    """auto resolves as the solve does (skxfem.linalg.linear.choose_linear); the
+    """auto resolves as the solve does (skxfem.linalg.choice.choose_linear); the
     iterative path needs far less than the direct one in 3D; frictionless
     contact takes it too, Coulomb contact is solved directly unless asked (then
     its FGMRES basis counts)."""

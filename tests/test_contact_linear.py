@@ -118,7 +118,7 @@ def test_linear_reaches_the_contact_solve_and_auto_follows_the_law(monkeypatch):
     s = scene("partial", 2, "frictionless")
     assert skxfem.solve(s, linear="iterative").linear == "iterative"
     assert skxfem.solve(s).linear == "direct", "auto: small scenes are solved directly"
-    monkeypatch.setitem(skxfem.linalg.linear.AUTO_ITERATIVE, 2, 10)
+    monkeypatch.setitem(skxfem.linalg.choice.AUTO_ITERATIVE, 2, 10)
     assert skxfem.solve(s).linear == "iterative", "auto: large frictionless scenes"
     coulomb = replace(s, law="coulomb", friction=0.3)
     assert skxfem.solve(coulomb).linear == "direct", "auto: Coulomb is solved directly"

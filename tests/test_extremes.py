@@ -10,19 +10,19 @@ from skxfem.studies.extremes import (
     Row,
     attempt,
     conditioning,
-    patch_error,
-    patch_scene,
-    position_rows,
-)
-from skxfem.studies.extremes_scales import modulus_rows, poisson_rows, rho_rows
-from skxfem.studies.extremes_shapes import (
+    format_rows,
     largest,
     memory_rows,
+    modulus_rows,
     one_cell_rows,
+    patch_error,
+    patch_scene,
+    poisson_rows,
+    position_rows,
+    rho_rows,
     shape_rows,
     space_rows,
 )
-from skxfem.studies.extremes_table import format_rows
 
 
 def check_rows(rows):
@@ -147,7 +147,7 @@ def test_a_slanted_gamma_crossing_the_supported_bottom_passes_the_patch_test(n):
 
 
 def test_support_and_piece_rows_are_solved_to_round_off():
-    from skxfem.studies.extremes_shapes import CROSSINGS, PIECES, piece_rows, support_rows
+    from skxfem.studies.extremes import CROSSINGS, PIECES, piece_rows, support_rows
 
     rows = check_rows(support_rows(["quad", "hex"]) + piece_rows(["tri", "prism"]))
     assert len(rows) == 2 * len(CROSSINGS) + 2 * len(PIECES)
@@ -155,7 +155,7 @@ def test_support_and_piece_rows_are_solved_to_round_off():
 
 
 def test_refused_rows_are_refused_and_the_limits_solved():
-    from skxfem.studies.extremes_refused import limit_rows, refused_rows
+    from skxfem.studies.extremes import limit_rows, refused_rows
 
     refused = check_rows(refused_rows())
     assert all(r.outcome == "refused" for r in refused.values())

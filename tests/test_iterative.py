@@ -1,4 +1,4 @@
-"""Tests for skxfem/linalg/iterative.py (and skxfem/linalg/smoothest.py): the AMG-preconditioned
+"""Tests for skxfem/linalg/iterative.py (and skxfem/linalg/dependent.py): the AMG-preconditioned
 projected CG solve of the tied saddle system gives the direct solve's answer.
 
 1. ``rigid_modes``: each side's rigid motion has zero energy, vanishes on the
@@ -25,7 +25,7 @@ from scipy.sparse.linalg import eigsh
 from skxfem.enrich import split_fields
 from skxfem.linalg import iterative, saddle
 from skxfem.linalg.amg import rigid_modes
-from skxfem.linalg.smoothest import dependencies, smoothest
+from skxfem.linalg.dependent import dependencies, smoothest
 from skxfem.problem import assemble
 from skxfem.scene import Displacement
 from skxfem.scene.benchmarks import exact_plate, exact_strip, paper_plate

@@ -422,7 +422,7 @@ def test_15_every_key_of_the_schema_is_accepted_with_its_example(tmp_path):
 
 
 def test_16_the_schema_states_units_choices_and_functions():
-    from skxfem.linalg.linear import LINEAR
+    from skxfem.linalg.choice import LINEAR
     from skxfem.scene import CELLS, CONTACT_LAWS, LAWS, SPACES
     from skxfem.scene.expr import FUNCTIONS
     from skxfem.scene.file import schema

@@ -59,7 +59,7 @@ from ..contact.history import solve as solve_contact
 from ..contact.laws import CONTACT_LAWS, STATUS_NAMES
 from ..contact.newton import ContactConvergenceError
 from ..cut import SnapWarning
-from ..linalg.linear import LINEAR_TOL, check_linear_tol
+from ..linalg.choice import LINEAR_TOL, check_linear_tol
 from ..linalg.threads import limited
 from ..scene.file import MAX_MAGNITUDE, load_options, load_scene, schema
 from ..solver import LINEAR, solve
@@ -145,7 +145,7 @@ def parser() -> argparse.ArgumentParser:
                      help="the linear solve of a tie or of each contact Newton step: direct "
                           "(SuperLU), iterative (AMG-preconditioned projected CG, needs "
                           "pyamg; coulomb only when asked) or auto (iterative from "
-                          "skxfem.linalg.linear.AUTO_ITERATIVE unknowns); default: the scene "
+                          "skxfem.linalg.choice.AUTO_ITERATIVE unknowns); default: the scene "
                           "file's [solver] linear, else auto")
     run.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
                      help="show the traceback of an error, and the warnings")

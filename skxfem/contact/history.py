@@ -79,10 +79,10 @@ import scipy.sparse as sp
 
 from ..levelset import point_normals
 from ..linalg.amg import check_tie_held, rigid_modes
-from ..linalg.linear import LINEAR_TOL, check_linear_tol, choose_linear
+from ..linalg.choice import LINEAR_TOL, check_linear_tol, choose_linear
+from ..linalg.dependent import dependencies
 from ..linalg.rigid import check_held
 from ..linalg.saddle import SingularSystemError
-from ..linalg.smoothest import dependencies
 from ..linalg.threads import limited
 from ..problem import Problem, assemble
 from ..result import Result, on_edges, result
@@ -264,9 +264,9 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
         (:func:`skxfem.contact.newton.relative_residuals`); iteration limit of
         one (sub)step.
     linear
-        The linear solve of each Newton step (:data:`skxfem.linalg.linear.LINEAR`):
+        The linear solve of each Newton step (:data:`skxfem.linalg.choice.LINEAR`):
         ``"direct"``, ``"iterative"`` (pyamg) or ``"auto"``:
-        :func:`skxfem.linalg.linear.choose_linear`.
+        :func:`skxfem.linalg.choice.choose_linear`.
     max_cuts
         How many times a failing step may be halved (module notes); 0: never.
     linear_tol

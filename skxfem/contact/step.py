@@ -26,7 +26,7 @@ dof it eliminates Δr_τ = (I - DP)⁻¹(-R_τ - ρ_τ/w DP B_τ ΔU + ...), a
 symmetric interface stiffness ρ_τ/w B_τᵀ(I - DP)⁻¹DP B_τ.  FGMRES on the whole
 step, J₀⁻¹ as its preconditioner, adds the coupling back (one AMG set-up per
 step, shared by every preconditioner call).  ``auto`` keeps Coulomb direct
-(:func:`skxfem.linalg.linear.choose_linear`).
+(:func:`skxfem.linalg.choice.choose_linear`).
 
 >>> import numpy as np, scipy.sparse as sp
 >>> x, rows, lu = direct(sp.csr_matrix([[4.0, 1.0], [1.0, 0.0]]), np.array([-1.0, 0.0]), 1)

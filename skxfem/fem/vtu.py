@@ -1,7 +1,7 @@
 """VTK cells for the VTU files: positively oriented, one piece of mesh per side of Γ
 (per region, with several interfaces).
 
-Shared by the writers of :mod:`skxfem.app.io` and :mod:`skxfem.app.io_contact`.
+Shared by the writers of :mod:`skxfem.app.io`.
 VTU vectors are ``(n, 3)``: 2D vectors get a zero z component.
 
 >>> pad3(np.array([[1.0, 2.0]])).tolist()

@@ -56,7 +56,7 @@ that neither the supports nor the tie hold, where CG would return an
 arbitrary U — apart: :func:`solve` refuses it (:func:`skxfem.linalg.amg.check_held`).
 
 Dependent multipliers (the naive spaces) leave ker B and U unique; the
-multipliers, not unique then, are chosen by :func:`skxfem.linalg.smoothest.smoothest`
+multipliers, not unique then, are chosen by :func:`skxfem.linalg.dependent.smoothest`
 (the smoothest, or the least-norm ones, that balance U): sparse, on the
 interface only, nothing that grows like dofs².
 
@@ -75,8 +75,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from .amg import amg, augmented, check_held, pyamg
+from .dependent import dependencies, smoothest
 from .pcg import interface_solve, projected_cg
-from .smoothest import dependencies, smoothest
 
 __all__ = ["IterativeInfo", "ConvergenceError", "Setup", "solve"]
 
@@ -182,7 +182,7 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
     dependent_tol
         Singular values of B (free columns) below this times the largest
         count as dependencies, their multipliers chosen smoothest
-        (:func:`skxfem.linalg.smoothest.dependencies`).  Below the dense path's
+        (:func:`skxfem.linalg.dependent.dependencies`).  Below the dense path's
         1e-6: the vital prism plate has genuine singular values of 8.7e-7 of
         the largest (n = 24), exact dependencies come out below 3e-10.
     rigid_tol

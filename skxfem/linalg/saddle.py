@@ -49,7 +49,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .smoothest import along
+from .dependent import along
 
 __all__ = ["SaddleInfo", "SingularSystemError", "NearlyDependentError", "independent_rows",
            "smoothest_multipliers", "floating", "factorise", "reduce", "refined_solve", "recover",

@@ -95,7 +95,7 @@ from .. import levelset as ls
 from ..fem import meshes
 from ..fem.files import regular_file
 from ..fem.material import Material
-from ..linalg.linear import LINEAR, check_linear_tol
+from ..linalg.choice import LINEAR, check_linear_tol
 from . import model as sc
 from . import tomlcheck
 from .boundary import select_facets, select_nodes

@@ -32,7 +32,7 @@ class LawKind:
     (eq. 8).  ``coupling``: the jump a tie's multipliers act on, ``"bonded"``
     (the vector [[u]]) or ``"bilateral"`` (its normal part); the contact laws'
     normal multipliers are those of the bilateral tie.  ``auto_iterative``:
-    ``linear="auto"`` may solve it iteratively (:mod:`skxfem.linalg.linear`).
+    ``linear="auto"`` may solve it iteratively (:mod:`skxfem.linalg.choice`).
     """
 
     name: str

@@ -25,7 +25,7 @@ enriched nodes and its multipliers (with its own law) added to the others'.
 
 ψ is evaluated at the nodes in slabs of about 10⁶ points, so the guard itself
 stays small.  The memory depends on the linear solver that will run
-(:func:`skxfem.linalg.linear.choose_linear`; Coulomb contact: the direct Newton solve).
+(:func:`skxfem.linalg.choice.choose_linear`; Coulomb contact: the direct Newton solve).
 *Direct*: the cells (mesh, basis values, the assembly of K), the sparse LU
 of the saddle matrix (fill measured, :data:`LU_FILL`) and the dense interface
 blocks of :mod:`skxfem.linalg.saddle` (``3 m ncols + 2 m² + 2 ncols²`` doubles).
@@ -61,7 +61,7 @@ import numpy as np
 from ..contact.laws import CONTACT_LAWS
 from ..fem.meshes import CELLS, cell_name
 from ..fem.quadrature import cell_rule
-from ..linalg.linear import choose_linear
+from ..linalg.choice import choose_linear
 from ..scene.laws import LAWS
 from ..scene.model import Box, Scene, check_scene, resolve_mesh
 from .counts import NVERTS, box_counts, box_size, mesh_counts

@@ -13,9 +13,11 @@ The accuracy of most rows is a *patch test*: uniaxial compression σ = -P e_d �
 type, whatever Γ is, so the relative energy error of the solution
 (:func:`skxfem.studies.convergence.energy_error` against the uniform strain C⁻¹σ)
 must be round-off: any larger error is a wrong answer.  The scenes are built
-by :func:`patch_scene`; the rows by the ``*_rows`` functions of this module
-and of :mod:`skxfem.studies.extremes_scales` (E, ν, ρ) and
-:mod:`skxfem.studies.extremes_shapes` (one cell, memory, slanted and curved Γ).
+by :func:`patch_scene`; the rows by the ``*_rows`` functions, one section of
+this module per part of the table: Γ near nodes (:func:`position_rows`), the
+numbers a scene carries (E, ν, ρ), the geometry (one cell, memory, slanted
+and curved Γ, supports, small pieces), what is refused and the limits
+accepted; :func:`table` gathers them all and :func:`format_rows` prints them.
 
 >>> row = attempt("demo", "a refused case", "energy error", 1e-8,
 ...               lambda: (_ for _ in ()).throw(ValueError("no: fix the input")))
@@ -24,31 +26,42 @@ and of :mod:`skxfem.studies.extremes_scales` (E, ν, ρ) and
 """
 from __future__ import annotations
 
+import itertools
 import time
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
 
+from ..contact.history import solve as contact_solve
 from ..contact.newton import ContactConvergenceError
 from ..cut import SnapWarning
 from ..cut import cut as cut_mesh
 from ..enrich import far_side_fraction, stiffness, xfem_space
 from ..fem.cells import CELLS
-from ..fem.material import Material
-from ..levelset import plane
+from ..fem.exact import ExactPlate
+from ..fem.material import NU_MAX, Material
+from ..levelset import circle, plane, sphere
 from ..linalg.saddle import independent_rows
 from ..multipliers import coupling, interface_rule
 from ..problem import constrained_dofs
+from ..scene.benchmarks import P_MAX, exact_scene, paper_plate, strip
 from ..scene.model import Box, Displacement, Scene, SurfaceLoad, resolve_mesh, rollers
+from ..scene.parts import SIZE_RANGE
 from ..solver import solve
 from ..stabilised import multiplier_space
-from .convergence import energy_error
+from .budget import DEFAULT_MAX_BYTES, check, estimate, format_bytes
+from .convergence import energy_error, pressure_error
+from .progress import Progress
 
 __all__ = ["Row", "Conditioning", "attempt", "patch_scene", "uniform_strain", "patch_error",
-           "OFFSETS", "position_rows", "conditioning", "CELL_TYPES"]
+           "OFFSETS", "position_rows", "conditioning", "CELL_TYPES", "MODULI", "POISSON",
+           "RHO_FACTORS", "modulus_rows", "poisson_rows", "exact_strip_for", "friction_scene",
+           "rho_rows", "one_cell_rows", "memory_scene", "largest", "memory_rows", "shape_rows",
+           "UNSTABLE", "space_rows", "CROSSINGS", "support_rows", "PIECES", "piece_rows",
+           "inclusion", "refused_rows", "limit_rows", "table", "format_rows", "markdown_rows"]
 
 CELL_TYPES = CELLS
 OFFSETS = (1e-14, 1e-10, 1e-6, 1e-3, 0.5)
@@ -285,3 +298,508 @@ def conditioning(cells=CELL_TYPES, offsets=(1e-11, 1e-9, 1e-7, 1e-5, 1e-3, 1e-1,
             without = _condition(scene, 0.0)[0]
             out.append(Conditioning(cell, offset, frac, with_rule, without, dropped))
     return out
+
+
+# -----------------------------------------------------------------------------
+# Extremes of the numbers a scene carries: E, ν and the contact laws' ρ_n, ρ_τ.
+# -----------------------------------------------------------------------------
+# Rows:
+#
+# * :func:`modulus_rows`: E from 10⁻⁶ to 10⁹ on the strip, with the load scaled
+#   alike (the displacement must not change) and unscaled (it must scale as
+#   1/E); the measure is the relative deviation from the E = 1 solution, held
+#   to 1e-8;
+# * :func:`poisson_rows`: ν up to 0.4999 against the exact solution of
+#   :mod:`skxfem.fem.exact`; the energy error is held to twice its value at ν = 0.3,
+#   so the first "inaccurate" row is where volumetric locking starts;
+# * :func:`rho_rows`: ρ_n and ρ_τ from 10⁻⁶ to 10⁹ × E/h on a frictional
+#   contact case (:func:`skxfem.contact.solve`); the measure is the deviation
+#   of the contact tractions from those of the default ρ, held to 1e-8, and the
+#   note gives the Newton iterations.
+
+
+MODULI = (1e-6, 1e-3, 1.0, 1e3, 1e6, 1e9)
+POISSON = (0.3, 0.45, 0.49, 0.499, 0.4999)
+RHO_FACTORS = (1e-6, 1e-3, 1.0, 1e3, 1e6, 1e9)
+SCALE_TOL = 1e-8
+
+
+def _loaded_strip(n: int, E: float, load: float):
+    """:func:`skxfem.scenes.strip` (quadrilaterals) with modulus E and peak pressure ``load``."""
+    base = strip(n, "quad")
+    return replace(base, material=replace(base.material, E=E), loads=(SurfaceLoad(
+        "ymax", pressure=lambda x: load * 4 * x[0] * (1 - x[0])),))
+
+
+def _deviation(result, ref, u_factor: float, p_factor: float) -> float:
+    """Largest relative deviation of u/u_factor and p/p_factor from ``ref``."""
+    du = np.abs(result.U / u_factor - ref.U).max() / np.abs(ref.U).max()
+    dp = np.abs(result.pressure / p_factor - ref.pressure).max() / np.abs(ref.pressure).max()
+    return float(max(du, dp))
+
+
+def modulus_rows(moduli=MODULI, n: int = 8) -> list[Row]:
+    """E over ``moduli``, loads scaled alike (u unchanged, p ∝ E) and unscaled (u ∝ 1/E).
+
+    >>> rows = modulus_rows([1e6], n=2)
+    >>> [r.outcome for r in rows]
+    ['solved', 'solved']
+    """
+    ref = solve(_loaded_strip(n, 1.0, P_MAX))
+    rows = []
+    for E in moduli:
+        rows.append(attempt("E", f"E = {E:g}, load scaled alike", "deviation from E = 1",
+                            SCALE_TOL, lambda: _deviation(
+                                solve(_loaded_strip(n, E, E * P_MAX)), ref, 1.0, E)))
+        rows.append(attempt("E", f"E = {E:g}, load unscaled", "deviation from E = 1",
+                            SCALE_TOL, lambda: _deviation(
+                                solve(_loaded_strip(n, E, P_MAX)), ref, 1.0 / E, 1.0)))
+    return rows
+
+
+def exact_strip_for(material: Material, n: int = 8, cell: str = "quad"):
+    """:func:`skxfem.scenes.exact_strip` for another ``material``: its loads and
+    bottom displacement are those of :class:`skxfem.fem.exact.ExactPlate` for it."""
+    sol = ExactPlate(material, 2, P_MAX)
+    base = strip(n, cell)
+    bottom = Displacement("ymin", {c: (lambda x, i=i: sol.displacement(x)[i])
+                                   for i, c in enumerate("xy")})
+    loads = (SurfaceLoad("ymax", pressure=sol.pressure),
+             SurfaceLoad("xmin", pressure=sol.side_pressure),
+             SurfaceLoad("xmax", pressure=sol.side_pressure))
+    return replace(base, material=material, displacements=(bottom,), loads=loads,
+                   name=f"exact_strip_{cell}_nu{material.nu:g}")
+
+
+def _energy(material: Material, n: int, cell: str) -> float:
+    sol = ExactPlate(material, 2, P_MAX)
+    return energy_error(solve(exact_strip_for(material, n, cell)), sol.strain)
+
+
+def poisson_rows(ratios=POISSON, n: int = 8, cells=("tri", "quad")) -> list[Row]:
+    """ν over ``ratios`` (the first must be the reference, 0.3): the energy error
+    against the exact solution, held to twice its value at the first ν."""
+    rows = []
+    for cell in cells:
+        first = _energy(Material(1.0, ratios[0]), n, cell)
+        for nu in ratios:
+            rows.append(attempt(
+                "nu", f"{cell}, ν = {nu:g}", "energy error (exact)", 2 * first,
+                lambda: (lambda e: (e, f"{e / first:.2f} × the error at ν = {ratios[0]:g}"))(
+                    _energy(Material(1.0, nu), n, cell))))
+    return rows
+
+
+def friction_scene(n: int = 8, shear: float = 0.1):
+    """The exact strip with Coulomb friction μ = 0.3 and a shear ``shear`` on the top:
+    stick in the middle of Γ, slip near the ends where the pressure vanishes."""
+    base = exact_strip_for(Material(1.0, 0.3), n)
+    top = SurfaceLoad("ymax", traction=(shear, 0.0))
+    return replace(base, law="coulomb", friction=0.3, loads=base.loads + (top,),
+                   name="friction_strip")
+
+
+def _tractions(step) -> np.ndarray:
+    return np.column_stack([step.pressure, step.traction])
+
+
+def rho_rows(factors=RHO_FACTORS, n: int = 8) -> list[Row]:
+    """ρ_n and ρ_τ over ``factors`` × their default E/h, the other at its
+    default, on :func:`friction_scene`: deviation of the interface tractions
+    from those of the default ρ, and the Newton iterations."""
+    scene = friction_scene(n)
+    ref = contact_solve(scene)
+    h, t_ref = ref.ops.h, _tractions(ref.steps[-1])
+    defaults = {"rho_n": ref.law.rho_n, "rho_t": ref.law.rho_t}
+    rows = []
+    for key, name in (("rho_n", "ρ_n"), ("rho_t", "ρ_τ")):
+        unit = "E/h"
+        for k in factors:
+            def run(key=key, k=k):
+                r = contact_solve(replace(scene, **{key: k * defaults[key]}))
+                step = r.steps[-1]
+                dev = np.abs(_tractions(step) - t_ref).max() / np.abs(t_ref).max()
+                slip = int(np.sum(step.status == 2))
+                return dev, f"{step.newton.iterations} Newton iterations, {slip} slipping"
+            rows.append(attempt("rho", f"{name} = {k:g} {unit} (h = {h:.3g})",
+                                "deviation from default ρ", SCALE_TOL, run))
+    return rows
+
+
+# -----------------------------------------------------------------------------
+# Extremes of the geometry: one cell, the largest mesh, slanted and curved Γ.
+# -----------------------------------------------------------------------------
+# Rows:
+#
+# * :func:`one_cell_rows`: a single cell of each type, cut through its middle,
+#   under the patch test (:func:`patch_error`);
+# * :func:`memory_rows`: the largest paper plate (hex, prism, tet) or strip
+#   (tri, quad) whose estimated memory (:func:`skxfem.studies.budget.estimate`) fits
+#   the default 4 GB limit with each linear solver, direct and iterative — an
+#   estimate, not a run — and the refusal of the next size by
+#   :func:`skxfem.studies.budget.check`;
+# * :func:`shape_rows`: Γ slanted at 45°, curved (a circle, a sphere) and
+#   touching or crossing the boundary, under the patch test;
+# * :func:`space_rows`: the naive and winner spaces near a node on the exact
+#   benchmark, where their multipliers become nearly dependent;
+# * :func:`support_rows`: Γ crossing the supported bottom face at three angles
+#   and cutting off its supported corner, under the patch test;
+# * :func:`piece_rows`: Γ cutting a small corner off the loaded end, a piece of
+#   the body that only the tie holds, under the patch test.
+
+
+def _dim(cell: str) -> int:
+    return 2 if cell in ("tri", "quad") else 3
+
+
+def one_cell_rows(cells=CELL_TYPES) -> list[Row]:
+    """One cell of each type across Γ (a plane at 0.55 of its height).
+
+    >>> [r.outcome for r in one_cell_rows(["quad"])]
+    ['solved']
+    """
+    rows = []
+    for cell in cells:
+        d = _dim(cell)
+        psi = plane((0.5,) * (d - 1) + (0.55,), (0.0,) * (d - 1) + (1.0,))
+        rows.append(attempt("size", f"{cell}, one cell across Γ", "energy error (patch)",
+                            PATCH_TOL, lambda: patch_error(patch_scene(Box(1, cell), psi))))
+    return rows
+
+
+def memory_scene(cell: str, n: int):
+    """The strip (tri, quad) or the paper plate (hex, prism; tet: the plate's box of
+    tetrahedra) with ``n`` cells per direction."""
+    if cell in ("tri", "quad"):
+        return strip(n, cell)
+    if cell == "tet":
+        base = paper_plate(n, "hex")
+        return replace(base, mesh=replace(base.mesh, cell="tet"), name=f"paper_plate_tet_{n}")
+    return paper_plate(n, cell)
+
+
+def largest(cell: str, max_bytes: int = DEFAULT_MAX_BYTES, linear: str = "direct") -> int:
+    """The largest n whose :func:`memory_scene` is estimated to fit ``max_bytes``
+    with the ``linear`` solver.
+
+    >>> largest("quad", 2**20) < largest("quad", 2**24)
+    True
+    >>> largest("hex", 2**30) < largest("hex", 2**30, linear="iterative")
+    True
+    """
+    def fits(n):
+        return estimate(memory_scene(cell, n), linear).bytes <= max_bytes
+
+    lo, hi = 1, 2
+    while fits(hi):
+        lo, hi = hi, 2 * hi
+    while hi - lo > 1:  # lo fits, hi does not
+        mid = (lo + hi) // 2
+        lo, hi = (mid, hi) if fits(mid) else (lo, mid)
+    return lo
+
+
+def memory_rows(cells=CELL_TYPES, max_bytes: int = DEFAULT_MAX_BYTES,
+                solvers=("direct", "iterative")) -> list[Row]:
+    """For each cell type and linear solver, the largest mesh under ``max_bytes``
+    and the next one refused."""
+    rows = []
+    for cell, linear in itertools.product(cells, solvers):
+        n = largest(cell, max_bytes, linear)
+        e = estimate(memory_scene(cell, n), linear)
+        rows.append(attempt(
+            "size", f"{cell}, largest n under {format_bytes(max_bytes)}: n = {n} ({linear})",
+            "estimated bytes", max_bytes,
+            lambda: (e.bytes, f"{format_bytes(e.bytes)}: {e}")))
+        rows.append(attempt(
+            "size", f"{cell}, n = {n + 1} ({linear})", "estimated bytes", max_bytes,
+            lambda: check(memory_scene(cell, n + 1), max_bytes, linear=linear).bytes))
+    return rows
+
+
+def _shapes(dim: int) -> dict:
+    """Named level sets of the unit square (cube): slanted, curved, at the boundary."""
+    if dim == 2:
+        return {"slanted 45°": plane((0.5, 0.53), (1.0, 1.0)),
+                "circle inside": circle((0.5, 0.5), 0.3),
+                "circle crossing the top": circle((0.5, 1.0), 0.37),
+                "circle touching the bottom": circle((0.55, 0.3), 0.3)}
+    return {"slanted 45°": plane((0.5, 0.5, 0.53), (1.0, 0.0, 1.0)),
+            "sphere inside": sphere((0.5, 0.5, 0.5), 0.3),
+            "sphere crossing the top": sphere((0.5, 0.5, 1.0), 0.37),
+            "sphere touching the bottom": sphere((0.55, 0.45, 0.3), 0.3)}
+
+
+def shape_rows(cells=CELL_TYPES, n2: int = 8, n3: int = 4, space: str = "vital") -> list[Row]:
+    """The patch test with the interfaces of :func:`_shapes` on ``n2``/``n3`` cells a side.
+
+    A plane Γ is held to round-off (:data:`PATCH_TOL`).  A
+    curved Γ is cut into a polygon Γ_h, whose facet normals jump from cell to
+    cell: the uniform stress is then not in the discrete problem (its
+    traction σn_h is not a P1 multiplier), the patch test is not exact, and
+    the error is the O(h) of the interface approximation: held to h.
+    """
+    rows = []
+    for cell in cells:
+        d = _dim(cell)
+        n = n2 if d == 2 else n3
+        for name, psi in _shapes(d).items():
+            tol = PATCH_TOL if name.startswith("slanted") else 1.0 / n
+            rows.append(attempt("shape", f"{cell}, {name} (h = 1/{n})", "energy error (patch)",
+                                tol, lambda: patch_error(patch_scene(Box(n, cell), psi,
+                                                                     space=space))))
+    return rows
+
+
+UNSTABLE = (("tri", "naive", 1e-3), ("tri", "naive", 0.5), ("quad", "naive", 1e-3),
+            ("quad", "naive", 0.5), ("tet", "winner", 1e-6), ("tet", "vital", 1e-6))
+"""(cell, space, offset) of :func:`space_rows`: where a space is nearly dependent, and
+the same scenes with a space that is not."""
+
+
+def space_rows(cases=UNSTABLE, n: int = 4) -> list[Row]:
+    """The exact benchmark (:func:`skxfem.scenes.exact_scene`) of each (cell, space)
+    with Γ at ``offset``·h above a node row: the L² pressure error against
+    :mod:`skxfem.fem.exact` (held to 1, i.e. below the pressure itself), or the
+    refusal of nearly dependent multipliers."""
+    rows = []
+    for cell, space_name, offset in cases:
+        base = exact_scene(n, cell, space_name)
+        d = _dim(cell)
+        h = 1.0 / base.mesh.n[-1]
+        psi = plane((0.0,) * (d - 1) + (2 * h + offset * h,), (0.0,) * (d - 1) + (1.0,))
+
+        def run(scene=replace(base, levelset=psi)):
+            sol = ExactPlate(scene.material, scene.dim)
+            return pressure_error(solve(scene), sol.pressure).l2
+
+        rows.append(attempt("position", f"{cell} {space_name}, exact, Γ at {offset:g} h "
+                            f"from a node row", "pressure L2 error (exact)", 1.0, run))
+    return rows
+
+
+CROSSINGS = ("25°", "45°", "70°", "corner")
+"""The planes of :func:`support_rows`: crossing the bottom at 25°, 45°, 70° to it,
+and cutting off its corner at the origin (Σ xᵢ = 0.05)."""
+
+
+def _crossing(dim: int, name: str):
+    """The plane Γ of :data:`CROSSINGS` ``name`` in ``dim`` dimensions."""
+    if name == "corner":
+        return plane((0.05,) + (0.0,) * (dim - 1), (1.0,) * dim)
+    x, slope = {"25°": (0.3, 0.47), "45°": (0.37, 1.0), "70°": (0.6, 2.75)}[name]
+    tilt = (-slope, 0.31 * slope) if dim == 3 else (-slope,)
+    return plane((x,) + (0.4,) * (dim - 2) + (0.0,), tilt + (1.0,))
+
+
+def support_rows(cells=CELL_TYPES, n: int = 4, space: str = "vital") -> list[Row]:
+    """The patch test with Γ crossing the bottom face, on rollers, at :data:`CROSSINGS`.
+
+    A support holds the jump of a cut edge in its face at both ends, but only
+    at the edge's point: the edge takes its neighbour's multiplier
+    (:func:`skxfem.stabilised.extend_to_held`).  With no multiplier there the
+    uniform traction left the space (energy error 1e-3 to 4e-2, issue 18).
+    """
+    rows = []
+    for cell in cells:
+        for name in CROSSINGS:
+            psi = _crossing(_dim(cell), name)
+            rows.append(attempt("support", f"{cell}, Γ crossing the supported bottom, {name}",
+                                "energy error (patch)", PATCH_TOL,
+                                lambda: patch_error(patch_scene(Box(n, cell), psi,
+                                                                space=space))))
+    return rows
+
+
+PIECES = (0.05, 1e-3, 1e-6)
+"""The sizes (Σ xᵢ = dim - size) of the corner pieces of :func:`piece_rows`."""
+
+
+def piece_rows(cells=CELL_TYPES, sizes=PIECES, n: int = 4, space: str = "vital") -> list[Row]:
+    """The patch test with Γ cutting a corner of ``size`` off the loaded top,
+    inside one cell: a piece of the body that only the tie holds.  Its piece of
+    Γ gets a multiplier per edge (:func:`skxfem.linalg.rigid.short_pieces`); one star
+    of vital edges left it free to turn (refused as singular, issue 18)."""
+    rows = []
+    for cell in cells:
+        d = _dim(cell)
+        for size in sizes:
+            psi = plane((d - size,) + (0.0,) * (d - 1), (1.0,) * d)
+            rows.append(attempt("piece", f"{cell}, a corner of {size:g} cut off the loaded end",
+                                "energy error (patch)", PATCH_TOL,
+                                lambda: patch_error(patch_scene(Box(n, cell), psi,
+                                                                space=space))))
+    return rows
+
+
+# -----------------------------------------------------------------------------
+# What the library refuses, and why: the rows of the extremes table that must be refused.
+# -----------------------------------------------------------------------------
+# Each row tries one input the library refuses (:func:`refused_rows`) and
+# records its one-line message; next to the limits it also solves the nearest
+# accepted input under the patch test (:func:`limit_rows`), so the table shows
+# both sides of every stated range:
+#
+# * a nearly incompressible material, ν within 1e-6 of 0.5
+#   (:data:`skxfem.fem.material.NU_MAX`), and E outside :data:`skxfem.fem.material.E_RANGE`;
+# * box lengths outside :data:`skxfem.scene.parts.SIZE_RANGE`;
+# * a plane with a zero normal (one of any non-zero size is only a direction);
+# * a side of Γ that the supports and the law leave free to move
+#   (:func:`skxfem.linalg.rigid.check_held`): a disc tied by its normal jump alone (a
+#   bilateral tie, or frictionless contact) turns about its centre; the upper
+#   part of the strip slides along a bilateral Γ; a body without supports floats.
+
+
+def inclusion(law: str = "bonded") -> Scene:
+    """The disc of radius 0.3 in the unit square of ``examples/inclusion.toml``:
+    pinned at one corner, the bottom on rollers, squeezed from the top."""
+    pin = Displacement(lambda x: (x[0] < 1e-9) & (x[1] < 1e-9), {"x": 0.0, "y": 0.0})
+    return Scene(Box(8, "tri"), circle((0.5, 0.5), 0.3), Material(10.0, 0.25, "stress"),
+                 (pin, Displacement("ymin", {"y": 0.0})),
+                 (SurfaceLoad("ymax", traction=(0.0, lambda x: -0.5 - 0.5 * x[0])),),
+                 law, name="inclusion")
+
+
+def _made(build) -> float:
+    """0 if ``build()`` is accepted (then the row is not refused, and says so)."""
+    build()
+    return 0.0
+
+
+def _max_jump(scene) -> float:
+    result = solve(scene)
+    return result.max_jump if hasattr(result, "max_jump") else 0.0
+
+
+def refused_rows() -> list[Row]:
+    """The inputs the library refuses, each with its message (measure: none; a
+    row that is not refused reports 0, or the max jump of what it solved).
+
+    >>> [r.outcome for r in refused_rows()][:2]
+    ['refused', 'refused']
+    """
+    tie_top_free = replace(strip(4, "tri"), law="bilateral")
+    floating = replace(strip(4, "quad"), displacements=())
+    cases = [
+        ("material", "ν = 0.49999999999", lambda: _made(lambda: Material(1.0, 0.49999999999))),
+        ("material", "E = 1e300", lambda: _made(lambda: Material(1e300))),
+        ("geometry", f"Box size {SIZE_RANGE[0] * 1e-250:g}",
+         lambda: _made(lambda: Box(4, "quad", size=(SIZE_RANGE[0] * 1e-250,) * 2))),
+        ("geometry", f"Box size {SIZE_RANGE[1] * 1e250:g}",
+         lambda: _made(lambda: Box(4, "quad", size=(SIZE_RANGE[1] * 1e250,) * 2))),
+        ("geometry", "plane normal (0, 0)", lambda: _made(lambda: plane((0, 0), (0, 0)))),
+        ("rigid", "inclusion, bilateral tie", lambda: _max_jump(inclusion("bilateral"))),
+        ("rigid", "inclusion, frictionless contact",
+         lambda: _max_jump(inclusion("frictionless"))),
+        ("rigid", "strip, bilateral tie, the top free in x", lambda: _max_jump(tie_top_free)),
+        ("rigid", "strip without supports", lambda: _max_jump(floating)),
+    ]
+    return [attempt("refused", f"{what}: {case}", "-", 0.0, run) for what, case, run in cases]
+
+
+def limit_rows(cells=CELL_TYPES, n: int = 4) -> list[Row]:
+    """The nearest accepted inputs, under the patch test on every cell type:
+    ν = :data:`~skxfem.fem.material.NU_MAX`, the box lengths at both ends of
+    :data:`~skxfem.scene.parts.SIZE_RANGE`, a plane normal of size 1e200;
+    and the bonded inclusion (its max jump, held to 1e-2 of its |u|)."""
+    rows = []
+    for cell in cells:
+        d = 2 if cell in ("tri", "quad") else 3
+        flat = (0.0,) * (d - 1) + (1.0,)
+        middle = (0.5,) * (d - 1) + (0.53,)
+        rows.append(attempt("limits", f"{cell}, ν = {NU_MAX}", "energy error (patch)",
+                            PATCH_TOL, lambda: patch_error(patch_scene(
+                                Box(n, cell), plane(middle, flat),
+                                material=Material(1.0, NU_MAX)))))
+        huge = plane(middle, tuple(1e200 * np.r_[(0.3,) + (0.0,) * (d - 2) + (1.0,)]))
+        rows.append(attempt("limits", f"{cell}, plane normal of size 1e200",
+                            "energy error (patch)", PATCH_TOL,
+                            lambda: patch_error(patch_scene(Box(n, cell), huge))))
+        for size in SIZE_RANGE:
+            rows.append(attempt("limits", f"{cell}, Box size {size:g}", "energy error (patch)",
+                                PATCH_TOL, lambda: patch_error(_sized(cell, n, size))))
+
+    def bonded():
+        result = solve(inclusion("bonded"))
+        return result.max_jump / np.abs(np.r_[result.u_minus, result.u_plus]).max()
+
+    rows.append(attempt("limits", "inclusion, bonded tie", "max jump / max |u|", 1e-2, bonded))
+    return rows
+
+
+def _sized(cell: str, n: int, size: float) -> Scene:
+    """:func:`patch_scene` on the box of side ``size``."""
+    d = 2 if cell in ("tri", "quad") else 3
+    psi = plane((0.5 * size,) * (d - 1) + (0.53 * size,), (0.0,) * (d - 1) + (1.0,))
+    base = patch_scene(Box(n, cell, size=(size,) * d), psi)
+
+    def at(*c):
+        return lambda x: np.all([np.abs(x[i] - v) <= 1e-9 * size for i, v in enumerate(c)],
+                                axis=0)
+
+    fix = (Displacement(at(0.0, 0.0), {"x": 0.0}),) if d == 2 else (
+        Displacement(at(0.0, 0.0, 0.0), {"x": 0.0, "y": 0.0}),
+        Displacement(at(size, 0.0, 0.0), {"y": 0.0}))
+    return replace(base, displacements=base.displacements[:1] + fix)
+
+
+# -----------------------------------------------------------------------------
+# The whole extremes table of issue 11, and its text form.
+# -----------------------------------------------------------------------------
+# :func:`table` gathers the rows of every section above: Γ near nodes, E, ν and ρ,
+# the geometry (one cell, memory, slanted and curved Γ, Γ across a support, small
+# pieces), and what is refused with the limits accepted;
+# :func:`format_rows` prints them, one line each, with the refusal messages cut
+# to a width (the rows keep them whole).  ``progress`` (a
+# :class:`skxfem.studies.progress.Progress`; by default one that is on in a terminal
+# only) reports each part.
+
+
+def table(cells=CELL_TYPES, progress: Progress | None = None) -> list[Row]:
+    """Every row of the extremes table (about 25 s here)."""
+    parts = [("Γ near nodes", lambda: position_rows(cells) + space_rows()),
+             ("E", modulus_rows), ("ν", poisson_rows), ("ρ", rho_rows),
+             ("one cell, memory", lambda: one_cell_rows(cells) + memory_rows(cells)),
+             ("shapes", lambda: shape_rows(cells)),
+             ("supports, pieces", lambda: support_rows(cells) + piece_rows(cells)),
+             ("refused, limits", lambda: refused_rows() + limit_rows(cells))]
+    progress = progress or Progress(len(parts), "extremes")
+    rows = []
+    for name, make in parts:
+        rows += make()
+        progress.step(name)
+    return rows
+
+
+def format_rows(rows, width: int = 90) -> str:
+    """The rows as a fixed-width text table; notes and messages cut to ``width``.
+
+    >>> print(format_rows([Row("E", "E = 1", "solved", "deviation", 0.0, 1e-8, "", 0.01)]))
+    group    case                                               outcome        value      tol  note
+    E        E = 1                                              solved      0.00e+00    1e-08
+    """
+    lines = [f"{'group':8} {'case':50} {'outcome':10} {'value':>9} {'tol':>8}  note"]
+    for r in rows:
+        value = "-" if r.value is None else f"{r.value:.2e}"
+        note = r.message if len(r.message) <= width else r.message[:width - 3] + "..."
+        lines.append(f"{r.group:8} {r.case:50} {r.outcome:10} {value:>9} {r.tolerance:>8.3g}"
+                     f"  {note}".rstrip())
+    return "\n".join(lines)
+
+
+def markdown_rows(rows) -> str:
+    """The rows as a Markdown table (for the book): every message in full.
+
+    >>> print(markdown_rows([Row("E", "E = 1", "solved", "energy error", 1e-15, 1e-8, "", 0.1)]))
+    | group | case | outcome | value | tolerance | message or note |
+    |---|---|---|---|---|---|
+    | E | E = 1 | solved | 1.00e-15 | 1e-08 |  |
+    """
+    lines = ["| group | case | outcome | value | tolerance | message or note |",
+             "|---|---|---|---|---|---|"]
+    for r in rows:
+        value = "-" if r.value is None else f"{r.value:.2e}"
+        note = r.message.replace("|", "\\|").replace("\n", " ")
+        lines.append(f"| {r.group} | {r.case} | {r.outcome} | {value} | {r.tolerance:.3g} "
+                     f"| {note} |")
+    return "\n".join(lines)

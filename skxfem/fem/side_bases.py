@@ -21,7 +21,7 @@ on the sub-simplices of :mod:`skxfem.cut`.  Two ways to cover the mesh:
   One side's sub-simplices instead of both: on the paper's plate at n = 32,
   436k quadrature points instead of 578k (hexahedra), 475k instead of 508k
   (prisms).  On hexahedra and prisms the cut cells of side s then take a
-  moment-fitted rule (:mod:`skxfem.fem.moments`) instead of their sub-simplices.
+  moment-fitted rule (:mod:`skxfem.fem.fitted`) instead of their sub-simplices.
 
 >>> from skfem import MeshTri1
 >>> from skxfem.cut import cut as cut_mesh
@@ -43,7 +43,7 @@ import numpy as np
 from skfem import Basis
 from skfem.assembly import CellBasis
 
-from .moments import fitted_rule
+from .fitted import fitted_rule
 from .quadrature import cell_rule, exact_orders, subcell_rule
 
 if TYPE_CHECKING:  # the type only: sides need no cut to be computed
@@ -112,7 +112,7 @@ def parts(mesh, cut: Cut, elem, quadrature=None, sub_order=None, fit: bool = Tru
     """The :class:`Parts` of ``mesh`` cut by ``cut`` (rules as :func:`side_bases`).
 
     ``fit``: the cut cells of side s take their moment-fitted rule where the
-    cell type has one (:func:`skxfem.fem.moments.fitted_rule`, exact for the
+    cell type has one (:func:`skxfem.fem.fitted.fitted_rule`, exact for the
     stiffness, the mass and the functions on affine cells; ``sub_order`` is
     then not used), else their sub-simplices."""
     cell_q = quadrature or cell_rule(mesh, exact_orders(mesh)[0])

@@ -1,4 +1,4 @@
-"""skxfem.fem.moments: the fitted rules integrate their polynomial space exactly.
+"""skxfem.fem.fitted: the fitted rules integrate their polynomial space exactly.
 
 1. On every cut cell of a slanted plane (hexahedra, prisms), the fitted rule of
    each side integrates every monomial of its space as the sub-simplex rule of
@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from skxfem.cut import cut
+from skxfem.fem.fitted import FITTED, _monomials, fitted_rule
 from skxfem.fem.meshes import box
-from skxfem.fem.moments import FITTED, _monomials, fitted_rule
 from skxfem.fem.quadrature import subcell_rule
 from skxfem.levelset import plane
 

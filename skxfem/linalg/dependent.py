@@ -1,4 +1,5 @@
-r"""The smoothest multipliers that balance a displacement, by a sparse method.
+r"""Dependent multipliers: the dependencies of B, and the smoothest multipliers that
+balance a displacement among them, by a sparse method.
 
 When the rows of B (on the free unknowns) are dependent, the multipliers
 that balance a displacement U, Bᵀμ = K U - F, form an affine space μ₀ +

@@ -1,4 +1,4 @@
-"""skxfem.fem.sides: the two ways of covering the sides of Γ give one X-FEM matrix.
+"""skxfem.fem.side_bases: the two ways of covering the sides of Γ give one X-FEM matrix.
 
 1. parts: A_H = s(2Aˢ - A) equals A⁺ - A⁻ of side_bases in every column of an
    enriched node, and A (every cell whole) equals A⁺ + A⁻, on all five cells
@@ -11,7 +11,7 @@ from skfem import BilinearForm
 
 from skxfem.cut import cut
 from skxfem.fem.meshes import box
-from skxfem.fem.sides import parts, side_bases
+from skxfem.fem.side_bases import parts, side_bases
 from skxfem.levelset import plane
 
 
