@@ -158,8 +158,8 @@ def snap(mesh, psi: np.ndarray, edges: np.ndarray | None = None):
     a, b = edges
     length = np.linalg.norm(mesh.p[:, a] - mesh.p[:, b], axis=0)
     slope = np.abs(psi[a] - psi[b]) / length
-    n = psi.size
-    g, h = np.zeros(n), np.full(n, np.inf)
+    n_nodes = psi.size
+    g, h = np.zeros(n_nodes), np.full(n_nodes, np.inf)
     for end in (a, b):
         np.maximum.at(g, end, slope)
         np.minimum.at(h, end, length)
@@ -328,9 +328,9 @@ def _interface(mesh, psi, local, cut_ids, cells, share_face):
             facet_cell.append(cells[idx])
             facet_ref.append(np.transpose(R[:, tri], (1, 2, 0)))
     if bad.any():
-        c = cells[np.flatnonzero(bad)[0]]
+        cell = cells[np.flatnonzero(bad)[0]]
         raise ValueError(
-            f"{bad.sum()} cell(s) are cut into more than one piece (e.g. cell {c}); "
+            f"{bad.sum()} cell(s) are cut into more than one piece (e.g. cell {cell}); "
             f"the interface is too curved for this mesh: refine the mesh")
     return (np.concatenate(facets, axis=1), np.concatenate(facet_cell),
             np.concatenate(facet_ref, axis=2))

@@ -191,8 +191,9 @@ def far_side_fraction(mesh, cut: Cut, scalar_parts: Parts | None = None) -> np.n
     side: 0.  ``scalar_parts``: :func:`skxfem.fem.side_bases.parts` of the scalar
     element at a rule exact for φⱼ (default: the stiffness' rule).
     """
-    p = scalar_parts or parts(mesh, cut, mesh.elem())
-    total, signed = p.signed(lambda b: _signed_mass.assemble(b, H=np.ones(b.dx.shape)))
+    side_parts = scalar_parts or parts(mesh, cut, mesh.elem())
+    total, signed = side_parts.signed(
+        lambda basis: _signed_mass.assemble(basis, H=np.ones(basis.dx.shape)))
     j = cut.enriched  # signed is exact there only
     frac = np.zeros(mesh.p.shape[1])
     frac[j] = 0.5 * (total[j] - np.sign(cut.psi[j]) * signed[j]) / total[j]
@@ -269,8 +270,8 @@ def enriched_matrix(V: XSpace, form, orders: tuple[int, int] | None = None) -> s
     A_H come from :func:`skxfem.fem.side_bases.parts`.  ``orders``: see :func:`signed_bases`.
     """
     cell_q = V.rule if orders is None else cell_rule(V.mesh, orders[0])
-    p = parts(V.mesh, V.cut, V.basis.elem, cell_q, None if orders is None else orders[1])
-    A, AH = p.signed(lambda b: form.assemble(b, H=np.ones(b.dx.shape)))
+    side_parts = parts(V.mesh, V.cut, V.basis.elem, cell_q, None if orders is None else orders[1])
+    A, AH = side_parts.signed(lambda basis: form.assemble(basis, H=np.ones(basis.dx.shape)))
     return enriched_blocks(V, A, AH)
 
 
@@ -278,18 +279,18 @@ def stiffness(V: XSpace | XSpaces, material: Material) -> sp.csr_matrix:
     """The X-FEM stiffness on the unknowns [a, b]: ∫ σ(u):ε(v), each part
     assembled from scalar forms (:func:`skxfem.fem.material.stiffness_matrix`).
     Several interfaces: on [a, b¹, b², …], A assembled once and A_H per interface."""
-    def form(b):
-        return stiffness_matrix(material, b)
+    def form(basis):
+        return stiffness_matrix(material, basis)
 
     if isinstance(V, XSpaces):
         A, AH = None, []
         for Vk in V.per_interface:
-            p = Vk.parts or parts(Vk.mesh, Vk.cut, Vk.basis.elem.elem, Vk.rule)
-            A, AHk = p.signed(form, A)
+            side_parts = Vk.parts or parts(Vk.mesh, Vk.cut, Vk.basis.elem.elem, Vk.rule)
+            A, AHk = side_parts.signed(form, A)
             AH.append(AHk)
         return enriched_blocks(V, A, AH)
-    p = V.parts or parts(V.mesh, V.cut, V.basis.elem.elem, V.rule)
-    A, AH = p.signed(form)
+    side_parts = V.parts or parts(V.mesh, V.cut, V.basis.elem.elem, V.rule)
+    A, AH = side_parts.signed(form)
     return enriched_blocks(V, A, AH)
 
 

@@ -116,12 +116,12 @@ def direction_fixed(fixed: np.ndarray, cut: Cut, directions: np.ndarray,
     dim = fixed.shape[0]
     part = np.zeros((dim, cut.edge_ids.size), dtype=bool)
     for k in range(cut.facets.shape[0]):
-        for c in range(dim):
-            np.logical_or.at(part[c], cut.facets[k], np.abs(directions[c]) > tol)
+        for comp in range(dim):
+            np.logical_or.at(part[comp], cut.facets[k], np.abs(directions[comp]) > tol)
     at_node = np.zeros(fixed.shape, dtype=bool)
     for i in (0, 1):
-        for c in range(dim):
-            np.logical_or.at(at_node[c], cut.edges[i], part[c])
+        for comp in range(dim):
+            np.logical_or.at(at_node[comp], cut.edges[i], part[comp])
     return np.all(fixed | ~at_node, axis=0) & at_node.any(axis=0)
 
 

@@ -69,9 +69,10 @@ def minimum_edge_cover(edges, psi, length, fixed=None) -> np.ndarray:
         A = sp.csr_matrix((np.r_[cost + shift, np.full(rows.size, big + shift)],
                            (np.r_[ri, np.arange(rows.size)], np.r_[ci, alone])),
                           shape=(rows.size, alone[-1] + 1))
-        r, c = min_weight_full_bipartite_matching(A)
+        matched_rows, matched_cols = min_weight_full_bipartite_matching(A)
+        paired = matched_cols < cols.size                    # matched to a node, not alone
         edge_of = sp.csr_matrix((pair + 1, (ri, ci)), shape=A.shape)
-        vital[np.asarray(edge_of[r[c < cols.size], c[c < cols.size]]).ravel() - 1] = True
+        vital[np.asarray(edge_of[matched_rows[paired], matched_cols[paired]]).ravel() - 1] = True
     covered = fixed.copy()                                   # then each unmatched node
     covered[edges[:, vital]] = True                          # takes its shortest edge
     ends, ids = edges.ravel(), np.tile(np.arange(ne), 2)
@@ -186,12 +187,12 @@ def relations(edges, points, vital, groups) -> sp.csr_matrix:
     inc = incidence(edges, nnodes, vital)
     k1, k2 = (nearest(points, nv, edges[i, nv], inc) for i in (0, 1))
     both = (k1 >= 0) & (k2 >= 0)                             # else a fixed end: none there
-    r, c, w = interpolate(points, nv[both], k1[both], k2[both], groups[k1[both]],
-                          groups[k2[both]])
+    rows, cols, w = interpolate(points, nv[both], k1[both], k2[both], groups[k1[both]],
+                                groups[k2[both]])
     one = nv[~both]
     return sp.csr_matrix((np.r_[np.ones(iv.size + one.size), w],
-                          (np.r_[iv, one, r],
-                           np.r_[groups[iv], groups[np.maximum(k1, k2)[~both]], c])),
+                          (np.r_[iv, one, rows],
+                           np.r_[groups[iv], groups[np.maximum(k1, k2)[~both]], cols])),
                          shape=(ne, int(groups.max()) + 1 if iv.size else 0))
 
 
@@ -289,10 +290,11 @@ def winner_nodes(edges, psi, points, nodes, fixed=None) -> Space:
     inc = incidence(edges, psi.size, single)
     k1, k2 = (nearest(points, two, edges[i, two], inc) for i in (0, 1))
     ok = (k1 >= 0) & (k2 >= 0)
-    r, c, w = interpolate(points, two[ok], k1[ok], k2[ok], c0[two[ok]], c1[two[ok]])
+    rows, cols, w = interpolate(points, two[ok], k1[ok], k2[ok], c0[two[ok]], c1[two[ok]])
     lone = two[~ok]
     P = sp.csr_matrix((np.r_[np.ones(one.size + lone.size), w],
-                       (np.r_[one, lone, r], np.r_[np.maximum(c0, c1)[one], broken_by[lone], c])),
+                       (np.r_[one, lone, rows],
+                        np.r_[np.maximum(c0, c1)[one], broken_by[lone], cols])),
                       shape=(ne, winners.size))
     return Space("winner", P, winners=winners)
 
