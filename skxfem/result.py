@@ -125,6 +125,7 @@ class Result:
 
     @property
     def is_contact(self) -> bool:
+        """True for the result of a contact solve: it has load ``steps``."""
         return len(self.steps) > 0
 
     @property

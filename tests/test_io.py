@@ -50,7 +50,8 @@ def fake_result(cell, n_points=4):
         n_multipliers=n_points,
         timings={"cut": 0.1, "enrich": 0.2, "assemble": 0.3, "solve": 0.4},
         linear="direct", linear_info={"residual": 1e-15, "balance": 1e-14,
-                                      "iterations": None, "residuals": None})
+                                      "iterations": None, "residuals": None},
+        is_contact=False)
 
 
 def test_01_result_json_has_the_promised_keys(tmp_path, cell):

@@ -82,7 +82,7 @@ from ..fem.vtu import cell_sides, pad3, region_pieces, side_pieces, vectors3, vt
 from ..levelset import nodal_values
 
 __all__ = ["write_result", "result_summary", "cell_sides", "vtk_cells", "check_output",
-           "side_pieces", "default_folder", "is_contact", "contact_summary", "EQUATIONS"]
+           "side_pieces", "default_folder", "contact_summary", "EQUATIONS"]
 
 _STAGES = ("cut", "enrich", "assemble", "solve")
 _FILES = {"json": "result.json", "displacement": "displacement.vtu",
@@ -130,7 +130,7 @@ def result_summary(result) -> dict:
         "timings": timings,
         "linear_solve": _jsonable({"linear": result.linear, **dict(result.linear_info)}),
     }
-    if is_contact(result):
+    if result.is_contact:
         data.update(_jsonable(contact_summary(result)))
     if several:
         data.update(_interfaces(result, items, data))
@@ -141,7 +141,7 @@ def _interfaces(result, items, data: dict) -> dict:
     """What ``result.json`` adds for several interfaces (module notes); ``data`` the
     rest of it, whose contact ``friction`` and ρ move into ``interfaces``."""
     counts = np.bincount(result.interface, minlength=len(items))
-    laws = result.law if is_contact(result) else [None] * len(items)
+    laws = result.law if result.is_contact else [None] * len(items)
     entries = []
     for i, law, n in zip(items, laws, counts):
         entries.append({"levelset": i.levelset.name, "law": i.law, "space": i.space,
@@ -249,7 +249,7 @@ def _write_interface(result, path: Path):
             "normal": vectors3(n),
             "jump": vectors3(jump),
             "gap": (jump * n).sum(0)}
-    if is_contact(result):
+    if result.is_contact:
         data["status"] = np.asarray(result.status, dtype=np.int64)
     if result.u_minus is None:  # several interfaces
         data["interface"] = np.asarray(result.interface, dtype=np.int64)
@@ -314,11 +314,6 @@ def write_result(result, out_dir: str | Path) -> dict[str, Path]:
 
 EQUATIONS = ("equilibrium", "contact", "friction")
 """The equations whose relative residuals :class:`~skxfem.contact.newton.NewtonInfo` holds."""
-
-
-def is_contact(result) -> bool:
-    """True for the result of a contact solve (it has load ``steps``)."""
-    return len(getattr(result, "steps", ())) > 0
 
 
 def _tangents(result) -> np.ndarray:
