@@ -31,6 +31,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .contact.interface import operators
 from .enrich import mass
 from .problem import assemble
 from .scene.model import check_scene
@@ -121,8 +122,11 @@ def inf_sup(scene, scaling: str = "h", law: str | None = None) -> InfSup:
     scaling
         ``"h"`` or ``"l2"``, the norm of the multipliers (see the module notes).
     law
-        ``None`` (the scene's), ``"bilateral"`` (one multiplier per point) or
-        ``"bonded"`` (dim of them).
+        ``None`` (the scene's), ``"bilateral"`` (one multiplier per point),
+        ``"bonded"`` (dim of them) or ``"stick"``: a contact where every dof
+        sticks, the normal multipliers and those of each tangent that no
+        support holds (:func:`skxfem.contact.interface.operators`), normed by
+        their own interface masses.
 
     Returns
     -------
@@ -135,7 +139,7 @@ def inf_sup(scene, scaling: str = "h", law: str | None = None) -> InfSup:
     if check_scene(scene).several:
         raise ValueError("inf_sup measures the multiplier space of one interface; for a "
                          "scene with several, measure each: inf_sup(scene.alone(k))")
-    p = assemble(scene, law)
+    p = assemble(scene, "bilateral" if law == "stick" else law)
     mesh, cut, V = p.mesh, p.cut, p.V
     L = np.ptp(mesh.p, axis=1).max()
     A = p.K + (scene.material.E / L ** 2) * mass(V)
@@ -144,5 +148,12 @@ def inf_sup(scene, scaling: str = "h", law: str | None = None) -> InfSup:
     # mesh size across Γ: the mean length of the cut edges (anisotropic
     # meshes, such as one layer of prisms along x, are measured where it matters)
     h = float(np.mean(np.linalg.norm(mesh.p[:, cut.edges[0]] - mesh.p[:, cut.edges[1]], axis=0)))
-    Mr = p.P.T @ M @ p.P * (h if scaling == "h" else 1.0)
-    return inf_sup_constant(A[free][:, free], p.B[:, free], Mr, h=h)
+    B, Ps = p.B, [p.P]
+    if law == "stick":
+        ops = operators(p)
+        kept = [np.flatnonzero(~ops.tangent_held[:, a]) for a in range(len(ops.Bt))]
+        B = sp.vstack([p.B] + [Bt[d] for Bt, d in zip(ops.Bt, kept)], format="csr")
+        Ps += [Pt[:, d] for Pt, d in zip(ops.Pt, kept)]
+    Mr = (Ps[0].T @ M @ Ps[0] if len(Ps) == 1 else
+          sp.block_diag([P.T @ M @ P for P in Ps], format="csr")) * (h if scaling == "h" else 1.0)
+    return inf_sup_constant(A[free][:, free], B[:, free], Mr, h=h)

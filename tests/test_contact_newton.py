@@ -109,6 +109,27 @@ def test_the_slip_follows_its_direction():
     assert np.allclose(st.gap, 0.0, atol=1e-12)
 
 
+@pytest.mark.parametrize("cell", ["hex", "prism", "tet"])
+@pytest.mark.parametrize("space", ["vital", "winner"])
+@pytest.mark.parametrize("mu", [0.3, 1.0])
+def test_a_block_slides_exactly_past_a_support_that_holds_a_tangent(cell, space, mu):
+    """A pressed block sliding along y at the limit |r_τ| = μp, with u_x imposed (its
+    exact value) on the faces x = 0, 1 that Γ crosses: those hold the tangent e_x, whose
+    multipliers are the tie's; the uniform state is exact to round-off, every dof
+    slides, and r_τ1 = 0 where the support does not take it."""
+    sol = sliding(3, mu, slip=0.1, angle=np.pi / 2)
+    s = uniform_block(sol, cell=cell, n=3, mu=mu, space=space)
+    ux = lambda x: sol.displacement(x, 1)[0]  # noqa: E731  (no jump along x)
+    s = replace(s, displacements=s.displacements + (Displacement("xmin", {"x": ux}),
+                                                    Displacement("xmax", {"x": ux})))
+    res = contact.solve(s)
+    st = res.steps[-1]
+    assert res.ops.tangent_held[:, 0].any()
+    assert np.all(st.status == 2) and st.newton.iterations <= 15
+    assert max(errors(sol, res)) < 1e-8
+    assert np.allclose(np.linalg.norm(st.traction, axis=1), mu * st.pressure, rtol=1e-8)
+
+
 # 2. a convergence test that means something ------------------------------------------
 
 @pytest.mark.parametrize("dim", [2, 3])

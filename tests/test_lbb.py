@@ -135,12 +135,12 @@ def supported_betas():
               "quad": lambda n, s: strip(n, "quad", space=s, sides="rollers")}
     return {(cell, space, law): [inf_sup(make(n, space), law=law) for n in SUPPORTED]
             for cell, make in scenes.items() for space in ("winner", "vital")
-            for law in ("bonded", "bilateral")}
+            for law in ("bonded", "bilateral", "stick")}
 
 
 @pytest.mark.parametrize("cell", ["prism", "tet", "tri", "quad"])
 @pytest.mark.parametrize("space", ["winner", "vital"])
-@pytest.mark.parametrize("law", ["bonded", "bilateral"])
+@pytest.mark.parametrize("law", ["bonded", "bilateral", "stick"])
 def test_stable_spaces_stay_stable_where_gamma_meets_a_support(supported_betas, cell, space,
                                                                law):
     """Issue 7: the bonded plate lost stability at the roller faces (β_h =
@@ -150,6 +150,21 @@ def test_stable_spaces_stay_stable_where_gamma_meets_a_support(supported_betas, 
     beta = np.array([r.beta for r in rs])
     assert np.all(beta >= 0.2), beta
     assert all(r.n_zero == 0 and r.rank == r.size for r in rs), [r.n_zero for r in rs]
+
+
+@pytest.mark.parametrize("cell", ["prism", "tet", "tri", "quad"])
+@pytest.mark.parametrize("space", ["winner", "vital"])
+def test_a_sticking_contact_is_the_bonded_tie_where_gamma_meets_a_support(
+        supported_betas, cell, space):
+    """Issue 17: each tangent gets the tie's space of its component (on tetrahedra
+    placed at the normal dofs), so a contact where every dof sticks has the tie's
+    constraints: the same β_h, eigenvalues and size (on tetrahedra there were 4-10
+    zero modes and β_h ≈ 0.05 against the tie's 0.3)."""
+    for stick, tie in zip(supported_betas[cell, space, "stick"],
+                          supported_betas[cell, space, "bonded"]):
+        assert stick.size == tie.size and stick.n_zero == tie.n_zero == 0
+        assert abs(stick.beta - tie.beta) < 1e-8 * tie.beta
+        assert np.allclose(stick.eigenvalues, tie.eigenvalues, rtol=1e-8, atol=1e-12)
 
 
 def test_the_papers_plate_on_prisms_is_stable_bonded_and_bilateral():

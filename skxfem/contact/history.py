@@ -109,6 +109,14 @@ __all__ = ["Step", "parameters", "solve", "ContactConvergenceError",
 
 METHODS = ("newton", "fixed_point")
 
+NEGLIGIBLE = 1e-8
+"""A contact multiplier whose rows, Jacobi-scaled as the tie's solve scales them,
+have a singular value below this fraction of the largest is refused
+(:func:`check_closed`): the tie's threshold for multipliers it leaves to the
+smoothing (:data:`skxfem.linalg.saddle.FIXED_TOL`).  Measured: the paper's plate
+≥ 0.06 (n = 5-15, every cell and stable space); winner on tetrahedra beside the
+rollers with Γ snapped 2e-10 off nodes, 5e-17."""
+
 RHO_RANGE = (1e-9, 1e12)
 """The ρ_n, ρ_τ accepted, relative to their defaults E/h."""
 
@@ -476,22 +484,27 @@ def _sticking(laws: PointLaws, status) -> np.ndarray:
             | ((status == STICK) & (laws.tangential == "coulomb")))
 
 
-def _held_rows(ops: Operators, laws: PointLaws, status, y) -> sp.csr_matrix:
+def _held_rows(ops: Operators, laws: PointLaws, status, y, dofs: bool = False):
     """The rows of the tie that a contact state imposes: the normal jump at
     closed points, the tangential jumps where they stick (not those a support
-    holds); a point sliding in 3D holds the tangent across its slip direction."""
+    holds); a point sliding in 3D holds the tangent across its slip direction.
+    With ``dofs``, also the dof of each row."""
     closed = status != OPEN
-    rows = [ops.Bn[closed]]
+    rows, of = [ops.Bn[closed]], [np.flatnonzero(closed)]
     k = len(ops.Bt)
     free = ~ops.tangent_held
     stick = _sticking(laws, status)
-    rows += [ops.Bt[a][stick & free[:, a]] for a in range(k) if (stick & free[:, a]).any()]
+    for a in range(k):
+        rows.append(ops.Bt[a][stick & free[:, a]])
+        of.append(np.flatnonzero(stick & free[:, a]))
     slip = (status == SLIP) & (laws.tangential == "coulomb") & free.all(axis=1)
     if k == 2 and slip.any():
         yh = y[slip] / np.linalg.norm(y[slip], axis=1)[:, None]
         rows.append(sp.diags(-yh[:, 1]) @ ops.Bt[0][slip]
                     + sp.diags(yh[:, 0]) @ ops.Bt[1][slip])
-    return sp.vstack(rows, format="csr")
+        of.append(np.flatnonzero(slip))
+    rows = sp.vstack(rows, format="csr")
+    return (rows, np.concatenate(of)) if dofs else rows
 
 
 def _names(laws: PointLaws) -> str:
@@ -526,8 +539,10 @@ def check_closed(pb: Problem, ops: Operators, laws: PointLaws, modes, label=None
     """Refuse a law that cannot determine a state even where Γ is closed
     everywhere (every point in contact, sticking where the law can): a side
     it leaves free to move (a frictionless Γ under a side that only Γ holds
-    tangentially; :func:`skxfem.linalg.rigid.check_held` names the motion), or
-    multipliers that depend on the others (the naive space on tetrahedra).
+    tangentially; :func:`skxfem.linalg.rigid.check_held` names the motion),
+    multipliers that depend on the others (the naive space on tetrahedra), or
+    multipliers that barely see the jump (:data:`NEGLIGIBLE`: functions living on
+    slivers of Γ, which the tie sets to their smoothest values).
     ``laws``: the :class:`~skxfem.contact.newton.PointLaws` of the dofs."""
     status = np.where(laws.tangential == "free", SLIP, STICK)
     text = _names(laws)
@@ -535,7 +550,7 @@ def check_closed(pb: Problem, ops: Operators, laws: PointLaws, modes, label=None
                  "hold each side of Γ, or use a law with friction", label)
     fixed = np.zeros(pb.V.N, bool)
     fixed[pb.D] = True
-    rows = _held_rows(ops, laws, status, None)
+    rows, row_dofs = _held_rows(ops, laws, status, None, dofs=True)
     try:
         check_tie_held(pb.K, rows, fixed, modes)
     except SingularSystemError as e:
@@ -552,6 +567,22 @@ def check_closed(pb: Problem, ops: Operators, laws: PointLaws, modes, label=None
             f"(space {_spaces(pb.scene)!r}: the naive space on tetrahedra carries four "
             f"multipliers on a quadrilateral cut, for three parameters of a linear jump), so "
             f"the pressure is not unique where the laws must hold: use space='vital'")
+    # scaled as the tie's solve scales them (Jacobi): a multiplier whose row is
+    # negligible there lives on a sliver of Γ; the tie picks the smoothest value
+    # for it, a contact law would take its value from round-off
+    stiffness = np.abs(pb.K.diagonal()[~fixed])
+    scaled = free @ sp.diags(1.0 / np.sqrt(np.where(stiffness > 0, stiffness, 1.0)))
+    N = dependencies(scaled, NEGLIGIBLE)
+    if N.shape[1]:
+        dofs = np.unique(row_dofs[np.abs(N).max(axis=1) > 0.1 * np.abs(N).max()])
+        raise ValueError(
+            f"load step {label!r}: {N.shape[1]} contact multiplier(s) barely see the jump "
+            f"(a singular value below {NEGLIGIBLE:.0e} of the largest, dofs "
+            f"{dofs[:10].tolist()} near {np.round(ops.points[:, dofs[0]], 6).tolist()}): "
+            f"their functions live on slivers of Γ, where Γ passes within a tiny distance "
+            f"of nodes, so no contact law can fix their values (a tie takes the smoothest); "
+            f"space {_spaces(pb.scene)!r} builds such functions there: use space='vital', "
+            f"or move Γ away from the nodes")
 
 
 def check_determined(pb: Problem, ops: Operators, laws: PointLaws, status, y, modes, label=None

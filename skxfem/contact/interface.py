@@ -21,15 +21,38 @@ well (the paper's plate: rollers u_x = 0 on the faces x = 0, 1 that Γ
 crosses hold [[u]]·e_x there); a multiplier on a jump that is held anyway is
 not determined (the support takes its force) and makes the Newton matrix
 singular.  So each tangent t_a gets the space the tie builds for a component
-with those nodes held (:func:`tangential_space`): its multipliers are a
-subset of the normal dofs (the same functions off the held edges; the held
-edges borrow a neighbour's value, :func:`skxfem.stabilised.extend_to_held`),
-so that λ and r_τ still meet at every dof, and the dofs it leaves out are
-*held*: their r_τa is 0, the support carries it.  Then a sticking contact is
-the bonded tie exactly.  Where the tie's space of a held tangent is not such a
-subset (tetrahedra: the stars around the held nodes are rebuilt), the normal
-space is kept for that tangent and the dofs whose every edge is held are
-released (:func:`held_tangents`): a stable space too, but not the tie's.
+whose jump is held at those nodes (:func:`tangential_space`), and a sticking
+contact is the bonded tie exactly.  A node holds t_a's jump when its fixed
+components and the normal span t_a (:func:`held_with_normal`): t_a along
+fixed components (the plate), or, with Γ tilted about e_y beside those
+rollers, e_x = sin θ n + cos θ t₁, so that [[u]]·t₁ follows [[u]]·n there
+and is held wherever the point is closed.
+
+Coulomb's law bounds the tangential traction by the pressure at the same
+dof, so each of the tangent's multipliers is *placed* at a normal dof j:
+where its function equals ψ_j off the held edges, there (hexahedra, prisms:
+the held edges borrow a neighbour's value,
+:func:`skxfem.stabilised.extend_to_held`); where the tie rebuilds the stars
+around the held nodes (tetrahedra), at the dof whose function overlaps it
+most, each dof used once.  The dofs no multiplier is placed at are *held*:
+their r_τa is 0, the support carries it.  Where no placement exists (winner
+on a coarse tetrahedral mesh), the normal space is kept for that tangent and
+the dofs whose every edge is held are released (:func:`held_tangents`).
+Last, any tangential dof whose sticking row still depends on the others is
+released (:func:`release_dependent`): a sticking contact has no zero mode.
+
+The law at dof j pairs r_τa (the value of the tangent's function ψ^a) with
+s_a = ∫ψ^a [[u]]·t_a / w_j, the normal dof's weight for every tangent: the
+friction ball then bounds the tractions whose virtual work is Σ_a r_τa ∫ψ^a
+[[v]]·t_a, and the slip it allows follows the integrated slips, the maximum
+dissipation of that work (a weight per tangent would scale ρ_τ per tangent,
+tilting the slip, and make the sliding stiffness unsymmetric).
+
+Measured (``benchmarks/contact_inf_sup.py``, :func:`skxfem.lbb.inf_sup` with
+``law="stick"``): on the plate the sticking contact's β_h is the tie's on
+every cell; with Γ tilted by 11.3° about e_y it is within 2 % of the tie's
+(which holds the Cartesian u_x, a space the frame n, t₁, t₂ cannot share), with
+no zero mode.
 
 **Several interfaces.** Each interface's operators are those of its piece of
 the problem (:attr:`skxfem.problem.Problem.interfaces`), on its own unknowns
@@ -49,12 +72,15 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
+from scipy.linalg import qr
+from scipy.sparse.csgraph import min_weight_full_bipartite_matching
 
-from ..multipliers import direction_fixed, fixed_jumps
+from ..linalg.dependent import dependencies
+from ..multipliers import fixed_jumps
 from ..stabilised import multiplier_space
 
 __all__ = ["Operators", "operators", "join", "tangent_frames", "held_tangents",
-           "tangential_space"]
+           "tangential_space", "release_dependent", "held_with_normal"]
 
 
 @dataclass(frozen=True)
@@ -67,8 +93,8 @@ class Operators:
     w : (m,) lumped interface mass.   h : mean length of the cut edges.
     points, normals : (dim, m) mean position and unit normal of each dof.
     tangents : (k, dim) the tangents of the first dof (the frame of a plane Γ).
-    tangent_held : (m, k) bool, the tangential components a support holds
-        (:func:`held_tangents`).
+    tangent_held : (m, k) bool, the tangential components a support holds: the
+        dofs no multiplier of the tangent is placed at (:func:`tangential_space`).
     Pt : tuple of k (n_edges, m), each tangent's prolongation from the dofs to
         the cut edges (the normal one, ``Problem.P``, where no support holds it).
     interface : (m,) the interface of each dof (0 for one interface).
@@ -134,7 +160,7 @@ def operators(pb) -> Operators:
     fallback = held_tangents(fixed, e, P, normals)
     Bt, Pt, tangent_held = [], [], np.zeros((w.size, dim - 1), bool)
     for a in range(dim - 1):
-        dofs, Pa = tangential_space(pb, direction_fixed(fixed, pb.cut, facet_frames[a]))
+        dofs, Pa = tangential_space(pb, held_with_normal(fixed, pb.cut, facet_frames[a]))
         if dofs is None:  # the normal space, its wholly held dofs released
             Pt.append(sp.csr_matrix(P))
             tangent_held[:, a] = fallback[:, a]
@@ -144,6 +170,8 @@ def operators(pb) -> Operators:
             Pt.append((Pa @ rows).tocsr())
             tangent_held[:, a] = ~np.isin(np.arange(w.size), dofs)
         Bt.append((Pt[-1].T @ PT[a]).tocsr())
+    if fixed[:, e].any():
+        tangent_held = release_dependent(pb, Bt, tangent_held)
     return Operators(pb.B, tuple(Bt), w, h, points, normals, T[:, :, 0], tangent_held, tuple(Pt),
                      np.zeros(w.size, dtype=np.int64))
 
@@ -168,16 +196,59 @@ def join(pb, parts) -> Operators:
         np.repeat(np.arange(len(parts)), sizes), tuple(parts))
 
 
+def held_with_normal(fixed: np.ndarray, cut, directions: np.ndarray,
+                     tol: float = 1e-8) -> np.ndarray:
+    """(nnodes,) bool: the jump along ``directions`` (dim, n_facets) is held at node
+    j up to the normal jump: j is an end of a cut edge and, for every facet around
+    its cut edges, the direction restricted to the components not fixed at j
+    (``fixed`` (dim, nnodes), :func:`skxfem.multipliers.fixed_jumps`) is parallel to
+    the facet's normal restricted so (or vanishes).  Then [[u]]·t = c [[u]]·n at j:
+    where the normal jump is held (closed), so is the tangential one.  With the
+    direction along fixed components only, this is
+    :func:`skxfem.multipliers.direction_fixed`; it also holds the tangent t₁ of a
+    plane tilted about e_y beside rollers u_x = 0, e_x = sin θ n + cos θ t₁.
+
+    >>> import numpy as np
+    >>> from skfem import MeshQuad1
+    >>> from skxfem.levelset import plane
+    >>> from skxfem.cut import cut as cut_mesh
+    >>> m = MeshQuad1().refined(1)
+    >>> cut = cut_mesh(m, plane((0.5, 0.5), (-0.2, 1.0)))   # tilted
+    >>> fixed = np.zeros((2, m.p.shape[1]), bool); fixed[0, m.p[0] == 0] = True
+    >>> t = np.array([cut.normals[1], -cut.normals[0]])       # the tangent
+    >>> held = held_with_normal(fixed, cut, t)
+    >>> bool(held.any()), bool(np.all(m.p[0, held] == 0))
+    (True, True)
+    """
+    held = np.ones(fixed.shape[1], bool)
+    touched = np.zeros(fixed.shape[1], bool)
+    for k in range(cut.facets.shape[0]):
+        e = cut.facets[k]
+        for i in (0, 1):
+            node = cut.edges[i, e]
+            free = ~fixed[:, node]
+            d, n = directions * free, cut.normals * free
+            nn = (n * n).sum(axis=0)
+            c = np.where(nn > 0, (n * d).sum(axis=0) / np.where(nn > 0, nn, 1.0), 0.0)
+            np.logical_and.at(held, node, np.linalg.norm(d - c * n, axis=0) < tol)
+            touched[node] = True
+    return held & touched
+
+
 def tangential_space(pb, fixed: np.ndarray):
     """The tie's space of a tangent whose jump a support holds at the ``fixed``
-    nodes, as a subset of the normal dofs: (dofs, P_a), P_a (n_edges, m_a) and
-    ``dofs`` (m_a,) the normal dof of each of its columns; (None, None) if it
-    is not such a subset (module notes); ``dofs`` = all and P_a = P where no
-    node is fixed.
+    nodes, each of its multipliers placed at a normal dof: (dofs, P_a), P_a
+    (n_edges, m_a) the tie's prolongation and ``dofs`` (m_a,) distinct normal
+    dofs, the one of each column; (None, None) if some column cannot be placed;
+    ``dofs`` = all and P_a = P where no node is fixed.
 
-    Column j of P_a matches the normal column with the same values on the
-    edges that are not held (both ends fixed); every other normal column must
-    live on held edges only.
+    A column equal to a normal column off the held edges (both ends fixed) is
+    placed at that dof; the others (tetrahedra: the stars the tie rebuilds
+    around the fixed nodes) at the dofs left, one each, so that the columns
+    overlap their dofs' functions most, ∫|ψ^a_i||ψ_j| summed over the placed
+    columns as large as it can be (an assignment problem); each must overlap
+    its dof's function.  The normal dofs that get no column are *held* for
+    this tangent.
     """
     P = sp.csc_matrix(pb.P)
     if not fixed.any():
@@ -186,25 +257,69 @@ def tangential_space(pb, fixed: np.ndarray):
                                         per_edge=pb.per_edge).P)
     a, b = pb.cut.edges
     free = ~(fixed[a] & fixed[b])
+
+    def key(col):
+        ok = free[col.indices] & (col.data != 0)
+        return tuple(col.indices[ok]), tuple(np.round(col.data[ok], 12))
+
     keys = {}
     for j in range(P.shape[1]):
-        col = P[:, j]
-        ok = free[col.indices] & (col.data != 0)
-        keys.setdefault((tuple(col.indices[ok]), tuple(np.round(col.data[ok], 12))),
-                        []).append(j)
-    dofs = []
-    for j in range(Pa.shape[1]):
-        col = Pa[:, j]
-        ok = free[col.indices] & (col.data != 0)
-        hit = keys.get((tuple(col.indices[ok]), tuple(np.round(col.data[ok], 12))), [])
-        if len(hit) != 1 or not ok.any():
-            return None, None
-        dofs.append(hit[0])
-    dofs = np.array(dofs)
-    left = np.setdiff1d(np.arange(P.shape[1]), dofs)
-    if np.unique(dofs).size != dofs.size or abs(P[:, left][free]).sum() > 0:
+        keys.setdefault(key(P[:, j]), []).append(j)
+    same = [keys.get(key(Pa[:, i]), []) for i in range(Pa.shape[1])]
+    dofs = np.array([s[0] if len(s) == 1 else -1 for s in same])
+    if np.all(dofs >= 0) and np.unique(dofs).size == dofs.size:
+        return dofs, Pa
+    # some column is new: place every column, equal ones first, then by overlap
+    overlap = (abs(Pa).T @ pb.M_edges @ abs(P)).tocoo()
+    norm_a = np.sqrt((abs(Pa).T @ pb.M_edges @ abs(Pa)).diagonal())
+    norm_n = np.sqrt((abs(P).T @ pb.M_edges @ abs(P)).diagonal())
+    weight = overlap.data / (norm_a[overlap.row] * norm_n[overlap.col])  # in (0, 1]
+    equal = dofs[overlap.row] == overlap.col
+    weight = weight + np.where(equal, Pa.shape[1] + 1.0, 0.0)  # an equal column outweighs all
+    keep = overlap.data > 0
+    graph = sp.csr_matrix((weight[keep], (overlap.row[keep], overlap.col[keep])),
+                          shape=overlap.shape)
+    try:
+        rows, cols = min_weight_full_bipartite_matching(graph, maximize=True)
+    except ValueError:  # no placement in which every column overlaps its dof
+        return None, None
+    dofs = np.full(Pa.shape[1], -1)
+    dofs[rows] = cols
+    if np.any(dofs < 0):
         return None, None
     return dofs, Pa
+
+
+def release_dependent(pb, Bt, tangent_held: np.ndarray) -> np.ndarray:
+    """``tangent_held`` with the tangential dofs released (held) whose rows, on the
+    unknowns the supports leave free, depend on the others when every dof sticks.
+
+    A support that holds a mix of the normal and tangential jumps ties the rows
+    of the dofs beside it; their multipliers are then not all determined (the
+    support takes that force).  :func:`held_with_normal` gives such tangents the
+    tie's space; where that space cannot be placed (the normal one is kept) rows
+    may still depend on each other.  Their null space
+    (:func:`skxfem.linalg.dependent.dependencies`, rows scaled to unit length) is
+    removed by releasing as many tangential dofs, chosen by a pivoted QR of its
+    tangential part; the normal rows, which the Signorini law needs, stay.
+    """
+    free = np.ones(pb.V.N, bool)
+    free[pb.D] = False
+    held = tangent_held.copy()
+    where = [np.flatnonzero(~held[:, a]) for a in range(held.shape[1])]
+    rows = sp.vstack([pb.B] + [B[d] for B, d in zip(Bt, where)], format="csr")[:, free]
+    norms = np.sqrt(np.asarray(rows.multiply(rows).sum(axis=1)).ravel())
+    N = dependencies(sp.diags(1.0 / np.where(norms > 0, norms, 1.0)) @ rows)
+    if not N.shape[1]:
+        return held
+    tangential = N[pb.B.shape[0]:]
+    _, R, piv = qr(tangential.T, mode="economic", pivoting=True)
+    d = np.abs(np.diag(R))
+    take = piv[:int(np.sum(d > 1e-8 * max(d.max(), 1e-300)))]
+    comp = np.repeat(np.arange(held.shape[1]), [w.size for w in where])
+    dof = np.concatenate(where)
+    held[dof[take], comp[take]] = True
+    return held
 
 
 def held_tangents(fixed: np.ndarray, edges: np.ndarray, P, normals: np.ndarray,
