@@ -70,7 +70,7 @@ from .fem.side_bases import Parts, parts, side_bases
 
 __all__ = ["XSpace", "XSpaces", "xfem_space", "stiffness", "mass", "enriched_matrix",
            "enriched_blocks", "signed_bases", "far_side_fraction", "enriched_load",
-           "jump_matrix", "split_fields", "region_fields"]
+           "jump_matrix", "split_fields", "from_fields", "region_fields"]
 
 
 @dataclass(frozen=True)
@@ -332,6 +332,31 @@ def split_fields(V: XSpace, U: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     plus[V.enr_dofs] += b * (1.0 - V.H_node)
     nd = V.basis.nodal_dofs
     return minus[nd], plus[nd]
+
+
+def from_fields(V: XSpace, minus: np.ndarray, plus: np.ndarray) -> np.ndarray:
+    """The unknowns U = [a, b] of nodal fields (dim, nverts) u⁻ on Ω⁻ and u⁺ on Ω⁺:
+    aᵢ the field of node i's own side, b_j = (u⁺ - u⁻)/2 at the enriched nodes
+    (u± = a + b(±1 - H_j)).  The inverse of :func:`split_fields` on each node's own
+    side and at the enriched nodes.
+
+    >>> import numpy as np
+    >>> from skfem import MeshQuad1
+    >>> from skxfem.cut import cut
+    >>> from skxfem.levelset import plane
+    >>> m = MeshQuad1().refined(1)
+    >>> V = xfem_space(m, cut(m, plane((0, 0.3), (0, 1))))
+    >>> minus, plus = np.zeros((2, 9)), np.ones((2, 9))   # [[u]] = -1
+    >>> U = from_fields(V, minus, plus)
+    >>> [np.array_equal(f[:, V.cut.enriched], g[:, V.cut.enriched])
+    ...  for f, g in zip(split_fields(V, U), (minus, plus))]
+    [True, True]
+    """
+    nd = V.basis.nodal_dofs
+    a, b = np.zeros(V.n_std), np.zeros(V.n_std)
+    a[nd] = np.where(V.cut.psi < 0, minus, plus)
+    b[nd] = 0.5 * (np.asarray(plus, float) - minus)
+    return np.concatenate([a, b[V.enr_dofs]])
 
 
 def region_fields(V: XSpace | XSpaces, U: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -27,7 +27,7 @@ from skxfem.contact.newton import (
     relative_residuals,
     residual,
 )
-from skxfem.enrich import split_fields
+from skxfem.enrich import from_fields, split_fields
 from skxfem.fem.material import Material
 from skxfem.levelset import plane
 from skxfem.scene import Box, Displacement, Scene, clamped
@@ -128,6 +128,39 @@ def test_a_block_slides_exactly_past_a_support_that_holds_a_tangent(cell, space,
     assert np.all(st.status == 2) and st.newton.iterations <= 15
     assert max(errors(sol, res)) < 1e-8
     assert np.allclose(np.linalg.norm(st.traction, axis=1), mu * st.pressure, rtol=1e-8)
+
+
+def exact_iterate(sol, res):
+    """The exact state of ``sol`` as an iterate of ``res``'s problem: U from the exact
+    fields, λ = -p and r_τ the shear in each dof's frame (all uniform)."""
+    pb, ops = res.problem, res.ops
+    x = pb.mesh.p
+    U = from_fields(pb.V, sol.displacement(x, -1), sol.displacement(x, 1))
+    r = np.einsum("kdm,d->mk", tangent_frames(ops.normals), sol.shear)
+    return Iterate(U, np.full(ops.w.size, -sol.pressure), r)
+
+
+def test_a_large_friction_coefficient_can_give_two_discrete_solutions():
+    """Oblique slip on tetrahedra at μ = 5: Newton converges to a state with points
+    open and sticking, U 7 % off the uniform slip; yet the uniform slip solves the
+    same discrete equations to round-off.  The discrete Coulomb problem is not unique
+    at such μ (the known non-uniqueness of Coulomb friction for large μ), so the
+    solver returns *a* solution; at μ ≤ 2 the same case gives the exact one."""
+    sol, drive = CASES["oblique slip"](3, 5.0)
+    res = contact.solve(uniform_block(sol, cell="tet", n=3, mu=5.0, drive=drive))
+    pb, ops, st = res.problem, res.ops, res.steps[-1]
+    free = np.setdiff1d(np.arange(pb.V.N), pb.D)
+    step = StepProblem(ops, pb.K, pb.F, free, np.zeros(pb.V.N),
+                       point_laws(res.law, ops.tangent_held), res.law.rho_n)
+    exact = exact_iterate(sol, res)
+    found = Iterate(st.U, -st.pressure, st.traction)
+    assert np.all(relative_residuals(step, exact) < 1e-14)
+    assert np.all(relative_residuals(step, found) < 1e-12)
+    assert np.abs(found.U - exact.U).max() > 0.05 * np.abs(exact.U).max()
+    for mu in (1.0, 2.0):
+        sol, drive = CASES["oblique slip"](3, mu)
+        res = contact.solve(uniform_block(sol, cell="tet", n=3, mu=mu, drive=drive))
+        assert max(errors(sol, res)) < 1e-8
 
 
 # 2. a convergence test that means something ------------------------------------------

@@ -31,6 +31,7 @@ from skxfem.cut import cut
 from skxfem.enrich import (
     enriched_load,
     far_side_fraction,
+    from_fields,
     jump_matrix,
     mass,
     split_fields,
@@ -85,14 +86,7 @@ def xfem_vector(V, u_minus, u_plus):
 
     u_minus, u_plus: callables x (dim, n) -> (dim, n), interpolated at the nodes.
     """
-    comp, node = dof_table(V)
-    p = V.mesh.p
-    um, up = u_minus(p), u_plus(p)                 # (dim, nverts)
-    own = np.where(V.cut.psi < 0, um, up)          # each node's own side
-    a = own[comp, node]
-    e_comp, e_node = comp[V.enr_dofs], node[V.enr_dofs]
-    b = 0.5 * (up - um)[e_comp, e_node]
-    return np.concatenate([a, b])
+    return from_fields(V, u_minus(V.mesh.p), u_plus(V.mesh.p))
 
 
 def rigid_motions(dim):
