@@ -94,7 +94,9 @@ class Operators:
     points, normals : (dim, m) mean position and unit normal of each dof.
     tangents : (k, dim) the tangents of the first dof (the frame of a plane Γ).
     tangent_held : (m, k) bool, the tangential components a support holds: the
-        dofs no multiplier of the tangent is placed at (:func:`tangential_space`).
+        dofs no multiplier of the tangent is placed at (:func:`tangential_space`;
+        :func:`held_tangents` where none can be placed), and those
+        :func:`release_dependent` releases.
     Pt : tuple of k (n_edges, m), each tangent's prolongation from the dofs to
         the cut edges (the normal one, ``Problem.P``, where no support holds it).
     interface : (m,) the interface of each dof (0 for one interface).
