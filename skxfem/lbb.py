@@ -31,7 +31,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .contact.interface import operators
+from .contact.interface import operators, sticking_rows
 from .enrich import mass
 from .problem import assemble
 from .scene.model import check_scene
@@ -151,8 +151,7 @@ def inf_sup(scene, scaling: str = "h", law: str | None = None) -> InfSup:
     B, Ps = p.B, [p.P]
     if law == "stick":
         ops = operators(p)
-        kept = [np.flatnonzero(~ops.tangent_held[:, a]) for a in range(len(ops.Bt))]
-        B = sp.vstack([p.B] + [Bt[d] for Bt, d in zip(ops.Bt, kept)], format="csr")
+        B, kept = sticking_rows(p.B, ops.Bt, ops.tangent_held)
         Ps += [Pt[:, d] for Pt, d in zip(ops.Pt, kept)]
     Mr = (Ps[0].T @ M @ Ps[0] if len(Ps) == 1 else
           sp.block_diag([P.T @ M @ P for P in Ps], format="csr")) * (h if scaling == "h" else 1.0)

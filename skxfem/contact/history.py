@@ -80,7 +80,7 @@ import scipy.sparse as sp
 from ..levelset import point_normals
 from ..linalg.amg import check_tie_held, rigid_modes
 from ..linalg.choice import LINEAR_TOL, check_linear_tol, choose_linear
-from ..linalg.dependent import dependencies
+from ..linalg.dependent import dependencies, unit_rows
 from ..linalg.rigid import check_held
 from ..linalg.saddle import SingularSystemError
 from ..linalg.threads import limited
@@ -559,8 +559,7 @@ def check_closed(pb: Problem, ops: Operators, laws: PointLaws, modes, label=None
             f"a part of the body free to move ({e}): hold each side of Γ, or use a law "
             f"with friction") from e
     free = rows[:, ~fixed]
-    norms = np.sqrt(np.asarray(free.multiply(free).sum(axis=1)).ravel())
-    N = dependencies(sp.diags(1.0 / np.where(norms > 0, norms, 1.0)) @ free)
+    N = dependencies(unit_rows(free)[0])
     if N.shape[1]:
         raise ValueError(
             f"load step {label!r}: {N.shape[1]} contact multipliers depend on the others "

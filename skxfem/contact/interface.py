@@ -75,12 +75,12 @@ import scipy.sparse as sp
 from scipy.linalg import qr
 from scipy.sparse.csgraph import min_weight_full_bipartite_matching
 
-from ..linalg.dependent import dependencies
+from ..linalg.dependent import dependencies, unit_rows
 from ..multipliers import fixed_jumps
 from ..stabilised import multiplier_space
 
 __all__ = ["Operators", "operators", "join", "tangent_frames", "held_tangents",
-           "tangential_space", "release_dependent", "held_with_normal"]
+           "tangential_space", "release_dependent", "held_with_normal", "sticking_rows"]
 
 
 @dataclass(frozen=True)
@@ -292,6 +292,19 @@ def tangential_space(pb, fixed: np.ndarray):
     return dofs, Pa
 
 
+def sticking_rows(Bn, Bt, tangent_held: np.ndarray):
+    """The rows a contact imposes where every dof sticks, [Bn; Bt_a at the dofs whose
+    tangent a is not held, a = 1, …], and those dofs of each tangent.
+
+    >>> Bn, Bt = sp.identity(2, format="csr"), (2 * sp.identity(2, format="csr"),)
+    >>> rows, where = sticking_rows(Bn, Bt, np.array([[True], [False]]))
+    >>> rows.toarray().tolist(), [w.tolist() for w in where]
+    ([[1.0, 0.0], [0.0, 1.0], [0.0, 2.0]], [[1]])
+    """
+    where = [np.flatnonzero(~tangent_held[:, a]) for a in range(tangent_held.shape[1])]
+    return sp.vstack([Bn] + [B[d] for B, d in zip(Bt, where)], format="csr"), where
+
+
 def release_dependent(pb, Bt, tangent_held: np.ndarray) -> np.ndarray:
     """``tangent_held`` with the tangential dofs released (held) whose rows, on the
     unknowns the supports leave free, depend on the others when every dof sticks.
@@ -308,10 +321,8 @@ def release_dependent(pb, Bt, tangent_held: np.ndarray) -> np.ndarray:
     free = np.ones(pb.V.N, bool)
     free[pb.D] = False
     held = tangent_held.copy()
-    where = [np.flatnonzero(~held[:, a]) for a in range(held.shape[1])]
-    rows = sp.vstack([pb.B] + [B[d] for B, d in zip(Bt, where)], format="csr")[:, free]
-    norms = np.sqrt(np.asarray(rows.multiply(rows).sum(axis=1)).ravel())
-    N = dependencies(sp.diags(1.0 / np.where(norms > 0, norms, 1.0)) @ rows)
+    rows, where = sticking_rows(pb.B, Bt, held)
+    N = dependencies(unit_rows(rows[:, free])[0])
     if not N.shape[1]:
         return held
     tangential = N[pb.B.shape[0]:]

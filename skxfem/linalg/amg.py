@@ -23,6 +23,7 @@ import importlib
 import numpy as np
 import scipy.sparse as sp
 
+from .dependent import unit_rows
 from .saddle import SingularSystemError, floating
 
 __all__ = ["rigid_modes", "axis_name", "motion_name", "free_motion_name", "amg", "check_held",
@@ -265,10 +266,8 @@ def scaled_tie(K, B, fixed):
     s = np.where(fixed, 1.0, 1.0 / np.sqrt(np.where(diag > 0, diag, 1.0)))
     keep = sp.diags(np.where(fixed, 0.0, s))
     Ks = (keep @ K @ keep + sp.diags(fixed.astype(float))).tocsr()
-    Bs = (B @ keep).tocsr()
-    norms = np.sqrt(np.asarray(Bs.multiply(Bs).sum(axis=1)).ravel())
-    rows = 1.0 / np.where(norms > 0, norms, 1.0)
-    return s, Ks, (sp.diags(rows) @ Bs).tocsr(), rows
+    Bn, rows = unit_rows(B @ keep)
+    return s, Ks, Bn, rows
 
 
 def augmented(K, B, fixed, r: float):

@@ -34,7 +34,21 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import ArpackNoConvergence, eigsh
 
-__all__ = ["smoothest", "dependencies", "along"]
+__all__ = ["smoothest", "dependencies", "along", "unit_rows"]
+
+
+def unit_rows(B) -> tuple[sp.csr_matrix, np.ndarray]:
+    """B with its rows scaled to unit length (rows of zeros left as they are), and
+    the scales: the form in which dependent rows are counted whatever each row's size.
+
+    >>> scaled, scales = unit_rows(sp.csr_matrix([[3.0, 4.0], [0.0, 0.0]]))
+    >>> scaled.toarray().round(12).tolist(), scales.tolist()
+    ([[0.6, 0.8], [0.0, 0.0]], [0.2, 1.0])
+    """
+    B = sp.csr_matrix(B)
+    norms = np.sqrt(np.asarray(B.multiply(B).sum(axis=1)).ravel())
+    scales = 1.0 / np.where(norms > 0, norms, 1.0)
+    return (sp.diags(scales) @ B).tocsr(), scales
 
 
 def dependencies(B, tol: float = 1e-6, k: int = 8) -> np.ndarray:

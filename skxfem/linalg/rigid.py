@@ -65,6 +65,7 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 
 from .amg import axis_name, motion_name, rigid_modes
+from .dependent import unit_rows
 from .saddle import SingularSystemError
 
 if TYPE_CHECKING:  # the problem is read through its attributes: rigid stands below it
@@ -168,9 +169,7 @@ def free_motions(p: Problem, normal=None, full=None, rows=None, tol: float = TOL
     else:
         blocks = [Z[p.D], law_rows(p, Z, normal, full)]
     if rows is not None and rows.shape[0]:
-        R = sp.csr_matrix(rows)
-        norms = np.sqrt(np.asarray(R.multiply(R).sum(axis=1)).ravel())
-        blocks.append(sp.diags(1.0 / np.where(norms > 0, norms, 1.0)) @ R @ Z)
+        blocks.append(unit_rows(rows)[0] @ Z)
     N = _null(np.vstack(blocks), tol)
     if N.shape[1] == 0:
         return N
