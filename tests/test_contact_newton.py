@@ -30,7 +30,7 @@ from skxfem.contact.newton import (
 from skxfem.enrich import from_fields, split_fields
 from skxfem.fem.material import Material
 from skxfem.levelset import plane
-from skxfem.scene import Box, Displacement, Scene, clamped
+from skxfem.scene import Box, Displacement, Scene, clamped, rollers
 from skxfem.scene.benchmarks import sliding, uniaxial, uniform_block
 
 MUS = (0.1, 0.3, 0.6, 1.0, 2.0, 5.0)
@@ -128,6 +128,26 @@ def test_a_block_slides_exactly_past_a_support_that_holds_a_tangent(cell, space,
     assert np.all(st.status == 2) and st.newton.iterations <= 15
     assert max(errors(sol, res)) < 1e-8
     assert np.allclose(np.linalg.norm(st.traction, axis=1), mu * st.pressure, rtol=1e-8)
+    h = 1.0 / 3  # the defaults of ρ are E/h
+    for rho in ((1e-3, 1e-3), (1e-3, 1e6), (1e6, 1e-3), (1e6, 1e6)):
+        res = contact.solve(replace(s, rho_n=rho[0] / h, rho_t=rho[1] / h))
+        assert max(errors(sol, res)) < 1e-8 and res.steps[-1].newton.iterations <= 30, rho
+
+
+@pytest.mark.parametrize("cell", ["hex", "prism", "tet"])
+@pytest.mark.parametrize("law", ["frictionless", "coulomb", "adhesive"])
+def test_an_interface_opens_by_imposed_displacement_beside_rollers(cell, law):
+    """Rollers on the faces x = 0, 1 that Γ crosses hold the tangent e_x; the top lifted
+    by 0.1 opens Γ everywhere: no pressure, gap 0.1, in ≤ 3 iterations."""
+    s = Scene(Box((3, 3, 3), cell), plane((0, 0, 0.5), (0, 0, 1)), Material(1.0, 0.3),
+              displacements=(clamped("zmin"), rollers("xmin"), rollers("xmax"),
+                             Displacement("zmax", {"x": 0.0, "y": 0.0, "z": 0.1})),
+              law=law, friction=0.5)
+    res = contact.solve(s)
+    st = res.steps[-1]
+    assert res.ops.tangent_held[:, 0].any()
+    assert st.newton.iterations <= 3 and np.all(st.status == 0)
+    assert np.abs(st.pressure).max() == 0 and np.allclose(st.gap, -0.1, atol=1e-12)
 
 
 def exact_iterate(sol, res):
