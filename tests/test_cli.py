@@ -409,6 +409,13 @@ def test_24_the_linear_solve_is_an_option(tmp_path, capsys):
     for extra, expect in (([], "iterative"), (["--linear", "direct"], "direct")):
         assert main(["run", str(chosen), "--out", str(tmp_path / "chosen"), *extra]) == 0
         assert f"{expect} solve" in capsys.readouterr().out
+    # so is its linear_tol, and --linear-tol overrides it; result.json records the one used
+    chosen.write_text(text + '\n[solver]\nlinear = "iterative"\nlinear_tol = 1e-6\n')
+    for extra, expect in (([], 1e-6), (["--linear-tol", "1e-9"], 1e-9)):
+        assert main(["run", str(chosen), "--out", str(tmp_path / "tol"), *extra]) == 0
+        capsys.readouterr()
+        info = json.loads((tmp_path / "tol" / "result.json").read_text())["linear_solve"]
+        assert info["tol"] == expect and info["residual"] <= expect
     with pytest.raises(SystemExit) as done:
         main(["run", str(plate), "--linear", "cholesky"])
     assert done.value.code == 2

@@ -546,6 +546,23 @@ def test_tangential_dofs_that_depend_on_the_others_are_released(monkeypatch):
     assert (ops.Bn != raw.Bn).nnz == 0
 
 
+def test_a_contact_through_a_row_of_nodes_is_snapped_with_one_warning():
+    """Γ through the nodes z = 0.5 of a pressed cube (ν = 0: a uniform stress), solved
+    over a load history: the nodes are snapped once (one SnapWarning for the whole
+    solve, not one per state) and the pressure is the load, p = 1, at every dof."""
+    import warnings
+
+    from skxfem.cut import SnapWarning
+
+    s = cube(n=(2, 2, 4), law="coulomb", mu=0.5, top={"x": 0.0, "y": 0.0}, nu=0.0,
+             loads=(SurfaceLoad("zmax", pressure=1.0),))
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        res = contact.solve(s, history=(0.5, 1.0))
+    assert sum(issubclass(w.category, SnapWarning) for w in record) == 1
+    assert np.abs(res.steps[-1].pressure - 1.0).max() < 1e-10
+
+
 def test_a_multiplier_on_a_sliver_of_gamma_is_refused_for_contact():
     """Γ tilted, snapped 2e-10 off five nodes, the winner space on tetrahedra beside
     rollers: the tie's u_x space has a multiplier living on slivers, which the tie sets

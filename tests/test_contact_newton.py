@@ -91,13 +91,50 @@ def test_the_exact_state_in_few_iterations_at_any_rho(case, dim, mu):
         e_u, e_p, e_t = errors(sol, res)
         assert max(e_u, e_p, e_t) < 1e-8, (rho, e_u, e_p, e_t)
         assert st.newton.iterations <= (15 if rho == (1.0, 1.0) else 30), rho
+        assert st.newton.rescued == 0, "no first attempt failed and was rescued"
         assert st.increments == 1
+        assert np.all(np.linalg.norm(st.traction, axis=1)
+                      <= mu * st.pressure * (1 + 1e-10) + 1e-14), "inside the Coulomb cone"
         if case in ("slip", "oblique slip", "slanted", "pressed and pushed"):
             assert np.all(st.status == 2), "every point slides"
             assert np.allclose(np.linalg.norm(st.traction, axis=1), mu * st.pressure,
                                rtol=1e-8), "|r_τ| = μp"
         elif case == "free sides":
             assert np.all(st.status == 1), "tan θ = μ/2: it sticks"
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("mu", MUS)
+def test_loading_then_unloading_at_any_rho(dim, mu):
+    """The free-sided block on a slanted Γ (tan θ = μ/2: it sticks) loaded, then unloaded
+    to half (history 1, 0.5): each step in at most 15 iterations at the default ρ and
+    30 at any, none rescued, and the last state is the exact one at half the load."""
+    tilt = 0.5 * np.arctan(mu)
+    scene = uniform_block(uniaxial(dim, tilt=tilt), n=3, mu=mu, drive="free")
+    half = uniaxial(dim, tilt=tilt, p=0.5)
+    h = 1.0 / 3
+    for rho in ((1.0, 1.0),) + RHOS:
+        res = contact.solve(replace(scene, rho_n=rho[0] / h, rho_t=rho[1] / h),
+                            history=(1.0, 0.5))
+        for st in res.steps:
+            assert st.newton.iterations <= (15 if rho == (1.0, 1.0) else 30), rho
+            assert st.newton.rescued == 0 and st.increments == 1 and np.all(st.status == 1)
+        assert max(errors(half, res)) < 1e-8, rho
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_a_load_state_may_change_the_friction_coefficient(dim):
+    """Slid obliquely by 0.05 with μ = 0.6, then on to 0.1 with μ = 0.3 (the second
+    state's own law): the last state is the exact slide at μ = 0.3, |r_τ| = 0.3 p,
+    which a history keeping the first μ could not give."""
+    first = sliding(dim, 0.6, slip=0.05, angle=np.deg2rad(30))
+    last = sliding(dim, 0.3, slip=0.1, angle=np.deg2rad(30))
+    a, b = uniform_block(first, n=3, mu=0.6), uniform_block(last, n=3, mu=0.3)
+    res = contact.solve(a, history=(a, b))
+    assert all(np.all(st.status == 2) for st in res.steps)
+    assert max(errors(last, res)) < 1e-8
+    st = res.steps[-1]
+    assert np.allclose(np.linalg.norm(st.traction, axis=1), 0.3 * st.pressure, rtol=1e-8)
 
 
 def test_the_slip_follows_its_direction():

@@ -246,6 +246,23 @@ def test_two_non_parallel_interfaces_pressed(cell):
 
 
 @pytest.mark.parametrize("cell", ["quad", "hex"])
+def test_each_interface_keeps_its_own_rho(cell):
+    """Γ₀ sticking (Coulomb) and Γ₁ frictionless, each with its own ρ_n, ρ_t far from
+    the default and from each other's: each interface's law carries its own, and the
+    answer is that of the default ρ (an augmentation, not a penalty)."""
+    s = column(cell, ("coulomb", "frictionless"), tilt=0.2, friction=(0.5, 0))
+    ref = skxfem.solve(s)
+    own = ((1e-2, 1e3), (1e4, 1e-1))
+    moved = dataclasses.replace(s, interfaces=tuple(
+        dataclasses.replace(i, rho_n=rn, rho_t=rt) for i, (rn, rt) in zip(s.interfaces, own)))
+    r = skxfem.contact.solve(moved)
+    assert [(law.rho_n, law.rho_t) for law in r.law] == list(own)
+    assert np.array_equal(r.status, ref.status)
+    assert np.abs(r.traction - ref.traction).max() < 1e-8 * np.abs(ref.traction).max()
+    assert np.abs(r.U - ref.U).max() < 1e-8 * np.abs(ref.U).max()
+
+
+@pytest.mark.parametrize("cell", ["quad", "hex"])
 def test_a_load_state_changes_one_interfaces_law(cell):
     """Half the load with both frictionless (Γ₁ opens), then Γ₁ tied (bilateral): it
     closes and carries the tension, Γ₀ the same pressure as before, doubled."""

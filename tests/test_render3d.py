@@ -33,14 +33,15 @@ def test_result_3d_renders_both_sides_and_the_pressure():
     from skxfem.solver import solve
     from skxfem.viz.render3d import plot_result_3d
 
-    fig = plot_result_3d(solve(paper_plate(2, "hex")), window_size=(320, 240))
-    assert len(fig.axes) == 2
-    left = fig.axes[0].images[0].get_array().astype(float)
-    assert left.shape == (240, 320, 3)
-    # both sides are drawn in their (shaded) colours: Ω⁻ blue, Ω⁺ orange
-    bluish = (left[..., 2] - left[..., 0] > 30).mean()
-    orange = (left[..., 0] - left[..., 2] > 30).mean()
-    assert bluish > 0.05 and orange > 0.05, (bluish, orange)
+    for law in ("bonded", "adhesive"):  # a tie and a contact result alike (issue 17, item 8)
+        fig = plot_result_3d(solve(paper_plate(2, "hex", law=law)), window_size=(320, 240))
+        assert len(fig.axes) == 2
+        left = fig.axes[0].images[0].get_array().astype(float)
+        assert left.shape == (240, 320, 3)
+        # both sides are drawn in their (shaded) colours: Ω⁻ blue, Ω⁺ orange
+        bluish = (left[..., 2] - left[..., 0] > 30).mean()
+        orange = (left[..., 0] - left[..., 2] > 30).mean()
+        assert bluish > 0.05 and orange > 0.05, (law, bluish, orange)
     with pytest.raises(ValueError, match="3D result"):
         plot_result_3d(solve(strip(2, "quad")))
 

@@ -516,8 +516,9 @@ def test_gamma_closing_in_on_a_node_row_is_stable(cell):
     assert change[0] < distances[0] and change[1] < distances[1], \
         f"the pressure does not settle as Γ → nodes: changes {change}"
     for d, shifted in ((1e-12, SNAP), (0.0, -SNAP)):
-        with pytest.warns(SnapWarning, match=r"moved them off it by up to"):
+        with pytest.warns(SnapWarning, match=r"moved them off it by up to") as record:
             snapped = solve(scene(d))
+        assert sum(issubclass(w.category, SnapWarning) for w in record) == 1, "warned once"
         ref = solve(scene(shifted))
         assert np.abs(snapped.pressure - ref.pressure).max() < 1e-9
         assert np.abs(snapped.U - ref.U).max() < 1e-12 * np.abs(ref.U).max()
