@@ -81,6 +81,7 @@ from ..levelset import point_normals
 from ..linalg.amg import check_tie_held, rigid_modes
 from ..linalg.choice import LINEAR_TOL, check_linear_tol, choose_linear
 from ..linalg.dependent import dependencies, unit_rows
+from ..linalg.iterative import stiffness_setup
 from ..linalg.rigid import check_held
 from ..linalg.saddle import SingularSystemError
 from ..linalg.threads import limited
@@ -102,6 +103,7 @@ from .newton import (
     join_laws,
     newton,
     point_laws,
+    predict,
 )
 
 __all__ = ["Step", "parameters", "solve", "ContactConvergenceError",
@@ -315,10 +317,11 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
                            all(LAWS[name].auto_iterative for name in laws))
     linear_tol = check_linear_tol(linear_tol)
     modes = rigid_modes(pb.V)
+    t0 = time.perf_counter()
     solve_kw = {"linear": linear} if linear == "direct" else {
         "linear": linear, "modes": modes, "blocksize": pb.mesh.dim(),
-        "linear_tol": linear_tol}
-    t0 = time.perf_counter()
+        "linear_tol": linear_tol,  # K's one set-up, every step's tie carried over from it
+        "setup": stiffness_setup(pb.K, pb.D, modes, pb.mesh.dim())}
     free = np.setdiff1d(np.arange(pb.V.N), pb.D)
     m, k = ops.w.size, len(ops.Bt)
     # the reference ρ of the convergence test: E/h, each interface its own h
@@ -328,6 +331,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     F, g = np.zeros(pb.V.N), np.zeros(pb.D.size)
     steps = []
     checked = set()
+    before, names_before = None, None  # the converged state before it, for the predictor
     for i, state in enumerate(states):
         laws = _point_laws(state.laws, ops)
         names = tuple(law.name for law in state.laws)
@@ -335,7 +339,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
             check_closed(pb, ops, laws, modes, state.label)
             checked.add(names)
 
-        def one(start, U_prev, F1, g1, laws=laws):
+        def one(start, U_prev, F1, g1, guess=None, laws=laws):
             step = StepProblem(ops, pb.K, F1, free, U_prev, laws, rho_ref)
             U = start.U.copy()
             U[pb.D] = g1
@@ -343,15 +347,18 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
             if method == "fixed_point":
                 return fixed_point(step, start, tol=tol, max_iter=max_iter, **solve_kw)
             try:
-                return newton(step, start, tol=tol, max_iter=max_iter, **solve_kw)
+                return newton(step, start, tol=tol, max_iter=max_iter, guess=guess,
+                              **solve_kw)
             except ContactConvergenceError as failed:
                 return _rescue(step, start, failed, tol, max_iter, solve_kw)
 
         where = f"load step {i + 1} of {len(states)} ({_describe(state.label)})"
-        it, res, info, pieces = _advance(one, it, F, g, state.F, state.g,
-                                         max_cuts if method == "newton" else 0, where,
-                                         "+".join(names))
-        F, g = state.F, state.g
+        if names != names_before:  # a new law: the last increment predicts nothing
+            before = None
+        it, res, info, pieces, before = _advance(one, it, F, g, state.F, state.g,
+                                                 max_cuts if method == "newton" else 0, where,
+                                                 "+".join(names), before)
+        F, g, names_before = state.F, state.g, names
         check_determined(pb, ops, laws, res.status, res.y, modes, state.label)
         steps.append(_step(state, ops, it, res, info, pieces, laws))
     law = states[0].laws[0] if not pb.interfaces else states[0].laws
@@ -426,16 +433,21 @@ def _describe(label) -> str:
     return f"load factor {label:g}" if isinstance(label, float) else f"state {label!r}"
 
 
-def _advance(one, it, F0, g0, F1, g1, max_cuts: int, where: str, law_name: str = ""):
+def _advance(one, it, F0, g0, F1, g1, max_cuts: int, where: str, law_name: str = "",
+             before=None):
     """Solve from the converged ``it`` (under F0, g0) to F1, g1, halving the
-    increment where a step fails (module notes).  Returns the iterate, its
-    residual, the NewtonInfo of the last increment and the number of increments."""
+    increment where a step fails (module notes).  ``before``: the converged
+    (iterate, F, g) before ``it``, whose increment predicts the next one
+    (:func:`_guess`).  Returns the iterate, its residual, the NewtonInfo of the
+    last increment, the number of increments and the ``before`` of the next step."""
     done, size, pieces = 0.0, 1.0, 0
     smallest = 0.5 ** max_cuts
+    Fa, ga = F0, g0  # the loads of ``it``
     while done < 1.0:
         target = min(1.0, done + size)
+        Ft, gt = F0 + target * (F1 - F0), g0 + target * (g1 - g0)
         try:
-            new, res, info = one(it, it.U, F0 + target * (F1 - F0), g0 + target * (g1 - g0))
+            new, res, info = one(it, it.U, Ft, gt, _guess(before, it, Fa, ga, Ft, gt))
         except ContactConvergenceError as e:
             e.law = law_name
             if size / 2 < smallest * (1 - 1e-12):
@@ -458,9 +470,26 @@ def _advance(one, it, F0, g0, F1, g1, max_cuts: int, where: str, law_name: str =
             warnings.warn(f"{where}: {str(e).split(':')[0]}; cut: solving it in increments "
                           f"of 1/{round(1 / size)}", StepCutWarning, stacklevel=3)
             continue
+        before, Fa, ga = (it, Fa, ga), Ft, gt
         it, done, pieces = new, target, pieces + 1
         size = min(1.0, 2 * size) if size < 1 else size
-    return it, res, info, pieces
+    return it, res, info, pieces, before
+
+
+def _guess(before, it: Iterate, F0, g0, F1, g1) -> Iterate | None:
+    """The predicted state under (F1, g1) from the converged ``it`` under (F0, g0) and
+    ``before`` = (iterate, F, g): :func:`~skxfem.contact.newton.predict` where the
+    new load increment is a positive multiple of the last (proportional loading),
+    else None (Newton starts from ``it``)."""
+    if before is None:
+        return None
+    last = np.concatenate([F0 - before[1], g0 - before[2]])
+    step = np.concatenate([F1 - F0, g1 - g0])
+    norm = float(last @ last)
+    ratio = float(step @ last) / norm if norm > 0 else 0.0
+    if not (ratio > 0 and np.linalg.norm(step - ratio * last) <= 1e-10 * np.linalg.norm(step)):
+        return None
+    return predict(before[0], it, ratio)
 
 
 def _step(state: _State, ops: Operators, it: Iterate, res, info, pieces,

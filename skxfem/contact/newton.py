@@ -61,7 +61,7 @@ from .laws import KINDS, disk_projection, status
 
 __all__ = ["Law", "PointLaws", "point_laws", "join_laws", "StepProblem", "Iterate", "Residual",
            "NewtonInfo", "ContactConvergenceError", "jumps", "residual", "jacobian",
-           "line_search", "relative_residuals", "newton", "LINE_SEARCH", "TOL"]
+           "line_search", "relative_residuals", "newton", "predict", "LINE_SEARCH", "TOL"]
 
 TOL = 1e-12
 """The default tolerance of :func:`relative_residuals`.  Measured on the known
@@ -284,38 +284,25 @@ def residual(step: StepProblem, it: Iterate, rho_n=None, rho_t=None) -> Residual
     return Residual(R_u, R_n, R_t, g_n, y, radius, point_status, dR_dlam, dR_dU)
 
 
-def jacobian(step: StepProblem, it: Iterate, res: Residual, close=None) -> sp.csr_matrix:
+def jacobian(step: StepProblem, it: Iterate, res: Residual, close=None,
+             K=None) -> sp.csr_matrix:
     """Step 2: the generalised Jacobian of (R_u, R_n, R_t) in (U_free, λ, r_τ).
 
     ``close`` (m,) bool: points whose unilateral normal takes the contact
     branch whatever g_n (the fallback of a singular step, see the module notes).
+    ``K``: the block of the free unknowns, if not K's own (:func:`_linear_step`
+    puts K's diagonal there for the scales of a step it does not form).
     """
     laws, ops, free = step.laws, step.ops, step.free
     m, k = res.y.shape
     iw = 1.0 / ops.w
-    chi = np.where(laws.unilateral, res.g_n <= 0, True)  # χ, and 1 at g_n = 0
-    if close is not None:
-        chi = chi | close
+    chi, DQ, qR = linear_step.linearised(laws, res, close)
+    dR_dlam, dR_dU = res.dR_dlam, res.dR_dU
     Bn = ops.Bn[:, free]
     Bt = [B[:, free] for B in ops.Bt]
-    rows_u = [step.K[free][:, free], -Bn.T] + [-Bt[a].T for a in range(k)]
+    K = step.K[free][:, free] if K is None else K
+    rows_u = [K, -Bn.T] + [-Bt[a].T for a in range(k)]
     rows_n = [sp.diags(chi * laws.rho_n * iw) @ Bn, sp.diags(1.0 - chi)] + [None] * k
-    # R_t = r - Q(y, R): dQ/dy (m, k, k) and dQ/dR (m, k) by law
-    DQ = np.zeros((m, k, k))
-    qR = np.zeros((m, k))
-    stick, coulomb = laws.tangential == "stick", laws.tangential == "coulomb"
-    DQ[stick] = chi[stick, None, None] * np.eye(k)
-    dR_dlam, dR_dU = res.dR_dlam, res.dR_dU
-    # the ball's derivative where the point is closed or still pressed (λ < 0);
-    # elsewhere r_τ = 0 whatever y: DQ = 0
-    c = coulomb & (chi | (dR_dlam != 0))
-    if c.any():
-        y = res.y[c]
-        if close is not None:  # a point closed by force: its ball holds it (stick)
-            y = np.where((res.g_n[c] > 0)[:, None], 0.0, y)
-        _, DQ[c], qR[c] = disk_projection(y, res.radius[c])
-    mask = ~laws.tangent_held  # y sees r and s on the components not held
-    DQ = DQ * mask[:, None, :] * mask[:, :, None]
     # dR_t/dU = DQ ρ_t Bt/w - qR dR/dU;  dR_t/dλ = -qR dR/dλ
     rows_t = []
     for a in range(k):
@@ -380,8 +367,15 @@ def _max(a) -> float:
 
 
 def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 30,
-           linear: str = "direct", modes=None, blocksize: int = 1, linear_tol: float = 1e-12):
+           linear: str = "direct", modes=None, blocksize: int = 1, linear_tol: float = 1e-12,
+           guess: Iterate | None = None, setup=None):
     """Solve one load step from ``start`` (its U holds the imposed values).
+
+    ``setup``: iterative steps, the :func:`skxfem.linalg.iterative.stiffness_setup` of
+    K that every step's tie is carried over from (default: each builds its own).
+    ``guess``: a predicted state of the step (:func:`predict`), taken as the start
+    instead where its relative residuals are smaller (an extrapolation that
+    went wrong costs one residual, never an iteration).
 
     ``linear``: each Newton step solved by ``"direct"`` SuperLU or
     ``"iterative"`` ties, AMG + projected CG (``modes``, ``blocksize`` as
@@ -401,31 +395,31 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
     skxfem.contact.step.SingularStepError
         (a ValueError) A Newton matrix singular even with every point closed.
     """
-    it = start
-    res = residual(step, it)
-    history = [relative_residuals(step, it)]
+    it, res, first = _start(step, start, guess)
+    history = [first]
     statuses, alphas = [res.status], []
     closed_before = res.status != 0
-    factor = None  # the last LU or tie set-up, reused while the matrix is unchanged
+    factor = setup  # the last LU or tie set-up, reused while the matrix is unchanged
     merit_rows = None
     for n in range(1, max_iter + 1):
         if np.all(history[-1] <= tol):
             return it, res, NewtonInfo(n - 1, np.array(history), tuple(alphas))
+        eta = forcing(history[-1], linear_tol)
         try:
-            dx, rows, cols, A, factor = _linear_step(step, it, res, None, linear, modes,
-                                                     blocksize, factor, linear_tol)
+            dx, scaled, factor = _linear_step(step, it, res, None, linear, modes,
+                                              blocksize, factor, eta)
         except linear_step.SingularStepError as e:
-            dx, rows, cols, A, factor = _singular_fallback(step, it, res, closed_before,
-                                                           linear, modes, blocksize, e,
-                                                           linear_tol)
+            dx, scaled, factor = _singular_fallback(step, it, res, closed_before,
+                                                    linear, modes, blocksize, e, eta, setup)
         if merit_rows is None:  # one merit for the whole step: no cycle can decrease it
-            merit_rows = rows
+            merit_rows = scaled()[0]
         merit0 = np.linalg.norm(merit_rows * res.vector)
         closed_before = res.status != 0
         new = line_search(step, it, dx, merit0, merit_rows)
         if not new[3] and any(np.array_equal(new[1].status, seen) for seen in statuses):
             # no step along Newton's decreases the merit, and the full step returns to
             # an active set already left: a cycle; descend the merit instead
+            _, cols, A = scaled(full=True)
             down = line_search(step, it, descent(A, res.vector, merit_rows, cols, dx), merit0,
                                merit_rows, 0.5 ** np.arange(20))
             new = down if down[3] else new
@@ -440,27 +434,82 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
                                                    tuple(alphas))))
 
 
+ETA = (1e-2, 1.0)
+"""The forcing of the inexact Newton steps (iterative linear solves): each is
+solved to the relative residual η = min(ETA[0], max(linear_tol, ETA[1]·r)), r the
+largest relative residual of the iterate, so that Newton stays quadratic (the
+error of a step is η r ≲ r²) while the early steps, far from the answer, cost a
+few Krylov iterations instead of the full ``linear_tol``.  The convergence test
+looks at the true residuals, so the answer is as exact as with exact steps."""
+
+
+def forcing(residuals, linear_tol: float) -> float:
+    """The relative residual η of the next iterative linear solve (:data:`ETA`).
+
+    >>> forcing(np.array([1.0, 0.0, 0.0]), 1e-12), forcing(np.array([1e-7, 0, 0]), 1e-12)
+    (0.01, 1e-07)
+    """
+    return float(min(ETA[0], max(linear_tol, ETA[1] * float(np.max(residuals)))))
+
+
+def _start(step: StepProblem, start: Iterate, guess: Iterate | None):
+    """The start of :func:`newton`: ``start``, or ``guess`` where its largest relative
+    residual is smaller; the iterate, its residual and its relative residuals."""
+    first = relative_residuals(step, start)
+    if guess is not None:
+        predicted = relative_residuals(step, guess)
+        if predicted.max() < first.max():
+            start, first = guess, predicted
+    return start, residual(step, start), first
+
+
+def predict(before: Iterate, now: Iterate, ratio: float) -> Iterate:
+    """The secant predictor of the next load step: ``now`` + ``ratio`` (``now`` −
+    ``before``), the last converged increment scaled by the ratio of the next load
+    increment to the last (exact where the loads are proportional and no status
+    changes: the laws are then linear in the state).
+
+    >>> a = Iterate(np.zeros(2), np.zeros(1), np.zeros((1, 1)))
+    >>> b = Iterate(np.ones(2), -np.ones(1), np.ones((1, 1)))
+    >>> predict(a, b, 0.5).U.tolist(), predict(a, b, 0.5).lam.tolist()
+    ([1.5, 1.5], [-1.5])
+    """
+    return Iterate(now.U + ratio * (now.U - before.U), now.lam + ratio * (now.lam - before.lam),
+                   now.r + ratio * (now.r - before.r))
+
+
 def _linear_step(step, it, res, close, linear, modes, blocksize, factor, linear_tol=1e-12):
-    """Step 3: Δx = -J⁻¹R, the row and column scales of J, J and the factorisation
-    to reuse."""
-    A = jacobian(step, it, res, close)
+    """Step 3: Δx = -J⁻¹R, ``scaled`` and the factorisation to reuse.
+
+    ``scaled(full=False)`` gives the row and column scales of J and J: the
+    direct solve has them; an iterative step never forms J, so they are
+    computed when asked for, the scales from J with K's diagonal in place of
+    K (the same scales, :func:`skxfem.contact.step.scales` reads only K's
+    diagonal), J itself only with ``full``."""
     if linear == "iterative":
-        dx, factor = linear_step.iterative(step, it, res, A, modes, blocksize,
-                                              close=close, reuse=factor, tol=linear_tol)
-        return (dx, *linear_step.scales(A, step.nu), A, factor)
+        dx, factor = linear_step.iterative(step, res, modes, blocksize, close=close,
+                                           reuse=factor, tol=linear_tol)
+
+        def scaled(full=False):
+            free = step.free
+            K = step.K[free][:, free] if full else sp.diags(step.K.diagonal()[free])
+            A = jacobian(step, it, res, close, K=K)
+            return (*linear_step.scales(A, step.nu), A)
+        return dx, scaled, factor
+    A = jacobian(step, it, res, close)
     n = step.nu + res.R_n.size
     if np.all(step.laws.tangential == "free"):  # no friction: r_τ = 0 is known, Δr = -R_t
         dx, rows, factor = linear_step.direct(A[:n, :n], res.vector[:n], step.nu,
-                                                 reuse=factor)
+                                              reuse=factor)
         ones = np.ones(res.R_t.size)
-        return np.r_[dx, -res.R_t.T.ravel()], np.r_[rows, ones], np.r_[factor[2], ones], \
-            A, factor
+        rows, cols = np.r_[rows, ones], np.r_[factor[2], ones]
+        return np.r_[dx, -res.R_t.T.ravel()], lambda full=False: (rows, cols, A), factor
     dx, rows, factor = linear_step.direct(A, res.vector, step.nu, reuse=factor)
-    return dx, rows, factor[2], A, factor
+    return dx, lambda full=False: (rows, factor[2], A), factor
 
 
 def _singular_fallback(step, it, res, closed_before, linear, modes, blocksize, error,
-                       linear_tol=1e-12):
+                       linear_tol=1e-12, setup=None):
     """A singular Newton matrix (the active set leaves a part of the body free):
     the Jacobian that keeps closed the points closed at the last iterate, then
     the one with every unilateral point closed.  If that one is singular too,
@@ -472,7 +521,7 @@ def _singular_fallback(step, it, res, closed_before, linear, modes, blocksize, e
             continue
         tried.append(chi | close)
         try:
-            return _linear_step(step, it, res, close, linear, modes, blocksize, None,
+            return _linear_step(step, it, res, close, linear, modes, blocksize, setup,
                                 linear_tol)
         except linear_step.SingularStepError as e:
             error = e

@@ -26,8 +26,8 @@ import scipy.sparse as sp
 from .dependent import unit_rows
 from .saddle import SingularSystemError, floating
 
-__all__ = ["rigid_modes", "axis_name", "motion_name", "free_motion_name", "amg", "check_held",
-           "scaled_tie", "augmented", "check_tie_held"]
+__all__ = ["rigid_modes", "axis_name", "motion_name", "free_motion_name", "amg", "refresh",
+           "check_held", "scaled_tie", "augmented", "check_tie_held"]
 
 
 def pyamg():
@@ -179,6 +179,11 @@ def motion_name(c, dim: int, centre=None, length: float = 1.0, verb: bool = True
     return f"{'translate' if verb else 'translates'} along {axis_name(t)}"
 
 
+SMOOTHER = ("block_gauss_seidel", {"sweep": "symmetric"})
+"""pyamg's default smoother of smoothed aggregation, which :func:`amg` keeps and
+:func:`refresh` sets up again."""
+
+
 AMG_SEED = 0
 """The seed of the random start vectors pyamg draws (``np.random``) to estimate the
 spectral radius of each level's smoother: fixed, so that an iterative solve gives
@@ -202,14 +207,81 @@ def amg(A: sp.spmatrix, modes: np.ndarray | None = None, blocksize: int = 1):
     state = np.random.get_state()  # pyamg estimates spectral radii from np.random:
     np.random.seed(AMG_SEED)       # a fixed start makes every solve reproducible
     try:
-        return amg_module.smoothed_aggregation_solver(
-            A, B=modes, coarse_solver="splu", improve_candidates=None)
+        ml = amg_module.smoothed_aggregation_solver(
+            A, B=modes, coarse_solver="splu", improve_candidates=None,
+            presmoother=SMOOTHER, postsmoother=SMOOTHER)
+        ml.skxfem_coarse = "splu"
+        return ml
     except RuntimeError:  # a singular coarsest matrix: an aggregate on which the modes
         np.random.seed(AMG_SEED)  # are dependent (nodes on a line)
-        return amg_module.smoothed_aggregation_solver(
-            A, B=modes, coarse_solver="pinv", improve_candidates=None)
+        ml = amg_module.smoothed_aggregation_solver(
+            A, B=modes, coarse_solver="pinv", improve_candidates=None,
+            presmoother=SMOOTHER, postsmoother=SMOOTHER)
+        ml.skxfem_coarse = "pinv"
+        return ml
     finally:
         np.random.set_state(state)  # the caller's random numbers are left as they were
+
+
+def refresh(ml, A: sp.spmatrix, change: sp.spmatrix | None = None):
+    """The hierarchy ``ml`` (of :func:`amg`, for A₀) carried over to A = A₀ + ΔA.
+
+    Aggregates and prolongators P are kept; every coarse operator is updated by
+    the Galerkin product of the change, A_{l+1} += R_l ΔA_l P_l, which costs
+    little where ΔA lives on a few rows (the interface rows of a contact
+    Newton step); the smoothers and the coarsest factorisation are set up
+    again.  ``change``: ΔA, if the caller has it (else A - A₀, its zeros
+    dropped).  A new ``MultilevelSolver``: ``ml`` is left as it was.  The
+    hierarchy is then the Galerkin hierarchy of A on A₀'s coarse spaces: a
+    preconditioner for A as good as those spaces are for it.
+
+    >>> import scipy.sparse as sp, numpy as np
+    >>> A0 = sp.diags([-np.ones(99), 2.0 * np.ones(100), -np.ones(99)], [-1, 0, 1]).tocsr()
+    >>> ml = amg(A0); A = (A0 + sp.diags(np.r_[1.0, np.zeros(99)])).tocsr()
+    >>> new = refresh(ml, A); P, R = new.levels[0].P, new.levels[0].R
+    >>> bool(abs(new.levels[1].A - R @ A @ P).max() < 1e-12), new is not ml
+    (True, True)
+    """
+    amg_module = pyamg()
+    old = ml.levels
+    A = _like(A, old[0].A)
+    change = sp.csr_matrix(A - old[0].A if change is None else change)
+    change.eliminate_zeros()
+    levels = []
+    for i, level in enumerate(old):
+        new = amg_module.multilevel.MultilevelSolver.Level()
+        for key, value in vars(level).items():
+            setattr(new, key, value)
+        if i == 0:
+            new.A = A
+        else:
+            change = sp.csr_matrix(old[i - 1].R @ change @ old[i - 1].P)
+            new.A = level.A + _like(change, level.A)
+        levels.append(new)
+    coarse = levels[-1].A
+    for name in dict.fromkeys((getattr(ml, "skxfem_coarse", "splu"), "pinv")):
+        out = amg_module.multilevel.MultilevelSolver(levels, coarse_solver=name)
+        try:  # factorise the coarsest matrix now: a singular one takes the pseudo-inverse
+            out.coarse_solver(coarse, np.zeros(coarse.shape[0]))
+            break
+        except RuntimeError:
+            continue
+    out.skxfem_coarse = name
+    state = np.random.get_state()
+    np.random.seed(AMG_SEED)
+    try:
+        amg_module.relaxation.smoothing.change_smoothers(out, SMOOTHER, SMOOTHER)
+    finally:
+        np.random.set_state(state)
+    return out
+
+
+def _like(A, template):
+    """A in the format of ``template``: BSR with its blocks, or CSR."""
+    if template.format == "bsr":
+        return A if A.format == "bsr" and A.blocksize == template.blocksize else \
+            sp.bsr_matrix(A, blocksize=template.blocksize)
+    return sp.csr_matrix(A)
 
 
 def check_held(Kr, Z, rigid_tol: float = 1e-11):
