@@ -16,12 +16,13 @@ build (``SKXFEM_SOLUTIONS`` set: ``make book-instructor``) it gives the source,
 and :func:`show_reference` adds the reference with the library code it uses.
 
 Each chapter offers its exercise's stub for download: the *pristine* stub
-(:func:`stub`), generated from the contract in ``exercise.py`` (the module
-docstring, the imports its examples use, each graded function's signature and
-docstring, then ``raise NotImplementedError``), never the student's file, which
-may hold a solution.  The book build (this module is a Sphinx extension of the
-book) writes them into ``book/_stubs/`` (:func:`write_stubs`), where the chapters'
-download links point.
+(:func:`stub`), never the student's file, which may hold a solution.  It is
+``exercise.py`` while that is still a stub, else its newest committed version
+that is one, else (no git) the contract the file holds (:func:`stub_of`: the
+module docstring, the imports its examples use, each graded function's
+signature and docstring, then ``raise NotImplementedError``).  The book build
+(this module is a Sphinx extension of the book) writes them into ``book/_stubs/``
+(:func:`write_stubs`), where the chapters' download links point.
 
 :func:`check_book` reads a built book and lists every page that shows an answer
 (the students' book) or every answer that no page shows (the instructors' book),
