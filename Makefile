@@ -83,4 +83,4 @@ notebooks: $(STAMP)
 	$(BIN)/python scripts/notebooks.py notebooks/
 
 clean:
-	rm -rf book/_build notebooks
+	rm -rf book/_build book/_stubs notebooks

@@ -14,7 +14,8 @@ What ``import skxfem`` gives:
   contact solve of :mod:`skxfem.contact`;
 * the scene and its parts: :class:`Scene`, :class:`Box`, :class:`Displacement`,
   :class:`SurfaceLoad`, :func:`clamped`, :func:`rollers`, :class:`Material`,
-  :class:`Interface` (one of several interfaces of a scene),
+  :class:`Interface` (one of several interfaces of a scene), :class:`Solver`
+  (how it is solved: ``Scene.solver``, a scene file's ``[solver]``),
   :func:`load_scene` (a TOML scene file) and the built-in scenes
   ``skxfem.scenes`` (``paper_plate``, ``strip``, ``exact_plate`` ...);
 * the level sets :func:`plane`, :func:`circle`, :func:`sphere` and their
@@ -47,8 +48,8 @@ own (import-linter checks it in ``make test``; the contract is in
    ``evaluate``, ``vtu``, ``files``, ``cutgraph``, the exact solutions;
 3. ``levelset`` (the sign convention);
 4. ``scene``: ``laws`` (the laws and spaces, one table), ``parts``, ``expr``,
-   ``boundary``, ``model`` (the :class:`Scene`), ``benchmarks``
-   (``skxfem.scenes``), ``file`` and ``tomlcheck`` (scene files);
+   ``boundary``, ``settings`` (:class:`Solver`), ``model`` (the :class:`Scene`),
+   ``benchmarks`` (``skxfem.scenes``), ``file`` and ``tomlcheck`` (scene files);
 5. ``cut``;  6. ``enrich``;  7. ``multipliers``;  8. ``stabilised``;
 9. ``problem``;  10. ``result``;
 11. ``contact``: ``laws``, ``interface``, ``step`` (the linear solve of a
@@ -90,6 +91,7 @@ from .scene.model import (  # noqa: E402
     Displacement,
     Interface,
     Scene,
+    Solver,
     SurfaceLoad,
     clamped,
     rollers,
@@ -108,8 +110,8 @@ def __getattr__(name: str):
 
 
 __all__ = [
-    "__version__", "solve", "Result", "assemble", "Scene", "Interface", "Box", "Displacement",
-    "SurfaceLoad", "clamped", "rollers", "Material", "load_scene", "plane", "circle",
-    "sphere", "union", "intersection", "complement", "scenes", "levelset", "cut", "enrich",
-    "multipliers", "lbb", "stabilised", "contact", "plotting", "evaluate",
+    "__version__", "solve", "Result", "assemble", "Scene", "Solver", "Interface", "Box",
+    "Displacement", "SurfaceLoad", "clamped", "rollers", "Material", "load_scene", "plane",
+    "circle", "sphere", "union", "intersection", "complement", "scenes", "levelset", "cut",
+    "enrich", "multipliers", "lbb", "stabilised", "contact", "plotting", "evaluate",
 ]

@@ -181,7 +181,7 @@ def snap(mesh, psi: np.ndarray, edges: np.ndarray | None = None):
     return out, int(near.sum()), shift
 
 
-def cut(mesh, psi) -> Cut:
+def cut(mesh, psi, name: str = "") -> Cut:
     """Cut ``mesh`` by the level set ``psi`` (a callable or nodal values).
 
     Parameters
@@ -190,6 +190,9 @@ def cut(mesh, psi) -> Cut:
         ``MeshTri1``, ``MeshQuad1``, ``MeshTet1``, ``MeshHex1`` or ``MeshWedge1``.
     psi
         A level set callable (see :mod:`skxfem.levelset`) or its nodal values.
+    name
+        What the :class:`SnapWarning` calls the interface (a scene with several:
+        ``"interfaces[1] 'y - 0.7'"``); ``""``: "the level set".
 
     Raises
     ------
@@ -207,7 +210,8 @@ def cut(mesh, psi) -> Cut:
     psi, moved, shift = snap(mesh, psi, all_edges)
     if moved:
         warnings.warn(
-            f"the level set passes within {SNAP:g} edge lengths of {moved} mesh vertices: "
+            f"{name or 'the level set'} passes within {SNAP:g} edge lengths of {moved} mesh "
+            f"vertices: "
             f"moved them off it by up to {shift:.1e} (to the side psi > 0 where psi = 0), "
             f"so Γ moves by as much (skxfem.cut.SNAP)", SnapWarning, stacklevel=2)
 

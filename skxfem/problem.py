@@ -312,7 +312,8 @@ def _assemble_several(scene: Scene, law: str | None) -> Problem:
     laws = [check_law(i.law if law is None else law) for i in items]
     timings, lap = _clock()
     mesh = resolve_mesh(scene)
-    cuts = tuple(cut_mesh(mesh, i.levelset) for i in items)
+    cuts = tuple(cut_mesh(mesh, i.levelset, f"interfaces[{k}] {i.levelset.name!r}")
+                 for k, i in enumerate(items))
     check_apart(mesh, cuts, [f"interfaces[{k}] ({i.levelset.name!r})"
                              for k, i in enumerate(items)])
     lap("cut")

@@ -33,7 +33,7 @@ from .contact.laws import CONTACT_LAWS
 from .levelset import point_normals
 from .linalg import iterative, saddle
 from .linalg.amg import rigid_modes
-from .linalg.choice import AUTO_ITERATIVE, LINEAR, LINEAR_TOL, check_linear_tol, choose_linear
+from .linalg.choice import AUTO_ITERATIVE, LINEAR, choose_linear
 from .linalg.dependent import dependencies
 from .linalg.rigid import check_held
 from .linalg.threads import limited
@@ -65,13 +65,17 @@ def _differences(cut, ncomp: int) -> sp.csr_matrix:
 
 
 @limited
-def solve(scene: Scene, dependent: str = "remove", linear: str = "auto",
-          linear_tol: float = LINEAR_TOL) -> Result:
+def solve(scene: Scene, dependent: str = "remove", linear: str | None = None,
+          linear_tol: float | None = None, max_iter: int | None = None) -> Result:
     """Solve ``scene`` and return a :class:`~skxfem.result.Result`.
 
     A scene with a contact law (``frictionless``, ``coulomb``, ``adhesive``)
     is handed to :func:`skxfem.contact.solve` with its load steps: one call
-    solves any scene, and returns the same kind of result.
+    solves any scene, and returns the same kind of result.  The scene's
+    settings (``scene.solver``, a scene file's ``[solver]`` table) choose the
+    solve; the keywords ``linear``, ``linear_tol`` and ``max_iter`` given (not
+    None) override them, as the options of ``skxfem run`` override the file,
+    so that ``solve(load_scene(path))`` is the solve of ``skxfem run path``.
 
     Parameters
     ----------
@@ -82,12 +86,20 @@ def solve(scene: Scene, dependent: str = "remove", linear: str = "auto",
         ``"remove"`` (default) drops linearly dependent multipliers,
         ``"raise"`` refuses a rank-deficient coupling with a ValueError.
     linear
-        The linear solve of the tie, one of :data:`LINEAR`: ``"direct"``,
-        ``"iterative"`` (AMG + projected CG, pyamg), or ``"auto"`` (default): the
-        iterative one from :data:`AUTO_ITERATIVE` unknowns if pyamg is there.
+        The linear solve of the tie (or of each contact Newton step), one of
+        :data:`LINEAR`: ``"direct"``, ``"iterative"`` (AMG + projected CG,
+        pyamg), or ``"auto"``: the iterative one from :data:`AUTO_ITERATIVE`
+        unknowns if pyamg is there.  ``None``: ``scene.solver.linear``
+        (default ``"auto"``).
     linear_tol
-        The relative residual of the iterative solve (default
-        :data:`skxfem.linalg.choice.LINEAR_TOL`), recorded in ``linear_info``.
+        The relative residual of the iterative solve, recorded in
+        ``linear_info``; ``None``: ``scene.solver.linear_tol`` (default
+        :data:`skxfem.linalg.choice.LINEAR_TOL`).
+    max_iter
+        Contact laws: the Newton iterations of a load step; ``None``:
+        ``scene.solver.max_iter``, else
+        :data:`skxfem.scene.settings.MAX_ITER` (30).  A scene without a
+        contact law takes none.
 
     The BLAS libraries run one thread during the solve (:mod:`skxfem.linalg.threads`:
     ``SKXFEM_THREADS`` or :func:`skxfem.linalg.threads.using` choose another number).
@@ -97,28 +109,39 @@ def solve(scene: Scene, dependent: str = "remove", linear: str = "auto",
     ValueError
         A scene that does not fit its mesh, a level set that cuts no cell
         or passes through nodes (from :func:`skxfem.cut.cut`), a rank
-        deficient space with ``dependent="raise"``.
+        deficient space with ``dependent="raise"``, a bad ``linear``,
+        ``linear_tol`` or ``max_iter`` (or ``max_iter`` for a tie).
     skxfem.linalg.saddle.SingularSystemError
         (a ValueError) The supports and the law leave a rigid motion of a side
         free (:func:`skxfem.linalg.rigid.check_held`, which names it), or the
         system is singular for another reason.
+    skxfem.contact.ContactConvergenceError
+        A contact load step that does not converge, even cut.
     """
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
-    if any(i.law in CONTACT_LAWS for i in check_scene(scene).interface_list):
-        return contact.solve(scene, linear=linear, linear_tol=linear_tol)
-    p = assemble(scene)
-    return solve_problem(p, dependent, linear, linear_tol)
+    settings = check_scene(scene).solver.override(linear, linear_tol, max_iter)
+    laws = [i.law for i in scene.interface_list]
+    if any(law in CONTACT_LAWS for law in laws):
+        return contact.solve(scene, linear=settings.linear, linear_tol=settings.linear_tol,
+                             max_iter=settings.max_iter)
+    if settings.max_iter is not None:
+        raise ValueError(f"max_iter applies to the contact laws {CONTACT_LAWS} (Newton "
+                         f"iterations per load step); the scene's law is "
+                         f"{laws[0] if len(laws) == 1 else laws!r}: leave max_iter unset")
+    return solve_problem(assemble(scene), dependent, settings.linear, settings.linear_tol)
 
 
 @limited
-def solve_problem(p: Problem, dependent: str = "remove", linear: str = "auto",
-                  linear_tol: float = LINEAR_TOL) -> Result:
-    """Solve an assembled :class:`skxfem.problem.Problem` (its law): see :func:`solve`."""
+def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = None,
+                  linear_tol: float | None = None) -> Result:
+    """Solve an assembled :class:`skxfem.problem.Problem` (its law): see :func:`solve`
+    (``None``: the settings of the problem's scene, ``p.scene.solver``)."""
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
-    linear = _linear(linear, p)
-    linear_tol = check_linear_tol(linear_tol)
+    settings = p.scene.solver.override(linear, linear_tol)
+    linear = _linear(settings.linear, p)
+    linear_tol = settings.linear_tol
     mesh, V, B, P, D = p.mesh, p.V, p.B, p.P, p.D
     t = p.timings
     timings = {"cut": t["cut"] + t["space"], "enrich": t["enrich"],

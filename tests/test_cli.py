@@ -266,9 +266,9 @@ CONTACT = str(EXAMPLES / "contact.toml")
 
 def test_18_contact_example_runs_and_its_json_satisfies_signorini(tmp_path, capsys,
                                                                    monkeypatch):
-    def tie_solve(scene, **options):
-        raise AssertionError("a contact scene went to skxfem.solver.solve")
-    monkeypatch.setattr(cli, "solve", tie_solve)
+    def tie_solve(*args, **options):
+        raise AssertionError("a contact scene went to the tie solve")
+    monkeypatch.setattr(skxfem.solver, "solve_problem", tie_solve)
     s = load_scene(CONTACT)
     assert (s.name, s.law, s.friction, s.steps) == ("contact", "coulomb", 0.5, (0.5, 1.0))
     data = run(tmp_path, "contact")
@@ -311,7 +311,7 @@ CONTACT_TEXT = (EXAMPLES / "contact.toml").read_text()
     ({"friction = 0.5": "friction = 0.5\nrho_t = -2.0"}, ["[interface] rho_t", "> 0"]),
     ({'law = "coulomb"': 'law = "glue"'}, ["[interface] law", "glue"]),
     ({"steps = [0.5, 1.0]": "steps = []"}, ["[interface] steps", "non-empty"]),
-    ({'law = "coulomb"': 'law = "frictionless"',          # Ω⁺ free to slide in x
+    ({'law = "coulomb"\nfriction = 0.5': 'law = "frictionless"',  # Ω⁺ free to slide in x
       '[[displacement]]\nboundary = "ymax"\nx = 2.0': '#'}, ["singular"]),
 ])
 def test_19_bad_contact_values_exit_2_with_one_line(tmp_path, capsys, edits, words):
@@ -328,10 +328,25 @@ def test_19_bad_contact_values_exit_2_with_one_line(tmp_path, capsys, edits, wor
 
 
 def test_20_a_contact_newton_that_does_not_converge_exits_2(tmp_path, capsys):
+    """--max-iter 1: every attempt fails.  Each retry (the paper's fixed point: the
+    example keeps the default ρ) and each cut of the first step is a note, in order,
+    down to 1/64 of the step; then the one error line (issue 26)."""
     argv = ["run", CONTACT, "--out", str(tmp_path / "o"), "--max-iter", "1"]
     assert main(argv) == 2
-    err = one_line(capsys)
+    *notes, err = capsys.readouterr().err.splitlines()
+    assert err.startswith("skxfem: error: ") and "Traceback" not in err
     assert "did not converge in 1 iterations" in err and "friction" in err
+    assert "down to 1/64 of its increment" in err
+    where, expected = "load step 1 of 2 (load factor 0.5)", []
+    for k in range(7):                 # the increments 0 to 1, 0 to 1/2 ... 0 to 1/64
+        here = where if k == 0 else f"{where}, increment 0 to 1/{2 ** k}"
+        failed = f"skxfem: note: {here}: Newton did not converge in 1 iterations"
+        expected.append(f"{failed}; retry 1 of 1: solving it again by the paper's fixed "
+                        f"point on the friction threshold")
+        if k < 6:
+            expected.append(f"{failed} (nor its 1 retry); cut: next increment 0 to "
+                            f"1/{2 ** (k + 1)} (1/{2 ** (k + 1)} of the step)")
+    assert notes == expected
     assert not (tmp_path / "o").exists()
     assert main(argv + ["--debug"]) == 2
     assert "Traceback" in capsys.readouterr().err
@@ -341,11 +356,12 @@ def test_20_a_contact_newton_that_does_not_converge_exits_2(tmp_path, capsys):
 def test_21_a_non_convergence_anywhere_in_the_history_is_one_line(tmp_path, capsys,
                                                                   monkeypatch):
     """Whatever raises it (a later step, the fixed point), the error is anticipated."""
-    def solve_contact(scene, **options):
-        assert scene.steps == (0.5, 1.0) and options == {"linear": "auto", "linear_tol": 1e-12}
+    def solve(scene, **options):   # skxfem.solve: the file's settings, no option given
+        assert scene.steps == (0.5, 1.0) and options == {}
+        assert scene.solver == skxfem.Solver()
         raise ContactConvergenceError("the fixed point on the friction threshold failed "
                                       "in pass 2:\nalternates between two states")
-    monkeypatch.setattr(cli, "solve_contact", solve_contact)
+    monkeypatch.setattr(cli, "solve", solve)
     assert main(["run", CONTACT, "--out", str(tmp_path / "o")]) == 2
     assert "pass 2: alternates" in one_line(capsys)
     assert ContactConvergenceError in cli.ANTICIPATED
@@ -592,3 +608,196 @@ def test_30_warnings_are_counted_not_printed(tmp_path, capfd, monkeypatch):
     assert err == "" and "1 warning(s) not shown (--debug shows them)" in out
     assert main(["--debug", "run", STRIP, "--out", str(tmp_path / "o")]) == 0
     assert "a warning of some library" in capfd.readouterr().err
+
+
+# --- issue 26: an engineer gets what the file says --------------------------------------
+
+SOLVER_TABLE = '\n[solver]\nlinear = "iterative"\nlinear_tol = 1e-9\n'
+
+
+def run_and_load(path, out, *options):
+    """result.json of `skxfem run path` and skxfem.solve(skxfem.load_scene(path))."""
+    assert main(["run", str(path), "--out", str(out), *options]) == 0
+    return json.loads((out / "result.json").read_text()), skxfem.load_scene(path)
+
+
+@pytest.mark.parametrize("example", ["contact", "strip"])
+def test_31_one_file_one_answer(tmp_path, capsys, example):
+    """The same scene file with a [solver] table gives the same linear solve, the same
+    iterations and the same answer through `skxfem run` and through
+    skxfem.solve(skxfem.load_scene(f)); an explicit keyword overrides the file as the
+    option does."""
+    pytest.importorskip("pyamg")
+    contact = example == "contact"
+    path = tmp_path / f"{example}.toml"
+    path.write_text((EXAMPLES / f"{example}.toml").read_text() + SOLVER_TABLE
+                    + ("max_iter = 40\n" if contact else ""))
+    data, scene = run_and_load(path, tmp_path / "o")
+    capsys.readouterr()
+    assert scene.solver == skxfem.Solver("iterative", 1e-9, 40 if contact else None)
+    r = skxfem.solve(scene)
+    assert r.linear == data["linear_solve"]["linear"] == "iterative"
+    assert r.linear_info["tol"] == data["linear_solve"]["tol"] == 1e-9
+    p = np.array(data["pressure"])
+    assert np.abs(r.pressure - p).max() <= 1e-12 * np.abs(p).max()
+    assert np.abs(r.traction.T - np.array(data["traction"])).max() <= 1e-12 * np.abs(p).max()
+    if contact:   # Newton's iterations, step by step
+        assert [st.newton.iterations for st in r.steps] == [
+            st["newton"]["iterations"] for st in data["steps"]]
+    else:         # the CG iterations and residuals
+        assert r.linear_info["iterations"] == data["linear_solve"]["iterations"] > 0
+        assert np.allclose(r.linear_info["residuals"], data["linear_solve"]["residuals"],
+                           rtol=1e-8, atol=0)
+    # an explicit keyword overrides the file, as the option does
+    data, _ = run_and_load(path, tmp_path / "d", "--linear", "direct", "--linear-tol", "1e-6")
+    capsys.readouterr()
+    r = skxfem.solve(scene, linear="direct", linear_tol=1e-6)
+    assert r.linear == data["linear_solve"]["linear"] == "direct"
+    assert r.linear_info["tol"] == data["linear_solve"]["tol"] == 1e-6
+    assert np.abs(r.pressure - np.array(data["pressure"])).max() <= 1e-12 * np.abs(p).max()
+
+
+def test_32_max_iter_of_the_file_reaches_the_solve_and_a_keyword_overrides_it(tmp_path,
+                                                                              capsys):
+    """[solver] max_iter = 1 fails the example in both (exit 2; ContactConvergenceError);
+    max_iter=40 (a numpy integer too) overrides it in Python as --max-iter does."""
+    path = tmp_path / "c.toml"
+    path.write_text(CONTACT_TEXT + "\n[solver]\nmax_iter = 1\n")
+    scene = skxfem.load_scene(path)
+    assert scene.solver.max_iter == 1
+    assert main(["run", str(path), "--out", str(tmp_path / "o")]) == 2
+    assert "did not converge in 1 iterations" in capsys.readouterr().err
+    with pytest.warns(UserWarning), pytest.raises(ContactConvergenceError,
+                                                  match="did not converge in 1 iterations"):
+        skxfem.solve(scene)
+    assert main(["run", str(path), "--out", str(tmp_path / "o"), "--max-iter", "40"]) == 0
+    data = json.loads((tmp_path / "o" / "result.json").read_text())
+    capsys.readouterr()
+    for max_iter in (40, np.int64(40)):
+        r = skxfem.solve(scene, max_iter=max_iter)
+        assert [st.newton.iterations for st in r.steps] == [
+            st["newton"]["iterations"] for st in data["steps"]]
+
+
+@pytest.mark.parametrize("key, bad, message", [
+    ("linear", "cholesky", "linear must be one of ('auto', 'direct', 'iterative'), got "
+                           "'cholesky'"),
+    ("linear_tol", 2.0, "linear_tol must be a number in (0, 1)"),
+    ("linear_tol", "1e-9", "linear_tol must be a number in (0, 1)"),
+    ("max_iter", 0, "max_iter must be a positive integer"),
+    ("max_iter", 2.5, "max_iter must be a positive integer"),
+    ("max_iter", True, "max_iter must be a positive integer"),
+])
+def test_33_skxfem_solve_checks_its_options_as_the_command_line(key, bad, message):
+    """Each option of skxfem.solve is checked before anything is solved, in the one line
+    the command line gives for it; max_iter on a tie is refused as --max-iter is."""
+    scene = skxfem.load_scene(CONTACT)
+    with pytest.raises(ValueError) as info:
+        skxfem.solve(scene, **{key: bad})
+    assert str(info.value).startswith(message) and "\n" not in str(info.value)
+    with pytest.raises(ValueError, match="max_iter applies to the contact laws"):
+        skxfem.solve(skxfem.load_scene(STRIP), max_iter=5)
+    with pytest.raises(ValueError, match="max_iter applies to the contact laws"):
+        skxfem.solve(skxfem.Scene(skxfem.Box(3, "quad"), skxfem.plane((0, 0.5), (0, 1)),
+                                  solver=skxfem.Solver(max_iter=5)))
+
+
+def test_34_the_cli_error_for_a_bad_linear_tol_is_that_of_python(tmp_path, capsys, no_solve):
+    assert main(["run", STRIP, "--out", str(tmp_path / "o"), "--linear-tol", "2"]) == 2
+    err = one_line(capsys)
+    with pytest.raises(ValueError) as info:
+        skxfem.solve(skxfem.load_scene(STRIP), linear_tol=2.0)
+    assert err.strip() == f"skxfem: error: {info.value}"
+
+
+@pytest.mark.parametrize("law", ["bonded", "bilateral", "frictionless", "adhesive"])
+def test_35_coulomb_needs_friction_and_no_other_law_takes_it(tmp_path, capsys, law,
+                                                            no_solve):
+    """`law = "coulomb"` without friction ran as μ = 0; friction with another law was
+    ignored.  Both are one line naming friction, exit 2, before any solve."""
+    path = tmp_path / "s.toml"
+    path.write_text(CONTACT_TEXT.replace("friction = 0.5\n", ""))
+    assert main(["run", str(path), "--out", str(tmp_path / "o")]) == 2
+    err = one_line(capsys)
+    assert "[interface] law 'coulomb' needs friction" in err and "s.toml" in err
+    path.write_text(CONTACT_TEXT.replace('law = "coulomb"', f'law = "{law}"'))
+    assert main(["run", str(path), "--out", str(tmp_path / "o")]) == 2
+    err = one_line(capsys)
+    assert "[interface] friction" in err and f"law '{law}' has no friction" in err
+    assert "remove friction" in err and not (tmp_path / "o").exists()
+
+
+TURNED = """name = "turned"
+[mesh]
+box = {n = [8, 9], cell = "quad"}
+[levelset]
+plane = {point = [0.0, 0.5], normal = [0.0, 1.0]}
+[[displacement]]
+boundary = "ymin"
+kind = "clamped"
+[[displacement]]
+boundary = "ymax"
+x = 0.0
+y = "-0.002 - 0.05*(x - 0.5)"
+[interface]
+law = "frictionless"
+steps = [1.0, -0.5]
+"""
+"""A strip whose top is pressed and turned, then turned back the other way half as far:
+the contact zone crosses Γ, and Newton needs 6 iterations for the second step."""
+
+
+def test_36_every_cut_is_said_as_it_happens(tmp_path, capsys, monkeypatch):
+    """With 4 Newton iterations allowed, the second step of TURNED is cut three times,
+    then converges; each cut is one note, in order, printed before the next increment
+    is solved; the result is the uncut one."""
+    from skxfem.contact import history
+
+    path = tmp_path / "turned.toml"
+    path.write_text(TURNED)
+    ref = skxfem.solve(skxfem.load_scene(path))
+    assert [st.newton.iterations for st in ref.steps] == [3, 6]
+    seen = []                               # stderr when each Newton iteration starts
+    newton = history.newton
+
+    def watched(*args, **kwargs):
+        seen.append(capsys.readouterr().err)
+        return newton(*args, **kwargs)
+
+    monkeypatch.setattr(history, "newton", watched)
+    assert main(["run", str(path), "--out", str(tmp_path / "o"), "--max-iter", "4"]) == 0
+    seen.append(capsys.readouterr().err)
+    where = "load step 2 of 2 (load factor -0.5)"
+    failed = "Newton did not converge in 4 iterations; cut: next increment"
+    notes = [f"skxfem: note: {where}: {failed} 0 to 1/2 (1/2 of the step)",
+             f"skxfem: note: {where}, increment 1/2 to 1: {failed} 1/2 to 3/4 (1/4 of the step)",
+             f"skxfem: note: {where}, increment 1/2 to 3/4: {failed} 1/2 to 5/8 (1/8 of the "
+             f"step)"]
+    assert "".join(seen).splitlines() == notes
+    printed = [k for k, err in enumerate(seen) if err]   # each before the next solve
+    assert len(printed) == 3 and printed[-1] < len(seen) - 1
+    data = json.loads((tmp_path / "o" / "result.json").read_text())
+    assert data["steps"][-1]["increments"] == 4   # 0-1/2, 1/2-5/8, 5/8-7/8, 7/8-1
+    assert np.abs(np.array(data["pressure"]) - ref.pressure).max() < 1e-10
+
+
+def test_37_notes_name_the_interface_of_a_scene_with_several(tmp_path, capsys):
+    """TURNED with a bonded interface below its contact one: each cut names the
+    interface whose points kept changing status, interfaces[1]; the snap note of
+    examples/column.toml (its upper plane passes through a node) names its interface."""
+    head, _, _ = TURNED.partition("[levelset]")
+    supports = TURNED[TURNED.index("[[displacement]]"):TURNED.index("[interface]")]
+    path = tmp_path / "two.toml"
+    path.write_text("steps = [1.0, -0.5]\n" + head + supports + "[[interface]]\n"
+                    "expr = 'y - 0.25'\nlaw = 'bonded'\n[[interface]]\n"
+                    "plane = {point = [0.0, 0.5], normal = [0.0, 1.0]}\nlaw = 'frictionless'\n")
+    assert main(["run", str(path), "--out", str(tmp_path / "o"), "--max-iter", "4"]) == 0
+    notes = capsys.readouterr().err.splitlines()
+    assert len(notes) >= 1 and all(
+        note.startswith("skxfem: note: load step 2 of 2 (load factor -0.5)") and
+        " on interfaces[1] 'plane(point=[0.0, 0.5], normal=[0.0, 1.0])' (frictionless)" in note
+        and "cut: next increment" in note for note in notes), notes
+    assert main(["run", str(EXAMPLES / "column.toml"), "--out", str(tmp_path / "c")]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and err[0].startswith("skxfem: note: interfaces[1] 'plane(point=[0.0, "
+                                               "2.1]") and "passes within 1e-09 edge" in err[0]

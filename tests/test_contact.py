@@ -24,11 +24,17 @@ def held_top(scene, comps=("x",)):
                    + (Displacement(top, {c: 0.0 for c in comps}),))
 
 
-def cube(n=(1, 2, 3), law="frictionless", top=None, loads=(), mu=0.0, nu=0.3, **kw):
+def mu_of(law, mu):
+    """The ``friction`` of a scene with ``law``: μ for coulomb, unset for the others."""
+    return mu if law == "coulomb" else None
+
+
+def cube(n=(1, 2, 3), law="frictionless", top=None, loads=(), mu=None, nu=0.3, **kw):
     """Unit cube, Γ at z = 0.5, bottom clamped, top displacement ``top``."""
     disp = (clamped("zmin"),) + ((Displacement("zmax", top),) if top else ())
     return Scene(Box(n, "hex"), plane((0, 0, 0.5), (0, 0, 1)), Material(E=1.0, nu=nu),
-                 displacements=disp, loads=tuple(loads), law=law, friction=mu, **kw)
+                 displacements=disp, loads=tuple(loads), law=law, friction=mu_of(law, mu),
+                 **kw)
 
 
 def compressed(dim):
@@ -72,7 +78,7 @@ def test_tension_opens_the_interface(law, dim):
     else:
         s = cube(top={"x": 0.0, "y": 0.0, "z": 0.1},
                  loads=(SurfaceLoad("xmax", traction=(0.1, 0.0, 0.0)),))
-    res = contact.solve(replace(s, law=law, friction=0.5))
+    res = contact.solve(replace(s, law=law, friction=mu_of(law, 0.5)))
     step = res.steps[-1]
     assert np.all(step.pressure == 0) and np.all(step.status == 0)
     assert np.all(step.gap < 0)
@@ -114,7 +120,7 @@ def block(n=3, mu=0.5, p=1.0, delta=0.0, tau=0.0, law="coulomb", name="block"):
              SurfaceLoad("xmin", traction=(0.0, -tau)))
     return Scene(Box((n, n), "quad"), plane((0, 0.5), (0, 1)), Material(E=1.0, nu=0.0),
                  displacements=(clamped("ymin"), Displacement("ymax", {"x": delta})),
-                 loads=loads, law=law, friction=mu, name=name)
+                 loads=loads, law=law, friction=mu_of(law, mu), name=name)
 
 
 def test_block_sticks_then_slides():
@@ -211,7 +217,7 @@ def test_bad_input_is_refused():
         replace(base, law="coulomb", friction=-0.1)
     for key in ("rho_n", "rho_t"):
         with pytest.raises(ValueError, match=key):
-            replace(base, law="coulomb", **{key: 0.0})
+            replace(base, law="coulomb", friction=0.3, **{key: 0.0})
     with pytest.raises(ValueError, match="law must be one of"):
         replace(base, law="glue")
     with pytest.raises(ValueError, match="scene law must be one of"):
@@ -252,7 +258,7 @@ def test_an_unloaded_side_held_only_by_an_open_interface_is_refused(law, dim):
     every point, and the top may then slide by any amount; a state that does not
     determine U is refused, not returned."""
     s = cube(law=law, mu=0.3, top={"z": 0.0}) if dim == 3 else replace(
-        strip(n=3), law=law, friction=0.3,
+        strip(n=3), law=law, friction=mu_of(law, 0.3),
         displacements=(clamped("ymin"), Displacement("ymax", {"y": 0.0})))
     with pytest.raises(saddle.SingularSystemError, match=r"load step 1.0: Ω⁺ .* can translate "
                        r"(along x|in every direction normal to z).*the contact state found "
@@ -449,7 +455,7 @@ def test_the_paper_plate_with_its_rollers_sticks_as_the_bonded_tie(cell, space, 
 
     s = paper_plate(n, cell=cell, space=space)
     tie = solver.solve(s, linear="direct")
-    res = contact.solve(replace(s, law=law, friction=1.0), linear="direct")
+    res = contact.solve(replace(s, law=law, friction=mu_of(law, 1.0)), linear="direct")
     st = res.steps[-1]
     assert np.all(st.status == 1) and st.newton.iterations <= 2
     assert rel(st.U, tie.U) < 1e-12
@@ -582,7 +588,8 @@ def test_a_multiplier_on_a_sliver_of_gamma_is_refused_for_contact():
                                              r"use space='vital'"):
             contact.solve(scene("winner"), linear="direct")
         res = contact.solve(scene("vital"), linear="direct")
-        tie = solver.solve(replace(scene("vital"), law="bonded"), linear="direct")
+        tie = solver.solve(replace(scene("vital"), law="bonded", friction=None),
+                           linear="direct")
     assert np.all(res.steps[-1].status == 1)
     assert rel(res.steps[-1].U, tie.U) < 1e-8 and rel(res.traction, tie.traction) < 1e-8
 

@@ -10,6 +10,7 @@ score table works on a copy of the exercise.
 import ast
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -266,11 +267,54 @@ def test_hints_never_cut_a_word(width):
     text = hints([Score("01_levelset", (Result("t1", "passed"),
                                         Result("t2", "failed", 1.0, " ".join(words)),
                                         Result("t3", "failed", 1.0, "later")))], width)
-    head, *body = text.splitlines()
+    head, *body, last = text.splitlines()
     assert head == "01_levelset: t2 failed:" and "later" not in text
+    assert last == "01_levelset: t3 failed"          # a later failure: one line, no message
     assert " ".join(body).split() == words
     assert all(len(line) <= width or len(line.split()) == 1 for line in body)
     assert hints([Score("x", (Result("t", "passed"),))]) == ""
+
+
+def test_grade_prints_the_table_and_each_failure_once(tmp_path, capfd):
+    """Untouched stubs: nothing of pytest's before the table (no column of
+    NotImplementedError, no summary repeating it), then one line per failing test,
+    the first of each exercise with its message."""
+    for name in ("01_levelset", "02_cut"):
+        copy_exercise(tmp_path, name)
+    status = main([str(tmp_path / "exercises"), "--report", str(tmp_path / "r.json")])
+    out, err = capfd.readouterr()
+    assert status == 1 and err == "", err
+    assert out.lstrip().startswith("exercise           tests   points"), out[:2000]
+    assert "short test summary" not in out and "FAILED" not in out, out
+    assert out.count("NotImplementedError") == 2, out          # one hint per exercise
+    report = json.loads((tmp_path / "r.json").read_text(encoding="utf-8"))
+    below = out.split("\ntotal ")[1].splitlines()[1:]
+    failing = [f"{e}: {t['name']} " for e, ex in report["exercises"].items()
+               for t in ex["tests"] if t["outcome"] != "passed"]
+    assert len(failing) == report["total"] > 10
+    for test in failing:
+        assert sum(line.startswith(test) for line in below) == 1, (test, out)
+    named = [line for line in below if line.split(":")[0] in report["exercises"]]
+    assert len(named) == len(failing), below
+
+
+def test_grade_dot_inside_an_exercise_counts_its_tests(tmp_path, capfd, monkeypatch):
+    """cd exercises/05_lbb && skxfem grade . grades that exercise, by its name."""
+    from skxfem.app.cli import main as cli
+    folder = copy_exercise(tmp_path, "05_lbb")
+    monkeypatch.chdir(folder)
+    assert cli(["grade", "."]) == 1
+    out = capfd.readouterr().out
+    found = re.search(r"^05_lbb\s+0/(\d+)\s+0/\d+\s+first failure: test_01", out, flags=re.M)
+    assert found and int(found.group(1)) >= 5, out
+    assert "no test ran" not in out and "report: out/grades/05_lbb.json" in out, out
+    report = json.loads((folder / "out" / "grades" / "05_lbb.json").read_text("utf-8"))
+    assert report["total"] == int(found.group(1)) and list(report["exercises"]) == ["05_lbb"]
+
+    monkeypatch.chdir(EXERCISES / "05_lbb")                       # the references: full marks
+    assert main([".", "--impl=solution", "--report", str(tmp_path / "r.json")]) == 0
+    report = json.loads((tmp_path / "r.json").read_text(encoding="utf-8"))
+    assert report["passed"] == report["total"] == int(found.group(1))
 
 
 def test_reports_go_to_an_ignored_folder_one_per_exercise(tmp_path, capsys, monkeypatch):

@@ -51,11 +51,16 @@ def write_book(folder, pages):
 
 
 def test_the_stubs_are_what_the_graders_ask_for():
+    """graded() is the tests' ASKED; each stub defines exactly those, in that order."""
     found = graded()
     assert list(found) == sorted(p.parent.name for p in EXERCISES.glob("*/exercise.py"))
     assert len(found) == 7
     for exercise, names in found.items():
         assert names == asked(exercise), exercise
+        tree = ast.parse((EXERCISES / exercise / "exercise.py").read_text(encoding="utf-8"))
+        public = tuple(n.name for n in tree.body
+                       if isinstance(n, ast.FunctionDef) and not n.name.startswith("_"))
+        assert public == names, exercise
 
 
 def test_answers_hold_the_library_code_the_book_printed():

@@ -45,8 +45,10 @@ def horizontal(dim, z, tilt=0.0):
 
 
 def column(cell, laws=("bonded", "bonded"), top="pressed", middle=False, tilt=0.0,
-           friction=(0.0, 0.0), n=4):
-    """The column of the module notes: Γ₀ at z = 0.37 (tilted by ``tilt``), Γ₁ at 0.7."""
+           friction=(None, None), n=4):
+    """The column of the module notes: Γ₀ at z = 0.37 (tilted by ``tilt``), Γ₁ at 0.7;
+    ``friction``: the μ of each coulomb interface (the other laws take none)."""
+    friction = [mu if law == "coulomb" else None for law, mu in zip(laws, friction)]
     dim = dim_of(cell)
     up = "xyz"[dim - 1]
     sides = tuple(rollers(f) for f in ("xmin", "ymin")[:dim - 1])

@@ -129,15 +129,15 @@ LOW, HIGH = plane((0, 0.3), (0, 1)), plane((0, 0.7), (0, 1))
 
 
 def test_06b_several_interfaces_and_the_list_of_either_kind():
-    two = Scene(QUAD, interfaces=[Interface(LOW, "frictionless", friction=0),
+    two = Scene(QUAD, interfaces=[Interface(LOW, "frictionless"),
                                   Interface(HIGH, "coulomb", "winner", 0.4, 2.0)])
     assert isinstance(two.interfaces, tuple) and two.several and two.dim == 2
     assert [(i.law, i.space, i.friction, i.rho_n) for i in two.interface_list] == [
-        ("frictionless", "vital", 0.0, None), ("coulomb", "winner", 0.4, 2.0)]
+        ("frictionless", "vital", None, None), ("coulomb", "winner", 0.4, 2.0)]
     assert (two.law, two.space, two.levelset) == (None, None, None)   # each Interface's
-    one = Scene(QUAD, LINE, law="bilateral", friction=0.2)
+    one = Scene(QUAD, LINE, law="bilateral", rho_n=2.0)
     assert not one.several and one.interface_list == (Interface(LINE, "bilateral",
-                                                                friction=0.2),)
+                                                                rho_n=2.0),)
     alone = two.alone(1)                       # the one-interface scene of interface 1
     assert (alone.law, alone.space, alone.friction, alone.rho_n, alone.interfaces) == (
         "coulomb", "winner", 0.4, 2.0, None) and alone.levelset is HIGH
@@ -467,3 +467,47 @@ def test_the_ends_of_the_size_range_pass_the_patch_test(cell, size):
     scene = Scene(Box(4, cell, size=(size,) * dim), psi, Material(),
                   (rollers(up + "min"),) + fix, (SurfaceLoad(up + "max", pressure=1.0),))
     assert patch_error(scene)[0] <= 1e-8
+
+
+# --- issue 26: no silent default that changes the law; the solver settings ------------
+
+@pytest.mark.parametrize("build", [
+    lambda **kw: Scene(QUAD, LINE, **kw),
+    lambda **kw: Scene(QUAD, interfaces=(Interface(LOW, "bonded"), Interface(HIGH, **kw))),
+    lambda **kw: Interface(LOW, **kw),
+])
+def test_26_coulomb_needs_friction_and_the_other_laws_refuse_it(build):
+    """law="coulomb" without friction ran as μ = 0 ("frictionless" in the summary);
+    friction with a law that has none was ignored.  Both are one-line ValueErrors that
+    name friction, for a one-interface scene and for an Interface of several."""
+    with pytest.raises(ValueError, match=r"law 'coulomb' needs friction \(Coulomb's mu"):
+        build(law="coulomb")
+    for law in ("bonded", "bilateral", "frictionless", "adhesive"):
+        with pytest.raises(ValueError, match=rf"friction \(Coulomb's mu\) is taken by the law "
+                                             rf"'coulomb' only; law '{law}' has no friction"):
+            build(law=law, friction=0.3)
+        build(law=law)                               # unset: accepted
+    for mu in (0, 0.0, 0.3, np.float64(2.0)):        # 0 given on purpose: frictionless
+        built = build(law="coulomb", friction=mu)
+        items = built.interface_list if isinstance(built, Scene) else (built,)
+        assert items[-1].friction == float(mu) and type(items[-1].friction) is float
+
+
+def test_26b_the_solver_settings_are_part_of_the_scene():
+    """Scene.solver: the defaults unless given, checked; a keyword overrides it."""
+    from skxfem import Solver
+
+    s = Scene(QUAD, LINE)
+    assert s.solver == Solver() and (s.solver.linear, s.solver.max_iter) == ("auto", None)
+    t = dataclasses.replace(s, solver=Solver("direct", 1e-8, np.int64(7)))
+    assert t.solver.max_iter == 7 and type(t.solver.max_iter) is int
+    assert t.solver.override(linear="iterative") == Solver("iterative", 1e-8, 7)
+    assert t.solver.override() is t.solver
+    with pytest.raises(TypeError, match="Scene solver must be a skxfem.Solver"):
+        Scene(QUAD, LINE, solver={"linear": "direct"})
+    for kwargs, message in ((dict(linear="lu"), "linear must be one of"),
+                            (dict(linear_tol=0.0), "linear_tol must be a number in"),
+                            (dict(max_iter=0), "max_iter must be a positive integer"),
+                            (dict(max_iter=np.bool_(True)), "max_iter must be a positive")):
+        with pytest.raises(ValueError, match=message):
+            Solver(**kwargs)

@@ -381,6 +381,10 @@ def place(table: str, key: str, example):
     if key in ("max_iter", "friction"):           # options of the contact laws
         part(data, "[[interface]]" if table == "[[interface]]" else "[interface]")["law"] = \
             "coulomb"
+    given = data.get("interface")                 # coulomb needs its friction
+    for t in given if isinstance(given, list) else [given] if given else []:
+        if t.get("law") == "coulomb":
+            t.setdefault("friction", 0.5)
     return data, dim
 
 
@@ -574,7 +578,7 @@ def test_20_interface_tables_give_each_interface_its_level_set_and_law(tmp_path)
     s = load_scene(write(tmp_path, TWO))
     assert s.several and s.levelset is None and s.law is None and s.steps == (0.5, 1.0)
     low, high = s.interfaces
-    assert (low.law, low.space, low.friction, low.rho_n) == ("frictionless", "vital", 0.0,
+    assert (low.law, low.space, low.friction, low.rho_n) == ("frictionless", "vital", None,
                                                              None)
     assert (high.law, high.space, high.friction, high.rho_n) == ("coulomb", "winner", 0.4,
                                                                  3.0)
@@ -620,10 +624,54 @@ def test_22_interface_forms_refused_together(tmp_path):
     with pytest.raises(ValueError, match="steps is given twice"):
         load_scene(write(tmp_path, twice))
     ties = TWO.replace('law = "frictionless"', 'law = "bonded"').replace(
-        'law = "coulomb"', 'law = "bilateral"') + "[solver]\nmax_iter = 5\n"
+        'law = "coulomb"', 'law = "bilateral"').replace("friction = 0.4\n", "") \
+        + "[solver]\nmax_iter = 5\n"
     with pytest.raises(ValueError, match=r"max_iter applies to the contact laws .* the law "
                                          r"is \['bonded', 'bilateral'\]"):
         load_scene(write(tmp_path, ties))
     with_contact = TWO + "[solver]\nmax_iter = 5\n"
     assert load_options(write(tmp_path, with_contact)) == {"max_iter": 5}
     load_scene(write(tmp_path, with_contact))
+
+
+# --- issue 26: what the file says ---------------------------------------------------------
+
+@pytest.mark.parametrize("law", ["bonded", "bilateral", "frictionless", "adhesive"])
+def test_26_coulomb_needs_its_friction_and_no_other_law_takes_one(tmp_path, law):
+    """No default μ: law coulomb without friction is refused, naming the key, in
+    [interface] and in an [[interface]] table; friction with a law without friction too."""
+    for text, where in ((MINIMAL + '[interface]\nlaw = "coulomb"\n', "[interface]"),
+                        (TWO.replace("friction = 0.4\n", ""), "[[interface]] #2")):
+        with pytest.raises(ValueError) as info:
+            load_scene(write(tmp_path, text, "bad.toml"))
+        assert str(info.value).startswith(f"bad.toml: {where} law 'coulomb' needs friction "
+                                          f"(Coulomb's mu, a number >= 0): add friction = ")
+    for text, where in ((MINIMAL + f'[interface]\nlaw = "{law}"\nfriction = 0.0\n',
+                         "[interface]"),
+                        (TWO.replace('law = "frictionless"', f'law = "{law}"\nfriction = 0.2'),
+                         "[[interface]] #1")):
+        with pytest.raises(ValueError) as info:
+            load_scene(write(tmp_path, text, "bad.toml"))
+        assert str(info.value) == (f"bad.toml: {where} friction (Coulomb's mu) is taken by law "
+                                   f"'coulomb' only; law '{law}' has no friction: remove "
+                                   f"friction")
+    zero = load_scene(write(tmp_path, MINIMAL + '[interface]\nlaw = "coulomb"\nfriction = 0\n'))
+    assert (zero.law, zero.friction) == ("coulomb", 0.0)     # given on purpose: accepted
+
+
+def test_26b_the_solver_table_is_the_scenes_solver(tmp_path):
+    """[solver] linear, linear_tol and max_iter load into Scene.solver (else the
+    defaults), as load_options reads them."""
+    from skxfem import Solver
+
+    assert load_scene(write(tmp_path, MINIMAL)).solver == Solver()
+    text = (MINIMAL + "[interface]\nlaw = 'frictionless'\n[solver]\nlinear = 'direct'\n"
+            "linear_tol = 1e-9\nmax_iter = 40\n")
+    assert load_scene(write(tmp_path, text)).solver == Solver("direct", 1e-9, 40)
+    assert load_options(write(tmp_path, text)) == {"linear": "direct", "linear_tol": 1e-9,
+                                                   "max_iter": 40}
+    for bad, key in (("linear_tol = 0", "linear_tol"), ("linear_tol = true", "linear_tol"),
+                     ("max_iter = true", "max_iter")):
+        with pytest.raises(ValueError, match=rf"^bad.toml: \[solver\] {key} must be"):
+            load_scene(write(tmp_path, MINIMAL + "[interface]\nlaw = 'frictionless'\n"
+                             f"[solver]\n{bad}\n", "bad.toml"))

@@ -32,8 +32,13 @@ hint to run again with ``--debug``, which prints the traceback too (the exit
 code stays); 130 after Ctrl-C.  Control characters of a printed line (say, a
 scene name holding terminal escape codes) are printed escaped (``\x1b``).
 
-Python warnings (numpy's floating-point warnings, meshio's, scikit-fem's) are
-not printed: the summary line counts them (``--debug`` shows them), and a
+The scene is solved by :func:`skxfem.solve` with the scene file's ``[solver]``
+settings (``Scene.solver``) and the options given in their place, so that
+``skxfem.solve(skxfem.load_scene(path))`` gives the same answer.  skxfem's own
+notices (:data:`NOTICES`: each retry and each cut of a contact load step, vertices
+moved off Γ) are printed as they are raised, one line ``skxfem: note: ...`` each
+on stderr.  Other Python warnings (numpy's floating-point warnings, meshio's,
+scikit-fem's) are not printed: the summary line counts them (``--debug`` shows them), and a
 floating-point overflow in the solve refuses the result (exit 2): the numbers
 of the scene are beyond double precision.  ``skxfem run`` never imports
 matplotlib.
@@ -45,6 +50,7 @@ when asked for); its errors are reported in the same way.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
 import logging
 import sys
@@ -54,14 +60,13 @@ import warnings
 from pathlib import Path
 
 from .. import __version__
-from ..contact.history import StepCutWarning
-from ..contact.history import solve as solve_contact
+from ..contact.history import StepCutWarning, StepRetryWarning
 from ..contact.laws import CONTACT_LAWS, STATUS_NAMES
 from ..contact.newton import ContactConvergenceError
 from ..cut import SnapWarning
-from ..linalg.choice import LINEAR_TOL, check_linear_tol
+from ..linalg.choice import LINEAR_TOL
 from ..linalg.threads import limited
-from ..scene.file import MAX_MAGNITUDE, load_options, load_scene, schema
+from ..scene.file import MAX_MAGNITUDE, load_scene, schema
 from ..solver import LINEAR, solve
 from ..studies import budget
 from . import io
@@ -171,20 +176,34 @@ def _say(text: str, stream=None):
     print(printable(text), file=stream or sys.stdout)
 
 
-NOTICES = (StepCutWarning, SnapWarning)
-"""skxfem's own notices, printed as ``skxfem: note: ...`` lines on stderr: a load
-step cut into smaller increments, vertices moved off Γ."""
+NOTICES = (StepRetryWarning, StepCutWarning, SnapWarning)
+"""skxfem's own notices, printed as ``skxfem: note: ...`` lines on stderr as they are
+raised: a contact load step solved again by another method or cut into smaller
+increments, vertices moved off Γ."""
 
 
-def _notes(caught: list) -> None:
-    """Print the notices among the ``caught`` warnings (each once) and drop them."""
+@contextlib.contextmanager
+def _noting(caught: list):
+    """Print each notice (:data:`NOTICES`) as a ``skxfem: note: ...`` line on stderr the
+    moment it is raised (the same text once), and collect every other warning into
+    ``caught``."""
     seen = set()
-    for w in [w for w in caught if issubclass(w.category, NOTICES)]:
-        text = " ".join(str(w.message).split())
-        if text not in seen:
-            seen.add(text)
-            _say(f"skxfem: note: {text}", sys.stderr)
-    caught[:] = [w for w in caught if not issubclass(w.category, NOTICES)]
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        if issubclass(category, NOTICES):
+            text = " ".join(str(message).split())
+            if text not in seen:
+                seen.add(text)
+                _say(f"skxfem: note: {text}", sys.stderr)
+                sys.stderr.flush()
+            return
+        caught.append(warnings.WarningMessage(message, category, filename, lineno, file, line))
+
+    with warnings.catch_warnings():   # restores the filters and showwarning after
+        for category in NOTICES:
+            warnings.simplefilter("always", category)
+        warnings.showwarning = show
+        yield
 
 
 def _fail(error: BaseException, debug: bool) -> int:
@@ -237,28 +256,21 @@ def _overflowed(caught) -> OverflowRefused | None:
 
 @limited   # BLAS threads: skxfem.linalg.threads (SKXFEM_THREADS)
 def _run(args, caught: list) -> int:
-    s = load_scene(args.scene)
-    options = load_options(args.scene)  # the command line overrides the file
-    linear = args.linear or options.get("linear", "auto")
-    linear_tol = check_linear_tol(args.linear_tol if args.linear_tol is not None
-                                  else options.get("linear_tol", LINEAR_TOL))
-    max_iter = args.max_iter if args.max_iter is not None else options.get("max_iter")
+    s = load_scene(args.scene)      # its [solver] table in s.solver
+    given = {k: v for k, v in (("linear", args.linear), ("linear_tol", args.linear_tol),
+                               ("max_iter", args.max_iter)) if v is not None}
+    settings = s.solver.override(**given)  # the command line overrides the file (checked)
     laws = [i.law for i in s.interface_list]
     contact = any(law in CONTACT_LAWS for law in laws)
-    if max_iter is not None and not contact:
+    if args.max_iter is not None and not contact:
         raise ValueError(f"--max-iter applies to the contact laws {CONTACT_LAWS}; the scene's "
                          f"law is {s.law if len(laws) == 1 else laws!r}")
     out = io.check_output(args.out if args.out is not None else io.default_folder(s.name))
-    budget.check(s, args.max_memory, "--max-memory", linear=linear)
-    if contact:
-        limit = {} if max_iter is None else {"max_iter": max_iter}
-        result = solve_contact(s, linear=linear, linear_tol=linear_tol, **limit)
-    else:
-        result = solve(s, linear=linear, linear_tol=linear_tol)
+    budget.check(s, args.max_memory, "--max-memory", linear=settings.linear)
+    result = solve(s, **given)      # = skxfem.solve: the file's settings, then the options
     overflow = _overflowed(caught)
     if overflow is not None:
         raise overflow
-    _notes(caught)
     try:
         paths = io.write_result(result, out)
     except OSError as e:
@@ -309,7 +321,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.command == "schema":
             print(schema(), end="")
             return 0
-        with warnings.catch_warnings(record=True) as caught:
+        with _noting(caught):
             return _run(args, caught)
     except KeyboardInterrupt:
         print("skxfem: interrupted", file=sys.stderr)
@@ -320,8 +332,7 @@ def main(argv: list[str] | None = None) -> int:
             return _fail(e, debug)
         overflow.__cause__ = e
         return _fail(overflow, debug)
-    finally:  # a failed run's notices (the cuts of a step) are in its error line
-        caught[:] = [w for w in caught if debug or not issubclass(w.category, NOTICES)]
+    finally:  # the notices are printed as they come; the other warnings with --debug
         for w in caught if debug else ():
             print(warnings.formatwarning(w.message, w.category, w.filename, w.lineno),
                   end="", file=sys.stderr)

@@ -11,11 +11,15 @@ exercises' ``conftest.py``: ``student`` (the default), ``solution`` or
 ``wrong:NAME``, checked here first (:func:`check_impl`), so that a misspelt
 choice is one line naming the valid ones, not a column of pytest errors.
 
-The score table has one row per exercise; the message of each exercise's first
-failure (its hint, e.g. "Did you normalise the normal?") is printed in full
-below the table.  The JSON report of a run is one file, by default
-``out/grades/NAME.json`` under the current folder, NAME the folder graded
-(``01_levelset``, or ``exercises`` for all): grading one exercise never
+The score table has one row per exercise; below it, every test that did not
+pass, once: the first of each exercise with its whole message (its hint, e.g.
+"Did you normalise the normal?"), each later one in one line.  pytest's own
+output is kept out of the way (it would print every failure twice more); it is
+shown only when an exercise ran no test at all, as the reason.
+
+The JSON report of a run is one file, by default ``out/grades/NAME.json`` under
+the current folder, NAME the folder graded (``01_levelset``, or ``exercises``
+for all; ``.`` inside an exercise is that exercise): grading one exercise never
 overwrites another's report, and ``out/`` is ignored by git.  ``--report FILE``
 writes it elsewhere.
 
@@ -82,8 +86,11 @@ class Score:
 
 
 def find_exercises(path: Path) -> list[Path]:
-    """The exercise folders under ``path`` (or ``path`` itself): those holding test files."""
-    path = Path(path)
+    """The exercise folders under ``path`` (or ``path`` itself): those holding test files.
+
+    Absolute, so that ``.`` inside an exercise is that exercise, named by its folder.
+    """
+    path = Path(path).resolve()
     if any(path.glob("test_*.py")):
         return [path]
     return sorted(p for p in path.iterdir() if p.is_dir() and any(p.glob("test_*.py")))
@@ -213,32 +220,41 @@ def table(scores: list[Score]) -> str:
 
 
 def hints(scores: list[Score], width: int = WIDTH) -> str:
-    """The first failure of each exercise with its whole message, wrapped to ``width``
-    columns between words (a hint is never cut), or '' if nothing failed.
+    """Every test that did not pass, once each, or '' if all passed.
+
+    Per exercise, the first one with its whole message, wrapped to ``width`` columns
+    between words (a hint is never cut), then one line per later one (its message
+    is in the JSON report; ``pytest`` on the exercise shows them all).
 
     >>> print(hints([Score("01_levelset", (Result("test_02", "failed", 1.0,
-    ...     "AssertionError: psi should be 0.5, got 1. Did you normalise the normal?"),))],
-    ...     width=40))
+    ...     "AssertionError: psi should be 0.5, got 1. Did you normalise the normal?"),
+    ...     Result("test_03", "error", 1.0, "later")))], width=40))
     01_levelset: test_02 failed:
         AssertionError: psi should be 0.5,
         got 1. Did you normalise the normal?
+    01_levelset: test_03 could not run
     """
-    blocks = []
+    said = {"failed": "failed", "error": "could not run", "skipped": "was skipped"}
+    lines = []
     for s in scores:
-        failed = next((r for r in s.results if r.outcome != "passed"), None)
-        if failed is None:
+        failed = [r for r in s.results if r.outcome != "passed"]
+        if not failed:
             continue
-        said = {"failed": "failed", "error": "could not run", "skipped": "was skipped"}
-        text = textwrap.fill(failed.message or "(no message)", width, initial_indent="    ",
+        first, *later = failed
+        text = textwrap.fill(first.message or "(no message)", width, initial_indent="    ",
                              subsequent_indent="    ", break_long_words=False,
                              break_on_hyphens=False)
-        blocks.append(f"{s.exercise}: {failed.name} {said.get(failed.outcome, failed.outcome)}"
-                      f":\n{text}")
-    return "\n".join(blocks)
+        lines.append(f"{s.exercise}: {first.name} {said.get(first.outcome, first.outcome)}"
+                     f":\n{text}")
+        lines += [f"{s.exercise}: {r.name} {said.get(r.outcome, r.outcome)}" for r in later]
+    return "\n".join(lines)
 
 
 def grade(path: Path, impl: str = "student", pytest_args: tuple[str, ...] = ()) -> list[Score]:
     """Run the exercises under ``path`` with pytest in a subprocess; their scores.
+
+    pytest's output is captured, not shown (the scores say it all), except when an
+    exercise ran no test: then it is printed, as the reason.
 
     Raises
     ------
@@ -266,13 +282,19 @@ def grade(path: Path, impl: str = "student", pytest_args: tuple[str, ...] = ()) 
                    f"--junitxml={xml_path}", "-o", "junit_family=xunit1",
                    f"--rootdir={root}", "-p", "no:cacheprovider", "-q", "--tb=line",
                    *pytest_args]
-        done = subprocess.run(command)
+        done = subprocess.run(command, capture_output=True, text=True, errors="replace")
         if not xml_path.exists():
+            said = (done.stderr.strip() or done.stdout.strip()).splitlines()
             raise RuntimeError(
+                f"pytest did not run (exit status {done.returncode}): {said[-1]}" if said else
                 f"pytest did not run (exit status {done.returncode}); is it installed? "
                 f"pip install 'skxfem[dev]' (or: pip install pytest)")
         results = read_junit(xml_path, names)
-    return [Score(n, tuple(results[n])) for n in names]
+    scores = [Score(n, tuple(results[n])) for n in names]
+    if any(s.total == 0 for s in scores):
+        print(done.stdout, end="")
+        print(done.stderr, end="", file=sys.stderr)
+    return scores
 
 
 class _Parser(argparse.ArgumentParser):

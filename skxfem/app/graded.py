@@ -1,7 +1,9 @@
 """The graded exercises' functions, and what the book may show of them.
 
-A student writes the functions of ``exercises/NN_name/exercise.py``: those stubs
-are the one list of what is graded (:func:`graded`).  What *answers* an exercise
+A student writes the functions of ``exercises/NN_name/exercise.py`` that the
+exercise's tests call: their ``ASKED`` is the one list of what is graded
+(:func:`graded`), read from the test file, which a student does not edit, so a
+solved or half-solved ``exercise.py`` cannot change it.  What *answers* an exercise
 is read from its reference, ``exercises/solutions/NN_name/reference.py``
 (:func:`answers`): the reference's functions of those names (its own code, or the
 library function it re-exports), the library functions named in its
@@ -12,8 +14,19 @@ The book never prints the code of an answer.  :func:`listing` gives a function's
 contract, its signature and docstring with the body elided; in the instructors'
 build (``SKXFEM_SOLUTIONS`` set: ``make book-instructor``) it gives the source,
 and :func:`show_reference` adds the reference with the library code it uses.
+
+Each chapter offers its exercise's stub for download: the *pristine* stub
+(:func:`stub`), never the student's file, which may hold a solution.  It is
+``exercise.py`` while that is still a stub, else its newest committed version
+that is one, else (no git) the contract the file holds (:func:`stub_of`: the
+module docstring, the imports its examples use, each graded function's
+signature and docstring, then ``raise NotImplementedError``).  The book build
+(this module is a Sphinx extension of the book) writes them into ``book/_stubs/``
+(:func:`write_stubs`), where the chapters' download links point.
+
 :func:`check_book` reads a built book and lists every page that shows an answer
-(the students' book) or every answer that no page shows (the instructors' book);
+(the students' book) or every answer that no page shows (the instructors' book),
+and every shipped ``exercise.py`` that is not its pristine stub;
 ``make book`` and ``make book-instructor`` run it after the build::
 
     python -m skxfem.app.graded book/_build/html                 # students: none shown
@@ -23,6 +36,7 @@ from __future__ import annotations
 
 import argparse
 import ast
+import doctest
 import html
 import importlib
 import importlib.util
@@ -31,17 +45,21 @@ import json
 import math
 import os
 import re
+import subprocess
 import sys
+import tempfile
 import textwrap
 import types
 from collections.abc import Callable
 from pathlib import Path
 
-__all__ = ["INSTRUCTORS", "exercises_folder", "graded", "answers", "code_lines", "contract",
-           "listing", "show_reference", "check_book", "main"]
+__all__ = ["INSTRUCTORS", "STUBS", "exercises_folder", "graded", "answers", "code_lines",
+           "contract", "stub_of", "stub", "write_stubs", "listing", "show_reference",
+           "check_book", "main"]
 
 INSTRUCTORS = "SKXFEM_SOLUTIONS"   # set (non-empty) in the environment: the instructors' book
 SHORTEST = 16                      # code lines shorter than this are too common to count
+STUBS = "_stubs"                   # the book's build-only folder of pristine stubs (book/_stubs)
 
 
 def exercises_folder(root: str | Path | None = None) -> Path:
@@ -58,22 +76,30 @@ def exercises_folder(root: str | Path | None = None) -> Path:
     return folder
 
 
-def graded(root: str | Path | None = None) -> dict[str, tuple[str, ...]]:
-    """The graded functions: exercise folder name -> the functions its stub asks for.
+def _asked(folder: Path) -> tuple[str, ...]:
+    """``ASKED`` of the exercise's test file: the functions its grader calls."""
+    for test in sorted(folder.glob("test_*.py")):
+        for node in ast.parse(test.read_text(encoding="utf-8"), filename=str(test)).body:
+            if isinstance(node, ast.Assign) and any(
+                    isinstance(t, ast.Name) and t.id == "ASKED" for t in node.targets):
+                return tuple(ast.literal_eval(node.value))
+    raise ValueError(f"no test_*.py in {folder} sets ASKED, the functions its grader calls")
 
-    Read from the stubs themselves (the public top-level ``def`` of each
-    ``NN_name/exercise.py``), so the list cannot drift from what students write.
+
+def graded(root: str | Path | None = None) -> dict[str, tuple[str, ...]]:
+    """The graded functions: exercise folder name -> the functions its tests ask for.
+
+    One entry per ``NN_name/exercise.py``; the names are its test file's ``ASKED``
+    (what the grader calls), not read from ``exercise.py``, so a student's helper
+    functions never count as graded.  ``tests/test_graded.py`` checks that every
+    stub defines exactly these.
 
     >>> graded()["01_levelset"]
     ('plane', 'circle', 'sphere')
     """
     folder = exercises_folder(root)
-    found = {}
-    for stub in sorted(folder.glob("*/exercise.py")):
-        tree = ast.parse(stub.read_text(encoding="utf-8"), filename=str(stub))
-        found[stub.parent.name] = tuple(node.name for node in tree.body
-                                        if isinstance(node, ast.FunctionDef)
-                                        and not node.name.startswith("_"))
+    found = {stub.parent.name: _asked(stub.parent)
+             for stub in sorted(folder.glob("*/exercise.py"))}
     if not found:
         raise FileNotFoundError(f"no exercise stub (NN_name/exercise.py) under {folder}")
     return found
@@ -195,6 +221,158 @@ def contract(func: Callable, note: str = "") -> str:
     return "\n".join(lines[:_docstring_end(node)] + [f"{indent}...{'   ' if note else ''}{note}"])
 
 
+def _names_used(code: str) -> set[str]:
+    """The names a piece of code reads (none if it does not parse)."""
+    try:
+        tree = ast.parse(code)
+    except SyntaxError:
+        return set()
+    return {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)}
+
+
+def _contract_names(docstrings: list[str], functions: list[ast.FunctionDef]) -> set[str]:
+    """The names the contract needs: those its docstrings' examples and the
+    graded functions' signatures use."""
+    used = set()
+    for doc in docstrings:
+        for example in doctest.DocTestParser().get_examples(doc):
+            used |= _names_used(example.source)
+    for node in functions:
+        parts = [node.args, *node.decorator_list] + ([node.returns] if node.returns else [])
+        used |= {n.id for part in parts for n in ast.walk(part) if isinstance(n, ast.Name)}
+    return used
+
+
+def stub_of(source: str, exercise: str, asked: tuple[str, ...],
+            where: str = "exercise.py") -> str:
+    r"""The stub form of an ``exercise.py`` text: its contract, every body unwritten.
+
+    The module docstring; the top-level imports whose names the contract uses
+    (its examples, the signatures); then each function of ``asked``, in that
+    order, as its signature and docstring followed by ``raise
+    NotImplementedError("NAME: not written yet (exercise NN, see README.md)")``.
+    Bodies, helpers, other imports and module code are left out: a file whose
+    bodies a student wrote gives the same text as the untouched stub, and every
+    committed stub is its own stub form (``tests/test_book_stubs.py``).
+
+    >>> print(stub_of("import os\ndef f(x):\n    'F.'\n    return os.sep + x\n",
+    ...               "09_x", ("f",)))
+    def f(x):
+        'F.'
+        raise NotImplementedError("f: not written yet (exercise 09, see README.md)")
+    <BLANKLINE>
+    """
+    tree = ast.parse(source, filename=where)
+    lines = source.splitlines()
+    defined = {n.name: n for n in tree.body if isinstance(n, ast.FunctionDef)}
+    missing = [n for n in asked if n not in defined]
+    if missing:
+        raise ValueError(f"{where} does not define {', '.join(missing)}, which its tests "
+                         f"ask for (ASKED)")
+    functions = [defined[n] for n in asked]
+    head = []
+    module_doc = ast.get_docstring(tree, clean=False)
+    if module_doc is not None:
+        head = lines[tree.body[0].lineno - 1:tree.body[0].end_lineno]
+    used = _contract_names([module_doc or ""] + [ast.get_docstring(f) or "" for f in functions],
+                           functions)
+    for node in tree.body:          # the first import of each name (a student's come later)
+        bound = {a.asname or a.name.split(".")[0] for a in getattr(node, "names", ())}
+        if isinstance(node, (ast.Import, ast.ImportFrom)) and bound & used:
+            head += lines[node.lineno - 1:node.end_lineno]
+            used -= bound
+    number = exercise.split("_", 1)[0]
+    parts = []
+    for node in functions:
+        start = min([node.lineno] + [d.lineno for d in node.decorator_list])
+        indent = re.match(r"\s*", lines[node.body[0].lineno - 1]).group()
+        parts.append("\n".join(lines[start - 1:_docstring_end(node)] + [
+            f'{indent}raise NotImplementedError("{node.name}: not written yet '
+            f'(exercise {number}, see README.md)")']))
+    return "\n\n\n".join(["\n".join(head)] * bool(head) + parts) + "\n"
+
+
+def _committed_stub(path: Path, exercise: str, asked: tuple[str, ...]) -> str | None:
+    """The newest committed version of ``path`` that is a stub (its own stub form),
+    or None: no git, no history (a hand-out), or only solved versions."""
+    def git(*args):
+        try:
+            done = subprocess.run(["git", "-C", str(path.parent), *args], capture_output=True,
+                                  text=True, encoding="utf-8", timeout=60)
+        except (OSError, subprocess.SubprocessError):
+            return None
+        return done.stdout if done.returncode == 0 else None
+
+    for commit in (git("log", "--format=%H", "--", path.name) or "").split():
+        text = git("show", f"{commit}:./{path.name}")
+        try:
+            if text is not None and stub_of(text, exercise, asked) == text:
+                return text
+        except (SyntaxError, ValueError):    # an old or broken version: look further back
+            continue
+    return None
+
+
+def stub(exercise: str, root: str | Path | None = None) -> str:
+    """The pristine stub of ``exercise``: what the book offers for download.
+
+    Never the student's work, and the same text however much of
+    ``NN_name/exercise.py`` a student wrote.  Taken from the first of:
+
+    1. ``exercise.py`` itself, if it is a stub (its own :func:`stub_of` form:
+       untouched, or a stub an instructor is editing);
+    2. the newest committed version of it that is a stub, if git and the history
+       are there (a student who replaced the whole file, docstrings included, or
+       committed a solution);
+    3. the stub form of ``exercise.py`` (a hand-out without git): the contract as
+       the file holds it, its bodies, helpers and extra imports left out; only an
+       edit of the contract itself (a docstring, a signature) would show.
+
+    >>> print(stub("05_lbb").splitlines()[-1].strip())
+    raise NotImplementedError("unseen_multipliers: not written yet (exercise 05, see README.md)")
+    """
+    folder = exercises_folder(root)
+    asked = graded(folder).get(exercise)
+    if asked is None:
+        raise ValueError(f"no exercise {exercise!r} in {folder}; the exercises are "
+                         f"{', '.join(graded(folder))}")
+    path = folder / exercise / "exercise.py"
+    source = path.read_text(encoding="utf-8")
+    try:
+        form = stub_of(source, exercise, asked, str(path))
+    except (SyntaxError, ValueError):   # half written, a function renamed: try the history
+        form = None
+    if form == source:
+        return source
+    committed = _committed_stub(path, exercise, asked)
+    if committed is not None:
+        return committed
+    if form is None:
+        stub_of(source, exercise, asked, str(path))      # raises: says what is wrong
+    return form
+
+
+def write_stubs(out: str | Path, root: str | Path | None = None) -> list[Path]:
+    """Write every exercise's pristine stub (:func:`stub`) to ``out/NN_name/exercise.py``.
+
+    A file already holding the stub is left as it is; the others are replaced
+    whole (written beside, then renamed), so a reader never sees half a file.
+    Returns the paths of all the stubs.
+    """
+    out, folder = Path(out), exercises_folder(root)
+    written = []
+    for exercise in graded(folder):
+        text, target = stub(exercise, folder), out / exercise / "exercise.py"
+        target.parent.mkdir(parents=True, exist_ok=True)
+        if not target.is_file() or target.read_text(encoding="utf-8") != text:
+            with tempfile.NamedTemporaryFile("w", encoding="utf-8", dir=target.parent,
+                                             suffix=".tmp", delete=False) as f:
+                f.write(text)
+            os.replace(f.name, target)
+        written.append(target)
+    return written
+
+
 def _exercise_of(func: Callable) -> str | None:
     try:
         folder = exercises_folder()
@@ -286,7 +464,8 @@ def check_book(html_dir: str | Path, instructor: bool = False,
     instructors' book, answers that no page shows.  Empty when all is right.
 
     Every ``.html``, ``.ipynb``, ``.md``, ``.txt`` and ``.py`` file of the output
-    counts as a page (downloads and notebooks included).
+    counts as a page (downloads and notebooks included); every ``exercise.py`` in it
+    must be an exercise's pristine stub (:func:`stub`), as the chapters offer it.
     """
     html_dir = Path(html_dir)
     pages = sorted(p for p in html_dir.rglob("*")
@@ -296,6 +475,12 @@ def check_book(html_dir: str | Path, instructor: bool = False,
     text = {p.relative_to(html_dir).as_posix(): _page_lines(p) for p in pages}
     folder = exercises_folder(root)
     problems = []
+    stubs = {stub(e, folder) for e in graded(folder)}
+    for path in (p for p in pages if p.name == "exercise.py"):
+        if path.read_text(encoding="utf-8", errors="replace") not in stubs:
+            problems.append(f"{path.relative_to(html_dir).as_posix()} is no exercise's pristine "
+                            f"stub (a student's file?): a chapter offers "
+                            f"{STUBS}/NN_name/exercise.py (skxfem.app.graded.stub)")
     for exercise in graded(folder):
         for name, func in answers(exercise, folder).items():
             lines = code_lines(func)
@@ -339,6 +524,19 @@ def main(argv: list[str] | None = None) -> int:
         f"{'all' if args.instructor else 'none'} of the {count} functions answering "
         f"the {len(exercises)} exercises shown"))
     return 1 if problems else 0
+
+
+def _write_book_stubs(app) -> None:
+    """builder-inited: the pristine stubs into ``book/_stubs``, before any page is read
+    (a chapter's ``{download}`` of ``_stubs/NN_name/exercise.py`` needs the file)."""
+    book = Path(app.srcdir)
+    write_stubs(book / STUBS, book.parent / "exercises")
+
+
+def setup(app):
+    """The book's Sphinx extension (``_config.yml``, ``sphinx.extra_extensions``)."""
+    app.connect("builder-inited", _write_book_stubs)
+    return {"parallel_read_safe": True, "parallel_write_safe": True}
 
 
 if __name__ == "__main__":

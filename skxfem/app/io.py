@@ -145,7 +145,7 @@ def _interfaces(result, items, data: dict) -> dict:
     entries = []
     for i, law, n in zip(items, laws, counts):
         entries.append({"levelset": i.levelset.name, "law": i.law, "space": i.space,
-                        "friction": float(i.friction) if law is None else float(law.mu),
+                        "friction": _plain(i.friction) if law is None else float(law.mu),
                         "rho_n": _plain(i.rho_n if law is None else law.rho_n),
                         "rho_t": _plain(i.rho_t if law is None else law.rho_t),
                         "n_points": int(n)})

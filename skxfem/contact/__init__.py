@@ -16,6 +16,7 @@ from .history import (
     ContactConvergenceError,
     Step,
     StepCutWarning,
+    StepRetryWarning,
     check_closed,
     check_determined,
     parameters,
@@ -23,4 +24,5 @@ from .history import (
 )
 
 __all__ = ["solve", "parameters", "Step", "ContactConvergenceError", "StepCutWarning",
+           "StepRetryWarning",
            "check_closed", "check_determined", "METHODS", "RHO_RANGE", "MAX_CUTS"]

@@ -73,13 +73,14 @@ from __future__ import annotations
 import time
 import warnings
 from dataclasses import dataclass, replace
+from fractions import Fraction
 
 import numpy as np
 import scipy.sparse as sp
 
 from ..levelset import point_normals
 from ..linalg.amg import check_tie_held, rigid_modes
-from ..linalg.choice import LINEAR_TOL, check_linear_tol, choose_linear
+from ..linalg.choice import choose_linear
 from ..linalg.dependent import dependencies, unit_rows
 from ..linalg.iterative import stiffness_setup
 from ..linalg.rigid import check_held
@@ -89,6 +90,7 @@ from ..problem import Problem, assemble
 from ..result import Result, on_edges, result
 from ..scene.laws import LAWS
 from ..scene.model import Scene, check_scene
+from ..scene.settings import MAX_ITER
 from .fixed_point import fixed_point
 from .interface import Operators, operators, tangent_frames
 from .laws import CONTACT_LAWS, HISTORY_LAWS, OPEN, SLIP, STICK
@@ -107,7 +109,7 @@ from .newton import (
 )
 
 __all__ = ["Step", "parameters", "solve", "ContactConvergenceError",
-           "StepCutWarning", "METHODS", "RHO_RANGE", "MAX_CUTS"]
+           "StepCutWarning", "StepRetryWarning", "METHODS", "RHO_RANGE", "MAX_CUTS"]
 
 METHODS = ("newton", "fixed_point")
 
@@ -128,6 +130,11 @@ MAX_CUTS = 6
 
 class StepCutWarning(UserWarning):
     """A load step did not converge and is solved again in smaller increments."""
+
+
+class StepRetryWarning(UserWarning):
+    """A load step did not converge and is solved again from the same start by another
+    method (Newton at the default ρ, the paper's fixed point): module notes."""
 
 
 @dataclass(frozen=True)
@@ -182,8 +189,9 @@ def parameters(scene: Scene, h: float) -> Law:
                 f"E/h = {default:g}; it is an augmentation (the solution does not depend "
                 f"on it) and outside {RHO_RANGE[0]:g}..{RHO_RANGE[1]:g} x the default the "
                 f"Newton iteration loses its digits: leave it None or choose it near E/h")
-    name = "frictionless" if scene.law == "coulomb" and scene.friction == 0 else scene.law
-    return Law(name, float(scene.friction), float(rho["rho_n"]), float(rho["rho_t"]))
+    mu = 0.0 if scene.friction is None else float(scene.friction)  # None: no friction
+    name = "frictionless" if scene.law == "coulomb" and mu == 0 else scene.law
+    return Law(name, mu, float(rho["rho_n"]), float(rho["rho_t"]))
 
 
 @dataclass(frozen=True)
@@ -256,8 +264,8 @@ def _states(scene: Scene, pb: Problem, history, hs) -> list[_State]:
 
 @limited
 def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
-          max_iter: int = 30, linear: str = "auto", max_cuts: int = MAX_CUTS,
-          linear_tol: float = LINEAR_TOL) -> Result:
+          max_iter: int | None = None, linear: str | None = None, max_cuts: int = MAX_CUTS,
+          linear_tol: float | None = None) -> Result:
     """Solve the contact ``scene`` over the load ``history``.
 
     Parameters
@@ -272,15 +280,21 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     tol, max_iter
         Relative residual tolerance of every equation
         (:func:`skxfem.contact.newton.relative_residuals`); iteration limit of
-        one (sub)step.
+        one (sub)step (``None``: ``scene.solver.max_iter``, else
+        :data:`~skxfem.scene.settings.MAX_ITER`).
     linear
         The linear solve of each Newton step (:data:`skxfem.linalg.choice.LINEAR`):
         ``"direct"``, ``"iterative"`` (pyamg) or ``"auto"``:
-        :func:`skxfem.linalg.choice.choose_linear`.
+        :func:`skxfem.linalg.choice.choose_linear` (``None``: ``scene.solver.linear``).
     max_cuts
         How many times a failing step may be halved (module notes); 0: never.
     linear_tol
-        The relative residual of each iterative linear solve.
+        The relative residual of each iterative linear solve (``None``:
+        ``scene.solver.linear_tol``).
+
+    Each retry of a step (module notes) and each cut is said as it happens, by a
+    :class:`StepRetryWarning` or a :class:`StepCutWarning` (``skxfem run``
+    prints them as ``skxfem: note: ...`` lines).
 
     Raises
     ------
@@ -298,13 +312,15 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
-    for key, value, low, what in (("max_iter", max_iter, 1, "a positive integer"),
-                                  ("max_cuts", max_cuts, 0, "an integer >= 0")):
-        if not (isinstance(value, int) and not isinstance(value, bool) and value >= low):
-            raise ValueError(f"{key} must be {what}, got {value!r}")
+    if not (isinstance(max_cuts, (int, np.integer)) and not isinstance(max_cuts, bool)
+            and max_cuts >= 0):
+        raise ValueError(f"max_cuts must be an integer >= 0, got {max_cuts!r}")
+    max_cuts = int(max_cuts)
     if not (isinstance(tol, float) and 0 < tol < 1):
         raise ValueError(f"tol must be a float in (0, 1), got {tol!r}")
-    if not any(i.law in CONTACT_LAWS for i in check_scene(scene).interface_list):
+    settings = check_scene(scene).solver.override(linear, linear_tol, max_iter)
+    max_iter = MAX_ITER if settings.max_iter is None else settings.max_iter
+    if not any(i.law in CONTACT_LAWS for i in scene.interface_list):
         got = scene.law if scene.law is not None else [i.law for i in scene.interfaces]
         raise ValueError(f"scene law must be one of {CONTACT_LAWS} for a contact solve, "
                          f"got {got!r} (ties are solved by skxfem.solver.solve)")
@@ -313,9 +329,9 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     hs = tuple(o.h for o in ops.pieces) or (ops.h,)
     states = _states(scene, pb, scene.steps if history is None else history, hs)
     laws = [law.name for s in states for law in s.laws]
-    linear = choose_linear(linear, pb.mesh.dim(), pb.V.N,
+    linear = choose_linear(settings.linear, pb.mesh.dim(), pb.V.N,
                            all(LAWS[name].auto_iterative for name in laws))
-    linear_tol = check_linear_tol(linear_tol)
+    linear_tol = settings.linear_tol
     modes = rigid_modes(pb.V)
     t0 = time.perf_counter()
     solve_kw = {"linear": linear} if linear == "direct" else {
@@ -339,7 +355,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
             check_closed(pb, ops, laws, modes, state.label)
             checked.add(names)
 
-        def one(start, U_prev, F1, g1, guess=None, laws=laws):
+        def one(start, U_prev, F1, g1, where, guess=None, laws=laws):
             step = StepProblem(ops, pb.K, F1, free, U_prev, laws, rho_ref)
             U = start.U.copy()
             U[pb.D] = g1
@@ -350,14 +366,15 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
                 return newton(step, start, tol=tol, max_iter=max_iter, guess=guess,
                               **solve_kw)
             except ContactConvergenceError as failed:
-                return _rescue(step, start, failed, tol, max_iter, solve_kw)
+                return _rescue(step, start, failed, tol, max_iter, solve_kw,
+                               where + _blame(failed, pb, ops))
 
         where = f"load step {i + 1} of {len(states)} ({_describe(state.label)})"
         if names != names_before:  # a new law: the last increment predicts nothing
             before = None
-        it, res, info, pieces, before = _advance(one, it, F, g, state.F, state.g,
-                                                 max_cuts if method == "newton" else 0, where,
-                                                 "+".join(names), before)
+        it, res, info, pieces, before = _advance(
+            one, it, F, g, state.F, state.g, max_cuts if method == "newton" else 0, where,
+            "+".join(names), lambda e: _blame(e, pb, ops), before)
         F, g, names_before = state.F, state.g, names
         check_determined(pb, ops, laws, res.status, res.y, modes, state.label)
         steps.append(_step(state, ops, it, res, info, pieces, laws))
@@ -400,33 +417,71 @@ def _result(pb: Problem, ops: Operators, law, steps: tuple, linear: str,
 
 
 def _rescue(step: StepProblem, start: Iterate, failed: ContactConvergenceError, tol: float,
-            max_iter: int, solve_kw: dict):
+            max_iter: int, solve_kw: dict, where: str = "a load step"):
     """A step whose Newton iteration failed (module notes): Newton again from the same
     start with the default augmentation ρ = E/h where the step's is another (an
     extreme ρ_τ makes a sticking point look sliding for many iterations), then, for
     Coulomb, the paper's fixed point, whose passes freeze the radius μp of the
     friction ball (the hard part near the slip limit of a lightly pressed point);
-    from the first answer found, Newton with the step's own ρ.  Re-raises
-    ``failed`` if none converges."""
+    from the first answer found, Newton with the step's own ρ.  Each attempt is
+    said before it runs, by a :class:`StepRetryWarning` that starts with ``where``.
+    Re-raises ``failed`` if none converges (``failed.retries``: how many ran)."""
     laws = step.laws
     attempts = []
     if not (np.allclose(laws.rho_n, step.rho_ref) and np.allclose(laws.rho_t, step.rho_ref)):
         reference = replace(step, laws=replace(laws, rho_n=np.full_like(laws.rho_n,
                                                                         step.rho_ref),
                                                rho_t=np.full_like(laws.rho_t, step.rho_ref)))
-        attempts.append(lambda: newton(reference, start, tol=tol, max_iter=max_iter,
-                                       **solve_kw))
+        attempts.append(("Newton at the default rho = E/h", lambda: newton(
+            reference, start, tol=tol, max_iter=max_iter, **solve_kw)))
     if np.any(laws.tangential == "coulomb"):
-        attempts.append(lambda: fixed_point(step, start, tol=tol, max_iter=max_iter,
-                                            **solve_kw))
-    for attempt in attempts:
+        attempts.append(("the paper's fixed point on the friction threshold",
+                         lambda: fixed_point(step, start, tol=tol, max_iter=max_iter,
+                                             **solve_kw)))
+    reason = f"Newton {_reason(failed)}"
+    for k, (name, attempt) in enumerate(attempts):
+        warnings.warn(f"{where}: {reason}; retry {k + 1} of {len(attempts)}: solving it "
+                      f"again by {name}", StepRetryWarning, stacklevel=3)
         try:
             near = attempt()[0]
+        except ContactConvergenceError as e:
+            reason = f"{name} {_reason(e)}"
+            continue
+        try:
             it, res, info = newton(step, near, tol=tol, max_iter=max_iter, **solve_kw)
-        except ContactConvergenceError:
+        except ContactConvergenceError as e:
+            reason = f"Newton from the answer of {name} {_reason(e)}"
             continue
         return it, res, replace(info, rescued=len(failed.statuses) - 1)
+    failed.retries = len(attempts)
     raise failed
+
+
+def _reason(error: ContactConvergenceError) -> str:
+    """The head of a convergence error, without the words the notes say already."""
+    head = str(error).split(":")[0].strip()
+    for words in ("contact Newton ", "the fixed point on the friction threshold "):
+        head = head.removeprefix(words)
+    return head
+
+
+def _blame(error: ContactConvergenceError, pb: Problem, ops: Operators) -> str:
+    """``""`` for a scene with one interface; with several, the interfaces of the points
+    that kept changing status in the failed iteration (else those with a contact law),
+    as ``" on interfaces[1] 'y - 0.7' (coulomb)"``."""
+    if not ops.pieces:
+        return ""
+    items = pb.scene.interface_list
+    seen = getattr(error, "statuses", None)
+    ks = []
+    if seen is not None and len(seen) > 1:
+        seen = np.asarray(seen)
+        moving = ((seen[1:] != seen[:-1]).sum(axis=0) > 1)
+        ks = np.unique(ops.interface[moving]).tolist()
+    if not ks:
+        ks = [k for k, i in enumerate(items) if i.law in CONTACT_LAWS]
+    return " on " + ", ".join(f"interfaces[{k}] {items[k].levelset.name!r} ({items[k].law})"
+                              for k in ks)
 
 
 def _describe(label) -> str:
@@ -434,25 +489,31 @@ def _describe(label) -> str:
 
 
 def _advance(one, it, F0, g0, F1, g1, max_cuts: int, where: str, law_name: str = "",
-             before=None):
+             blame=lambda e: "", before=None):
     """Solve from the converged ``it`` (under F0, g0) to F1, g1, halving the
-    increment where a step fails (module notes).  ``before``: the converged
-    (iterate, F, g) before ``it``, whose increment predicts the next one
-    (:func:`_guess`).  Returns the iterate, its residual, the NewtonInfo of the
-    last increment, the number of increments and the ``before`` of the next step."""
+    increment where a step fails (module notes), each cut said by a
+    :class:`StepCutWarning` as it is made.  ``one(it, U, F, g, where, guess)``
+    solves an increment (``where`` names it, for its notes; ``guess`` the
+    predicted state, :func:`_guess`); ``blame(error)`` names the interfaces of a
+    failure (several interfaces).  ``before``: the converged (iterate, F, g)
+    before ``it``, whose increment predicts the next one.  Returns the iterate,
+    its residual, the NewtonInfo of the last increment, the number of increments
+    and the ``before`` of the next step."""
     done, size, pieces = 0.0, 1.0, 0
     smallest = 0.5 ** max_cuts
     Fa, ga = F0, g0  # the loads of ``it``
     while done < 1.0:
         target = min(1.0, done + size)
+        part = target - done    # the increment tried: size, or what is left of the step
+        here = where if part == 1.0 else f"{where}, increment {_part(done, target)}"
         Ft, gt = F0 + target * (F1 - F0), g0 + target * (g1 - g0)
         try:
-            new, res, info = one(it, it.U, Ft, gt, _guess(before, it, Fa, ga, Ft, gt))
+            new, res, info = one(it, it.U, Ft, gt, here, _guess(before, it, Fa, ga, Ft, gt))
         except ContactConvergenceError as e:
             e.law = law_name
-            if size / 2 < smallest * (1 - 1e-12):
-                cut = f" after cutting it down to 1/{round(1 / size)} of its increment" \
-                    if max_cuts and size < 1 else ""
+            if part / 2 < smallest * (1 - 1e-12):
+                cut = f" after cutting it down to 1/{round(1 / part)} of its increment" \
+                    if max_cuts and part < 1 else ""
                 hint = (" The adhesive law (no slip wherever closed) may have no solution "
                          "at the edge of a contact zone, where the pressure vanishes: a point "
                          "that stays closed pulls, one that opens penetrates; coulomb with a "
@@ -466,9 +527,13 @@ def _advance(one, it, F0, g0, F1, g1, max_cuts: int, where: str, law_name: str =
                     if hasattr(e, key):
                         setattr(err, key, getattr(e, key))
                 raise err from e
-            size /= 2
-            warnings.warn(f"{where}: {str(e).split(':')[0]}; cut: solving it in increments "
-                          f"of 1/{round(1 / size)}", StepCutWarning, stacklevel=3)
+            size = part / 2
+            retries = getattr(e, "retries", 0)
+            tried = f" (nor its {retries} retr{'y' if retries == 1 else 'ies'})" \
+                if retries else ""
+            warnings.warn(f"{here}{blame(e)}: Newton {_reason(e)}{tried}; cut: next "
+                          f"increment {_part(done, done + size)} (1/{round(1 / size)} of the "
+                          f"step)", StepCutWarning, stacklevel=3)
             continue
         before, Fa, ga = (it, Fa, ga), Ft, gt
         it, done, pieces = new, target, pieces + 1
@@ -490,6 +555,15 @@ def _guess(before, it: Iterate, F0, g0, F1, g1) -> Iterate | None:
     if not (ratio > 0 and np.linalg.norm(step - ratio * last) <= 1e-10 * np.linalg.norm(step)):
         return None
     return predict(before[0], it, ratio)
+
+
+def _part(start: float, end: float) -> str:
+    """A part of a load step as fractions: ``"1/2 to 3/4"`` (``"0 to 1"``: all of it).
+
+    >>> _part(0.25, 0.5), _part(0.0, 1.0)
+    ('1/4 to 1/2', '0 to 1')
+    """
+    return " to ".join(str(Fraction(v).limit_denominator(2 ** 20)) for v in (start, end))
 
 
 def _step(state: _State, ops: Operators, it: Iterate, res, info, pieces,

@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from ..linalg.iterative import solve as tie_solve
 from ..linalg.saddle import SingularSystemError, factorise, floating
@@ -131,7 +130,7 @@ def iterative(step, res, modes=None, blocksize=1, close=None, tol=1e-12, reuse=N
 
 
 class TieStep:
-    """The Newton step J x = -R as one tie: ``tie(R, tol)`` is x = J⁻¹(-R), R =
+    r"""The Newton step J x = -R as one tie: ``tie(R, tol)`` is x = J⁻¹(-R), R =
     (R_u, R_n, R_t (m, k)), exactly (module notes).
 
     Per dof, from :func:`linearised`: an open normal row fixes Δλ = -R_n, a

@@ -392,13 +392,14 @@ def stiffness_setup(K, D=None, modes=None, blocksize: int = 1, r: float = 3.0,
 
     Pass it as ``reuse`` with ``update=True``: each tie then carries it over
     (:func:`skxfem.linalg.amg.refresh`), and so does a tie given the set-up of
-    another carried from it: every carried set-up refers to this one.  Its AMG hierarchy is built for the
-    scaled K_s, not K_r: coarse spaces made of each side's rigid motions, on
-    aggregates that do not know the tie, serve every set of tied rows equally
-    well; a hierarchy built for one tie (say every row bonded), carried over to
-    a sliding interface, was measured to need twice the Krylov iterations
-    (the slipping block, hex n = 14, one run: 85 against 42 over a Newton
-    solve).  K_s may be singular here (a side held by the interface alone):
+    another carried from it: every carried set-up refers to this one.  Its AMG
+    hierarchy is built for the scaled K_s, not K_r: coarse spaces made of each
+    side's rigid motions, on aggregates that do not know the tie, serve every
+    set of tied rows equally well; a hierarchy built for one tie (say every row
+    bonded), carried over to a sliding interface, was measured to need twice
+    the Krylov iterations (the slipping block, hex n = 14, one run: 85 against
+    42 over a Newton solve).  K_s may be singular here (a side held by the
+    interface alone):
     the tie's rows hold it in every carried set-up, where the rigid motions
     are checked.
     """

@@ -7,7 +7,8 @@ The modules: :mod:`~skxfem.scene.laws` (the laws and spaces a scene may choose),
 :mod:`~skxfem.scene.boundary` (named and selected boundaries),
 :mod:`~skxfem.scene.model` (:class:`Scene`, which this package exports with its
 parts), :mod:`~skxfem.scene.benchmarks` (the paper's plate, the strip, the exact
-and the known-answer scenes: ``skxfem.scenes``), :mod:`~skxfem.scene.file` and
+and the known-answer scenes: ``skxfem.scenes``), :mod:`~skxfem.scene.settings`
+(:class:`Solver`, how a scene is solved), :mod:`~skxfem.scene.file` and
 :mod:`~skxfem.scene.tomlcheck` (scene files).
 """
 from .model import (
@@ -20,6 +21,7 @@ from .model import (
     Displacement,
     Interface,
     Scene,
+    Solver,
     SurfaceLoad,
     check_scene,
     clamped,
@@ -32,4 +34,4 @@ from .model import (
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "Scene", "clamped", "rollers",
            "resolve_mesh", "dirichlet", "load_facets", "traction", "LAWS", "CONTACT_LAWS",
-           "SPACES", "CELLS", "check_scene", "MAX_QUADRATURE_ORDER"]
+           "SPACES", "CELLS", "check_scene", "MAX_QUADRATURE_ORDER", "Solver"]

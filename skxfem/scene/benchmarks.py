@@ -30,6 +30,7 @@ from ..fem.exact3d import GAMMA_NORMAL, GAMMA_POINT, ExactBlock
 from ..fem.material import Material
 from ..levelset import plane
 from .expr import Expression
+from .laws import FRICTION_LAWS
 from .model import Box, Displacement, Scene, SurfaceLoad, clamped, rollers
 
 __all__ = ["paper_plate", "strip", "exact_plate", "exact_strip", "exact_scene", "exact_block",
@@ -316,7 +317,8 @@ def uniform_block(sol: UniformContact, cell: str | None = None, n: int = 3,
     ``sol`` is its exact solution (``drive``: :data:`DRIVES`).
 
     ``cell`` (default ``quad``/``hex``) and ``n`` cells per direction (odd, so
-    that Γ cuts cells); ``law``, ``mu`` and the keywords ``rho_n``, ``rho_t``,
+    that Γ cuts cells); ``law``, ``mu`` (its ``friction``, a law with friction
+    only) and the keywords ``rho_n``, ``rho_t``,
     ``space`` of the :class:`~skxfem.scene.Scene`.
 
     >>> s = uniform_block(sliding(2), n=3)
@@ -364,5 +366,6 @@ def uniform_block(sol: UniformContact, cell: str | None = None, n: int = 3,
         loads = (SurfaceLoad(f"{v}max", pressure=top_pressure),)
     n_cells = (n,) * (dim - 1) + (n if n % 2 else n + 1,)
     return Scene(Box(n_cells, cell), plane((0.5,) * dim, tuple(sol.normal)), sol.material,
-                 displacements=disp, loads=loads, law=law, friction=mu,
+                 displacements=disp, loads=loads, law=law,
+                 friction=mu if law in FRICTION_LAWS else None,
                  name=f"uniform_{drive}_{cell}_{n}", **interface)

@@ -36,7 +36,7 @@ The schema in short (all of it, with units: ``skxfem schema``, :data:`SCHEMA`)::
     [interface]
     law = "bonded"                     # one of skxfem.scene.LAWS or CONTACT_LAWS
     space = "vital"                    # one of skxfem.scene.SPACES (default vital)
-    # friction = 0.5                   # Coulomb's mu (law "coulomb"), >= 0
+    # friction = 0.5                   # Coulomb's mu: law "coulomb" needs it, >= 0
     # rho_n = 10.0                     # contact augmentation, > 0 (default E/h)
     # rho_t = 10.0                     # friction augmentation, > 0
     # steps = [0.5, 1.0]               # load factors of a contact solve
@@ -44,6 +44,7 @@ The schema in short (all of it, with units: ``skxfem schema``, :data:`SCHEMA`)::
     [solver]                           # optional
     quadrature_order = 2               # default: the minimal exact rule
     # linear = "iterative"             # auto (default), direct or iterative
+    # linear_tol = 1e-10               # the relative residual of an iterative solve
     # max_iter = 40                    # contact laws: Newton iterations per load step
 
 Several interfaces, each with its own level set, law, μ and ρ: instead of
@@ -62,8 +63,11 @@ cross or touch (:func:`skxfem.problem.assemble` refuses a cell cut by two)::
     law = "coulomb"
     friction = 0.5
 
-``linear`` and ``max_iter`` are options of the solve, not of the scene: :func:`load_options`
-reads them (``skxfem run``'s ``--linear`` and ``--max-iter`` override them).
+``linear``, ``linear_tol`` and ``max_iter`` are the scene's
+:class:`~skxfem.scene.settings.Solver` (``Scene.solver``): ``skxfem run`` and
+``skxfem.solve(load_scene(path))`` solve alike, ``skxfem run``'s ``--linear``,
+``--linear-tol``, ``--max-iter`` and the keywords of ``skxfem.solve`` override
+them (:func:`load_options` gives those the file sets).
 
 Every table and key, what it takes, its unit and default are in :data:`SCHEMA`,
 which the reader checks against (the keys allowed, the ones exclusive of each
@@ -95,11 +99,13 @@ from .. import levelset as ls
 from ..fem import meshes
 from ..fem.files import regular_file
 from ..fem.material import Material
-from ..linalg.choice import LINEAR, check_linear_tol
+from ..linalg.choice import LINEAR
 from . import model as sc
 from . import tomlcheck
 from .boundary import select_facets, select_nodes
+from .laws import FRICTION_LAWS
 from .parts import COMPONENTS, FACES
+from .settings import Solver
 from .tomlcheck import array, choice, formula, keys, number, one_of, table, vector
 
 __all__ = ["load_scene", "load_options", "Key", "Table", "SCHEMA", "UNITS", "schema"]
@@ -221,7 +227,8 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             "(default), bilateral; contact: frictionless, coulomb, adhesive", "coulomb"),
         Key("space", "one of " + " ".join(sc.SPACES), "the multiplier space (default "
             "vital, the stable one)", "vital"),
-        Key("friction", "number >= 0", "Coulomb's mu (law coulomb)", 0.5),
+        Key("friction", "number >= 0", "Coulomb's mu: required by law coulomb (0: it "
+            "slides freely), refused by the other laws", 0.5),
         Key("rho_n", "number > 0 [F/L³]", "contact augmentation (default E/h, h the cell "
             "size)", 10.0),
         Key("rho_t", "number > 0 [F/L³]", "friction augmentation (default E/h, h the mean "
@@ -243,11 +250,14 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             "bonded)", "frictionless"),
         Key("space", "one of " + " ".join(sc.SPACES), "its multiplier space (default "
             "vital)", "vital"),
-        Key("friction", "number >= 0", "its Coulomb's mu (law coulomb)", 0.5),
+        Key("friction", "number >= 0", "its Coulomb's mu: required by law coulomb, "
+            "refused by the others", 0.5),
         Key("rho_n", "number > 0 [F/L³]", "its contact augmentation (default E/h)", 10.0),
         Key("rho_t", "number > 0 [F/L³]", "its friction augmentation (default E/h)", 10.0),
     ), (("plane", "circle", "sphere", "expr"),)),
-    Table("[solver]", "options (skxfem run's --linear and --max-iter override them)", (
+    Table("[solver]", "how the scene is solved, by skxfem run and skxfem.solve alike "
+          "(skxfem run's --linear, --linear-tol, --max-iter and skxfem.solve's keywords "
+          "override them)", (
         Key("quadrature_order", "integer >= 1", "the cell rule of the stiffness (default: "
             "the minimal exact rule)", 2),
         Key("linear", "one of " + " ".join(LINEAR), "the linear solve: direct (SuperLU), "
@@ -327,7 +337,10 @@ the balance check of the multipliers (1e-8); 1e3 holds for n = 8 ... 128."""
 
 
 def load_scene(path: str | Path) -> sc.Scene:
-    """Read and check a scene file.
+    """Read and check a scene file: the :class:`~skxfem.scene.Scene`, with its
+    ``[solver]`` table's ``linear``, ``linear_tol`` and ``max_iter`` in
+    ``Scene.solver`` (so that ``skxfem.solve(load_scene(path))`` solves as
+    ``skxfem run path`` does).
 
     Raises
     ------
@@ -342,8 +355,9 @@ def load_scene(path: str | Path) -> sc.Scene:
     ... [levelset]
     ... expr = "y - 0.5"
     ... ''')
-    >>> load_scene(f).name
-    'strip'
+    >>> s = load_scene(f)
+    >>> s.name, s.solver.linear, s.solver.max_iter
+    ('strip', 'auto', None)
     """
     path, data = tomlcheck.read_toml(path)
     try:
@@ -369,14 +383,15 @@ def load_options(path: str | Path) -> dict:
 
 
 def _options(solver: dict) -> dict:
-    """The ``linear`` and ``max_iter`` of a ``[solver]`` table, checked."""
+    """The ``linear``, ``linear_tol`` and ``max_iter`` of a ``[solver]`` table, checked
+    (by :class:`~skxfem.scene.settings.Solver`'s checks, the messages naming the table)."""
     out = {k: solver[k] for k in ("linear", "max_iter", "linear_tol") if k in solver}
-    if "linear_tol" in out:
-        out["linear_tol"] = check_linear_tol(out["linear_tol"])
-    if "linear" in out and out["linear"] not in LINEAR:
-        raise ValueError(f"[solver] linear must be one of {LINEAR}, got {out['linear']!r}")
-    if "max_iter" in out and (type(out["max_iter"]) is not int or out["max_iter"] < 1):
+    if "max_iter" in out and type(out["max_iter"]) is not int:   # 2.5, true, "40"
         raise ValueError(f"[solver] max_iter must be a positive integer, got {out['max_iter']!r}")
+    try:
+        Solver(**out)
+    except ValueError as e:          # "linear must be ...": "[solver] linear must be ..."
+        raise ValueError(f"[solver] {e}") from None
     return out
 
 
@@ -387,6 +402,14 @@ def _law_fields(t: dict, where: str) -> dict:
                             f"{where} law")}
     fields.update({k: number(t[k], f"{where} {k}")
                    for k in ("friction", "rho_n", "rho_t") if k in t})
+    if fields["law"] in FRICTION_LAWS and "friction" not in fields:
+        raise ValueError(f"{where} law {fields['law']!r} needs friction (Coulomb's mu, a "
+                         f"number >= 0): add friction = 0.3, say (friction = 0 slides "
+                         f"freely, as law \"frictionless\")")
+    if "friction" in fields and fields["law"] not in FRICTION_LAWS:
+        raise ValueError(f"{where} friction (Coulomb's mu) is taken by law "
+                         f"{' or '.join(map(repr, FRICTION_LAWS))} only; law "
+                         f"{fields['law']!r} has no friction: remove friction")
     if "friction" in fields and fields["friction"] < 0:
         raise ValueError(f"{where} friction must be >= 0, got {fields['friction']!r}")
     for key in ("rho_n", "rho_t"):
@@ -446,7 +469,8 @@ def _scene(data: dict, path: Path) -> sc.Scene:
         fields["levelset"] = _levelset(data["levelset"], dim)
     if "steps" in data:
         fields["steps"] = _steps(data["steps"], "steps")
-    if "max_iter" in _options(solver) and not any(law in sc.CONTACT_LAWS for law in laws):
+    options = _options(solver)
+    if "max_iter" in options and not any(law in sc.CONTACT_LAWS for law in laws):
         raise ValueError(f"[solver] max_iter applies to the contact laws {sc.CONTACT_LAWS}; "
                          f"the law is {laws[0] if len(laws) == 1 else laws!r}")
     order = solver.get("quadrature_order")
@@ -469,7 +493,7 @@ def _scene(data: dict, path: Path) -> sc.Scene:
         material=material,
         displacements=tuple(d for _, d in items["displacement"]),
         loads=tuple(load for _, load in items["load"]),
-        quadrature_order=order, name=name, **fields)
+        quadrature_order=order, name=name, solver=Solver(**options), **fields)
 
 
 def _length(mesh) -> float:

@@ -12,13 +12,15 @@ within a load history a state may also switch an interface to a tie.
 ['bonded', 'bilateral']
 >>> LAWS["coulomb"].unilateral, LAWS["coulomb"].tangential
 (True, 'coulomb')
+>>> FRICTION_LAWS                 # the laws that take Coulomb's μ (``friction``)
+('coulomb',)
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 __all__ = ["LawKind", "LAWS", "TIE_LAWS", "CONTACT_LAWS", "ALL_LAWS", "AUTO_ITERATIVE_LAWS",
-           "COUPLING", "SPACES"]
+           "FRICTION_LAWS", "COUPLING", "SPACES"]
 
 
 @dataclass(frozen=True)
@@ -42,6 +44,12 @@ class LawKind:
     coupling: str
     auto_iterative: bool = True
 
+    @property
+    def takes_friction(self) -> bool:
+        """Whether the law takes Coulomb's μ (a scene's ``friction``): Coulomb's
+        tangential law only; every other law has none to give."""
+        return self.tangential == "coulomb"
+
 
 LAWS = {law.name: law for law in (
     LawKind("bonded", tie=True, unilateral=False, tangential="stick", coupling="bonded"),
@@ -58,6 +66,8 @@ TIE_LAWS = tuple(name for name, law in LAWS.items() if law.tie)
 CONTACT_LAWS = tuple(name for name, law in LAWS.items() if not law.tie)
 ALL_LAWS = tuple(LAWS)
 AUTO_ITERATIVE_LAWS = tuple(name for name, law in LAWS.items() if law.auto_iterative)
+FRICTION_LAWS = tuple(name for name, law in LAWS.items() if law.takes_friction)
+"""The laws that need ``friction`` (Coulomb's μ) and the only ones that take it."""
 COUPLING = {name: LAWS[name].coupling for name in TIE_LAWS}
 """For each tie law, the coupling its multipliers are built on."""
 

@@ -56,10 +56,11 @@ from .parts import (
     rollers,
 )
 from .parts import is_number as _is_number
+from .settings import Solver
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "Scene", "clamped", "rollers",
            "resolve_mesh", "dirichlet", "load_facets", "traction", "LAWS", "CONTACT_LAWS",
-           "SPACES", "CELLS", "check_scene", "MAX_QUADRATURE_ORDER"]
+           "SPACES", "CELLS", "check_scene", "MAX_QUADRATURE_ORDER", "Solver"]
 
 MAX_QUADRATURE_ORDER = {2: 19, 3: 8}
 """The highest ``Scene.quadrature_order`` per dimension: scikit-fem's triangle
@@ -75,10 +76,14 @@ class Scene:
     ``CONTACT_LAWS`` (unilateral, :func:`skxfem.contact.solve`), ``space`` one
     of ``SPACES`` (left ``None``, they are ``bonded`` and ``vital``);
     ``quadrature_order`` ``None`` lets the solver choose.
-    ``friction`` is Coulomb's μ (law ``coulomb``); ``rho_n``, ``rho_t`` the
+    ``friction`` is Coulomb's μ, required by law ``coulomb`` and refused by
+    the laws without friction (leave it ``None``); ``rho_n``, ``rho_t`` the
     augmentation parameters of the contact laws (``None``: the defaults of
     :func:`skxfem.contact.parameters`); ``steps`` the load factors of a
-    contact solve, in order.
+    contact solve, in order; ``solver`` how it is solved (a
+    :class:`~skxfem.scene.settings.Solver`: ``linear``, ``linear_tol``,
+    ``max_iter``, a scene file's ``[solver]`` table), which the keywords of
+    :func:`skxfem.solve` override.
 
     ``interfaces``: several interfaces, an :class:`Interface` each (its level
     set, law, space, μ and ρ), given instead of ``levelset`` and the law's
@@ -94,11 +99,12 @@ class Scene:
     space: str | None = None
     quadrature_order: int | None = None
     name: str = "scene"
-    friction: float = 0.0
+    friction: float | None = None
     rho_n: float | None = None
     rho_t: float | None = None
     steps: tuple[float, ...] = (1.0,)
     interfaces: tuple[Interface, ...] | None = None
+    solver: Solver = Solver()
 
     def __post_init__(self):
         if not isinstance(self.mesh, (Box, Mesh, str, Path)):
@@ -124,6 +130,11 @@ class Scene:
         if self.interfaces is None:
             check_law_fields("Scene", self.law, self.space, self.friction, self.rho_n,
                              self.rho_t)
+            if self.friction is not None:
+                object.__setattr__(self, "friction", float(self.friction))
+        if not isinstance(self.solver, Solver):
+            raise TypeError(f"Scene solver must be a skxfem.Solver (linear, linear_tol, "
+                            f"max_iter), got {self.solver!r:.80}")
         if (not isinstance(self.steps, (tuple, list)) or not self.steps
                 or not all(_is_number(f) and np.isfinite(f) for f in self.steps)):
             raise ValueError(f"Scene steps must be a non-empty sequence of finite load "
@@ -160,9 +171,8 @@ class Scene:
             raise ValueError("Scene got both a levelset and interfaces: give either "
                              "levelset= (one interface, its law in law=) or interfaces=("
                              "Interface(levelset, law=...), ...), not both")
-        given = [k for k, unset in (("law", None), ("space", None), ("friction", 0.0),
-                                    ("rho_n", None), ("rho_t", None))
-                 if getattr(self, k) != unset]
+        given = [k for k in ("law", "space", "friction", "rho_n", "rho_t")
+                 if getattr(self, k) is not None]
         if given:
             raise ValueError(f"Scene {', '.join(given)}: with interfaces, each Interface "
                              f"has its own law, space, friction, rho_n and rho_t; give "

@@ -28,11 +28,11 @@ import numpy as np
 from ..fem.cells import CELL_TYPES
 from ..levelset import LevelSet
 from .expr import Expression
-from .laws import CONTACT_LAWS, SPACES
+from .laws import CONTACT_LAWS, FRICTION_LAWS, SPACES
 from .laws import TIE_LAWS as LAWS
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "clamped", "rollers", "CELLS",
-           "SIZE_RANGE", "COMPONENTS", "FACES", "is_number", "check_law_fields"]
+           "SIZE_RANGE", "COMPONENTS", "FACES", "is_number", "check_law_fields", "check_friction"]
 
 COMPONENTS = ("x", "y", "z")
 FACES = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
@@ -192,20 +192,43 @@ class SurfaceLoad:
                 for i, t in enumerate(self.traction)))
 
 
+def check_friction(who: str, law: str, friction) -> None:
+    """Refuse a ``coulomb`` law without ``friction`` (Coulomb's μ: no default
+    changes the law) and a ``friction`` given to a law that has none
+    (:data:`skxfem.scene.laws.FRICTION_LAWS`); ``who`` names the owner.
+
+    >>> check_friction("Scene", "coulomb", None)
+    Traceback (most recent call last):
+    ...
+    ValueError: Scene law 'coulomb' needs friction (Coulomb's mu, a number >= 0): ...
+    """
+    if friction is None:
+        if law in FRICTION_LAWS:
+            raise ValueError(f"{who} law {law!r} needs friction (Coulomb's mu, a number >= 0): "
+                             f"give friction=0.3, say (friction=0 slides freely, as law "
+                             f"'frictionless')")
+        return
+    if law not in FRICTION_LAWS:
+        raise ValueError(f"{who} friction (Coulomb's mu) is taken by the law "
+                         f"{' or '.join(map(repr, FRICTION_LAWS))} only; law {law!r} has no "
+                         f"friction: leave friction unset (None), or use law 'coulomb'")
+    if not (is_number(friction) and np.isfinite(friction) and friction >= 0):
+        raise ValueError(f"{who} friction (Coulomb's mu) must be a number >= 0, "
+                         f"got {friction!r}")
+
+
 def check_law_fields(who: str, law, space, friction, rho_n, rho_t) -> None:
     """Refuse a law, space, Coulomb μ or augmentation ρ that no solve takes; ``who``
     names the owner in the message (``"Scene"``, ``"Interface"``).
 
-    >>> check_law_fields("Interface", "glued", "vital", 0.0, None, None)
+    >>> check_law_fields("Interface", "glued", "vital", None, None, None)
     Traceback (most recent call last):
     ...
     ValueError: Interface law must be one of ('bonded', 'bilateral', 'frictionless', ...
     """
     if law not in LAWS + CONTACT_LAWS:
         raise ValueError(f"{who} law must be one of {LAWS + CONTACT_LAWS}, got {law!r}")
-    if not (is_number(friction) and np.isfinite(friction) and friction >= 0):
-        raise ValueError(f"{who} friction (Coulomb's mu) must be a number >= 0, "
-                         f"got {friction!r}")
+    check_friction(who, law, friction)
     for key, rho in (("rho_n", rho_n), ("rho_t", rho_t)):
         if rho is not None and not (is_number(rho) and np.isfinite(rho) and rho > 0):
             raise ValueError(f"{who} {key} must be a positive number or None (default "
@@ -220,20 +243,23 @@ class Interface:
 
     ``levelset`` ψ (Ω⁻ = {ψ < 0} on its side, n = ∇ψ/|∇ψ|); ``law`` one of
     ``LAWS`` (ties) or ``CONTACT_LAWS``; ``space`` its multiplier space;
-    ``friction`` Coulomb's μ (law ``coulomb``); ``rho_n``, ``rho_t`` the
+    ``friction`` Coulomb's μ, required by law ``coulomb`` and refused by
+    the others (``None``); ``rho_n``, ``rho_t`` the
     augmentations of a contact law (``None``: E/h).  The fields and their
     checks are those of a one-interface :class:`~skxfem.scene.Scene`.
 
     >>> from skxfem.levelset import plane
     >>> i = Interface(plane((0, 0.3), (0, 1)), law="frictionless")
     >>> i.law, i.space, i.friction
-    ('frictionless', 'vital', 0.0)
+    ('frictionless', 'vital', None)
+    >>> Interface(plane((0, 0.3), (0, 1)), law="coulomb", friction=0.4).friction
+    0.4
     """
 
     levelset: LevelSet
     law: str = "bonded"
     space: str = "vital"
-    friction: float = 0.0
+    friction: float | None = None
     rho_n: float | None = None
     rho_t: float | None = None
 
@@ -243,4 +269,5 @@ class Interface:
                             f"got {type(self.levelset).__name__}")
         check_law_fields("Interface", self.law, self.space, self.friction, self.rho_n,
                          self.rho_t)
-        object.__setattr__(self, "friction", float(self.friction))
+        if self.friction is not None:
+            object.__setattr__(self, "friction", float(self.friction))

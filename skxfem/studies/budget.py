@@ -191,7 +191,7 @@ def _clip(count: int) -> float:
     return float(min(count, 10**100))
 
 
-def estimate(scene: Scene, linear: str = "auto") -> Estimate:
+def estimate(scene: Scene, linear: str | None = None) -> Estimate:
     """Upper bounds of the nodes, cells, unknowns, multipliers and memory of a solve.
 
     A Box is never built: ψ is evaluated on its grid in slabs.  A mesh file
@@ -203,13 +203,15 @@ def estimate(scene: Scene, linear: str = "auto") -> Estimate:
         A :class:`skxfem.scene.Scene`.
     linear
         The linear solver of ``skxfem.solve(scene, linear=...)``: ``"auto"``
-        resolves as the solve does, a contact law always solves directly.
+        resolves as the solve does, a contact law always solves directly;
+        ``None``: the scene's, ``scene.solver.linear``.
 
     Returns
     -------
     Estimate
     """
     items = check_scene(scene).interface_list
+    linear = scene.solver.linear if linear is None else linear
     if isinstance(scene.mesh, Box):
         counts, cell = [box_counts(scene.mesh, i.levelset) for i in items], scene.mesh.cell
     else:
@@ -263,7 +265,7 @@ def _floor(scene, linear) -> Estimate | None:
 
 
 def check(scene: Scene, max_bytes: int = DEFAULT_MAX_BYTES,
-          option: str | None = None, linear: str = "auto") -> Estimate:
+          option: str | None = None, linear: str | None = None) -> Estimate:
     """:func:`estimate`, refusing a scene above ``max_bytes``.
 
     Parameters
@@ -291,7 +293,8 @@ def check(scene: Scene, max_bytes: int = DEFAULT_MAX_BYTES,
     """
     if not (isinstance(max_bytes, (int, np.integer)) and max_bytes > 0):
         raise ValueError(f"max_bytes must be a positive integer, got {max_bytes!r}")
-    floor = _floor(check_scene(scene), linear)
+    linear = check_scene(scene).solver.linear if linear is None else linear
+    floor = _floor(scene, linear)
     if floor is not None and floor.bytes > max_bytes:  # refused before ψ is evaluated
         raise _too_large(scene, floor, max_bytes, option, "at least", linear)
     e = estimate(scene, linear)
