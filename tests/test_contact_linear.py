@@ -1,14 +1,17 @@
-"""Tests for skxfem/contact/step.py: the Newton step of a frictionless or adhesive
-law solved as a tie by AMG + projected CG, and a Coulomb step by FGMRES on ties,
-give the direct step's answer.
+"""Tests for skxfem/contact/step.py: every contact Newton step solved as one tie
+(AMG + projected CG, projected GMRES where the friction tilts the pressure) is
+the Newton step, and the contact solves it drives give the direct answers.
 
-1. Partly open (frictionless), pressed (adhesive) and pulled apart (both): the
-   iterative path gives the direct path's statuses, Newton iterations,
-   displacement and tractions, in 2D and 3D.
-2. ``linear`` through the public calls: ``skxfem.solve`` and ``contact.solve``
-   record the solve taken; ``auto`` takes the iterative path on a large
-   frictionless scene and the direct one for Coulomb (iterative when asked).
-3. Refusals: dependent multipliers and a floating side, each with the message
+1. The step: at iterates off the answer (open, stick and slip points), the
+   iterative step equals the direct solve of the Newton matrix, for every
+   contact law, cell type and stable space.
+2. The solve: partly open (frictionless), pressed (adhesive) and pulled apart
+   (both), Coulomb in 2D and 3D: the iterative path gives the direct path's
+   statuses, displacement and tractions (its Newton iterations may differ by a
+   few: the early steps are solved inexactly, :data:`skxfem.contact.newton.ETA`).
+3. What is set up: K once per contact solve, every step carried over from it.
+4. ``linear`` through the public calls.
+5. Refusals: dependent multipliers and a floating side, each with the message
    of the direct path's cause.
 """
 from dataclasses import replace
@@ -50,7 +53,60 @@ CASES = [("partial", "frictionless"), ("compressed", "frictionless"),
          ("compressed", "adhesive"), ("pulled", "frictionless"), ("pulled", "adhesive")]
 
 
-# 1. the direct path's answer ---------------------------------------------------------
+# 1. the step ------------------------------------------------------------------------
+
+def _step_problem(s):
+    """The StepProblem of scene ``s`` at its full load, its converged direct answer."""
+    from skxfem.contact.history import parameters
+    from skxfem.contact.interface import operators
+    from skxfem.contact.newton import StepProblem, point_laws
+    from skxfem.problem import assemble
+
+    pb = assemble(s, law="bilateral")
+    ops = operators(pb)
+    law = parameters(s, ops.h)
+    free = np.setdiff1d(np.arange(pb.V.N), pb.D)
+    step = StepProblem(ops, pb.K, pb.F, free, np.zeros(pb.V.N),
+                       point_laws(law, ops.tangent_held), law.rho_n)
+    return pb, step, contact.solve(s, linear="direct").steps[-1]
+
+
+STEP_CASES = [(law, cell, space) for law in ("frictionless", "adhesive", "coulomb")
+              for cell in ("tri", "quad", "tet", "hex", "prism")
+              for space in ("vital", "winner")]
+
+
+@pytest.mark.parametrize("law, cell, space", STEP_CASES)
+def test_the_iterative_step_is_the_newton_step(law, cell, space):
+    """J x = -R by the tie (CG, or GMRES with the tilted pressure) = SuperLU on J, to
+    1e-9, at iterates scattered about the answer: open, stick and slip points."""
+    import scipy.sparse.linalg as spla
+
+    from skxfem.contact import step as linear_step
+    from skxfem.contact.newton import Iterate, jacobian, residual
+    from skxfem.linalg.amg import rigid_modes
+
+    dim = 2 if cell in ("tri", "quad") else 3
+    box = Box((4, 5), cell) if dim == 2 else Box((2, 3, 5), cell)
+    s = replace(scene("partial", dim, law, 0.3 if law == "coulomb" else None), mesh=box,
+                space=space)
+    pb, step, answer = _step_problem(s)
+    rng = np.random.default_rng(1)
+    m, k = answer.traction.shape
+    seen = set()
+    for _ in range(3):
+        it = Iterate(answer.U * (1 + 0.5 * rng.standard_normal(answer.U.size)),
+                     -answer.pressure * (1 + rng.standard_normal(m)) - 1e-3 * rng.random(m),
+                     answer.traction + 1e-3 * rng.standard_normal((m, k)))
+        res = residual(step, it)
+        seen |= set(res.status.tolist())
+        exact = spla.spsolve(jacobian(step, it, res).tocsc(), -res.vector)
+        tie, _ = linear_step.iterative(step, res, rigid_modes(pb.V), dim, tol=1e-13)
+        assert rel(tie, exact) < 1e-9
+    assert len(seen) >= 2, "the iterates must mix statuses"
+
+
+# 2. the direct path's answer --------------------------------------------------------
 
 @pytest.mark.parametrize("dim", [2, 3])
 @pytest.mark.parametrize("case, law", CASES)
@@ -63,7 +119,7 @@ def test_the_iterative_step_gives_the_direct_answer(case, law, dim):
                 "pulled": {0}}[case]
     assert set(a.status) == expected, "the case must exercise open and/or closed dofs"
     assert np.array_equal(a.status, b.status)
-    assert a.newton.iterations == b.newton.iterations
+    assert b.newton.iterations <= a.newton.iterations + 3, "inexact early steps: a few more"
     assert rel(b.U, a.U) < 1e-8
     if np.abs(a.traction).max() > 0:
         assert rel(b.traction, a.traction) < 1e-8
@@ -77,16 +133,17 @@ COULOMB = [("partial", 2), ("partial", 3), ("compressed", 2), ("compressed", 3),
 
 @pytest.mark.parametrize("method", ["newton", "fixed_point"])
 @pytest.mark.parametrize("case, dim", COULOMB)
-def test_a_coulomb_step_by_fgmres_on_ties_gives_the_direct_answer(case, dim, method):
-    """Coulomb (μ = 0.3): FGMRES preconditioned by the tie step, Newton or the paper's
-    fixed point: the direct path's statuses, iterations and answer."""
+def test_a_coulomb_solve_by_ties_gives_the_direct_answer(case, dim, method):
+    """Coulomb (μ = 0.3): each step one tie, its pressure tilted by the friction
+    (projected GMRES), Newton or the paper's fixed point: the direct path's
+    statuses and answer."""
     s = scene(case, dim, "coulomb", friction=0.3)
     direct, it = (contact.solve(s, linear=lin, method=method) for lin in ("direct", "iterative"))
     a, b = direct.steps[-1], it.steps[-1]
     expected = {"partial": {0, 2}, "compressed": {1}, "pulled": {0}}[case]
     assert set(a.status) == expected, "open, stick and slip points all occur"
     assert np.array_equal(a.status, b.status)
-    assert a.newton.iterations == b.newton.iterations
+    assert b.newton.iterations <= a.newton.iterations + 3, "inexact early steps: a few more"
     assert rel(b.U, a.U) < 1e-8
     for key in ("pressure", "traction"):
         x, y = getattr(a, key), getattr(b, key)
@@ -112,7 +169,34 @@ def test_a_block_sliding_in_3d_under_friction_by_ties():
     assert rel(b.U, a.U) < 1e-8 and rel(b.traction, a.traction) < 1e-8
 
 
-# 2. the public calls ------------------------------------------------------------------
+# 3. what is set up -------------------------------------------------------------------
+
+@pytest.mark.parametrize("law", ["coulomb", "frictionless", "adhesive"])
+def test_k_is_set_up_once_per_contact_solve(monkeypatch, law):
+    """The AMG hierarchy of K is built once per contact solve, however many load steps
+    and Newton iterations; every step's tie is carried over from it (a Galerkin
+    update of its interface rows), none is set up anew."""
+    import skxfem.linalg.amg as amg
+    import skxfem.linalg.iterative as iterative
+
+    built, anew, carried = [], [], []
+    real_amg, real_setup, real_carried = amg.amg, iterative._setup, iterative._carried
+    monkeypatch.setattr(iterative, "amg", lambda *a: built.append(1) or real_amg(*a))
+    monkeypatch.setattr(iterative, "_setup", lambda *a: anew.append(1) or real_setup(*a))
+    monkeypatch.setattr(iterative, "_carried",
+                        lambda *a: carried.append(1) or real_carried(*a))
+    s = replace(scene("partial", 3, law, 0.3 if law == "coulomb" else None),
+                steps=(0.25, 0.5, 0.75, 1.0))
+    res = contact.solve(s, linear="iterative")
+    iterations = sum(st.newton.iterations for st in res.steps)
+    assert iterations >= 3, "several Newton iterations over the load steps"
+    assert (len(built), len(anew)) == (1, 0), "K's AMG once, no tie set up anew"
+    assert 1 <= len(carried) <= iterations, "each step carried over (or reused)"
+    direct = contact.solve(s, linear="direct")
+    assert rel(res.steps[-1].U, direct.steps[-1].U) < 1e-8
+
+
+# 4. the public calls ------------------------------------------------------------------
 
 def test_linear_reaches_the_contact_solve_and_auto_follows_the_law(monkeypatch):
     s = scene("partial", 2, "frictionless")
@@ -125,7 +209,7 @@ def test_linear_reaches_the_contact_solve_and_auto_follows_the_law(monkeypatch):
     assert skxfem.solve(coulomb, linear="iterative").linear == "iterative", "when asked"
 
 
-# 3. refusals --------------------------------------------------------------------------
+# 5. refusals --------------------------------------------------------------------------
 
 def test_dependent_multipliers_are_refused_as_by_the_direct_path():
     base = replace(scene("compressed", 3, "adhesive"), mesh=Box((1, 2, 3), "tet"),
