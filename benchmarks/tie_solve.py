@@ -64,6 +64,12 @@ def rigid_body_modes(basis) -> np.ndarray:
 
 def plain(kind: str, cell: str, n: int) -> dict:
     """Plain scikit-fem elasticity on the scene's mesh, no interface: AMG-CG."""
+    return plain_solve(_scene(kind, cell, n))
+
+
+def plain_solve(scene) -> dict:
+    """Plain scikit-fem elasticity on ``scene``'s mesh, its loads and supports, no
+    interface: AMG-CG (also used by ``benchmarks/contact_solve.py``)."""
     import pyamg
     import scipy.sparse as sp
     import scipy.sparse.linalg as spla
@@ -75,7 +81,6 @@ def plain(kind: str, cell: str, n: int) -> dict:
     from skxfem.scene import resolve_mesh
     from skxfem.scene.boundary import dirichlet, load_facets
 
-    scene = _scene(kind, cell, n)
     t = {}
     t0 = time.perf_counter()
     mesh = resolve_mesh(scene)

@@ -39,7 +39,6 @@ from .linalg.rigid import check_held
 from .linalg.threads import limited
 from .problem import Problem, assemble, constrained_dofs
 from .result import Result, result
-from .scene.laws import LAWS
 from .scene.model import Scene, check_scene
 
 __all__ = ["Result", "solve", "solve_problem", "constrained_dofs", "LINEAR", "AUTO_ITERATIVE",
@@ -49,7 +48,7 @@ __all__ = ["Result", "solve", "solve_problem", "constrained_dofs", "LINEAR", "AU
 def _linear(method: str, p: Problem) -> str:
     """The linear solve ``method`` resolves to for ``p`` (several interfaces with
     different ties: as for ``bonded``, which solves as they do)."""
-    return choose_linear(method, p.mesh.dim(), p.V.N, LAWS[p.law or "bonded"].auto_iterative)
+    return choose_linear(method, p.mesh.dim(), p.V.N)
 
 
 def _differences(cut, ncomp: int) -> sp.csr_matrix:
@@ -66,7 +65,8 @@ def _differences(cut, ncomp: int) -> sp.csr_matrix:
 
 @limited
 def solve(scene: Scene, dependent: str = "remove", linear: str | None = None,
-          linear_tol: float | None = None, max_iter: int | None = None) -> Result:
+          linear_tol: float | None = None, max_iter: int | None = None,
+          progress=None) -> Result:
     """Solve ``scene`` and return a :class:`~skxfem.result.Result`.
 
     A scene with a contact law (``frictionless``, ``coulomb``, ``adhesive``)
@@ -100,6 +100,10 @@ def solve(scene: Scene, dependent: str = "remove", linear: str | None = None,
         ``scene.solver.max_iter``, else
         :data:`skxfem.scene.settings.MAX_ITER` (30).  A scene without a
         contact law takes none.
+    progress
+        Contact laws: ``None`` (silent) or a callable given one line of text per
+        Newton iteration and per load step (:func:`skxfem.contact.solve`), e.g.
+        ``print``.
 
     The BLAS libraries run one thread during the solve (:mod:`skxfem.linalg.threads`:
     ``SKXFEM_THREADS`` or :func:`skxfem.linalg.threads.using` choose another number).
@@ -124,7 +128,7 @@ def solve(scene: Scene, dependent: str = "remove", linear: str | None = None,
     laws = [i.law for i in scene.interface_list]
     if any(law in CONTACT_LAWS for law in laws):
         return contact.solve(scene, linear=settings.linear, linear_tol=settings.linear_tol,
-                             max_iter=settings.max_iter)
+                             max_iter=settings.max_iter, progress=progress)
     if settings.max_iter is not None:
         raise ValueError(f"max_iter applies to the contact laws {CONTACT_LAWS} (Newton "
                          f"iterations per load step); the scene's law is "

@@ -101,7 +101,7 @@ def test_the_iterative_step_is_the_newton_step(law, cell, space):
         res = residual(step, it)
         seen |= set(res.status.tolist())
         exact = spla.spsolve(jacobian(step, it, res).tocsc(), -res.vector)
-        tie, _ = linear_step.iterative(step, res, rigid_modes(pb.V), dim, tol=1e-13)
+        tie, _, _ = linear_step.iterative(step, res, rigid_modes(pb.V), dim, tol=1e-13)
         assert rel(tie, exact) < 1e-9
     assert len(seen) >= 2, "the iterates must mix statuses"
 
@@ -198,15 +198,15 @@ def test_k_is_set_up_once_per_contact_solve(monkeypatch, law):
 
 # 4. the public calls ------------------------------------------------------------------
 
-def test_linear_reaches_the_contact_solve_and_auto_follows_the_law(monkeypatch):
+def test_linear_reaches_the_contact_solve_and_auto_follows_the_size(monkeypatch):
     s = scene("partial", 2, "frictionless")
     assert skxfem.solve(s, linear="iterative").linear == "iterative"
     assert skxfem.solve(s).linear == "direct", "auto: small scenes are solved directly"
     monkeypatch.setitem(skxfem.linalg.choice.AUTO_ITERATIVE, 2, 10)
     assert skxfem.solve(s).linear == "iterative", "auto: large frictionless scenes"
     coulomb = replace(s, law="coulomb", friction=0.3)
-    assert skxfem.solve(coulomb).linear == "direct", "auto: Coulomb is solved directly"
-    assert skxfem.solve(coulomb, linear="iterative").linear == "iterative", "when asked"
+    assert skxfem.solve(coulomb).linear == "iterative", "auto: large scenes, every law"
+    assert skxfem.solve(coulomb, linear="direct").linear == "direct", "when asked"
 
 
 # 5. refusals --------------------------------------------------------------------------

@@ -387,7 +387,7 @@ def test_14_contact_json_holds_every_step(tmp_path, contact_results, dim):
         assert got["counts"] == {name: got["status"].count(name)
                                  for name in ("open", "stick", "slip")}
         newton = got["newton"]
-        assert newton["iterations"] == st.newton.iterations >= 1
+        assert newton["iterations"] == st.newton.iterations >= 0  # 0: predicted exactly
         assert list(newton["residuals"]) == ["equilibrium", "contact", "friction"]
         for i, name in enumerate(newton["residuals"]):
             residuals = newton["residuals"][name]

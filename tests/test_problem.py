@@ -183,7 +183,7 @@ def test_contact_newton_factorises_a_matrix_once(monkeypatch, law, linear):
         x2, _, _ = linear_step.direct(A, 2 * r.vector, step.nu, reuse=factor)
         x1 = 2 * x1  # the second right-hand side is twice the first
     else:
-        x1, setup = linear_step.iterative(step, r, reuse=None)
-        x2, _ = linear_step.iterative(step, r, reuse=setup)
+        x1, setup, _ = linear_step.iterative(step, r, reuse=None)
+        x2, _, _ = linear_step.iterative(step, r, reuse=setup)
     assert len(calls) == 1, "the same matrix: one factorisation (set-up)"
     assert np.abs(x2 - x1).max() <= 1e-8 * np.abs(x1).max()

@@ -149,9 +149,13 @@ def parser() -> argparse.ArgumentParser:
     run.add_argument("--linear", choices=LINEAR, default=None,
                      help="the linear solve of a tie or of each contact Newton step: direct "
                           "(SuperLU), iterative (AMG-preconditioned projected CG, needs "
-                          "pyamg; coulomb only when asked) or auto (iterative from "
+                          "pyamg) or auto (iterative from "
                           "skxfem.linalg.choice.AUTO_ITERATIVE unknowns); default: the scene "
                           "file's [solver] linear, else auto")
+    run.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                     help="contact: one line on stderr per Newton iteration and load step "
+                          "(residuals, open/stick/slip points, Krylov iterations, time); "
+                          "default: on when stderr is a terminal")
     run.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
                      help="show the traceback of an error, and the warnings")
     commands.add_parser("schema", help="print the scene-file schema: every table and key, "
@@ -267,7 +271,10 @@ def _run(args, caught: list) -> int:
                          f"law is {s.law if len(laws) == 1 else laws!r}")
     out = io.check_output(args.out if args.out is not None else io.default_folder(s.name))
     budget.check(s, args.max_memory, "--max-memory", linear=settings.linear)
-    result = solve(s, **given)      # = skxfem.solve: the file's settings, then the options
+    show = args.progress if args.progress is not None else sys.stderr.isatty()
+    result = solve(s, **given,      # = skxfem.solve: the file's settings, then the options
+                   progress=(lambda line: _say(f"skxfem: {line}", sys.stderr)) if show and
+                   contact else None)
     overflow = _overflowed(caught)
     if overflow is not None:
         raise overflow

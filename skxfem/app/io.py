@@ -30,7 +30,8 @@ edges' points) and a list ``steps``, one entry per load step, at the dofs:
 ``Lambda``, ``status`` (strings ``"open"``, ``"stick"``, ``"slip"``), their
 ``counts`` and ``newton``: ``iterations`` and ``residuals`` (one list per
 equation, equilibrium, contact and friction: the relative residual at the
-start, then after each iteration).  ``interface.vtu`` adds the point data
+start, then after each iteration) and ``krylov`` (the Krylov iterations of each
+iterative Newton step; empty after direct ones).  ``interface.vtu`` adds the point data
 ``status`` (0 open, 1 stick, 2 slip).  The VTU files hold the last step only
 (the JSON has every step).
 
@@ -341,7 +342,8 @@ def _step(step) -> dict:
         "status": status,
         "counts": {name: status.count(name) for name in STATUS_NAMES},
         "newton": {"iterations": int(step.newton.iterations),
-                   "residuals": dict(zip(EQUATIONS, residuals.T, strict=True))},
+                   "residuals": dict(zip(EQUATIONS, residuals.T, strict=True)),
+                   "krylov": [int(k) for k in step.newton.inner]},
     }
 
 

@@ -88,7 +88,6 @@ from ..linalg.saddle import SingularSystemError
 from ..linalg.threads import limited
 from ..problem import Problem, assemble
 from ..result import Result, on_edges, result
-from ..scene.laws import LAWS
 from ..scene.model import Scene, check_scene
 from ..scene.settings import MAX_ITER
 from .fixed_point import fixed_point
@@ -108,7 +107,7 @@ from .newton import (
     predict,
 )
 
-__all__ = ["Step", "parameters", "solve", "ContactConvergenceError",
+__all__ = ["Step", "parameters", "solve", "progress_line", "ContactConvergenceError",
            "StepCutWarning", "StepRetryWarning", "METHODS", "RHO_RANGE", "MAX_CUTS"]
 
 METHODS = ("newton", "fixed_point")
@@ -265,7 +264,7 @@ def _states(scene: Scene, pb: Problem, history, hs) -> list[_State]:
 @limited
 def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
           max_iter: int | None = None, linear: str | None = None, max_cuts: int = MAX_CUTS,
-          linear_tol: float | None = None) -> Result:
+          linear_tol: float | None = None, progress=None) -> Result:
     """Solve the contact ``scene`` over the load ``history``.
 
     Parameters
@@ -291,6 +290,12 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     linear_tol
         The relative residual of each iterative linear solve (``None``:
         ``scene.solver.linear_tol``).
+    progress
+        ``None`` (silent), or a callable given one line of text after each Newton
+        iteration (the load step, the relative residuals of equilibrium,
+        contact and friction, how many points are open, stick and slip, the
+        Krylov iterations of its linear solve, the time so far) and after each
+        load step (:func:`progress_line`); ``skxfem run`` prints them on stderr.
 
     Each retry of a step (module notes) and each cut is said as it happens, by a
     :class:`StepRetryWarning` or a :class:`StepCutWarning` (``skxfem run``
@@ -328,9 +333,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     ops = operators(pb)
     hs = tuple(o.h for o in ops.pieces) or (ops.h,)
     states = _states(scene, pb, scene.steps if history is None else history, hs)
-    laws = [law.name for s in states for law in s.laws]
-    linear = choose_linear(settings.linear, pb.mesh.dim(), pb.V.N,
-                           all(LAWS[name].auto_iterative for name in laws))
+    linear = choose_linear(settings.linear, pb.mesh.dim(), pb.V.N)
     linear_tol = settings.linear_tol
     modes = rigid_modes(pb.V)
     t0 = time.perf_counter()
@@ -360,11 +363,14 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
             U = start.U.copy()
             U[pb.D] = g1
             start = Iterate(U, start.lam, start.r)
+            watch = {} if progress is None else {"monitor": lambda n, r, status, inner: progress(
+                progress_line(where, n, r, status, inner, time.perf_counter() - t0))}
             if method == "fixed_point":
-                return fixed_point(step, start, tol=tol, max_iter=max_iter, **solve_kw)
+                return fixed_point(step, start, tol=tol, max_iter=max_iter, **solve_kw,
+                                   **watch)
             try:
                 return newton(step, start, tol=tol, max_iter=max_iter, guess=guess,
-                              **solve_kw)
+                              **solve_kw, **watch)
             except ContactConvergenceError as failed:
                 return _rescue(step, start, failed, tol, max_iter, solve_kw,
                                where + _blame(failed, pb, ops))
@@ -376,11 +382,35 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
             one, it, F, g, state.F, state.g, max_cuts if method == "newton" else 0, where,
             "+".join(names), lambda e: _blame(e, pb, ops), before)
         F, g, names_before = state.F, state.g, names
+        if progress is not None:
+            progress(progress_line(where, None, None, res.status, sum(info.inner),
+                                   time.perf_counter() - t0, info.iterations))
         check_determined(pb, ops, laws, res.status, res.y, modes, state.label)
         steps.append(_step(state, ops, it, res, info, pieces, laws))
     law = states[0].laws[0] if not pb.interfaces else states[0].laws
     return _result(pb, ops, law, tuple(steps), linear, linear_tol,
                    time.perf_counter() - t0)
+
+
+def progress_line(where: str, n, residuals, status, inner: int, elapsed: float,
+                  iterations: int | None = None) -> str:
+    """One line of progress: Newton iteration ``n`` of a load step (its relative
+    ``residuals``), or, with ``n`` None, the step done in ``iterations``; the
+    counts of open, stick and slip points, the Krylov iterations, the time so far.
+
+    >>> print(progress_line("step 1", 3, [1e-3, 0, 2e-5], np.array([0, 2, 2]), 7, 1.25))
+    ... # doctest: +NORMALIZE_WHITESPACE
+    step 1: Newton 3, residuals 1.0e-03 0.0e+00 2.0e-05; 1 open, 0 stick, 2 slip;
+    7 Krylov iterations; 1.2 s
+    """
+    counts = np.bincount(np.asarray(status, int), minlength=3)
+    points = f"{counts[OPEN]} open, {counts[STICK]} stick, {counts[SLIP]} slip"
+    krylov = f"; {inner} Krylov iterations" if inner else ""
+    if n is None:
+        return (f"{where}: done in {iterations} Newton iteration(s); {points}{krylov}; "
+                f"{elapsed:.1f} s")
+    r = " ".join(f"{x:.1e}" for x in residuals)
+    return f"{where}: Newton {n}, residuals {r}; {points}{krylov}; {elapsed:.1f} s"
 
 
 def _point_laws(laws: tuple[Law, ...], ops: Operators) -> PointLaws:

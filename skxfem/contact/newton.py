@@ -23,12 +23,14 @@ support takes that force.
 2. :func:`jacobian`, the exact generalised Jacobian (χ taken as 1 at g_n = 0,
    so that the first iteration from an untouched interface is the bonded
    solve);
-3. the linear step J Δx = -R (:mod:`skxfem.contact.step`; a matrix
-   unchanged since the last iteration is not factorised again; a singular
-   one, an active set that leaves a part of the body free, is replaced by the
-   Jacobian that keeps the points closed at the last iterate, then every point
-   closed; if that is singular too, the law or the space is at fault and the
-   :class:`~skxfem.contact.step.SingularStepError`, a ValueError, is raised);
+3. the linear step J Δx = -R (:mod:`skxfem.contact.step`: SuperLU on J, a
+   matrix unchanged since the last iteration not factorised again; or one
+   tie, solved only as accurately as the iterate needs, :func:`forcing`; a
+   singular one, an active set that leaves a part of the body free, is
+   replaced by the Jacobian that keeps the points closed at the last iterate,
+   then every point closed; if that is singular too, the law or the space is
+   at fault and the :class:`~skxfem.contact.step.SingularStepError`, a
+   ValueError, is raised);
 4. :func:`line_search`: the largest α ∈ {1, ½, …, 2⁻⁸} that decreases the
    merit ‖D R‖ by the Armijo factor (1 - 10⁻⁴α), D the row scales of the
    step's first Newton matrix, kept for the whole step (a merit that changed
@@ -44,6 +46,10 @@ support takes that force.
    ρ = E/h, not the step's ρ: their zeros are the same for every ρ > 0, so the
    test does not depend on the augmentation, and it does not look at the
    statuses, which may flip at a point exactly on the slip limit.
+
+The start of a load step is the converged state of the last, or the secant
+prediction from the last two (:func:`predict`) where the loads are proportional
+and it lowers the residuals.
 
 >>> law = Law("coulomb", mu=0.5, rho_n=1.0, rho_t=1.0)
 >>> law.friction, law.threshold is None
@@ -228,12 +234,14 @@ class NewtonInfo:
     relative residuals of equilibrium, contact and friction, first the start;
     ``steps`` the line-search step length α of each iteration; ``rescued``: the
     Newton iterations of a first attempt that failed before the fixed point
-    took over (:func:`skxfem.contact.solve`), 0 if none."""
+    took over (:func:`skxfem.contact.solve`), 0 if none; ``inner`` the Krylov
+    iterations of each iterative linear solve (empty for direct ones)."""
 
     iterations: int
     residuals: np.ndarray
     steps: tuple = ()
     rescued: int = 0
+    inner: tuple = ()
 
 
 def jumps(ops, U, U_prev):
@@ -368,11 +376,14 @@ def _max(a) -> float:
 
 def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 30,
            linear: str = "direct", modes=None, blocksize: int = 1, linear_tol: float = 1e-12,
-           guess: Iterate | None = None, setup=None):
+           guess: Iterate | None = None, setup=None, monitor=None):
     """Solve one load step from ``start`` (its U holds the imposed values).
 
     ``setup``: iterative steps, the :func:`skxfem.linalg.iterative.stiffness_setup` of
     K that every step's tie is carried over from (default: each builds its own).
+    ``monitor(n, residuals, status, inner)``: called after each iteration n with
+    its relative residuals (3,), the status of every point and the Krylov
+    iterations of its linear solve (0: direct), for progress output.
     ``guess``: a predicted state of the step (:func:`predict`), taken as the start
     instead where its relative residuals are smaller (an extrapolation that
     went wrong costs one residual, never an iteration).
@@ -401,16 +412,21 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
     closed_before = res.status != 0
     factor = setup  # the last LU or tie set-up, reused while the matrix is unchanged
     merit_rows = None
+    inner = []
     for n in range(1, max_iter + 1):
         if np.all(history[-1] <= tol):
-            return it, res, NewtonInfo(n - 1, np.array(history), tuple(alphas))
+            return it, res, NewtonInfo(n - 1, np.array(history), tuple(alphas),
+                                       inner=tuple(inner))
         eta = forcing(history[-1], linear_tol)
         try:
-            dx, scaled, factor = _linear_step(step, it, res, None, linear, modes,
-                                              blocksize, factor, eta)
+            dx, scaled, factor, krylov = _linear_step(step, it, res, None, linear, modes,
+                                                      blocksize, factor, eta)
         except linear_step.SingularStepError as e:
-            dx, scaled, factor = _singular_fallback(step, it, res, closed_before,
-                                                    linear, modes, blocksize, e, eta, setup)
+            dx, scaled, factor, krylov = _singular_fallback(step, it, res, closed_before,
+                                                            linear, modes, blocksize, e, eta,
+                                                            setup)
+        if linear == "iterative":
+            inner.append(krylov)
         if merit_rows is None:  # one merit for the whole step: no cycle can decrease it
             merit_rows = scaled()[0]
         merit0 = np.linalg.norm(merit_rows * res.vector)
@@ -427,11 +443,14 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
         alphas.append(alpha)
         history.append(relative_residuals(step, it))
         statuses.append(res.status)
+        if monitor is not None:
+            monitor(n, history[-1], res.status, krylov)
     if np.all(history[-1] <= tol):
-        return it, res, NewtonInfo(max_iter, np.array(history), tuple(alphas))
+        return it, res, NewtonInfo(max_iter, np.array(history), tuple(alphas),
+                                   inner=tuple(inner))
     raise _not_converged(f"did not converge in {max_iter} iterations", history, statuses,
                          tol, (it, res, NewtonInfo(max_iter, np.array(history),
-                                                   tuple(alphas))))
+                                                   tuple(alphas), inner=tuple(inner))))
 
 
 ETA = (1e-2, 1.0)
@@ -479,7 +498,8 @@ def predict(before: Iterate, now: Iterate, ratio: float) -> Iterate:
 
 
 def _linear_step(step, it, res, close, linear, modes, blocksize, factor, linear_tol=1e-12):
-    """Step 3: Δx = -J⁻¹R, ``scaled`` and the factorisation to reuse.
+    """Step 3: Δx = -J⁻¹R, ``scaled``, the factorisation to reuse and the Krylov
+    iterations of the solve (0: direct).
 
     ``scaled(full=False)`` gives the row and column scales of J and J: the
     direct solve has them; an iterative step never forms J, so they are
@@ -487,15 +507,15 @@ def _linear_step(step, it, res, close, linear, modes, blocksize, factor, linear_
     K (the same scales, :func:`skxfem.contact.step.scales` reads only K's
     diagonal), J itself only with ``full``."""
     if linear == "iterative":
-        dx, factor = linear_step.iterative(step, res, modes, blocksize, close=close,
-                                           reuse=factor, tol=linear_tol)
+        dx, factor, krylov = linear_step.iterative(step, res, modes, blocksize, close=close,
+                                                   reuse=factor, tol=linear_tol)
 
         def scaled(full=False):
             free = step.free
             K = step.K[free][:, free] if full else sp.diags(step.K.diagonal()[free])
             A = jacobian(step, it, res, close, K=K)
             return (*linear_step.scales(A, step.nu), A)
-        return dx, scaled, factor
+        return dx, scaled, factor, krylov
     A = jacobian(step, it, res, close)
     n = step.nu + res.R_n.size
     if np.all(step.laws.tangential == "free"):  # no friction: r_τ = 0 is known, Δr = -R_t
@@ -503,9 +523,9 @@ def _linear_step(step, it, res, close, linear, modes, blocksize, factor, linear_
                                               reuse=factor)
         ones = np.ones(res.R_t.size)
         rows, cols = np.r_[rows, ones], np.r_[factor[2], ones]
-        return np.r_[dx, -res.R_t.T.ravel()], lambda full=False: (rows, cols, A), factor
+        return np.r_[dx, -res.R_t.T.ravel()], lambda full=False: (rows, cols, A), factor, 0
     dx, rows, factor = linear_step.direct(A, res.vector, step.nu, reuse=factor)
-    return dx, lambda full=False: (rows, factor[2], A), factor
+    return dx, lambda full=False: (rows, factor[2], A), factor, 0
 
 
 def _singular_fallback(step, it, res, closed_before, linear, modes, blocksize, error,

@@ -116,7 +116,7 @@ def iterative(step, res, modes=None, blocksize=1, close=None, tol=1e-12, reuse=N
     :func:`skxfem.contact.newton.jacobian`; ``tol`` the relative residual of the
     tie.  Returns x = (ΔU_free, Δλ, Δr_τ) and the tie's
     :class:`skxfem.linalg.iterative.Setup`, which ``reuse`` passes back to the next
-    call (the same tie: no second AMG).
+    call (the same tie: no second AMG), and the Krylov iterations it took.
 
     Raises
     ------
@@ -126,7 +126,7 @@ def iterative(step, res, modes=None, blocksize=1, close=None, tol=1e-12, reuse=N
         body free in the step's active set.
     """
     tie = TieStep(step, res, modes, blocksize, reuse, close)
-    return tie((res.R_u, res.R_n, res.R_t), tol), tie.setup
+    return tie((res.R_u, res.R_n, res.R_t), tol), tie.setup, tie.iterations
 
 
 class TieStep:
@@ -226,7 +226,7 @@ class TieStep:
                                      independent=True)
         except SingularSystemError as e:  # a part free in this active set
             raise SingularStepError(str(e)) from e
-        self.setup = info.setup
+        self.setup, self.iterations = info.setup, info.iterations
         if info.removed:  # as the direct path: a pressure at every dof must be unique
             raise SingularStepError(
                 f"{info.removed} contact multipliers depend on the others (the naive space "

@@ -3,17 +3,11 @@
 The direct solve factorises the whole saddle matrix: simple, exact, and the
 faster one on small systems, but its fill grows like dofs² in 3D.  The
 iterative one (:mod:`skxfem.linalg.iterative`) grows like a plain elasticity solve;
-it needs pyamg.  It solves the ties and each contact Newton step as ties
-(:mod:`skxfem.contact.step`): a frictionless or adhesive step is one tie,
-a Coulomb step a few (FGMRES, the tie as preconditioner).  ``auto`` leaves
-Coulomb direct: its iterative step was measured slower than SuperLU at the
-sizes that fit a direct solve (``book/contact.md``), and is for those that do
-not.
+it needs pyamg.  It solves the ties and each contact Newton step as one tie
+(:mod:`skxfem.contact.step`), every law alike.
 
 >>> choose_linear("auto", 2, 1000), choose_linear("direct", 3, 10**6)
 ('direct', 'direct')
->>> choose_linear("auto", 3, 10**6, auto_iterative=False)   # Coulomb
-'direct'
 """
 from __future__ import annotations
 
@@ -38,11 +32,10 @@ Measured (one run): a bonded block in uniform compression, 5 × 20 × 20
 hexahedra, λ exact to 3.7e-10 at 1e-10 (36 CG iterations, 4.1 s), 1.8e-12 at
 1e-12 (43, 4.6 s), 2.9e-13 at 1e-13 (46, 5.0 s); the direct solve 3.5e-14."""
 
-def choose_linear(method: str, dim: int, n_unknowns: int, auto_iterative: bool = True) -> str:
+def choose_linear(method: str, dim: int, n_unknowns: int) -> str:
     """The linear solve ``method`` resolves to for ``n_unknowns`` in ``dim`` D:
     ``auto`` is ``iterative`` from :data:`AUTO_ITERATIVE` unknowns if pyamg is
-    there and the law allows it (``auto_iterative``: the law's
-    :attr:`skxfem.scene.laws.LawKind.auto_iterative`, False for Coulomb).
+    there.
 
     Raises
     ------
@@ -53,7 +46,7 @@ def choose_linear(method: str, dim: int, n_unknowns: int, auto_iterative: bool =
         raise ValueError(f"linear must be one of {LINEAR}, got {method!r}")
     if method != "auto":
         return method
-    big = n_unknowns >= AUTO_ITERATIVE[dim] and auto_iterative
+    big = n_unknowns >= AUTO_ITERATIVE[dim]
     return "iterative" if big and importlib.util.find_spec("pyamg") else "direct"
 
 

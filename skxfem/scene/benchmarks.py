@@ -6,6 +6,9 @@ r"""Built-in benchmark scenes.
   :mod:`skxfem.fem.exact`, under which the paper's reference p(y) is exact;
 * :func:`exact_block`: not in the paper, a genuinely 3D check: a cube cut
   by a slanted plane under the loads of :mod:`skxfem.fem.exact3d`.
+* :func:`slipping_block`: a cube whose upper part, pressed and held at its top,
+  slides on a slanted Coulomb joint: the size benchmark of the contact solver
+  (``benchmarks/contact_solve.py``);
 * :func:`sliding`, :func:`uniaxial` and :func:`uniform_block`: blocks in a
   uniform contact state (:class:`skxfem.fem.exact.UniformContact`) — sliding at
   the slip limit in any direction, on a horizontal or slanted Γ, or pressed —
@@ -33,8 +36,8 @@ from .expr import Expression
 from .laws import FRICTION_LAWS
 from .model import Box, Displacement, Scene, SurfaceLoad, clamped, rollers
 
-__all__ = ["paper_plate", "strip", "exact_plate", "exact_strip", "exact_scene", "exact_block",
-           "P_MAX", "sliding", "uniaxial", "uniform_block", "DRIVES"]
+__all__ = ["paper_plate", "slipping_block", "strip", "exact_plate", "exact_strip",
+           "exact_scene", "exact_block", "P_MAX", "sliding", "uniaxial", "uniform_block", "DRIVES"]
 
 P_MAX = 1.0
 """Peak of the parabolic pressure, P_max = 1 Pa as in the paper."""
@@ -105,6 +108,29 @@ def paper_plate(n: int = 4, cell: str = "hex", nz: int | None = None,
         displacements=(clamped("zmin"), rollers("xmin"), rollers("xmax")),
         loads=(SurfaceLoad("zmax", pressure=Expression(f"4*{P_MAX}*y*(1 - y)", 3)),),
         law=law, space=space, name=f"paper_plate_{cell}_{nx}x{n}x{nz}")
+
+
+def slipping_block(n: int = 8, cell: str = "hex", law: str = "coulomb", mu: float = 0.3,
+                   steps: tuple = (0.5, 1.0), space: str = "vital") -> Scene:
+    """A cube of n × n × (n + 1) cells whose upper part slides on a slanted joint.
+
+    The unit cube, E = 1000, ν = 0.3, clamped at z = 0; its top z = 1 is held in
+    x and y and pressed by p = 10; Γ is the plane through (0.5, 0.5, 0.52) with
+    normal (0, 0.4, 1) (a slope of 0.4, steeper than μ = 0.3: with Coulomb
+    friction every point of Γ slides).  ``law`` any law (``coulomb`` takes
+    ``mu``), applied in the load ``steps``.  The size benchmark of the contact
+    solver (issue 27 of the tracker; ``benchmarks/contact_solve.py``).
+
+    >>> s = slipping_block(4)
+    >>> s.mesh.n, s.law, s.friction
+    ((4, 4, 5), 'coulomb', 0.3)
+    """
+    return Scene(Box((n, n, n + 1), cell), plane((0.5, 0.5, 0.52), (0.0, 0.4, 1.0)),
+                 Material(E=1000.0, nu=0.3),
+                 displacements=(clamped("zmin"), Displacement("zmax", {"x": 0.0, "y": 0.0})),
+                 loads=(SurfaceLoad("zmax", pressure=10.0),), law=law,
+                 friction=mu if law in FRICTION_LAWS else None, steps=tuple(steps),
+                 space=space, name=f"slipping_block_{cell}_{n}")
 
 
 def strip(n: int = 4, cell: str = "quad", ny: int | None = None,

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["LawKind", "LAWS", "TIE_LAWS", "CONTACT_LAWS", "ALL_LAWS", "AUTO_ITERATIVE_LAWS",
+__all__ = ["LawKind", "LAWS", "TIE_LAWS", "CONTACT_LAWS", "ALL_LAWS",
            "FRICTION_LAWS", "COUPLING", "SPACES"]
 
 
@@ -33,8 +33,7 @@ class LawKind:
     ``"stick"`` (no slip, or no slip increment where closed) or ``"coulomb"``
     (eq. 8).  ``coupling``: the jump a tie's multipliers act on, ``"bonded"``
     (the vector [[u]]) or ``"bilateral"`` (its normal part); the contact laws'
-    normal multipliers are those of the bilateral tie.  ``auto_iterative``:
-    ``linear="auto"`` may solve it iteratively (:mod:`skxfem.linalg.choice`).
+    normal multipliers are those of the bilateral tie.
     """
 
     name: str
@@ -42,7 +41,6 @@ class LawKind:
     unilateral: bool
     tangential: str
     coupling: str
-    auto_iterative: bool = True
 
     @property
     def takes_friction(self) -> bool:
@@ -56,8 +54,7 @@ LAWS = {law.name: law for law in (
     LawKind("bilateral", tie=True, unilateral=False, tangential="free", coupling="bilateral"),
     LawKind("frictionless", tie=False, unilateral=True, tangential="free",
             coupling="bilateral"),
-    LawKind("coulomb", tie=False, unilateral=True, tangential="coulomb", coupling="bilateral",
-            auto_iterative=False),
+    LawKind("coulomb", tie=False, unilateral=True, tangential="coulomb", coupling="bilateral"),
     LawKind("adhesive", tie=False, unilateral=True, tangential="stick", coupling="bilateral"),
 )}
 """Every law, by name: the one table."""
@@ -65,7 +62,6 @@ LAWS = {law.name: law for law in (
 TIE_LAWS = tuple(name for name, law in LAWS.items() if law.tie)
 CONTACT_LAWS = tuple(name for name, law in LAWS.items() if not law.tie)
 ALL_LAWS = tuple(LAWS)
-AUTO_ITERATIVE_LAWS = tuple(name for name, law in LAWS.items() if law.auto_iterative)
 FRICTION_LAWS = tuple(name for name, law in LAWS.items() if law.takes_friction)
 """The laws that need ``friction`` (Coulomb's μ) and the only ones that take it."""
 COUPLING = {name: LAWS[name].coupling for name in TIE_LAWS}

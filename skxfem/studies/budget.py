@@ -25,7 +25,7 @@ enriched nodes and its multipliers (with its own law) added to the others'.
 
 ψ is evaluated at the nodes in slabs of about 10⁶ points, so the guard itself
 stays small.  The memory depends on the linear solver that will run
-(:func:`skxfem.linalg.choice.choose_linear`; Coulomb contact: the direct Newton solve).
+(:func:`skxfem.linalg.choice.choose_linear`, for ties and contact alike).
 *Direct*: the cells (mesh, basis values, the assembly of K), the sparse LU
 of the saddle matrix (fill measured, :data:`LU_FILL`) and the dense interface
 blocks of :mod:`skxfem.linalg.saddle` (``3 m ncols + 2 m² + 2 ncols²`` doubles).
@@ -62,7 +62,6 @@ from ..contact.laws import CONTACT_LAWS
 from ..fem.meshes import CELLS, cell_name
 from ..fem.quadrature import cell_rule
 from ..linalg.choice import choose_linear
-from ..scene.laws import LAWS
 from ..scene.model import Box, Scene, check_scene, resolve_mesh
 from .counts import NVERTS, box_counts, box_size, mesh_counts
 
@@ -87,12 +86,16 @@ ITERATIVE_BYTES = {2: 2200, 3: 8200}
 """Peak bytes per unknown (N + m) of an iterative tie, assembly included, the largest
 measured on 25 November 2026: strip (tri n = 128-512, quad 256) 1881-2160, paper
 plate (hex, prism, n = 12-32) 6871-8161; at the minimal exact quadrature."""
-FGMRES_BYTES = 2 * 51 * 8
-"""Coulomb's iterative step adds the FGMRES basis (:mod:`skxfem.contact.step`:
-51 + 50 vectors of the unknowns' length, by the algorithm, not measured)."""
+KRYLOV_BYTES = 2 * 41 * 8
+"""Coulomb's iterative step adds the basis of its projected GMRES
+(:func:`skxfem.linalg.pcg.projected_gmres`: 41 + 40 vectors of the unknowns'
+length, by the algorithm, not measured)."""
 CONTACT_ITERATIVE_BYTES = {2: 3100, 3: 10900}
-"""The same for frictionless contact (its Newton matrix besides): ``press`` in
-``scripts/calibrate_budget.py``, tri 128, quad 256: 2915-3054; hex 12, 24: 9552-10841."""
+"""The same for contact (its interface operators and the hierarchy carried over
+to each Newton step besides): ``press`` in ``scripts/calibrate_budget.py``, tri
+128, quad 256: 2915-3054; hex 12, 24: 9552-10841.  With :data:`KRYLOV_BYTES`
+and :data:`SAFETY`, the slipping block (Coulomb, hex n = 42, 259 290 unknowns)
+is estimated at 3.7 GB for a measured peak of 2.95 GB (27 November 2026)."""
 
 
 @dataclass(frozen=True)
@@ -203,7 +206,7 @@ def estimate(scene: Scene, linear: str | None = None) -> Estimate:
         A :class:`skxfem.scene.Scene`.
     linear
         The linear solver of ``skxfem.solve(scene, linear=...)``: ``"auto"``
-        resolves as the solve does, a contact law always solves directly;
+        resolves as the solve does (every law alike);
         ``None``: the scene's, ``scene.solver.linear``.
 
     Returns
@@ -234,10 +237,10 @@ def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell) -> Es
             for i in items]
     law = ("coulomb" if "coulomb" in laws else
            next((x for x in laws if x in CONTACT_LAWS), laws[0]))
-    chosen = choose_linear(linear, dim, n_dofs, LAWS[law].auto_iterative)
+    chosen = choose_linear(linear, dim, n_dofs)
     if chosen == "iterative":
         per = (CONTACT_ITERATIVE_BYTES if law in CONTACT_LAWS else ITERATIVE_BYTES)[dim]
-        per += FGMRES_BYTES if law == "coulomb" else 0
+        per += KRYLOV_BYTES if law == "coulomb" else 0
         bytes_ = SAFETY * per * _clip(n_dofs + m)
     else:
         bytes_ = SAFETY * _memory(dim, cell, scene.quadrature_order,
