@@ -285,7 +285,7 @@ def test_18_contact_example_runs_and_its_json_satisfies_signorini(tmp_path, caps
     for st in data["steps"]:
         assert set(st["status"]) == {"open", "stick", "slip"}
         newton = st["newton"]
-        assert 1 <= newton["iterations"] <= 15
+        assert 0 <= newton["iterations"] <= 15   # 0: the predicted start was the answer
         assert all(len(v) == newton["iterations"] + 1 and v[-1] <= 1e-10
                    for v in newton["residuals"].values())
         p, gap = np.array(st["pressure"]), np.array(st["gap"])
@@ -750,8 +750,11 @@ the contact zone crosses Γ, and Newton needs 6 iterations for the second step."
 def test_36_every_cut_is_said_as_it_happens(tmp_path, capsys, monkeypatch):
     """With 4 Newton iterations allowed, the second step of TURNED is cut three times,
     then converges; each cut is one note, in order, printed before the next increment
-    is solved; the result is the uncut one."""
+    is solved; the result is the uncut one.  (Without the secant predictor of an
+    increment from the last: with it, one cut is enough here.)"""
     from skxfem.contact import history
+
+    monkeypatch.setattr(history, "_guess", lambda *args: None)
 
     path = tmp_path / "turned.toml"
     path.write_text(TURNED)

@@ -272,9 +272,9 @@ def _run(args, caught: list) -> int:
     out = io.check_output(args.out if args.out is not None else io.default_folder(s.name))
     budget.check(s, args.max_memory, "--max-memory", linear=settings.linear)
     show = args.progress if args.progress is not None else sys.stderr.isatty()
-    result = solve(s, **given,      # = skxfem.solve: the file's settings, then the options
-                   progress=(lambda line: _say(f"skxfem: {line}", sys.stderr)) if show and
-                   contact else None)
+    lines = {"progress": lambda line: _say(f"skxfem: {line}", sys.stderr)} \
+        if show and contact else {}
+    result = solve(s, **given, **lines)   # = skxfem.solve: the file's settings, the options
     overflow = _overflowed(caught)
     if overflow is not None:
         raise overflow
