@@ -205,6 +205,7 @@ def test_show_reference_is_for_instructors_only():
     assert show_reference("03_enrich", environ={}) is None
     text = show_reference("03_enrich", environ={INSTRUCTORS: "1"})
     assert "def jump(phi, b):" in text and text._repr_markdown_() == str(text)
+    assert "def _ball" in show_reference("01_levelset", environ={INSTRUCTORS: "1"})
 
 
 def test_bad_folders_and_lists_are_refused(tmp_path, capsys):
