@@ -327,3 +327,7 @@ def main(argv: list[str] | None = None) -> int:
         for w in caught if debug else ():
             print(warnings.formatwarning(w.message, w.category, w.filename, w.lineno),
                   end="", file=sys.stderr)
+
+
+if __name__ == "__main__":      # python -m skxfem.app.cli, as python -m skxfem
+    sys.exit(main())
