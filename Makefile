@@ -2,14 +2,19 @@
 #
 #   make figures   create .venv, install skxfem, reproduce the paper's figures in out/
 #   make test      create .venv, install skxfem, lint (ruff, import floors), run pytest,
-#                  then build and check the students' and the instructors' books
+#                  then build and check the students' and the instructors' books (a
+#                  hand-out, without exercises/solutions/, the students' book only)
 #   make book      build the students' book (executes every chapter) into
 #                  book/_build/html and check it: no page shows a graded solution
 #   make book-instructor
 #                  build the instructors' book, with the solutions, into
 #                  book/_build/instructor/_build/html and check it shows them all
 #   make notebooks write every chapter as a notebook (.ipynb) into notebooks/
-#   make install   only create .venv and install skxfem[viz,book,dev]
+#                  (open them with .venv/bin/jupyter lab notebooks/, kernel "skxfem")
+#   make handout   write what a student gets into out/handout (HANDOUT=DIR for another
+#                  folder): no exercises/solutions/, every exercise.py its stub
+#   make install   only create .venv, install skxfem[viz,book,dev] and register
+#                  its Jupyter kernel "skxfem"
 #   make clean     remove the built books and notebooks
 #
 # Everything is non-interactive.  PYTHON picks the interpreter for the venv.
@@ -35,8 +40,11 @@ export OPENBLAS_NUM_THREADS := 1
 export PATH := $(abspath $(BIN)):$(PATH)
 
 INSTRUCTOR_BUILD := book/_build/instructor
+HANDOUT ?= out/handout
+# A hand-out (make handout) has no solutions: it builds the students' book only.
+SOLUTIONS := $(wildcard exercises/solutions)
 
-.PHONY: help install figures test book book-instructor notebooks clean
+.PHONY: help install figures test book book-instructor notebooks handout clean needs-solutions
 
 help:
 	@sed -n 's/^#   //p' Makefile
@@ -47,8 +55,11 @@ $(BIN)/python:
 	$(PYTHON) -m venv $(VENV) || { rm -rf $(VENV); exit 1; }
 
 # Reinstall whenever pyproject.toml changes.
+# The kernel "skxfem" (in .venv/share/jupyter): the notebooks of make notebooks name it.
 $(STAMP): pyproject.toml | $(BIN)/python
 	$(BIN)/python -m pip install --quiet -e '.[viz,book,dev]'
+	$(BIN)/python -m ipykernel install --sys-prefix --name skxfem --display-name skxfem \
+	    > /dev/null
 	touch $@
 
 figures: $(STAMP)
@@ -58,7 +69,7 @@ test: $(STAMP)
 	$(BIN)/ruff check skxfem tests exercises
 	$(BIN)/lint-imports
 	$(BIN)/pytest -q
-	$(MAKE) --no-print-directory book book-instructor
+	$(MAKE) --no-print-directory book $(if $(SOLUTIONS),book-instructor)
 
 $(MATHJAX):
 	bash scripts/fetch_mathjax.sh book/_mathjax
@@ -74,13 +85,23 @@ book: $(STAMP) $(MATHJAX)
 
 # The same book with SKXFEM_SOLUTIONS set: the chapters print the graded
 # functions' code and the reference solutions, and the check wants them all.
-book-instructor: $(STAMP) $(MATHJAX)
+book-instructor: needs-solutions $(STAMP) $(MATHJAX)
 	SKXFEM_SOLUTIONS=1 $(BIN)/jupyter-book build book/ --all --warningiserror --keep-going \
 	    --path-output $(INSTRUCTOR_BUILD)
 	$(BIN)/python -m skxfem.app.graded --instructor $(INSTRUCTOR_BUILD)/_build/html
 
 notebooks: $(STAMP)
 	$(BIN)/python scripts/notebooks.py notebooks/
+
+# The course as a student gets it (skxfem.app.handout): a new folder, then git init
+# and publish it.  It installs, its stubs fail their tests, and make book builds.
+handout: $(STAMP)
+	$(BIN)/skxfem handout $(HANDOUT)
+
+needs-solutions:
+	@test -d exercises/solutions || { echo "make: the instructors' book needs the reference \
+	solutions (exercises/solutions/), which a hand-out has not: make book builds the \
+	students' book" >&2; exit 2; }
 
 clean:
 	rm -rf book/_build book/_stubs notebooks

@@ -9,6 +9,15 @@ outputs and without jupytext's pairing metadata, after one cell that says where 
 comes from; it runs anywhere skxfem is installed (no chapter reads a file by a path
 relative to the book).  ``tests/test_notebooks.py`` executes them all with nbclient.
 
+A notebook reads as the student opens it, in JupyterLab, say, from the clone's
+``notebooks/`` folder (:func:`plain`): the Markdown the book's MyST adds is
+turned into plain Markdown, an ``{include}`` into the text it includes (an
+exercise's task), a ``{download}`` role into a link to the file in the clone (an
+exercise's ``exercises/NN_name/exercise.py``, the one to edit), and a link to
+another page into a link to its notebook (``NAME.ipynb``, beside it) or, for a
+page without code, to its source (``../book/NAME.md``).  Its kernel is
+:data:`KERNEL`, the one ``make install`` registers (``skxfem``).
+
 This file is also a Sphinx extension of the book (``_config.yml``,
 ``sphinx.local_extensions``): each chapter's download button offers the same
 notebook, as ``_sources/NAME.ipynb`` next to the page's Markdown source.
@@ -25,6 +34,57 @@ import nbformat
 
 BOOK = Path(__file__).resolve().parents[1] / "book"
 
+KERNEL = {"name": "skxfem", "display_name": "skxfem", "language": "python"}
+"""The notebooks' kernel: ``make install`` registers it (``python -m ipykernel install
+--sys-prefix --name skxfem``), so JupyterLab runs them with the clone's ``.venv``."""
+
+INCLUDE = re.compile(r"^```\{include\}[ \t]+(\S+)[ \t]*\n((?:[ \t]*:[\w-]+:.*\n)*)```[ \t]*$",
+                     flags=re.M)
+DOWNLOAD = re.compile(r"\{download\}`(?:([^`<]*?)\s*<([^`>]+)>|([^`<>]+))`")
+PAGE_LINK = re.compile(r"\]\(([\w-]+)\.md(#[^)\s]*)?\)")
+STUB = re.compile(r"^_stubs/(\w+)/exercise\.py$")
+
+
+def _include(match: re.Match, book: Path) -> str:
+    """The text an ``{include}`` block includes (its ``:start-after:`` and
+    ``:end-before:`` honoured); a ValueError for an option it does not know."""
+    text = (book / match.group(1)).read_text(encoding="utf-8")
+    for line in match.group(2).splitlines():
+        option, _, value = line.strip()[1:].partition(":")
+        value = value.strip()
+        if option == "start-after" and value in text:
+            text = text.split(value, 1)[1]
+        elif option == "end-before" and value in text:
+            text = text.split(value, 1)[0]
+        else:
+            raise ValueError(f"{{include}} {match.group(1)}: option {option!r} (or its "
+                             f"marker {value!r}) is not handled by scripts/notebooks.py")
+    return text.strip("\n")
+
+
+def _target(path: str) -> str:
+    """A file the book offers, as a link from the clone's notebooks/ folder: the book's
+    stub of an exercise is the student's own file; any other is relative to book/,
+    a sibling of notebooks/, so its link is the same."""
+    stub = STUB.match(path)
+    return f"../exercises/{stub.group(1)}/exercise.py" if stub else path
+
+
+def plain(markdown: str, names: set[str], book: Path = BOOK) -> str:
+    """A Markdown cell of a chapter as plain Markdown (see the module notes); ``names``
+    are the chapters that are notebooks.
+
+    >>> plain("{download}`a stub <_stubs/01_levelset/exercise.py>`, [Scenes](scenes.md)"
+    ...       " and [Start](getting-started.md#student)", {"scenes"})
+    '[a stub](../exercises/01_levelset/exercise.py), [Scenes](scenes.ipynb) and [Start](../book/getting-started.md#student)'
+    """
+    markdown = INCLUDE.sub(lambda m: _include(m, book), markdown)
+    markdown = DOWNLOAD.sub(lambda m: f"[{m.group(1) or m.group(3)}]"
+                                      f"({_target(m.group(2) or m.group(3))})", markdown)
+    return PAGE_LINK.sub(lambda m: f"]({m.group(1)}.ipynb{m.group(2) or ''})"
+                         if m.group(1) in names else
+                         f"](../book/{m.group(1)}.md{m.group(2) or ''})", markdown)
+
 
 def chapters(book: Path = BOOK) -> list[Path]:
     """The pages of the book's table of contents that are notebooks, in its order."""
@@ -37,17 +97,23 @@ def chapters(book: Path = BOOK) -> list[Path]:
 def notebook(page: Path) -> nbformat.NotebookNode:
     """The standalone notebook of one chapter (no outputs, stable cell ids)."""
     nb = jupytext.read(page)
+    book = page.parent
+    names = {p.stem for p in chapters(book)}
     title = next((c.source.splitlines()[0].lstrip("# ") for c in nb.cells
                   if c.cell_type == "markdown" and c.source.startswith("# ")), page.stem)
     nb.cells.insert(0, nbformat.v4.new_markdown_cell(
         f"*The chapter \"{title}\" of the skxfem book, as a notebook. It needs skxfem "
         f"installed: in a clone of the repository, `make install` (the book's Getting "
-        f"started), then open this notebook with the kernel of `.venv`.*"))
+        f"started), then `.venv/bin/jupyter lab notebooks/` and the kernel **skxfem**. "
+        f"Its links lead to the other chapters' notebooks and to the clone's files from "
+        f"the clone's `notebooks/` folder, where `make notebooks` writes it.*"))
     for i, cell in enumerate(nb.cells):
         cell.id = f"{page.stem}-{i}"
         if cell.cell_type == "code":
             cell.outputs, cell.execution_count = [], None
-    nb.metadata = nbformat.from_dict({"kernelspec": nb.metadata["kernelspec"],
+        elif cell.cell_type == "markdown":
+            cell.source = plain(cell.source, names, book)
+    nb.metadata = nbformat.from_dict({"kernelspec": dict(KERNEL),
                                       "language_info": {"name": "python"}})
     nbformat.validate(nb)
     return nb

@@ -194,6 +194,14 @@ def test_grade_points_and_exit_status(tmp_path, capsys):
     assert main([str(tmp_path / "nowhere")]) == 2
 
 
+def test_wrong_solutions_and_impl_choices():
+    """(Once doctests: a hand-out has no solutions/ to show them on.)"""
+    from skxfem.app.grade import check_impl, wrong_solutions
+    assert wrong_solutions([EXERCISES / "01_levelset"])["unnormalised"] == ["01_levelset"]
+    assert [e.name for e in check_impl("wrong:unnormalised", [EXERCISES / n for n in NAMES])] \
+        == ["01_levelset"]
+
+
 def test_table_and_junit_names():
     assert _exercise_of("exercises.05_lbb.test_lbb_exercise", NAMES) == "05_lbb"
     assert _exercise_of("tests.test_cut", NAMES) is None

@@ -127,6 +127,8 @@ def test_a_fresh_clone_follows_the_page_to_a_score_table(tmp_path):
     where = shell(".venv/bin/python -c 'import skxfem; print(skxfem.__file__)'", clone)
     assert where.stdout.strip() == str(clone / "skxfem" / "__init__.py"), where.stderr
     assert (clone / ".venv" / "bin" / "skxfem").is_file()       # written by make install
+    kernel = clone / ".venv" / "share" / "jupyter" / "kernels" / "skxfem" / "kernel.json"
+    assert kernel.is_file(), "make install registers the notebooks' kernel"  # in .venv
 
     done = shell(tests, clone)                       # the stub: every test fails
     assert done.returncode == 1 and "NotImplementedError" in done.stdout, done.stdout[-3000:]

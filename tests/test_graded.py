@@ -11,6 +11,7 @@ from pygments.formatters import HtmlFormatter
 from pygments.lexers import PythonLexer
 
 from skxfem.app.graded import (
+    BANNER,
     INSTRUCTORS,
     answers,
     check_book,
@@ -144,7 +145,7 @@ def test_a_students_book_without_answers_passes(tmp_path):
 
 def test_the_instructors_book_shows_every_answer(tmp_path, capsys):
     references = {f"{e}.html": page(str(show_reference(e, environ={INSTRUCTORS: "1"})))
-                  for e in graded()}
+                  .replace("<body>", f"<body><div>{BANNER}</div>") for e in graded()}
     book = write_book(tmp_path / "html", references)
     assert check_book(book, instructor=True) == []
     assert main([str(book), "--instructor"]) == 0
@@ -153,16 +154,58 @@ def test_the_instructors_book_shows_every_answer(tmp_path, capsys):
     (book / "contact.html").write_text(page("no solution here"))
     (book / "07_contact.html").unlink()
     problems = check_book(book, instructor=True)
-    assert problems and all("07_contact" in p for p in problems)
-    assert {p.split()[6].rstrip(";") for p in problems} == set(answers("07_contact"))
+    assert problems and all("07_contact" in p for p in problems[1:])
+    assert problems[0].startswith("1 of the 7 pages lack the instructors' banner")
+    assert {p.split()[6].rstrip(";") for p in problems[1:]} == set(answers("07_contact"))
     assert main([str(book), "--instructor"]) == 1
     assert main([str(book)]) == 1           # a students' book must show none of them
+
+
+def test_the_instructors_book_carries_its_banner_on_every_page(tmp_path, monkeypatch):
+    """A real (small) Sphinx build with the book's theme and extension: built with
+    SKXFEM_SOLUTIONS set, as make book-instructor builds it, every page (the index,
+    the search page too) carries the banner; without, none does.  check_book wants
+    exactly that."""
+    pytest.importorskip("sphinx_book_theme")
+    from sphinx.cmd.build import build_main
+    shutil.copytree(EXERCISES, tmp_path / "exercises",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    book = tmp_path / "book"
+    book.mkdir()
+    (book / "conf.py").write_text(
+        'extensions = ["myst_parser", "skxfem.app.graded"]\nhtml_theme = "sphinx_book_theme"\n'
+        'exclude_patterns = ["_build", "_stubs"]\nproject = "t"\n', encoding="utf-8")
+    (book / "index.md").write_text("# Home\n\n[Other](other.md)\n", encoding="utf-8")
+    (book / "other.md").write_text("# Other\n\nText.\n", encoding="utf-8")
+    built = {}
+    for who, environ in (("instructors", "1"), ("students", None)):
+        if environ:
+            monkeypatch.setenv(INSTRUCTORS, environ)
+        else:
+            monkeypatch.delenv(INSTRUCTORS, raising=False)
+        out = built[who] = tmp_path / who
+        assert build_main(["-q", "-b", "html", "-E", "-d", str(tmp_path / f"{who}.doctrees"),
+                           str(book), str(out)]) == 0
+        pages = sorted(out.glob("*.html"))
+        assert {p.name for p in pages} >= {"index.html", "other.html", "search.html"}
+        shown = [BANNER in html.unescape(p.read_text("utf-8")) for p in pages]
+        assert shown == [who == "instructors"] * len(pages), (who, pages)
+    assert "bd-header-announcement" in (built["instructors"] / "other.html").read_text("utf-8")
+
+    def banner_problems(out, instructor):
+        return [p for p in check_book(out, instructor, tmp_path / "exercises")
+                if "banner" in p]
+    assert banner_problems(built["instructors"], True) == []
+    assert banner_problems(built["students"], False) == []
+    assert "lack the instructors' banner" in banner_problems(built["students"], True)[0]
+    assert "carry the instructors' banner" in banner_problems(built["instructors"], False)[0]
 
 
 def test_show_reference_is_for_instructors_only():
     assert show_reference("03_enrich", environ={}) is None
     text = show_reference("03_enrich", environ={INSTRUCTORS: "1"})
     assert "def jump(phi, b):" in text and text._repr_markdown_() == str(text)
+    assert "def _ball" in show_reference("01_levelset", environ={INSTRUCTORS: "1"})
 
 
 def test_bad_folders_and_lists_are_refused(tmp_path, capsys):

@@ -78,6 +78,8 @@ FORWARDED = {
                   "(python -m skxfem.app.reproduce)", "skxfem.app.reproduce"),
     "grade": ("grade the student exercises: a score table and a JSON report "
               "(python -m skxfem.app.grade)", "skxfem.app.grade"),
+    "handout": ("write the course as a student gets it, without the solutions "
+                "(python -m skxfem.app.handout)", "skxfem.app.handout"),
 }
 """Subcommands handed their arguments as they are: ``name -> (help, module)``; the
 module (imported only then: it may draw) has ``main(argv) -> int``."""
@@ -343,3 +345,7 @@ def main(argv: list[str] | None = None) -> int:
         for w in caught if debug else ():
             print(warnings.formatwarning(w.message, w.category, w.filename, w.lineno),
                   end="", file=sys.stderr)
+
+
+if __name__ == "__main__":      # python -m skxfem.app.cli, as python -m skxfem
+    sys.exit(main())

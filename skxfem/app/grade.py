@@ -1,6 +1,7 @@
 """Grade the exercises: run their tests, print a score table, write a JSON report.
 
-    skxfem grade [PATH] [--impl student] [--report FILE]   # = python -m skxfem.app.grade
+    skxfem grade [PATH] [--impl student] [--student NAME] [--report FILE]
+    skxfem grade --collect DIR [DIR ...] [--report FILE.csv]   # = python -m skxfem.app.grade
 
 PATH is the ``exercises`` folder (the default) or one exercise in it
 (``exercises/02_cut``).  The tests run in a ``python -m pytest`` subprocess
@@ -21,16 +22,36 @@ The JSON report of a run is one file, by default ``out/grades/NAME.json`` under
 the current folder, NAME the folder graded (``01_levelset``, or ``exercises``
 for all; ``.`` inside an exercise is that exercise): grading one exercise never
 overwrites another's report, and ``out/`` is ignored by git.  ``--report FILE``
-writes it elsewhere.
+writes it elsewhere.  A report also says whose work it graded and which: the
+``student`` (``--student NAME``, else the author of the last git commit of the
+folder graded, else null), the ``commit`` (git HEAD there, else null), whether
+the folder graded had ``uncommitted`` changes, and the ``timestamp`` of the grading
+(UTC, ISO 8601, ``2026-11-25T14:03:59Z``).
+
+Grading a reference (``--impl=solution``) or a wrong solution
+(``--impl=wrong:NAME``) never overwrites a student's report: its default report is
+``out/grades/NAME.solution.json`` (``NAME.wrong-NAME.json``), and a ``--report``
+FILE that holds a student's report is refused.
+
+``--collect DIR ...`` runs no code: it reads the students' reports (every
+``*.json`` grade report with ``impl`` student under each DIR, e.g. each
+submission's ``out/grades/``; a DIR may also be one report file) and writes one
+CSV, by default ``out/grades/collected.csv``, one row per student and exercise
+(the newest report of each), with the columns :data:`COLUMNS`.  A report is only
+as trustworthy as whoever wrote it: to be sure of a grade, run ``skxfem grade``
+on the submission yourself (with ``--student``) and collect those reports.
+The student's code runs unsandboxed, with the rights of whoever grades it.
 
 A test is worth the points of its ``@pytest.mark.points(n)`` marker, 1
 without one.  The exit status is 0 when every test passed, 1 when any failed
 and 2 for a usage error (a bad PATH or ``--impl``, a report that cannot be
-written; one line on stderr) or when no test could be run at all.
+written or would replace a student's; one line on stderr) or when no test could
+be run at all.  ``--collect`` exits 0 when it wrote the CSV, 2 if it could not.
 """
 from __future__ import annotations
 
 import argparse
+import csv
 import json
 import subprocess
 import sys
@@ -38,13 +59,26 @@ import tempfile
 import textwrap
 import xml.etree.ElementTree as ET
 from dataclasses import asdict, dataclass
+from datetime import datetime, timezone
 from pathlib import Path
 
-__all__ = ["Result", "Score", "find_exercises", "wrong_solutions", "check_impl",
-           "default_report", "read_junit", "table", "hints", "grade", "main"]
+__all__ = ["Result", "Score", "COLUMNS", "find_exercises", "wrong_solutions", "check_impl",
+           "default_report", "provenance", "read_junit", "table", "hints", "grade",
+           "collect", "write_csv", "main"]
 
 REPORTS = Path("out") / "grades"
 """Where the reports go by default, under the current folder (``out/`` is git-ignored)."""
+
+COLLECTED = REPORTS / "collected.csv"
+"""Where ``--collect`` writes its CSV by default."""
+
+COLUMNS = ("student", "exercise", "passed", "total", "points", "max_points", "commit",
+           "uncommitted", "timestamp", "report")
+"""The columns of the ``--collect`` CSV, one row per student and exercise: the
+student (the report's, else the name of the DIR it was found under), the exercise
+folder's name, tests passed and run, points won and possible, the git commit and
+whether the folder had uncommitted changes when graded (empty when unknown), when
+it was graded (UTC, ISO 8601) and the report file the row comes from."""
 
 WIDTH = 88
 """Width the hints below the score table are wrapped to (whole words, nothing cut)."""
@@ -100,9 +134,8 @@ def wrong_solutions(exercises: list[Path]) -> dict[str, list[str]]:
     """The wrong solutions kept for ``exercises``: NAME -> the exercises that have
     ``solutions/<exercise>/wrong_NAME.py`` (beside the exercise folders).
 
-    >>> exercises = Path(__file__).parents[2] / "exercises"   # the repository's
-    >>> wrong_solutions([exercises / "01_levelset"])["unnormalised"]
-    ['01_levelset']
+    >>> wrong_solutions([Path("course") / "01_levelset"])   # no course/solutions/ here
+    {}
     """
     found: dict[str, list[str]] = {}
     for e in exercises:
@@ -118,8 +151,8 @@ def check_impl(impl: str, exercises: list[Path]) -> list[Path]:
     have nothing to grade); ``solution`` needs the ``solutions`` folder beside them.
 
     >>> all_ = find_exercises(Path(__file__).parents[2] / "exercises")
-    >>> [e.name for e in check_impl("wrong:unnormalised", all_)]
-    ['01_levelset']
+    >>> check_impl("student", all_) == all_
+    True
     >>> check_impl("bogus", all_)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
@@ -146,13 +179,53 @@ def check_impl(impl: str, exercises: list[Path]) -> list[Path]:
     raise ValueError(usage)
 
 
-def default_report(path: Path) -> Path:
-    """The default report of grading ``path``: ``out/grades/NAME.json``, NAME its folder.
+def default_report(path: Path, impl: str = "student") -> Path:
+    """The default report of grading ``path``: ``out/grades/NAME.json``, NAME its folder;
+    ``NAME.solution.json`` or ``NAME.wrong-WRONG.json`` for the instructors' ``impl``,
+    so that grading them never overwrites a student's report.
 
     >>> default_report(Path("exercises/02_cut/")).as_posix()
     'out/grades/02_cut.json'
+    >>> default_report(Path("exercises/02_cut/"), "solution").as_posix()
+    'out/grades/02_cut.solution.json'
+    >>> default_report(Path("exercises"), "wrong:sides").as_posix()
+    'out/grades/exercises.wrong-sides.json'
     """
-    return REPORTS / f"{Path(path).resolve().name or 'exercises'}.json"
+    suffix = "" if impl == "student" else "." + impl.replace(":", "-")
+    return REPORTS / f"{Path(path).resolve().name or 'exercises'}{suffix}.json"
+
+
+def _git(folder: Path, *args: str) -> str | None:
+    """The output of ``git -C folder ARGS`` stripped, or None (no git, no repository)."""
+    try:
+        done = subprocess.run(["git", "-C", str(folder), *args], capture_output=True,
+                              text=True, encoding="utf-8", errors="replace", timeout=60)
+    except (OSError, subprocess.SubprocessError):
+        return None
+    return done.stdout.strip() if done.returncode == 0 else None
+
+
+def provenance(path: Path, student: str | None = None) -> dict:
+    """Whose work grading ``path`` grades, and which: the report's ``student``,
+    ``commit``, ``uncommitted`` and ``timestamp`` (see the module notes).
+
+    ``student`` is the name given, else the author of the last commit of the git
+    repository holding ``path``; ``commit`` its HEAD; ``uncommitted`` whether
+    ``path`` differs from it (None, each, where there is no git or no commit).
+
+    >>> sorted(provenance(Path("no-such-folder"), "ada"))
+    ['commit', 'student', 'timestamp', 'uncommitted']
+    """
+    folder = Path(path).resolve()
+    while not folder.is_dir() and folder != folder.parent:   # git -C needs a folder
+        folder = folder.parent
+    commit = _git(folder, "rev-parse", "--verify", "-q", "HEAD") or None
+    status = _git(folder, "status", "--porcelain", "--", ".") if commit else None
+    return {"student": student if student is not None else
+            ((_git(folder, "log", "-1", "--format=%an") or None) if commit else None),
+            "commit": commit,
+            "uncommitted": None if status is None else bool(status),
+            "timestamp": datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")}
 
 
 def _exercise_of(classname: str, names: list[str]) -> str | None:
@@ -297,6 +370,88 @@ def grade(path: Path, impl: str = "student", pytest_args: tuple[str, ...] = ()) 
     return scores
 
 
+def _is_report(data) -> bool:
+    """Whether ``data`` (a parsed JSON file) is a grade report of :func:`main`."""
+    return (isinstance(data, dict) and isinstance(data.get("exercises"), dict)
+            and isinstance(data.get("impl"), str)
+            and all(isinstance(e, dict) and {"passed", "total", "points", "max_points"} <= set(e)
+                    for e in data["exercises"].values()))
+
+
+def _read_report(path: Path):
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    return data if _is_report(data) else None
+
+
+def collect(places: list[Path], warn=None) -> list[dict]:
+    """The rows of the ``--collect`` CSV: one per student and exercise (:data:`COLUMNS`).
+
+    Each of ``places`` is a submission folder, searched for grade reports
+    (``*.json`` files that are reports of :func:`main` with ``impl`` student; the
+    instructors' ``solution`` and ``wrong:NAME`` reports are left out), or one
+    report file.  A report without a student (no ``--student``, no git) counts for
+    the place it was found in, by its folder's name.  When several reports grade the
+    same student's exercise, the newest (``timestamp``) gives the row.  ``warn`` is
+    called with a line for each place that holds no report.
+
+    Raises
+    ------
+    FileNotFoundError
+        If a place does not exist.
+    ValueError
+        If two places hold reports of the same student (two submissions would be
+        merged): grade them again with ``--student``.
+    """
+    rows: dict[tuple[str, str], dict] = {}
+    owner: dict[str, Path] = {}
+    for place in map(Path, places):
+        if place.is_file():
+            files = [place]
+        elif place.is_dir():
+            files = sorted(f for f in place.rglob("*.json") if f.is_file())
+        else:
+            raise FileNotFoundError(f"--collect: {place} is no folder or report file")
+        reports = [(f, r) for f in files
+                   if (r := _read_report(f)) is not None and r["impl"] == "student"]
+        if not reports and warn is not None:
+            warn(f"no student's grade report under {place} (skxfem grade writes "
+                 f"out/grades/NAME.json)")
+        for path, report in reports:
+            student = str(report.get("student") or place.resolve().name)
+            first = owner.setdefault(student, place)
+            if first.resolve() != place.resolve():
+                raise ValueError(f"--collect: {first} and {place} both hold reports of the "
+                                 f"student {student!r}; grade the submissions with "
+                                 f"--student NAME, one name each")
+            for exercise, ex in report["exercises"].items():
+                row = {"student": student, "exercise": exercise,
+                       "passed": ex["passed"], "total": ex["total"],
+                       "points": _number(float(ex["points"])),
+                       "max_points": _number(float(ex["max_points"])),
+                       "commit": report.get("commit") or "",
+                       "uncommitted": {True: "yes", False: "no"}.get(report.get("uncommitted"),
+                                                                     ""),
+                       "timestamp": report.get("timestamp") or "", "report": str(path)}
+                kept = rows.get((student, exercise))
+                if kept is None or row["timestamp"] > kept["timestamp"]:
+                    rows[(student, exercise)] = row
+    return [rows[k] for k in sorted(rows)]
+
+
+def write_csv(rows: list[dict], where: Path) -> Path:
+    """Write ``rows`` (:func:`collect`) as a CSV with a header of :data:`COLUMNS`."""
+    where = Path(where)
+    where.parent.mkdir(parents=True, exist_ok=True)
+    with open(where, "w", encoding="utf-8", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=COLUMNS)
+        writer.writeheader()
+        writer.writerows(rows)
+    return where
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse, with a usage error in one line (exit 2)."""
 
@@ -309,8 +464,29 @@ def _usage_error(message: str) -> int:
     return 2
 
 
+def _collect(places: list[Path], where: Path | None) -> int:
+    """``--collect``: the CSV of every student's reports under ``places``."""
+    def note(text):
+        print(f"skxfem grade: note: {text}", file=sys.stderr)
+
+    try:
+        rows = collect(places, warn=note)
+    except (FileNotFoundError, ValueError) as error:
+        return _usage_error(error)
+    where = where if where is not None else COLLECTED
+    try:
+        write_csv(rows, where)
+    except OSError as e:
+        return _usage_error(f"cannot write the CSV to {str(where)!r} ({e.strerror or e}); "
+                            f"give another --report FILE")
+    students = len({r["student"] for r in rows})
+    print(f"collected: {len(rows)} row(s), {students} student(s) x exercise -> {where}")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
-    """The command line: ``skxfem grade [PATH] [--impl ...] [--report ...]``.
+    """The command line: ``skxfem grade [PATH] [--impl ...] [--student ...] [--report ...]``
+    or ``skxfem grade --collect DIR ... [--report FILE.csv]``.
 
     >>> main(["no-such-folder"])
     2
@@ -318,19 +494,43 @@ def main(argv: list[str] | None = None) -> int:
     parser = _Parser(
         prog="skxfem grade",
         description="Run the exercises' tests, print a score table per exercise and the "
-                    "message of each exercise's first failure, and write a JSON report.")
-    parser.add_argument("path", nargs="?", default="exercises",
+                    "message of each exercise's first failure, and write a JSON report; "
+                    "or, with --collect, gather the students' reports into one CSV.",
+        epilog="The graded code runs unsandboxed, with your rights: grade a student's "
+               "submission as you would run any code of theirs.")
+    parser.add_argument("path", nargs="?", default=None,
                         help="the exercises folder or one exercise (default: exercises)")
     parser.add_argument("--impl", default="student",
                         help="student (default: NN_name/exercise.py), solution, or "
                              "wrong:NAME (a known wrong solution, instructors' test data)")
+    parser.add_argument("--student", default=None, metavar="NAME",
+                        help="whose work it is, for the report (default: the author of the "
+                             "last git commit of the folder graded)")
     parser.add_argument("--report", type=Path, default=None, metavar="FILE",
                         help=f"where to write the JSON report (default: "
                              f"{REPORTS}/NAME.json under the current folder, NAME the "
-                             f"folder graded; out/ is ignored by git)")
+                             f"folder graded, NAME.solution.json for --impl=solution; out/ is "
+                             f"ignored by git); with --collect the CSV (default: {COLLECTED})")
+    parser.add_argument("--collect", nargs="+", type=Path, default=None, metavar="DIR",
+                        help="run nothing: gather the students' grade reports found under "
+                             "each DIR (a submission, or one report file) into one CSV, one "
+                             "row per student and exercise")
     args = parser.parse_args(argv)
+    if args.collect is not None:
+        given = [o for o, v in (("PATH", args.path), ("--student", args.student))
+                 if v is not None] + (["--impl"] if args.impl != "student" else [])
+        if given:
+            return _usage_error(f"--collect grades nothing: it takes no {', '.join(given)}")
+        return _collect(args.collect, args.report)
+    path = Path(args.path if args.path is not None else "exercises")
+    where = args.report if args.report is not None else default_report(path, args.impl)
+    if args.impl != "student":
+        kept = _read_report(where) if where.is_file() else None
+        if where.exists() and (kept is None or kept["impl"] == "student"):
+            return _usage_error(f"--impl={args.impl} never overwrites a student's report: "
+                                f"{str(where)!r} exists; give another --report FILE")
     try:
-        scores = grade(Path(args.path), args.impl)
+        scores = grade(path, args.impl)
     except (FileNotFoundError, RuntimeError, ValueError) as error:
         return _usage_error(error)
     print()
@@ -339,7 +539,8 @@ def main(argv: list[str] | None = None) -> int:
         print()
         print(hints(scores))
     report = {
-        "path": str(args.path), "impl": args.impl,
+        "path": str(path), "impl": args.impl,
+        **provenance(path, args.student),
         "passed": sum(s.passed for s in scores), "total": sum(s.total for s in scores),
         "points": sum((s.points for s in scores), 0.0),
         "max_points": sum((s.max_points for s in scores), 0.0),
@@ -347,7 +548,6 @@ def main(argv: list[str] | None = None) -> int:
                                    "max_points": s.max_points,
                                    "tests": [asdict(r) for r in s.results]} for s in scores},
     }
-    where = args.report if args.report is not None else default_report(Path(args.path))
     try:
         where.parent.mkdir(parents=True, exist_ok=True)
         where.write_text(json.dumps(report, indent=2, ensure_ascii=False) + "\n",

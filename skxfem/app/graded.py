@@ -8,12 +8,18 @@ is read from its reference, ``exercises/solutions/NN_name/reference.py``
 (:func:`answers`): the reference's functions of those names (its own code, or the
 library function it re-exports), the library functions named in its
 ``LIBRARY_ANSWERS`` (the same computation under another contract), and every
-library or reference function that these call, however deep.
+library or reference function that these call, however deep.  A student's
+hand-out (``skxfem handout``) has no ``solutions/``: there the answers are the
+library functions listed in ``exercises/library_answers.json``, which the
+hand-out writes from the references (:func:`library_answers`); the library is
+all a student's book could show, so the students' book check works the same.
 
 The book never prints the code of an answer.  :func:`listing` gives a function's
 contract, its signature and docstring with the body elided; in the instructors'
 build (``SKXFEM_SOLUTIONS`` set: ``make book-instructor``) it gives the source,
-and :func:`show_reference` adds the reference with the library code it uses.
+and :func:`show_reference` adds the reference with the library code it uses;
+every page of that build carries the banner :data:`BANNER` (the theme's
+announcement, set when the build starts: :func:`instructor_banner`).
 
 Each chapter offers its exercise's stub for download: the *pristine* stub
 (:func:`stub`), never the student's file, which may hold a solution.  It is
@@ -26,7 +32,8 @@ signature and docstring, then ``raise NotImplementedError``).  The book build
 
 :func:`check_book` reads a built book and lists every page that shows an answer
 (the students' book) or every answer that no page shows (the instructors' book),
-and every shipped ``exercise.py`` that is not its pristine stub;
+every shipped ``exercise.py`` that is not its pristine stub, and every page
+without the instructors' banner (instructors' book) or with it (students');
 ``make book`` and ``make book-instructor`` run it after the build::
 
     python -m skxfem.app.graded book/_build/html                 # students: none shown
@@ -53,13 +60,19 @@ import types
 from collections.abc import Callable
 from pathlib import Path
 
-__all__ = ["INSTRUCTORS", "STUBS", "exercises_folder", "graded", "answers", "code_lines",
-           "contract", "stub_of", "stub", "write_stubs", "listing", "show_reference",
-           "check_book", "main"]
+__all__ = ["INSTRUCTORS", "STUBS", "BANNER", "LIBRARY_ANSWERS", "exercises_folder", "graded",
+           "answers", "library_answers", "code_lines", "contract", "stub_of", "stub",
+           "write_stubs", "listing", "show_reference", "instructor_banner", "check_book",
+           "main"]
 
 INSTRUCTORS = "SKXFEM_SOLUTIONS"   # set (non-empty) in the environment: the instructors' book
 SHORTEST = 16                      # code lines shorter than this are too common to count
 STUBS = "_stubs"                   # the book's build-only folder of pristine stubs (book/_stubs)
+LIBRARY_ANSWERS = "library_answers.json"   # a hand-out's answers: exercises/library_answers.json
+BANNER_TEXT = "Instructor edition"
+BANNER = (f"<strong>{BANNER_TEXT}</strong>: this book shows the code of the graded "
+          f"functions and the reference solutions. Do not hand it to students.")
+"""The banner on every page of the instructors' book (sphinx-book-theme's announcement)."""
 
 
 def exercises_folder(root: str | Path | None = None) -> Path:
@@ -147,8 +160,25 @@ def _name(func: Callable) -> str:
     return f"{module}.{func.__qualname__}"
 
 
+def _handed_out(exercise: str, folder: Path) -> dict[str, Callable] | None:
+    """A hand-out's answers to ``exercise`` (``library_answers.json``), or None if the
+    reference is there (an instructor's clone) or the list is not (then the reference
+    is asked for, and its absence reported)."""
+    listed = folder / LIBRARY_ANSWERS
+    if (folder / "solutions" / exercise / "reference.py").is_file() or not listed.is_file():
+        return None
+    try:
+        names = json.loads(listed.read_text(encoding="utf-8"))["exercises"][exercise]
+    except (ValueError, KeyError, TypeError):
+        raise ValueError(f"{listed} lists no answers of {exercise}: make the hand-out again "
+                         f"(skxfem handout)") from None
+    return {name: _resolve(name, listed) for name in names}
+
+
 def answers(exercise: str, root: str | Path | None = None) -> dict[str, Callable]:
     """The functions whose code answers ``exercise``, by name (see the module notes).
+
+    In a hand-out (no ``solutions/``, a ``library_answers.json``) the library ones only.
 
     >>> sorted(answers("07_contact"))[:2]
     ['skxfem.contact.laws.ball_projection', 'skxfem.contact.laws.indicator']
@@ -158,6 +188,9 @@ def answers(exercise: str, root: str | Path | None = None) -> dict[str, Callable
     if asked is None:
         raise ValueError(f"no exercise {exercise!r} in {folder}; the exercises are "
                          f"{', '.join(graded(folder))}")
+    handed_out = _handed_out(exercise, folder)
+    if handed_out is not None:
+        return dict(sorted(handed_out.items()))
     reference = _reference(exercise, folder)
     where = folder / "solutions" / exercise / "reference.py"
     missing = [n for n in asked if not inspect.isfunction(getattr(reference, n, None))]
@@ -172,6 +205,22 @@ def answers(exercise: str, root: str | Path | None = None) -> dict[str, Callable
             found[_name(func)] = func
             todo += _called(func, {reference.__name__})
     return dict(sorted(found.items()))
+
+
+def library_answers(root: str | Path | None = None) -> dict:
+    """What a hand-out's ``library_answers.json`` holds: for each exercise, the names
+    of the library functions among its :func:`answers` (no code, and nothing of the
+    references), with a note saying what the file is for.
+
+    >>> "skxfem.levelset.plane" in library_answers()["exercises"]["01_levelset"]
+    True
+    """
+    folder = exercises_folder(root)
+    return {"note": "The library functions whose code answers each graded exercise: the "
+                    "students' book must not show them (python -m skxfem.app.graded). "
+                    "Written by skxfem handout from the reference solutions; do not edit.",
+            "exercises": {e: [n for n in answers(e, folder) if n.startswith("skxfem.")]
+                          for e in graded(folder)}}
 
 
 def _definition(func: Callable) -> tuple[list[str], ast.FunctionDef]:
@@ -400,6 +449,27 @@ def listing(func: Callable, environ=os.environ) -> str:
     return contract(func, note)
 
 
+def instructor_banner(config, environ=os.environ) -> bool:
+    """Put :data:`BANNER` on every page of the instructors' book: the html theme's
+    ``announcement`` (sphinx-book-theme, pydata-sphinx-theme) when ``SKXFEM_SOLUTIONS``
+    is set in ``environ``, as ``make book-instructor`` sets it; the students' book is
+    left as it is.  Whether it was put there.
+
+    >>> from types import SimpleNamespace
+    >>> config = SimpleNamespace(html_theme_options={"home_page_in_navbar": True})
+    >>> instructor_banner(config, environ={}), config.html_theme_options
+    (False, {'home_page_in_navbar': True})
+    >>> instructor_banner(config, environ={INSTRUCTORS: "1"})
+    True
+    >>> config.html_theme_options["announcement"].startswith("<strong>Instructor edition")
+    True
+    """
+    if not environ.get(INSTRUCTORS):
+        return False
+    config.html_theme_options = {**(config.html_theme_options or {}), "announcement": BANNER}
+    return True
+
+
 class _Markdown(str):
     """Text that Jupyter renders as Markdown (no IPython import needed)."""
 
@@ -416,8 +486,6 @@ def show_reference(exercise: str, root: str | Path | None = None,
     among its :func:`answers`.
 
     >>> show_reference("01_levelset", environ={}) is None
-    True
-    >>> "def _ball" in show_reference("01_levelset", environ={INSTRUCTORS: "1"})
     True
     """
     if not environ.get(INSTRUCTORS):
@@ -475,6 +543,16 @@ def check_book(html_dir: str | Path, instructor: bool = False,
     text = {p.relative_to(html_dir).as_posix(): _page_lines(p) for p in pages}
     folder = exercises_folder(root)
     problems = []
+    built = [p for p in pages if p.suffix == ".html"     # not _static/, _downloads/ ...
+             and not any(part.startswith("_") for part in p.relative_to(html_dir).parts)]
+    bannered = [instructor == (BANNER in html.unescape(p.read_text(
+        encoding="utf-8", errors="replace"))) for p in built]
+    if not all(bannered):
+        problems.append(f"{bannered.count(False)} of the {len(bannered)} pages "
+                        + (f"lack the instructors' banner ({BANNER_TEXT!r}): build with "
+                           "SKXFEM_SOLUTIONS set (make book-instructor)" if instructor else
+                           f"carry the instructors' banner ({BANNER_TEXT!r}): this is the "
+                           f"instructors' book, built with SKXFEM_SOLUTIONS set"))
     stubs = {stub(e, folder) for e in graded(folder)}
     for path in (p for p in pages if p.name == "exercise.py"):
         if path.read_text(encoding="utf-8", errors="replace") not in stubs:
@@ -533,8 +611,14 @@ def _write_book_stubs(app) -> None:
     write_stubs(book / STUBS, book.parent / "exercises")
 
 
+def _banner(app, config) -> None:
+    """config-inited: the instructors' banner, when SKXFEM_SOLUTIONS is set."""
+    instructor_banner(config)
+
+
 def setup(app):
     """The book's Sphinx extension (``_config.yml``, ``sphinx.extra_extensions``)."""
+    app.connect("config-inited", _banner)
     app.connect("builder-inited", _write_book_stubs)
     return {"parallel_read_safe": True, "parallel_write_safe": True}
 
