@@ -3,7 +3,16 @@ import json
 import pytest
 from matplotlib.figure import Figure
 
-from skxfem.studies.frontier import PLANS, SOLVERS, Plan, Point, pareto, summary, sweep
+from skxfem.studies.frontier import (
+    CONTACT_SOLVERS,
+    PLANS,
+    SOLVERS,
+    Plan,
+    Point,
+    pareto,
+    summary,
+    sweep,
+)
 from skxfem.viz.frontier_plots import plot_frontier, reproduce_frontier
 
 TINY = (Plan("strip", ("quad", "tri"), ("vital",), (None, 4), ("direct",), (4, 8)),
@@ -82,3 +91,18 @@ def test_reproduce_sizes_give_small_plans_of_both_benchmarks():
     assert [p.problem for p in small] == ["plate", "strip"]
     assert all(p.sizes == (4, 8) and p.quadratures == (None,) for p in small)
     assert plans(False) == PLANS["full"] and plans(True) == PLANS["quick"]
+
+
+def test_the_contact_rows_give_one_answer_for_every_choice():
+    """Coulomb contact on the exact plate: the answer does not depend on the linear
+    solve or on ρ (an augmentation), and a looser Newton tolerance moves it by
+    about that tolerance; it sticks where pressed, so its errors are the tie's order."""
+    plan = Plan("plate", ("hex",), ("vital",), (None,), CONTACT_SOLVERS + ("direct",), (4,))
+    points = {p.solver: p for p in sweep(plan)}
+    ref = points["coulomb"]
+    for name in ("coulomb/iterative", "coulomb/rho100"):
+        assert abs(points[name].energy - ref.energy) <= 1e-8 * ref.energy, name
+        assert abs(points[name].pressure - ref.pressure) <= 1e-8 * ref.pressure, name
+    assert abs(points["coulomb/tol1e-6"].pressure - ref.pressure) <= 1e-3 * ref.pressure
+    tie = points["direct"]
+    assert 0.5 < ref.energy / tie.energy < 2 and ref.pressure < 2 * tie.pressure

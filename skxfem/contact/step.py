@@ -179,15 +179,14 @@ class TieStep:
         self.e[solved] = np.einsum("sab,sb->sa", self.Minv, qR[solved] * dR_dlam[solved, None])
         self.Bt = Bt = list(ops.Bt)
         iw = 1.0 / ops.w
-        K = step.K
+        self.K, self.S = step.K, None
         soft = solved & DQ.any(axis=(1, 2))
         if soft.any():  # the sliding force's ΔU part: a symmetric interface stiffness
             Minv = np.linalg.inv(np.eye(k) - DQ[soft])
             W = (laws.rho_t[soft] * iw[soft])[:, None, None] * (Minv @ DQ[soft])
             W = sp.bmat([[sp.diags(W[:, a, b]) for b in range(k)] for a in range(k)])
             Bs = sp.vstack([B[soft] for B in Bt], format="csr")
-            K = (K + Bs.T @ W @ Bs).tocsr()
-        self.K = K
+            self.S = (Bs.T @ W @ Bs).tocsr()  # kept apart: K is not copied
         self.B = sp.vstack([ops.Bn[closed]] + [Bt[a][self.tied[:, a]] for a in range(k)],
                            format="csr")
         tilt = closed & (self.e != 0).any(axis=1)
@@ -197,7 +196,7 @@ class TieStep:
                                format="csr")
         else:
             self.C = None
-        self.fixed = np.setdiff1d(np.arange(K.shape[0]), step.free)
+        self.fixed = np.setdiff1d(np.arange(step.K.shape[0]), step.free)
 
     def __call__(self, R, tol: float) -> np.ndarray:
         step, k = self.step, self.k
@@ -223,7 +222,7 @@ class TieStep:
             dU, mu, info = tie_solve(self.K, self.B, f, self.fixed, np.zeros(self.fixed.size),
                                      c=rhs, modes=self.modes, blocksize=self.blocksize,
                                      tol=tol, reuse=self.setup, C=self.C, update=True,
-                                     independent=True)
+                                     independent=True, S=self.S)
         except SingularSystemError as e:  # a part free in this active set
             raise SingularStepError(str(e)) from e
         self.setup, self.iterations = info.setup, info.iterations

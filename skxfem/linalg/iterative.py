@@ -140,6 +140,12 @@ class Setup:
     dependent: np.ndarray | None = None
     base: Setup | None = field(default=None, repr=False)
     """The :func:`stiffness_setup` this one was carried over from (``update``)."""
+    S: sp.csr_matrix | None = None
+    """The interface stiffness added to K (:func:`solve`'s ``S``), or None."""
+
+    def stiffness(self, U) -> np.ndarray:
+        """(K + S) U."""
+        return self.K @ U if self.S is None else self.K @ U + self.S @ U
 
     def carries(self, K, B, fixed, r, bonded) -> bool:
         """Whether this set-up can be carried over to (K, B, fixed, r, bonded)
@@ -147,18 +153,27 @@ class Setup:
         return (r == self.r and bonded == self.bonded and np.array_equal(fixed, self.fixed)
                 and K.shape == self.K.shape and B.shape[1] == self.B.shape[1])
 
-    def serves(self, K, B, fixed, r, bonded) -> bool:
-        """Whether this set-up is that of (K, B, fixed, r, bonded)."""
+    def serves(self, K, B, fixed, r, bonded, S=None) -> bool:
+        """Whether this set-up is that of (K, B, fixed, r, bonded, S)."""
         return (r == self.r and bonded == self.bonded and np.array_equal(fixed, self.fixed)
                 and K.shape == self.K.shape and B.shape == self.B.shape
-                and (K != self.K).nnz == 0 and (B != self.B).nnz == 0)
+                and _same(K, self.K) and _same(B, self.B) and _same(S, self.S))
+
+
+def _same(A, B) -> bool:
+    """Whether the sparse matrices (or Nones) A and B are equal."""
+    if A is B:
+        return True
+    if A is None or B is None:
+        return False
+    return A.shape == B.shape and (A != B).nnz == 0
 
 
 def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 1,
           bonded: bool = False, tol: float = 1e-10, maxiter: int = 500, r: float = 3.0,
           delta: float = 1e-12, refine: int = 2,
           dependent_tol: float = 1e-8, rigid_tol: float = 1e-11, reuse: Setup | None = None,
-          C=None, update: bool = False, independent: bool = False):
+          C=None, update: bool = False, independent: bool = False, S=None):
     """Solve the tied saddle-point system by projected AMG-preconditioned CG; see the module notes.
 
     Parameters
@@ -207,6 +222,10 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
         B (:func:`skxfem.linalg.amg.refresh`, the Galerkin update of a change on
         a few rows) instead of a new set-up.  For a sequence of systems that
         differ on the interface rows only (the steps of a contact solve).
+    S
+        (N, N) a stiffness added to K where it is nonzero on few rows (a sliding
+        contact's interface stiffness): the system is that of K + S, without a
+        copy of K.
     independent
         The caller knows the rows of B to be independent (each is one of a set of
         rows checked once, as the rows a contact step ties): no search for
@@ -241,15 +260,19 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
     t0 = time.perf_counter()
     N = K.shape[0]
     K, B, F = sp.csr_matrix(K), sp.csr_matrix(B), np.asarray(F, float)
+    S = None if S is None else sp.csr_matrix(S)
     D = np.zeros(0, int) if D is None else np.asarray(D, int)
     fixed, U0 = np.zeros(N, dtype=bool), np.zeros(N)
     fixed[D], U0[D] = True, (0.0 if g is None else np.asarray(g, float))
-    if reuse is not None and reuse.serves(K, B, fixed, r, bonded):
+    if reuse is not None and reuse.serves(K, B, fixed, r, bonded, S):
         setup = reuse
     elif update and reuse is not None and reuse.carries(K, B, fixed, r, bonded):
-        setup = _carried(reuse, K, B, modes, delta, refine, rigid_tol)
+        setup = _carried(reuse, K, B, S, modes, delta, refine, rigid_tol)
     else:
-        setup = _setup(K, B, fixed, modes, blocksize, bonded, r, delta, refine, rigid_tol)
+        setup = _setup(K if S is None else (K + S).tocsr(), B, fixed, modes, blocksize,
+                       bonded, r, delta, refine, rigid_tol)
+        if S is not None:
+            setup.K, setup.S = K, S
     if independent and setup.dependent is None:
         setup.dependent = np.zeros((B.shape[0], 0))
     oblique = None if C is None else _oblique(setup, sp.csr_matrix(C))
@@ -257,7 +280,7 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
     x, history, scale, residual = _krylov(setup, F, c, U0, tol, maxiter, oblique)
     t2 = time.perf_counter()
     U = U0 + setup.s * np.where(fixed, 0.0, x)
-    mu, balance = _multipliers(setup, K, B, F, U, G, dependent_tol, tol, len(history) - 1,
+    mu, balance = _multipliers(setup, B, F, U, G, dependent_tol, tol, len(history) - 1,
                                residual, oblique)
     timings = {"setup": t1 - t0, "krylov": t2 - t1, "multipliers": time.perf_counter() - t2}
     return U, mu, IterativeInfo(len(history) - 1, residual, balance, setup.dependent.shape[1],
@@ -290,7 +313,7 @@ def _krylov(setup: Setup, F, c, U0, tol: float, maxiter: int, oblique=None):
     def project(v):  # Π v = v - B_nᵀ (B_n B_nᵀ)⁻¹ B_n v, onto ker B
         return v - Bn.T @ interface(Bn @ v)
 
-    b = np.where(fixed, 0.0, s * (F - setup.K @ U0))
+    b = np.where(fixed, 0.0, s * (F - setup.stiffness(U0)))
     c = setup.rows * ((0.0 if c is None else np.asarray(c, float)) - setup.B @ U0)
     x = Bn.T @ interface(c)
     scale = max(np.linalg.norm(np.concatenate([b, c])), 1e-300)
@@ -320,7 +343,7 @@ def _krylov(setup: Setup, F, c, U0, tol: float, maxiter: int, oblique=None):
     return x, history, scale, residual
 
 
-def _multipliers(setup: Setup, K, B, F, U, G, dependent_tol: float, tol: float,
+def _multipliers(setup: Setup, B, F, U, G, dependent_tol: float, tol: float,
                  iterations: int, residual: float, oblique=None):
     """The multipliers that balance U, B_nᵀ y = b - K_s x in the least-squares sense,
     made the smoothest along B's dependencies, and their relative balance (else
@@ -328,8 +351,9 @@ def _multipliers(setup: Setup, K, B, F, U, G, dependent_tol: float, tol: float,
     y = (B_n C_nᵀ)⁻¹ B_n (b - K_s x)."""
     fixed = setup.fixed
     free = np.flatnonzero(~fixed)
-    reaction = (K @ U - F)[free]
-    rhs = setup.Bn @ np.where(fixed, 0.0, setup.s * (F - K @ U))
+    KU = setup.stiffness(U)
+    reaction = (KU - F)[free]
+    rhs = setup.Bn @ np.where(fixed, 0.0, setup.s * (F - KU))
     if setup.dependent is None:  # B alone decides them: once per set-up
         setup.dependent = dependencies(B[:, free], dependent_tol)
     if oblique is None:
@@ -348,18 +372,23 @@ def _multipliers(setup: Setup, K, B, F, U, G, dependent_tol: float, tol: float,
     return mu, balance
 
 
-def _carried(old: Setup, K, B, modes, delta, refine, rigid_tol) -> Setup:
-    """``old`` carried over to K and B (:func:`solve`'s ``update``): from the set-up
-    it was itself carried over from (its ``base``), keep the scaling s, add the
-    change of K_r, ΔA = S(K - K_base)S + r B_nᵀB_n, which lives on the interface
-    rows, and update the AMG hierarchy by it (:func:`skxfem.linalg.amg.refresh`);
-    the interface solve anew, the rigid modes checked again (a new active set
-    may leave a side free)."""
+def _carried(old: Setup, K, B, S, modes, delta, refine, rigid_tol) -> Setup:
+    """``old`` carried over to K + S and B (:func:`solve`'s ``update``): from the
+    set-up it was itself carried over from (its ``base``), keep the scaling s,
+    add the change of K_r, ΔA = s(K + S - K_base)s + r B_nᵀB_n, which lives on the
+    interface rows, and update the AMG hierarchy by it
+    (:func:`skxfem.linalg.amg.refresh`); the interface solve anew, the rigid
+    modes checked again (a new active set may leave a side free).  A set-up
+    carried from a base is done with once the next is carried: its matrices are
+    let go first, so that two of them are never held at once."""
     base = old.base if old.base is not None else old
+    if old is not base:
+        old.Kr = old.ml = None
     fixed, s, r = base.fixed, base.s, base.r
     keep = sp.diags(np.where(fixed, 0.0, s))
-    dK = (K - base.K).tocsr()
-    dK.eliminate_zeros()
+    dK = sp.csr_matrix(K.shape) if _same(K, base.K) else (K - base.K).tocsr()
+    if S is not None:
+        dK = dK + S
     Bn, rows = unit_rows(B @ keep)
     change = (keep @ dK @ keep + r * (Bn.T @ Bn)).tocsr()
     change.eliminate_zeros()
@@ -369,7 +398,7 @@ def _carried(old: Setup, K, B, modes, delta, refine, rigid_tol) -> Setup:
         check_held(Kr, modes / s[:, None], rigid_tol)
     return Setup(K, B, fixed, r, base.bonded, s, Bn, rows, Kr,
                  refresh(base.ml, Kr, change), interface_solve(Bn, delta, refine),
-                 base=base)
+                 base=base, S=S)
 
 
 def _setup(K, B, fixed, modes, blocksize, bonded, r, delta, refine, rigid_tol) -> Setup:

@@ -9,10 +9,13 @@ solve, the errors excluded) and measures the relative energy error of u and the
 relative L² error of the contact pressure against :mod:`skxfem.fem.exact`.
 :func:`pareto` marks the points no other point beats in both time and error.
 
-The solvers are the entries of :data:`SOLVERS`: a name and a function from an
-assembled :class:`~skxfem.problem.Problem` to a :class:`~skxfem.result.Result`.
-The direct and the iterative solve are there; another is one entry; :data:`PLANS` lists it
-per benchmark.
+The solvers are the entries of :data:`SOLVERS`: a name and a function from a
+scene to a :class:`~skxfem.result.Result` (assembly included).  The direct and
+the iterative tie are there, and the contact rows: the same interface solved as
+Coulomb contact (μ = 1: it sticks wherever it is pressed, and opens where the tie
+pulls) by each linear solve, at another augmentation ρ and at a looser Newton
+tolerance — the choices a contact user has; another is one entry;
+:data:`PLANS` lists them per benchmark.
 
 The energy error is always integrated with the same cell rule (order 4 on
 uncut cells), whatever quadrature the method used, so that the measure does
@@ -32,22 +35,49 @@ from typing import Callable
 
 import numpy as np
 
+from .. import contact
+from ..contact.newton import TOL
 from ..fem.exact import ExactPlate
-from ..problem import Problem, assemble
+from ..problem import assemble
 from ..scene.benchmarks import exact_plate, exact_strip
+from ..scene.model import Scene
 from ..solver import Result, solve_problem
 from .convergence import energy_error, pressure_error
 from .progress import Progress
 
-__all__ = ["SOLVERS", "Plan", "PLANS", "plans", "Point", "sweep", "pareto", "summary",
-           "ERROR_ORDER"]
+__all__ = ["SOLVERS", "CONTACT_SOLVERS", "Plan", "PLANS", "plans", "Point", "sweep", "pareto",
+           "summary", "ERROR_ORDER"]
 
-SOLVERS: dict[str, Callable[[Problem], Result]] = {
-    "direct": partial(solve_problem, linear="direct"),
-    "iterative": partial(solve_problem, linear="iterative"),
+def _tie(scene: Scene, linear: str) -> Result:
+    """The tie of ``scene``: assembled, then solved by the ``linear`` solve."""
+    return solve_problem(assemble(scene), linear=linear)
+
+
+def _coulomb(scene: Scene, linear: str, rho: float | None = None,
+             tol: float = TOL) -> Result:
+    """``scene``'s interface as Coulomb contact, μ = 1, each Newton step solved by
+    ``linear``; ρ_n = ρ_τ = ``rho`` × E/h (None: the default E/h, h the cell
+    height of a Box along its last axis), Newton to the relative residual ``tol``."""
+    h = scene.mesh.size[-1] / scene.mesh.n[-1] if rho is not None else None
+    aug = {} if rho is None else {"rho_n": rho * scene.material.E / h,
+                                  "rho_t": rho * scene.material.E / h}
+    return contact.solve(replace(scene, law="coulomb", friction=1.0, **aug), linear=linear,
+                         tol=tol)
+
+
+SOLVERS: dict[str, Callable[[Scene], Result]] = {
+    "direct": partial(_tie, linear="direct"),
+    "iterative": partial(_tie, linear="iterative"),
+    "coulomb": partial(_coulomb, linear="direct"),
+    "coulomb/iterative": partial(_coulomb, linear="iterative"),
+    "coulomb/rho100": partial(_coulomb, linear="direct", rho=100.0),
+    "coulomb/tol1e-6": partial(_coulomb, linear="direct", tol=1e-6),
 }
-"""Linear solves of the tie (:data:`skxfem.solver.LINEAR`): name → function(Problem) →
-Result; ``iterative`` is AMG-preconditioned projected CG (pyamg)."""
+"""The solves of a method: name → function(Scene) → Result, assembly included.  The
+tie by each linear solve (:data:`skxfem.linalg.choice.LINEAR`; ``iterative``:
+AMG-preconditioned projected CG, pyamg), and Coulomb contact (``coulomb``: direct
+Newton steps; ``/iterative``: each step one tie; ``/rho100``: ρ = 100 E/h;
+``/tol1e-6``: Newton stopped at 1e-6)."""
 ERROR_ORDER = 4
 """Cell quadrature order of the energy error on uncut cells (the same for every method)."""
 
@@ -85,6 +115,10 @@ class Plan:
                 for q in self.quadratures for v in self.solvers for n in self.sizes]
 
 
+CONTACT_SOLVERS = ("coulomb", "coulomb/iterative", "coulomb/rho100", "coulomb/tol1e-6")
+"""The contact rows of the sweeps: the entries of :data:`SOLVERS` that solve Coulomb
+contact."""
+
 PLANS = {
     "quick": (Plan("plate", ("hex", "prism"), ("naive", "winner", "vital"), (None, 4),
                    ("direct",), (4, 8, 12, 16)),
@@ -93,11 +127,14 @@ PLANS = {
               Plan("plate", ("hex", "prism"), ("vital",), (None,), ("iterative",),
                    (4, 8, 12, 16)),
               Plan("strip", ("tri", "quad"), ("vital",), (None,), ("iterative",),
-                   (8, 16, 32, 64))),
+                   (8, 16, 32, 64)),
+              Plan("plate", ("hex",), ("vital",), (None,), CONTACT_SOLVERS, (4, 8, 12))),
     "full": (Plan("plate", ("hex", "prism"), ("naive", "winner", "vital"), (None, 4),
                   ("direct", "iterative"), (4, 8, 12, 16, 20, 24)),
              Plan("strip", ("tri", "quad"), ("naive", "winner", "vital"), (None, 4),
-                  ("direct", "iterative"), (8, 16, 32, 64, 128, 256))),
+                  ("direct", "iterative"), (8, 16, 32, 64, 128, 256)),
+             Plan("plate", ("hex", "prism"), ("winner", "vital"), (None,), CONTACT_SOLVERS,
+                  (4, 8, 12, 16))),
 }
 """The sweeps of the book and ``skxfem reproduce --quick`` (``quick``: every
 space and rule with the direct solve, the iterative one on the default
@@ -161,7 +198,7 @@ def sweep(plan: Plan, repeat: int = 1, progress: Progress | None = None) -> list
         best = np.inf
         for _ in range(repeat):
             t0 = time.perf_counter()
-            result = SOLVERS[solver](assemble(scene))
+            result = SOLVERS[solver](scene)
             best = min(best, time.perf_counter() - t0)
         energy, pressure = _measure(result)
         points.append(Point(plan.problem, cell, space_name, q, solver, n, result.n_dofs,

@@ -36,8 +36,9 @@ __all__ = ["MARKERS", "LINES", "plot_frontier", "reproduce_frontier"]
 
 MARKERS = {"tri": "^", "quad": "s", "tet": "P", "hex": "D", "prism": "v"}
 """Marker of each cell type."""
-LINES = {"direct": "-", "iterative": "--"}
-"""Line style of each linear solver (another solver: dotted)."""
+LINES = {"direct": "-", "iterative": "--", "coulomb": ":", "coulomb/iterative": "-.",
+         "coulomb/rho100": (0, (5, 1, 1, 1, 1, 1)), "coulomb/tol1e-6": (0, (1, 3))}
+"""Line style of each solver of :data:`skxfem.studies.frontier.SOLVERS` (another: dotted)."""
 _TITLES = {"plate": "paper's plate (3D, one cell along x)", "strip": "strip (2D)"}
 _LABELS = {"energy": "relative energy error of u",
            "pressure": "relative L² error of the contact pressure"}
