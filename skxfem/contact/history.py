@@ -79,7 +79,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..levelset import point_normals
-from ..linalg.amg import check_tie_held, rigid_modes
+from ..linalg.amg import check_tie_held, rigid_modes, scaled_tie
 from ..linalg.choice import choose_linear
 from ..linalg.dependent import dependencies, unit_rows
 from ..linalg.iterative import stiffness_setup
@@ -342,6 +342,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
         "linear_tol": linear_tol,  # K's one set-up, every step's tie carried over from it
         "setup": stiffness_setup(pb.K, pb.D, modes, pb.mesh.dim())}
     free = np.setdiff1d(np.arange(pb.V.N), pb.D)
+    scaled = _scaled(pb, solve_kw.get("setup"))
     m, k = ops.w.size, len(ops.Bt)
     # the reference ρ of the convergence test: E/h, each interface its own h
     rho_ref = (scene.material.E / ops.h if not ops.pieces
@@ -355,7 +356,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
         laws = _point_laws(state.laws, ops)
         names = tuple(law.name for law in state.laws)
         if names not in checked:  # the law holds the body with Γ closed?
-            check_closed(pb, ops, laws, modes, state.label)
+            check_closed(pb, ops, laws, modes, state.label, scaled)
             checked.add(names)
 
         def one(start, U_prev, F1, g1, where, guess=None, laws=laws):
@@ -385,7 +386,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
         if progress is not None:
             progress(progress_line(where, None, None, res.status, sum(info.inner),
                                    time.perf_counter() - t0, info.iterations))
-        check_determined(pb, ops, laws, res.status, res.y, modes, state.label)
+        check_determined(pb, ops, laws, res.status, res.y, modes, state.label, scaled)
         steps.append(_step(state, ops, it, res, info, pieces, laws))
     law = states[0].laws[0] if not pb.interfaces else states[0].laws
     return _result(pb, ops, law, tuple(steps), linear, linear_tol,
@@ -668,7 +669,19 @@ def _check_rigid(pb: Problem, ops: Operators, laws: PointLaws, status, y, what: 
         raise SingularSystemError(f"load step {label!r}: {e}") from None
 
 
-def check_closed(pb: Problem, ops: Operators, laws: PointLaws, modes, label=None) -> None:
+def _scaled(pb: Problem, setup=None):
+    """(s, K_s): K scaled to unit diagonal, imposed unknowns as identity rows
+    (:func:`skxfem.linalg.amg.scaled_tie`), the stiffness set-up's if there is one:
+    one scaling for every check of a contact solve."""
+    if setup is not None:
+        return setup.s, setup.Kr
+    fixed = np.zeros(pb.V.N, bool)
+    fixed[pb.D] = True
+    return scaled_tie(pb.K, sp.csr_matrix((0, pb.V.N)), fixed)[:2]
+
+
+def check_closed(pb: Problem, ops: Operators, laws: PointLaws, modes, label=None,
+                 scaled=None) -> None:
     """Refuse a law that cannot determine a state even where Γ is closed
     everywhere (every point in contact, sticking where the law can): a side
     it leaves free to move (a frictionless Γ under a side that only Γ holds
@@ -676,7 +689,8 @@ def check_closed(pb: Problem, ops: Operators, laws: PointLaws, modes, label=None
     multipliers that depend on the others (the naive space on tetrahedra), or
     multipliers that barely see the jump (:data:`NEGLIGIBLE`: functions living on
     slivers of Γ, which the tie sets to their smoothest values).
-    ``laws``: the :class:`~skxfem.contact.newton.PointLaws` of the dofs."""
+    ``laws``: the :class:`~skxfem.contact.newton.PointLaws` of the dofs; ``scaled``:
+    (s, K_s) of K (:func:`_scaled`), if the caller has them."""
     status = np.where(laws.tangential == "free", SLIP, STICK)
     text = _names(laws)
     _check_rigid(pb, ops, laws, status, None, f"{text} with Γ closed everywhere",
@@ -685,7 +699,7 @@ def check_closed(pb: Problem, ops: Operators, laws: PointLaws, modes, label=None
     fixed[pb.D] = True
     rows, row_dofs = _held_rows(ops, laws, status, None, dofs=True)
     try:
-        check_tie_held(pb.K, rows, fixed, modes)
+        check_tie_held(pb.K, rows, fixed, modes, scaled=scaled)
     except SingularSystemError as e:
         raise SingularSystemError(
             f"load step {label!r}: even with Γ closed everywhere, {text} leaves "
@@ -717,8 +731,8 @@ def check_closed(pb: Problem, ops: Operators, laws: PointLaws, modes, label=None
             f"or move Γ away from the nodes")
 
 
-def check_determined(pb: Problem, ops: Operators, laws: PointLaws, status, y, modes, label=None
-                     ) -> None:
+def check_determined(pb: Problem, ops: Operators, laws: PointLaws, status, y, modes, label=None,
+                     scaled=None) -> None:
     """Refuse a converged contact state that leaves a side of Γ free to move.
 
     Newton may converge to a state whose displacement is not unique: an
@@ -730,7 +744,8 @@ def check_determined(pb: Problem, ops: Operators, laws: PointLaws, status, y, mo
     direction ŷ.  :func:`skxfem.linalg.rigid.check_held` tests that with the level
     set's normals and names the motion left free; then
     :func:`skxfem.linalg.amg.check_tie_held` tests the discrete rows themselves.
-    ``laws``: the :class:`~skxfem.contact.newton.PointLaws` of the dofs.
+    ``laws``: the :class:`~skxfem.contact.newton.PointLaws` of the dofs; ``scaled`` as
+    :func:`check_closed`.
     """
     counts = np.bincount(status, minlength=3)
     found = (f"({counts[OPEN]} open, {counts[STICK]} stick, {counts[SLIP]} slip of "
@@ -740,7 +755,7 @@ def check_determined(pb: Problem, ops: Operators, laws: PointLaws, status, y, mo
     fixed = np.zeros(pb.V.N, bool)
     fixed[pb.D] = True
     try:
-        check_tie_held(pb.K, _held_rows(ops, laws, status, y), fixed, modes)
+        check_tie_held(pb.K, _held_rows(ops, laws, status, y), fixed, modes, scaled=scaled)
     except SingularSystemError as e:
         raise SingularSystemError(
             f"load step {label!r}: the contact state found {found} leaves a part of the "

@@ -348,10 +348,12 @@ def augmented(K, B, fixed, r: float):
     return s, Bn, rows, (Ks + r * (Bn.T @ Bn)).tocsr()
 
 
-def check_tie_held(K, B, fixed, modes, r: float = 3.0, rigid_tol: float = 1e-11):
+def check_tie_held(K, B, fixed, modes, r: float = 3.0, rigid_tol: float = 1e-11,
+                   scaled=None):
     """Refuse a rigid motion of a side (of ``modes``) that neither the imposed
     unknowns (boolean ``fixed``) nor the rows of ``B`` hold: :func:`check_held`
-    on the K_r of :func:`augmented`.
+    on the K_r of :func:`augmented`.  ``scaled``: (s, K_s) of :func:`scaled_tie`
+    for this K and ``fixed``, if the caller has them (several checks of one K).
 
     >>> import scipy.sparse as sp, numpy as np
     >>> K = sp.csr_matrix([[1.0, -1.0], [-1.0, 1.0]]); Z = np.ones((2, 1))
@@ -361,5 +363,10 @@ def check_tie_held(K, B, fixed, modes, r: float = 3.0, rigid_tol: float = 1e-11)
     ...
     skxfem.linalg.saddle.SingularSystemError: the tied system is singular (a combination of the ...
     """
-    s, _, _, Kr = augmented(K, B, fixed, r)
+    if scaled is None:
+        s, _, _, Kr = augmented(K, B, fixed, r)
+    else:
+        s, Ks = scaled
+        Bn = unit_rows(B @ sp.diags(np.where(fixed, 0.0, s)))[0]
+        Kr = Ks + r * (Bn.T @ Bn)
     check_held(Kr, modes / s[:, None], rigid_tol)
