@@ -24,6 +24,19 @@ dofs, K' = K plus the sliding stiffness: the tie of
 projected GMRES where C ≠ B).  The step is exact: the same Δx as
 :func:`direct`, to the tie's tolerance.
 
+Why SuperLU stays the direct solver.  ``linear="auto"`` takes :func:`direct` only
+below :data:`skxfem.linalg.choice.AUTO_ITERATIVE` unknowns (5000 in 3D), where a
+factorisation of the Newton matrix costs a fraction of a second; above, the
+iterative step wins by a growing margin, whatever the factorisation: on the
+slipping block (:func:`skxfem.scenes.slipping_block`) at 5 346 unknowns the whole
+Coulomb solve took 2.5 s iterative against 5.5 s with SuperLU (27 November 2026,
+one run each, loaded machine), and Intel's PARDISO (pypardiso), timed 2.5 times
+faster than SuperLU on that Newton matrix when this was planned, would not close
+the gap, while it pulls about 200 MB of MKL wheels in; python-mumps has no wheel
+for this platform's Python in the registry (pip builds it from source and
+fails).  So the only
+sparse direct solver is scipy's.
+
 >>> import numpy as np, scipy.sparse as sp
 >>> x, rows, lu = direct(sp.csr_matrix([[4.0, 1.0], [1.0, 0.0]]), np.array([-1.0, 0.0]), 1)
 >>> x.round(12).tolist()
