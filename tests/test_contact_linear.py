@@ -150,6 +150,39 @@ def test_a_coulomb_solve_by_ties_gives_the_direct_answer(case, dim, method):
         assert np.abs(x - y).max() <= 1e-8 * max(np.abs(x).max(), np.abs(a.U).max())
 
 
+@pytest.mark.parametrize("mu", [1.0, 2.0])
+def test_a_block_pushed_exactly_to_its_slip_limit_by_ties(mu):
+    """Issue 27 item 5: the 3D block of test_contact_newton pushed exactly to the slip
+    limit |r_τ| = μp (no slip): the iterates come within 1e-8 of the kink |y| = R,
+    where the sliding stiffness ρ_τ/w (|y|/R - 1)⁻¹ stalled projected CG (every ρ, every
+    μ); that step is taken again on the stick branch there (skxfem.contact.step.KINK).
+    At the default ρ, ρ_n = 1e-2 E/h and ρ_τ = 1e-3 E/h: the exact state to 1e-8, neither
+    rescued nor cut, while points flip between stick and slip on the limit."""
+    import sys
+    import warnings
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_contact_newton import CASES, errors
+
+    from skxfem.scene.benchmarks import uniform_block
+
+    sol, drive = CASES["at the limit"](3, mu)
+    base = uniform_block(sol, n=3, mu=mu, drive=drive)
+    h = 1.0 / 3
+    for rho in ((1.0, 1.0), (1e-2, 1.0), (1.0, 1e-3)):
+        s = replace(base, rho_n=rho[0] * base.material.E / h, rho_t=rho[1] * base.material.E / h)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # no retry, no cut
+            res = contact.solve(s, linear="iterative")
+        st = res.steps[-1]
+        assert res.linear == "iterative"
+        assert max(errors(sol, res)) < 1e-8, rho
+        assert st.newton.rescued == 0 and st.increments == 1 and st.newton.iterations <= 15
+        assert np.all(np.linalg.norm(st.traction, axis=1)
+                      <= mu * st.pressure * (1 + 1e-10) + 1e-14)
+
+
 def test_a_block_sliding_in_3d_under_friction_by_ties():
     """The 3D block of test_contact, slipping along a slanted direction (slip points with
     a 2 x 2 DP): iterative = direct."""
