@@ -150,6 +150,77 @@ def test_a_coulomb_solve_by_ties_gives_the_direct_answer(case, dim, method):
         assert np.abs(x - y).max() <= 1e-8 * max(np.abs(x).max(), np.abs(a.U).max())
 
 
+@pytest.mark.parametrize("mu", [0.3, 1.0, 2.0, 5.0])
+def test_a_block_pushed_exactly_to_its_slip_limit_by_ties(mu):
+    """Issue 27 item 5: the 3D block of test_contact_newton pushed exactly to the slip
+    limit |r_τ| = μp (no slip): the iterates come within 1e-8 of the kink |y| = R,
+    where the sliding stiffness ρ_τ/w (|y|/R - 1)⁻¹ stalled projected CG (every ρ, every
+    μ); that step is taken again with the slip branch's derivative at the kink, the jump
+    across the slip tied (skxfem.contact.step.KINK).  At the default ρ, ρ_n = 1e-2 E/h
+    and ρ_τ = 1e-3 E/h: the exact state to 1e-8 in at most 10 iterations, neither
+    rescued nor cut, while points flip between stick and slip on the limit."""
+    import sys
+    import warnings
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_contact_newton import CASES, errors
+
+    from skxfem.scene.benchmarks import uniform_block
+
+    sol, drive = CASES["at the limit"](3, mu)
+    base = uniform_block(sol, n=3, mu=mu, drive=drive)
+    h = 1.0 / 3
+    for rho in ((1.0, 1.0), (1e-2, 1.0), (1.0, 1e-3)):
+        s = replace(base, rho_n=rho[0] * base.material.E / h, rho_t=rho[1] * base.material.E / h)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # no retry, no cut
+            res = contact.solve(s, linear="iterative")
+        st = res.steps[-1]
+        assert res.linear == "iterative"
+        assert max(errors(sol, res)) < 1e-8, rho
+        assert st.newton.rescued == 0 and st.increments == 1 and st.newton.iterations <= 10
+        assert np.all(np.linalg.norm(st.traction, axis=1)
+                      <= mu * st.pressure * (1 + 1e-10) + 1e-14)
+
+
+def test_the_step_at_the_kink_is_the_newton_step_of_that_linearisation(monkeypatch):
+    """The fallback step (skxfem.contact.step.KINK): at points a relative 1e-6 past the
+    slip limit, the tie with the jump across the slip tied equals SuperLU on the Newton
+    matrix built with the same derivative at the kink, to 1e-9."""
+    import functools
+    import sys
+    from pathlib import Path
+
+    import scipy.sparse.linalg as spla
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_contact_newton import CASES
+
+    from skxfem.contact import newton as contact_newton
+    from skxfem.contact import step as linear_step
+    from skxfem.contact.newton import Iterate, jacobian, residual
+    from skxfem.linalg.amg import rigid_modes
+    from skxfem.scene.benchmarks import uniform_block
+
+    sol, drive = CASES["at the limit"](3, 2.0)
+    pb, step, answer = _step_problem(uniform_block(sol, n=3, mu=2.0, drive=drive))
+    rng = np.random.default_rng(2)
+    U = answer.U.copy()
+    U[step.free] += 1e-9 * rng.standard_normal(step.free.size)
+    it = Iterate(U, -answer.pressure, answer.traction * (1 + 1e-6))
+    res = residual(step, it)
+    y, R = np.linalg.norm(res.y, axis=1), res.radius
+    near = (y > R) & (y <= (1 + linear_step.KINK) * R)
+    assert near.sum() >= 4, "points just past the slip limit"
+    tie, _ = linear_step.iterative(step, res, rigid_modes(pb.V), 3, tol=1e-13,
+                                   kink=linear_step.KINK)
+    monkeypatch.setattr(contact_newton.linear_step, "linearised",
+                        functools.partial(linear_step.linearised, kink=linear_step.KINK))
+    exact = spla.spsolve(jacobian(step, it, res).tocsc(), -res.vector)
+    assert rel(tie, exact) < 1e-9
+
+
 def test_a_block_sliding_in_3d_under_friction_by_ties():
     """The 3D block of test_contact, slipping along a slanted direction (slip points with
     a 2 x 2 DP): iterative = direct."""

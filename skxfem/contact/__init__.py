@@ -5,9 +5,10 @@ The modules, in the order of the contact chapter: :mod:`~skxfem.contact.laws`
 (where they are imposed: the operators at the multiplier dofs),
 :mod:`~skxfem.contact.newton` (one load step by a globalised semi-smooth Newton
 method), :mod:`~skxfem.contact.step` (the linear solve of a Newton step),
-:mod:`~skxfem.contact.fixed_point` (the paper's scheme) and
-:mod:`~skxfem.contact.history` (a load history: :func:`solve`, which this package
-exports).
+:mod:`~skxfem.contact.fixed_point` (the paper's scheme),
+:mod:`~skxfem.contact.holding` (whether Γ can hold, under its loads, a part that
+nothing else holds) and :mod:`~skxfem.contact.history` (a load history:
+:func:`solve`, which this package exports).
 """
 from .history import (
     MAX_CUTS,

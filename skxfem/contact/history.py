@@ -47,6 +47,16 @@ displacements interpolated, the state's law throughout), and so on, each
 cut reported by a :class:`StepCutWarning`, down to 1/2^``max_cuts`` of the
 step; then the error names the step and its load factor.
 
+**Loads that Γ cannot hold.** Before a load state is solved, a part of the body
+that no support touches is checked against its loads
+(:func:`skxfem.contact.holding.check_held_by_gamma`): their resultant must lie in the
+friction cone of Γ, else no equilibrium exists and no load step, ρ or iteration
+can find one.  Loads that press the part on Γ but push it along Γ harder than the
+friction holds are refused by a
+:class:`~skxfem.contact.holding.FrictionCannotHoldError` naming μ, the part, the
+direction it slides and the μ it needs; loads that pull it off Γ get the
+rigid-motion diagnosis of an open Γ (:func:`check_determined`'s).
+
 **Several interfaces.** A scene with several (``Scene(interfaces=...)``),
 one of them with a contact law, is solved here as one: the dofs of every
 interface, each with its own law, μ and ρ (:func:`parameters` of the scene
@@ -91,6 +101,7 @@ from ..result import Result, on_edges, result
 from ..scene.model import Scene, check_scene
 from ..scene.settings import MAX_ITER
 from .fixed_point import fixed_point
+from .holding import check_held_by_gamma
 from .interface import Operators, operators, tangent_frames
 from .laws import CONTACT_LAWS, HISTORY_LAWS, OPEN, SLIP, STICK
 from .newton import (
@@ -309,8 +320,12 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     ContactConvergenceError
         A step that does not converge, cut down to 1/2^max_cuts: the message
         names the step and its load factor.
+    skxfem.contact.holding.FrictionCannotHoldError
+        (a ValueError) A part that only Γ holds, pushed along Γ by its loads
+        harder than the friction can hold (module notes), said before solving.
     skxfem.linalg.saddle.SingularSystemError
-        (a ValueError) A law that leaves a side free to move even with Γ
+        (a ValueError) A part that only Γ holds, pulled off Γ by its loads
+        (before solving); a law that leaves a side free to move even with Γ
         closed everywhere (a frictionless Γ under a side that only Γ holds),
         or a converged step whose displacement is not unique (the open or
         sliding interface leaves a side free, :func:`check_determined`).
@@ -358,6 +373,10 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
         if names not in checked:  # the law holds the body with Γ closed?
             check_closed(pb, ops, laws, modes, state.label, scaled)
             checked.add(names)
+        # can Γ hold, under these loads, a part that nothing else holds?
+        check_held_by_gamma(pb, ops, laws, state.F, modes, state.label,
+                            lambda status, what, hint, laws=laws, label=state.label:
+                            _check_rigid(pb, ops, laws, status, None, what, hint, label))
 
         def one(start, U_prev, F1, g1, where, guess=None, laws=laws):
             step = StepProblem(ops, pb.K, F1, free, U_prev, laws, rho_ref)

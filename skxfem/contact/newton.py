@@ -62,6 +62,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import scipy.sparse as sp
 
+from ..linalg.iterative import ConvergenceError
 from . import step as linear_step
 from .laws import KINDS, disk_projection, status
 
@@ -512,8 +513,14 @@ def _linear_step(step, it, res, close, linear, modes, blocksize, factor, linear_
     K (the same scales, :func:`skxfem.contact.step.scales` reads only K's
     diagonal), J itself only with ``full``."""
     if linear == "iterative":
-        dx, factor, krylov = linear_step.iterative(step, res, modes, blocksize, close=close,
-                                                   reuse=factor, tol=linear_tol)
+        try:
+            dx, factor, krylov = linear_step.iterative(step, res, modes, blocksize,
+                                                       close=close, reuse=factor,
+                                                       tol=linear_tol)
+        except ConvergenceError:  # a point a hair past its slip limit: see KINK
+            dx, factor, krylov = linear_step.iterative(step, res, modes, blocksize,
+                                                       close=close, reuse=factor,
+                                                       tol=linear_tol, kink=linear_step.KINK)
 
         def scaled(full=False):
             free = step.free
