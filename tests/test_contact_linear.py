@@ -213,8 +213,8 @@ def test_the_step_at_the_kink_is_the_newton_step_of_that_linearisation(monkeypat
     y, R = np.linalg.norm(res.y, axis=1), res.radius
     near = (y > R) & (y <= (1 + linear_step.KINK) * R)
     assert near.sum() >= 4, "points just past the slip limit"
-    tie, _ = linear_step.iterative(step, res, rigid_modes(pb.V), 3, tol=1e-13,
-                                   kink=linear_step.KINK)
+    tie, _, _ = linear_step.iterative(step, res, rigid_modes(pb.V), 3, tol=1e-13,
+                                      kink=linear_step.KINK)
     monkeypatch.setattr(contact_newton.linear_step, "linearised",
                         functools.partial(linear_step.linearised, kink=linear_step.KINK))
     exact = spla.spsolve(jacobian(step, it, res).tocsc(), -res.vector)
