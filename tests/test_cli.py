@@ -804,3 +804,45 @@ def test_37_notes_name_the_interface_of_a_scene_with_several(tmp_path, capsys):
     err = capsys.readouterr().err.splitlines()
     assert len(err) == 1 and err[0].startswith("skxfem: note: interfaces[1] 'plane(point=[0.0, "
                                                "2.1]") and "passes within 1e-09 edge" in err[0]
+
+
+# --- issue 26, item 5: the last holes of bad input ------------------------------------
+
+def contact_file(tmp_path, edits, name="contact.toml"):
+    text = CONTACT_TEXT
+    for old, new in edits.items():
+        assert old in text, old
+        text = text.replace(old, new)
+    return scene_file(tmp_path, text, name)
+
+
+@pytest.mark.parametrize("mu, words", [
+    ("5e-324", "must be 0 or in [1e-10, 1e+10], got 5e-324: below, the friction force is "
+               "round-off (give 0: no friction)"),
+    ("1e-11", "got 1e-11: below"),
+    ("1e308", "got 1e+308: above, a pressed point sticks to round-off"),
+])
+def test_38_a_friction_outside_its_range_is_refused_before_solving(tmp_path, capsys, no_solve,
+                                                                   mu, words):
+    """friction = 5e-324 wrote null (a NaN) into steps[0].Lambda with exit 0; 1e308 was
+    blamed on the loads or E."""
+    path = contact_file(tmp_path, {"friction = 0.5": f"friction = {mu}"})
+    assert main(["run", path, "--out", str(tmp_path / "out")]) == 2
+    err = one_line(capsys)
+    assert "[interface] friction (Coulomb's mu)" in err and words in err, err
+
+
+@pytest.mark.parametrize("mu", ["1e-10", "0.0"])
+def test_39_a_tiny_friction_slides_with_lambda_one_and_no_null(tmp_path, capsys, mu):
+    """At the end of the range every point slides: |Λ| = 1 where pressed, 0 elsewhere
+    (μ = 0: frictionless, Λ = 0), and result.json holds no null."""
+    path = contact_file(tmp_path, {"friction = 0.5": f"friction = {mu}"})
+    assert main(["run", path, "--out", str(tmp_path / "out")]) == 0
+    text = (tmp_path / "out" / "result.json").read_text()
+    assert "null" not in text and "NaN" not in text
+    for step in json.loads(text)["steps"]:
+        lam = np.abs(np.array(step["Lambda"])[:, 0])
+        pressed = np.array(step["pressure"]) > 0
+        assert set(step["status"]) == {"slip"}
+        expected = np.where(pressed, 1.0, 0.0) if float(mu) else np.zeros_like(lam)
+        np.testing.assert_allclose(lam, expected, atol=1e-12)

@@ -511,3 +511,13 @@ def test_26b_the_solver_settings_are_part_of_the_scene():
                             (dict(max_iter=np.bool_(True)), "max_iter must be a positive")):
         with pytest.raises(ValueError, match=message):
             Solver(**kwargs)
+
+
+@pytest.mark.parametrize("mu", [5e-324, 1e-11, 2e10, 1e308])
+def test_26c_a_friction_outside_its_range_is_refused_in_python_too(mu):
+    """A μ the solve cannot resolve (μp underflows: Λ = r/(μp) was NaN; or overflows)."""
+    with pytest.raises(ValueError, match=r"Scene friction \(Coulomb's mu\) must be 0 or in "
+                                         r"\[1e-10, 1e\+10\]"):
+        Scene(QUAD, LINE, law="coulomb", friction=mu)
+    for ok in (0.0, 1e-10, 1e10):
+        assert Scene(QUAD, LINE, law="coulomb", friction=ok).friction == ok

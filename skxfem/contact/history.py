@@ -108,7 +108,8 @@ from .newton import (
 )
 
 __all__ = ["Step", "parameters", "solve", "progress_line", "ContactConvergenceError",
-           "StepCutWarning", "StepRetryWarning", "METHODS", "RHO_RANGE", "MAX_CUTS"]
+           "StepCutWarning", "StepRetryWarning", "METHODS", "RHO_RANGE", "MAX_CUTS",
+           "semi_multiplier"]
 
 METHODS = ("newton", "fixed_point")
 
@@ -601,13 +602,38 @@ def _step(state: _State, ops: Operators, it: Iterate, res, info, pieces,
     """The :class:`Step` of a converged state (``laws`` at its dofs)."""
     m, k = it.r.shape
     slip = np.stack([B @ it.U for B in ops.Bt], axis=1).reshape(m, k) / ops.w[:, None]
-    Lam = np.zeros((m, k))
     p = -it.lam
     ok = (laws.name == "coulomb") & (p > 0)
-    Lam[ok] = -it.r[ok] / (laws.mu[ok, None] * p[ok, None])
+    Lam = np.zeros((m, k))
+    Lam[ok] = semi_multiplier(it.r[ok], laws.mu[ok], p[ok])
     names = tuple(law.name for law in state.laws)
     return Step(state.label, it.U.copy(), -it.lam, it.r.copy(), ops.Bn @ it.U / ops.w, slip,
                 res.status, Lam, info, names[0] if len(names) == 1 else names, pieces)
+
+
+def semi_multiplier(r: np.ndarray, mu: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """Λ = -r_τ/(μp) (m, k), eq. 9a, at dofs pressed (p > 0) under Coulomb's law.
+
+    r_τ is divided by μ, then by p (μ ≥ 1e-10, :data:`skxfem.scene.parts.FRICTION_RANGE`),
+    so that the product μp never underflows; where p is so small that the quotient
+    is still not finite, Λ is the unit vector -r_τ/|r_τ| (the slip limit |Λ| = 1,
+    which |r_τ| ≤ μp reaches), or 0 where r_τ = 0: never NaN.
+
+    >>> semi_multiplier(np.array([[-0.25]]), np.array([0.5]), np.array([1.0])).tolist()
+    [[0.5]]
+    >>> semi_multiplier(np.array([[-1e-10, 0.0]]), np.array([1.0]), np.array([5e-324]))
+    array([[1., 0.]])
+    """
+    r = np.asarray(r, dtype=float)
+    with np.errstate(all="ignore"):
+        lam = -(r / np.asarray(mu)[:, None]) / np.asarray(p)[:, None]
+    bad = ~np.isfinite(lam).all(axis=1)
+    if bad.any():
+        scale = np.abs(r[bad]).max(axis=1, keepdims=True)
+        unit = -r[bad] / np.where(scale > 0, scale, 1.0)
+        size = np.linalg.norm(unit, axis=1, keepdims=True)
+        lam[bad] = unit / np.where(size > 0, size, 1.0)
+    return lam + 0.0   # no -0.0
 
 
 def _sticking(laws: PointLaws, status) -> np.ndarray:

@@ -36,7 +36,7 @@ The schema in short (all of it, with units: ``skxfem schema``, :data:`SCHEMA`)::
     [interface]
     law = "bonded"                     # one of skxfem.scene.LAWS or CONTACT_LAWS
     space = "vital"                    # one of skxfem.scene.SPACES (default vital)
-    # friction = 0.5                   # Coulomb's mu: law "coulomb" needs it, >= 0
+    # friction = 0.5                   # Coulomb's mu: law "coulomb" needs it, 0 or 1e-10..1e10
     # rho_n = 10.0                     # contact augmentation, > 0 (default E/h)
     # rho_t = 10.0                     # friction augmentation, > 0
     # steps = [0.5, 1.0]               # load factors of a contact solve
@@ -104,7 +104,7 @@ from . import model as sc
 from . import tomlcheck
 from .boundary import select_facets, select_nodes
 from .laws import FRICTION_LAWS
-from .parts import COMPONENTS, FACES
+from .parts import COMPONENTS, FACES, check_friction
 from .settings import Solver
 from .tomlcheck import array, choice, formula, keys, number, one_of, table, vector
 
@@ -227,7 +227,7 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             "(default), bilateral; contact: frictionless, coulomb, adhesive", "coulomb"),
         Key("space", "one of " + " ".join(sc.SPACES), "the multiplier space (default "
             "vital, the stable one)", "vital"),
-        Key("friction", "number >= 0", "Coulomb's mu: required by law coulomb (0: it "
+        Key("friction", "0, or 1e-10 to 1e10", "Coulomb's mu: required by law coulomb (0: it "
             "slides freely), refused by the other laws", 0.5),
         Key("rho_n", "number > 0 [F/L³]", "contact augmentation (default E/h, h the cell "
             "size)", 10.0),
@@ -250,7 +250,7 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             "bonded)", "frictionless"),
         Key("space", "one of " + " ".join(sc.SPACES), "its multiplier space (default "
             "vital)", "vital"),
-        Key("friction", "number >= 0", "its Coulomb's mu: required by law coulomb, "
+        Key("friction", "0, or 1e-10 to 1e10", "its Coulomb's mu: required by law coulomb, "
             "refused by the others", 0.5),
         Key("rho_n", "number > 0 [F/L³]", "its contact augmentation (default E/h)", 10.0),
         Key("rho_t", "number > 0 [F/L³]", "its friction augmentation (default E/h)", 10.0),
@@ -410,8 +410,8 @@ def _law_fields(t: dict, where: str) -> dict:
         raise ValueError(f"{where} friction (Coulomb's mu) is taken by law "
                          f"{' or '.join(map(repr, FRICTION_LAWS))} only; law "
                          f"{fields['law']!r} has no friction: remove friction")
-    if "friction" in fields and fields["friction"] < 0:
-        raise ValueError(f"{where} friction must be >= 0, got {fields['friction']!r}")
+    if "friction" in fields:
+        check_friction(where, fields["law"], fields["friction"])
     for key in ("rho_n", "rho_t"):
         if key in fields and not fields[key] > 0:
             raise ValueError(f"{where} {key} must be > 0, got {fields[key]!r}")

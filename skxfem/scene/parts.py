@@ -32,7 +32,8 @@ from .laws import CONTACT_LAWS, FRICTION_LAWS, SPACES
 from .laws import TIE_LAWS as LAWS
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "clamped", "rollers", "CELLS",
-           "SIZE_RANGE", "COMPONENTS", "FACES", "is_number", "check_law_fields", "check_friction"]
+           "SIZE_RANGE", "FRICTION_RANGE", "COMPONENTS", "FACES", "is_number", "check_law_fields",
+           "check_friction"]
 
 COMPONENTS = ("x", "y", "z")
 FACES = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
@@ -47,6 +48,15 @@ to 1e60; beyond, the cut loses cut edges to underflowing products of ψ (from
 1e-150 on quadrilaterals), the stiffness of tetrahedra, hexahedra and prisms
 overflows or divides by zero (1e±80), or, on hexahedra at 1e-80, the answer is
 silently wrong (energy error 6e-3).  Express the lengths in another unit."""
+
+FRICTION_RANGE = (1e-10, 1e10)
+"""The Coulomb μ accepted besides 0.  Below, the friction force μp nears the Newton
+tolerance times the pressure (:data:`skxfem.contact.newton.TOL`, 1e-12), below what
+the solve resolves: the law is frictionless to round-off (give 0).  Measured on
+``examples/contact.toml``, where every point slides (|Λ| = 1): |Λ| is 1 to 2e-16
+for μ = 1e-10 ... 1e-2, to 1e-4 only at 1e-12, and at μ = 5e-324 the product μp
+underflowed and Λ = r/(μp) came out NaN.  Above 1e10 a pressed point sticks to
+round-off (the same answer from 1e6 to 1e200); at 1e308 μp overflowed."""
 
 Value = Union[float, str, Callable[[np.ndarray], np.ndarray]]
 
@@ -215,6 +225,13 @@ def check_friction(who: str, law: str, friction) -> None:
     if not (is_number(friction) and np.isfinite(friction) and friction >= 0):
         raise ValueError(f"{who} friction (Coulomb's mu) must be a number >= 0, "
                          f"got {friction!r}")
+    lo, hi = FRICTION_RANGE
+    if friction != 0 and not lo <= friction <= hi:
+        raise ValueError(f"{who} friction (Coulomb's mu) must be 0 or in [{lo:g}, {hi:g}], "
+                         f"got {friction!r}: " + (
+                             "below, the friction force is round-off (give 0: no friction)"
+                             if friction < lo else "above, a pressed point sticks to "
+                             "round-off (use law 'adhesive', or a smaller mu)"))
 
 
 def check_law_fields(who: str, law, space, friction, rho_n, rho_t) -> None:
