@@ -524,7 +524,8 @@ def anticipated(tmp_path, case):
         "pressure 1e300": lambda: (edited(pressure, "pressure = 1e300"),
                                    "1e+300 is beyond the largest load"),
         "corner 2^63": lambda: (edited("", "", CORNER), "more than 1000 times the size"),
-        "overflow": lambda: (edited(pressure, 'pressure = "1e300*x"'), "the solve overflowed"),
+        "overflow": lambda: (edited(pressure, 'pressure = "1e300*x"'),   # was: the solve
+                             "1e300*x reaches 1e+300 at (1, 1), which is beyond the largest"),
         "n wraps": lambda: (edited("n = [4, 5]", "n = [4294967297, 4294967295]",
                                    "[[displacement]]\nwhere = 'x < 1e-9'\nx = 0\n"),
                             "needs at least 8.86e+10 TB (1.84e+19 nodes, 1.84e+19 cells"),

@@ -521,3 +521,22 @@ def test_26c_a_friction_outside_its_range_is_refused_in_python_too(mu):
         Scene(QUAD, LINE, law="coulomb", friction=mu)
     for ok in (0.0, 1e-10, 1e10):
         assert Scene(QUAD, LINE, law="coulomb", friction=ok).friction == ok
+
+
+@pytest.mark.parametrize("part, message", [
+    (SurfaceLoad("ymax", pressure=1e200), r"loads\[0\] pressure: 1e\+200 is beyond the "
+                                          r"largest load the solver handles, 1e\+150"),
+    (SurfaceLoad("ymax", traction=(0.0, lambda x: 1e151 * x[0])),
+     r"loads\[0\] traction\[1\]: <lambda> reaches 1e\+151 at \(1, 1\), which is beyond"),
+    (Displacement("ymax", {"x": "exp(50*y)"}), r"displacements\[1\] x: exp\(50\*y\) reaches "
+                                                r"5.18e\+21 at \(0, 1\), which is more than 1000"),
+])
+def test_26d_python_checks_the_magnitudes_as_scene_files_do(part, message):
+    """SurfaceLoad(pressure=1e200) then solve raised RuntimeError ... please report: now
+    the ValueError of the scene file's check, before solving, in Python too."""
+    from skxfem import solve
+    s = Scene(QUAD, LINE, displacements=(clamped("ymin"),))
+    s = dataclasses.replace(s, loads=(part,)) if isinstance(part, SurfaceLoad) else \
+        dataclasses.replace(s, displacements=s.displacements + (part,))
+    with pytest.raises(ValueError, match=message):
+        solve(s)

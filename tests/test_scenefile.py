@@ -545,6 +545,22 @@ def test_16_numbers_beyond_what_the_solve_handles_are_refused_when_read(
         assert load_scene(write(tmp_path, edge)).loads[0].pressure in (MAX_MAGNITUDE, 1e50)
 
 
+@pytest.mark.parametrize("corner, load, words", [
+    ('"1e10*y"', "pressure = 1", r"#2 x: 1e10\*y reaches 1e\+10 at \(1, 1\), which is more "
+                                 r"than 1000 times the size of the body \(1\)"),
+    ('"exp(50*y)"', "pressure = 1", r"#2 x: exp\(50\*y\) reaches 5.18e\+21 at \(1, 1\)"),
+    ('"1000*x*y"', "pressure = '1e151*x'", r"#1 pressure: 1e151\*x reaches 1e\+151 at "
+                                          r"\(1, 1\), which is beyond the largest load"),
+])
+def test_16b_formulas_are_bounded_as_numbers_are_at_the_nodes(tmp_path, corner, load, words):
+    """The 1000-body-sizes limit applied to numbers only: x = "1e10*y" or "exp(50*y)"
+    (5e21) ran.  A formula is evaluated at the nodes it acts on (the top corner: y = 1),
+    and a value at the limit (1000*x*y = 1000 there) is accepted."""
+    with pytest.raises(ValueError, match=words):
+        load_scene(write(tmp_path, loaded(E=1.0, corner=corner, load=load)))
+    load_scene(write(tmp_path, loaded(E=1.0, corner='"1000*x*y"', load="pressure = '1e150*x'")))
+
+
 @pytest.mark.parametrize("n", ["9223372036854775807", "3037000500",
                                "[4294967297, 4294967295]"])
 def test_17_an_absurd_box_is_not_built_to_check_its_selections(tmp_path, monkeypatch, n):

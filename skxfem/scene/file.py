@@ -74,9 +74,11 @@ which the reader checks against (the keys allowed, the ones exclusive of each
 other) and :func:`schema` prints (``skxfem schema``).  Units are consistent and
 the user's choice (:data:`UNITS`).
 
-Numbers the solve cannot handle in double precision are refused when read: a load
-above :data:`MAX_MAGNITUDE` (or one whose displacements |p| L / E would be), an
-imposed displacement above :data:`MAX_SHIFT` sizes of the body.  A mesh file that
+Numbers the solve cannot handle in double precision are refused when read
+(:mod:`skxfem.scene.magnitudes`, as in Python): a load above :data:`MAX_MAGNITUDE`
+(or one whose displacements |p| L / E would be), an imposed displacement above
+:data:`MAX_SHIFT` sizes of the body, a number or a formula's value at the nodes
+(formulas on a box of more than :data:`BUILT_BOX` cells: when solved).  A mesh file that
 is a folder, a FIFO, a device or a loop of symbolic links is named as such,
 unread.
 
@@ -104,14 +106,14 @@ from . import model as sc
 from . import tomlcheck
 from .boundary import select_facets, select_nodes
 from .laws import FRICTION_LAWS
+from .magnitudes import BUILT_BOX, MAX_MAGNITUDE, MAX_SHIFT, check_magnitudes
 from .parts import COMPONENTS, FACES, check_friction
 from .settings import Solver
 from .tomlcheck import array, choice, formula, keys, number, one_of, table, vector
 
-__all__ = ["load_scene", "load_options", "Key", "Table", "SCHEMA", "UNITS", "schema"]
+__all__ = ["load_scene", "load_options", "Key", "Table", "SCHEMA", "UNITS", "schema",
+           "MAX_MAGNITUDE", "MAX_SHIFT"]
 
-#: A box grid of at most this many squares or cubes is built to check ``where`` selections.
-BUILT_BOX = 10_000
 
 
 @dataclass(frozen=True)
@@ -324,18 +326,6 @@ def schema(width: int = 88) -> str:
     return "\n".join(out).rstrip() + "\n"
 
 
-MAX_MAGNITUDE = 1e150
-"""The largest load, and displacement from a load, a scene file may give.  Measured: the
-strip (E = 1) solves with pressure = 1e154; at 1e155 the norms of the saddle solve
-overflow (a sum of squares above 1.8e308); 1e150 leaves a factor 10⁴ for the
-square root of the number of unknowns."""
-MAX_SHIFT = 1000
-"""The largest imposed displacement, in sizes of the body.  Measured: a corner of
-``examples/inclusion.toml`` moved by 1e6 (n = 8), 1e5 (n = 32), 1e4 (n = 64) breaks
-the balance check of the multipliers (1e-8); 1e3 holds for n = 8 ... 128."""
-
-
-
 def load_scene(path: str | Path) -> sc.Scene:
     """Read and check a scene file: the :class:`~skxfem.scene.Scene`, with its
     ``[solver]`` table's ``linear``, ``linear_tol`` and ``max_iter`` in
@@ -410,6 +400,8 @@ def _law_fields(t: dict, where: str) -> dict:
         raise ValueError(f"{where} friction (Coulomb's mu) is taken by law "
                          f"{' or '.join(map(repr, FRICTION_LAWS))} only; law "
                          f"{fields['law']!r} has no friction: remove friction")
+    if "friction" in fields and fields["friction"] < 0:
+        raise ValueError(f"{where} friction must be >= 0, got {fields['friction']!r}")
     if "friction" in fields:
         check_friction(where, fields["law"], fields["friction"])
     for key in ("rho_n", "rho_t"):
@@ -487,57 +479,15 @@ def _scene(data: dict, path: Path) -> sc.Scene:
     _check_boundaries(items, checked, dim)
     material = _material(table(data.get("material", {}), "[material]",
                                _names("[material]")))
-    _check_magnitudes(items, material.E, _length(checked))
-    return sc.Scene(
+    scene = sc.Scene(
         mesh=mesh,
         material=material,
         displacements=tuple(d for _, d in items["displacement"]),
         loads=tuple(load for _, load in items["load"]),
         quadrature_order=order, name=name, solver=Solver(**options), **fields)
-
-
-def _length(mesh) -> float:
-    """The largest side of the body's bounding box (a Box or a read mesh)."""
-    if isinstance(mesh, sc.Box):
-        return max(mesh.size or (1.0,))
-    return float(np.ptp(mesh.p, axis=1).max())
-
-
-def _numbers(item) -> list[tuple[str, float]]:
-    """(key, number) of the values of a load or displacement given as numbers."""
-    if isinstance(item, sc.SurfaceLoad):
-        values = ({"pressure": item.pressure} if item.pressure is not None else
-                  {f"traction[{i}]": v for i, v in enumerate(item.traction)})
-    else:
-        values = dict(item.components)
-    return [(k, float(v)) for k, v in values.items() if isinstance(v, (int, float))]
-
-
-def _check_magnitudes(items: dict, E: float, length: float):
-    """Loads and imposed displacements the solve handles in double precision.
-
-    Refused: a load above :data:`MAX_MAGNITUDE`, or one whose displacements
-    (about ``|p| L / E``) exceed it; an imposed displacement above
-    :data:`MAX_SHIFT` times the size ``L`` of the body.
-    """
-    for where, load in items["load"]:
-        for key, v in _numbers(load):
-            if abs(v) > MAX_MAGNITUDE:
-                raise ValueError(f"{where} {key}: {v:g} is beyond the largest load the solver "
-                                 f"handles, {MAX_MAGNITUDE:g} in magnitude; scale the units")
-            if abs(v) * length / E > MAX_MAGNITUDE:
-                raise ValueError(f"{where} {key}: {v:g} with E = {E:g} on a body of size "
-                                 f"{length:g} gives displacements of about |p| L / E = "
-                                 f"{abs(v) * length / E:.3g}, beyond the largest magnitude the "
-                                 f"solver handles, {MAX_MAGNITUDE:g}; scale the units")
-    for where, displacement in items["displacement"]:
-        for key, v in _numbers(displacement):
-            if abs(v) > MAX_SHIFT * length:
-                raise ValueError(f"{where} {key}: {v:g} is more than {MAX_SHIFT:g} times the "
-                                 f"size of the body ({length:g}); linear elasticity is a "
-                                 f"theory of small displacements, and a larger imposed one "
-                                 f"drowns the strains in round-off: give it in the units "
-                                 f"of the mesh")
+    check_magnitudes(scene, checked, tuple([where for where, _ in items[key]]
+                                           for key in ("displacement", "load")))
+    return scene
 
 
 def _check_boundaries(items: dict, mesh, dim: int):

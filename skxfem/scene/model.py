@@ -44,6 +44,7 @@ from ..levelset import LevelSet
 from .boundary import dirichlet, load_facets, traction
 from .expr import Expression
 from .laws import CONTACT_LAWS, SPACES
+from .magnitudes import check_magnitudes
 from .laws import TIE_LAWS as LAWS
 from .parts import (
     CELLS,
@@ -266,7 +267,9 @@ def _check_dims(scene: Scene, dim: int):
 
 
 def resolve_mesh(scene: Scene) -> Mesh:
-    """Build, check or read the scene's mesh and check that the scene fits it."""
+    """Build, check or read the scene's mesh and check that the scene fits it: its
+    dimension, and loads and imposed displacements the solve handles
+    (:func:`skxfem.scene.magnitudes.check_magnitudes`)."""
     if isinstance(scene.mesh, Box):
         mesh = meshes.box(scene.mesh.n, scene.mesh.cell, scene.mesh.size)
     elif isinstance(scene.mesh, Mesh):
@@ -275,6 +278,7 @@ def resolve_mesh(scene: Scene) -> Mesh:
     else:
         mesh = meshes.read(scene.mesh)
     _check_dims(scene, mesh.dim())
+    check_magnitudes(scene, mesh)
     return mesh
 
 
