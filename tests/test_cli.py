@@ -847,3 +847,26 @@ def test_39_a_tiny_friction_slides_with_lambda_one_and_no_null(tmp_path, capsys,
         assert set(step["status"]) == {"slip"}
         expected = np.where(pressed, 1.0, 0.0) if float(mu) else np.zeros_like(lam)
         np.testing.assert_allclose(lam, expected, atol=1e-12)
+
+
+def test_40_many_load_steps_are_bounded_and_the_summary_stays_one_short_line(
+        tmp_path, capsys):
+    """10 000 steps took 152 s and printed a 30 KB summary line: at most MAX_STEPS, and
+    the Newton iterations of the first three and the last step, and their maximum."""
+    from skxfem.scene import MAX_STEPS
+
+    many = [round((k + 1) / 1001, 6) for k in range(1001)]
+    path = contact_file(tmp_path, {"steps = [0.5, 1.0]": f"steps = {many}"})
+    assert main(["run", path, "--out", str(tmp_path / "out")]) == 2
+    err = one_line(capsys)
+    assert f"[interface] steps has 1001 load steps, more than {MAX_STEPS}" in err, err
+    forty = [(k + 1) / 40 for k in range(40)]
+    path = contact_file(tmp_path, {"steps = [0.5, 1.0]": f"steps = {forty}"})
+    assert main(["run", path, "--out", str(tmp_path / "out")]) == 0
+    line = capsys.readouterr().out
+    assert line.count("\n") == 1 and len(line) < 400, line
+    data = json.loads((tmp_path / "out" / "result.json").read_text())
+    its = [s["newton"]["iterations"] for s in data["steps"]]
+    assert len(its) == 40
+    assert (f"40 load step(s), {sum(its)} Newton iterations ({its[0]}, {its[1]}, {its[2]}, "
+            f"..., {its[-1]}; at most {max(its)})") in line, line

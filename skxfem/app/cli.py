@@ -238,8 +238,10 @@ def _contact_line(result) -> str:
          if last.pressure.size else "no interface point")
     law = result.law  # several interfaces: one law each
     name = "+".join(x.name for x in law) if isinstance(law, tuple) else law.name
+    each = ", ".join(map(str, its)) if len(its) <= 6 else \
+        f"{', '.join(map(str, its[:3]))}, ..., {its[-1]}; at most {max(its)}"
     return (f"{result.problem.scene.name}: {name}, {len(its)} load step(s), "
-            f"{sum(its)} Newton iterations ({', '.join(map(str, its))}); last step: "
+            f"{sum(its)} Newton iterations ({each}); last step: "
             f"{counts['stick'] + counts['slip']} in contact ({counts['stick']} stick, "
             f"{counts['slip']} slip), {counts['open']} open, {p}, {result.linear} solve")
 

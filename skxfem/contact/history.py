@@ -72,6 +72,7 @@ from __future__ import annotations
 
 import time
 import warnings
+from collections.abc import Mapping, Sequence, Set
 from dataclasses import dataclass, replace
 from fractions import Fraction
 
@@ -88,7 +89,7 @@ from ..linalg.saddle import SingularSystemError
 from ..linalg.threads import limited
 from ..problem import Problem, assemble
 from ..result import Result, on_edges, result
-from ..scene.model import Scene, check_scene
+from ..scene.model import Scene, check_scene, check_steps
 from ..scene.settings import MAX_ITER
 from .fixed_point import fixed_point
 from .interface import Operators, operators, tangent_frames
@@ -238,10 +239,14 @@ def _laws(scene: Scene, hs) -> tuple[Law, ...]:
 def _states(scene: Scene, pb: Problem, history, hs) -> list[_State]:
     """The :class:`_State` of each entry of the history; ``hs`` the mean cut-edge
     length of each interface."""
-    if isinstance(history, (str, bytes)) or not hasattr(history, "__len__") \
+    if isinstance(history, np.ndarray) and history.ndim == 1:
+        history = history.tolist()
+    if isinstance(history, (str, bytes, Mapping, Set)) or not isinstance(history, Sequence) \
             or len(history) == 0:
-        raise ValueError(f"history must be a non-empty sequence of load factors or of "
-                         f"scenes (load states), got {history!r}")
+        raise ValueError(f"history must be a non-empty sequence (a list or tuple, in "
+                         f"order) of load factors or of scenes (load states), got "
+                         f"{type(history).__name__} {history!r:.100}")
+    check_steps(len(history), "history")
     laws = _laws(scene, hs)
     out = []
     for i, item in enumerate(history):

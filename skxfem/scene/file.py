@@ -160,8 +160,8 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
         Key("load", "array of tables", "[[load]], any number", []),
         Key("interface", "table, or array of tables", "[interface] (default: bonded, "
             "vital), or several interfaces: [[interface]], one table each", {}),
-        Key("steps", "list of numbers", "the load factors of a contact solve, in order "
-            "(default [1]; or [interface] steps)", [0.5, 1.0]),
+        Key("steps", "list of numbers", "the load factors of a contact solve, in order, at "
+            "most 1000 (default [1]; or [interface] steps)", [0.5, 1.0]),
         Key("solver", "table", "[solver] (optional)", {}),
     )),
     Table("[mesh]", "the mesh", (
@@ -235,8 +235,8 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             "size)", 10.0),
         Key("rho_t", "number > 0 [F/L³]", "friction augmentation (default E/h, h the mean "
             "cut-edge size)", 10.0),
-        Key("steps", "list of numbers", "the load factors of a contact solve, in order "
-            "(default [1])", [0.5, 1.0]),
+        Key("steps", "list of numbers", "the load factors of a contact solve, in order, at "
+            "most 1000 (default [1])", [0.5, 1.0]),
     )),
     Table("[[interface]]", "several interfaces, one table each (in place of [levelset] "
           "and [interface]) with its level set (a key of [levelset], as there) and its "
@@ -414,7 +414,9 @@ def _law_fields(t: dict, where: str) -> dict:
 def _steps(steps, where: str) -> tuple:
     if not (isinstance(steps, list) and steps and all(
             isinstance(f, (int, float)) and not isinstance(f, bool) for f in steps)):
-        raise ValueError(f"{where} must be a non-empty list of load factors, got {steps!r}")
+        raise ValueError(f"{where} must be a non-empty list of load factors, got "
+                         f"{steps!r:.200}")
+    sc.check_steps(len(steps), where)
     return tuple(steps)
 
 
