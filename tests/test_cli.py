@@ -870,3 +870,56 @@ def test_40_many_load_steps_are_bounded_and_the_summary_stays_one_short_line(
     assert len(its) == 40
     assert (f"40 load step(s), {sum(its)} Newton iterations ({its[0]}, {its[1]}, {its[2]}, "
             f"..., {its[-1]}; at most {max(its)})") in line, line
+
+
+def strip_with(tmp_path, levelset, name="strip.toml"):
+    assert 'expr = "y - 0.5"' in STRIP_TEXT
+    text = STRIP_TEXT.replace('expr = "y - 0.5"', f'expr = "{levelset}"')
+    return scene_file(tmp_path, text, name)
+
+
+@pytest.mark.parametrize("scale", ["1e-300", "1e300", "1e308"])
+def test_41_the_scale_of_the_level_set_does_not_matter(tmp_path, capsys, scale):
+    """1e-300*(y - 0.5) was refused by "edges must be strictly cut, psi(v1) psi(v2) < 0"
+    printing values that satisfy it; 1e300*(y - 0.5) was blamed on the loads or E.
+    Both are y = 0.5, and give its answer (ψ is scaled by a power of 2, exactly)."""
+    base = run_and_load(strip_with(tmp_path / "a", "y - 0.5"), tmp_path / "base")[0]
+    scaled = run_and_load(strip_with(tmp_path / "b", f"{scale}*(y - 0.5)"), tmp_path / "out")[0]
+    np.testing.assert_allclose(scaled["pressure"], base["pressure"], rtol=1e-12)
+    np.testing.assert_allclose(scaled["points"], base["points"], rtol=1e-12)
+
+
+def test_42_a_level_set_below_the_doubles_is_refused_naming_it(tmp_path, capsys):
+    path = strip_with(tmp_path, "1e-320*(y - 0.5)")
+    assert main(["run", path, "--out", str(tmp_path / "out")]) == 2
+    err = one_line(capsys)
+    assert "the level set is at most 5e-321 in magnitude at the nodes, below 2.3e-302" in err
+    assert "scale psi" in err and "strictly cut" not in err
+
+
+@pytest.mark.parametrize("levelset, vertex, sign", [
+    ("y - 1", "(0, 1)", "psi < 0"), ("y", "(0, 0)", "psi > 0"), ("1 - y", "(0, 1)", "psi > 0"),
+    ("x - 1", "(1, 0)", "psi < 0"), ("(x - 0.5)**2 + (y - 1.25)**2 - 0.0625", "(0.5, 1)",
+                                     "psi > 0")])
+def test_43_an_interface_on_a_boundary_face_is_refused_on_every_face(
+        tmp_path, capsys, levelset, vertex, sign):
+    """Γ on y = 1 was accepted as a 2e-10 sliver of Ω⁺, on y = 0 refused as cutting no
+    cell: which one depended on the sign of ψ.  Both are one message now."""
+    path = strip_with(tmp_path, levelset)
+    assert main(["run", path, "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.splitlines()[-1]
+    assert err.startswith("skxfem: error: the level set does not cross the body: it vanishes "
+                          "at ") and f"e.g. {vertex}, and has one sign ({sign})" in err, err
+    assert "Γ lies on the boundary" in err
+
+
+@pytest.mark.parametrize("rho, ok", [("5e-9", True), ("4.9999e-9", False), ("5e12", True),
+                                     ("5.0001e12", False)])
+def test_44_the_ends_of_the_rho_range_are_accepted(tmp_path, capsys, rho, ok):
+    """rho_n at 1e12 x its default E/h (E = 1, h = 0.2 here: 5) was refused as outside
+    1e-09..1e+12 (E/h rounded up by its last bit): an inclusive bound accepts its ends."""
+    path = contact_file(tmp_path, {"friction = 0.5": f"friction = 0.5\nrho_n = {rho}"})
+    assert main(["run", path, "--out", str(tmp_path / "out")]) == (0 if ok else 2)
+    if not ok:
+        err = one_line(capsys)
+        assert "is 9.9998e-10 x its default E/h = 5" in err or "is 1.00002e+12 x" in err, err

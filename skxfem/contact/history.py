@@ -184,9 +184,10 @@ def parameters(scene: Scene, h: float) -> Law:
     for key in ("rho_n", "rho_t"):
         given = getattr(scene, key)
         rho[key] = default if given is None else given
-        if not RHO_RANGE[0] <= rho[key] / default <= RHO_RANGE[1]:
+        ratio = rho[key] / default   # its ends accepted, whatever the last bit of E/h
+        if not RHO_RANGE[0] * (1 - 1e-12) <= ratio <= RHO_RANGE[1] * (1 + 1e-12):
             raise ValueError(
-                f"scene {key} = {rho[key]:g} is {rho[key] / default:.1e} x its default "
+                f"scene {key} = {rho[key]:g} is {ratio:.6g} x its default "
                 f"E/h = {default:g}; it is an augmentation (the solution does not depend "
                 f"on it) and outside {RHO_RANGE[0]:g}..{RHO_RANGE[1]:g} x the default the "
                 f"Newton iteration loses its digits: leave it None or choose it near E/h")
