@@ -923,3 +923,37 @@ def test_44_the_ends_of_the_rho_range_are_accepted(tmp_path, capsys, rho, ok):
     if not ok:
         err = one_line(capsys)
         assert "is 9.9998e-10 x its default E/h = 5" in err or "is 1.00002e+12 x" in err, err
+
+
+def test_45_a_cjk_name_gives_a_default_folder_the_file_system_takes(tmp_path, capfd,
+                                                                     monkeypatch):
+    """A 100-character CJK name gave a 300-byte folder, refused after the solve with
+    "[Errno 36] File name too long": the default folder is at most 100 bytes."""
+    scene = scene_file(tmp_path / "scenes", STRIP_TEXT.replace(
+        'name = "strip"', 'name = "' + "結" * 100 + '"'))
+    here = tmp_path / "here"
+    here.mkdir()
+    monkeypatch.chdir(here)
+    assert main(["run", scene]) == 0
+    [written] = here.iterdir()
+    assert written.name == "結" * 33 and (written / "result.json").is_file()
+
+
+@pytest.mark.parametrize("name, words", [
+    ("a" * 227, "output folder name 'aaaaaaaaaaaa...' is 227 bytes long (UTF-8), more than "
+                "the 226 the file system takes (its limit 255 less 29 for the hidden folder"),
+    ("結" * 76, "is 228 bytes long (UTF-8)"),
+])
+def test_46_a_too_long_out_is_refused_before_solving(tmp_path, capsys, no_solve, name, words):
+    """An --out of 230 characters passed the check and failed after the solve: the names
+    are checked in bytes, keeping room for the hidden folder the results go to first."""
+    assert main(["run", STRIP, "--out", str(tmp_path / name)]) == 2
+    err = one_line(capsys)
+    assert words in err and "give a shorter --out" in err, err
+    assert main(["run", STRIP, "--out", str(tmp_path / ("a" * 300) / "x")]) == 2
+    assert "output folder path holds the name 'aaaaaaaaaaaa...' is 300 bytes" in one_line(capsys)
+
+
+def test_47_the_longest_out_the_file_system_takes_is_written(tmp_path, capsys):
+    assert main(["run", STRIP, "--out", str(tmp_path / ("a" * 226))]) == 0
+    assert (tmp_path / ("a" * 226) / "result.json").is_file()

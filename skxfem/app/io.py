@@ -196,12 +196,16 @@ def default_folder(name: str) -> Path:
     Every run of characters other than letters, digits, ``-``, ``_`` and ``.``
     (path separators, spaces, control characters) becomes ``_``; leading and
     trailing dots and ``_`` go, so that neither ``..`` nor a hidden folder can
-    result; at most 100 characters; ``result`` if nothing is left.
+    result; at most 100 bytes in UTF-8 (33 CJK characters: file systems count bytes);
+    ``result`` if nothing is left.
 
     >>> [str(default_folder(s)) for s in ("../../escaped", "/etc/plate 2", "..", "été")]
     ['escaped', 'etc_plate_2', 'result', 'été']
+    >>> len(str(default_folder("結" * 100)))
+    33
     """
-    safe = re.sub(r"[^\w.-]+", "_", str(name)).strip("._")[:100].strip("._")
+    safe = re.sub(r"[^\w.-]+", "_", str(name)).strip("._")
+    safe = os.fsencode(safe)[:100].decode("utf-8", "ignore").strip("._")  # 100 bytes
     return Path(safe or "result")
 
 

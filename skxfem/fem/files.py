@@ -153,6 +153,56 @@ def _ours(name: str, names) -> bool:
                             rf"{re.escape(Path(n).suffix)}", name) for n in names)
 
 
+HIDDEN = len(".") + len(".skxfem-new-") + 16
+"""The bytes :func:`write_set` adds to a folder's name for its hidden folders."""
+
+
+def check_name_lengths(folder, longest: int = 0) -> None:
+    """Refuse a folder whose name, or a name in its path, is longer in bytes than the
+    file system takes (255 bytes a name on most: 85 CJK characters), keeping
+    :data:`HIDDEN` bytes for the hidden folder of :func:`write_set`, and a path longer
+    than 4095 bytes with a file name of ``longest`` bytes in it: so that the results
+    can be written, checked before anything is solved.
+
+    >>> check_name_lengths("results/" + "結" * 80)
+    Traceback (most recent call last):
+    ...
+    ValueError: output folder name '結結結結結結結結結結結結...' is 240 bytes long (UTF-8), more ...
+    """
+    path = Path(os.path.abspath(folder))
+    existing = Path(path.anchor)
+    for part in path.parts[1:]:             # the deepest existing folder, from the root
+        try:
+            if not (existing / part).is_dir():
+                break
+        except OSError:                     # a name too long to look up
+            break
+        existing = existing / part
+    try:
+        name_max = os.pathconf(existing, "PC_NAME_MAX")
+    except (OSError, ValueError, AttributeError):
+        name_max = 255
+    try:
+        path_max = os.pathconf(existing, "PC_PATH_MAX")
+    except (OSError, ValueError, AttributeError):
+        path_max = 4096
+    parts = path.parts[1:]
+    for k, part in enumerate(parts):
+        size, top = len(os.fsencode(part)), name_max - (HIDDEN if k == len(parts) - 1 else 0)
+        if size > top:
+            shown = part if len(part) <= 12 else part[:12] + "..."
+            why = (f" (its limit {name_max} less {HIDDEN} for the hidden folder the results "
+                   f"are written into first)" if k == len(parts) - 1 else "")
+            raise ValueError(f"output folder {'name' if why else 'path holds the name'} "
+                             f"{shown!r} is {size} bytes long (UTF-8), more than the {top} "
+                             f"the file system takes{why}: give a shorter --out")
+    size = len(os.fsencode(str(path))) + HIDDEN + 1 + longest
+    if size >= path_max:
+        raise ValueError(f"output folder path is {len(os.fsencode(str(path)))} bytes long, "
+                         f"too long for the file system ({path_max} bytes with the names "
+                         f"of the results): give a shorter --out")
+
+
 def check_folder(folder, names) -> Path:
     """``folder`` if :func:`write_set` may replace it by a set of files ``names``.
 
@@ -169,6 +219,7 @@ def check_folder(folder, names) -> Path:
     'plate'
     """
     folder = Path(folder)
+    check_name_lengths(folder, max(len(n) for n in names) if names else 0)
     real, here = Path(os.path.realpath(folder)), Path.cwd().resolve()
     if real == here or real in here.parents:
         raise ValueError(f"output folder {str(folder)!r} is the current folder or contains "
