@@ -564,3 +564,30 @@ def test_26e_a_history_is_an_ordered_sequence_of_at_most_max_steps():
     assert [st.load for st in a.steps] == [0.5, 1.0]
     np.testing.assert_array_equal(a.steps[-1].pressure, b.steps[-1].pressure)
     assert dataclasses.replace(s, steps=np.array([0.5, 1.0])).steps == (0.5, 1.0)
+
+
+def test_26f_numpy_numbers_and_arrays_are_taken_where_python_ones_are():
+    """A numpy Box size and max_iter=np.int64(5) were refused; each field stores the
+    Python value, so that the scene equals the one built from Python numbers."""
+    from skxfem import contact
+
+    assert Box(np.array([3, 4]), "quad", np.array([1.0, 2.0])) == Box((3, 4), "quad",
+                                                                      (1.0, 2.0))
+    assert Box(np.int64(3), "quad", (np.float64(1), np.float64(2))) == Box(3, "quad", (1, 2))
+    assert Material(np.float64(2.0), np.float64(0.25)) == Material(2.0, 0.25)
+    assert type(Material(np.float64(2.0)).E) is float
+    given = Scene(Box(np.array([3, 4]), "quad"), plane(np.array([0, .5]), np.array([0., 1])),
+                  displacements=(clamped("ymin"), Displacement("ymax", {np.int64(0): 0.0})),
+                  loads=(SurfaceLoad("ymax", traction=np.array([0.0, -1.0])),),
+                  quadrature_order=np.int64(2), law="coulomb", friction=np.float64(0.3),
+                  rho_n=np.float64(4.0), steps=np.array([0.5, 1.0]))
+    plain = Scene(Box((3, 4), "quad"), plane((0, .5), (0, 1)),
+                  displacements=(clamped("ymin"), Displacement("ymax", {"x": 0.0})),
+                  loads=(SurfaceLoad("ymax", traction=(0.0, -1.0)),), quadrature_order=2,
+                  law="coulomb", friction=0.3, rho_n=4.0, steps=(0.5, 1.0))
+    assert (given.mesh, given.quadrature_order, given.friction, given.rho_n, given.steps) == \
+        (plain.mesh, plain.quadrature_order, plain.friction, plain.rho_n, plain.steps)
+    assert type(given.quadrature_order) is int and type(given.rho_n) is float
+    a = contact.solve(given, max_iter=np.int64(5), linear_tol=np.float64(1e-10))
+    b = contact.solve(plain, max_iter=5, linear_tol=1e-10)
+    np.testing.assert_array_equal(a.steps[-1].pressure, b.steps[-1].pressure)

@@ -153,8 +153,9 @@ class Scene:
         if self.interfaces is None:
             check_law_fields("Scene", self.law, self.space, self.friction, self.rho_n,
                              self.rho_t)
-            if self.friction is not None:
-                object.__setattr__(self, "friction", float(self.friction))
+            for key in ("friction", "rho_n", "rho_t"):   # numpy's numbers as Python's
+                if getattr(self, key) is not None:
+                    object.__setattr__(self, key, float(getattr(self, key)))
         if not isinstance(self.solver, Solver):
             raise TypeError(f"Scene solver must be a skxfem.Solver (linear, linear_tol, "
                             f"max_iter), got {self.solver!r:.80}")
@@ -167,11 +168,13 @@ class Scene:
         check_steps(len(self.steps), "Scene steps")
         object.__setattr__(self, "steps", tuple(float(f) for f in self.steps))
         q, top = self.quadrature_order, MAX_QUADRATURE_ORDER.get(self.dim, 8)
-        if q is not None and not (isinstance(q, int) and not isinstance(q, bool)
-                                  and 1 <= q <= top):
+        if q is not None and not (isinstance(q, (int, np.integer))
+                                  and not isinstance(q, (bool, np.bool_)) and 1 <= q <= top):
             raise ValueError(f"Scene quadrature_order must be an integer from 1 to {top} in "
                              f"{self.dim}D, or None (the minimal exact rule, which affine "
                              f"cells need), got {q!r}")
+        if q is not None:
+            object.__setattr__(self, "quadrature_order", int(q))
         if not (isinstance(self.name, str) and self.name):
             raise ValueError(f"Scene name must be a non-empty string, got {self.name!r}")
         object.__setattr__(self, "displacements", tuple(

@@ -104,6 +104,11 @@ class Box:
     def __post_init__(self):
         if not isinstance(self.cell, str) or self.cell not in CELLS:
             raise ValueError(f"Box cell must be one of {tuple(CELLS)}, got {self.cell!r}")
+        for key in ("n", "size"):       # numpy arrays as lists, numpy numbers as numbers
+            v = getattr(self, key)
+            if isinstance(v, np.ndarray):
+                object.__setattr__(self, key, tuple(v.tolist()) if v.ndim == 1 else v.item()
+                                   if v.ndim == 0 else v)
         n = (self.n,) * self.dim if is_number(self.n) else self.n
         if (not isinstance(n, (tuple, list)) or len(n) != self.dim
                 or not all(isinstance(k, (int, np.integer)) and not isinstance(k, bool)
@@ -286,5 +291,6 @@ class Interface:
                             f"got {type(self.levelset).__name__}")
         check_law_fields("Interface", self.law, self.space, self.friction, self.rho_n,
                          self.rho_t)
-        if self.friction is not None:
-            object.__setattr__(self, "friction", float(self.friction))
+        for key in ("friction", "rho_n", "rho_t"):
+            if getattr(self, key) is not None:
+                object.__setattr__(self, key, float(getattr(self, key)))
