@@ -6,7 +6,8 @@
   ``n_dofs``, ``n_multipliers``, the ``timings`` in seconds per stage and
   ``linear_solve``: the solve taken (``linear``) and how it went
   (:attr:`skxfem.result.Result.linear_info`: residual, balance, and the
-  iterations and residuals of an iterative solve).  NaN or inf become ``null``.
+  iterations and residuals of an iterative solve).  NaN or inf is never written:
+  :func:`write_result` refuses such a result (:class:`NotFiniteError`) before writing.
 * ``displacement.vtu``: each side of Γ as its own piece of mesh with its own
   field ``displacement``, so that ParaView's *Warp By Vector* shows the
   discontinuity: the cells of Ω⁻ and the cut cells with ``u_minus`` on one copy
@@ -82,7 +83,7 @@ from ..fem.files import check_folder, quiet, write_set
 from ..fem.vtu import cell_sides, pad3, region_pieces, side_pieces, vectors3, vtk_cells
 from ..levelset import nodal_values
 
-__all__ = ["write_result", "result_summary", "cell_sides", "vtk_cells", "check_output",
+__all__ = ["write_result", "result_summary", "NotFiniteError", "cell_sides", "vtk_cells", "check_output",
            "side_pieces", "default_folder", "contact_summary", "EQUATIONS"]
 
 _STAGES = ("cut", "enrich", "assemble", "solve")
@@ -90,19 +91,33 @@ _FILES = {"json": "result.json", "displacement": "displacement.vtu",
           "interface": "interface.vtu"}
 
 
-def _plain(a) -> list | float | None:
-    """A number or an array as plain Python floats (nested lists), NaN/inf as None."""
+class NotFiniteError(RuntimeError):
+    """A result holding NaN or inf: never written (a bug of the solve, not of the input)."""
+
+
+def _plain(a, key: str = "a value") -> list | float | None:
+    """A number or an array as plain Python floats (nested lists); ``None`` (a value not
+    given, such as the ρ of a tie) stays None.  NaN or inf is refused
+    (:class:`NotFiniteError`, naming ``key``): a result file never holds them."""
+    if a is None:
+        return None
     a = np.asarray(a, dtype=float)
-    return np.where(np.isfinite(a), a, None).tolist()
+    if not np.all(np.isfinite(a)):
+        raise NotFiniteError(f"the result's {key} holds NaN or inf "
+                             f"({int(np.size(a) - np.isfinite(a).sum())} of {np.size(a)} "
+                             f"values); nothing was written: please report this scene")
+    return a.tolist()
 
 
-def _jsonable(value):
-    """Arrays and numpy numbers inside dicts and lists as plain Python values."""
+def _jsonable(value, key: str = "result"):
+    """Arrays and numpy numbers inside dicts and lists as plain Python values (NaN and
+    inf refused, naming the key)."""
     if isinstance(value, dict):
-        return {k: _jsonable(v) for k, v in value.items()}
+        return {k: _jsonable(v, f"{key}.{k}") for k, v in value.items()}
     if isinstance(value, list):
-        return [_jsonable(v) for v in value]
-    return _plain(value) if isinstance(value, (np.ndarray, float, np.floating)) else value
+        return [_jsonable(v, f"{key}[{i}]") for i, v in enumerate(value)]
+    return _plain(value, key) if isinstance(value, (np.ndarray, float, np.floating)) \
+        else value
 
 
 def result_summary(result) -> dict:
@@ -120,19 +135,20 @@ def result_summary(result) -> dict:
         "scene": result.scene.name,
         "law": [i.law for i in items] if several else result.scene.law,
         "space": [i.space for i in items] if several else result.scene.space,
-        "points": _plain(np.asarray(result.points).T),
-        "normals": _plain(np.asarray(result.normals).T),
-        "traction": _plain(np.asarray(result.traction).T),
-        "pressure": _plain(result.pressure),
-        "jump": _plain(np.asarray(result.jump).T),
-        "max_jump": _plain(result.max_jump),
+        "points": _plain(np.asarray(result.points).T, "points"),
+        "normals": _plain(np.asarray(result.normals).T, "normals"),
+        "traction": _plain(np.asarray(result.traction).T, "traction"),
+        "pressure": _plain(result.pressure, "pressure"),
+        "jump": _plain(np.asarray(result.jump).T, "jump"),
+        "max_jump": _plain(result.max_jump, "max_jump"),
         "n_dofs": int(result.n_dofs),
         "n_multipliers": int(result.n_multipliers),
         "timings": timings,
-        "linear_solve": _jsonable({"linear": result.linear, **dict(result.linear_info)}),
+        "linear_solve": _jsonable({"linear": result.linear, **dict(result.linear_info)},
+                                  "linear_solve"),
     }
     if result.is_contact:
-        data.update(_jsonable(contact_summary(result)))
+        data.update(_jsonable(contact_summary(result), "steps"))
     if several:
         data.update(_interfaces(result, items, data))
     return data
@@ -292,11 +308,19 @@ def write_result(result, out_dir: str | Path) -> dict[str, Path]:
     ------
     ValueError
         From :func:`check_output` or :func:`result_summary`.
+    NotFiniteError
+        A result holding NaN or inf (a RuntimeError: never written).
     OSError
         If a file cannot be written (e.g. the disk is full); nothing is left.
     """
     out = check_output(out_dir)
     result_summary(result)                      # refuse a bad result before touching disk
+    for key in ("u_minus", "u_plus", "u_regions"):  # the fields of displacement.vtu
+        value = getattr(result, key, None)
+        if value is not None and not all(np.all(np.isfinite(np.asarray(v, dtype=float)))
+                                         for v in (value if key == "u_regions" else [value])):
+            raise NotFiniteError(f"the result's {key} holds NaN or inf; nothing was "
+                                 f"written: please report this scene")
     written = write_set(out, {name: (lambda path, key=key: _WRITERS[key](result, path))
                               for key, name in _FILES.items()})
     return {key: written[name] for key, name in _FILES.items()}
