@@ -1,5 +1,6 @@
 """Scene files (TOML): the examples parse, bad files are refused naming the key."""
 import os
+import re
 from pathlib import Path
 
 import meshio
@@ -691,3 +692,24 @@ def test_26b_the_solver_table_is_the_scenes_solver(tmp_path):
         with pytest.raises(ValueError, match=rf"^bad.toml: \[solver\] {key} must be"):
             load_scene(write(tmp_path, MINIMAL + "[interface]\nlaw = 'frictionless'\n"
                              f"[solver]\n{bad}\n", "bad.toml"))
+
+
+# --- issue 26, item 6: scene-file traps -----------------------------------------------
+
+@pytest.mark.parametrize("text, where", [
+    (TWO.replace("steps = [0.5, 1.0]\n", "") + "steps = [0.5, 1.0]\n", "[[interface]] #2"),
+    (MINIMAL + '[material]\nE = 2.0\nname = "late"\n', "[material]"),
+    (MINIMAL + "[[load]]\nboundary = 'ymax'\npressure = 1\nsteps = [1]\n", "[[load]] #1"),
+])
+def test_25_a_top_level_key_after_a_table_is_said_to_belong_before_it(tmp_path, text, where):
+    """steps written after the [[interface]] tables falls into the last one (TOML) and
+    was refused as "unknown key 'steps'" only."""
+    key = "steps" if "steps" in text.splitlines()[-1] else "name"
+    with pytest.raises(ValueError, match=rf"{re.escape(where)}: unknown key '{key}'; allowed "
+                                         rf"keys: .*\. '{key}' is a top-level key, but TOML "
+                                         rf"puts every key written after a table header into "
+                                         rf"that table: write the top-level keys \(name, "
+                                         rf"steps\) before the first table"):
+        load_scene(write(tmp_path, text))
+    fixed = text.splitlines()[-1] + "\n" + "\n".join(text.splitlines()[:-1]) + "\n"
+    assert load_scene(write(tmp_path, fixed))

@@ -284,6 +284,10 @@ def _exclusive(table: str, i: int = 0) -> tuple[str, ...]:
 
 
 _TOP = _names("the top level")
+_TOP_KEYS = tuple(k.name for k in SCHEMA["the top level"].keys if k.takes != "table"
+                  and "tables" not in k.takes)
+"""The top-level keys that are not tables (name, steps): written after a table header,
+TOML puts them into that table, and the error says so."""
 
 
 def schema(width: int = 88) -> str:
@@ -429,7 +433,7 @@ def _interfaces(data: dict, dim: int) -> tuple[sc.Interface, ...]:
     out = []
     for k, t in enumerate(array(data, "interface")):
         where = f"[[interface]] #{k + 1}"
-        t = table(t, where, _names("[[interface]]"))
+        t = table(t, where, _names("[[interface]]"), _TOP_KEYS)
         kind = one_of(t, _exclusive("[[interface]]"), where)
         levelset = _levelset({kind: t[kind]}, dim, where)
         fields = _law_fields(t, where)
@@ -446,13 +450,15 @@ def _scene(data: dict, path: Path) -> sc.Scene:
     for key in ("mesh",) + (() if several else ("levelset",)):
         if key not in data:
             raise ValueError(f"missing table [{key}]")
-    mesh, dim, checked = _mesh(table(data["mesh"], "[mesh]", _names("[mesh]")), path.parent)
-    solver = table(data.get("solver", {}), "[solver]", _names("[solver]"))
+    mesh, dim, checked = _mesh(table(data["mesh"], "[mesh]", _names("[mesh]"), _TOP_KEYS),
+                                  path.parent)
+    solver = table(data.get("solver", {}), "[solver]", _names("[solver]"), _TOP_KEYS)
     if several:
         interfaces = _interfaces(data, dim)
         fields, laws = {"interfaces": interfaces}, [i.law for i in interfaces]
     else:
-        interface = table(data.get("interface", {}), "[interface]", _names("[interface]"))
+        interface = table(data.get("interface", {}), "[interface]", _names("[interface]"),
+                          _TOP_KEYS)
         fields = _law_fields(interface, "[interface]")
         laws = [fields["law"]]
         if "steps" in interface:
@@ -480,7 +486,7 @@ def _scene(data: dict, path: Path) -> sc.Scene:
             items[key].append((where, tomlcheck.labelled(where, build, t, dim, where)))
     _check_boundaries(items, checked, dim)
     material = _material(table(data.get("material", {}), "[material]",
-                               _names("[material]")))
+                               _names("[material]"), _TOP_KEYS))
     scene = sc.Scene(
         mesh=mesh,
         material=material,
@@ -544,7 +550,7 @@ def _levelset(t: dict, dim: int, where: str = "[levelset]") -> ls.LevelSet:
     """The level set of a [levelset] table (or of the level-set key of the
     [[interface]] table ``where``)."""
     kinds = _exclusive("[levelset]")
-    t = table(t, where, _names("[levelset]"))
+    t = table(t, where, _names("[levelset]"), _TOP_KEYS)
     kind = one_of(t, kinds, where)
     key = f"{where} {kind}"
     if kind == "expr":
@@ -588,7 +594,7 @@ def _where(t: dict, dim: int, where: str, table: str):
 
 
 def _displacement(t: dict, dim: int, where: str) -> sc.Displacement:
-    keys(t, _names("[[displacement]]"), where)
+    keys(t, _names("[[displacement]]"), where, _TOP_KEYS)
     boundary = _where(t, dim, where, "[[displacement]]")
     given = [c for c in COMPONENTS if c in t]
     if "z" in given and dim == 2:
@@ -606,7 +612,7 @@ def _displacement(t: dict, dim: int, where: str) -> sc.Displacement:
 
 
 def _load(t: dict, dim: int, where: str) -> sc.SurfaceLoad:
-    keys(t, _names("[[load]]"), where)
+    keys(t, _names("[[load]]"), where, _TOP_KEYS)
     boundary = _where(t, dim, where, "[[load]]")
     if one_of(t, _exclusive("[[load]]", 1), where) == "pressure":
         return sc.SurfaceLoad(boundary, pressure=formula(t["pressure"], f"{where} pressure",
