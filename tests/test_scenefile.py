@@ -1,4 +1,5 @@
 """Scene files (TOML): the examples parse, bad files are refused naming the key."""
+import dataclasses
 import os
 import re
 from pathlib import Path
@@ -120,8 +121,10 @@ BAD = [
     (MINIMAL + "[[displacement]]\nwhere = 'x + 1'\nx = 0", ValueError,
      ["[[displacement]] #1 where", "condition"]),
     (MINIMAL + "[[displacement]]\nwhere = 1\nx = 0", TypeError, ["[[displacement]] #1 where"]),
-    (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nwhere = 'x < 1'\nx = 0", ValueError,
-     ["[[displacement]] #1 needs exactly one of boundary, where"]),
+    (MINIMAL + "[[displacement]]\nx = 0", ValueError,        # both: issue 26, test_26
+     ["[[displacement]] #1 needs boundary, where, or both"]),
+    (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nwhere = 'x > 2'\nx = 0", ValueError,
+     ["[[displacement]] #1: boundary 'ymin' where 'x > 2' selects no node of the mesh"]),
     (MINIMAL + "[[displacement]]\nboundary = 'ymin'", ValueError,
      ["[[displacement]] #1 needs kind or"]),
     (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nkind = 'fixed'", ValueError,
@@ -713,3 +716,30 @@ def test_25_a_top_level_key_after_a_table_is_said_to_belong_before_it(tmp_path, 
         load_scene(write(tmp_path, text))
     fixed = text.splitlines()[-1] + "\n" + "\n".join(text.splitlines()[:-1]) + "\n"
     assert load_scene(write(tmp_path, fixed))
+
+
+def test_26_a_load_or_a_support_may_take_a_face_and_a_condition(tmp_path):
+    """[[load]] combines boundary and where: the part of a face where the condition holds
+    (the ymax face right of x = 0.5 here), as the Python selection of the same facets;
+    a [[displacement]] too (the nodes of xmax above y = 0.5)."""
+    import skxfem
+    from skxfem.scene import Displacement, SurfaceLoad
+
+    text = MINIMAL.replace("n = 3", "n = 4") + (
+        "[[displacement]]\nboundary = 'ymin'\nkind = 'clamped'\n"
+        "[[displacement]]\nboundary = 'xmax'\nwhere = 'y > 0.5'\nx = 0.01\n"
+        "[[load]]\nboundary = 'ymax'\nwhere = 'x > 0.5'\npressure = 2.0\n")
+    s = load_scene(write(tmp_path, text))
+    load, moved = s.loads[0], s.displacements[1]
+    assert (load.boundary, load.where.text, moved.boundary, moved.where.text) == \
+        ("ymax", "x > 0.5", "xmax", "y > 0.5")
+    top = 1 - 1e-9
+    same = dataclasses.replace(s, displacements=(
+        clamped("ymin"), Displacement(lambda x: (x[0] > top) & (x[1] > 0.5), {"x": 0.01})),
+        loads=(SurfaceLoad(lambda x: (x[1] > top) & (x[0] > 0.5), pressure=2.0),))
+    a, b = skxfem.solve(s), skxfem.solve(same)
+    np.testing.assert_array_equal(a.problem.F, b.problem.F)
+    np.testing.assert_array_equal(a.problem.g, b.problem.g)
+    assert a.problem.D.tolist() == b.problem.D.tolist()
+    down = a.problem.F[a.problem.V.basis.nodal_dofs[1]].sum()   # p times the width 0.5
+    assert down == pytest.approx(-2.0 * 0.5, rel=1e-12)

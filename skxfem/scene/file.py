@@ -29,7 +29,8 @@ The schema in short (all of it, with units: ``skxfem schema``, :data:`SCHEMA`)::
     # x = 0.0                          # a number or a formula such as "0.01*y"
 
     [[load]]                           # any number; on boundary facets
-    boundary = "zmax"                  # or where = "..." (tested at facet midpoints)
+    boundary = "zmax"                  # or where = "..." (tested at facet midpoints),
+    # where = "y > 0.5"                # or both: the part of zmax where y > 0.5
     pressure = "4*y*(1 - y)"           # positive in compression: t = -p n
     # traction = [0, 0, "-1"]          # or a traction vector
 
@@ -205,25 +206,29 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
         Key("plane", "strain or stress", "2D only: plane strain or plane stress "
             "(default strain)", "stress"),
     )),
-    Table("[[displacement]]", "imposed displacements, on the nodes of a boundary", (
+    Table("[[displacement]]", "imposed displacements, on the nodes of a boundary: "
+          "boundary, where, or both (the nodes of the boundary where the condition holds)", (
         Key("boundary", "one of " + " ".join(FACES), "a face of the box (or a named "
             "boundary of the mesh file)", "xmin"),
-        Key("where", "condition on x, y, z", "the nodes where it holds", "x < 1e-9"),
+        Key("where", "condition on x, y, z", "the nodes where it holds (of the boundary, "
+            "if given)", "x < 1e-9"),
         Key("kind", "clamped or rollers", "clamped: u = 0; rollers: the normal component "
             "of u is 0 (a named face)", "clamped"),
         Key("x", f"{_FORMULA} [L]", "the imposed u_x (those of x, y, z given)", 0.0),
         Key("y", f"{_FORMULA} [L]", "the imposed u_y", "0.01*x"),
         Key("z", f"{_FORMULA} [L]", "the imposed u_z (3D)", 0.0),
-    ), (("boundary", "where"), ("kind", "x", "y", "z", "..."))),
-    Table("[[load]]", "surface loads, on boundary facets (where: at facet midpoints)", (
+    ), (("kind", "x", "y", "z", "..."),)),
+    Table("[[load]]", "surface loads, on boundary facets: boundary, where (tested at the "
+          "facet midpoints), or both (the facets of the boundary where the condition holds, "
+          "such as the xmax face above z = 2.2)", (
         Key("boundary", "one of " + " ".join(FACES), "a face of the box (or a named "
             "boundary of the mesh file)", "ymax"),
         Key("where", "condition on x, y, z", "the boundary facets whose midpoint it "
-            "holds at", "y > 1 - 1e-9"),
+            "holds at (of the boundary, if given)", "y > 1 - 1e-9"),
         Key("pressure", f"{_FORMULA} [F/L²]", "positive in compression: t = -p n",
             "4*x*(1 - x)"),
         Key("traction", "dim numbers or formulas [F/L²]", "the traction vector t", [0.0, "-1"]),
-    ), (("boundary", "where"), ("pressure", "traction"))),
+    ), (("pressure", "traction"),)),
     Table("[interface]", "the law on Γ and its multiplier space", (
         Key("law", "one of " + " ".join(sc.LAWS + sc.CONTACT_LAWS), "ties: bonded "
             "(default), bilateral; contact: frictionless, coulomb, adhesive", "coulomb"),
@@ -501,17 +506,19 @@ def _scene(data: dict, path: Path) -> sc.Scene:
 def _check_boundaries(items: dict, mesh, dim: int):
     """Each boundary exists and selects nodes (facets for a load); see the module notes."""
     if isinstance(mesh, sc.Box):
-        faces, boundaries = FACES[:2 * dim], [i.boundary for v in items.values() for _, i in v]
+        faces = FACES[:2 * dim]
         for where, item in items["displacement"] + items["load"]:
             if isinstance(item.boundary, str) and item.boundary not in faces:
                 raise ValueError(f"{where} boundary {item.boundary!r} is not a face of the "
                                  f"box; use one of {', '.join(faces)}, or where")
-        if all(isinstance(b, str) for b in boundaries) or math.prod(mesh.n) > BUILT_BOX:
+        plain = all(isinstance(i.boundary, str) and i.where is None
+                    for v in items.values() for _, i in v)
+        if plain or math.prod(mesh.n) > BUILT_BOX:
             return
         mesh = meshes.box(mesh.n, mesh.cell, mesh.size)
     for key, select in (("displacement", select_nodes), ("load", select_facets)):
         for where, item in items[key]:
-            tomlcheck.labelled(where, select, mesh, item.boundary, where)
+            tomlcheck.labelled(where, select, mesh, item.boundary, where, item.where)
 
 
 def _mesh(t: dict, folder: Path) -> tuple[sc.Box | Path, int, object]:
@@ -583,19 +590,32 @@ def _material(t: dict) -> Material:
         raise ValueError(f"[material] {e}") from None
 
 
-def _where(t: dict, dim: int, where: str, table: str):
-    kind = one_of(t, _exclusive(table), where)
-    if kind == "where":
-        return formula(t["where"], f"{where} where", dim, boolean=True)
+def _where(t: dict, dim: int, where: str):
+    """The ``boundary`` and ``where`` of a [[displacement]] or [[load]] table: a named
+    boundary (or None), and a condition (or None); one of them at least."""
+    if "boundary" not in t and "where" not in t:
+        raise ValueError(f"{where} needs boundary, where, or both (a face such as "
+                         f"boundary = 'xmax', a condition such as where = 'z > 2.2', or "
+                         f"both: the part of the face where the condition holds)")
+    cond = formula(t["where"], f"{where} where", dim, boolean=True) if "where" in t else None
+    if "boundary" not in t:
+        return None, cond
     if not isinstance(t["boundary"], str):
         raise TypeError(f"{where} boundary must be a name such as 'xmin', "
                         f"got {t['boundary']!r}")
-    return t["boundary"]
+    return t["boundary"], cond
+
+
+def _part(build, boundary, cond, *args, **kwargs):
+    """``build(boundary, ...)``, its ``where`` the condition if a boundary is named too."""
+    if boundary is None:
+        return build(cond, *args, **kwargs)
+    return build(boundary, *args, **kwargs, where=cond)
 
 
 def _displacement(t: dict, dim: int, where: str) -> sc.Displacement:
     keys(t, _names("[[displacement]]"), where, _TOP_KEYS)
-    boundary = _where(t, dim, where, "[[displacement]]")
+    boundary, cond = _where(t, dim, where)
     given = [c for c in COMPONENTS if c in t]
     if "z" in given and dim == 2:
         raise ValueError(f"{where} z: component 'z' does not exist on a 2D mesh")
@@ -603,23 +623,24 @@ def _displacement(t: dict, dim: int, where: str) -> sc.Displacement:
         if given:
             raise ValueError(f"{where}: give either kind or components ({', '.join(given)})")
         kind = choice(t["kind"], ("clamped", "rollers"), f"{where} kind")
-        if kind == "rollers" and not isinstance(boundary, str):
-            raise ValueError(f"{where} kind: rollers needs a named boundary, not where")
-        return sc.clamped(boundary) if kind == "clamped" else sc.rollers(boundary)
+        if kind == "rollers" and boundary is None:
+            raise ValueError(f"{where} kind: rollers needs a named boundary, not where alone")
+        return _part(sc.clamped if kind == "clamped" else sc.rollers, boundary, cond)
     if not given:
         raise ValueError(f"{where} needs kind or at least one of x, y, z")
-    return sc.Displacement(boundary, {c: formula(t[c], f"{where} {c}", dim) for c in given})
+    return _part(sc.Displacement, boundary, cond,
+                 {c: formula(t[c], f"{where} {c}", dim) for c in given})
 
 
 def _load(t: dict, dim: int, where: str) -> sc.SurfaceLoad:
     keys(t, _names("[[load]]"), where, _TOP_KEYS)
-    boundary = _where(t, dim, where, "[[load]]")
-    if one_of(t, _exclusive("[[load]]", 1), where) == "pressure":
-        return sc.SurfaceLoad(boundary, pressure=formula(t["pressure"], f"{where} pressure",
-                                                          dim))
+    boundary, cond = _where(t, dim, where)
+    if one_of(t, _exclusive("[[load]]"), where) == "pressure":
+        return _part(sc.SurfaceLoad, boundary, cond,
+                     pressure=formula(t["pressure"], f"{where} pressure", dim))
     v = t["traction"]
     if not isinstance(v, list) or len(v) != dim:
         raise ValueError(f"{where} traction must be a list of {dim} numbers or formulas "
                          f"on a {dim}D mesh, got {v!r}")
-    return sc.SurfaceLoad(boundary, traction=tuple(
+    return _part(sc.SurfaceLoad, boundary, cond, traction=tuple(
         formula(c, f"{where} traction[{i}]", dim) for i, c in enumerate(v)))

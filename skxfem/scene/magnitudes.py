@@ -155,9 +155,10 @@ def _evaluated(mesh, item: Displacement | SurfaceLoad, where: str):
         return [(k, v, vals, x) for k, v, vals in _values(item, x)
                 if isinstance(v, (int, float))]
     if isinstance(item, SurfaceLoad):
-        nodes = np.unique(mesh.facets[:, select_facets(mesh, item.boundary, where)])
+        nodes = np.unique(mesh.facets[:, select_facets(mesh, item.boundary, where,
+                                                         item.where)])
     else:
-        nodes = select_nodes(mesh, item.boundary, where)
+        nodes = select_nodes(mesh, item.boundary, where, item.where)
     x = mesh.p[:, nodes]
     dim = mesh.dim()
     return [(k, v, vals, x) for k, v, vals in _values(item, x)

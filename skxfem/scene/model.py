@@ -266,6 +266,11 @@ def _for_dim(item: Displacement | SurfaceLoad, dim: int, where: str):
         except ValueError as e:
             raise ValueError(f"{where} {what}: {e}") from None
 
+    if isinstance(item.where, Expression) and item.where.dim != dim:
+        try:
+            item = replace(item, where=Expression(item.where.text, dim, boolean=True))
+        except ValueError as e:
+            raise ValueError(f"{where} where: {e}") from None
     if isinstance(item, Displacement):
         return replace(item, components={c: fit(v, f"component {c!r}")
                                          for c, v in item.components.items()})

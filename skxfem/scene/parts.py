@@ -89,6 +89,25 @@ def _check_boundary(b, what: str):
                         f"callable x -> bool, got {b!r}")
 
 
+def _check_where(where, boundary, what: str):
+    """``where``: None, a condition string (a 3D boolean Expression) or a callable
+    x -> bool, which keeps part of a *named* boundary."""
+    if where is None:
+        return None
+    if not isinstance(boundary, str):
+        raise ValueError(f"{what} where keeps part of a named boundary; the boundary is "
+                         f"already a selection: put both conditions in it")
+    if isinstance(where, str):
+        try:
+            return Expression(where, 3, boolean=True)
+        except ValueError as e:
+            raise ValueError(f"{what} where: {e}") from None
+    if not callable(where):
+        raise TypeError(f"{what} where must be a condition such as 'z > 2.2' or a callable "
+                        f"x -> bool, got {where!r}")
+    return where
+
+
 @dataclass(frozen=True)
 class Box:
     """A built-in structured mesh of a box, built by :func:`skxfem.fem.meshes.box`.
@@ -137,7 +156,8 @@ class Box:
 class Displacement:
     """Imposed displacement components on the nodes of a boundary.
 
-    ``components`` maps ``"x"``/``"y"``/``"z"`` (or 0/1/2, or ``"all"``) to a number
+    ``where`` (a condition string such as ``"z > 2.2"`` or a callable x -> bool)
+    keeps the nodes of a named boundary where it holds.  ``components`` maps ``"x"``/``"y"``/``"z"`` (or 0/1/2, or ``"all"``) to a number
     or a callable ``x -> array``; it is stored with the keys ``"x"``, ``"y"``,
     ``"z"`` or ``"all"``.
 
@@ -147,9 +167,12 @@ class Displacement:
 
     boundary: str | Callable[[np.ndarray], np.ndarray]
     components: Mapping[str | int, Value]
+    where: str | Callable[[np.ndarray], np.ndarray] | None = None
 
     def __post_init__(self):
         _check_boundary(self.boundary, "Displacement")
+        object.__setattr__(self, "where", _check_where(self.where, self.boundary,
+                                                       "Displacement"))
         if not isinstance(self.components, Mapping) or not self.components:
             raise TypeError("Displacement components must be a non-empty mapping such as "
                             f"{{'x': 0.0}}, got {self.components!r}")
@@ -165,32 +188,43 @@ class Displacement:
         object.__setattr__(self, "components", comps)
 
 
-def clamped(boundary: str | Callable) -> Displacement:
-    """All displacement components zero on ``boundary``."""
-    return Displacement(boundary, {"all": 0.0})
+def clamped(boundary: str | Callable, where=None) -> Displacement:
+    """All displacement components zero on ``boundary`` (where ``where`` holds)."""
+    return Displacement(boundary, {"all": 0.0}, where)
 
 
-def rollers(boundary: str) -> Displacement:
-    """Normal displacement zero on an axis-aligned named face such as ``"xmin"``.
+def rollers(boundary: str, where=None) -> Displacement:
+    """Normal displacement zero on an axis-aligned named face such as ``"xmin"`` (where
+    ``where`` holds).
 
     >>> rollers("zmax").components
     {'z': 0.0}
     """
     if boundary not in FACES:
         raise ValueError(f"rollers needs an axis-aligned face {FACES}, got {boundary!r}")
-    return Displacement(boundary, {boundary[0]: 0.0})
+    return Displacement(boundary, {boundary[0]: 0.0}, where)
 
 
 @dataclass(frozen=True)
 class SurfaceLoad:
-    """A pressure (positive in compression, t = -p n) or a traction vector on facets."""
+    """A pressure (positive in compression, t = -p n) or a traction vector on facets.
+
+    ``where`` (a condition string or a callable x -> bool) keeps the facets of a named
+    boundary whose midpoint it holds at: the xmax face above z = 2.2 is
+
+    >>> SurfaceLoad("xmax", pressure=1.0, where="z > 2.2").where.text
+    'z > 2.2'
+    """
 
     boundary: str | Callable[[np.ndarray], np.ndarray]
     pressure: Value | None = None
     traction: tuple[Value, ...] | None = None
+    where: str | Callable[[np.ndarray], np.ndarray] | None = None
 
     def __post_init__(self):
         _check_boundary(self.boundary, "SurfaceLoad")
+        object.__setattr__(self, "where", _check_where(self.where, self.boundary,
+                                                       "SurfaceLoad"))
         if (self.pressure is None) == (self.traction is None):
             raise ValueError("SurfaceLoad needs exactly one of pressure= or traction=")
         if self.pressure is not None:
