@@ -957,3 +957,22 @@ def test_46_a_too_long_out_is_refused_before_solving(tmp_path, capsys, no_solve,
 def test_47_the_longest_out_the_file_system_takes_is_written(tmp_path, capsys):
     assert main(["run", STRIP, "--out", str(tmp_path / ("a" * 226))]) == 0
     assert (tmp_path / ("a" * 226) / "result.json").is_file()
+
+
+def test_48_the_summary_says_what_closed_points_do_in_the_words_of_their_law(tmp_path,
+                                                                             capsys):
+    """The summary called the closed points of a bonded interface "stick" and those of a
+    frictionless one "slip": each law its own words."""
+    path = contact_file(tmp_path, {'law = "coulomb"\nfriction = 0.5': 'law = "frictionless"',
+                                   "x = 2.0": "x = 0.0"})
+    assert main(["run", path, "--out", str(tmp_path / "a")]) == 0
+    assert "last step: 5 in contact (5 free to slide), 0 open" in capsys.readouterr().out
+    assert main(["run", str(EXAMPLES / "column.toml"), "--out", str(tmp_path / "b")]) == 0
+    out = capsys.readouterr().out
+    data = json.loads((tmp_path / "b" / "result.json").read_text())
+    ks = np.array(data["dofs"]["interface"])
+    status = np.array(data["steps"][-1]["status"])
+    held, free = ((status[ks == k] != "open").sum() for k in (0, 1))
+    assert [i["law"] for i in data["interfaces"]] == ["bonded", "frictionless"]
+    assert f"in contact (bonded: {held} held; frictionless: {free} free to slide)" in out, out
+    assert "stick" not in out and "slip" not in out
