@@ -373,6 +373,9 @@ def place(table: str, key: str, example):
     data = base(dim)
     if table == "[[interface]]":                  # several interfaces: its level set in it
         data["interface"] = [dict(data.pop("levelset"))]
+    if table == "[[step]]":                       # a load state (of a contact law)
+        data["step"] = [{"name": "press"}]
+        data["interface"] = {"law": "coulomb"}
     if table.startswith("[levelset] "):           # a shape: all its keys are required
         data["levelset"] = {table.split()[1]: {k.name: k.example for k in SCHEMA[table].keys}}
     elif table == "the top level" and key != "name":
@@ -382,7 +385,7 @@ def place(table: str, key: str, example):
         for k in rivals(table, key):
             target.pop(k, None)
         target[key] = example
-    if key in ("max_iter", "friction"):           # options of the contact laws
+    if key in ("max_iter", "friction", "step"):   # options of the contact laws
         part(data, "[[interface]]" if table == "[[interface]]" else "[interface]")["law"] = \
             "coulomb"
     given = data.get("interface")                 # coulomb needs its friction
@@ -743,3 +746,86 @@ def test_26_a_load_or_a_support_may_take_a_face_and_a_condition(tmp_path):
     assert a.problem.D.tolist() == b.problem.D.tolist()
     down = a.problem.F[a.problem.V.basis.nodal_dofs[1]].sum()   # p times the width 0.5
     assert down == pytest.approx(-2.0 * 0.5, rel=1e-12)
+
+
+# --- issue 26, item 4: a load path in the file -----------------------------------------
+
+HISTORY = '''
+name = "history"
+[mesh]
+box = {n = [4, 5], cell = "quad"}
+[levelset]
+plane = {point = [0.0, 0.5], normal = [0.0, 1.0]}
+[[displacement]]
+boundary = "ymin"
+kind = "clamped"
+[interface]
+law = "coulomb"
+friction = 0.5
+
+[[step]]
+name = "press"
+[[step.load]]
+boundary = "ymax"
+pressure = 1.0
+[[step.displacement]]
+boundary = "ymax"
+x = 0.0
+
+[[step]]
+name = "shear"
+[[step.load]]
+boundary = "ymax"
+pressure = 1.0
+[[step.displacement]]
+boundary = "ymax"
+x = 2.0
+'''
+
+
+def test_27_a_file_history_of_load_states_is_the_python_history(tmp_path):
+    """[[step]] tables, each with its own loads and imposed displacements (press, then
+    shear), solve as skxfem.contact.solve(scene, history=[press, shear]) does, to the
+    bit; a state may change the law (unload, bonded)."""
+    import skxfem
+    from skxfem import contact
+    from skxfem.levelset import plane
+    from skxfem.scene import Displacement, SurfaceLoad
+
+    s = load_scene(write(tmp_path, HISTORY))
+    assert [st.name for st in s.steps] == ["press", "shear"]
+    press = Scene(Box((4, 5), "quad"), plane((0.0, 0.5), (0.0, 1.0)), name="press",
+                  displacements=(clamped("ymin"), Displacement("ymax", {"x": 0.0})),
+                  loads=(SurfaceLoad("ymax", pressure=1.0),), law="coulomb", friction=0.5)
+    shear = dataclasses.replace(press, name="shear", displacements=(
+        clamped("ymin"), Displacement("ymax", {"x": 2.0})))
+    by_file, by_python = skxfem.solve(s), contact.solve(press, history=[press, shear])
+    assert [st.load for st in by_file.steps] == ["press", "shear"]
+    for a, b in zip(by_file.steps, by_python.steps, strict=True):
+        np.testing.assert_array_equal(a.U, b.U)
+        np.testing.assert_array_equal(a.pressure, b.pressure)
+        np.testing.assert_array_equal(a.status, b.status)
+    assert by_file.steps[1].status.tolist() != by_file.steps[0].status.tolist()  # it slides
+    unload = HISTORY + ('\n[[step]]\nname = "unload"\nlaw = "bonded"\n'
+                        '[[step.displacement]]\nboundary = "ymax"\nx = 2.0\n')
+    last = skxfem.solve(load_scene(write(tmp_path, unload))).steps[-1]
+    assert (last.load, last.law) == ("unload", "bonded")
+
+
+@pytest.mark.parametrize("edit, words", [
+    (lambda t: "steps = [1.0]\n" + t, "steps and [[step]] tables are both given"),
+    (lambda t: t.replace('law = "coulomb"\nfriction = 0.5', 'law = "bonded"'),
+     "[[step]] tables are the load states of a contact solve; the law is 'bonded'"),
+    (lambda t: t.replace('name = "shear"', 'name = "shear"\nlaw = "glue"'),
+     "[[step]] #2 law must be one of bonded, bilateral, frictionless, coulomb, adhesive"),
+    (lambda t: t.replace('name = "shear"', 'name = "shear"\nfriction = -1.0'),
+     "[[step]] #2: Scene friction (Coulomb's mu) must be a number >= 0"),
+    (lambda t: t.replace("x = 2.0", "x = 5000.0"),
+     "[[step]] #2 [[step.displacement]] #1 x: 5000 is more than 1000 times"),
+    (lambda t: t.replace("x = 2.0", "x = 2.0\nbogus = 1"),
+     "[[step]] #2 [[step.displacement]] #1: unknown key 'bogus'"),
+])
+def test_28_bad_step_tables_are_refused_naming_them(tmp_path, edit, words):
+    with pytest.raises((ValueError, TypeError)) as info:
+        load_scene(write(tmp_path, edit(HISTORY)))
+    assert words in str(info.value), info.value

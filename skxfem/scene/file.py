@@ -64,6 +64,29 @@ cross or touch (:func:`skxfem.problem.assemble` refuses a cell cut by two)::
     law = "coulomb"
     friction = 0.5
 
+A load path (press, then shear, then unload), as ``history=`` of
+:func:`skxfem.contact.solve`: instead of ``steps``, one ``[[step]]`` table per
+load state, in order, with its own loads and imposed displacements (added to the
+``[[load]]`` and ``[[displacement]]`` tables, which hold in every state) and,
+optionally, its own law; ``Scene.steps`` holds the states (scenes), and the scene
+itself is the first::
+
+    [[step]]
+    name = "press"
+    [[step.load]]
+    boundary = "ymax"
+    pressure = 1.0
+    [[step.displacement]]              # every state imposes the same components
+    boundary = "ymax"
+    x = 0.0
+
+    [[step]]
+    name = "unload"
+    law = "bonded"                     # optional: the law of this state
+    [[step.displacement]]
+    boundary = "ymax"
+    x = 0.0
+
 ``linear``, ``linear_tol`` and ``max_iter`` are the scene's
 :class:`~skxfem.scene.settings.Solver` (``Scene.solver``): ``skxfem run`` and
 ``skxfem.solve(load_scene(path))`` solve alike, ``skxfem run``'s ``--linear``,
@@ -93,7 +116,7 @@ import functools
 import math
 import os
 import textwrap
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -163,6 +186,8 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             "vital), or several interfaces: [[interface]], one table each", {}),
         Key("steps", "list of numbers", "the load factors of a contact solve, in order, at "
             "most 1000 (default [1]; or [interface] steps)", [0.5, 1.0]),
+        Key("step", "array of tables", "[[step]], the load states of a contact solve, in "
+            "order, at most 1000 (instead of steps)", [{"name": "press"}]),
         Key("solver", "table", "[solver] (optional)", {}),
     )),
     Table("[mesh]", "the mesh", (
@@ -229,6 +254,23 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             "4*x*(1 - x)"),
         Key("traction", "dim numbers or formulas [F/L²]", "the traction vector t", [0.0, "-1"]),
     ), (("pressure", "traction"),)),
+    Table("[[step]]", "a load state of a contact solve (a load path: press, then shear, "
+          "then unload), one table each, in order: its loads are the [[load]] tables and "
+          "its own [[step.load]] tables, its imposed displacements the [[displacement]] "
+          "tables and its own [[step.displacement]] tables (a later one wins on a node; "
+          "every state imposes displacements on the same nodes: hold a released support "
+          "at 0); these take the keys of [[load]] and [[displacement]]", (
+        Key("name", "string", "the state's name in the results (default: step N)", "press"),
+        Key("law", "one of " + " ".join(("bonded", "bilateral") + sc.CONTACT_LAWS),
+            "the law of Γ in this state (default: [interface] law); one interface only",
+            "frictionless"),
+        Key("friction", "0, or 1e-10 to 1e10", "Coulomb's mu in this state (law coulomb; "
+            "default: [interface] friction)", 0.5),
+        Key("load", "array of tables", "[[step.load]]: its loads, keys of [[load]]",
+            [{"boundary": "ymax", "pressure": 1.0}]),
+        Key("displacement", "array of tables", "[[step.displacement]]: its imposed "
+            "displacements, keys of [[displacement]]", [{"boundary": "ymax", "x": 0.0}]),
+    )),
     Table("[interface]", "the law on Γ and its multiplier space", (
         Key("law", "one of " + " ".join(sc.LAWS + sc.CONTACT_LAWS), "ties: bonded "
             "(default), bilateral; contact: frictionless, coulomb, adhesive", "coulomb"),
@@ -500,7 +542,65 @@ def _scene(data: dict, path: Path) -> sc.Scene:
         quadrature_order=order, name=name, solver=Solver(**options), **fields)
     check_magnitudes(scene, checked, tuple([where for where, _ in items[key]]
                                            for key in ("displacement", "load")))
+    if "step" in data:
+        states = _states(data, scene, items, checked, dim, laws)
+        scene = replace(scene, displacements=states[0].displacements, loads=states[0].loads,
+                        steps=states)     # the scene is its first state, with the history
     return scene
+
+
+def _states(data: dict, scene: sc.Scene, items: dict, checked, dim: int, laws) -> tuple:
+    """The load states of the [[step]] tables: each the scene with its own loads, imposed
+    displacements, law and friction (:data:`SCHEMA` ``[[step]]``)."""
+    if "steps" in data or "steps" in (data.get("interface") or {}):
+        raise ValueError("steps and [[step]] tables are both given: give either steps (load "
+                         "factors: the loads scaled) or [[step]] tables (load states)")
+    if not any(law in sc.CONTACT_LAWS for law in laws):
+        raise ValueError(f"[[step]] tables are the load states of a contact solve; the law "
+                         f"is {laws[0] if len(laws) == 1 else laws!r}, a tie, which is linear "
+                         f"(one state): give its loads as [[load]] tables")
+    tables = array(data, "step")
+    if not tables:
+        raise ValueError("step is an empty list: give [[step]] tables, one per load state")
+    sc.check_steps(len(tables), "[[step]] tables")
+    states = []
+    for k, t in enumerate(tables):
+        where = f"[[step]] #{k + 1}"
+        t = table(t, where, _names("[[step]]"), _TOP_KEYS)
+        name = t.get("name", f"step {k + 1}")
+        if not isinstance(name, str) or not name:
+            raise TypeError(f"{where} name must be a non-empty string, got {name!r}")
+        own = {"displacement": list(items["displacement"]), "load": list(items["load"])}
+        for key, build in (("displacement", _displacement), ("load", _load)):
+            if key in t and not (isinstance(t[key], list)
+                                 and all(isinstance(i, dict) for i in t[key])):
+                raise TypeError(f"{where} {key} must be written as [[step.{key}]] tables")
+            for i, item in enumerate(t.get(key, [])):
+                label = f"{where} [[step.{key}]] #{i + 1}"
+                own[key].append((label, tomlcheck.labelled(label, build, item, dim, label)))
+        _check_boundaries({k: v[len(items[k]):] for k, v in own.items()}, checked, dim)
+        fields = {}
+        if "law" in t or "friction" in t:
+            if scene.several:
+                raise ValueError(f"{where} law, friction: a state's law is given in scene "
+                                 f"files for one interface only; with several, give the "
+                                 f"history in Python (skxfem.contact.solve(scene, "
+                                 f"history=[...]))")
+            law = choice(t.get("law", scene.law), ("bonded", "bilateral") + sc.CONTACT_LAWS,
+                         f"{where} law")
+            friction = number(t["friction"], f"{where} friction") if "friction" in t else \
+                scene.friction if law in FRICTION_LAWS else None
+            if law in FRICTION_LAWS and friction is None:
+                raise ValueError(f"{where} law 'coulomb' needs friction (Coulomb's mu): "
+                                 f"add friction = 0.3, say")
+            fields = {"law": law, "friction": friction}
+        state = tomlcheck.labelled(where, lambda: replace(
+            scene, name=name, displacements=tuple(d for _, d in own["displacement"]),
+            loads=tuple(x for _, x in own["load"]), steps=(1.0,), **fields))
+        check_magnitudes(state, checked, tuple([w for w, _ in own[key]]
+                                               for key in ("displacement", "load")))
+        states.append(state)
+    return tuple(states)
 
 
 def _check_boundaries(items: dict, mesh, dim: int):

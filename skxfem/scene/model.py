@@ -102,8 +102,11 @@ class Scene:
     ``friction`` is Coulomb's μ, required by law ``coulomb`` and refused by
     the laws without friction (leave it ``None``); ``rho_n``, ``rho_t`` the
     augmentation parameters of the contact laws (``None``: the defaults of
-    :func:`skxfem.contact.parameters`); ``steps`` the load factors of a
-    contact solve, in order; ``solver`` how it is solved (a
+    :func:`skxfem.contact.parameters`); ``steps`` the load history of a
+    contact solve, in order: load factors (the scene's loads and imposed
+    displacements scaled) or load states (scenes, each with its own loads,
+    imposed displacements and law: a scene file's ``[[step]]`` tables), as
+    ``history=`` of :func:`skxfem.contact.solve`; ``solver`` how it is solved (a
     :class:`~skxfem.scene.settings.Solver`: ``linear``, ``linear_tol``,
     ``max_iter``, a scene file's ``[solver]`` table), which the keywords of
     :func:`skxfem.solve` override.
@@ -125,7 +128,7 @@ class Scene:
     friction: float | None = None
     rho_n: float | None = None
     rho_t: float | None = None
-    steps: tuple[float, ...] = (1.0,)
+    steps: tuple[float | Scene, ...] = (1.0,)
     interfaces: tuple[Interface, ...] | None = None
     solver: Solver = Solver()
 
@@ -162,11 +165,13 @@ class Scene:
         if isinstance(self.steps, np.ndarray) and self.steps.ndim == 1:
             object.__setattr__(self, "steps", tuple(self.steps.tolist()))
         if (not isinstance(self.steps, (tuple, list)) or not self.steps
-                or not all(_is_number(f) and np.isfinite(f) for f in self.steps)):
+                or not all(isinstance(f, Scene) or (_is_number(f) and np.isfinite(f))
+                           for f in self.steps)):
             raise ValueError(f"Scene steps must be a non-empty sequence of finite load "
-                             f"factors, got {self.steps!r:.200}")
+                             f"factors or of load states (Scenes), got {self.steps!r:.200}")
         check_steps(len(self.steps), "Scene steps")
-        object.__setattr__(self, "steps", tuple(float(f) for f in self.steps))
+        object.__setattr__(self, "steps", tuple(f if isinstance(f, Scene) else float(f)
+                                                for f in self.steps))
         q, top = self.quadrature_order, MAX_QUADRATURE_ORDER.get(self.dim, 8)
         if q is not None and not (isinstance(q, (int, np.integer))
                                   and not isinstance(q, (bool, np.bool_)) and 1 <= q <= top):
