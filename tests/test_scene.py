@@ -591,3 +591,17 @@ def test_26f_numpy_numbers_and_arrays_are_taken_where_python_ones_are():
     a = contact.solve(given, max_iter=np.int64(5), linear_tol=np.float64(1e-10))
     b = contact.solve(plain, max_iter=5, linear_tol=1e-10)
     np.testing.assert_array_equal(a.steps[-1].pressure, b.steps[-1].pressure)
+
+
+def test_26g_a_body_force_is_a_vector_of_the_scene_dimension():
+    s = Scene(QUAD, LINE, body_force=np.array([0.0, -9.81]))
+    assert s.body_force == (0.0, -9.81)
+    assert Scene(QUAD, LINE, body_force=(0, "-2*y")).body_force[1].dim == 2
+    for bad, message in [((0.0,), r"body_force must be 2 values"),
+                         ((0.0, float("nan")), r"body_force\[1\] must be finite"),
+                         ((0.0, "-z"), r"body_force\[1\]")]:
+        with pytest.raises(ValueError, match=message):
+            Scene(QUAD, LINE, body_force=bad)
+    from skxfem import solve
+    with pytest.raises(ValueError, match=r"body_force\[1\]: 1e\+200 is a force per volume"):
+        solve(Scene(QUAD, LINE, displacements=(clamped("ymin"),), body_force=(0, 1e200)))

@@ -373,6 +373,8 @@ def place(table: str, key: str, example):
     data = base(dim)
     if table == "[[interface]]":                  # several interfaces: its level set in it
         data["interface"] = [dict(data.pop("levelset"))]
+    if table == "[body_force]":                   # optional: not in the base
+        data["body_force"] = {}
     if table == "[[step]]":                       # a load state (of a contact law)
         data["step"] = [{"name": "press"}]
         data["interface"] = {"law": "coulomb"}
@@ -829,3 +831,43 @@ def test_28_bad_step_tables_are_refused_naming_them(tmp_path, edit, words):
     with pytest.raises((ValueError, TypeError)) as info:
         load_scene(write(tmp_path, edit(HISTORY)))
     assert words in str(info.value), info.value
+
+
+HANGING = '''
+name = "hanging"
+[mesh]
+box = {n = [3, 6], cell = "quad", size = [1.0, 1.2]}
+[levelset]
+expr = "y - 0.5"
+[material]
+E = 2.0
+nu = 0.0
+[body_force]
+force = [0, "-3"]                  # rho g = 3, down
+[[displacement]]
+boundary = "ymax"
+kind = "clamped"
+'''
+
+
+@pytest.mark.parametrize("cell, n", [("quad", "[3, 6]"), ("hex", "[2, 2, 6]")])
+def test_29_a_block_hanging_under_gravity_has_the_exact_stress_and_sag(tmp_path, cell, n):
+    """A block of height H = 1.2 hangs from its clamped top under gravity ρg = 3 (ν = 0:
+    a bar): σ_yy = ρg y, so Γ at y = 0.5 carries the weight below it, p = -ρg 0.5 (a
+    tension), and the bottom sags by u = -ρg H²/(2E) (Q1 elements are nodally exact)."""
+    import skxfem
+
+    text = HANGING.replace('cell = "quad"', f'cell = "{cell}"').replace("[3, 6]", n)
+    if cell == "hex":
+        text = (text.replace("size = [1.0, 1.2]", "size = [1.0, 1.0, 1.2]")
+                .replace('expr = "y - 0.5"', 'expr = "z - 0.5"')
+                .replace('force = [0, "-3"]', 'force = [0, 0, "-3"]')
+                .replace("ymax", "zmax"))
+    s = load_scene(write(tmp_path, text))
+    assert [float(b) if not callable(b) else b.text for b in s.body_force] == \
+        [0.0] * (s.dim - 1) + ["-3"]
+    r = skxfem.solve(s)
+    np.testing.assert_allclose(r.pressure, -3 * 0.5, rtol=1e-12)
+    bottom = r.mesh.p[-1] < 1e-9
+    np.testing.assert_allclose(r.u_minus[-1][bottom], -3 * 1.2 ** 2 / (2 * 2.0), rtol=1e-12)
+    np.testing.assert_allclose(r.u_minus[:-1], 0, atol=1e-13)    # ν = 0: no sideways motion

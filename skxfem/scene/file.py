@@ -23,6 +23,9 @@ The schema in short (all of it, with units: ``skxfem schema``, :data:`SCHEMA`)::
     nu = 0.3
     plane = "strain"                   # or "stress" (2D only)
 
+    [body_force]                       # optional: a volume force (F/L³), e.g. gravity
+    force = [0, 0, -1e-5]
+
     [[displacement]]                   # any number; on the nodes of a boundary
     boundary = "zmin"                  # a face xmin..zmax, or where = "x < 1e-9"
     kind = "clamped"                   # or "rollers", or components:
@@ -180,6 +183,7 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
         Key("levelset", "table", "[levelset]: required, unless [[interface]] tables give "
             "each interface its own", {}),
         Key("material", "table", "[material] (default: E = 1, nu = 0.3)", {}),
+        Key("body_force", "table", "[body_force] (default: none)", {"force": [0.0, -1.0]}),
         Key("displacement", "array of tables", "[[displacement]], any number", []),
         Key("load", "array of tables", "[[load]], any number", []),
         Key("interface", "table, or array of tables", "[interface] (default: bonded, "
@@ -230,6 +234,11 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
         Key("nu", "number in (-1, 0.5)", "Poisson's ratio (default 0.3)", 0.3),
         Key("plane", "strain or stress", "2D only: plane strain or plane stress "
             "(default strain)", "stress"),
+    )),
+    Table("[body_force]", "a volume force on the whole body, scaled by the load factors "
+          "as the loads are", (
+        Key("force", "dim numbers or formulas [F/L³]", "the force per volume b: gravity "
+            "is [0, -rho*g] in 2D, [0, 0, -rho*g] in 3D (required)", [0.0, -1.0]),
     )),
     Table("[[displacement]]", "imposed displacements, on the nodes of a boundary: "
           "boundary, where, or both (the nodes of the boundary where the condition holds)", (
@@ -534,6 +543,9 @@ def _scene(data: dict, path: Path) -> sc.Scene:
     _check_boundaries(items, checked, dim)
     material = _material(table(data.get("material", {}), "[material]",
                                _names("[material]"), _TOP_KEYS))
+    if "body_force" in data:
+        fields["body_force"] = _body_force(table(data["body_force"], "[body_force]",
+                                                 _names("[body_force]"), _TOP_KEYS), dim)
     scene = sc.Scene(
         mesh=mesh,
         material=material,
@@ -680,6 +692,16 @@ def _levelset(t: dict, dim: int, where: str = "[levelset]") -> ls.LevelSet:
         args = (vector(spec["center"], f"{key}.center", dim),
                 number(spec["radius"], f"{key}.radius"))
     return tomlcheck.labelled(key, getattr(ls, kind), *args)
+
+
+def _body_force(t: dict, dim: int) -> tuple:
+    if "force" not in t:
+        raise ValueError("[body_force] needs force, e.g. force = [0, -9.81e-6] (F/L³)")
+    v = t["force"]
+    if not isinstance(v, list) or len(v) != dim:
+        raise ValueError(f"[body_force] force must be a list of {dim} numbers or formulas "
+                         f"on a {dim}D mesh, got {v!r}")
+    return tuple(formula(c, f"[body_force] force[{i}]", dim) for i, c in enumerate(v))
 
 
 def _material(t: dict) -> Material:

@@ -136,6 +136,19 @@ def check_magnitudes(scene: Scene, mesh=None, names: tuple[list, list] | None = 
                                  f"{length:g} gives displacements of about |p| L / E = "
                                  f"{size * length / E:.3g}, beyond the largest magnitude the "
                                  f"solver handles, {MAX_MAGNITUDE:g}; scale the units")
+    if scene.body_force is not None and not isinstance(mesh, Box):
+        x = mesh.p
+        for i, v in enumerate(scene.body_force):
+            with np.errstate(all="ignore"):
+                values = np.broadcast_to(np.asarray(v(x) if callable(v) else v, dtype=float),
+                                         x.shape[1:])
+            size, what = _worst("body_force", f"[{i}]", v, values, x)
+            if size * length > MAX_MAGNITUDE or size * length ** 2 / E > MAX_MAGNITUDE:
+                raise ValueError(f"body_force[{i}]: {_is(what, v)} a force per volume "
+                                 f"whose load on the body, |b| L = {size * length:.3g}, or "
+                                 f"displacements, |b| L² / E = {size * length ** 2 / E:.3g}, "
+                                 f"are beyond the largest magnitude the solver handles, "
+                                 f"{MAX_MAGNITUDE:g}; scale the units")
     for where, item in zip(names[0], scene.displacements):
         for key, v, values, x in _evaluated(mesh, item, where):
             size, what = _worst(where, key, v, values, x)

@@ -56,6 +56,7 @@ from .parts import (
     clamped,
     rollers,
 )
+from .parts import _check_value
 from .parts import is_number as _is_number
 from .settings import Solver
 
@@ -114,6 +115,10 @@ class Scene:
     ``interfaces``: several interfaces, an :class:`Interface` each (its level
     set, law, space, μ and ρ), given instead of ``levelset`` and the law's
     fields (module notes).
+
+    ``body_force``: a volume force b (F/L³: gravity is (0, -ρg) in 2D, (0, 0, -ρg)
+    in 3D), ``dim`` values, each a number, a formula or a callable x -> array;
+    ``None``: none.  Scaled by the load factors as the loads are.
     """
 
     mesh: Box | Mesh | str | Path
@@ -131,6 +136,7 @@ class Scene:
     steps: tuple[float | Scene, ...] = (1.0,)
     interfaces: tuple[Interface, ...] | None = None
     solver: Solver = Solver()
+    body_force: tuple | None = None
 
     def __post_init__(self):
         if not isinstance(self.mesh, (Box, Mesh, str, Path)):
@@ -187,6 +193,8 @@ class Scene:
             for k, d in enumerate(self.displacements)))
         object.__setattr__(self, "loads", tuple(
             _for_dim(load, self.dim, f"loads[{k}]") for k, load in enumerate(self.loads)))
+        if self.body_force is not None:
+            object.__setattr__(self, "body_force", _body_force(self.body_force, self.dim))
         if isinstance(self.mesh, (Box, Mesh)):
             _check_dims(self, self.mesh.dim if isinstance(self.mesh, Box) else self.mesh.dim())
 
@@ -254,6 +262,29 @@ class Scene:
         i = self.interfaces[k]
         return replace(self, levelset=i.levelset, law=i.law, space=i.space,
                        friction=i.friction, rho_n=i.rho_n, rho_t=i.rho_t, interfaces=None)
+
+
+def _body_force(force, dim: int) -> tuple:
+    """``force`` as a tuple of ``dim`` values (numbers, callables, formulas for ``dim``).
+
+    >>> _body_force(np.array([0, -9.81]), 2)
+    (0.0, -9.81)
+    """
+    if isinstance(force, np.ndarray) and force.ndim == 1:
+        force = tuple(force.tolist())
+    if not isinstance(force, (tuple, list)) or len(force) != dim:
+        raise ValueError(f"Scene body_force must be {dim} values (a vector in F/L³, such "
+                         f"as gravity (0, -rho*g) in 2D), got {force!r:.80}")
+    out = []
+    for i, v in enumerate(force):
+        v = _check_value(v, f"Scene body_force[{i}]")
+        if isinstance(v, Expression):
+            try:
+                v = Expression(v.text, dim)
+            except ValueError as e:
+                raise ValueError(f"Scene body_force[{i}]: {e}") from None
+        out.append(v)
+    return tuple(out)
 
 
 def _for_dim(item: Displacement | SurfaceLoad, dim: int, where: str):
