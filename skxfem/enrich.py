@@ -275,10 +275,22 @@ def enriched_matrix(V: XSpace, form, orders: tuple[int, int] | None = None) -> s
     return enriched_blocks(V, A, AH)
 
 
-def stiffness(V: XSpace | XSpaces, material: Material) -> sp.csr_matrix:
+def stiffness(V: XSpace | XSpaces, material: Material,
+              material_plus: Material | None = None) -> sp.csr_matrix:
     """The X-FEM stiffness on the unknowns [a, b]: ∫ σ(u):ε(v), each part
     assembled from scalar forms (:func:`skxfem.fem.material.stiffness_matrix`).
-    Several interfaces: on [a, b¹, b², …], A assembled once and A_H per interface."""
+    Several interfaces: on [a, b¹, b², …], A assembled once and A_H per interface.
+
+    ``material_plus``: the material of Ω⁺ (``material`` that of Ω⁻): A = K⁻ + K⁺ and
+    A_H = K⁺ - K⁻, each side assembled on its own cells and sub-cells
+    (:func:`skxfem.fem.side_bases.side_bases`)."""
+    if material_plus is not None and material_plus != material:
+        A = AH = 0
+        for basis, side in side_bases(V.mesh, V.cut, V.mesh.elem(), V.rule):
+            Ks = stiffness_matrix(material_plus if side > 0 else material, basis)
+            A, AH = A + Ks, AH + side * Ks
+        return enriched_blocks(V, A, AH)
+
     def form(basis):
         return stiffness_matrix(material, basis)
 

@@ -252,7 +252,7 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
     lap("cut")
     V = xfem_space(mesh, cut, scene.quadrature_order)
     lap("enrich")
-    K = stiffness(V, scene.material)
+    K = stiffness(V, scene.material, scene.material_plus)
     lap("stiffness")
     f, f_H = np.zeros(V.n_std), np.zeros(V.n_std)
     for facets, traction in load_facets(scene, mesh):

@@ -976,3 +976,68 @@ def test_48_the_summary_says_what_closed_points_do_in_the_words_of_their_law(tmp
     assert [i["law"] for i in data["interfaces"]] == ["bonded", "frictionless"]
     assert f"in contact (bonded: {held} held; frictionless: {free} free to slide)" in out, out
     assert "stick" not in out and "slip" not in out
+
+
+# --- issue 26, item 4: what an engineer expects in the files ----------------------------
+
+@pytest.mark.parametrize("example", ["plate", "strip", "inclusion", "contact", "column"])
+def test_49_the_reactions_balance_the_loads(tmp_path, capsys, example):
+    """result.json's reactions: each support's resultant and their total, which balances
+    the applied loads to 1e-10; displacement.vtu's point data reaction sums to it."""
+    data = run(tmp_path, example)
+    rx = data["reactions"]
+    applied, total = np.array(rx["applied"]), np.array(rx["total"])
+    scale = max(np.abs(applied).max(), 1.0)
+    np.testing.assert_allclose(total + applied, 0, atol=1e-10 * scale)
+    supports = np.array([s["force"] for s in rx["supports"]])
+    np.testing.assert_allclose(supports.sum(axis=0), total, atol=1e-12 * scale)
+    scene = load_scene(EXAMPLES / f"{example}.toml")
+    assert len(rx["supports"]) == len(scene.displacements)
+    m = meshio.read(tmp_path / example / "displacement.vtu")
+    dim = len(applied)
+    np.testing.assert_allclose(m.point_data["reaction"].sum(axis=0)[:dim], total,
+                               atol=1e-12 * scale)
+
+
+def test_50_a_bi_material_bar_has_the_exact_jump_in_strain(tmp_path, capsys):
+    """A bar pulled by t = 1, E = 1 left of Γ (x = 0.7) and 4 right of it ([material.plus]),
+    ν = 0: σ_xx = 1 throughout, ε_xx = 1 on Ω⁻ and 1/4 on Ω⁺ (cell data strain and stress
+    of displacement.vtu, each side's piece its own), and the end moves by 0.7 + 1.3/4."""
+    text = '''
+name = "bar"
+[mesh]
+box = {n = [4, 2], cell = "quad", size = [2.0, 1.0]}
+[levelset]
+expr = "x - 0.7"
+[material]
+nu = 0.0
+[material.minus]
+E = 1.0
+[material.plus]
+E = 4.0
+[[displacement]]
+boundary = "xmin"
+kind = "rollers"
+[[displacement]]
+boundary = "ymin"
+kind = "rollers"
+[[load]]
+boundary = "xmax"
+traction = [1.0, 0.0]
+'''
+    path = scene_file(tmp_path, text, "bar.toml")
+    s = load_scene(path)
+    assert (s.material.E, s.material_plus.E, s.material_plus.nu) == (1.0, 4.0, 0.0)
+    assert main(["run", path, "--out", str(tmp_path / "out")]) == 0
+    m = meshio.read(tmp_path / "out" / "displacement.vtu")
+    side = m.cell_data["side"][0]
+    strain, stress = m.cell_data["strain"][0], m.cell_data["stress"][0]
+    np.testing.assert_allclose(strain[:, 0], np.where(side < 0, 1.0, 0.25), rtol=1e-12)
+    np.testing.assert_allclose(stress[:, 0], 1.0, rtol=1e-12)
+    np.testing.assert_allclose(np.delete(stress, 0, axis=1), 0, atol=1e-12)
+    np.testing.assert_allclose(m.cell_data["von_mises"][0], 1.0, rtol=1e-12)
+    end = (m.points[:, 0] > 2 - 1e-9)
+    np.testing.assert_allclose(m.point_data["displacement"][end, 0], 0.7 + 1.3 / 4,
+                               rtol=1e-12)
+    data = json.loads((tmp_path / "out" / "result.json").read_text())
+    np.testing.assert_allclose(data["pressure"], -1.0, rtol=1e-12)       # a tension of 1

@@ -16,6 +16,11 @@
   moving with its side's field; cell data ``side`` (-1 or +1: the copy) and
   ``cut`` (1 on cut cells), point data ``levelset`` (ψ at the nodes: clip a
   side's copy at ψ = 0 to see only its own part of the cut cells).
+* Both also carry the support reactions: ``result.json``'s ``reactions``
+  (:func:`reaction_summary`: ``applied``, each support's force, their ``total``),
+  ``displacement.vtu``'s point data ``reaction`` (at the copy of each node on its own
+  side) and its cell data ``strain``, ``stress`` (3 x 3, :func:`tensors9`) and
+  ``von_mises``, at the centre of each cell from its piece's field.
 * ``interface.vtu``: the interface facets (``line`` cells in 2D, ``triangle``
   cells in 3D) on the multiplier points, with point data ``pressure``,
   ``traction``, ``tangential_traction``, ``normal``, ``jump`` and ``gap``.
@@ -83,7 +88,8 @@ from ..fem.files import check_folder, quiet, write_set
 from ..fem.vtu import cell_sides, pad3, region_pieces, side_pieces, vectors3, vtk_cells
 from ..levelset import nodal_values
 
-__all__ = ["write_result", "result_summary", "NotFiniteError", "cell_sides", "vtk_cells", "check_output",
+__all__ = ["write_result", "result_summary", "NotFiniteError", "reaction_summary", "tensors9",
+           "von_mises", "cell_sides", "vtk_cells", "check_output",
            "side_pieces", "default_folder", "contact_summary", "EQUATIONS"]
 
 _STAGES = ("cut", "enrich", "assemble", "solve")
@@ -147,11 +153,33 @@ def result_summary(result) -> dict:
         "linear_solve": _jsonable({"linear": result.linear, **dict(result.linear_info)},
                                   "linear_solve"),
     }
+    if _solved(result):
+        data["reactions"] = _jsonable(reaction_summary(result), "reactions")
     if result.is_contact:
         data.update(_jsonable(contact_summary(result), "steps"))
     if several:
         data.update(_interfaces(result, items, data))
     return data
+
+
+def reaction_summary(result) -> dict:
+    """The ``reactions`` of ``result.json``: the resultant of the loads (``applied``:
+    surface loads and body force, of the last step), that of each imposed displacement
+    in the scene's order (``supports``: its ``boundary`` and ``force``) and their sum
+    (``total``), which balances ``applied``: total + applied = 0 to round-off."""
+    forces = result.support_forces()
+    def name(d):
+        text = d.boundary if isinstance(d.boundary, str) else \
+            getattr(d.boundary, "text", None) or "selection"
+        where = getattr(d, "where", None)
+        return text if where is None else \
+            f"{text} where {getattr(where, 'text', None) or 'selection'}"
+
+    names = [name(d) for d in result.scene.displacements]
+    return {"applied": np.asarray(result.applied, dtype=float),
+            "total": np.asarray(result.reactions.sum(axis=1), dtype=float),
+            "supports": [{"boundary": name, "force": np.asarray(f, dtype=float)}
+                         for name, f in zip(names, forces, strict=True)]}
 
 
 def _interfaces(result, items, data: dict) -> dict:
@@ -229,6 +257,79 @@ def _write_json(result, path: Path):
     path.write_text(json.dumps(result_summary(result), indent=1, allow_nan=False))
 
 
+def tensors9(t: np.ndarray, out_of_plane: np.ndarray | None = None) -> np.ndarray:
+    """(n, 9) rows of 3 x 3 tensors from (dim, dim, n), as VTK reads a tensor; in 2D the
+    zz entry is ``out_of_plane`` (n,) (0 if None).
+
+    >>> tensors9(np.array([[[1.0], [2.0]], [[2.0], [3.0]]]), np.array([4.0])).tolist()
+    [[1.0, 2.0, 0.0, 2.0, 3.0, 0.0, 0.0, 0.0, 4.0]]
+    """
+    dim, n = t.shape[0], t.shape[-1]
+    full = np.zeros((3, 3, n))
+    full[:dim, :dim] = t
+    if dim == 2 and out_of_plane is not None:
+        full[2, 2] = out_of_plane
+    return np.moveaxis(full, 2, 0).reshape(n, 9)
+
+
+def _zz(eps, sig, material, dim):
+    """The out-of-plane strain and stress of a 2D field: plane strain ε_zz = 0 and
+    σ_zz = ν(σ_xx + σ_yy); plane stress σ_zz = 0 and ε_zz = -ν/(1 - ν)(ε_xx + ε_yy)."""
+    if dim == 3:
+        return None, None
+    nu = material.nu
+    if material.plane == "stress":
+        return -nu / (1 - nu) * (eps[0, 0] + eps[1, 1]), np.zeros(eps.shape[-1])
+    return np.zeros(eps.shape[-1]), nu * (sig[0, 0] + sig[1, 1])
+
+
+def von_mises(sigma9: np.ndarray) -> np.ndarray:
+    """(n,) the von Mises stress of (n, 9) stress tensors: sqrt(3/2 s:s), s the deviator.
+
+    >>> float(von_mises(np.array([[2.0, 0, 0, 0, 0, 0, 0, 0, 0]]))[0])   # uniaxial 2
+    2.0
+    """
+    s = sigma9.reshape(-1, 3, 3)
+    dev = s - np.trace(s, axis1=1, axis2=2)[:, None, None] * np.eye(3) / 3
+    return np.sqrt(1.5 * (dev * dev).sum(axis=(1, 2)))
+
+
+def _solved(result) -> bool:
+    """True for a result that can give its stresses and reactions (a
+    :class:`skxfem.result.Result` with its problem; a stand-in may lack them)."""
+    return getattr(result, "problem", None) is not None and hasattr(result, "strains")
+
+
+def _cell_fields(result, pieces: list[np.ndarray]) -> dict:
+    """The cell data ``strain``, ``stress`` (3 x 3, 9 components) and ``von_mises`` of
+    the written cells: piece k holds the cells ``pieces[k]`` with field k of
+    :meth:`skxfem.result.Result.fields` ({} for a result without them)."""
+    if not _solved(result):
+        return {}
+    dim = result.mesh.dim()
+    eps9, sig9 = [], []
+    for eps, sig, (_, material), cells in zip(result.strains(), result.stresses(),
+                                              result.fields(), pieces, strict=True):
+        e, s = eps[:, :, cells], sig[:, :, cells]
+        ezz, szz = _zz(e, s, material, dim)
+        eps9.append(tensors9(e, ezz))
+        sig9.append(tensors9(s, szz))
+    sig = np.vstack(sig9)
+    return {"strain": [np.vstack(eps9)], "stress": [sig], "von_mises": [von_mises(sig)]}
+
+
+def _reactions(result, nodes: list[np.ndarray], owners: list[np.ndarray]) -> dict:
+    """``{"reaction": (n, 3)}``, the support reaction at each written point: at a node's copy in its own
+    piece (``owners[k]``: the points of piece k whose node lies in it), 0 at the other
+    copies, so that the reactions of the file sum to those of the result ({} for a
+    result without them)."""
+    if not _solved(result):
+        return {}
+    R = result.reactions
+    out = [np.where(own[:, None], R[:, n].T, 0.0) for n, own in zip(nodes, owners)]
+    return {"reaction": pad3(np.vstack(out))}
+
+
 def _write_displacement(result, path: Path):
     mesh = result.mesh
     cell_type, _ = vtk_cells(mesh)
@@ -238,11 +339,17 @@ def _write_displacement(result, path: Path):
         points, cells, region, cut, disp, nodes = region_pieces(mesh, node_region,
                                                                 result.u_regions)
         psi = {f"levelset_{k}": Vk.cut.psi[nodes] for k, Vk in enumerate(V.per_interface)}
+        regions_of = node_region[mesh.t]
+        pieces = [np.flatnonzero((regions_of == r).any(axis=0))
+                  for r in range(len(result.u_regions))]
+        per = [np.unique(mesh.t[:, c]) for c in pieces]
+        reaction = _reactions(result, per, [node_region[n] == r for r, n in enumerate(per)])
         with quiet():
             meshio.write(path, meshio.Mesh(
                 pad3(points), [(cell_type, cells)],
-                point_data={"displacement": pad3(disp), **psi},
-                cell_data={"region": [region], "cut": [cut]}), file_format="vtu")
+                point_data={"displacement": pad3(disp), **psi, **reaction},
+                cell_data={"region": [region], "cut": [cut],
+                           **_cell_fields(result, pieces)}), file_format="vtu")
         return
     levelset = getattr(result.scene, "levelset", None)
     if levelset is None:  # no level set known: every cell on both sides
@@ -251,11 +358,17 @@ def _write_displacement(result, path: Path):
         psi_nodes = nodal_values(levelset, mesh)
     points, cells, side, cut, disp, psi = side_pieces(mesh, psi_nodes, result.u_minus,
                                                       result.u_plus)
+    sides = cell_sides(mesh, psi_nodes)
+    pieces = [np.flatnonzero(sides != -s) for s in (-1, 1)]
+    per = [np.unique(mesh.t[:, c]) for c in pieces]
+    own = [np.where(psi_nodes[n] < 0, -1, 1) == s for n, s in zip(per, (-1, 1))]
     with quiet():  # meshio's own messages are not ours to print
         meshio.write(path, meshio.Mesh(
             pad3(points), [(cell_type, cells)],
-            point_data={"displacement": pad3(disp), "levelset": psi},
-            cell_data={"side": [side], "cut": [cut]}), file_format="vtu")
+            point_data={"displacement": pad3(disp), "levelset": psi,
+                        **_reactions(result, per, own)},
+            cell_data={"side": [side], "cut": [cut], **_cell_fields(result, pieces)}),
+            file_format="vtu")
 
 
 def _write_interface(result, path: Path):

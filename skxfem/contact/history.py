@@ -149,7 +149,8 @@ class Step:
     2 slip; ``Lambda`` (m, k) the semi-multiplier Λ = r_τ/(μλ) of eq. 9a
     (``coulomb``, where p > 0; 0 elsewhere); ``law`` the law of the step
     (several interfaces: a tuple, the law of each);
-    ``increments`` how many increments the step took (1 unless cut).
+    ``increments`` how many increments the step took (1 unless cut); ``F`` the load
+    vector of the step (on the unknowns: its support reactions are K U - F).
     """
 
     load: object
@@ -163,6 +164,7 @@ class Step:
     newton: NewtonInfo
     law: str = ""
     increments: int = 1
+    F: np.ndarray | None = None
 
 
 def parameters(scene: Scene, h: float) -> Law:
@@ -214,7 +216,7 @@ def _spaces(scene: Scene):
 
 def _same_setup(state: Scene, scene: Scene, pb: Problem, state_pb: Problem, i: int):
     """Refuse a load state that changes what one solve keeps (module notes)."""
-    for key, get in (("material", lambda s: s.material), ("space", _spaces),
+    for key, get in (("material", lambda s: s.materials()), ("space", _spaces),
                      ("quadrature_order", lambda s: s.quadrature_order)):
         if get(state) != get(scene):
             raise ValueError(f"history[{i}]: a load state must keep the scene's {key} "
@@ -614,7 +616,8 @@ def _step(state: _State, ops: Operators, it: Iterate, res, info, pieces,
     Lam[ok] = semi_multiplier(it.r[ok], laws.mu[ok], p[ok])
     names = tuple(law.name for law in state.laws)
     return Step(state.label, it.U.copy(), -it.lam, it.r.copy(), ops.Bn @ it.U / ops.w, slip,
-                res.status, Lam, info, names[0] if len(names) == 1 else names, pieces)
+                res.status, Lam, info, names[0] if len(names) == 1 else names, pieces,
+                np.asarray(state.F))
 
 
 def semi_multiplier(r: np.ndarray, mu: np.ndarray, p: np.ndarray) -> np.ndarray:

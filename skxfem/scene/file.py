@@ -22,6 +22,7 @@ The schema in short (all of it, with units: ``skxfem schema``, :data:`SCHEMA`)::
     E = 1.0
     nu = 0.3
     plane = "strain"                   # or "stress" (2D only)
+    # plus = {E = 10.0}                # a side's own: Ω⁺ (plus) or Ω⁻ (minus)
 
     [body_force]                       # optional: a volume force (F/L³), e.g. gravity
     force = [0, 0, -1e-5]
@@ -229,11 +230,17 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
         Key("center", "dim numbers [L]", "the centre (required)", [0.5, 0.5, 0.5]),
         Key("radius", "number > 0 [L]", "the radius (required)", 0.3),
     )),
-    Table("[material]", "linear isotropic elasticity, the same on both sides", (
+    Table("[material]", "linear isotropic elasticity, the same on both sides unless "
+          "minus or plus gives a side its own", (
         Key("E", "number > 0 [F/L²]", "Young's modulus (default 1)", 210e3),
         Key("nu", "number in (-1, 0.5)", "Poisson's ratio (default 0.3)", 0.3),
         Key("plane", "strain or stress", "2D only: plane strain or plane stress "
             "(default strain)", "stress"),
+        Key("minus", "table {E, nu}", "[material.minus]: the material of Ω⁻ = {ψ < 0} "
+            "(its E and nu, each defaulting to those above); one interface only",
+            {"E": 1.0}),
+        Key("plus", "table {E, nu}", "[material.plus]: the material of Ω⁺ = {ψ > 0}; "
+            "one interface only", {"E": 10.0}),
     )),
     Table("[body_force]", "a volume force on the whole body, scaled by the load factors "
           "as the loads are", (
@@ -541,8 +548,12 @@ def _scene(data: dict, path: Path) -> sc.Scene:
             where = f"[[{key}]] #{i + 1}"
             items[key].append((where, tomlcheck.labelled(where, build, t, dim, where)))
     _check_boundaries(items, checked, dim)
-    material = _material(table(data.get("material", {}), "[material]",
-                               _names("[material]"), _TOP_KEYS))
+    material, fields["material_plus"] = _material(table(
+        data.get("material", {}), "[material]", _names("[material]"), _TOP_KEYS))
+    if fields["material_plus"] is not None and several:
+        raise ValueError("[material] minus, plus: a material per side of Γ is for a scene "
+                         "with one interface ([levelset]); with [[interface]] tables, give "
+                         "one material")
     if "body_force" in data:
         fields["body_force"] = _body_force(table(data["body_force"], "[body_force]",
                                                  _names("[body_force]"), _TOP_KEYS), dim)
@@ -704,12 +715,26 @@ def _body_force(t: dict, dim: int) -> tuple:
     return tuple(formula(c, f"[body_force] force[{i}]", dim) for i, c in enumerate(v))
 
 
-def _material(t: dict) -> Material:
-    args = {k: number(t[k], f"[material] {k}") for k in ("E", "nu") if k in t}
-    try:
-        return Material(**args, plane=t.get("plane", "strain"))
-    except ValueError as e:
-        raise ValueError(f"[material] {e}") from None
+def _material(t: dict) -> tuple[Material, Material | None]:
+    """The material of a [material] table, and that of Ω⁺ if a side has its own (then
+    the first is Ω⁻'s)."""
+    def made(t, where, base=None):
+        args = {k: number(t[k], f"{where} {k}") for k in ("E", "nu") if k in t}
+        try:
+            return Material(**{**(base or {}), **args}, plane=plane)
+        except ValueError as e:
+            raise ValueError(f"{where} {e}") from None
+
+    plane = t.get("plane", "strain")
+    both = made(t, "[material]")
+    sides = {}
+    for side in ("minus", "plus"):
+        if side in t:
+            own = table(t[side], f"[material.{side}]", ("E", "nu"))
+            sides[side] = made(own, f"[material.{side}]", {"E": both.E, "nu": both.nu})
+    if not sides:
+        return both, None
+    return sides.get("minus", both), sides.get("plus", both)
 
 
 def _where(t: dict, dim: int, where: str):

@@ -120,7 +120,7 @@ def check_magnitudes(scene: Scene, mesh=None, names: tuple[list, list] | None = 
     if not (isinstance(mesh, Box) or hasattr(mesh, "p")):
         return
     length = body_size(mesh)
-    E = scene.material.E
+    E = min(m.E for m in scene.materials())
     if names is None:
         names = ([f"displacements[{k}]" for k in range(len(scene.displacements))],
                  [f"loads[{k}]" for k in range(len(scene.loads))])

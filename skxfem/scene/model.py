@@ -116,6 +116,9 @@ class Scene:
     set, law, space, μ and ρ), given instead of ``levelset`` and the law's
     fields (module notes).
 
+    ``material_plus``: the material of Ω⁺ = {ψ > 0}, then ``material`` is that of
+    Ω⁻ (``None``: ``material`` on both sides; one interface only).
+
     ``body_force``: a volume force b (F/L³: gravity is (0, -ρg) in 2D, (0, 0, -ρg)
     in 3D), ``dim`` values, each a number, a formula or a callable x -> array;
     ``None``: none.  Scaled by the load factors as the loads are.
@@ -137,6 +140,7 @@ class Scene:
     interfaces: tuple[Interface, ...] | None = None
     solver: Solver = Solver()
     body_force: tuple | None = None
+    material_plus: Material | None = None
 
     def __post_init__(self):
         if not isinstance(self.mesh, (Box, Mesh, str, Path)):
@@ -153,6 +157,18 @@ class Scene:
             object.__setattr__(self, "space", "vital" if self.space is None else self.space)
         if not isinstance(self.material, Material):
             raise TypeError(f"Scene material must be a Material, got {self.material!r}")
+        if self.material_plus is not None:
+            if not isinstance(self.material_plus, Material):
+                raise TypeError(f"Scene material_plus must be a Material (that of Ω⁺) or "
+                                f"None, got {self.material_plus!r:.80}")
+            if self.interfaces is not None:
+                raise ValueError("Scene material_plus: a material per side of Γ is for a "
+                                 "scene with one interface; with several, the regions are "
+                                 "more than two (give one material)")
+            if self.material_plus.plane != self.material.plane:
+                raise ValueError(f"Scene material_plus plane {self.material_plus.plane!r} "
+                                 f"differs from material's {self.material.plane!r}: a 2D "
+                                 f"body is plane strain or plane stress throughout")
         for field, kind in (("displacements", Displacement), ("loads", SurfaceLoad)):
             items = getattr(self, field)
             if not isinstance(items, (tuple, list)) or not all(
@@ -244,6 +260,10 @@ class Scene:
     def several(self) -> bool:
         """True for a scene with more than one interface."""
         return len(self.interface_list) > 1
+
+    def materials(self) -> tuple[Material, Material]:
+        """The materials of Ω⁻ and Ω⁺ (the same one unless ``material_plus``)."""
+        return self.material, self.material_plus or self.material
 
     def alone(self, k: int) -> Scene:
         """The scene with its interface ``k`` only (a one-interface scene, the
