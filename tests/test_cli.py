@@ -1041,3 +1041,72 @@ traction = [1.0, 0.0]
                                rtol=1e-12)
     data = json.loads((tmp_path / "out" / "result.json").read_text())
     np.testing.assert_allclose(data["pressure"], -1.0, rtol=1e-12)       # a tension of 1
+
+
+def test_51_every_load_step_is_a_file_of_a_paraview_series(tmp_path, capsys):
+    """The VTU files held the last step only: a contact result adds displacement.pvd and
+    interface.pvd, collections of one file per load step, each that step's fields (its
+    pressures those of result.json's step); a later run with fewer steps replaces it."""
+    import xml.etree.ElementTree as ET
+
+    path = scene_file(tmp_path, HISTORY_TEXT, "history.toml")
+    out = tmp_path / "out"
+    assert main(["run", path, "--out", str(out)]) == 0
+    data = json.loads((out / "result.json").read_text())
+    for kind in ("displacement", "interface"):
+        sets = ET.parse(out / f"{kind}.pvd").getroot().find("Collection").findall("DataSet")
+        assert [d.get("file") for d in sets] == [f"{kind}_{k:04d}.vtu" for k in (1, 2, 3)]
+        assert [d.get("timestep") for d in sets] == ["1", "2", "3"]
+    last = meshio.read(out / "interface.vtu").point_data["pressure"]
+    for k, step in enumerate(data["steps"]):
+        m = meshio.read(out / f"interface_{k + 1:04d}.vtu")
+        p = m.point_data["pressure"]
+        assert p.size == len(data["points"])
+        assert np.abs(p).max() == pytest.approx(max(np.abs(step["pressure"])), rel=1e-9)
+        d = meshio.read(out / f"displacement_{k + 1:04d}.vtu")
+        assert {"displacement", "reaction"} <= set(d.point_data)
+        assert {"strain", "stress", "von_mises"} <= set(d.cell_data)
+    np.testing.assert_array_equal(meshio.read(out / "interface_0003.vtu").point_data["pressure"],
+                                  last)
+    assert main(["run", str(EXAMPLES / "contact.toml"), "--out", str(out)]) == 0
+    assert sorted(p.name for p in out.iterdir()) == [
+        "displacement.pvd", "displacement.vtu", "displacement_0001.vtu",
+        "displacement_0002.vtu", "interface.pvd", "interface.vtu", "interface_0001.vtu",
+        "interface_0002.vtu", "result.json"]
+
+
+HISTORY_TEXT = '''
+name = "history"
+[mesh]
+box = {n = [4, 5], cell = "quad"}
+[levelset]
+plane = {point = [0.0, 0.5], normal = [0.0, 1.0]}
+[[displacement]]
+boundary = "ymin"
+kind = "clamped"
+[interface]
+law = "coulomb"
+friction = 0.5
+[[step]]
+name = "press"
+[[step.load]]
+boundary = "ymax"
+pressure = 1.0
+[[step.displacement]]
+boundary = "ymax"
+x = 0.0
+[[step]]
+name = "shear"
+[[step.load]]
+boundary = "ymax"
+pressure = 1.0
+[[step.displacement]]
+boundary = "ymax"
+x = 2.0
+[[step]]
+name = "unload"
+law = "bonded"
+[[step.displacement]]
+boundary = "ymax"
+x = 2.0
+'''

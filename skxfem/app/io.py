@@ -38,8 +38,10 @@ edges' points) and a list ``steps``, one entry per load step, at the dofs:
 equation, equilibrium, contact and friction: the relative residual at the
 start, then after each iteration) and ``krylov`` (the Krylov iterations of each
 iterative Newton step; empty after direct ones).  ``interface.vtu`` adds the point data
-``status`` (0 open, 1 stick, 2 slip).  The VTU files hold the last step only
-(the JSON has every step).
+``status`` (0 open, 1 stick, 2 slip).  The VTU files hold the last step; the
+series adds one of each per load step, ``displacement_0001.vtu`` ...,
+``interface_0001.vtu`` ..., and their ParaView collections ``displacement.pvd`` and
+``interface.pvd`` (:data:`SERIES`; the JSON has every step too).
 
 **Several interfaces** (:mod:`skxfem.result`): ``result.json``'s ``law`` and
 ``space`` are lists, one per interface, and it adds ``interfaces``, one entry
@@ -220,7 +222,7 @@ def check_output(out_dir: str | Path) -> Path:
     if str(out_dir) == "":
         raise ValueError("the output folder is empty; give a folder name such as "
                          "results/plate")
-    check_folder(out, _FILES.values())
+    check_folder(out, [*_FILES.values(), *SERIES])
     existing = Path(os.path.realpath(out)).parent
     while not existing.exists() and existing != existing.parent:
         existing = existing.parent
@@ -397,6 +399,46 @@ _WRITERS = {"json": _write_json, "displacement": _write_displacement,
             "interface": _write_interface}
 
 
+SERIES = ("displacement.pvd", "interface.pvd", "displacement_*.vtu", "interface_*.vtu")
+"""The files of the series of a contact result: a ParaView collection (``.pvd``) of
+each VTU file, with one file per load step (``displacement_0001.vtu`` ...)."""
+
+
+def _pvd(files: list[str]) -> str:
+    """A ParaView collection of ``files``, their timesteps 1, 2, ... (the load steps).
+
+    >>> print(_pvd(["a_0001.vtu"]))
+    <?xml version="1.0"?>
+    <VTKFile type="Collection" version="0.1">
+      <Collection>
+        <DataSet timestep="1" part="0" file="a_0001.vtu"/>
+      </Collection>
+    </VTKFile>
+    <BLANKLINE>
+    """
+    rows = "".join(f'    <DataSet timestep="{k + 1}" part="0" file="{f}"/>\n'
+                   for k, f in enumerate(files))
+    return ('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n'
+            f"  <Collection>\n{rows}  </Collection>\n</VTKFile>\n")
+
+
+def _series(result) -> dict:
+    """The writers of the series of a contact result (:data:`SERIES`): each load step's
+    displacement.vtu and interface.vtu, and their collections."""
+    if not getattr(result, "is_contact", False) or not _solved(result):
+        return {}
+    from ..contact.history import step_results   # the contact layer, below this one
+    steps = step_results(result)
+    writers = {}
+    for kind, write in (("displacement", _write_displacement),
+                        ("interface", _write_interface)):
+        files = [f"{kind}_{k + 1:04d}.vtu" for k in range(len(steps))]
+        for name, step in zip(files, steps):
+            writers[name] = lambda path, step=step, write=write: write(step, path)
+        writers[f"{kind}.pvd"] = lambda path, files=files: path.write_text(_pvd(files))
+    return writers
+
+
 def write_result(result, out_dir: str | Path) -> dict[str, Path]:
     """Write ``result.json``, ``displacement.vtu`` and ``interface.vtu`` into ``out_dir``.
 
@@ -415,7 +457,9 @@ def write_result(result, out_dir: str | Path) -> dict[str, Path]:
     Returns
     -------
     dict
-        ``{"json": ..., "displacement": ..., "interface": ...}`` paths.
+        ``{"json": ..., "displacement": ..., "interface": ...}`` paths; a contact
+        result adds ``"displacement_series"`` and ``"interface_series"``, the
+        ``.pvd`` collections of one file per load step (:data:`SERIES`).
 
     Raises
     ------
@@ -434,9 +478,15 @@ def write_result(result, out_dir: str | Path) -> dict[str, Path]:
                                          for v in (value if key == "u_regions" else [value])):
             raise NotFiniteError(f"the result's {key} holds NaN or inf; nothing was "
                                  f"written: please report this scene")
-    written = write_set(out, {name: (lambda path, key=key: _WRITERS[key](result, path))
-                              for key, name in _FILES.items()})
-    return {key: written[name] for key, name in _FILES.items()}
+    writers = {name: (lambda path, key=key: _WRITERS[key](result, path))
+               for key, name in _FILES.items()}
+    series = _series(result)
+    written = write_set(out, {**writers, **series}, SERIES)
+    paths = {key: written[name] for key, name in _FILES.items()}
+    if series:
+        paths.update({f"{kind}_series": written[f"{kind}.pvd"]
+                      for kind in ("displacement", "interface")})
+    return paths
 
 
 # -----------------------------------------------------------------------------

@@ -110,7 +110,7 @@ from .newton import (
 
 __all__ = ["Step", "parameters", "solve", "progress_line", "ContactConvergenceError",
            "StepCutWarning", "StepRetryWarning", "METHODS", "RHO_RANGE", "MAX_CUTS",
-           "semi_multiplier"]
+           "semi_multiplier", "step_results"]
 
 METHODS = ("newton", "fixed_point")
 
@@ -453,6 +453,28 @@ def _result(pb: Problem, ops: Operators, law, steps: tuple, linear: str,
     return result(pb, last.U, traction, max(0.0, float(Jn.max())), ops.w.size, timings,
                   linear, {"tol": linear_tol}, steps=steps, status=last.status[owner],
                   ops=ops, law=law)
+
+
+def step_results(result: Result) -> list[Result]:
+    """The :class:`~skxfem.result.Result` of every load step of a contact ``result``, in
+    order: each with the fields, statuses and reactions of its step (the last is
+    ``result`` itself, recomputed), for a series of files (:mod:`skxfem.app.io`).
+
+    >>> from dataclasses import replace
+    >>> from skxfem.scene import Displacement
+    >>> from skxfem.scene.benchmarks import strip
+    >>> s = strip(n=3)
+    >>> s = replace(s, law="frictionless", steps=(0.5, 1.0),
+    ...             displacements=s.displacements + (Displacement("ymax", {"x": 0.0}),))
+    >>> first, last = step_results(solve(s))
+    >>> bool(np.allclose(2 * first.pressure, last.pressure))
+    True
+    """
+    if not result.is_contact:
+        raise ValueError("step_results takes the result of a contact solve (with steps)")
+    return [_result(result.problem, result.ops, result.law, result.steps[:k + 1],
+                    result.linear, result.linear_info.get("tol"), result.timings["solve"])
+            for k in range(len(result.steps))]
 
 
 def _rescue(step: StepProblem, start: Iterate, failed: ContactConvergenceError, tol: float,

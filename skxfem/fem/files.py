@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import contextlib
 import errno
+import fnmatch
 import io
 import os
 import re
@@ -145,9 +146,10 @@ def quiet() -> Iterator[io.StringIO]:
 
 
 def _ours(name: str, names) -> bool:
-    """A file of the set, or a temporary one a killed earlier writer left inside it
+    """A file of the set (a name with ``*`` is a pattern: ``displacement_*.vtu``, the
+    files of a series), or a temporary one a killed earlier writer left inside it
     (``.result-PID-HEX.json``: the temporary names of skxfem up to 0.1)."""
-    if name in names:
+    if name in names or any("*" in n and fnmatch.fnmatchcase(name, n) for n in names):
         return True
     return any(re.fullmatch(rf"\.{re.escape(Path(n).stem)}-\d+-[0-9a-f]{{8}}"
                             rf"{re.escape(Path(n).suffix)}", name) for n in names)
@@ -280,7 +282,8 @@ def _commit(new: Path, target: Path, aside: Path):
         os.rename(new, target)
 
 
-def write_set(folder, writers: dict[str, Callable[[Path], None]]) -> dict[str, Path]:
+def write_set(folder, writers: dict[str, Callable[[Path], None]],
+              also: tuple = ()) -> dict[str, Path]:
     """Write the files ``writers`` names into ``folder``, as one set (module notes).
 
     Parameters
@@ -291,6 +294,9 @@ def write_set(folder, writers: dict[str, Callable[[Path], None]]) -> dict[str, P
     writers
         ``{file name: write(path)}``: each function writes one file's content
         to the path it is given.
+    also
+        Other names (or patterns with ``*``) of files of such sets, which an earlier
+        set in ``folder`` may hold (:func:`check_folder`): a longer series.
 
     Returns
     -------
@@ -305,7 +311,7 @@ def write_set(folder, writers: dict[str, Callable[[Path], None]]) -> dict[str, P
         If a file cannot be written (e.g. a full disk) or is written empty;
         ``folder`` keeps its previous set (or does not exist).
     """
-    given = check_folder(folder, writers)
+    given = check_folder(folder, [*writers, *also])
     target = Path(os.path.realpath(given))
     parent, tag = target.parent, secrets.token_hex(8)
     new = parent / f".{target.name}.skxfem-new-{tag}"
@@ -315,7 +321,7 @@ def write_set(folder, writers: dict[str, Callable[[Path], None]]) -> dict[str, P
     try:
         with _locked(parent):
             _stale(parent, target.name, target)
-            check_folder(given, writers)       # again: another writer may have gone first
+            check_folder(given, [*writers, *also])   # again: another writer may have gone first
             os.mkdir(new)
             if target.is_dir():
                 os.chmod(new, stat.S_IMODE(target.stat().st_mode))
