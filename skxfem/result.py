@@ -156,7 +156,7 @@ class Result:
         """(n_displacements, dim) the resultant reaction of each imposed displacement of
         the scene, in its order; a node and component imposed by several goes to the
         last (as :func:`skxfem.scene.boundary.dirichlet` imposes it)."""
-        from .scene.boundary import imposed   # the scene layer, below this one
+        from .scene.boundary import imposed  # the scene layer, below this one
         R = self.reactions
         owner = np.full(R.shape, -1)
         for k, (nodes, components) in enumerate(imposed(self.scene, self.mesh)):

@@ -321,10 +321,10 @@ def _cell_fields(result, pieces: list[np.ndarray]) -> dict:
 
 
 def _reactions(result, nodes: list[np.ndarray], owners: list[np.ndarray]) -> dict:
-    """``{"reaction": (n, 3)}``, the support reaction at each written point: at a node's copy in its own
-    piece (``owners[k]``: the points of piece k whose node lies in it), 0 at the other
-    copies, so that the reactions of the file sum to those of the result ({} for a
-    result without them)."""
+    """``{"reaction": (n, 3)}``, the support reaction at each written point: at a
+    node's copy in its own piece (``owners[k]``: the points of piece k whose node lies
+    in it), 0 at the other copies, so that the reactions of the file sum to those of
+    the result ({} for a result without them)."""
     if not _solved(result):
         return {}
     R = result.reactions
@@ -427,7 +427,7 @@ def _series(result) -> dict:
     displacement.vtu and interface.vtu, and their collections."""
     if not getattr(result, "is_contact", False) or not _solved(result):
         return {}
-    from ..contact.history import step_results   # the contact layer, below this one
+    from ..contact.history import step_results  # the contact layer, below this one
     steps = step_results(result)
     writers = {}
     for kind, write in (("displacement", _write_displacement),

@@ -123,8 +123,6 @@ import textwrap
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-import numpy as np
-
 from .. import levelset as ls
 from ..fem import meshes
 from ..fem.files import regular_file

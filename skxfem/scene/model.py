@@ -44,19 +44,19 @@ from ..levelset import LevelSet
 from .boundary import dirichlet, load_facets, traction
 from .expr import Expression
 from .laws import CONTACT_LAWS, SPACES
-from .magnitudes import check_magnitudes
 from .laws import TIE_LAWS as LAWS
+from .magnitudes import check_magnitudes
 from .parts import (
     CELLS,
     Box,
     Displacement,
     Interface,
     SurfaceLoad,
+    _check_value,
     check_law_fields,
     clamped,
     rollers,
 )
-from .parts import _check_value
 from .parts import is_number as _is_number
 from .settings import Solver
 

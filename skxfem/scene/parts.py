@@ -157,9 +157,9 @@ class Displacement:
     """Imposed displacement components on the nodes of a boundary.
 
     ``where`` (a condition string such as ``"z > 2.2"`` or a callable x -> bool)
-    keeps the nodes of a named boundary where it holds.  ``components`` maps ``"x"``/``"y"``/``"z"`` (or 0/1/2, or ``"all"``) to a number
-    or a callable ``x -> array``; it is stored with the keys ``"x"``, ``"y"``,
-    ``"z"`` or ``"all"``.
+    keeps the nodes of a named boundary where it holds.  ``components`` maps
+    ``"x"``/``"y"``/``"z"`` (or 0/1/2, or ``"all"``) to a number or a callable
+    ``x -> array``; it is stored with the keys ``"x"``, ``"y"``, ``"z"`` or ``"all"``.
 
     >>> Displacement("xmin", {0: 0.0, "y": 1}).components
     {'x': 0.0, 'y': 1.0}
