@@ -54,7 +54,8 @@ FRICTION_RANGE = (1e-10, 1e10)
 tolerance times the pressure (:data:`skxfem.contact.newton.TOL`, 1e-12), below what
 the solve resolves: the law is frictionless to round-off (give 0).  Measured on
 ``examples/contact.toml``, where every point slides (|Λ| = 1): |Λ| is 1 to 2e-16
-for μ = 1e-10 ... 1e-2, to 1e-4 only at 1e-12, and at μ = 5e-324 the product μp
+for μ = 1e-10 ... 1e-2 (to 1.4e-8 on the strip of ``tests/test_contact_laws.py``),
+to 1e-4 only at 1e-12, and at μ = 5e-324 the product μp
 underflowed and Λ = r/(μp) came out NaN.  Above 1e10 a pressed point sticks to
 round-off (the same answer from 1e6 to 1e200); at 1e308 μp overflowed."""
 
