@@ -52,7 +52,8 @@ from .fem.meshes import cell_name
 from .fem.simplex import edge_point, split
 from .levelset import nodal_values
 
-__all__ = ["Cut", "cut", "strictly_cut_edges", "snap", "SNAP", "SnapWarning", "check_apart"]
+__all__ = ["Cut", "cut", "strictly_cut_edges", "snap", "SNAP", "SnapWarning", "check_apart",
+           "rescaled", "PSI_RANGE", "PSI_FLOOR"]
 
 SNAP = 1e-9
 """Vertices closer to Γ than SNAP times their shortest edge are moved to that
@@ -206,8 +207,12 @@ def cut(mesh, psi, name: str = "") -> Cut:
     if psi.shape != (mesh.p.shape[1],) or not np.all(np.isfinite(psi)):
         raise ValueError(f"psi must hold one finite value per vertex, shape "
                          f"({mesh.p.shape[1]},); got shape {psi.shape}")
+    psi = rescaled(psi, name)
     local, t2e, all_edges = cell_edges(mesh)
+    given = psi
     psi, moved, shift = snap(mesh, psi, all_edges)
+    if moved:
+        _check_crosses(mesh, given, psi != given, name)
     if moved:
         warnings.warn(
             f"{name or 'the level set'} passes within {SNAP:g} edge lengths of {moved} mesh "
@@ -241,6 +246,65 @@ def cut(mesh, psi, name: str = "") -> Cut:
     sub_ref, sub_cell, sub_side = _subcells(mesh, psi, cells)
     return Cut(psi, edge_ids, edges, points, cells, side, enriched, facets, facet_cell,
                facet_ref, normals, measures, sub_ref, sub_cell, sub_side)
+
+
+def _check_crosses(mesh, psi: np.ndarray, near: np.ndarray, name: str) -> None:
+    """Refuse a level set that vanishes (within :data:`SNAP`) at the vertices ``near``
+    and has one sign at all the others: Γ lies on the boundary of the body (or touches
+    it from outside), and snapping would make it a sliver of one side or no cut at all,
+    depending on the sign of ψ (module notes)."""
+    far = psi[~near]
+    if far.size and not (np.all(far > 0) or np.all(far < 0)):
+        return
+    i = np.flatnonzero(near)[0]
+    sign = "psi > 0" if far.size and far[0] > 0 else "psi < 0"
+    raise ValueError(
+        f"{name or 'the level set'} does not cross the body: it vanishes at {near.sum()} "
+        f"mesh vertices, e.g. ({', '.join(f'{c:.6g}' for c in mesh.p[:, i])}), and has one "
+        f"sign ({sign}) at all the others, so Γ lies on the boundary (or touches it from "
+        f"outside); an interface must cut the body: move it inside (loads and supports "
+        f"act on the boundary itself)")
+
+
+PSI_RANGE = (1e-100, 1e100)
+"""Nodal ψ whose largest magnitude lies outside this range is scaled into it by a
+power of 2 (:func:`rescaled`): exact, and the cut does not depend on the scale of ψ."""
+
+
+PSI_FLOOR = np.finfo(float).tiny * 2.0 ** 20
+"""The smallest largest |ψ| at the nodes accepted (2.3e-302): a vertex 1e-9 edge lengths
+from Γ (:data:`SNAP`) still has a value with 13 digits."""
+
+
+def rescaled(psi: np.ndarray, name: str = "") -> np.ndarray:
+    """Nodal values ``psi`` scaled by a power of 2 (exactly) if their largest magnitude
+    is outside :data:`PSI_RANGE`, so that no product or sum of them over- or
+    underflows (``1e300*(y - 0.5)``, ``1e-300*(y - 0.5)`` cut as ``y - 0.5`` does).
+
+    Raises
+    ------
+    ValueError
+        Values all below :data:`PSI_FLOOR` (but not all 0): near the smallest normal
+        double, 2.2e-308, the values near Γ lose their digits and the cut would be
+        wrong.  ``name`` names the level set.
+
+    >>> x = np.array([-3e300, 1e300])
+    >>> rescaled(x).tolist() == (x / 2.0 ** 999).tolist()    # the same digits
+    True
+    >>> rescaled(np.array([-1e-320, 1e-320]))
+    Traceback (most recent call last):
+    ...
+    ValueError: the level set is at most 1e-320 in magnitude at the nodes, below 2.3e-302: ...
+    """
+    top = float(np.abs(psi).max()) if psi.size else 0.0
+    if 0 < top < PSI_FLOOR:
+        raise ValueError(f"{name or 'the level set'} is at most {top:.3g} in magnitude at the "
+                         f"nodes, below {PSI_FLOOR:.2g}: near the smallest double (2.2e-308) "
+                         f"its values near Γ lose their digits; scale psi (best a signed "
+                         f"distance, in lengths of the mesh)")
+    if top == 0 or PSI_RANGE[0] <= top <= PSI_RANGE[1]:
+        return psi
+    return np.ldexp(psi, -int(np.frexp(top)[1]))
 
 
 def check_apart(mesh, cuts, names) -> None:

@@ -69,7 +69,7 @@ from .fem.quadrature import cell_rule, exact_orders
 from .fem.side_bases import Parts, parts, side_bases
 
 __all__ = ["XSpace", "XSpaces", "xfem_space", "stiffness", "mass", "enriched_matrix",
-           "enriched_blocks", "signed_bases", "far_side_fraction", "enriched_load",
+           "enriched_blocks", "signed_bases", "far_side_fraction", "enriched_load", "body_load",
            "jump_matrix", "split_fields", "from_fields", "region_fields"]
 
 
@@ -275,10 +275,22 @@ def enriched_matrix(V: XSpace, form, orders: tuple[int, int] | None = None) -> s
     return enriched_blocks(V, A, AH)
 
 
-def stiffness(V: XSpace | XSpaces, material: Material) -> sp.csr_matrix:
+def stiffness(V: XSpace | XSpaces, material: Material,
+              material_plus: Material | None = None) -> sp.csr_matrix:
     """The X-FEM stiffness on the unknowns [a, b]: ∫ σ(u):ε(v), each part
     assembled from scalar forms (:func:`skxfem.fem.material.stiffness_matrix`).
-    Several interfaces: on [a, b¹, b², …], A assembled once and A_H per interface."""
+    Several interfaces: on [a, b¹, b², …], A assembled once and A_H per interface.
+
+    ``material_plus``: the material of Ω⁺ (``material`` that of Ω⁻): A = K⁻ + K⁺ and
+    A_H = K⁺ - K⁻, each side assembled on its own cells and sub-cells
+    (:func:`skxfem.fem.side_bases.side_bases`)."""
+    if material_plus is not None and material_plus != material:
+        A = AH = 0
+        for basis, side in side_bases(V.mesh, V.cut, V.mesh.elem(), V.rule):
+            Ks = stiffness_matrix(material_plus if side > 0 else material, basis)
+            A, AH = A + Ks, AH + side * Ks
+        return enriched_blocks(V, A, AH)
+
     def form(basis):
         return stiffness_matrix(material, basis)
 
@@ -304,6 +316,36 @@ def mass(V: XSpace) -> sp.csr_matrix:
     exactly on affine cells (its own orders, :data:`skxfem.fem.quadrature.EXACT_ORDERS`, not the
     stiffness' of ``V``'s basis)."""
     return enriched_matrix(V, _signed_vector_mass, exact_orders(V.mesh, "mass"))
+
+
+def body_load(V: XSpace, force) -> tuple[np.ndarray, np.ndarray]:
+    """(f, f_H) of a body force b (a volume force, F/L³, such as gravity ρg) on the
+    standard dofs: f = ∫ b·φ and f_H = ∫ H b·φ (exact on the enriched dofs only), for
+    :func:`enriched_load`.  ``force``: dim values, each a number or a callable
+    ``x -> array`` (a formula), integrated on the sides of Γ by the rule of the mass
+    (:data:`skxfem.fem.quadrature.EXACT_ORDERS`: exact for a constant or linear b on
+    affine cells).
+
+    >>> from skfem import MeshQuad1
+    >>> from skxfem.cut import cut
+    >>> from skxfem.levelset import plane
+    >>> m = MeshQuad1().refined(1)
+    >>> V = xfem_space(m, cut(m, plane((0, 0.3), (0, 1))))
+    >>> f, f_H = body_load(V, (0.0, -2.0))
+    >>> float(f[V.basis.nodal_dofs[1]].sum()), float(f[V.basis.nodal_dofs[0]].sum())
+    (-2.0, 0.0)
+    """
+    def values(x):
+        return np.stack([np.broadcast_to(np.asarray(b(x) if callable(b) else b, dtype=float),
+                                         x.shape[1:]) for b in force])
+
+    @LinearForm
+    def form(v, w):
+        return w["H"] * sum(b * v[i] for i, b in enumerate(values(w.x)))
+
+    cell, sub = exact_orders(V.mesh, "mass")
+    side_parts = parts(V.mesh, V.cut, V.basis.elem, cell_rule(V.mesh, cell), sub)
+    return side_parts.signed(lambda basis: form.assemble(basis, H=np.ones(basis.dx.shape)))
 
 
 def enriched_load(V: XSpace | XSpaces, f: np.ndarray, f_H) -> np.ndarray:

@@ -40,7 +40,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 __all__ = ["LevelSet", "plane", "circle", "sphere", "union", "intersection",
-           "complement", "nodal_values", "gradient", "point_normals"]
+           "complement", "nodal_values", "gradient", "point_normals", "unit"]
 
 
 @dataclass(frozen=True)
@@ -298,9 +298,27 @@ def point_normals(cut, psi=None) -> np.ndarray:
                   np.tile((cut.normals * cut.measures).T, (cut.facets.shape[0], 1)))
     else:
         n = gradient(psi, cut.points)
-    size = np.linalg.norm(n, axis=0)
+    n, size = unit(n)
     if not np.all(ok := np.isfinite(size) & (size > 0)):
         what = "is NaN or inf" if not np.isfinite(size[~ok]).all() else "vanishes"
         raise ValueError(f"∇ψ {what} at interface points {cut.points[:, ~ok].T[:3].tolist()}"
                          f": Γ has no normal there; use a level set finite, with ∇ψ ≠ 0, on Γ")
-    return n / size
+    return n
+
+
+def unit(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The columns of ``v`` (dim, n) as unit vectors, and the largest |component| of
+    each, with no overflow or underflow in between (each column is divided by that
+    first): ∇ψ of ``1e300*(y - 0.5)`` has a norm whose square overflows.  A column
+    that is 0 or not finite stays as it is (its largest component 0, or inf or NaN).
+
+    >>> n, top = unit(np.array([[3e300, 0.0], [-4e300, 0.0]]))
+    >>> n.tolist(), top.tolist()
+    ([[0.6, 0.0], [-0.8, 0.0]], [4e+300, 0.0])
+    """
+    v = np.asarray(v, dtype=float)
+    with np.errstate(all="ignore"):
+        top = np.abs(v).max(axis=0)
+        ok = np.isfinite(top) & (top > 0)
+        scaled = v / np.where(ok, top, 1.0)
+        return np.where(ok, scaled / np.linalg.norm(np.where(ok, scaled, 1.0), axis=0), v), top

@@ -37,7 +37,15 @@ import scipy.sparse as sp
 
 from .cut import Cut, check_apart
 from .cut import cut as cut_mesh
-from .enrich import XSpace, XSpaces, enriched_load, jump_matrix, stiffness, xfem_space
+from .enrich import (
+    XSpace,
+    XSpaces,
+    body_load,
+    enriched_load,
+    jump_matrix,
+    stiffness,
+    xfem_space,
+)
 from .fem.loads import boundary_quadrature, surface_load
 from .linalg.rigid import short_pieces
 from .multipliers import (
@@ -244,12 +252,15 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
     lap("cut")
     V = xfem_space(mesh, cut, scene.quadrature_order)
     lap("enrich")
-    K = stiffness(V, scene.material)
+    K = stiffness(V, scene.material, scene.material_plus)
     lap("stiffness")
     f, f_H = np.zeros(V.n_std), np.zeros(V.n_std)
     for facets, traction in load_facets(scene, mesh):
         q = boundary_quadrature(mesh, facets, 4, psi_nodes=cut.psi)
         df, df_H = surface_load(V.basis, q, traction)
+        f, f_H = f + df, f_H + df_H
+    if scene.body_force is not None:
+        df, df_H = body_load(V, scene.body_force)
         f, f_H = f + df, f_H + df_H
     F = enriched_load(V, f, f_H)
     lap("load")
@@ -327,6 +338,11 @@ def _assemble_several(scene: Scene, law: str | None) -> Problem:
         for k, cut in enumerate(cuts):
             q = boundary_quadrature(mesh, facets, 4, psi_nodes=cut.psi)
             df, df_H = surface_load(V.basis, q, traction)
+            f = f + df if k == 0 else f
+            f_H[k] = f_H[k] + df_H
+    if scene.body_force is not None:
+        for k, Vk in enumerate(V.per_interface):
+            df, df_H = body_load(Vk, scene.body_force)
             f = f + df if k == 0 else f
             f_H[k] = f_H[k] + df_H
     F = enriched_load(V, f, f_H)

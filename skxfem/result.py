@@ -133,6 +133,63 @@ class Result:
         """The Newton iterations of every load step (0 for a tie)."""
         return sum(int(st.newton.iterations) for st in self.steps)
 
+    @property
+    def reactions(self) -> np.ndarray:
+        """(dim, nverts) the force each support exerts on each node: K U - F at the imposed
+        displacement components (0 elsewhere), F the loads (of the last step); their
+        sum balances the loads, :attr:`applied` (module notes)."""
+        pb = self.problem
+        F = self.steps[-1].F if self.steps and self.steps[-1].F is not None else pb.F
+        r = np.zeros(pb.V.N)
+        r[pb.D] = (pb.K @ self.U - F)[pb.D]
+        return r[:pb.V.n_std][pb.V.basis.nodal_dofs]
+
+    @property
+    def applied(self) -> np.ndarray:
+        """(dim,) the resultant of the loads (surface loads and body force, of the last
+        step): the sum of F over the standard unknowns of each component."""
+        pb = self.problem
+        F = self.steps[-1].F if self.steps and self.steps[-1].F is not None else pb.F
+        return np.asarray(F)[:pb.V.n_std][pb.V.basis.nodal_dofs].sum(axis=1)
+
+    def support_forces(self) -> np.ndarray:
+        """(n_displacements, dim) the resultant reaction of each imposed displacement of
+        the scene, in its order; a node and component imposed by several goes to the
+        last (as :func:`skxfem.scene.boundary.dirichlet` imposes it)."""
+        from .scene.boundary import imposed  # the scene layer, below this one
+        R = self.reactions
+        owner = np.full(R.shape, -1)
+        for k, (nodes, components) in enumerate(imposed(self.scene, self.mesh)):
+            for c in components:
+                owner[c, nodes] = k
+        return np.array([[R[c][owner[c] == k].sum() for c in range(R.shape[0])]
+                         for k in range(len(self.scene.displacements))]).reshape(-1, R.shape[0])
+
+    def fields(self) -> list[tuple[np.ndarray, object]]:
+        """The displacement fields of the result and their materials: (u⁻, Ω⁻'s), (u⁺,
+        Ω⁺'s), or for several interfaces one (field, material) per region."""
+        if self.u_minus is not None:
+            return list(zip((self.u_minus, self.u_plus), self.scene.materials()))
+        return [(u, self.scene.material) for u in self.u_regions]
+
+    def strains(self) -> list[np.ndarray]:
+        """(dim, dim, ncells) the strain ε = sym ∇u of each field of :meth:`fields` at the
+        centre of every cell (the fields extend over the whole mesh: a cell of one side
+        reads its own side's)."""
+        basis = self.problem.V.basis          # one quadrature point per cell: its centre
+        out = []
+        for u, _ in self.fields():
+            x = np.zeros(basis.N)
+            x[basis.nodal_dofs] = u
+            g = basis.interpolate(x).grad[..., 0]          # (dim, dim, ncells)
+            out.append(0.5 * (g + np.swapaxes(g, 0, 1)))
+        return out
+
+    def stresses(self) -> list[np.ndarray]:
+        """(dim, dim, ncells) σ(ε) of each field of :meth:`fields`, with its material."""
+        dim = self.mesh.dim()
+        return [m.stress(eps, dim) for eps, (_, m) in zip(self.strains(), self.fields())]
+
 
 def edge_jumps(V: XSpace, U: np.ndarray) -> np.ndarray:
     """[[u]] (dim, ne) at the cut edges' points: -2((1 - t) b_a + t b_b).

@@ -121,11 +121,21 @@ def test_04_sides_follow_the_sign_convention():
         [-1, -1, 0, 1]
 
 
-def test_05_nan_is_written_as_null_and_stages_are_required(tmp_path):
+def test_05_nan_is_never_written_and_stages_are_required(tmp_path):
+    """NaN and inf were written as null (issue 26: friction = 5e-324 wrote null into
+    steps[0].Lambda with exit 0): a result holding them is refused, nothing written."""
+    from skxfem.app.io import NotFiniteError
+
     r = fake_result("quad")
     r.pressure = np.array([1.0, np.nan, 2.0, np.inf])
-    data = json.loads(write_result(r, tmp_path)["json"].read_text())
-    assert data["pressure"] == [1.0, None, 2.0, None]
+    with pytest.raises(NotFiniteError, match=r"the result's pressure holds NaN or inf \(2 of "
+                                             r"4 values\); nothing was written"):
+        write_result(r, tmp_path / "out")
+    assert not (tmp_path / "out").exists()
+    r = fake_result("quad")
+    r.u_plus = r.u_plus * np.nan
+    with pytest.raises(NotFiniteError, match="u_plus holds NaN"):
+        write_result(r, tmp_path / "out")
     r.timings = {"cut": 0.1}
     with pytest.raises(ValueError, match="enrich"):
         write_result(r, tmp_path)

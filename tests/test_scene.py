@@ -511,3 +511,97 @@ def test_26b_the_solver_settings_are_part_of_the_scene():
                             (dict(max_iter=np.bool_(True)), "max_iter must be a positive")):
         with pytest.raises(ValueError, match=message):
             Solver(**kwargs)
+
+
+@pytest.mark.parametrize("mu", [5e-324, 1e-11, 2e10, 1e308])
+def test_26c_a_friction_outside_its_range_is_refused_in_python_too(mu):
+    """A μ the solve cannot resolve (μp underflows: Λ = r/(μp) was NaN; or overflows)."""
+    with pytest.raises(ValueError, match=r"Scene friction \(Coulomb's mu\) must be 0 or in "
+                                         r"\[1e-10, 1e\+10\]"):
+        Scene(QUAD, LINE, law="coulomb", friction=mu)
+    for ok in (0.0, 1e-10, 1e10):
+        assert Scene(QUAD, LINE, law="coulomb", friction=ok).friction == ok
+
+
+@pytest.mark.parametrize("part, message", [
+    (SurfaceLoad("ymax", pressure=1e200), r"loads\[0\] pressure: 1e\+200 is beyond the "
+                                          r"largest load the solver handles, 1e\+150"),
+    (SurfaceLoad("ymax", traction=(0.0, lambda x: 1e151 * x[0])),
+     r"loads\[0\] traction\[1\]: <lambda> reaches 1e\+151 at \(1, 1\), which is beyond"),
+    (Displacement("ymax", {"x": "exp(50*y)"}), r"displacements\[1\] x: exp\(50\*y\) reaches "
+                                                r"5.18e\+21 at \(0, 1\), which is more than 1000"),
+])
+def test_26d_python_checks_the_magnitudes_as_scene_files_do(part, message):
+    """SurfaceLoad(pressure=1e200) then solve raised RuntimeError ... please report: now
+    the ValueError of the scene file's check, before solving, in Python too."""
+    from skxfem import solve
+    s = Scene(QUAD, LINE, displacements=(clamped("ymin"),))
+    s = dataclasses.replace(s, loads=(part,)) if isinstance(part, SurfaceLoad) else \
+        dataclasses.replace(s, displacements=s.displacements + (part,))
+    with pytest.raises(ValueError, match=message):
+        solve(s)
+
+
+def test_26e_a_history_is_an_ordered_sequence_of_at_most_max_steps():
+    """A dict history ran its keys as load factors (0, 1), silently; a set has no order;
+    10 000 steps took 152 s.  A numpy array of factors is a list of factors."""
+    from skxfem import contact
+    from skxfem.scene import MAX_STEPS
+
+    s = dataclasses.replace(strip(n=3), law="frictionless", displacements=(
+        clamped("ymin"), Displacement("ymax", {"x": 0.0})))
+    for bad in ({0: 0.5, 1: 1.0}, {0.5, 1.0}, 1.0, "1"):
+        with pytest.raises(ValueError, match=r"history must be a non-empty sequence \(a list "
+                                             r"or tuple, in order\)"):
+            contact.solve(s, history=bad)
+    with pytest.raises(ValueError, match=rf"history has {MAX_STEPS + 1} load steps, more "
+                                         rf"than {MAX_STEPS}"):
+        contact.solve(s, history=[1.0] * (MAX_STEPS + 1))
+    with pytest.raises(ValueError, match=rf"Scene steps has {MAX_STEPS + 1} load steps"):
+        dataclasses.replace(s, steps=(1.0,) * (MAX_STEPS + 1))
+    a = contact.solve(s, history=np.array([0.5, 1.0]))
+    b = contact.solve(s, history=[0.5, 1.0])
+    assert [st.load for st in a.steps] == [0.5, 1.0]
+    np.testing.assert_array_equal(a.steps[-1].pressure, b.steps[-1].pressure)
+    assert dataclasses.replace(s, steps=np.array([0.5, 1.0])).steps == (0.5, 1.0)
+
+
+def test_26f_numpy_numbers_and_arrays_are_taken_where_python_ones_are():
+    """A numpy Box size and max_iter=np.int64(5) were refused; each field stores the
+    Python value, so that the scene equals the one built from Python numbers."""
+    from skxfem import contact
+
+    assert Box(np.array([3, 4]), "quad", np.array([1.0, 2.0])) == Box((3, 4), "quad",
+                                                                      (1.0, 2.0))
+    assert Box(np.int64(3), "quad", (np.float64(1), np.float64(2))) == Box(3, "quad", (1, 2))
+    assert Material(np.float64(2.0), np.float64(0.25)) == Material(2.0, 0.25)
+    assert type(Material(np.float64(2.0)).E) is float
+    given = Scene(Box(np.array([3, 4]), "quad"), plane(np.array([0, .5]), np.array([0., 1])),
+                  displacements=(clamped("ymin"), Displacement("ymax", {np.int64(0): 0.0})),
+                  loads=(SurfaceLoad("ymax", traction=np.array([0.0, -1.0])),),
+                  quadrature_order=np.int64(2), law="coulomb", friction=np.float64(0.3),
+                  rho_n=np.float64(4.0), steps=np.array([0.5, 1.0]))
+    plain = Scene(Box((3, 4), "quad"), plane((0, .5), (0, 1)),
+                  displacements=(clamped("ymin"), Displacement("ymax", {"x": 0.0})),
+                  loads=(SurfaceLoad("ymax", traction=(0.0, -1.0)),), quadrature_order=2,
+                  law="coulomb", friction=0.3, rho_n=4.0, steps=(0.5, 1.0))
+    assert (given.mesh, given.quadrature_order, given.friction, given.rho_n, given.steps) == \
+        (plain.mesh, plain.quadrature_order, plain.friction, plain.rho_n, plain.steps)
+    assert type(given.quadrature_order) is int and type(given.rho_n) is float
+    a = contact.solve(given, max_iter=np.int64(5), linear_tol=np.float64(1e-10))
+    b = contact.solve(plain, max_iter=5, linear_tol=1e-10)
+    np.testing.assert_array_equal(a.steps[-1].pressure, b.steps[-1].pressure)
+
+
+def test_26g_a_body_force_is_a_vector_of_the_scene_dimension():
+    s = Scene(QUAD, LINE, body_force=np.array([0.0, -9.81]))
+    assert s.body_force == (0.0, -9.81)
+    assert Scene(QUAD, LINE, body_force=(0, "-2*y")).body_force[1].dim == 2
+    for bad, message in [((0.0,), r"body_force must be 2 values"),
+                         ((0.0, float("nan")), r"body_force\[1\] must be finite"),
+                         ((0.0, "-z"), r"body_force\[1\]")]:
+        with pytest.raises(ValueError, match=message):
+            Scene(QUAD, LINE, body_force=bad)
+    from skxfem import solve
+    with pytest.raises(ValueError, match=r"body_force\[1\]: 1e\+200 is a force per volume"):
+        solve(Scene(QUAD, LINE, displacements=(clamped("ymin"),), body_force=(0, 1e200)))

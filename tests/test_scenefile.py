@@ -1,5 +1,7 @@
 """Scene files (TOML): the examples parse, bad files are refused naming the key."""
+import dataclasses
 import os
+import re
 from pathlib import Path
 
 import meshio
@@ -119,8 +121,10 @@ BAD = [
     (MINIMAL + "[[displacement]]\nwhere = 'x + 1'\nx = 0", ValueError,
      ["[[displacement]] #1 where", "condition"]),
     (MINIMAL + "[[displacement]]\nwhere = 1\nx = 0", TypeError, ["[[displacement]] #1 where"]),
-    (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nwhere = 'x < 1'\nx = 0", ValueError,
-     ["[[displacement]] #1 needs exactly one of boundary, where"]),
+    (MINIMAL + "[[displacement]]\nx = 0", ValueError,        # both: issue 26, test_26
+     ["[[displacement]] #1 needs boundary, where, or both"]),
+    (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nwhere = 'x > 2'\nx = 0", ValueError,
+     ["[[displacement]] #1: boundary 'ymin' where 'x > 2' selects no node of the mesh"]),
     (MINIMAL + "[[displacement]]\nboundary = 'ymin'", ValueError,
      ["[[displacement]] #1 needs kind or"]),
     (MINIMAL + "[[displacement]]\nboundary = 'ymin'\nkind = 'fixed'", ValueError,
@@ -369,6 +373,11 @@ def place(table: str, key: str, example):
     data = base(dim)
     if table == "[[interface]]":                  # several interfaces: its level set in it
         data["interface"] = [dict(data.pop("levelset"))]
+    if table == "[body_force]":                   # optional: not in the base
+        data["body_force"] = {}
+    if table == "[[step]]":                       # a load state (of a contact law)
+        data["step"] = [{"name": "press"}]
+        data["interface"] = {"law": "coulomb"}
     if table.startswith("[levelset] "):           # a shape: all its keys are required
         data["levelset"] = {table.split()[1]: {k.name: k.example for k in SCHEMA[table].keys}}
     elif table == "the top level" and key != "name":
@@ -378,7 +387,7 @@ def place(table: str, key: str, example):
         for k in rivals(table, key):
             target.pop(k, None)
         target[key] = example
-    if key in ("max_iter", "friction"):           # options of the contact laws
+    if key in ("max_iter", "friction", "step"):   # options of the contact laws
         part(data, "[[interface]]" if table == "[[interface]]" else "[interface]")["law"] = \
             "coulomb"
     given = data.get("interface")                 # coulomb needs its friction
@@ -545,6 +554,22 @@ def test_16_numbers_beyond_what_the_solve_handles_are_refused_when_read(
         assert load_scene(write(tmp_path, edge)).loads[0].pressure in (MAX_MAGNITUDE, 1e50)
 
 
+@pytest.mark.parametrize("corner, load, words", [
+    ('"1e10*y"', "pressure = 1", r"#2 x: 1e10\*y reaches 1e\+10 at \(1, 1\), which is more "
+                                 r"than 1000 times the size of the body \(1\)"),
+    ('"exp(50*y)"', "pressure = 1", r"#2 x: exp\(50\*y\) reaches 5.18e\+21 at \(1, 1\)"),
+    ('"1000*x*y"', "pressure = '1e151*x'", r"#1 pressure: 1e151\*x reaches 1e\+151 at "
+                                          r"\(1, 1\), which is beyond the largest load"),
+])
+def test_16b_formulas_are_bounded_as_numbers_are_at_the_nodes(tmp_path, corner, load, words):
+    """The 1000-body-sizes limit applied to numbers only: x = "1e10*y" or "exp(50*y)"
+    (5e21) ran.  A formula is evaluated at the nodes it acts on (the top corner: y = 1),
+    and a value at the limit (1000*x*y = 1000 there) is accepted."""
+    with pytest.raises(ValueError, match=words):
+        load_scene(write(tmp_path, loaded(E=1.0, corner=corner, load=load)))
+    load_scene(write(tmp_path, loaded(E=1.0, corner='"1000*x*y"', load="pressure = '1e150*x'")))
+
+
 @pytest.mark.parametrize("n", ["9223372036854775807", "3037000500",
                                "[4294967297, 4294967295]"])
 def test_17_an_absurd_box_is_not_built_to_check_its_selections(tmp_path, monkeypatch, n):
@@ -675,3 +700,174 @@ def test_26b_the_solver_table_is_the_scenes_solver(tmp_path):
         with pytest.raises(ValueError, match=rf"^bad.toml: \[solver\] {key} must be"):
             load_scene(write(tmp_path, MINIMAL + "[interface]\nlaw = 'frictionless'\n"
                              f"[solver]\n{bad}\n", "bad.toml"))
+
+
+# --- issue 26, item 6: scene-file traps -----------------------------------------------
+
+@pytest.mark.parametrize("text, where", [
+    (TWO.replace("steps = [0.5, 1.0]\n", "") + "steps = [0.5, 1.0]\n", "[[interface]] #2"),
+    (MINIMAL + '[material]\nE = 2.0\nname = "late"\n', "[material]"),
+    (MINIMAL + "[[load]]\nboundary = 'ymax'\npressure = 1\nsteps = [1]\n", "[[load]] #1"),
+])
+def test_25_a_top_level_key_after_a_table_is_said_to_belong_before_it(tmp_path, text, where):
+    """steps written after the [[interface]] tables falls into the last one (TOML) and
+    was refused as "unknown key 'steps'" only."""
+    key = "steps" if "steps" in text.splitlines()[-1] else "name"
+    with pytest.raises(ValueError, match=rf"{re.escape(where)}: unknown key '{key}'; allowed "
+                                         rf"keys: .*\. '{key}' is a top-level key, but TOML "
+                                         rf"puts every key written after a table header into "
+                                         rf"that table: write the top-level keys \(name, "
+                                         rf"steps\) before the first table"):
+        load_scene(write(tmp_path, text))
+    fixed = text.splitlines()[-1] + "\n" + "\n".join(text.splitlines()[:-1]) + "\n"
+    assert load_scene(write(tmp_path, fixed))
+
+
+def test_26_a_load_or_a_support_may_take_a_face_and_a_condition(tmp_path):
+    """[[load]] combines boundary and where: the part of a face where the condition holds
+    (the ymax face right of x = 0.5 here), as the Python selection of the same facets;
+    a [[displacement]] too (the nodes of xmax above y = 0.5)."""
+    import skxfem
+    from skxfem.scene import Displacement, SurfaceLoad
+
+    text = MINIMAL.replace("n = 3", "n = 4") + (
+        "[[displacement]]\nboundary = 'ymin'\nkind = 'clamped'\n"
+        "[[displacement]]\nboundary = 'xmax'\nwhere = 'y > 0.5'\nx = 0.01\n"
+        "[[load]]\nboundary = 'ymax'\nwhere = 'x > 0.5'\npressure = 2.0\n")
+    s = load_scene(write(tmp_path, text))
+    load, moved = s.loads[0], s.displacements[1]
+    assert (load.boundary, load.where.text, moved.boundary, moved.where.text) == \
+        ("ymax", "x > 0.5", "xmax", "y > 0.5")
+    top = 1 - 1e-9
+    same = dataclasses.replace(s, displacements=(
+        clamped("ymin"), Displacement(lambda x: (x[0] > top) & (x[1] > 0.5), {"x": 0.01})),
+        loads=(SurfaceLoad(lambda x: (x[1] > top) & (x[0] > 0.5), pressure=2.0),))
+    a, b = skxfem.solve(s), skxfem.solve(same)
+    np.testing.assert_array_equal(a.problem.F, b.problem.F)
+    np.testing.assert_array_equal(a.problem.g, b.problem.g)
+    assert a.problem.D.tolist() == b.problem.D.tolist()
+    down = a.problem.F[a.problem.V.basis.nodal_dofs[1]].sum()   # p times the width 0.5
+    assert down == pytest.approx(-2.0 * 0.5, rel=1e-12)
+
+
+# --- issue 26, item 4: a load path in the file -----------------------------------------
+
+HISTORY = '''
+name = "history"
+[mesh]
+box = {n = [4, 5], cell = "quad"}
+[levelset]
+plane = {point = [0.0, 0.5], normal = [0.0, 1.0]}
+[[displacement]]
+boundary = "ymin"
+kind = "clamped"
+[interface]
+law = "coulomb"
+friction = 0.5
+
+[[step]]
+name = "press"
+[[step.load]]
+boundary = "ymax"
+pressure = 1.0
+[[step.displacement]]
+boundary = "ymax"
+x = 0.0
+
+[[step]]
+name = "shear"
+[[step.load]]
+boundary = "ymax"
+pressure = 1.0
+[[step.displacement]]
+boundary = "ymax"
+x = 2.0
+'''
+
+
+def test_27_a_file_history_of_load_states_is_the_python_history(tmp_path):
+    """[[step]] tables, each with its own loads and imposed displacements (press, then
+    shear), solve as skxfem.contact.solve(scene, history=[press, shear]) does, to the
+    bit; a state may change the law (unload, bonded)."""
+    import skxfem
+    from skxfem import contact
+    from skxfem.levelset import plane
+    from skxfem.scene import Displacement, SurfaceLoad
+
+    s = load_scene(write(tmp_path, HISTORY))
+    assert [st.name for st in s.steps] == ["press", "shear"]
+    press = Scene(Box((4, 5), "quad"), plane((0.0, 0.5), (0.0, 1.0)), name="press",
+                  displacements=(clamped("ymin"), Displacement("ymax", {"x": 0.0})),
+                  loads=(SurfaceLoad("ymax", pressure=1.0),), law="coulomb", friction=0.5)
+    shear = dataclasses.replace(press, name="shear", displacements=(
+        clamped("ymin"), Displacement("ymax", {"x": 2.0})))
+    by_file, by_python = skxfem.solve(s), contact.solve(press, history=[press, shear])
+    assert [st.load for st in by_file.steps] == ["press", "shear"]
+    for a, b in zip(by_file.steps, by_python.steps, strict=True):
+        np.testing.assert_array_equal(a.U, b.U)
+        np.testing.assert_array_equal(a.pressure, b.pressure)
+        np.testing.assert_array_equal(a.status, b.status)
+    assert by_file.steps[1].status.tolist() != by_file.steps[0].status.tolist()  # it slides
+    unload = HISTORY + ('\n[[step]]\nname = "unload"\nlaw = "bonded"\n'
+                        '[[step.displacement]]\nboundary = "ymax"\nx = 2.0\n')
+    last = skxfem.solve(load_scene(write(tmp_path, unload))).steps[-1]
+    assert (last.load, last.law) == ("unload", "bonded")
+
+
+@pytest.mark.parametrize("edit, words", [
+    (lambda t: "steps = [1.0]\n" + t, "steps and [[step]] tables are both given"),
+    (lambda t: t.replace('law = "coulomb"\nfriction = 0.5', 'law = "bonded"'),
+     "[[step]] tables are the load states of a contact solve; the law is 'bonded'"),
+    (lambda t: t.replace('name = "shear"', 'name = "shear"\nlaw = "glue"'),
+     "[[step]] #2 law must be one of bonded, bilateral, frictionless, coulomb, adhesive"),
+    (lambda t: t.replace('name = "shear"', 'name = "shear"\nfriction = -1.0'),
+     "[[step]] #2: Scene friction (Coulomb's mu) must be a number >= 0"),
+    (lambda t: t.replace("x = 2.0", "x = 5000.0"),
+     "[[step]] #2 [[step.displacement]] #1 x: 5000 is more than 1000 times"),
+    (lambda t: t.replace("x = 2.0", "x = 2.0\nbogus = 1"),
+     "[[step]] #2 [[step.displacement]] #1: unknown key 'bogus'"),
+])
+def test_28_bad_step_tables_are_refused_naming_them(tmp_path, edit, words):
+    with pytest.raises((ValueError, TypeError)) as info:
+        load_scene(write(tmp_path, edit(HISTORY)))
+    assert words in str(info.value), info.value
+
+
+HANGING = '''
+name = "hanging"
+[mesh]
+box = {n = [3, 6], cell = "quad", size = [1.0, 1.2]}
+[levelset]
+expr = "y - 0.5"
+[material]
+E = 2.0
+nu = 0.0
+[body_force]
+force = [0, "-3"]                  # rho g = 3, down
+[[displacement]]
+boundary = "ymax"
+kind = "clamped"
+'''
+
+
+@pytest.mark.parametrize("cell, n", [("quad", "[3, 6]"), ("hex", "[2, 2, 6]")])
+def test_29_a_block_hanging_under_gravity_has_the_exact_stress_and_sag(tmp_path, cell, n):
+    """A block of height H = 1.2 hangs from its clamped top under gravity ρg = 3 (ν = 0:
+    a bar): σ_yy = ρg y, so Γ at y = 0.5 carries the weight below it, p = -ρg 0.5 (a
+    tension), and the bottom sags by u = -ρg H²/(2E) (Q1 elements are nodally exact)."""
+    import skxfem
+
+    text = HANGING.replace('cell = "quad"', f'cell = "{cell}"').replace("[3, 6]", n)
+    if cell == "hex":
+        text = (text.replace("size = [1.0, 1.2]", "size = [1.0, 1.0, 1.2]")
+                .replace('expr = "y - 0.5"', 'expr = "z - 0.5"')
+                .replace('force = [0, "-3"]', 'force = [0, 0, "-3"]')
+                .replace("ymax", "zmax"))
+    s = load_scene(write(tmp_path, text))
+    assert [float(b) if not callable(b) else b.text for b in s.body_force] == \
+        [0.0] * (s.dim - 1) + ["-3"]
+    r = skxfem.solve(s)
+    np.testing.assert_allclose(r.pressure, -3 * 0.5, rtol=1e-12)
+    bottom = r.mesh.p[-1] < 1e-9
+    np.testing.assert_allclose(r.u_minus[-1][bottom], -3 * 1.2 ** 2 / (2 * 2.0), rtol=1e-12)
+    np.testing.assert_allclose(r.u_minus[:-1], 0, atol=1e-13)    # ν = 0: no sideways motion

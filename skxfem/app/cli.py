@@ -59,6 +59,8 @@ import unicodedata
 import warnings
 from pathlib import Path
 
+import numpy as np
+
 from .. import __version__
 from ..contact.history import StepCutWarning, StepRetryWarning
 from ..contact.laws import CONTACT_LAWS, STATUS_NAMES
@@ -229,8 +231,38 @@ def _fail(error: BaseException, debug: bool) -> int:
     return 1
 
 
+def _closed_words(result) -> str:
+    """What the closed points of the last step do, in the words of each law: Coulomb's
+    ``2 stick, 3 slip``; ``free to slide`` (frictionless, bilateral); ``held`` (adhesive,
+    bonded: no slip wherever closed).  Several laws: each with its name, ``coulomb: 2
+    stick, 1 slip; bonded: 3 held``."""
+    last = result.steps[-1]
+    names = last.law if isinstance(last.law, tuple) else (last.law,)
+    which = result.ops.interface if result.ops.interface is not None and len(names) > 1 \
+        else np.zeros(last.status.size, int)
+    status = np.asarray(last.status)
+    words = {}
+    for k, name in enumerate(names):
+        here = status[which == k]
+        stick, slip = int((here == STATUS_NAMES.index("stick")).sum()), \
+            int((here == STATUS_NAMES.index("slip")).sum())
+        before = words.get(name, (0, 0))
+        words[name] = (before[0] + stick, before[1] + slip)
+    parts = []
+    for name, (stick, slip) in words.items():
+        if name == "coulomb":
+            text = f"{stick} stick, {slip} slip"
+        elif name in ("frictionless", "bilateral"):
+            text = f"{stick + slip} free to slide"
+        else:                                       # adhesive, bonded: no slip when closed
+            text = f"{stick + slip} held"
+        parts.append(text if len(words) == 1 else f"{name}: {text}")
+    return "; ".join(parts)
+
+
 def _contact_line(result) -> str:
-    """The one-line summary of a contact result: steps, iterations, last step's statuses."""
+    """The one-line summary of a contact result: steps, iterations, last step's statuses
+    (:func:`_closed_words`)."""
     last = result.steps[-1]
     counts = {name: int((last.status == code).sum()) for code, name in enumerate(STATUS_NAMES)}
     its = [int(st.newton.iterations) for st in result.steps]
@@ -238,10 +270,12 @@ def _contact_line(result) -> str:
          if last.pressure.size else "no interface point")
     law = result.law  # several interfaces: one law each
     name = "+".join(x.name for x in law) if isinstance(law, tuple) else law.name
+    each = ", ".join(map(str, its)) if len(its) <= 6 else \
+        f"{', '.join(map(str, its[:3]))}, ..., {its[-1]}; at most {max(its)}"
     return (f"{result.problem.scene.name}: {name}, {len(its)} load step(s), "
-            f"{sum(its)} Newton iterations ({', '.join(map(str, its))}); last step: "
-            f"{counts['stick'] + counts['slip']} in contact ({counts['stick']} stick, "
-            f"{counts['slip']} slip), {counts['open']} open, {p}, {result.linear} solve")
+            f"{sum(its)} Newton iterations ({each}); last step: "
+            f"{counts['stick'] + counts['slip']} in contact ({_closed_words(result)}), "
+            f"{counts['open']} open, {p}, {result.linear} solve")
 
 
 class OverflowRefused(ValueError):

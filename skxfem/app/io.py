@@ -6,7 +6,8 @@
   ``n_dofs``, ``n_multipliers``, the ``timings`` in seconds per stage and
   ``linear_solve``: the solve taken (``linear``) and how it went
   (:attr:`skxfem.result.Result.linear_info`: residual, balance, and the
-  iterations and residuals of an iterative solve).  NaN or inf become ``null``.
+  iterations and residuals of an iterative solve).  NaN or inf is never written:
+  :func:`write_result` refuses such a result (:class:`NotFiniteError`) before writing.
 * ``displacement.vtu``: each side of Γ as its own piece of mesh with its own
   field ``displacement``, so that ParaView's *Warp By Vector* shows the
   discontinuity: the cells of Ω⁻ and the cut cells with ``u_minus`` on one copy
@@ -15,6 +16,11 @@
   moving with its side's field; cell data ``side`` (-1 or +1: the copy) and
   ``cut`` (1 on cut cells), point data ``levelset`` (ψ at the nodes: clip a
   side's copy at ψ = 0 to see only its own part of the cut cells).
+* Both also carry the support reactions: ``result.json``'s ``reactions``
+  (:func:`reaction_summary`: ``applied``, each support's force, their ``total``),
+  ``displacement.vtu``'s point data ``reaction`` (at the copy of each node on its own
+  side) and its cell data ``strain``, ``stress`` (3 x 3, :func:`tensors9`) and
+  ``von_mises``, at the centre of each cell from its piece's field.
 * ``interface.vtu``: the interface facets (``line`` cells in 2D, ``triangle``
   cells in 3D) on the multiplier points, with point data ``pressure``,
   ``traction``, ``tangential_traction``, ``normal``, ``jump`` and ``gap``.
@@ -32,8 +38,10 @@ edges' points) and a list ``steps``, one entry per load step, at the dofs:
 equation, equilibrium, contact and friction: the relative residual at the
 start, then after each iteration) and ``krylov`` (the Krylov iterations of each
 iterative Newton step; empty after direct ones).  ``interface.vtu`` adds the point data
-``status`` (0 open, 1 stick, 2 slip).  The VTU files hold the last step only
-(the JSON has every step).
+``status`` (0 open, 1 stick, 2 slip).  The VTU files hold the last step; the
+series adds one of each per load step, ``displacement_0001.vtu`` ...,
+``interface_0001.vtu`` ..., and their ParaView collections ``displacement.pvd`` and
+``interface.pvd`` (:data:`SERIES`; the JSON has every step too).
 
 **Several interfaces** (:mod:`skxfem.result`): ``result.json``'s ``law`` and
 ``space`` are lists, one per interface, and it adds ``interfaces``, one entry
@@ -82,7 +90,8 @@ from ..fem.files import check_folder, quiet, write_set
 from ..fem.vtu import cell_sides, pad3, region_pieces, side_pieces, vectors3, vtk_cells
 from ..levelset import nodal_values
 
-__all__ = ["write_result", "result_summary", "cell_sides", "vtk_cells", "check_output",
+__all__ = ["write_result", "result_summary", "NotFiniteError", "reaction_summary", "tensors9",
+           "von_mises", "cell_sides", "vtk_cells", "check_output",
            "side_pieces", "default_folder", "contact_summary", "EQUATIONS"]
 
 _STAGES = ("cut", "enrich", "assemble", "solve")
@@ -90,19 +99,33 @@ _FILES = {"json": "result.json", "displacement": "displacement.vtu",
           "interface": "interface.vtu"}
 
 
-def _plain(a) -> list | float | None:
-    """A number or an array as plain Python floats (nested lists), NaN/inf as None."""
+class NotFiniteError(RuntimeError):
+    """A result holding NaN or inf: never written (a bug of the solve, not of the input)."""
+
+
+def _plain(a, key: str = "a value") -> list | float | None:
+    """A number or an array as plain Python floats (nested lists); ``None`` (a value not
+    given, such as the ρ of a tie) stays None.  NaN or inf is refused
+    (:class:`NotFiniteError`, naming ``key``): a result file never holds them."""
+    if a is None:
+        return None
     a = np.asarray(a, dtype=float)
-    return np.where(np.isfinite(a), a, None).tolist()
+    if not np.all(np.isfinite(a)):
+        raise NotFiniteError(f"the result's {key} holds NaN or inf "
+                             f"({int(np.size(a) - np.isfinite(a).sum())} of {np.size(a)} "
+                             f"values); nothing was written: please report this scene")
+    return a.tolist()
 
 
-def _jsonable(value):
-    """Arrays and numpy numbers inside dicts and lists as plain Python values."""
+def _jsonable(value, key: str = "result"):
+    """Arrays and numpy numbers inside dicts and lists as plain Python values (NaN and
+    inf refused, naming the key)."""
     if isinstance(value, dict):
-        return {k: _jsonable(v) for k, v in value.items()}
+        return {k: _jsonable(v, f"{key}.{k}") for k, v in value.items()}
     if isinstance(value, list):
-        return [_jsonable(v) for v in value]
-    return _plain(value) if isinstance(value, (np.ndarray, float, np.floating)) else value
+        return [_jsonable(v, f"{key}[{i}]") for i, v in enumerate(value)]
+    return _plain(value, key) if isinstance(value, (np.ndarray, float, np.floating)) \
+        else value
 
 
 def result_summary(result) -> dict:
@@ -120,22 +143,45 @@ def result_summary(result) -> dict:
         "scene": result.scene.name,
         "law": [i.law for i in items] if several else result.scene.law,
         "space": [i.space for i in items] if several else result.scene.space,
-        "points": _plain(np.asarray(result.points).T),
-        "normals": _plain(np.asarray(result.normals).T),
-        "traction": _plain(np.asarray(result.traction).T),
-        "pressure": _plain(result.pressure),
-        "jump": _plain(np.asarray(result.jump).T),
-        "max_jump": _plain(result.max_jump),
+        "points": _plain(np.asarray(result.points).T, "points"),
+        "normals": _plain(np.asarray(result.normals).T, "normals"),
+        "traction": _plain(np.asarray(result.traction).T, "traction"),
+        "pressure": _plain(result.pressure, "pressure"),
+        "jump": _plain(np.asarray(result.jump).T, "jump"),
+        "max_jump": _plain(result.max_jump, "max_jump"),
         "n_dofs": int(result.n_dofs),
         "n_multipliers": int(result.n_multipliers),
         "timings": timings,
-        "linear_solve": _jsonable({"linear": result.linear, **dict(result.linear_info)}),
+        "linear_solve": _jsonable({"linear": result.linear, **dict(result.linear_info)},
+                                  "linear_solve"),
     }
+    if _solved(result):
+        data["reactions"] = _jsonable(reaction_summary(result), "reactions")
     if result.is_contact:
-        data.update(_jsonable(contact_summary(result)))
+        data.update(_jsonable(contact_summary(result), "steps"))
     if several:
         data.update(_interfaces(result, items, data))
     return data
+
+
+def reaction_summary(result) -> dict:
+    """The ``reactions`` of ``result.json``: the resultant of the loads (``applied``:
+    surface loads and body force, of the last step), that of each imposed displacement
+    in the scene's order (``supports``: its ``boundary`` and ``force``) and their sum
+    (``total``), which balances ``applied``: total + applied = 0 to round-off."""
+    forces = result.support_forces()
+    def name(d):
+        text = d.boundary if isinstance(d.boundary, str) else \
+            getattr(d.boundary, "text", None) or "selection"
+        where = getattr(d, "where", None)
+        return text if where is None else \
+            f"{text} where {getattr(where, 'text', None) or 'selection'}"
+
+    names = [name(d) for d in result.scene.displacements]
+    return {"applied": np.asarray(result.applied, dtype=float),
+            "total": np.asarray(result.reactions.sum(axis=1), dtype=float),
+            "supports": [{"boundary": name, "force": np.asarray(f, dtype=float)}
+                         for name, f in zip(names, forces, strict=True)]}
 
 
 def _interfaces(result, items, data: dict) -> dict:
@@ -176,7 +222,7 @@ def check_output(out_dir: str | Path) -> Path:
     if str(out_dir) == "":
         raise ValueError("the output folder is empty; give a folder name such as "
                          "results/plate")
-    check_folder(out, _FILES.values())
+    check_folder(out, [*_FILES.values(), *SERIES])
     existing = Path(os.path.realpath(out)).parent
     while not existing.exists() and existing != existing.parent:
         existing = existing.parent
@@ -196,17 +242,94 @@ def default_folder(name: str) -> Path:
     Every run of characters other than letters, digits, ``-``, ``_`` and ``.``
     (path separators, spaces, control characters) becomes ``_``; leading and
     trailing dots and ``_`` go, so that neither ``..`` nor a hidden folder can
-    result; at most 100 characters; ``result`` if nothing is left.
+    result; at most 100 bytes in UTF-8 (33 CJK characters: file systems count bytes);
+    ``result`` if nothing is left.
 
     >>> [str(default_folder(s)) for s in ("../../escaped", "/etc/plate 2", "..", "été")]
     ['escaped', 'etc_plate_2', 'result', 'été']
+    >>> len(str(default_folder("結" * 100)))
+    33
     """
-    safe = re.sub(r"[^\w.-]+", "_", str(name)).strip("._")[:100].strip("._")
+    safe = re.sub(r"[^\w.-]+", "_", str(name)).strip("._")
+    safe = os.fsencode(safe)[:100].decode("utf-8", "ignore").strip("._")  # 100 bytes
     return Path(safe or "result")
 
 
 def _write_json(result, path: Path):
     path.write_text(json.dumps(result_summary(result), indent=1, allow_nan=False))
+
+
+def tensors9(t: np.ndarray, out_of_plane: np.ndarray | None = None) -> np.ndarray:
+    """(n, 9) rows of 3 x 3 tensors from (dim, dim, n), as VTK reads a tensor; in 2D the
+    zz entry is ``out_of_plane`` (n,) (0 if None).
+
+    >>> tensors9(np.array([[[1.0], [2.0]], [[2.0], [3.0]]]), np.array([4.0])).tolist()
+    [[1.0, 2.0, 0.0, 2.0, 3.0, 0.0, 0.0, 0.0, 4.0]]
+    """
+    dim, n = t.shape[0], t.shape[-1]
+    full = np.zeros((3, 3, n))
+    full[:dim, :dim] = t
+    if dim == 2 and out_of_plane is not None:
+        full[2, 2] = out_of_plane
+    return np.moveaxis(full, 2, 0).reshape(n, 9)
+
+
+def _zz(eps, sig, material, dim):
+    """The out-of-plane strain and stress of a 2D field: plane strain ε_zz = 0 and
+    σ_zz = ν(σ_xx + σ_yy); plane stress σ_zz = 0 and ε_zz = -ν/(1 - ν)(ε_xx + ε_yy)."""
+    if dim == 3:
+        return None, None
+    nu = material.nu
+    if material.plane == "stress":
+        return -nu / (1 - nu) * (eps[0, 0] + eps[1, 1]), np.zeros(eps.shape[-1])
+    return np.zeros(eps.shape[-1]), nu * (sig[0, 0] + sig[1, 1])
+
+
+def von_mises(sigma9: np.ndarray) -> np.ndarray:
+    """(n,) the von Mises stress of (n, 9) stress tensors: sqrt(3/2 s:s), s the deviator.
+
+    >>> float(von_mises(np.array([[2.0, 0, 0, 0, 0, 0, 0, 0, 0]]))[0])   # uniaxial 2
+    2.0
+    """
+    s = sigma9.reshape(-1, 3, 3)
+    dev = s - np.trace(s, axis1=1, axis2=2)[:, None, None] * np.eye(3) / 3
+    return np.sqrt(1.5 * (dev * dev).sum(axis=(1, 2)))
+
+
+def _solved(result) -> bool:
+    """True for a result that can give its stresses and reactions (a
+    :class:`skxfem.result.Result` with its problem; a stand-in may lack them)."""
+    return getattr(result, "problem", None) is not None and hasattr(result, "strains")
+
+
+def _cell_fields(result, pieces: list[np.ndarray]) -> dict:
+    """The cell data ``strain``, ``stress`` (3 x 3, 9 components) and ``von_mises`` of
+    the written cells: piece k holds the cells ``pieces[k]`` with field k of
+    :meth:`skxfem.result.Result.fields` ({} for a result without them)."""
+    if not _solved(result):
+        return {}
+    dim = result.mesh.dim()
+    eps9, sig9 = [], []
+    for eps, sig, (_, material), cells in zip(result.strains(), result.stresses(),
+                                              result.fields(), pieces, strict=True):
+        e, s = eps[:, :, cells], sig[:, :, cells]
+        ezz, szz = _zz(e, s, material, dim)
+        eps9.append(tensors9(e, ezz))
+        sig9.append(tensors9(s, szz))
+    sig = np.vstack(sig9)
+    return {"strain": [np.vstack(eps9)], "stress": [sig], "von_mises": [von_mises(sig)]}
+
+
+def _reactions(result, nodes: list[np.ndarray], owners: list[np.ndarray]) -> dict:
+    """``{"reaction": (n, 3)}``, the support reaction at each written point: at a
+    node's copy in its own piece (``owners[k]``: the points of piece k whose node lies
+    in it), 0 at the other copies, so that the reactions of the file sum to those of
+    the result ({} for a result without them)."""
+    if not _solved(result):
+        return {}
+    R = result.reactions
+    out = [np.where(own[:, None], R[:, n].T, 0.0) for n, own in zip(nodes, owners)]
+    return {"reaction": pad3(np.vstack(out))}
 
 
 def _write_displacement(result, path: Path):
@@ -218,11 +341,17 @@ def _write_displacement(result, path: Path):
         points, cells, region, cut, disp, nodes = region_pieces(mesh, node_region,
                                                                 result.u_regions)
         psi = {f"levelset_{k}": Vk.cut.psi[nodes] for k, Vk in enumerate(V.per_interface)}
+        regions_of = node_region[mesh.t]
+        pieces = [np.flatnonzero((regions_of == r).any(axis=0))
+                  for r in range(len(result.u_regions))]
+        per = [np.unique(mesh.t[:, c]) for c in pieces]
+        reaction = _reactions(result, per, [node_region[n] == r for r, n in enumerate(per)])
         with quiet():
             meshio.write(path, meshio.Mesh(
                 pad3(points), [(cell_type, cells)],
-                point_data={"displacement": pad3(disp), **psi},
-                cell_data={"region": [region], "cut": [cut]}), file_format="vtu")
+                point_data={"displacement": pad3(disp), **psi, **reaction},
+                cell_data={"region": [region], "cut": [cut],
+                           **_cell_fields(result, pieces)}), file_format="vtu")
         return
     levelset = getattr(result.scene, "levelset", None)
     if levelset is None:  # no level set known: every cell on both sides
@@ -231,11 +360,17 @@ def _write_displacement(result, path: Path):
         psi_nodes = nodal_values(levelset, mesh)
     points, cells, side, cut, disp, psi = side_pieces(mesh, psi_nodes, result.u_minus,
                                                       result.u_plus)
+    sides = cell_sides(mesh, psi_nodes)
+    pieces = [np.flatnonzero(sides != -s) for s in (-1, 1)]
+    per = [np.unique(mesh.t[:, c]) for c in pieces]
+    own = [np.where(psi_nodes[n] < 0, -1, 1) == s for n, s in zip(per, (-1, 1))]
     with quiet():  # meshio's own messages are not ours to print
         meshio.write(path, meshio.Mesh(
             pad3(points), [(cell_type, cells)],
-            point_data={"displacement": pad3(disp), "levelset": psi},
-            cell_data={"side": [side], "cut": [cut]}), file_format="vtu")
+            point_data={"displacement": pad3(disp), "levelset": psi,
+                        **_reactions(result, per, own)},
+            cell_data={"side": [side], "cut": [cut], **_cell_fields(result, pieces)}),
+            file_format="vtu")
 
 
 def _write_interface(result, path: Path):
@@ -264,6 +399,46 @@ _WRITERS = {"json": _write_json, "displacement": _write_displacement,
             "interface": _write_interface}
 
 
+SERIES = ("displacement.pvd", "interface.pvd", "displacement_*.vtu", "interface_*.vtu")
+"""The files of the series of a contact result: a ParaView collection (``.pvd``) of
+each VTU file, with one file per load step (``displacement_0001.vtu`` ...)."""
+
+
+def _pvd(files: list[str]) -> str:
+    """A ParaView collection of ``files``, their timesteps 1, 2, ... (the load steps).
+
+    >>> print(_pvd(["a_0001.vtu"]))
+    <?xml version="1.0"?>
+    <VTKFile type="Collection" version="0.1">
+      <Collection>
+        <DataSet timestep="1" part="0" file="a_0001.vtu"/>
+      </Collection>
+    </VTKFile>
+    <BLANKLINE>
+    """
+    rows = "".join(f'    <DataSet timestep="{k + 1}" part="0" file="{f}"/>\n'
+                   for k, f in enumerate(files))
+    return ('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n'
+            f"  <Collection>\n{rows}  </Collection>\n</VTKFile>\n")
+
+
+def _series(result) -> dict:
+    """The writers of the series of a contact result (:data:`SERIES`): each load step's
+    displacement.vtu and interface.vtu, and their collections."""
+    if not getattr(result, "is_contact", False) or not _solved(result):
+        return {}
+    from ..contact.history import step_results  # the contact layer, below this one
+    steps = step_results(result)
+    writers = {}
+    for kind, write in (("displacement", _write_displacement),
+                        ("interface", _write_interface)):
+        files = [f"{kind}_{k + 1:04d}.vtu" for k in range(len(steps))]
+        for name, step in zip(files, steps):
+            writers[name] = lambda path, step=step, write=write: write(step, path)
+        writers[f"{kind}.pvd"] = lambda path, files=files: path.write_text(_pvd(files))
+    return writers
+
+
 def write_result(result, out_dir: str | Path) -> dict[str, Path]:
     """Write ``result.json``, ``displacement.vtu`` and ``interface.vtu`` into ``out_dir``.
 
@@ -282,20 +457,36 @@ def write_result(result, out_dir: str | Path) -> dict[str, Path]:
     Returns
     -------
     dict
-        ``{"json": ..., "displacement": ..., "interface": ...}`` paths.
+        ``{"json": ..., "displacement": ..., "interface": ...}`` paths; a contact
+        result adds ``"displacement_series"`` and ``"interface_series"``, the
+        ``.pvd`` collections of one file per load step (:data:`SERIES`).
 
     Raises
     ------
     ValueError
         From :func:`check_output` or :func:`result_summary`.
+    NotFiniteError
+        A result holding NaN or inf (a RuntimeError: never written).
     OSError
         If a file cannot be written (e.g. the disk is full); nothing is left.
     """
     out = check_output(out_dir)
     result_summary(result)                      # refuse a bad result before touching disk
-    written = write_set(out, {name: (lambda path, key=key: _WRITERS[key](result, path))
-                              for key, name in _FILES.items()})
-    return {key: written[name] for key, name in _FILES.items()}
+    for key in ("u_minus", "u_plus", "u_regions"):  # the fields of displacement.vtu
+        value = getattr(result, key, None)
+        if value is not None and not all(np.all(np.isfinite(np.asarray(v, dtype=float)))
+                                         for v in (value if key == "u_regions" else [value])):
+            raise NotFiniteError(f"the result's {key} holds NaN or inf; nothing was "
+                                 f"written: please report this scene")
+    writers = {name: (lambda path, key=key: _WRITERS[key](result, path))
+               for key, name in _FILES.items()}
+    series = _series(result)
+    written = write_set(out, {**writers, **series}, SERIES)
+    paths = {key: written[name] for key, name in _FILES.items()}
+    if series:
+        paths.update({f"{kind}_series": written[f"{kind}.pvd"]
+                      for kind in ("displacement", "interface")})
+    return paths
 
 
 # -----------------------------------------------------------------------------

@@ -82,6 +82,7 @@ from __future__ import annotations
 
 import time
 import warnings
+from collections.abc import Mapping, Sequence, Set
 from dataclasses import dataclass, replace
 from fractions import Fraction
 
@@ -98,7 +99,7 @@ from ..linalg.saddle import SingularSystemError
 from ..linalg.threads import limited
 from ..problem import Problem, assemble
 from ..result import Result, on_edges, result
-from ..scene.model import Scene, check_scene
+from ..scene.model import Scene, check_scene, check_steps
 from ..scene.settings import MAX_ITER
 from .fixed_point import fixed_point
 from .holding import check_held_by_gamma
@@ -119,7 +120,8 @@ from .newton import (
 )
 
 __all__ = ["Step", "parameters", "solve", "progress_line", "ContactConvergenceError",
-           "StepCutWarning", "StepRetryWarning", "METHODS", "RHO_RANGE", "MAX_CUTS"]
+           "StepCutWarning", "StepRetryWarning", "METHODS", "RHO_RANGE", "MAX_CUTS",
+           "semi_multiplier", "step_results"]
 
 METHODS = ("newton", "fixed_point")
 
@@ -158,7 +160,8 @@ class Step:
     2 slip; ``Lambda`` (m, k) the semi-multiplier Λ = r_τ/(μλ) of eq. 9a
     (``coulomb``, where p > 0; 0 elsewhere); ``law`` the law of the step
     (several interfaces: a tuple, the law of each);
-    ``increments`` how many increments the step took (1 unless cut).
+    ``increments`` how many increments the step took (1 unless cut); ``F`` the load
+    vector of the step (on the unknowns: its support reactions are K U - F).
     """
 
     load: object
@@ -172,6 +175,7 @@ class Step:
     newton: NewtonInfo
     law: str = ""
     increments: int = 1
+    F: np.ndarray | None = None
 
 
 def parameters(scene: Scene, h: float) -> Law:
@@ -193,9 +197,10 @@ def parameters(scene: Scene, h: float) -> Law:
     for key in ("rho_n", "rho_t"):
         given = getattr(scene, key)
         rho[key] = default if given is None else given
-        if not RHO_RANGE[0] <= rho[key] / default <= RHO_RANGE[1]:
+        ratio = rho[key] / default   # its ends accepted, whatever the last bit of E/h
+        if not RHO_RANGE[0] * (1 - 1e-12) <= ratio <= RHO_RANGE[1] * (1 + 1e-12):
             raise ValueError(
-                f"scene {key} = {rho[key]:g} is {rho[key] / default:.1e} x its default "
+                f"scene {key} = {rho[key]:g} is {ratio:.6g} x its default "
                 f"E/h = {default:g}; it is an augmentation (the solution does not depend "
                 f"on it) and outside {RHO_RANGE[0]:g}..{RHO_RANGE[1]:g} x the default the "
                 f"Newton iteration loses its digits: leave it None or choose it near E/h")
@@ -222,7 +227,7 @@ def _spaces(scene: Scene):
 
 def _same_setup(state: Scene, scene: Scene, pb: Problem, state_pb: Problem, i: int):
     """Refuse a load state that changes what one solve keeps (module notes)."""
-    for key, get in (("material", lambda s: s.material), ("space", _spaces),
+    for key, get in (("material", lambda s: s.materials()), ("space", _spaces),
                      ("quadrature_order", lambda s: s.quadrature_order)):
         if get(state) != get(scene):
             raise ValueError(f"history[{i}]: a load state must keep the scene's {key} "
@@ -248,10 +253,14 @@ def _laws(scene: Scene, hs) -> tuple[Law, ...]:
 def _states(scene: Scene, pb: Problem, history, hs) -> list[_State]:
     """The :class:`_State` of each entry of the history; ``hs`` the mean cut-edge
     length of each interface."""
-    if isinstance(history, (str, bytes)) or not hasattr(history, "__len__") \
+    if isinstance(history, np.ndarray) and history.ndim == 1:
+        history = history.tolist()
+    if isinstance(history, (str, bytes, Mapping, Set)) or not isinstance(history, Sequence) \
             or len(history) == 0:
-        raise ValueError(f"history must be a non-empty sequence of load factors or of "
-                         f"scenes (load states), got {history!r}")
+        raise ValueError(f"history must be a non-empty sequence (a list or tuple, in "
+                         f"order) of load factors or of scenes (load states), got "
+                         f"{type(history).__name__} {history!r:.100}")
+    check_steps(len(history), "history")
     laws = _laws(scene, hs)
     out = []
     for i, item in enumerate(history):
@@ -466,6 +475,28 @@ def _result(pb: Problem, ops: Operators, law, steps: tuple, linear: str,
                   ops=ops, law=law)
 
 
+def step_results(result: Result) -> list[Result]:
+    """The :class:`~skxfem.result.Result` of every load step of a contact ``result``, in
+    order: each with the fields, statuses and reactions of its step (the last is
+    ``result`` itself, recomputed), for a series of files (:mod:`skxfem.app.io`).
+
+    >>> from dataclasses import replace
+    >>> from skxfem.scene import Displacement
+    >>> from skxfem.scene.benchmarks import strip
+    >>> s = strip(n=3)
+    >>> s = replace(s, law="frictionless", steps=(0.5, 1.0),
+    ...             displacements=s.displacements + (Displacement("ymax", {"x": 0.0}),))
+    >>> first, last = step_results(solve(s))
+    >>> bool(np.allclose(2 * first.pressure, last.pressure))
+    True
+    """
+    if not result.is_contact:
+        raise ValueError("step_results takes the result of a contact solve (with steps)")
+    return [_result(result.problem, result.ops, result.law, result.steps[:k + 1],
+                    result.linear, result.linear_info.get("tol"), result.timings["solve"])
+            for k in range(len(result.steps))]
+
+
 def _rescue(step: StepProblem, start: Iterate, failed: ContactConvergenceError, tol: float,
             max_iter: int, solve_kw: dict, where: str = "a load step"):
     """A step whose Newton iteration failed (module notes): Newton again from the same
@@ -621,13 +652,39 @@ def _step(state: _State, ops: Operators, it: Iterate, res, info, pieces,
     """The :class:`Step` of a converged state (``laws`` at its dofs)."""
     m, k = it.r.shape
     slip = np.stack([B @ it.U for B in ops.Bt], axis=1).reshape(m, k) / ops.w[:, None]
-    Lam = np.zeros((m, k))
     p = -it.lam
     ok = (laws.name == "coulomb") & (p > 0)
-    Lam[ok] = -it.r[ok] / (laws.mu[ok, None] * p[ok, None])
+    Lam = np.zeros((m, k))
+    Lam[ok] = semi_multiplier(it.r[ok], laws.mu[ok], p[ok])
     names = tuple(law.name for law in state.laws)
     return Step(state.label, it.U.copy(), -it.lam, it.r.copy(), ops.Bn @ it.U / ops.w, slip,
-                res.status, Lam, info, names[0] if len(names) == 1 else names, pieces)
+                res.status, Lam, info, names[0] if len(names) == 1 else names, pieces,
+                np.asarray(state.F))
+
+
+def semi_multiplier(r: np.ndarray, mu: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """Λ = -r_τ/(μp) (m, k), eq. 9a, at dofs pressed (p > 0) under Coulomb's law.
+
+    r_τ is divided by μ, then by p (μ ≥ 1e-10, :data:`skxfem.scene.parts.FRICTION_RANGE`),
+    so that the product μp never underflows; where p is so small that the quotient
+    is still not finite, Λ is the unit vector -r_τ/|r_τ| (the slip limit |Λ| = 1,
+    which |r_τ| ≤ μp reaches), or 0 where r_τ = 0: never NaN.
+
+    >>> semi_multiplier(np.array([[-0.25]]), np.array([0.5]), np.array([1.0])).tolist()
+    [[0.5]]
+    >>> semi_multiplier(np.array([[-1e-10, 0.0]]), np.array([1.0]), np.array([5e-324]))
+    array([[1., 0.]])
+    """
+    r = np.asarray(r, dtype=float)
+    with np.errstate(all="ignore"):
+        lam = -(r / np.asarray(mu)[:, None]) / np.asarray(p)[:, None]
+    bad = ~np.isfinite(lam).all(axis=1)
+    if bad.any():
+        scale = np.abs(r[bad]).max(axis=1, keepdims=True)
+        unit = -r[bad] / np.where(scale > 0, scale, 1.0)
+        size = np.linalg.norm(unit, axis=1, keepdims=True)
+        lam[bad] = unit / np.where(size > 0, size, 1.0)
+    return lam + 0.0   # no -0.0
 
 
 def _sticking(laws: PointLaws, status) -> np.ndarray:

@@ -37,7 +37,8 @@ def check_graph(edges, psi, points, nodes):
                          f" got {points.shape}")
     if edges.size and (edges.min() < 0 or edges.max() >= psi.size):
         raise ValueError(f"edges refer to nodes outside 0..{psi.size - 1}")
-    for e in np.flatnonzero(psi[edges[0]] * psi[edges[1]] >= 0)[:1]:
+    signs = np.sign(psi[edges[0]]) * np.sign(psi[edges[1]])    # no underflow, as products
+    for e in np.flatnonzero(signs >= 0)[:1]:
         raise ValueError(f"edges must be strictly cut, psi(v1) psi(v2) < 0; edge {e} = "
                          f"{edges[:, e].tolist()} has psi {psi[edges[:, e]].tolist()}")
     if np.unique(np.sort(edges, axis=0), axis=1).shape[1] < edges.shape[1]:

@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import contextlib
 import errno
+import fnmatch
 import io
 import os
 import re
@@ -145,12 +146,63 @@ def quiet() -> Iterator[io.StringIO]:
 
 
 def _ours(name: str, names) -> bool:
-    """A file of the set, or a temporary one a killed earlier writer left inside it
+    """A file of the set (a name with ``*`` is a pattern: ``displacement_*.vtu``, the
+    files of a series), or a temporary one a killed earlier writer left inside it
     (``.result-PID-HEX.json``: the temporary names of skxfem up to 0.1)."""
-    if name in names:
+    if name in names or any("*" in n and fnmatch.fnmatchcase(name, n) for n in names):
         return True
     return any(re.fullmatch(rf"\.{re.escape(Path(n).stem)}-\d+-[0-9a-f]{{8}}"
                             rf"{re.escape(Path(n).suffix)}", name) for n in names)
+
+
+HIDDEN = len(".") + len(".skxfem-new-") + 16
+"""The bytes :func:`write_set` adds to a folder's name for its hidden folders."""
+
+
+def check_name_lengths(folder, longest: int = 0) -> None:
+    """Refuse a folder whose name, or a name in its path, is longer in bytes than the
+    file system takes (255 bytes a name on most: 85 CJK characters), keeping
+    :data:`HIDDEN` bytes for the hidden folder of :func:`write_set`, and a path longer
+    than 4095 bytes with a file name of ``longest`` bytes in it: so that the results
+    can be written, checked before anything is solved.
+
+    >>> check_name_lengths("results/" + "結" * 80)
+    Traceback (most recent call last):
+    ...
+    ValueError: output folder name '結結結結結結結結結結結結...' is 240 bytes long ...
+    """
+    path = Path(os.path.abspath(folder))
+    existing = Path(path.anchor)
+    for part in path.parts[1:]:             # the deepest existing folder, from the root
+        try:
+            if not (existing / part).is_dir():
+                break
+        except OSError:                     # a name too long to look up
+            break
+        existing = existing / part
+    try:
+        name_max = os.pathconf(existing, "PC_NAME_MAX")
+    except (OSError, ValueError, AttributeError):
+        name_max = 255
+    try:
+        path_max = os.pathconf(existing, "PC_PATH_MAX")
+    except (OSError, ValueError, AttributeError):
+        path_max = 4096
+    parts = path.parts[1:]
+    for k, part in enumerate(parts):
+        size, top = len(os.fsencode(part)), name_max - (HIDDEN if k == len(parts) - 1 else 0)
+        if size > top:
+            shown = part if len(part) <= 12 else part[:12] + "..."
+            why = (f" (its limit {name_max} less {HIDDEN} for the hidden folder the results "
+                   f"are written into first)" if k == len(parts) - 1 else "")
+            raise ValueError(f"output folder {'name' if why else 'path holds the name'} "
+                             f"{shown!r} is {size} bytes long (UTF-8), more than the {top} "
+                             f"the file system takes{why}: give a shorter --out")
+    size = len(os.fsencode(str(path))) + HIDDEN + 1 + longest
+    if size >= path_max:
+        raise ValueError(f"output folder path is {len(os.fsencode(str(path)))} bytes long, "
+                         f"too long for the file system ({path_max} bytes with the names "
+                         f"of the results): give a shorter --out")
 
 
 def check_folder(folder, names) -> Path:
@@ -169,6 +221,7 @@ def check_folder(folder, names) -> Path:
     'plate'
     """
     folder = Path(folder)
+    check_name_lengths(folder, max(len(n) for n in names) if names else 0)
     real, here = Path(os.path.realpath(folder)), Path.cwd().resolve()
     if real == here or real in here.parents:
         raise ValueError(f"output folder {str(folder)!r} is the current folder or contains "
@@ -229,7 +282,8 @@ def _commit(new: Path, target: Path, aside: Path):
         os.rename(new, target)
 
 
-def write_set(folder, writers: dict[str, Callable[[Path], None]]) -> dict[str, Path]:
+def write_set(folder, writers: dict[str, Callable[[Path], None]],
+              also: tuple = ()) -> dict[str, Path]:
     """Write the files ``writers`` names into ``folder``, as one set (module notes).
 
     Parameters
@@ -240,6 +294,9 @@ def write_set(folder, writers: dict[str, Callable[[Path], None]]) -> dict[str, P
     writers
         ``{file name: write(path)}``: each function writes one file's content
         to the path it is given.
+    also
+        Other names (or patterns with ``*``) of files of such sets, which an earlier
+        set in ``folder`` may hold (:func:`check_folder`): a longer series.
 
     Returns
     -------
@@ -254,7 +311,7 @@ def write_set(folder, writers: dict[str, Callable[[Path], None]]) -> dict[str, P
         If a file cannot be written (e.g. a full disk) or is written empty;
         ``folder`` keeps its previous set (or does not exist).
     """
-    given = check_folder(folder, writers)
+    given = check_folder(folder, [*writers, *also])
     target = Path(os.path.realpath(given))
     parent, tag = target.parent, secrets.token_hex(8)
     new = parent / f".{target.name}.skxfem-new-{tag}"
@@ -264,7 +321,7 @@ def write_set(folder, writers: dict[str, Callable[[Path], None]]) -> dict[str, P
     try:
         with _locked(parent):
             _stale(parent, target.name, target)
-            check_folder(given, writers)       # again: another writer may have gone first
+            check_folder(given, [*writers, *also])   # again: another writer may have gone first
             os.mkdir(new)
             if target.is_dir():
                 os.chmod(new, stat.S_IMODE(target.stat().st_mode))

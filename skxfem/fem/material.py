@@ -67,6 +67,7 @@ class Material:
             value = getattr(self, key)
             if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
                 raise TypeError(f"material {key} must be a real number, got {value!r}")
+            object.__setattr__(self, key, float(value))   # numpy's numbers as Python's
         if not E_RANGE[0] <= float(self.E) <= E_RANGE[1]:  # also refuses NaN and inf
             raise ValueError(
                 f"material E must be a positive number in [{E_RANGE[0]:.0e}, "

@@ -95,8 +95,11 @@ def _normals(p: Problem) -> np.ndarray:
         n = np.asarray(p.scene.levelset.gradient(rule.points), float)
     except (ValueError, TypeError, FloatingPointError):
         return rule.normals
-    size = np.linalg.norm(n, axis=0)
-    ok = np.isfinite(size) & (size > 0)
+    with np.errstate(all="ignore"):   # scaled first: the square of 1e300 overflows
+        top = np.abs(n).max(axis=0)
+        ok = np.isfinite(top) & (top > 0)
+        n = n / np.where(ok, top, 1.0)
+        size = np.linalg.norm(n, axis=0)
     return np.where(ok, n / np.where(ok, size, 1.0), rule.normals)
 
 

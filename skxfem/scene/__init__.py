@@ -16,6 +16,7 @@ from .model import (
     CONTACT_LAWS,
     LAWS,
     MAX_QUADRATURE_ORDER,
+    MAX_STEPS,
     SPACES,
     Box,
     Displacement,
@@ -34,4 +35,4 @@ from .model import (
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "Scene", "clamped", "rollers",
            "resolve_mesh", "dirichlet", "load_facets", "traction", "LAWS", "CONTACT_LAWS",
-           "SPACES", "CELLS", "check_scene", "MAX_QUADRATURE_ORDER", "Solver"]
+           "SPACES", "CELLS", "check_scene", "MAX_QUADRATURE_ORDER", "Solver", "MAX_STEPS"]

@@ -7,6 +7,9 @@ A boundary is a name (``"xmin"`` ... ``"zmax"``, or any key of
   selects the vertices of its facets, a selection the vertices where it is True.
 * :func:`load_facets` loads boundary *facets*: a name selects its facets, a
   selection the boundary facets whose midpoint it accepts.
+* A part's ``where`` (a selection too) keeps, of its boundary's nodes or facets,
+  those where it holds: ``SurfaceLoad("xmax", pressure=1, where="z > 2.2")``, the
+  xmax face above z = 2.2.
 
 The named faces ``"xmin"`` ... ``"zmax"`` also work on meshes that carry no
 ``boundaries``: they are then the boundary facets lying on the bounding box.
@@ -59,31 +62,43 @@ def _where(where: Callable, x: np.ndarray, what: str) -> np.ndarray:
     return mask
 
 
-def select_nodes(mesh: Mesh, boundary: str | Callable, what: str = "boundary") -> np.ndarray:
-    """Vertex indices of a named boundary or of a selection; never empty."""
+def select_nodes(mesh: Mesh, boundary: str | Callable, what: str = "boundary",
+                 where: Callable | None = None) -> np.ndarray:
+    """Vertex indices of a named boundary or of a selection, and, with ``where``, only
+    those of them where it holds; never empty."""
     if isinstance(boundary, str):
         nodes = np.unique(mesh.facets[:, named_facets(mesh, boundary)])
     else:
         nodes = np.flatnonzero(_where(boundary, mesh.p, what))
+    if where is not None and nodes.size:
+        nodes = nodes[_where(where, mesh.p[:, nodes], what)]
     if nodes.size == 0:
-        raise ValueError(f"{what}: boundary {_label(boundary)} selects no node of the mesh")
+        raise ValueError(f"{what}: boundary {_label(boundary, where)} selects no node of the "
+                         f"mesh")
     return nodes
 
 
-def select_facets(mesh: Mesh, boundary: str | Callable, what: str = "boundary") -> np.ndarray:
-    """Boundary facet indices of a named boundary or of a selection; never empty."""
+def select_facets(mesh: Mesh, boundary: str | Callable, what: str = "boundary",
+                  where: Callable | None = None) -> np.ndarray:
+    """Boundary facet indices of a named boundary or of a selection, and, with ``where``,
+    only those of them whose midpoint it holds at; never empty."""
     if isinstance(boundary, str):
         facets = named_facets(mesh, boundary)
     else:
         candidates = mesh.boundary_facets()
         midpoints = mesh.p[:, mesh.facets[:, candidates]].mean(axis=1)
         facets = candidates[_where(boundary, midpoints, what)]
+    if where is not None and facets.size:
+        facets = facets[_where(where, mesh.p[:, mesh.facets[:, facets]].mean(axis=1), what)]
     if facets.size == 0:
-        raise ValueError(f"{what}: boundary {_label(boundary)} selects no facet of the mesh")
+        raise ValueError(f"{what}: boundary {_label(boundary, where)} selects no facet of the "
+                         f"mesh")
     return facets
 
 
-def _label(boundary) -> str:
+def _label(boundary, where=None) -> str:
+    if where is not None:
+        return f"{_label(boundary)} where {_label(where)}"
     if isinstance(boundary, str):
         return repr(boundary)
     text = getattr(boundary, "text", None)  # an skxfem.scene.expr.Expression
@@ -112,7 +127,7 @@ def imposed(scene: Scene, mesh: Mesh) -> list[tuple[np.ndarray, dict]]:
     out = []
     for k, d in enumerate(scene.displacements):
         what = f"displacements[{k}]"
-        nodes = select_nodes(mesh, d.boundary, what)
+        nodes = select_nodes(mesh, d.boundary, what, d.where)
         components = dict.fromkeys(COMPONENTS[:dim], d.components["all"]) \
             if "all" in d.components else d.components
         values = {}
@@ -175,6 +190,6 @@ def load_facets(scene: Scene, mesh: Mesh) -> list[tuple[np.ndarray, Callable]]:
         if load.traction is not None and len(load.traction) != dim:
             raise ValueError(f"loads[{k}]: traction has {len(load.traction)} components "
                              f"but the mesh is {dim}D")
-        facets = select_facets(mesh, load.boundary, f"loads[{k}]")
+        facets = select_facets(mesh, load.boundary, f"loads[{k}]", load.where)
         out.append((facets, functools.partial(traction, load)))
     return out

@@ -22,6 +22,10 @@ The schema in short (all of it, with units: ``skxfem schema``, :data:`SCHEMA`)::
     E = 1.0
     nu = 0.3
     plane = "strain"                   # or "stress" (2D only)
+    # plus = {E = 10.0}                # a side's own: Ω⁺ (plus) or Ω⁻ (minus)
+
+    [body_force]                       # optional: a volume force (F/L³), e.g. gravity
+    force = [0, 0, -1e-5]
 
     [[displacement]]                   # any number; on the nodes of a boundary
     boundary = "zmin"                  # a face xmin..zmax, or where = "x < 1e-9"
@@ -29,14 +33,15 @@ The schema in short (all of it, with units: ``skxfem schema``, :data:`SCHEMA`)::
     # x = 0.0                          # a number or a formula such as "0.01*y"
 
     [[load]]                           # any number; on boundary facets
-    boundary = "zmax"                  # or where = "..." (tested at facet midpoints)
+    boundary = "zmax"                  # or where = "..." (tested at facet midpoints),
+    # where = "y > 0.5"                # or both: the part of zmax where y > 0.5
     pressure = "4*y*(1 - y)"           # positive in compression: t = -p n
     # traction = [0, 0, "-1"]          # or a traction vector
 
     [interface]
     law = "bonded"                     # one of skxfem.scene.LAWS or CONTACT_LAWS
     space = "vital"                    # one of skxfem.scene.SPACES (default vital)
-    # friction = 0.5                   # Coulomb's mu: law "coulomb" needs it, >= 0
+    # friction = 0.5                   # Coulomb's mu: law "coulomb" needs it, 0 or 1e-10..1e10
     # rho_n = 10.0                     # contact augmentation, > 0 (default E/h)
     # rho_t = 10.0                     # friction augmentation, > 0
     # steps = [0.5, 1.0]               # load factors of a contact solve
@@ -63,6 +68,29 @@ cross or touch (:func:`skxfem.problem.assemble` refuses a cell cut by two)::
     law = "coulomb"
     friction = 0.5
 
+A load path (press, then shear, then unload), as ``history=`` of
+:func:`skxfem.contact.solve`: instead of ``steps``, one ``[[step]]`` table per
+load state, in order, with its own loads and imposed displacements (added to the
+``[[load]]`` and ``[[displacement]]`` tables, which hold in every state) and,
+optionally, its own law; ``Scene.steps`` holds the states (scenes), and the scene
+itself is the first::
+
+    [[step]]
+    name = "press"
+    [[step.load]]
+    boundary = "ymax"
+    pressure = 1.0
+    [[step.displacement]]              # every state imposes the same components
+    boundary = "ymax"
+    x = 0.0
+
+    [[step]]
+    name = "unload"
+    law = "bonded"                     # optional: the law of this state
+    [[step.displacement]]
+    boundary = "ymax"
+    x = 0.0
+
 ``linear``, ``linear_tol`` and ``max_iter`` are the scene's
 :class:`~skxfem.scene.settings.Solver` (``Scene.solver``): ``skxfem run`` and
 ``skxfem.solve(load_scene(path))`` solve alike, ``skxfem run``'s ``--linear``,
@@ -74,9 +102,11 @@ which the reader checks against (the keys allowed, the ones exclusive of each
 other) and :func:`schema` prints (``skxfem schema``).  Units are consistent and
 the user's choice (:data:`UNITS`).
 
-Numbers the solve cannot handle in double precision are refused when read: a load
-above :data:`MAX_MAGNITUDE` (or one whose displacements |p| L / E would be), an
-imposed displacement above :data:`MAX_SHIFT` sizes of the body.  A mesh file that
+Numbers the solve cannot handle in double precision are refused when read
+(:mod:`skxfem.scene.magnitudes`, as in Python): a load above :data:`MAX_MAGNITUDE`
+(or one whose displacements |p| L / E would be), an imposed displacement above
+:data:`MAX_SHIFT` sizes of the body, a number or a formula's value at the nodes
+(formulas on a box of more than :data:`BUILT_BOX` cells: when solved).  A mesh file that
 is a folder, a FIFO, a device or a loop of symbolic links is named as such,
 unread.
 
@@ -90,10 +120,8 @@ import functools
 import math
 import os
 import textwrap
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
-
-import numpy as np
 
 from .. import levelset as ls
 from ..fem import meshes
@@ -104,14 +132,14 @@ from . import model as sc
 from . import tomlcheck
 from .boundary import select_facets, select_nodes
 from .laws import FRICTION_LAWS
-from .parts import COMPONENTS, FACES
+from .magnitudes import BUILT_BOX, MAX_MAGNITUDE, MAX_SHIFT, check_magnitudes
+from .parts import COMPONENTS, FACES, check_friction
 from .settings import Solver
 from .tomlcheck import array, choice, formula, keys, number, one_of, table, vector
 
-__all__ = ["load_scene", "load_options", "Key", "Table", "SCHEMA", "UNITS", "schema"]
+__all__ = ["load_scene", "load_options", "Key", "Table", "SCHEMA", "UNITS", "schema",
+           "MAX_MAGNITUDE", "MAX_SHIFT"]
 
-#: A box grid of at most this many squares or cubes is built to check ``where`` selections.
-BUILT_BOX = 10_000
 
 
 @dataclass(frozen=True)
@@ -154,12 +182,15 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
         Key("levelset", "table", "[levelset]: required, unless [[interface]] tables give "
             "each interface its own", {}),
         Key("material", "table", "[material] (default: E = 1, nu = 0.3)", {}),
+        Key("body_force", "table", "[body_force] (default: none)", {"force": [0.0, -1.0]}),
         Key("displacement", "array of tables", "[[displacement]], any number", []),
         Key("load", "array of tables", "[[load]], any number", []),
         Key("interface", "table, or array of tables", "[interface] (default: bonded, "
             "vital), or several interfaces: [[interface]], one table each", {}),
-        Key("steps", "list of numbers", "the load factors of a contact solve, in order "
-            "(default [1]; or [interface] steps)", [0.5, 1.0]),
+        Key("steps", "list of numbers", "the load factors of a contact solve, in order, at "
+            "most 1000 (default [1]; or [interface] steps)", [0.5, 1.0]),
+        Key("step", "array of tables", "[[step]], the load states of a contact solve, in "
+            "order, at most 1000 (instead of steps)", [{"name": "press"}]),
         Key("solver", "table", "[solver] (optional)", {}),
     )),
     Table("[mesh]", "the mesh", (
@@ -197,44 +228,76 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
         Key("center", "dim numbers [L]", "the centre (required)", [0.5, 0.5, 0.5]),
         Key("radius", "number > 0 [L]", "the radius (required)", 0.3),
     )),
-    Table("[material]", "linear isotropic elasticity, the same on both sides", (
+    Table("[material]", "linear isotropic elasticity, the same on both sides unless "
+          "minus or plus gives a side its own", (
         Key("E", "number > 0 [F/L²]", "Young's modulus (default 1)", 210e3),
         Key("nu", "number in (-1, 0.5)", "Poisson's ratio (default 0.3)", 0.3),
         Key("plane", "strain or stress", "2D only: plane strain or plane stress "
             "(default strain)", "stress"),
+        Key("minus", "table {E, nu}", "[material.minus]: the material of Ω⁻ = {ψ < 0} "
+            "(its E and nu, each defaulting to those above); one interface only",
+            {"E": 1.0}),
+        Key("plus", "table {E, nu}", "[material.plus]: the material of Ω⁺ = {ψ > 0}; "
+            "one interface only", {"E": 10.0}),
     )),
-    Table("[[displacement]]", "imposed displacements, on the nodes of a boundary", (
+    Table("[body_force]", "a volume force on the whole body, scaled by the load factors "
+          "as the loads are", (
+        Key("force", "dim numbers or formulas [F/L³]", "the force per volume b: gravity "
+            "is [0, -rho*g] in 2D, [0, 0, -rho*g] in 3D (required)", [0.0, -1.0]),
+    )),
+    Table("[[displacement]]", "imposed displacements, on the nodes of a boundary: "
+          "boundary, where, or both (the nodes of the boundary where the condition holds)", (
         Key("boundary", "one of " + " ".join(FACES), "a face of the box (or a named "
             "boundary of the mesh file)", "xmin"),
-        Key("where", "condition on x, y, z", "the nodes where it holds", "x < 1e-9"),
+        Key("where", "condition on x, y, z", "the nodes where it holds (of the boundary, "
+            "if given)", "x < 1e-9"),
         Key("kind", "clamped or rollers", "clamped: u = 0; rollers: the normal component "
             "of u is 0 (a named face)", "clamped"),
         Key("x", f"{_FORMULA} [L]", "the imposed u_x (those of x, y, z given)", 0.0),
         Key("y", f"{_FORMULA} [L]", "the imposed u_y", "0.01*x"),
         Key("z", f"{_FORMULA} [L]", "the imposed u_z (3D)", 0.0),
-    ), (("boundary", "where"), ("kind", "x", "y", "z", "..."))),
-    Table("[[load]]", "surface loads, on boundary facets (where: at facet midpoints)", (
+    ), (("kind", "x", "y", "z", "..."),)),
+    Table("[[load]]", "surface loads, on boundary facets: boundary, where (tested at the "
+          "facet midpoints), or both (the facets of the boundary where the condition holds, "
+          "such as the xmax face above z = 2.2)", (
         Key("boundary", "one of " + " ".join(FACES), "a face of the box (or a named "
             "boundary of the mesh file)", "ymax"),
         Key("where", "condition on x, y, z", "the boundary facets whose midpoint it "
-            "holds at", "y > 1 - 1e-9"),
+            "holds at (of the boundary, if given)", "y > 1 - 1e-9"),
         Key("pressure", f"{_FORMULA} [F/L²]", "positive in compression: t = -p n",
             "4*x*(1 - x)"),
         Key("traction", "dim numbers or formulas [F/L²]", "the traction vector t", [0.0, "-1"]),
-    ), (("boundary", "where"), ("pressure", "traction"))),
+    ), (("pressure", "traction"),)),
+    Table("[[step]]", "a load state of a contact solve (a load path: press, then shear, "
+          "then unload), one table each, in order: its loads are the [[load]] tables and "
+          "its own [[step.load]] tables, its imposed displacements the [[displacement]] "
+          "tables and its own [[step.displacement]] tables (a later one wins on a node; "
+          "every state imposes displacements on the same nodes: hold a released support "
+          "at 0); these take the keys of [[load]] and [[displacement]]", (
+        Key("name", "string", "the state's name in the results (default: step N)", "press"),
+        Key("law", "one of " + " ".join(("bonded", "bilateral") + sc.CONTACT_LAWS),
+            "the law of Γ in this state (default: [interface] law); one interface only",
+            "frictionless"),
+        Key("friction", "0, or 1e-10 to 1e10", "Coulomb's mu in this state (law coulomb; "
+            "default: [interface] friction)", 0.5),
+        Key("load", "array of tables", "[[step.load]]: its loads, keys of [[load]]",
+            [{"boundary": "ymax", "pressure": 1.0}]),
+        Key("displacement", "array of tables", "[[step.displacement]]: its imposed "
+            "displacements, keys of [[displacement]]", [{"boundary": "ymax", "x": 0.0}]),
+    )),
     Table("[interface]", "the law on Γ and its multiplier space", (
         Key("law", "one of " + " ".join(sc.LAWS + sc.CONTACT_LAWS), "ties: bonded "
             "(default), bilateral; contact: frictionless, coulomb, adhesive", "coulomb"),
         Key("space", "one of " + " ".join(sc.SPACES), "the multiplier space (default "
             "vital, the stable one)", "vital"),
-        Key("friction", "number >= 0", "Coulomb's mu: required by law coulomb (0: it "
+        Key("friction", "0, or 1e-10 to 1e10", "Coulomb's mu: required by law coulomb (0: it "
             "slides freely), refused by the other laws", 0.5),
         Key("rho_n", "number > 0 [F/L³]", "contact augmentation (default E/h, h the cell "
             "size)", 10.0),
         Key("rho_t", "number > 0 [F/L³]", "friction augmentation (default E/h, h the mean "
             "cut-edge size)", 10.0),
-        Key("steps", "list of numbers", "the load factors of a contact solve, in order "
-            "(default [1])", [0.5, 1.0]),
+        Key("steps", "list of numbers", "the load factors of a contact solve, in order, at "
+            "most 1000 (default [1])", [0.5, 1.0]),
     )),
     Table("[[interface]]", "several interfaces, one table each (in place of [levelset] "
           "and [interface]) with its level set (a key of [levelset], as there) and its "
@@ -250,7 +313,7 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             "bonded)", "frictionless"),
         Key("space", "one of " + " ".join(sc.SPACES), "its multiplier space (default "
             "vital)", "vital"),
-        Key("friction", "number >= 0", "its Coulomb's mu: required by law coulomb, "
+        Key("friction", "0, or 1e-10 to 1e10", "its Coulomb's mu: required by law coulomb, "
             "refused by the others", 0.5),
         Key("rho_n", "number > 0 [F/L³]", "its contact augmentation (default E/h)", 10.0),
         Key("rho_t", "number > 0 [F/L³]", "its friction augmentation (default E/h)", 10.0),
@@ -282,6 +345,10 @@ def _exclusive(table: str, i: int = 0) -> tuple[str, ...]:
 
 
 _TOP = _names("the top level")
+_TOP_KEYS = tuple(k.name for k in SCHEMA["the top level"].keys if k.takes != "table"
+                  and "tables" not in k.takes)
+"""The top-level keys that are not tables (name, steps): written after a table header,
+TOML puts them into that table, and the error says so."""
 
 
 def schema(width: int = 88) -> str:
@@ -322,18 +389,6 @@ def schema(width: int = 88) -> str:
                 out.append(row + text.lstrip())
         out.append("")
     return "\n".join(out).rstrip() + "\n"
-
-
-MAX_MAGNITUDE = 1e150
-"""The largest load, and displacement from a load, a scene file may give.  Measured: the
-strip (E = 1) solves with pressure = 1e154; at 1e155 the norms of the saddle solve
-overflow (a sum of squares above 1.8e308); 1e150 leaves a factor 10⁴ for the
-square root of the number of unknowns."""
-MAX_SHIFT = 1000
-"""The largest imposed displacement, in sizes of the body.  Measured: a corner of
-``examples/inclusion.toml`` moved by 1e6 (n = 8), 1e5 (n = 32), 1e4 (n = 64) breaks
-the balance check of the multipliers (1e-8); 1e3 holds for n = 8 ... 128."""
-
 
 
 def load_scene(path: str | Path) -> sc.Scene:
@@ -412,6 +467,8 @@ def _law_fields(t: dict, where: str) -> dict:
                          f"{fields['law']!r} has no friction: remove friction")
     if "friction" in fields and fields["friction"] < 0:
         raise ValueError(f"{where} friction must be >= 0, got {fields['friction']!r}")
+    if "friction" in fields:
+        check_friction(where, fields["law"], fields["friction"])
     for key in ("rho_n", "rho_t"):
         if key in fields and not fields[key] > 0:
             raise ValueError(f"{where} {key} must be > 0, got {fields[key]!r}")
@@ -422,7 +479,9 @@ def _law_fields(t: dict, where: str) -> dict:
 def _steps(steps, where: str) -> tuple:
     if not (isinstance(steps, list) and steps and all(
             isinstance(f, (int, float)) and not isinstance(f, bool) for f in steps)):
-        raise ValueError(f"{where} must be a non-empty list of load factors, got {steps!r}")
+        raise ValueError(f"{where} must be a non-empty list of load factors, got "
+                         f"{steps!r:.200}")
+    sc.check_steps(len(steps), where)
     return tuple(steps)
 
 
@@ -435,7 +494,7 @@ def _interfaces(data: dict, dim: int) -> tuple[sc.Interface, ...]:
     out = []
     for k, t in enumerate(array(data, "interface")):
         where = f"[[interface]] #{k + 1}"
-        t = table(t, where, _names("[[interface]]"))
+        t = table(t, where, _names("[[interface]]"), _TOP_KEYS)
         kind = one_of(t, _exclusive("[[interface]]"), where)
         levelset = _levelset({kind: t[kind]}, dim, where)
         fields = _law_fields(t, where)
@@ -452,13 +511,15 @@ def _scene(data: dict, path: Path) -> sc.Scene:
     for key in ("mesh",) + (() if several else ("levelset",)):
         if key not in data:
             raise ValueError(f"missing table [{key}]")
-    mesh, dim, checked = _mesh(table(data["mesh"], "[mesh]", _names("[mesh]")), path.parent)
-    solver = table(data.get("solver", {}), "[solver]", _names("[solver]"))
+    mesh, dim, checked = _mesh(table(data["mesh"], "[mesh]", _names("[mesh]"), _TOP_KEYS),
+                                  path.parent)
+    solver = table(data.get("solver", {}), "[solver]", _names("[solver]"), _TOP_KEYS)
     if several:
         interfaces = _interfaces(data, dim)
         fields, laws = {"interfaces": interfaces}, [i.law for i in interfaces]
     else:
-        interface = table(data.get("interface", {}), "[interface]", _names("[interface]"))
+        interface = table(data.get("interface", {}), "[interface]", _names("[interface]"),
+                          _TOP_KEYS)
         fields = _law_fields(interface, "[interface]")
         laws = [fields["law"]]
         if "steps" in interface:
@@ -485,75 +546,100 @@ def _scene(data: dict, path: Path) -> sc.Scene:
             where = f"[[{key}]] #{i + 1}"
             items[key].append((where, tomlcheck.labelled(where, build, t, dim, where)))
     _check_boundaries(items, checked, dim)
-    material = _material(table(data.get("material", {}), "[material]",
-                               _names("[material]")))
-    _check_magnitudes(items, material.E, _length(checked))
-    return sc.Scene(
+    material, fields["material_plus"] = _material(table(
+        data.get("material", {}), "[material]", _names("[material]"), _TOP_KEYS))
+    if fields["material_plus"] is not None and several:
+        raise ValueError("[material] minus, plus: a material per side of Γ is for a scene "
+                         "with one interface ([levelset]); with [[interface]] tables, give "
+                         "one material")
+    if "body_force" in data:
+        fields["body_force"] = _body_force(table(data["body_force"], "[body_force]",
+                                                 _names("[body_force]"), _TOP_KEYS), dim)
+    scene = sc.Scene(
         mesh=mesh,
         material=material,
         displacements=tuple(d for _, d in items["displacement"]),
         loads=tuple(load for _, load in items["load"]),
         quadrature_order=order, name=name, solver=Solver(**options), **fields)
+    check_magnitudes(scene, checked, tuple([where for where, _ in items[key]]
+                                           for key in ("displacement", "load")))
+    if "step" in data:
+        states = _states(data, scene, items, checked, dim, laws)
+        scene = replace(scene, displacements=states[0].displacements, loads=states[0].loads,
+                        steps=states)     # the scene is its first state, with the history
+    return scene
 
 
-def _length(mesh) -> float:
-    """The largest side of the body's bounding box (a Box or a read mesh)."""
-    if isinstance(mesh, sc.Box):
-        return max(mesh.size or (1.0,))
-    return float(np.ptp(mesh.p, axis=1).max())
-
-
-def _numbers(item) -> list[tuple[str, float]]:
-    """(key, number) of the values of a load or displacement given as numbers."""
-    if isinstance(item, sc.SurfaceLoad):
-        values = ({"pressure": item.pressure} if item.pressure is not None else
-                  {f"traction[{i}]": v for i, v in enumerate(item.traction)})
-    else:
-        values = dict(item.components)
-    return [(k, float(v)) for k, v in values.items() if isinstance(v, (int, float))]
-
-
-def _check_magnitudes(items: dict, E: float, length: float):
-    """Loads and imposed displacements the solve handles in double precision.
-
-    Refused: a load above :data:`MAX_MAGNITUDE`, or one whose displacements
-    (about ``|p| L / E``) exceed it; an imposed displacement above
-    :data:`MAX_SHIFT` times the size ``L`` of the body.
-    """
-    for where, load in items["load"]:
-        for key, v in _numbers(load):
-            if abs(v) > MAX_MAGNITUDE:
-                raise ValueError(f"{where} {key}: {v:g} is beyond the largest load the solver "
-                                 f"handles, {MAX_MAGNITUDE:g} in magnitude; scale the units")
-            if abs(v) * length / E > MAX_MAGNITUDE:
-                raise ValueError(f"{where} {key}: {v:g} with E = {E:g} on a body of size "
-                                 f"{length:g} gives displacements of about |p| L / E = "
-                                 f"{abs(v) * length / E:.3g}, beyond the largest magnitude the "
-                                 f"solver handles, {MAX_MAGNITUDE:g}; scale the units")
-    for where, displacement in items["displacement"]:
-        for key, v in _numbers(displacement):
-            if abs(v) > MAX_SHIFT * length:
-                raise ValueError(f"{where} {key}: {v:g} is more than {MAX_SHIFT:g} times the "
-                                 f"size of the body ({length:g}); linear elasticity is a "
-                                 f"theory of small displacements, and a larger imposed one "
-                                 f"drowns the strains in round-off: give it in the units "
-                                 f"of the mesh")
+def _states(data: dict, scene: sc.Scene, items: dict, checked, dim: int, laws) -> tuple:
+    """The load states of the [[step]] tables: each the scene with its own loads, imposed
+    displacements, law and friction (:data:`SCHEMA` ``[[step]]``)."""
+    if "steps" in data or "steps" in (data.get("interface") or {}):
+        raise ValueError("steps and [[step]] tables are both given: give either steps (load "
+                         "factors: the loads scaled) or [[step]] tables (load states)")
+    if not any(law in sc.CONTACT_LAWS for law in laws):
+        raise ValueError(f"[[step]] tables are the load states of a contact solve; the law "
+                         f"is {laws[0] if len(laws) == 1 else laws!r}, a tie, which is linear "
+                         f"(one state): give its loads as [[load]] tables")
+    tables = array(data, "step")
+    if not tables:
+        raise ValueError("step is an empty list: give [[step]] tables, one per load state")
+    sc.check_steps(len(tables), "[[step]] tables")
+    states = []
+    for k, t in enumerate(tables):
+        where = f"[[step]] #{k + 1}"
+        t = table(t, where, _names("[[step]]"), _TOP_KEYS)
+        name = t.get("name", f"step {k + 1}")
+        if not isinstance(name, str) or not name:
+            raise TypeError(f"{where} name must be a non-empty string, got {name!r}")
+        own = {"displacement": list(items["displacement"]), "load": list(items["load"])}
+        for key, build in (("displacement", _displacement), ("load", _load)):
+            if key in t and not (isinstance(t[key], list)
+                                 and all(isinstance(i, dict) for i in t[key])):
+                raise TypeError(f"{where} {key} must be written as [[step.{key}]] tables")
+            for i, item in enumerate(t.get(key, [])):
+                label = f"{where} [[step.{key}]] #{i + 1}"
+                own[key].append((label, tomlcheck.labelled(label, build, item, dim, label)))
+        _check_boundaries({k: v[len(items[k]):] for k, v in own.items()}, checked, dim)
+        fields = {}
+        if "law" in t or "friction" in t:
+            if scene.several:
+                raise ValueError(f"{where} law, friction: a state's law is given in scene "
+                                 f"files for one interface only; with several, give the "
+                                 f"history in Python (skxfem.contact.solve(scene, "
+                                 f"history=[...]))")
+            law = choice(t.get("law", scene.law), ("bonded", "bilateral") + sc.CONTACT_LAWS,
+                         f"{where} law")
+            friction = number(t["friction"], f"{where} friction") if "friction" in t else \
+                scene.friction if law in FRICTION_LAWS else None
+            if law in FRICTION_LAWS and friction is None:
+                raise ValueError(f"{where} law 'coulomb' needs friction (Coulomb's mu): "
+                                 f"add friction = 0.3, say")
+            fields = {"law": law, "friction": friction}
+        state = tomlcheck.labelled(where, lambda: replace(
+            scene, name=name, displacements=tuple(d for _, d in own["displacement"]),
+            loads=tuple(x for _, x in own["load"]), steps=(1.0,), **fields))
+        check_magnitudes(state, checked, tuple([w for w, _ in own[key]]
+                                               for key in ("displacement", "load")))
+        states.append(state)
+    return tuple(states)
 
 
 def _check_boundaries(items: dict, mesh, dim: int):
     """Each boundary exists and selects nodes (facets for a load); see the module notes."""
     if isinstance(mesh, sc.Box):
-        faces, boundaries = FACES[:2 * dim], [i.boundary for v in items.values() for _, i in v]
+        faces = FACES[:2 * dim]
         for where, item in items["displacement"] + items["load"]:
             if isinstance(item.boundary, str) and item.boundary not in faces:
                 raise ValueError(f"{where} boundary {item.boundary!r} is not a face of the "
                                  f"box; use one of {', '.join(faces)}, or where")
-        if all(isinstance(b, str) for b in boundaries) or math.prod(mesh.n) > BUILT_BOX:
+        plain = all(isinstance(i.boundary, str) and i.where is None
+                    for v in items.values() for _, i in v)
+        if plain or math.prod(mesh.n) > BUILT_BOX:
             return
         mesh = meshes.box(mesh.n, mesh.cell, mesh.size)
     for key, select in (("displacement", select_nodes), ("load", select_facets)):
         for where, item in items[key]:
-            tomlcheck.labelled(where, select, mesh, item.boundary, where)
+            tomlcheck.labelled(where, select, mesh, item.boundary, where, item.where)
 
 
 def _mesh(t: dict, folder: Path) -> tuple[sc.Box | Path, int, object]:
@@ -592,7 +678,7 @@ def _levelset(t: dict, dim: int, where: str = "[levelset]") -> ls.LevelSet:
     """The level set of a [levelset] table (or of the level-set key of the
     [[interface]] table ``where``)."""
     kinds = _exclusive("[levelset]")
-    t = table(t, where, _names("[levelset]"))
+    t = table(t, where, _names("[levelset]"), _TOP_KEYS)
     kind = one_of(t, kinds, where)
     key = f"{where} {kind}"
     if kind == "expr":
@@ -617,27 +703,64 @@ def _levelset(t: dict, dim: int, where: str = "[levelset]") -> ls.LevelSet:
     return tomlcheck.labelled(key, getattr(ls, kind), *args)
 
 
-def _material(t: dict) -> Material:
-    args = {k: number(t[k], f"[material] {k}") for k in ("E", "nu") if k in t}
-    try:
-        return Material(**args, plane=t.get("plane", "strain"))
-    except ValueError as e:
-        raise ValueError(f"[material] {e}") from None
+def _body_force(t: dict, dim: int) -> tuple:
+    if "force" not in t:
+        raise ValueError("[body_force] needs force, e.g. force = [0, -9.81e-6] (F/L³)")
+    v = t["force"]
+    if not isinstance(v, list) or len(v) != dim:
+        raise ValueError(f"[body_force] force must be a list of {dim} numbers or formulas "
+                         f"on a {dim}D mesh, got {v!r}")
+    return tuple(formula(c, f"[body_force] force[{i}]", dim) for i, c in enumerate(v))
 
 
-def _where(t: dict, dim: int, where: str, table: str):
-    kind = one_of(t, _exclusive(table), where)
-    if kind == "where":
-        return formula(t["where"], f"{where} where", dim, boolean=True)
+def _material(t: dict) -> tuple[Material, Material | None]:
+    """The material of a [material] table, and that of Ω⁺ if a side has its own (then
+    the first is Ω⁻'s)."""
+    def made(t, where, base=None):
+        args = {k: number(t[k], f"{where} {k}") for k in ("E", "nu") if k in t}
+        try:
+            return Material(**{**(base or {}), **args}, plane=plane)
+        except ValueError as e:
+            raise ValueError(f"{where} {e}") from None
+
+    plane = t.get("plane", "strain")
+    both = made(t, "[material]")
+    sides = {}
+    for side in ("minus", "plus"):
+        if side in t:
+            own = table(t[side], f"[material.{side}]", ("E", "nu"))
+            sides[side] = made(own, f"[material.{side}]", {"E": both.E, "nu": both.nu})
+    if not sides:
+        return both, None
+    return sides.get("minus", both), sides.get("plus", both)
+
+
+def _where(t: dict, dim: int, where: str):
+    """The ``boundary`` and ``where`` of a [[displacement]] or [[load]] table: a named
+    boundary (or None), and a condition (or None); one of them at least."""
+    if "boundary" not in t and "where" not in t:
+        raise ValueError(f"{where} needs boundary, where, or both (a face such as "
+                         f"boundary = 'xmax', a condition such as where = 'z > 2.2', or "
+                         f"both: the part of the face where the condition holds)")
+    cond = formula(t["where"], f"{where} where", dim, boolean=True) if "where" in t else None
+    if "boundary" not in t:
+        return None, cond
     if not isinstance(t["boundary"], str):
         raise TypeError(f"{where} boundary must be a name such as 'xmin', "
                         f"got {t['boundary']!r}")
-    return t["boundary"]
+    return t["boundary"], cond
+
+
+def _part(build, boundary, cond, *args, **kwargs):
+    """``build(boundary, ...)``, its ``where`` the condition if a boundary is named too."""
+    if boundary is None:
+        return build(cond, *args, **kwargs)
+    return build(boundary, *args, **kwargs, where=cond)
 
 
 def _displacement(t: dict, dim: int, where: str) -> sc.Displacement:
-    keys(t, _names("[[displacement]]"), where)
-    boundary = _where(t, dim, where, "[[displacement]]")
+    keys(t, _names("[[displacement]]"), where, _TOP_KEYS)
+    boundary, cond = _where(t, dim, where)
     given = [c for c in COMPONENTS if c in t]
     if "z" in given and dim == 2:
         raise ValueError(f"{where} z: component 'z' does not exist on a 2D mesh")
@@ -645,23 +768,24 @@ def _displacement(t: dict, dim: int, where: str) -> sc.Displacement:
         if given:
             raise ValueError(f"{where}: give either kind or components ({', '.join(given)})")
         kind = choice(t["kind"], ("clamped", "rollers"), f"{where} kind")
-        if kind == "rollers" and not isinstance(boundary, str):
-            raise ValueError(f"{where} kind: rollers needs a named boundary, not where")
-        return sc.clamped(boundary) if kind == "clamped" else sc.rollers(boundary)
+        if kind == "rollers" and boundary is None:
+            raise ValueError(f"{where} kind: rollers needs a named boundary, not where alone")
+        return _part(sc.clamped if kind == "clamped" else sc.rollers, boundary, cond)
     if not given:
         raise ValueError(f"{where} needs kind or at least one of x, y, z")
-    return sc.Displacement(boundary, {c: formula(t[c], f"{where} {c}", dim) for c in given})
+    return _part(sc.Displacement, boundary, cond,
+                 {c: formula(t[c], f"{where} {c}", dim) for c in given})
 
 
 def _load(t: dict, dim: int, where: str) -> sc.SurfaceLoad:
-    keys(t, _names("[[load]]"), where)
-    boundary = _where(t, dim, where, "[[load]]")
-    if one_of(t, _exclusive("[[load]]", 1), where) == "pressure":
-        return sc.SurfaceLoad(boundary, pressure=formula(t["pressure"], f"{where} pressure",
-                                                          dim))
+    keys(t, _names("[[load]]"), where, _TOP_KEYS)
+    boundary, cond = _where(t, dim, where)
+    if one_of(t, _exclusive("[[load]]"), where) == "pressure":
+        return _part(sc.SurfaceLoad, boundary, cond,
+                     pressure=formula(t["pressure"], f"{where} pressure", dim))
     v = t["traction"]
     if not isinstance(v, list) or len(v) != dim:
         raise ValueError(f"{where} traction must be a list of {dim} numbers or formulas "
                          f"on a {dim}D mesh, got {v!r}")
-    return sc.SurfaceLoad(boundary, traction=tuple(
+    return _part(sc.SurfaceLoad, boundary, cond, traction=tuple(
         formula(c, f"{where} traction[{i}]", dim) for i, c in enumerate(v)))

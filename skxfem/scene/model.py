@@ -45,12 +45,14 @@ from .boundary import dirichlet, load_facets, traction
 from .expr import Expression
 from .laws import CONTACT_LAWS, SPACES
 from .laws import TIE_LAWS as LAWS
+from .magnitudes import check_magnitudes
 from .parts import (
     CELLS,
     Box,
     Displacement,
     Interface,
     SurfaceLoad,
+    _check_value,
     check_law_fields,
     clamped,
     rollers,
@@ -60,7 +62,29 @@ from .settings import Solver
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "Scene", "clamped", "rollers",
            "resolve_mesh", "dirichlet", "load_facets", "traction", "LAWS", "CONTACT_LAWS",
-           "SPACES", "CELLS", "check_scene", "MAX_QUADRATURE_ORDER", "Solver"]
+           "SPACES", "CELLS", "check_scene", "MAX_QUADRATURE_ORDER", "Solver", "MAX_STEPS",
+           "check_steps"]
+
+MAX_STEPS = 1000
+"""The most load steps a contact solve takes (``Scene.steps``, a scene file's ``steps``, a
+``history``).  Each step is at least one linear solve and one entry of ``result.json``:
+10 000 steps of ``examples/contact.toml`` took 152 s and 100 000 about 25 minutes, for
+increments no law needs (a load path is a few states; give fewer, larger steps)."""
+
+
+def check_steps(n: int, what: str) -> None:
+    """Refuse a history of more than :data:`MAX_STEPS` load steps, naming ``what``.
+
+    >>> check_steps(1001, "steps")
+    Traceback (most recent call last):
+    ...
+    ValueError: steps has 1001 load steps, more than 1000 (skxfem.scene.MAX_STEPS): ...
+    """
+    if n > MAX_STEPS:
+        raise ValueError(f"{what} has {n} load steps, more than {MAX_STEPS} "
+                         f"(skxfem.scene.MAX_STEPS): each is a solve and an entry of the "
+                         f"results; a load path needs a few states: give fewer, larger steps")
+
 
 MAX_QUADRATURE_ORDER = {2: 19, 3: 8}
 """The highest ``Scene.quadrature_order`` per dimension: scikit-fem's triangle
@@ -79,8 +103,11 @@ class Scene:
     ``friction`` is Coulomb's μ, required by law ``coulomb`` and refused by
     the laws without friction (leave it ``None``); ``rho_n``, ``rho_t`` the
     augmentation parameters of the contact laws (``None``: the defaults of
-    :func:`skxfem.contact.parameters`); ``steps`` the load factors of a
-    contact solve, in order; ``solver`` how it is solved (a
+    :func:`skxfem.contact.parameters`); ``steps`` the load history of a
+    contact solve, in order: load factors (the scene's loads and imposed
+    displacements scaled) or load states (scenes, each with its own loads,
+    imposed displacements and law: a scene file's ``[[step]]`` tables), as
+    ``history=`` of :func:`skxfem.contact.solve`; ``solver`` how it is solved (a
     :class:`~skxfem.scene.settings.Solver`: ``linear``, ``linear_tol``,
     ``max_iter``, a scene file's ``[solver]`` table), which the keywords of
     :func:`skxfem.solve` override.
@@ -88,6 +115,13 @@ class Scene:
     ``interfaces``: several interfaces, an :class:`Interface` each (its level
     set, law, space, μ and ρ), given instead of ``levelset`` and the law's
     fields (module notes).
+
+    ``material_plus``: the material of Ω⁺ = {ψ > 0}, then ``material`` is that of
+    Ω⁻ (``None``: ``material`` on both sides; one interface only).
+
+    ``body_force``: a volume force b (F/L³: gravity is (0, -ρg) in 2D, (0, 0, -ρg)
+    in 3D), ``dim`` values, each a number, a formula or a callable x -> array;
+    ``None``: none.  Scaled by the load factors as the loads are.
     """
 
     mesh: Box | Mesh | str | Path
@@ -102,9 +136,11 @@ class Scene:
     friction: float | None = None
     rho_n: float | None = None
     rho_t: float | None = None
-    steps: tuple[float, ...] = (1.0,)
+    steps: tuple[float | Scene, ...] = (1.0,)
     interfaces: tuple[Interface, ...] | None = None
     solver: Solver = Solver()
+    body_force: tuple | None = None
+    material_plus: Material | None = None
 
     def __post_init__(self):
         if not isinstance(self.mesh, (Box, Mesh, str, Path)):
@@ -121,6 +157,18 @@ class Scene:
             object.__setattr__(self, "space", "vital" if self.space is None else self.space)
         if not isinstance(self.material, Material):
             raise TypeError(f"Scene material must be a Material, got {self.material!r}")
+        if self.material_plus is not None:
+            if not isinstance(self.material_plus, Material):
+                raise TypeError(f"Scene material_plus must be a Material (that of Ω⁺) or "
+                                f"None, got {self.material_plus!r:.80}")
+            if self.interfaces is not None:
+                raise ValueError("Scene material_plus: a material per side of Γ is for a "
+                                 "scene with one interface; with several, the regions are "
+                                 "more than two (give one material)")
+            if self.material_plus.plane != self.material.plane:
+                raise ValueError(f"Scene material_plus plane {self.material_plus.plane!r} "
+                                 f"differs from material's {self.material.plane!r}: a 2D "
+                                 f"body is plane strain or plane stress throughout")
         for field, kind in (("displacements", Displacement), ("loads", SurfaceLoad)):
             items = getattr(self, field)
             if not isinstance(items, (tuple, list)) or not all(
@@ -130,22 +178,30 @@ class Scene:
         if self.interfaces is None:
             check_law_fields("Scene", self.law, self.space, self.friction, self.rho_n,
                              self.rho_t)
-            if self.friction is not None:
-                object.__setattr__(self, "friction", float(self.friction))
+            for key in ("friction", "rho_n", "rho_t"):   # numpy's numbers as Python's
+                if getattr(self, key) is not None:
+                    object.__setattr__(self, key, float(getattr(self, key)))
         if not isinstance(self.solver, Solver):
             raise TypeError(f"Scene solver must be a skxfem.Solver (linear, linear_tol, "
                             f"max_iter), got {self.solver!r:.80}")
+        if isinstance(self.steps, np.ndarray) and self.steps.ndim == 1:
+            object.__setattr__(self, "steps", tuple(self.steps.tolist()))
         if (not isinstance(self.steps, (tuple, list)) or not self.steps
-                or not all(_is_number(f) and np.isfinite(f) for f in self.steps)):
+                or not all(isinstance(f, Scene) or (_is_number(f) and np.isfinite(f))
+                           for f in self.steps)):
             raise ValueError(f"Scene steps must be a non-empty sequence of finite load "
-                             f"factors, got {self.steps!r}")
-        object.__setattr__(self, "steps", tuple(float(f) for f in self.steps))
+                             f"factors or of load states (Scenes), got {self.steps!r:.200}")
+        check_steps(len(self.steps), "Scene steps")
+        object.__setattr__(self, "steps", tuple(f if isinstance(f, Scene) else float(f)
+                                                for f in self.steps))
         q, top = self.quadrature_order, MAX_QUADRATURE_ORDER.get(self.dim, 8)
-        if q is not None and not (isinstance(q, int) and not isinstance(q, bool)
-                                  and 1 <= q <= top):
+        if q is not None and not (isinstance(q, (int, np.integer))
+                                  and not isinstance(q, (bool, np.bool_)) and 1 <= q <= top):
             raise ValueError(f"Scene quadrature_order must be an integer from 1 to {top} in "
                              f"{self.dim}D, or None (the minimal exact rule, which affine "
                              f"cells need), got {q!r}")
+        if q is not None:
+            object.__setattr__(self, "quadrature_order", int(q))
         if not (isinstance(self.name, str) and self.name):
             raise ValueError(f"Scene name must be a non-empty string, got {self.name!r}")
         object.__setattr__(self, "displacements", tuple(
@@ -153,6 +209,8 @@ class Scene:
             for k, d in enumerate(self.displacements)))
         object.__setattr__(self, "loads", tuple(
             _for_dim(load, self.dim, f"loads[{k}]") for k, load in enumerate(self.loads)))
+        if self.body_force is not None:
+            object.__setattr__(self, "body_force", _body_force(self.body_force, self.dim))
         if isinstance(self.mesh, (Box, Mesh)):
             _check_dims(self, self.mesh.dim if isinstance(self.mesh, Box) else self.mesh.dim())
 
@@ -203,6 +261,10 @@ class Scene:
         """True for a scene with more than one interface."""
         return len(self.interface_list) > 1
 
+    def materials(self) -> tuple[Material, Material]:
+        """The materials of Ω⁻ and Ω⁺ (the same one unless ``material_plus``)."""
+        return self.material, self.material_plus or self.material
+
     def alone(self, k: int) -> Scene:
         """The scene with its interface ``k`` only (a one-interface scene, the
         same mesh, material, supports, loads and steps).
@@ -222,6 +284,29 @@ class Scene:
                        friction=i.friction, rho_n=i.rho_n, rho_t=i.rho_t, interfaces=None)
 
 
+def _body_force(force, dim: int) -> tuple:
+    """``force`` as a tuple of ``dim`` values (numbers, callables, formulas for ``dim``).
+
+    >>> _body_force(np.array([0, -9.81]), 2)
+    (0.0, -9.81)
+    """
+    if isinstance(force, np.ndarray) and force.ndim == 1:
+        force = tuple(force.tolist())
+    if not isinstance(force, (tuple, list)) or len(force) != dim:
+        raise ValueError(f"Scene body_force must be {dim} values (a vector in F/L³, such "
+                         f"as gravity (0, -rho*g) in 2D), got {force!r:.80}")
+    out = []
+    for i, v in enumerate(force):
+        v = _check_value(v, f"Scene body_force[{i}]")
+        if isinstance(v, Expression):
+            try:
+                v = Expression(v.text, dim)
+            except ValueError as e:
+                raise ValueError(f"Scene body_force[{i}]: {e}") from None
+        out.append(v)
+    return tuple(out)
+
+
 def _for_dim(item: Displacement | SurfaceLoad, dim: int, where: str):
     """A displacement or load whose formula strings evaluate on ``dim``-D points.
 
@@ -237,6 +322,11 @@ def _for_dim(item: Displacement | SurfaceLoad, dim: int, where: str):
         except ValueError as e:
             raise ValueError(f"{where} {what}: {e}") from None
 
+    if isinstance(item.where, Expression) and item.where.dim != dim:
+        try:
+            item = replace(item, where=Expression(item.where.text, dim, boolean=True))
+        except ValueError as e:
+            raise ValueError(f"{where} where: {e}") from None
     if isinstance(item, Displacement):
         return replace(item, components={c: fit(v, f"component {c!r}")
                                          for c, v in item.components.items()})
@@ -266,7 +356,9 @@ def _check_dims(scene: Scene, dim: int):
 
 
 def resolve_mesh(scene: Scene) -> Mesh:
-    """Build, check or read the scene's mesh and check that the scene fits it."""
+    """Build, check or read the scene's mesh and check that the scene fits it: its
+    dimension, and loads and imposed displacements the solve handles
+    (:func:`skxfem.scene.magnitudes.check_magnitudes`)."""
     if isinstance(scene.mesh, Box):
         mesh = meshes.box(scene.mesh.n, scene.mesh.cell, scene.mesh.size)
     elif isinstance(scene.mesh, Mesh):
@@ -275,6 +367,7 @@ def resolve_mesh(scene: Scene) -> Mesh:
     else:
         mesh = meshes.read(scene.mesh)
     _check_dims(scene, mesh.dim())
+    check_magnitudes(scene, mesh)
     return mesh
 
 

@@ -32,7 +32,8 @@ from .laws import CONTACT_LAWS, FRICTION_LAWS, SPACES
 from .laws import TIE_LAWS as LAWS
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "clamped", "rollers", "CELLS",
-           "SIZE_RANGE", "COMPONENTS", "FACES", "is_number", "check_law_fields", "check_friction"]
+           "SIZE_RANGE", "FRICTION_RANGE", "COMPONENTS", "FACES", "is_number", "check_law_fields",
+           "check_friction"]
 
 COMPONENTS = ("x", "y", "z")
 FACES = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
@@ -47,6 +48,16 @@ to 1e60; beyond, the cut loses cut edges to underflowing products of ψ (from
 1e-150 on quadrilaterals), the stiffness of tetrahedra, hexahedra and prisms
 overflows or divides by zero (1e±80), or, on hexahedra at 1e-80, the answer is
 silently wrong (energy error 6e-3).  Express the lengths in another unit."""
+
+FRICTION_RANGE = (1e-10, 1e10)
+"""The Coulomb μ accepted besides 0.  Below, the friction force μp nears the Newton
+tolerance times the pressure (:data:`skxfem.contact.newton.TOL`, 1e-12), below what
+the solve resolves: the law is frictionless to round-off (give 0).  Measured on
+``examples/contact.toml``, where every point slides (|Λ| = 1): |Λ| is 1 to 2e-16
+for μ = 1e-10 ... 1e-2 (to 1.4e-8 on the strip of ``tests/test_contact_laws.py``),
+to 1e-4 only at 1e-12, and at μ = 5e-324 the product μp
+underflowed and Λ = r/(μp) came out NaN.  Above 1e10 a pressed point sticks to
+round-off (the same answer from 1e6 to 1e200); at 1e308 μp overflowed."""
 
 Value = Union[float, str, Callable[[np.ndarray], np.ndarray]]
 
@@ -79,6 +90,25 @@ def _check_boundary(b, what: str):
                         f"callable x -> bool, got {b!r}")
 
 
+def _check_where(where, boundary, what: str):
+    """``where``: None, a condition string (a 3D boolean Expression) or a callable
+    x -> bool, which keeps part of a *named* boundary."""
+    if where is None:
+        return None
+    if not isinstance(boundary, str):
+        raise ValueError(f"{what} where keeps part of a named boundary; the boundary is "
+                         f"already a selection: put both conditions in it")
+    if isinstance(where, str):
+        try:
+            return Expression(where, 3, boolean=True)
+        except ValueError as e:
+            raise ValueError(f"{what} where: {e}") from None
+    if not callable(where):
+        raise TypeError(f"{what} where must be a condition such as 'z > 2.2' or a callable "
+                        f"x -> bool, got {where!r}")
+    return where
+
+
 @dataclass(frozen=True)
 class Box:
     """A built-in structured mesh of a box, built by :func:`skxfem.fem.meshes.box`.
@@ -94,6 +124,11 @@ class Box:
     def __post_init__(self):
         if not isinstance(self.cell, str) or self.cell not in CELLS:
             raise ValueError(f"Box cell must be one of {tuple(CELLS)}, got {self.cell!r}")
+        for key in ("n", "size"):       # numpy arrays as lists, numpy numbers as numbers
+            v = getattr(self, key)
+            if isinstance(v, np.ndarray):
+                object.__setattr__(self, key, tuple(v.tolist()) if v.ndim == 1 else v.item()
+                                   if v.ndim == 0 else v)
         n = (self.n,) * self.dim if is_number(self.n) else self.n
         if (not isinstance(n, (tuple, list)) or len(n) != self.dim
                 or not all(isinstance(k, (int, np.integer)) and not isinstance(k, bool)
@@ -122,9 +157,10 @@ class Box:
 class Displacement:
     """Imposed displacement components on the nodes of a boundary.
 
-    ``components`` maps ``"x"``/``"y"``/``"z"`` (or 0/1/2, or ``"all"``) to a number
-    or a callable ``x -> array``; it is stored with the keys ``"x"``, ``"y"``,
-    ``"z"`` or ``"all"``.
+    ``where`` (a condition string such as ``"z > 2.2"`` or a callable x -> bool)
+    keeps the nodes of a named boundary where it holds.  ``components`` maps
+    ``"x"``/``"y"``/``"z"`` (or 0/1/2, or ``"all"``) to a number or a callable
+    ``x -> array``; it is stored with the keys ``"x"``, ``"y"``, ``"z"`` or ``"all"``.
 
     >>> Displacement("xmin", {0: 0.0, "y": 1}).components
     {'x': 0.0, 'y': 1.0}
@@ -132,9 +168,12 @@ class Displacement:
 
     boundary: str | Callable[[np.ndarray], np.ndarray]
     components: Mapping[str | int, Value]
+    where: str | Callable[[np.ndarray], np.ndarray] | None = None
 
     def __post_init__(self):
         _check_boundary(self.boundary, "Displacement")
+        object.__setattr__(self, "where", _check_where(self.where, self.boundary,
+                                                       "Displacement"))
         if not isinstance(self.components, Mapping) or not self.components:
             raise TypeError("Displacement components must be a non-empty mapping such as "
                             f"{{'x': 0.0}}, got {self.components!r}")
@@ -150,32 +189,43 @@ class Displacement:
         object.__setattr__(self, "components", comps)
 
 
-def clamped(boundary: str | Callable) -> Displacement:
-    """All displacement components zero on ``boundary``."""
-    return Displacement(boundary, {"all": 0.0})
+def clamped(boundary: str | Callable, where=None) -> Displacement:
+    """All displacement components zero on ``boundary`` (where ``where`` holds)."""
+    return Displacement(boundary, {"all": 0.0}, where)
 
 
-def rollers(boundary: str) -> Displacement:
-    """Normal displacement zero on an axis-aligned named face such as ``"xmin"``.
+def rollers(boundary: str, where=None) -> Displacement:
+    """Normal displacement zero on an axis-aligned named face such as ``"xmin"`` (where
+    ``where`` holds).
 
     >>> rollers("zmax").components
     {'z': 0.0}
     """
     if boundary not in FACES:
         raise ValueError(f"rollers needs an axis-aligned face {FACES}, got {boundary!r}")
-    return Displacement(boundary, {boundary[0]: 0.0})
+    return Displacement(boundary, {boundary[0]: 0.0}, where)
 
 
 @dataclass(frozen=True)
 class SurfaceLoad:
-    """A pressure (positive in compression, t = -p n) or a traction vector on facets."""
+    """A pressure (positive in compression, t = -p n) or a traction vector on facets.
+
+    ``where`` (a condition string or a callable x -> bool) keeps the facets of a named
+    boundary whose midpoint it holds at: the xmax face above z = 2.2 is
+
+    >>> SurfaceLoad("xmax", pressure=1.0, where="z > 2.2").where.text
+    'z > 2.2'
+    """
 
     boundary: str | Callable[[np.ndarray], np.ndarray]
     pressure: Value | None = None
     traction: tuple[Value, ...] | None = None
+    where: str | Callable[[np.ndarray], np.ndarray] | None = None
 
     def __post_init__(self):
         _check_boundary(self.boundary, "SurfaceLoad")
+        object.__setattr__(self, "where", _check_where(self.where, self.boundary,
+                                                       "SurfaceLoad"))
         if (self.pressure is None) == (self.traction is None):
             raise ValueError("SurfaceLoad needs exactly one of pressure= or traction=")
         if self.pressure is not None:
@@ -215,6 +265,13 @@ def check_friction(who: str, law: str, friction) -> None:
     if not (is_number(friction) and np.isfinite(friction) and friction >= 0):
         raise ValueError(f"{who} friction (Coulomb's mu) must be a number >= 0, "
                          f"got {friction!r}")
+    lo, hi = FRICTION_RANGE
+    if friction != 0 and not lo <= friction <= hi:
+        raise ValueError(f"{who} friction (Coulomb's mu) must be 0 or in [{lo:g}, {hi:g}], "
+                         f"got {friction!r}: " + (
+                             "below, the friction force is round-off (give 0: no friction)"
+                             if friction < lo else "above, a pressed point sticks to "
+                             "round-off (use law 'adhesive', or a smaller mu)"))
 
 
 def check_law_fields(who: str, law, space, friction, rho_n, rho_t) -> None:
@@ -269,5 +326,6 @@ class Interface:
                             f"got {type(self.levelset).__name__}")
         check_law_fields("Interface", self.law, self.space, self.friction, self.rho_n,
                          self.rho_t)
-        if self.friction is not None:
-            object.__setattr__(self, "friction", float(self.friction))
+        for key in ("friction", "rho_n", "rho_t"):
+            if getattr(self, key) is not None:
+                object.__setattr__(self, key, float(getattr(self, key)))

@@ -78,11 +78,11 @@ def labelled(where: str, build, *args):
         raise (ValueError if isinstance(e, ValueError) else TypeError)(f"{where}: {e}") from None
 
 
-def table(t, where: str, allowed: tuple) -> dict:
-    """``t`` if it is a table whose keys are all ``allowed``."""
+def table(t, where: str, allowed: tuple, top: tuple = ()) -> dict:
+    """``t`` if it is a table whose keys are all ``allowed`` (``top``: :func:`keys`)."""
     if not isinstance(t, dict):
         raise TypeError(f"{where} must be a table, got {t!r}")
-    keys(t, allowed, where)
+    keys(t, allowed, where, top)
     return t
 
 
@@ -93,10 +93,22 @@ def array(data: dict, key: str) -> list:
     return items
 
 
-def keys(t: dict, allowed: tuple, where: str):
+def keys(t: dict, allowed: tuple, where: str, top: tuple = ()):
+    """Refuse a key of ``t`` not ``allowed``; one of the file's ``top``-level keys is said
+    to have fallen into the table (TOML puts every key after a table header into it).
+
+    >>> keys({"steps": [1]}, ("law",), "[[interface]] #2", top=("name", "steps"))
+    Traceback (most recent call last):
+    ...
+    ValueError: [[interface]] #2: unknown key 'steps'; allowed keys: law. 'steps' is a ...
+    """
     for key in t:
         if key not in allowed:
-            raise ValueError(f"{where}: unknown key {key!r}; allowed keys: {', '.join(allowed)}")
+            hint = (f". {key!r} is a top-level key, but TOML puts every key written after a "
+                    f"table header into that table: write the top-level keys "
+                    f"({', '.join(top)}) before the first table" if key in top else "")
+            raise ValueError(f"{where}: unknown key {key!r}; allowed keys: "
+                             f"{', '.join(allowed)}{hint}")
 
 
 def one_of(t: dict, options: tuple, where: str) -> str:
