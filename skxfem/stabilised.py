@@ -129,7 +129,8 @@ def vital_edges(edges, psi, points, nodes, fixed=None) -> Space:
     fixed = check_fixed(fixed, edges, psi.size)
     ne = edges.shape[1]
     if ne == 0:
-        return Space("vital", sp.csr_matrix((0, 0)), np.zeros(0, bool), np.zeros(0, int))
+        return Space("vital", sp.csr_matrix((0, 0)), np.zeros(0, bool),
+                     np.zeros(0, int))
     length = np.linalg.norm(nodes[:, edges[0]] - nodes[:, edges[1]], axis=0)
     vital = minimum_edge_cover(edges, psi, length, fixed)      # 1. the vital edges S_ve
     groups = star_groups(edges, vital, fixed)                   # 2. the groups G^i_cve
@@ -186,7 +187,7 @@ def relations(edges, points, vital, groups) -> sp.csr_matrix:
     iv, nv = np.flatnonzero(vital), np.flatnonzero(~vital)
     inc = incidence(edges, nnodes, vital)
     k1, k2 = (nearest(points, nv, edges[i, nv], inc) for i in (0, 1))
-    both = (k1 >= 0) & (k2 >= 0)                             # else a fixed end: none there
+    both = (k1 >= 0) & (k2 >= 0)                       # else a fixed end: none there
     rows, cols, w = interpolate(points, nv[both], k1[both], k2[both], groups[k1[both]],
                                 groups[k2[both]])
     one = nv[~both]
