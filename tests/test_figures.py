@@ -17,6 +17,7 @@ from skxfem.lbb import InfSup
 from skxfem.levelset import plane, sphere
 from skxfem.stabilised import multiplier_space, vital_edges, winner_nodes
 from skxfem.studies.convergence import StudyRow
+from skxfem.viz.figstyle import cell_colour
 from skxfem.viz.figures import (
     FIG6_EDGES,
     fig5,
@@ -30,7 +31,6 @@ from skxfem.viz.figures import (
     figure6_graph,
     plot_space_2d,
 )
-from skxfem.viz.figstyle import cell_colour
 from skxfem.viz.plot_space import plot_space_3d
 from skxfem.viz.plotting import COLORS
 
