@@ -28,7 +28,8 @@ __all__ = ["Space", "minimum_edge_cover", "star_groups", "relations", "vital_edg
 
 
 def minimum_edge_cover(edges, psi, length, fixed=None) -> np.ndarray:
-    """S_ve: the fewest edges touching every node of N_e not ``fixed``, then the shortest.
+    """S_ve: the fewest edges touching every node of N_e not ``fixed``, then the
+    shortest.
 
     ``edges`` (2, ne) int, ``psi`` (nnodes,), ``length`` (ne,), ``fixed``
     (nnodes,) bool or None; returns the (ne,) bool mask of the vital edges.
@@ -146,7 +147,8 @@ def star_groups(edges, vital, fixed=None) -> np.ndarray:
     edge; a ``fixed`` end (nnodes,) bool, default none, joins no star (it is a
     node of its own).
 
-    >>> star_groups(np.array([[0, 2, 4], [1, 1, 5]]), np.array([True, True, True])).tolist()
+    >>> edges = np.array([[0, 2, 4], [1, 1, 5]])
+    >>> star_groups(edges, np.array([True, True, True])).tolist()
     [0, 0, 1]
     """
     edges, vital = np.asarray(edges), np.asarray(vital, bool)

@@ -60,9 +60,9 @@ CURVE_COLORS = ("#08519c", "#e6550d", "#54278f", "#006d2c")
 _MARKERS = ("o", "s", "^", "D", "v")
 
 #: The width (inches) of a figure that the book shows at its own size: the page's
-#: column at a 1200-pixel window is about 700 pixels, and a chapter's figures are
+#: column at a 1200-pixel window is about 620 pixels, and a chapter's figures are
 #: drawn at 100 pixels per inch; a wider figure is shown scaled down to the column.
-BOOK_WIDTH = 7.0
+BOOK_WIDTH = 6.2
 #: The smallest legend text, in points, at the size the book shows a figure.
 LEGEND_PT = 10.0
 
@@ -72,7 +72,7 @@ def legend_size(fig) -> float:
     :data:`LEGEND_PT` or larger: a figure wider than :data:`BOOK_WIDTH` is scaled
     down to the page's column, so its legend is drawn larger by the same factor.
 
-    >>> legend_size(Figure(figsize=(6, 4))), legend_size(Figure(figsize=(14, 4)))
+    >>> legend_size(Figure(figsize=(6, 4))), legend_size(Figure(figsize=(12.4, 4)))
     (10.0, 20.0)
     """
     return float(LEGEND_PT * max(1.0, fig.get_figwidth() / BOOK_WIDTH))
