@@ -26,7 +26,8 @@ writes into ``--out``
   for every method a user can choose, with the Pareto front; its per-method
   summary is also under ``frontier`` in ``summary.json``;
 
-and prints a short table (and, on a terminal, one progress line per part).
+and prints the tables of :func:`report`: sorted, their columns explained, every
+mesh without a result below them (and, on a terminal, one progress line per part).
 Errors are measured against the exact solution of :mod:`skxfem.fem.exact`
 (scenes :func:`~skxfem.scenes.exact_strip` and
 :func:`~skxfem.scenes.exact_plate` with one layer of cells along x), under
@@ -39,10 +40,10 @@ prisms give the triangles' numbers; the block of
 exact solution varying in x, y and z) is solved on hexahedra, prisms and
 tetrahedra with all three spaces.
 
-``--quick`` takes about a minute (2D up to 1/h = 64, 3D up to 32, the block
-up to 16 cells per side); the
-default goes one mesh further in each and sweeps a larger frontier (about
-eight minutes and 2.4 GB, measured once on 2 shared cores).  ``--sizes``
+``--quick`` took 110 s and 0.9 GB (measured once, 27 November 2026, 2 shared
+cores; 2D up to 1/h = 64, 3D up to 32, the block up to 16 cells per side); the
+default goes one mesh further in each and sweeps a larger frontier (8 minutes and
+2.4 GB, measured once on 23 November 2026).  ``--sizes``
 replaces every list of meshes (for tests; the block, n³ cells, takes the
 smallest size and its half).
 
@@ -103,7 +104,8 @@ def parser() -> argparse.ArgumentParser:
                                 description="Reproduce Figures 5-10 of Géniaut, Massin & "
                                             "Moës (2007) and write summary.json.")
     p.add_argument("--out", type=Path, default=Path("out"), help="output folder (created)")
-    p.add_argument("--quick", action="store_true", help="coarser meshes, about half a minute")
+    p.add_argument("--quick", action="store_true", help="coarser meshes: 110 s, measured once on 27 November 2026 "
+                        "on 2 shared cores (make figures)")
     p.add_argument("--sizes", type=int, nargs="+", metavar="N",
                    help="1/h of every study and of Figures 5, 7, 8 (e.g. 8 16, for tests)")
     return p
