@@ -104,8 +104,9 @@ def parser() -> argparse.ArgumentParser:
                                 description="Reproduce Figures 5-10 of Géniaut, Massin & "
                                             "Moës (2007) and write summary.json.")
     p.add_argument("--out", type=Path, default=Path("out"), help="output folder (created)")
-    p.add_argument("--quick", action="store_true", help="coarser meshes: 110 s, measured once on 27 November 2026 "
-                        "on 2 shared cores (make figures)")
+    p.add_argument("--quick", action="store_true",
+                   help="coarser meshes: 110 s, measured once on 27 November 2026 on 2 "
+                        "shared cores (make figures)")
     p.add_argument("--sizes", type=int, nargs="+", metavar="N",
                    help="1/h of every study and of Figures 5, 7, 8 (e.g. 8 16, for tests)")
     return p
