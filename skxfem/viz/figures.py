@@ -70,10 +70,10 @@ __all__ = ["FIG6_XY", "FIG6_EDGES", "figure6_graph", "fig5", "fig6", "fig7", "fi
 def fig5(n: int = 8, nx: int | None = None) -> Figure:
     """Figure 5: the naive space oscillates on prisms, not on hexahedra.
 
-    Left: the paper's plate (:func:`~skxfem.scenes.paper_plate`: clamped
+    Above: the paper's plate (:func:`~skxfem.scenes.paper_plate`: clamped
     bottom, bonded interface) with ``n`` cells in y, pressure on the line
     x = 1/2 of Γ, against the paper's reference p(y), only approximate there.
-    Right: the 2D analogue, quadrilaterals vs triangles, under the loads of
+    Below: the 2D analogue, quadrilaterals vs triangles, under the loads of
     :func:`~skxfem.scenes.exact_strip`, for which p(x) is the exact pressure.
 
     Parameters
@@ -89,8 +89,8 @@ def fig5(n: int = 8, nx: int | None = None) -> Figure:
     (2, [3, 3])
     """
 
-    fig = Figure(figsize=(9, 4.3), layout="constrained")
-    left, right = fig.subplots(1, 2)
+    fig = Figure(figsize=(6.4, 8.8), layout="constrained")
+    left, right = fig.subplots(2, 1)     # the plate above, the strip below
     for cell in ("hex", "prism"):
         scene = paper_plate(n, cell, space="naive")
         if nx is not None:
@@ -160,8 +160,8 @@ def fig8(ns: Sequence[int] = (8, 16), cell: str = "prism", half: bool = False) -
     """
 
     axis = _interface_axis(cell)
-    fig = Figure(figsize=(4.5 * len(ns), 3.8), layout="constrained")
-    axes = np.atleast_1d(fig.subplots(1, len(ns)))
+    fig = Figure(figsize=(6.4, 4.2 * len(ns)), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(len(ns), 1))
     stop = 0.5 if half else 1.0
     for ax, n in zip(axes, ns):
         for space, algo in (("winner", "algo1"), ("vital", "algo2")):
