@@ -15,7 +15,9 @@ turned into plain Markdown, an ``{include}`` into the text it includes (an
 exercise's task), a ``{download}`` role into a link to the file in the clone (an
 exercise's ``exercises/NN_name/exercise.py``, the one to edit), and a link to
 another page into a link to its notebook (``NAME.ipynb``, beside it) or, for a
-page without code, to its source (``../book/NAME.md``).  Its kernel is
+page without code, to its source (``../book/NAME.md``), and a folded
+``{dropdown}`` into an HTML ``<details>`` block, the library source it shows (a
+``{literalinclude}`` with ``:pyobject:``) as a Python code block.  Its kernel is
 :data:`KERNEL`, the one ``make install`` registers (``skxfem``).
 
 This file is also a Sphinx extension of the book (``_config.yml``,
@@ -25,6 +27,8 @@ notebook, as ``_sources/NAME.ipynb`` next to the page's Markdown source.
 from __future__ import annotations
 
 import argparse
+import ast
+import html
 import re
 import sys
 from pathlib import Path
@@ -41,6 +45,9 @@ KERNEL = {"name": "skxfem", "display_name": "skxfem", "language": "python"}
 INCLUDE = re.compile(r"^```\{include\}[ \t]+(\S+)[ \t]*\n((?:[ \t]*:[\w-]+:.*\n)*)```[ \t]*$",
                      flags=re.M)
 DOWNLOAD = re.compile(r"\{download\}`(?:([^`<]*?)\s*<([^`>]+)>|([^`<>]+))`")
+LITERALINCLUDE = re.compile(
+    r"^```\{literalinclude\}[ \t]+(\S+)[ \t]*\n((?:[ \t]*:[\w-]+:.*\n)*)```[ \t]*$", flags=re.M)
+DROPDOWN = re.compile(r"^(:{3,})\{dropdown\}[ \t]*(.*)\n((?:.*\n)*?)\1[ \t]*$", flags=re.M)
 PAGE_LINK = re.compile(r"\]\(([\w-]+)\.md(#[^)\s]*)?\)")
 STUB = re.compile(r"^_stubs/(\w+)/exercise\.py$")
 
@@ -62,6 +69,35 @@ def _include(match: re.Match, book: Path) -> str:
     return text.strip("\n")
 
 
+def pyobject(source: str, name: str) -> str:
+    """The lines of the top-level function or class ``name`` of a module's ``source``
+    (decorators included), as Sphinx's ``literalinclude`` with ``:pyobject:`` shows it."""
+    for node in ast.parse(source).body:
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)) \
+                and node.name == name:
+            first = min([node.lineno] + [d.lineno for d in node.decorator_list])
+            return "\n".join(source.splitlines()[first - 1:node.end_lineno])
+    raise ValueError(f"no function or class {name!r} at the top level of the module")
+
+
+def _literalinclude(match: re.Match, book: Path) -> str:
+    """A ``{literalinclude}`` of a library function as a fenced Python block."""
+    options = dict(line.strip()[1:].partition(":")[::2] for line in match.group(2).splitlines())
+    options = {k: v.strip() for k, v in options.items()}
+    if set(options) - {"pyobject", "language"} or "pyobject" not in options:
+        raise ValueError(f"{{literalinclude}} {match.group(1)}: only :pyobject: (and "
+                         f":language:) are handled by scripts/notebooks.py, not {options}")
+    code = pyobject((book / match.group(1)).read_text(encoding="utf-8"), options["pyobject"])
+    return f"```{options.get('language', 'python')}\n{code}\n```"
+
+
+def _dropdown(match: re.Match) -> str:
+    """A folded ``{dropdown}`` as an HTML ``<details>`` block (Markdown inside)."""
+    title = re.sub(r"`([^`]+)`", r"<code>\1</code>", html.escape(match.group(2).strip(),
+                                                                   quote=False))
+    return f"<details><summary>{title}</summary>\n\n{match.group(3).strip()}\n\n</details>"
+
+
 def _target(path: str) -> str:
     """A file the book offers, as a link from the clone's notebooks/ folder: the book's
     stub of an exercise is the student's own file; any other is relative to book/,
@@ -79,6 +115,8 @@ def plain(markdown: str, names: set[str], book: Path = BOOK) -> str:
     '[a stub](../exercises/01_levelset/exercise.py), [Scenes](scenes.ipynb) and [Start](../book/getting-started.md#student)'
     """
     markdown = INCLUDE.sub(lambda m: _include(m, book), markdown)
+    markdown = LITERALINCLUDE.sub(lambda m: _literalinclude(m, book), markdown)
+    markdown = DROPDOWN.sub(_dropdown, markdown)
     markdown = DOWNLOAD.sub(lambda m: f"[{m.group(1) or m.group(3)}]"
                                       f"({_target(m.group(2) or m.group(3))})", markdown)
     return PAGE_LINK.sub(lambda m: f"]({m.group(1)}.ipynb{m.group(2) or ''})"

@@ -118,8 +118,8 @@ def strictly_cut_edges(edges, psi, x) -> tuple[np.ndarray, np.ndarray]:
         Indices of the strictly cut edges and their points (dim, ne), where
         the linear interpolant of ψ vanishes (:func:`skxfem.fem.simplex.edge_point`).
 
-    >>> ids, pts = strictly_cut_edges(np.array([[0, 1], [1, 2]]), np.array([-1., 1., 3.]),
-    ...                               np.array([[0., 1., 2.]]))
+    >>> edges, psi = np.array([[0, 1], [1, 2]]), np.array([-1., 1., 3.])
+    >>> ids, pts = strictly_cut_edges(edges, psi, np.array([[0., 1., 2.]]))
     >>> ids.tolist(), pts.tolist()
     ([0], [[0.5]])
     """

@@ -251,7 +251,8 @@ def enriched_blocks(V: XSpace | XSpaces, A, AH) -> sp.csr_matrix:
     and zero between two enrichments (module notes)."""
     if isinstance(V, XSpaces):
         A = A.tocsr()
-        parts = [_blocks(Vk, A, AHk.tocsr()) for Vk, AHk in zip(V.per_interface, AH, strict=True)]
+        parts = [_blocks(Vk, A, AHk.tocsr())
+                 for Vk, AHk in zip(V.per_interface, AH, strict=True)]
         rows = [[A] + [Aab for Aab, _ in parts]]
         for k, (Aab, Abb) in enumerate(parts):
             rows.append([Aab.T] + [Abb if j == k else None for j in range(len(parts))])

@@ -137,8 +137,8 @@ def inf_sup(scene, scaling: str = "h", law: str | None = None) -> InfSup:
     if scaling not in ("h", "l2"):
         raise ValueError(f"scaling must be 'h' or 'l2', got {scaling!r}")
     if check_scene(scene).several:
-        raise ValueError("inf_sup measures the multiplier space of one interface; for a "
-                         "scene with several, measure each: inf_sup(scene.alone(k))")
+        raise ValueError("inf_sup measures the multiplier space of one interface; for "
+                         "a scene with several, measure each: inf_sup(scene.alone(k))")
     p = assemble(scene, "bilateral" if law == "stick" else law)
     mesh, cut, V = p.mesh, p.cut, p.V
     L = np.ptp(mesh.p, axis=1).max()
@@ -147,12 +147,14 @@ def inf_sup(scene, scaling: str = "h", law: str | None = None) -> InfSup:
     free = np.setdiff1d(np.arange(V.N), p.D)   # the solver's, enriched ones included
     # mesh size across Γ: the mean length of the cut edges (anisotropic
     # meshes, such as one layer of prisms along x, are measured where it matters)
-    h = float(np.mean(np.linalg.norm(mesh.p[:, cut.edges[0]] - mesh.p[:, cut.edges[1]], axis=0)))
+    edge = mesh.p[:, cut.edges[0]] - mesh.p[:, cut.edges[1]]
+    h = float(np.mean(np.linalg.norm(edge, axis=0)))
     B, Ps = p.B, [p.P]
     if law == "stick":
         ops = operators(p)
         B, kept = sticking_rows(p.B, ops.Bt, ops.tangent_held)
         Ps += [Pt[:, d] for Pt, d in zip(ops.Pt, kept)]
     Mr = (Ps[0].T @ M @ Ps[0] if len(Ps) == 1 else
-          sp.block_diag([P.T @ M @ P for P in Ps], format="csr")) * (h if scaling == "h" else 1.0)
+          sp.block_diag([P.T @ M @ P for P in Ps], format="csr"))
+    Mr = Mr * (h if scaling == "h" else 1.0)
     return inf_sup_constant(A[free][:, free], B[:, free], Mr, h=h)

@@ -173,7 +173,8 @@ def interface_rule(mesh, cut: Cut, order: int = 4) -> InterfaceRule:
 
 
 def coupling(V: XSpace, rule: InterfaceRule, law: str, J=None) -> sp.csr_matrix:
-    """B on the edge multipliers: ``(dim·n_edges, N)`` bonded, ``(n_edges, N)`` bilateral.
+    """B on the edge multipliers: ``(dim·n_edges, N)`` bonded, ``(n_edges, N)``
+    bilateral.
 
     ``J`` is the jump operator at the rule's points (:func:`skxfem.enrich.jump_matrix`,
     (dim·nq, N), component-major); built here if not given.

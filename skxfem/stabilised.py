@@ -28,7 +28,8 @@ __all__ = ["Space", "minimum_edge_cover", "star_groups", "relations", "vital_edg
 
 
 def minimum_edge_cover(edges, psi, length, fixed=None) -> np.ndarray:
-    """S_ve: the fewest edges touching every node of N_e not ``fixed``, then the shortest.
+    """S_ve: the fewest edges touching every node of N_e not ``fixed``, then the
+    shortest.
 
     ``edges`` (2, ne) int, ``psi`` (nnodes,), ``length`` (ne,), ``fixed``
     (nnodes,) bool or None; returns the (ne,) bool mask of the vital edges.
@@ -129,7 +130,8 @@ def vital_edges(edges, psi, points, nodes, fixed=None) -> Space:
     fixed = check_fixed(fixed, edges, psi.size)
     ne = edges.shape[1]
     if ne == 0:
-        return Space("vital", sp.csr_matrix((0, 0)), np.zeros(0, bool), np.zeros(0, int))
+        return Space("vital", sp.csr_matrix((0, 0)), np.zeros(0, bool),
+                     np.zeros(0, int))
     length = np.linalg.norm(nodes[:, edges[0]] - nodes[:, edges[1]], axis=0)
     vital = minimum_edge_cover(edges, psi, length, fixed)      # 1. the vital edges S_ve
     groups = star_groups(edges, vital, fixed)                   # 2. the groups G^i_cve
@@ -145,7 +147,8 @@ def star_groups(edges, vital, fixed=None) -> np.ndarray:
     edge; a ``fixed`` end (nnodes,) bool, default none, joins no star (it is a
     node of its own).
 
-    >>> star_groups(np.array([[0, 2, 4], [1, 1, 5]]), np.array([True, True, True])).tolist()
+    >>> edges = np.array([[0, 2, 4], [1, 1, 5]])
+    >>> star_groups(edges, np.array([True, True, True])).tolist()
     [0, 0, 1]
     """
     edges, vital = np.asarray(edges), np.asarray(vital, bool)
@@ -186,7 +189,7 @@ def relations(edges, points, vital, groups) -> sp.csr_matrix:
     iv, nv = np.flatnonzero(vital), np.flatnonzero(~vital)
     inc = incidence(edges, nnodes, vital)
     k1, k2 = (nearest(points, nv, edges[i, nv], inc) for i in (0, 1))
-    both = (k1 >= 0) & (k2 >= 0)                             # else a fixed end: none there
+    both = (k1 >= 0) & (k2 >= 0)                       # else a fixed end: none there
     rows, cols, w = interpolate(points, nv[both], k1[both], k2[both], groups[k1[both]],
                                 groups[k2[both]])
     one = nv[~both]

@@ -17,6 +17,7 @@ from skxfem.lbb import InfSup
 from skxfem.levelset import plane, sphere
 from skxfem.stabilised import multiplier_space, vital_edges, winner_nodes
 from skxfem.studies.convergence import StudyRow
+from skxfem.viz.figstyle import cell_colour
 from skxfem.viz.figures import (
     FIG6_EDGES,
     fig5,
@@ -77,7 +78,8 @@ def test_fig5_naive_hex_smooth_prism_oscillates():
     for ax, ref in zip(fig.axes, ("paper's reference", "exact")):
         labels = [ln.get_label() for ln in ax.lines]
         assert len(labels) == 3 and ref in labels[2], labels
-        assert all(same_colour(ln.get_color(), COLORS["naive"]) for ln in ax.lines[:2])
+        assert same_colour(ax.lines[1].get_color(), COLORS["naive"])    # prism/tri
+        assert same_colour(ax.lines[0].get_color(), cell_colour("naive", "hex"))
     for ax in fig.axes:
         smooth, wavy = (np.abs(np.diff(ln.get_ydata(), 2)).max() for ln in ax.lines[:2])
         assert wavy > 10 * smooth, "prisms/triangles oscillate, hexahedra/quads do not"
@@ -238,3 +240,72 @@ def test_fig_vital_3d_chosen_spaces_and_refusal():
     assert [ax.get_title().split(":")[0] for ax in fig.axes] == ["naive", "vital (algo2)"]
     with pytest.raises(ValueError, match="spaces must be some of"):
         fig_vital_3d(n=3, spaces=("fancy",))
+
+
+# 4. readable at the size the book shows them
+def legend_points_in_the_book(fig):
+    """The smallest legend text of ``fig``, in points, at the size the book shows it
+    (a figure wider than BOOK_WIDTH is scaled down to the page's column)."""
+    from skxfem.viz.plotting import BOOK_WIDTH
+    legends = [ax.get_legend() for ax in fig.axes if ax.get_legend()] + list(fig.legends)
+    assert legends, "the figure has a legend"
+    scale = min(1.0, BOOK_WIDTH / fig.get_figwidth())
+    return min(t.get_fontsize() * scale for lg in legends for t in lg.get_texts())
+
+
+def study_data():
+    return {"prism": rows("naive", [0.4, 0.2, 0.1]) + rows("vital", [0.4, 0.2, 0.1])
+            + rows("winner", [0.5, 0.2, 0.05]), "tri": rows("vital", [0.16, 0.04, 0.01])}
+
+
+@pytest.mark.parametrize("make", [
+    lambda: fig5(n=4, nx=1), fig6, lambda: fig7(ns=(4, 8)), lambda: fig8(ns=(4, 8)),
+    lambda: fig9(study_data()), lambda: fig10(study_data()),
+    lambda: fig_inf_sup(*[{("tri", "naive"): [InfSup(b, np.array([b * b]), 0, 1, 1, h)
+                                              for b, h in ((0.1, 0.2), (0.05, 0.1))]}] * 3),
+    lambda: fig_vital_3d(n=3, radius=0.4)],
+    ids=["fig5", "fig6", "fig7", "fig8", "fig9", "fig10", "inf_sup", "vital_3d"])
+def test_legends_are_10_points_at_book_size(make):
+    assert legend_points_in_the_book(make()) >= 10 - 1e-9
+
+
+def test_every_legend_of_viz_follows_the_book_size_rule():
+    """Every legend skxfem.viz draws takes its size from legend_size (the figures of
+    other modules are tested in their own files; this keeps them all to the rule)."""
+    from pathlib import Path
+
+    import skxfem.viz
+    folder = Path(skxfem.viz.__file__).parent
+    calls = [(path.name, m.group(0)) for path in sorted(folder.glob("*.py"))
+             for m in re.finditer(r"\.legend\((?:[^()]|\([^()]*(?:\([^()]*\))*[^()]*\))*\)",
+                                  path.read_text(encoding="utf-8"))]
+    assert len(calls) >= 12
+    assert all("fontsize=legend_size(" in call for _, call in calls), \
+        [c for c in calls if "fontsize=legend_size(" not in c[1]]
+
+
+def test_fig5_colours_differ_per_cell_type():
+    fig = fig5(n=4, nx=1)
+    for ax in fig.axes:
+        smooth, wavy = ax.lines[:2]                     # hex/quad, prism/tri
+        assert not same_colour(smooth.get_color(), wavy.get_color())
+        assert same_colour(wavy.get_color(), COLORS["naive"]), "the naive space's colour"
+
+
+def test_coinciding_curves_are_marked_and_both_visible():
+    fig = fig9(study_data())
+    naive, winner, vital = fig.axes[0].lines[:3]
+    assert "coincides" not in naive.get_label() and "coincides" not in winner.get_label()
+    assert vital.get_label() == "vital, prism, slope -1.00 (coincides with naive)"
+    assert naive.get_markersize() > vital.get_markersize(), "nested markers"
+    assert naive.get_markerfacecolor() == "none", "the one below is open"
+
+
+def test_fig7_palest_shade_is_visible_on_white():
+    def luminance(c):
+        lin = [v / 12.92 if v <= 0.03928 else ((v + 0.055) / 1.055) ** 2.4
+               for v in to_rgba(c)[:3]]
+        return 0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2]
+    palest = fig7(ns=(4, 8, 16)).axes[0].lines[0].get_color()
+    contrast = 1.05 / (luminance(palest) + 0.05)      # WCAG contrast against white
+    assert contrast >= 1.8, (palest, contrast)

@@ -46,6 +46,7 @@ def test_a_notebook_is_the_chapter_without_outputs(tmp_path):
 
 MYST = re.compile(r"\{[a-z-]+\}`|^\s*(```|~~~)\s*\{|^:::")
 LINK = re.compile(r"\]\(([^)\s]+)\)")
+FENCED = re.compile(r"^```.*?^```", flags=re.S | re.M)
 
 
 def test_a_notebook_reads_as_a_student_opens_it():
@@ -60,7 +61,7 @@ def test_a_notebook_reads_as_a_student_opens_it():
         text = "\n".join(c.source for c in nb.cells if c.cell_type == "markdown")
         assert "{download}" not in text and "{include}" not in text, page.name
         assert not MYST.search(text), (page.name, MYST.search(text).group())
-        for target in LINK.findall(text):
+        for target in LINK.findall(FENCED.sub("", text)):        # code is no link
             if "://" in target or target.startswith("#") or "\\" in target:
                 continue                                  # a web link, or maths
             links += 1
@@ -111,11 +112,13 @@ def test_the_check_of_the_built_book(tmp_path):
 
 def run(path: Path, env: dict) -> tuple[str, float, str]:
     """Execute one notebook as a student would (``jupyter execute NAME.ipynb``, nbclient's
-    command line, with the kernel it names) in its own process and folder; its name,
-    seconds and error ('' if none)."""
+    command line, with the kernel it names) in its own process and folder, keeping its
+    outputs (``--inplace``, for :func:`printed`); its name, seconds and error ('' if
+    none)."""
     start = time.perf_counter()
     done = subprocess.run([sys.executable, "-m", "jupyter", "execute", "--timeout=600",
-                           path.name], cwd=path.parent, env=env, capture_output=True, text=True)
+                           "--inplace", path.name], cwd=path.parent, env=env,
+                          capture_output=True, text=True)
     error = "" if done.returncode == 0 else (done.stdout + done.stderr)[-4000:]
     return path.stem, time.perf_counter() - start, error
 
@@ -143,3 +146,20 @@ def test_every_chapter_runs_as_a_standalone_notebook(tmp_path):
     print("\n".join(f"{name:16} {seconds:5.1f} s" for name, seconds, _ in results))
     failed = [f"{name}: {error}" for name, _, error in results if error]
     assert not failed, "\n\n".join(failed)
+    wide = [f"{path.stem}: {line}" for path in paths for line in printed(path)
+            if len(line) > 88]
+    assert not wide, "printed lines wider than the book's 88 columns:\n" + "\n".join(wide)
+
+
+def printed(path: Path) -> list[str]:
+    """The lines a chapter prints (its text outputs, not its figures or tables)."""
+    lines = []
+    for cell in nbformat.read(path, 4).cells:
+        for out in cell.get("outputs", []):
+            data = out.get("data", {})
+            if out.get("output_type") == "stream":
+                lines += out["text"].splitlines()
+            elif "text/plain" in data and not any(k.startswith(("image/", "text/markdown",
+                                                                "text/html")) for k in data):
+                lines += data["text/plain"].splitlines()
+    return lines

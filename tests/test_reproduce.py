@@ -2,11 +2,13 @@
 
 One reduced run (meshes 1/h = 8 and 16) is shared by the tests of this file.
 """
+import contextlib
+import io
 import json
 
 import pytest
 
-from skxfem.app.reproduce import main
+from skxfem.app.reproduce import LEGEND, main
 
 FIGURES = ["fig5", "fig6", "fig7", "fig8", "fig7_2d", "fig8_2d", "fig9", "fig10", "inf_sup",
            "frontier_energy", "frontier_pressure", "fig1", "fig2", "fig3", "fig4", "block3d",
@@ -16,7 +18,10 @@ FIGURES = ["fig5", "fig6", "fig7", "fig8", "fig7_2d", "fig8_2d", "fig9", "fig10"
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
     out = tmp_path_factory.mktemp("out")
-    code = main(["--quick", "--sizes", "8", "16", "--out", str(out)])
+    printed = io.StringIO()
+    with contextlib.redirect_stdout(printed):
+        code = main(["--quick", "--sizes", "8", "16", "--out", str(out)])
+    (out / "printed.txt").write_text(printed.getvalue())
     return code, out, json.loads((out / "summary.json").read_text())
 
 
@@ -105,3 +110,26 @@ def test_block3d_numbers(run):
         block["studies"]["tet"]["naive"]["pressure_l2"][0] > 10
     assert [(f["cell"], f["space"], f["n"]) for f in block["failures"]] == [("tet", "naive", 4)]
     assert block["gamma"]["normal"] == [0.2, 0.3, 1.0]
+
+
+def test_the_printed_tables_are_sorted_explained_and_followed_by_the_failures(run):
+    """Each table's rows are sorted (dimension, cell, space, 1/h), the legend explains
+    every column header, and each failure is printed below the tables, whole."""
+    _, out, summary = run
+    text = (out / "printed.txt").read_text()
+    dims = {"tri": 2, "quad": 2, "prism": 3, "hex": 3, "tet": 3}
+    spaces = ["naive", "winner", "vital"]
+    tables = text.split("\n\n")[:2]
+    for table in tables:
+        header, *rows = table.splitlines()[1:]
+        keys = [(dims[c], c, spaces.index(s), int(n))
+                for c, s, n, *_ in (row.split() for row in rows)]
+        assert len(keys) > 10 and keys == sorted(keys), table
+        for column in header.split():
+            assert f"\n  {column} " in LEGEND or column in ("cell", "space"), column
+    assert LEGEND in text
+    failures = text[text.index("Failures"):]
+    assert text.index(LEGEND) < text.index("Failures")
+    for f in summary["block3d"]["failures"]:
+        assert f"{f['cell']} {f['space']} 1/h = {f['n']}:" in failures
+        assert " ".join(f["reason"].split()) in " ".join(failures.split()), "the whole reason"

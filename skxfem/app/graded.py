@@ -258,7 +258,8 @@ def contract(func: Callable, note: str = "") -> str:
 
     >>> from skxfem.fem.simplex import edge_point
     >>> print(contract(edge_point, "# exercise 02"))
-    def edge_point(xa: np.ndarray, xb: np.ndarray, pa: np.ndarray, pb: np.ndarray) -> np.ndarray:
+    def edge_point(xa: np.ndarray, xb: np.ndarray, pa: np.ndarray,
+                   pb: np.ndarray) -> np.ndarray:
         \"\"\"The zero of the linear interpolant of ψ on the segment [xa, xb].
     <BLANKLINE>
         ``xa, xb`` have shape ``(..., dim)``, ``pa, pb`` shape ``(...)`` with pa·pb < 0.

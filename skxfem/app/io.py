@@ -5,9 +5,11 @@
   whole vector), ``pressure``, ``jump`` ([[u]] = u⁻ - u⁺), ``max_jump``,
   ``n_dofs``, ``n_multipliers``, the ``timings`` in seconds per stage and
   ``linear_solve``: the solve taken (``linear``) and how it went
-  (:attr:`skxfem.result.Result.linear_info`: residual, balance, and the
-  iterations and residuals of an iterative solve).  NaN or inf is never written:
-  :func:`write_result` refuses such a result (:class:`NotFiniteError`) before writing.
+  (:attr:`skxfem.result.Result.linear_info`: for a tie its ``tol``, residual,
+  balance, and the iterations and residuals of an iterative solve; for contact
+  only its ``tol``, each Newton step's Krylov iterations being in ``steps``).
+  NaN or inf is never written: :func:`write_result` refuses such a result
+  (:class:`NotFiniteError`) before writing.
 * ``displacement.vtu``: each side of Γ as its own piece of mesh with its own
   field ``displacement``, so that ParaView's *Warp By Vector* shows the
   discontinuity: the cells of Ω⁻ and the cut cells with ``u_minus`` on one copy

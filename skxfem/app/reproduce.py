@@ -26,7 +26,8 @@ writes into ``--out``
   for every method a user can choose, with the Pareto front; its per-method
   summary is also under ``frontier`` in ``summary.json``;
 
-and prints a short table (and, on a terminal, one progress line per part).
+and prints the tables of :func:`report`: sorted, their columns explained, every
+mesh without a result below them (and, on a terminal, one progress line per part).
 Errors are measured against the exact solution of :mod:`skxfem.fem.exact`
 (scenes :func:`~skxfem.scenes.exact_strip` and
 :func:`~skxfem.scenes.exact_plate` with one layer of cells along x), under
@@ -39,10 +40,10 @@ prisms give the triangles' numbers; the block of
 exact solution varying in x, y and z) is solved on hexahedra, prisms and
 tetrahedra with all three spaces.
 
-``--quick`` takes about a minute (2D up to 1/h = 64, 3D up to 32, the block
-up to 16 cells per side); the
-default goes one mesh further in each and sweeps a larger frontier (about
-eight minutes and 2.4 GB, measured once on 2 shared cores).  ``--sizes``
+``--quick`` took 110 s and 0.9 GB (measured once, 27 November 2026, 2 shared
+cores; 2D up to 1/h = 64, 3D up to 32, the block up to 16 cells per side); the
+default goes one mesh further in each and sweeps a larger frontier (8 minutes and
+2.4 GB, measured once on 23 November 2026).  ``--sizes``
 replaces every list of meshes (for tests; the block, n³ cells, takes the
 smallest size and its half).
 
@@ -54,12 +55,15 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+import textwrap
 import time
 from pathlib import Path
 
 import numpy as np
 
+from ..fem.cells import CELL_TYPES
 from ..lbb import inf_sup
+from ..multipliers import SPACES
 from ..scene.benchmarks import exact_scene
 from ..stabilised import vital_edges, winner_nodes
 from ..studies.conforming import study_conforming
@@ -71,7 +75,7 @@ from ..viz import figures, schematics
 from ..viz.frontier_plots import reproduce_frontier
 from ..viz.validation3d_plots import fig_block, fig_block_pressure
 
-__all__ = ["main", "parser", "plan"]
+__all__ = ["main", "parser", "plan", "report", "LEGEND"]
 
 SETS = {
     "quick": {"d2": (8, 16, 32, 64), "d3": (8, 16, 32), "fig5": 8, "fig7": (4, 8, 16, 32),
@@ -100,7 +104,9 @@ def parser() -> argparse.ArgumentParser:
                                 description="Reproduce Figures 5-10 of Géniaut, Massin & "
                                             "Moës (2007) and write summary.json.")
     p.add_argument("--out", type=Path, default=Path("out"), help="output folder (created)")
-    p.add_argument("--quick", action="store_true", help="coarser meshes, about half a minute")
+    p.add_argument("--quick", action="store_true",
+                   help="coarser meshes: 110 s, measured once on 27 November 2026 on 2 "
+                        "shared cores (make figures)")
     p.add_argument("--sizes", type=int, nargs="+", metavar="N",
                    help="1/h of every study and of Figures 5, 7, 8 (e.g. 8 16, for tests)")
     return p
@@ -160,31 +166,90 @@ def _table(cell, rows, betas) -> dict:
     return out
 
 
-def _print_table(studies: dict) -> None:
-    print(f"{'cell':6} {'space':7} {'1/h':>4} {'beta_h':>8} {'bonded':>8} {'L2(p)':>9} "
-          f"{'rate':>5} {'W(u)':>9} {'rate':>5}")
+LEGEND = """\
+Rows sorted by dimension (2D, then 3D), cell type, space (naive, winner, vital), 1/h.
+  1/h      cells per unit length along Γ (the block: cells per side)
+  beta_h   inf-sup constant β_h of the bilateral tie, M = h × interface mass
+           (skxfem.lbb.inf_sup): bounded away from 0 for a stable space
+  bonded   the same constant for the bonded tie, the law the scenes solve
+  L2(p)    relative L²(Γ) error of the contact pressure p = -λ
+  W(u)     relative energy error of the displacement
+  max(p)   largest error of p at the multiplier points, relative to max |p|
+  rate     observed order of the error on its left against the row above:
+           log(e_above / e) / log(h_above / h), blank on a space's first mesh"""
+"""What the columns of the printed tables mean (:func:`report` prints it after them)."""
+
+
+def _order(cell: str, space: str, n: int) -> tuple:
+    """The sort key of a printed row: dimension, cell type, space, 1/h."""
+    return (CELL_TYPES[cell].dim, cell, SPACES.index(space), n)
+
+
+def _rows(studies: dict, columns) -> list[tuple]:
+    """``(key, values)`` per mesh of ``{cell: {space: table}}``, the rate of each
+    listed error column next to it (None on a space's first mesh)."""
+    rows = []
     for cell, spaces in studies.items():
         for space, t in spaces.items():
             for k, n in enumerate(t["n"]):
-                pr = f"{t['pressure_l2_rates'][k - 1]:5.2f}" if k else "     "
-                er = f"{t['energy_rates'][k - 1]:5.2f}" if k else "     "
-                print(f"{cell:6} {space:7} {n:4d} {t['beta_h'][k]:8.4f} "
-                      f"{t['beta_h_bonded'][k]:8.4f} "
-                      f"{t['pressure_l2'][k]:9.2e} {pr} {t['energy'][k]:9.2e} {er}")
+                values = [t[c][k] if c not in RATES else
+                          (t[RATES[c]][k - 1] if k else None) for c in columns]
+                rows.append((_order(cell, space, n), (cell, space, n, *values)))
+    return [r for _, r in sorted(rows, key=lambda r: r[0])]
 
 
-def _print_block(block: dict) -> None:
-    print(f"block  {'space':7} {'1/h':>4} {'W(u)':>9} {'rate':>5} {'L2(p)':>9} {'rate':>5} "
-          f"{'max(p)':>9}")
-    for cell, spaces in block["studies"].items():
-        for space, t in spaces.items():
-            for k, n in enumerate(t["n"]):
-                er = f"{t['energy_rates'][k - 1]:5.2f}" if k else "     "
-                pr = f"{t['pressure_l2_rates'][k - 1]:5.2f}" if k else "     "
-                print(f"{cell:6} {space:7} {n:4d} {t['energy'][k]:9.2e} {er} "
-                      f"{t['pressure_l2'][k]:9.2e} {pr} {t['pressure_max'][k]:9.2e}")
-    for f in block["failures"]:
-        print(f"{f['cell']:6} {f['space']:7} {f['n']:4d} {f['reason'][:70]}")
+RATES = {"pressure_l2_rate": "pressure_l2_rates", "energy_rate": "energy_rates"}
+
+
+def _rate(r) -> str:
+    return "     " if r is None else f"{r:5.2f}"
+
+
+def report(summary: dict) -> str:
+    """The text ``make figures`` prints: the convergence table of the plate and the
+    strip, the table of the 3D block, both sorted (:func:`_order`), what their columns
+    mean (:data:`LEGEND`), then every mesh that has no result, with the solver's
+    whole message.
+
+    >>> t = {"n": [8], "beta_h": [0.5], "beta_h_bonded": [0.4], "pressure_l2": [0.1],
+    ...      "pressure_l2_rates": [], "energy": [0.2], "energy_rates": []}
+    >>> block = {"studies": {}, "failures": [{"cell": "tet", "space": "naive", "n": 4,
+    ...                                      "reason": "refused: too dependent"}]}
+    >>> text = report({"studies": {"tri": {"vital": t}}, "block3d": block})
+    >>> print(text.splitlines()[2])
+    tri    vital      8   0.5000   0.4000  1.00e-01        2.00e-01
+    >>> print(text.split("Failures")[1])
+     (1 mesh with no result):
+    tet naive 1/h = 4: refused: too dependent
+    """
+    lines = ["The plate (3D) and the strip (2D): summary.json, studies",
+             f"{'cell':6} {'space':7} {'1/h':>4} {'beta_h':>8} {'bonded':>8} {'L2(p)':>9} "
+             f"{'rate':>5} {'W(u)':>9} {'rate':>5}"]
+    columns = ("beta_h", "beta_h_bonded", "pressure_l2", "pressure_l2_rate", "energy",
+               "energy_rate")
+    for cell, space, n, beta, bonded, p, pr, e, er in _rows(summary["studies"], columns):
+        lines.append(f"{cell:6} {space:7} {n:4d} {beta:8.4f} {bonded:8.4f} {p:9.2e} "
+                     f"{_rate(pr)} {e:9.2e} {_rate(er)}".rstrip())
+    block = summary["block3d"]
+    lines += ["", "The 3D block, Γ slanted against all three axes: summary.json, block3d",
+              f"{'cell':6} {'space':7} {'1/h':>4} {'W(u)':>9} {'rate':>5} {'L2(p)':>9} "
+              f"{'rate':>5} {'max(p)':>9}"]
+    columns = ("energy", "energy_rate", "pressure_l2", "pressure_l2_rate", "pressure_max")
+    for cell, space, n, e, er, p, pr, pmax in _rows(block["studies"], columns):
+        lines.append(f"{cell:6} {space:7} {n:4d} {e:9.2e} {_rate(er)} {p:9.2e} {_rate(pr)} "
+                     f"{pmax:9.2e}")
+    lines += ["", LEGEND, ""]
+    failures = sorted(block["failures"], key=lambda f: _order(f["cell"], f["space"], f["n"]))
+    if not failures:
+        lines.append("Failures: none (every mesh has a result)")
+    else:
+        count = f"{len(failures)} mesh{'es' if len(failures) > 1 else ''}"
+        lines.append(f"Failures ({count} with no result):")
+        for f in failures:
+            lines.append(textwrap.fill(f"{f['cell']} {f['space']} 1/h = {f['n']}: "
+                                       f"{f['reason']}", 88, subsequent_indent="    ",
+                                       break_long_words=False, break_on_hyphens=False))
+    return "\n".join(lines)
 
 
 def main(argv=None) -> int:
@@ -271,8 +336,7 @@ def main(argv=None) -> int:
     }
     timings["total"] = round(time.perf_counter() - start, 2)
     (out / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
-    _print_table(studies)
-    _print_block(summary["block3d"])
+    print(report(summary))
     print(f"wrote {len(list(out.glob('*.png')))} figures and summary.json to {out}/ "
           f"in {timings['total']:.0f} s")
     return 0

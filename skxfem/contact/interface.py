@@ -151,7 +151,8 @@ def operators(pb) -> Operators:
     w = np.asarray(P.T @ (pb.M_edges @ np.ones(P.shape[0]))).ravel()
     if np.any(w <= 0):
         raise ValueError(f"{int(np.sum(w <= 0))} multiplier dof(s) have no positive "
-                         f"weight on Γ: the multiplier space does not fit this interface")
+                         f"weight on Γ: the multiplier space does not fit this "
+                         f"interface")
     points = (PNW @ rule.points.T).T / w
     normals = (PNW @ rule.normals.T).T
     normals /= np.linalg.norm(normals, axis=0)
@@ -162,7 +163,8 @@ def operators(pb) -> Operators:
     fallback = held_tangents(fixed, e, P, normals)
     Bt, Pt, tangent_held = [], [], np.zeros((w.size, dim - 1), bool)
     for a in range(dim - 1):
-        dofs, Pa = tangential_space(pb, held_with_normal(fixed, pb.cut, facet_frames[a]))
+        held = held_with_normal(fixed, pb.cut, facet_frames[a])
+        dofs, Pa = tangential_space(pb, held)
         if dofs is None:  # the normal space, its wholly held dofs released
             Pt.append(sp.csr_matrix(P))
             tangent_held[:, a] = fallback[:, a]
@@ -174,8 +176,8 @@ def operators(pb) -> Operators:
         Bt.append((Pt[-1].T @ PT[a]).tocsr())
     if fixed[:, e].any():
         tangent_held = release_dependent(pb, Bt, tangent_held)
-    return Operators(pb.B, tuple(Bt), w, h, points, normals, T[:, :, 0], tangent_held, tuple(Pt),
-                     np.zeros(w.size, dtype=np.int64))
+    return Operators(pb.B, tuple(Bt), w, h, points, normals, T[:, :, 0], tangent_held,
+                     tuple(Pt), np.zeros(w.size, dtype=np.int64))
 
 
 def join(pb, parts) -> Operators:

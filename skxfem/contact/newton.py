@@ -362,13 +362,14 @@ def force_scale(step: StepProblem, U) -> float:
 
 
 def relative_residuals(step: StepProblem, it: Iterate) -> np.ndarray:
-    """Step 5: (equilibrium, contact, friction) residuals relative to :func:`force_scale`,
-    the interface equations at the reference ρ (module notes)."""
+    """Step 5: (equilibrium, contact, friction) residuals relative to
+    :func:`force_scale`, the interface equations at the reference ρ (module notes)."""
     ref = np.full(it.lam.size, step.rho_ref)
     res = residual(step, it, ref, ref)
     w = step.ops.w
     scale = force_scale(step, it.U)
-    return np.array([_max(res.R_u), _max(w * res.R_n), _max(w[:, None] * res.R_t)]) / scale
+    forces = [_max(res.R_u), _max(w * res.R_n), _max(w[:, None] * res.R_t)]
+    return np.array(forces) / scale
 
 
 def _max(a) -> float:
@@ -376,8 +377,9 @@ def _max(a) -> float:
 
 
 def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 30,
-           linear: str = "direct", modes=None, blocksize: int = 1, linear_tol: float = 1e-12,
-           guess: Iterate | None = None, setup=None, monitor=None):
+           linear: str = "direct", modes=None, blocksize: int = 1,
+           linear_tol: float = 1e-12, guess: Iterate | None = None, setup=None,
+           monitor=None):
     """Solve one load step from ``start`` (its U holds the imposed values).
 
     ``setup``: iterative steps, the :func:`skxfem.linalg.iterative.stiffness_setup` of
@@ -420,12 +422,11 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
                                        inner=tuple(inner))
         eta = forcing(history[-1], linear_tol)
         try:
-            dx, scaled, factor, krylov = _linear_step(step, it, res, None, linear, modes,
-                                                      blocksize, factor, eta)
+            dx, scaled, factor, krylov = _linear_step(
+                step, it, res, None, linear, modes, blocksize, factor, eta)
         except linear_step.SingularStepError as e:
-            dx, scaled, factor, krylov = _singular_fallback(step, it, res, closed_before,
-                                                            linear, modes, blocksize, e, eta,
-                                                            setup)
+            dx, scaled, factor, krylov = _singular_fallback(
+                step, it, res, closed_before, linear, modes, blocksize, e, eta, setup)
         if linear == "iterative":
             inner.append(krylov)
         if merit_rows is None:  # one merit for the whole step: no cycle can decrease it
@@ -437,8 +438,8 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
             # no step along Newton's decreases the merit, and the full step returns to
             # an active set already left: a cycle; descend the merit instead
             _, cols, A = scaled(full=True)
-            down = line_search(step, it, descent(A, res.vector, merit_rows, cols, dx), merit0,
-                               merit_rows, 0.5 ** np.arange(20))
+            down = line_search(step, it, descent(A, res.vector, merit_rows, cols, dx),
+                               merit0, merit_rows, 0.5 ** np.arange(20))
             new = down if down[3] else new
         it, res, alpha = new[:3]
         alphas.append(alpha)
@@ -449,9 +450,9 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
     if np.all(history[-1] <= tol):
         return it, res, NewtonInfo(max_iter, np.array(history), tuple(alphas),
                                    inner=tuple(inner))
-    raise _not_converged(f"did not converge in {max_iter} iterations", history, statuses,
-                         tol, (it, res, NewtonInfo(max_iter, np.array(history),
-                                                   tuple(alphas), inner=tuple(inner))))
+    info = NewtonInfo(max_iter, np.array(history), tuple(alphas), inner=tuple(inner))
+    raise _not_converged(f"did not converge in {max_iter} iterations", history,
+                         statuses, tol, (it, res, info))
 
 
 ETA = (1e-2, 1.0)

@@ -39,7 +39,8 @@ __all__ = ["split", "WEDGE_TO_TETS", "edge_point"]
 WEDGE_TO_TETS = np.array([[0, 1, 2, 3], [1, 2, 3, 4], [2, 3, 4, 5]])
 
 
-def edge_point(xa: np.ndarray, xb: np.ndarray, pa: np.ndarray, pb: np.ndarray) -> np.ndarray:
+def edge_point(xa: np.ndarray, xb: np.ndarray, pa: np.ndarray,
+               pb: np.ndarray) -> np.ndarray:
     """The zero of the linear interpolant of ψ on the segment [xa, xb].
 
     ``xa, xb`` have shape ``(..., dim)``, ``pa, pb`` shape ``(...)`` with pa·pb < 0.

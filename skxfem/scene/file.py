@@ -9,7 +9,7 @@ The schema in short (all of it, with units: ``skxfem schema``, :data:`SCHEMA`)::
     name = "plate"                     # optional, default: the file name
 
     [mesh]                             # exactly one of:
-    box = {n = [4, 4, 5], cell = "hex", size = [1, 1, 1]}  # cell: tri quad tet hex prism
+    box = {n = [4, 4, 5], cell = "hex", size = [1, 1, 1]}  # tri quad tet hex prism
     # file = "plate.msh"               # any meshio format, relative to this file
 
     [levelset]                         # exactly one of (Ω⁻ = {ψ < 0}):

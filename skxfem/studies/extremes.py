@@ -113,7 +113,8 @@ def attempt(group: str, case: str, measure: str, tolerance: float,
                        time.perf_counter() - t0)
     value, note = out if isinstance(out, tuple) else (out, "")
     if any(issubclass(w.category, SnapWarning) for w in caught):
-        note = "; ".join(filter(None, (note, "vertices on Γ snapped off it (cut.SNAP)")))
+        snapped = "vertices on Γ snapped off it (cut.SNAP)"
+        note = "; ".join(filter(None, (note, snapped)))
     value = float(value)
     if not np.isfinite(value):
         raise RuntimeError(f"{group} / {case}: the measured {measure} is {value}")

@@ -12,7 +12,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from ..contact.laws import STATUS_NAMES
-from .plotting import COLORS, CURVE_COLORS
+from .plotting import COLORS, CURVE_COLORS, legend_size
 
 __all__ = ["STATUS_COLORS", "edge_status", "plot_status_2d", "plot_status_3d",
            "plot_iterations"]
@@ -69,8 +69,9 @@ def plot_status_2d(result, step: int = -1, title: str | None = None,
     bottom.set_xlabel("position along Γ")
     handles = [Line2D([], [], ls="", marker="o", color=c, mec="k", label=name)
                for name, c in STATUS_COLORS.items()]
-    top.legend(handles=top.get_legend_handles_labels()[0] + handles, fontsize=8, ncol=2)
-    bottom.legend(fontsize=8)
+    top.legend(handles=top.get_legend_handles_labels()[0] + handles, ncol=2,
+               fontsize=legend_size(fig))
+    bottom.legend(fontsize=legend_size(fig))
     top.set_title(title or f"status on Γ, step {last.load}")
     return fig
 
@@ -93,7 +94,7 @@ def plot_iterations(rhos, iterations: dict, title: str | None = None) -> Figure:
     ax.set_ylabel("Newton iterations")
     ax.set_ylim(0, max(max(v) for v in iterations.values()) + 1)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=legend_size(ax.figure))
     ax.set_title(title or "semi-smooth Newton iterations against ρ_n")
     return fig
 
@@ -148,6 +149,7 @@ def plot_status_3d(result, step: int = -1, window_size: tuple[int, int] = (800, 
     ax.imshow(image)
     ax.set_axis_off()
     fig.legend(handles=[Line2D([], [], ls="", marker="o", color=col, label=name)
-                        for name, col in STATUS_COLORS.items()], loc="upper right", ncol=3)
+                        for name, col in STATUS_COLORS.items()], loc="upper right", ncol=3,
+               fontsize=legend_size(fig))
     fig.suptitle(title or f"status on Γ, step {result.steps[step].load}", x=0.3)
     return fig

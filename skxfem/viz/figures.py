@@ -19,7 +19,10 @@ Every function returns a :class:`matplotlib.figure.Figure` built without
 pyplot.  Colours are those of :data:`skxfem.viz.plotting.COLORS`: one per
 multiplier space; the cell type sets the line style and marker
 (:data:`skxfem.viz.figstyle.CELL_STYLE`: triangles solid, quadrilaterals dashed,
-prisms dash-dotted, hexahedra dotted).
+prisms dash-dotted, hexahedra dotted) and, in Figure 5, which compares cell types
+in the naive space, the shade (hexahedra and quadrilaterals dark).  In Figures 9
+and 10 a curve that coincides with another says so in the legend ("coincides with
+naive") and is drawn with nested markers, so that both stay visible.
 
 Figures 5, 7 and 8 solve small scenes themselves; Figures 9, 10 and the
 inf-sup plot take the data (:class:`skxfem.studies.convergence.StudyRow` lists,
@@ -49,15 +52,17 @@ from ..solver import solve
 from ..stabilised import multiplier_space
 from .figstyle import (
     CELL_DIM,
+    cell_colour,
     curve,
     finish,
     log_axes,
+    loglog_curves,
     reference,
     shades,
     slope_label,
 )
 from .plot_space import FIG6_EDGES, FIG6_XY, fig6, figure6_graph, plot_space_2d, plot_space_3d
-from .plotting import COLORS
+from .plotting import COLORS, legend_size
 
 __all__ = ["FIG6_XY", "FIG6_EDGES", "figure6_graph", "fig5", "fig6", "fig7", "fig8",
            "fig9", "fig10", "fig_inf_sup", "fig_vital_3d", "plot_space_2d"]
@@ -65,10 +70,10 @@ __all__ = ["FIG6_XY", "FIG6_EDGES", "figure6_graph", "fig5", "fig6", "fig7", "fi
 def fig5(n: int = 8, nx: int | None = None) -> Figure:
     """Figure 5: the naive space oscillates on prisms, not on hexahedra.
 
-    Left: the paper's plate (:func:`~skxfem.scenes.paper_plate`: clamped
+    Above: the paper's plate (:func:`~skxfem.scenes.paper_plate`: clamped
     bottom, bonded interface) with ``n`` cells in y, pressure on the line
     x = 1/2 of Γ, against the paper's reference p(y), only approximate there.
-    Right: the 2D analogue, quadrilaterals vs triangles, under the loads of
+    Below: the 2D analogue, quadrilaterals vs triangles, under the loads of
     :func:`~skxfem.scenes.exact_strip`, for which p(x) is the exact pressure.
 
     Parameters
@@ -84,20 +89,20 @@ def fig5(n: int = 8, nx: int | None = None) -> Figure:
     (2, [3, 3])
     """
 
-    fig = Figure(figsize=(9, 4.3), layout="constrained")
-    left, right = fig.subplots(1, 2)
+    fig = Figure(figsize=(6.4, 8.8), layout="constrained")
+    left, right = fig.subplots(2, 1)     # the plate above, the strip below
     for cell in ("hex", "prism"):
         scene = paper_plate(n, cell, space="naive")
         if nx is not None:
             scene = replace(scene, mesh=replace(scene.mesh, n=(nx,) + scene.mesh.n[1:]))
         s, p = pressure_along(solve(scene), "y")
-        curve(left, s, p, "naive", cell, f"{cell}, naive")
+        curve(left, s, p, "naive", cell, f"{cell}, naive", color=cell_colour("naive", cell))
     reference(left, 0, 1, "paper's reference p(y) (approximate here)")
     finish(left, "y", f"3D plate, clamped ({n} cells in y): the paper's set-up",
             below=True)
     for cell in ("quad", "tri"):
         s, p = pressure_along(solve(exact_strip(n, cell, space="naive")), "x")
-        curve(right, s, p, "naive", cell, f"{cell}, naive")
+        curve(right, s, p, "naive", cell, f"{cell}, naive", color=cell_colour("naive", cell))
     reference(right, 0, 1, "exact p(x)")
     finish(right, "x", f"2D strip, exact loads ({n} cells in x)", below=True)
     return fig
@@ -155,8 +160,8 @@ def fig8(ns: Sequence[int] = (8, 16), cell: str = "prism", half: bool = False) -
     """
 
     axis = _interface_axis(cell)
-    fig = Figure(figsize=(4.5 * len(ns), 3.8), layout="constrained")
-    axes = np.atleast_1d(fig.subplots(1, len(ns)))
+    fig = Figure(figsize=(6.4, 4.2 * len(ns)), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(len(ns), 1))
     stop = 0.5 if half else 1.0
     for ax, n in zip(axes, ns):
         for space, algo in (("winner", "algo1"), ("vital", "algo2")):
@@ -170,38 +175,34 @@ def fig8(ns: Sequence[int] = (8, 16), cell: str = "prism", half: bool = False) -
 
 # ----------------------------------------------------------- Figures 9, 10
 def _loglog(studies, value, ylabel, title, extra=None) -> Figure:
-    """One log-log panel per dimension: ``value(row)`` vs 1/h for each (cell,
-    space); the slope of the last segment is in the legend.  ``extra``
+    """One log-log panel per dimension, 3D above 2D: ``value(row)`` vs 1/h for each
+    (cell, space); the slope of the last segment is in the legend, below the panel.  ``extra``
     ``{cell: rows}`` of space ``"fem"``: one black curve each, in its
     dimension's panel."""
     dims = sorted({CELL_DIM.get(cell, 3) for cell in studies}, reverse=True)
-    fig = Figure(figsize=(4.6 * len(dims), 4.0), layout="constrained")
-    for ax, dim in zip(np.atleast_1d(fig.subplots(1, len(dims))), dims):
-        ticks = set()
+    fig = Figure(figsize=(6.4, 4.6 * len(dims)), layout="constrained")
+    for ax, dim in zip(np.atleast_1d(fig.subplots(len(dims), 1)), dims):
+        drawn = []   # (x, y, space, cell, name, colour) of each curve of the panel
         for cell, rows in studies.items():
             if CELL_DIM.get(cell, 3) != dim:
                 continue
             for space in [s for s in SPACES if any(r.space == s for r in rows)]:
                 mine = sorted((r for r in rows if r.space == space), key=lambda r: r.h,
                               reverse=True)
-                h = np.array([r.h for r in mine])
-                y = np.array([value(r) for r in mine])
-                slope = slope_label(1 / h, y)
-                curve(ax, 1 / h, y, space, cell, f"{space}, {cell}{slope}")
-                ticks |= {round(1 / x, 6) for x in h}
+                x = 1 / np.array([r.h for r in mine])
+                drawn.append((x, np.array([value(r) for r in mine]), space, cell,
+                              f"{space}, {cell}", None))
         for cell, rows in (extra or {}).items():
             if CELL_DIM.get(cell, 3) != dim:
                 continue
             mine = sorted(rows, key=lambda r: r.h, reverse=True)
-            h = np.array([r.h for r in mine])
-            y = np.array([value(r) for r in mine])
-            curve(ax, 1 / h, y, "fem", cell,
-                  f"FEM, conforming {cell}{slope_label(1 / h, y)}",
-                  color=COLORS["reference"])
-            ticks |= {round(1 / x, 6) for x in h}
+            x = 1 / np.array([r.h for r in mine])
+            drawn.append((x, np.array([value(r) for r in mine]), "fem", cell,
+                          f"FEM, conforming {cell}", COLORS["reference"]))
+        ticks = loglog_curves(ax, drawn)
         log_axes(ax)
-        ax.set_xticks(sorted(ticks), [f"{t:g}" for t in sorted(ticks)])
-        finish(ax, "1/h", f"{title} ({dim}D)", ylabel)
+        ax.set_xticks(ticks, [f"{t:g}" for t in ticks])
+        finish(ax, "1/h", f"{title} ({dim}D)", ylabel, below=True)
     return fig
 
 
@@ -213,7 +214,7 @@ def fig9(studies: Mapping[str, Sequence], fem: Mapping[str, Sequence] | None = N
     ----------
     studies
         ``{cell: rows}``, rows from :func:`skxfem.studies.convergence.study`; 3D cells
-        (hex, prism) are drawn left, 2D cells (quad, tri) right.
+        (hex, prism) are drawn above, 2D cells (quad, tri) below.
     fem
         ``{cell: rows}`` of classical FEM on a mesh that follows Γ
         (:func:`skxfem.studies.conforming.study_conforming`), drawn in black: the
@@ -269,15 +270,15 @@ def fig_inf_sup(h_scaled: Mapping[tuple, Sequence], l2_scaled: Mapping[tuple, Se
               (l2_scaled, "bilateral tie, M = L² mass")]
     if bonded is not None:
         panels.append((bonded, "bonded tie, M = h × interface mass"))
-    fig = Figure(figsize=(4.75 * len(panels), 4.2), layout="constrained")
-    for ax, (data, name) in zip(np.atleast_1d(fig.subplots(1, len(panels))), panels):
+    fig = Figure(figsize=(6.4, 4.6 * len(panels)), layout="constrained")
+    for ax, (data, name) in zip(np.atleast_1d(fig.subplots(len(panels), 1)), panels):
         for (cell, space), results in data.items():
             h = np.array([r.h for r in results])
             beta = np.array([r.beta for r in results])
             slope = slope_label(h, beta)
             curve(ax, h, beta, space, cell, f"{space}, {cell}{slope}")
         log_axes(ax)
-        finish(ax, "h (mean length of the cut edges)", f"β_h, {name}", "β_h")
+        finish(ax, "h (mean length of the cut edges)", f"β_h, {name}", "β_h", below=True)
     return fig
 
 
@@ -300,13 +301,19 @@ def fig_vital_3d(n: int = 6, radius: float = 0.37,
         raise ValueError(f"spaces must be some of {tuple(names)}, got {spaces!r}")
     mesh = box(n, "tet")
     cut = cut_mesh(mesh, sphere((0.5, 0.5, 0.5), radius))
-    fig = Figure(figsize=(5 * len(spaces), 5.6), layout="constrained")
+    fig = Figure(figsize=(3.5 * len(spaces), 4.6), layout="constrained")
+    legend = {}                  # one legend for all panels, below them
     for k, space in enumerate(spaces):
         lam_space = multiplier_space(space, mesh, cut)
         ax = fig.add_subplot(1, len(spaces), k + 1, projection="3d")
         plot_space_3d(mesh, cut, lam_space, ax=ax, below=0.5,
-                      title=f"{names[space]}: {lam_space.size} multipliers on "
-                            f"{cut.edges.shape[1]} cut edges")
+                      title=f"{names[space]}: {lam_space.size} multipliers\n"
+                            f"on {cut.edges.shape[1]} cut edges")
+        panel = ax.get_legend()
+        legend.update(zip((t.get_text() for t in panel.get_texts()), panel.legend_handles))
+        panel.remove()
+    fig.legend(list(legend.values()), list(legend), loc="outside lower center", ncol=2,
+               frameon=False, fontsize=legend_size(fig))
     fig.suptitle(f"a sphere (r = {radius:g}) through {mesh.nelements} tetrahedra "
                  f"({n}³ cubes): its lower half and cut edges", fontsize="medium")
     return fig

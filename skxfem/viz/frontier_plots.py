@@ -30,7 +30,7 @@ from matplotlib.ticker import FormatStrFormatter, LogLocator, NullFormatter
 from ..studies.frontier import pareto, summary, sweep
 from ..studies.frontier import plans as frontier_plans
 from ..studies.progress import Progress
-from .plotting import COLORS
+from .plotting import COLORS, legend_size
 
 __all__ = ["MARKERS", "LINES", "plot_frontier", "reproduce_frontier"]
 
@@ -47,8 +47,8 @@ _LABELS = {"energy": "relative energy error of u",
 def plot_frontier(points, error: str = "energy") -> Figure:
     """Error (``"energy"`` or ``"pressure"``) against seconds, one panel per benchmark."""
     problems = [p for p in ("plate", "strip") if any(q.problem == p for q in points)]
-    fig = Figure(figsize=(5.2 * len(problems), 4.4), layout="constrained")
-    axes = fig.subplots(1, len(problems), squeeze=False)[0]
+    fig = Figure(figsize=(6.4, 5.6 * len(problems)), layout="constrained")
+    axes = fig.subplots(len(problems), 1, squeeze=False)[:, 0]
     for ax, problem in zip(axes, problems):
         mine = [p for p in points if p.problem == problem]
         for method in dict.fromkeys(p.method for p in mine):
@@ -82,7 +82,8 @@ def plot_frontier(points, error: str = "energy") -> Figure:
                     Line2D([], [], ls="", marker="o", mfc="none", mec="grey",
                            label="quadrature order 4"),
                     Line2D([], [], color=COLORS["reference"], label="Pareto front")]
-        ax.legend(handles=handles, fontsize=7, loc="best")
+        ax.legend(handles=handles, fontsize=legend_size(fig), loc="upper center",
+                  bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
     return fig
 
 

@@ -23,7 +23,7 @@ from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
 from ..fem.simplex import edge_point
 from ..stabilised import vital_edges, winner_nodes
-from .plotting import COLORS
+from .plotting import COLORS, legend_size
 
 __all__ = ["FIG6_XY", "FIG6_EDGES", "figure6_graph", "fig6", "plot_space_2d", "plot_space_3d"]
 
@@ -127,7 +127,7 @@ def _lambda_panel(ax, points, lam_space, letters):
     ax.set_xlabel("x along Γ (shaded: P0, λ_h constant)")
     ax.set_ylabel("λ_h")
     ax.set_ylim(-0.15, 1.2)
-    ax.legend(fontsize="small", loc="upper left")
+    ax.legend(fontsize=legend_size(ax.figure), loc="upper left")
     return p1
 
 
@@ -167,7 +167,7 @@ def fig6() -> Figure:
     top.set_ylim(-1.7, 1.7)
     top.set_title("cut edges of the paper's Figure 6 (Γ: y = 0, nodes 1-7 in Ω⁻, 8-13 in Ω⁺)",
                   fontsize="medium")
-    top.legend(handles=handles, fontsize="small", ncol=2,
+    top.legend(handles=handles, fontsize=legend_size(fig), ncol=2,
                loc="upper center", bbox_to_anchor=(0.5, -0.08), frameon=False)
     top.set_axis_off()
     names = ("algo1, winner nodes", "algo2, vital edges")
@@ -229,7 +229,7 @@ def plot_space_2d(mesh, cut, lam_space, ax=None, title: str | None = None) -> Fi
     ax.set_aspect("equal")
     ax.set_title(title or f"{lam_space.name}: {lam_space.size} multipliers on "
                  f"{cut.edges.shape[1]} cut edges", fontsize="medium")
-    ax.legend(handles=handles, fontsize="small", loc="upper center",
+    ax.legend(handles=handles, fontsize=legend_size(ax.figure), loc="upper center",
               bbox_to_anchor=(0.5, -0.05), ncol=2, frameon=False)
     ax.set_axis_off()
     return fig
@@ -319,6 +319,6 @@ def plot_space_3d(mesh, cut, lam_space, ax=None, title: str | None = None,
         set_label(name)
     ax.set_title(title or f"{lam_space.name}: {lam_space.size} multipliers on "
                  f"{cut.edges.shape[1]} cut edges", fontsize="medium")
-    ax.legend(handles=handles, fontsize="small", loc="upper center",
+    ax.legend(handles=handles, fontsize=legend_size(ax.figure), loc="upper center",
               bbox_to_anchor=(0.5, 0.02), ncol=2, frameon=False)
     return fig

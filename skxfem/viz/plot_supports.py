@@ -24,7 +24,7 @@ from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from .plotting import COLORS
+from .plotting import COLORS, legend_size
 
 __all__ = ["plot_held_edges", "KINDS"]
 
@@ -110,5 +110,5 @@ def plot_held_edges(mesh, cut, prolongations, axis: int = 0, values=None,
     handles.append(Line2D([], [], color="k", marker="o", ls="", ms=3,
                           label="multiplier points"))
     fig.legend(handles=handles, loc="outside lower center", ncol=4, frameon=False,
-               fontsize="small")
+               fontsize=legend_size(fig))
     return fig

@@ -30,6 +30,9 @@ from matplotlib.tri import Triangulation
 from ..multipliers import SPACES
 
 __all__ = [
+    "BOOK_WIDTH",
+    "LEGEND_PT",
+    "legend_size",
     "COLORS",
     "CURVE_COLORS",
     "plot_cut_2d",
@@ -55,6 +58,24 @@ COLORS = {
 CURVE_COLORS = ("#08519c", "#e6550d", "#54278f", "#006d2c")
 
 _MARKERS = ("o", "s", "^", "D", "v")
+
+#: The width (inches) of a figure that the book shows at its own size: the page's
+#: column at a 1200-pixel window is about 620 pixels, and a chapter's figures are
+#: drawn at 100 pixels per inch; a wider figure is shown scaled down to the column.
+BOOK_WIDTH = 6.2
+#: The smallest legend text, in points, at the size the book shows a figure.
+LEGEND_PT = 10.0
+
+
+def legend_size(fig) -> float:
+    """The legend font size (points) of ``fig`` that the book shows at
+    :data:`LEGEND_PT` or larger: a figure wider than :data:`BOOK_WIDTH` is scaled
+    down to the page's column, so its legend is drawn larger by the same factor.
+
+    >>> legend_size(Figure(figsize=(6, 4))), legend_size(Figure(figsize=(12.4, 4)))
+    (10.0, 20.0)
+    """
+    return float(LEGEND_PT * max(1.0, fig.get_figwidth() / BOOK_WIDTH))
 
 
 def _figure_and_axes(ax, figsize):
@@ -91,7 +112,7 @@ def _finish_2d(ax, mesh, handles, title, ncol=3):
     if title:
         ax.set_title(title)
     ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.12),
-              ncol=ncol, frameon=False, fontsize="small")
+              ncol=ncol, frameon=False, fontsize=legend_size(ax.figure))
 
 
 def plot_levelset_2d(mesh, psi, ax=None, title: str | None = None) -> Figure:
@@ -279,7 +300,7 @@ def plot_pressure(curves: Mapping[str, tuple], reference: Callable | tuple | Non
     ax.set_xlabel(xlabel)
     ax.set_ylabel("contact pressure p = -λ")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize="small")
+    ax.legend(fontsize=legend_size(fig))
     if title:
         ax.set_title(title)
     return fig

@@ -33,7 +33,7 @@ from skfem import MeshTet1
 from ..cut import cut
 from ..fem.meshes import box
 from ..levelset import plane
-from .plotting import COLORS
+from .plotting import COLORS, legend_size
 
 __all__ = ["fig1", "fig2", "fig3", "fig4"]
 
@@ -275,7 +275,7 @@ def fig3() -> Figure:
                label="middle nodes of the cut edges (the paper's Code_Aster)"),
         Line2D([], [], ls="", marker="o", color=COLORS["minus_node"], label="node in Ω⁻"),
         Line2D([], [], ls="", marker="o", color=COLORS["plus_node"], label="node in Ω⁺")],
-        loc="outside lower center", ncol=3, frameon=False, fontsize="small")
+        loc="outside lower center", ncol=3, frameon=False, fontsize=legend_size(fig))
     return fig
 
 
@@ -363,7 +363,8 @@ def fig4(n: int = 4, nz: int | None = None) -> Figure:
         Line2D([], [], color=COLORS["mesh"], lw=0.5, label="clamped bottom: u = 0 on z = 0"),
         Line2D([], [], ls="", marker="o", mfc="none", color=COLORS["mesh"],
                label="assumed: rollers u_x = 0 on x = 0, 1")],
-        loc="center left", frameon=False, title="skxfem.scenes.paper_plate", alignment="left")
+        loc="center left", frameon=False, title="skxfem.scenes.paper_plate", alignment="left",
+        fontsize=legend_size(fig), title_fontsize=legend_size(fig))
     geometry.view_init(elev=18, azim=-52)
     _box_view(geometry, "the plate (P_max = 1; unit cube assumed)",
               limits=((0, 1), (0, 1), (0, 1.45)))

@@ -21,8 +21,8 @@ from ..scene.benchmarks import P_MAX, exact_block
 from ..scene.model import resolve_mesh
 from ..solver import solve
 from ..studies.validation3d import CELLS
-from .figstyle import curve, finish, log_axes, slope_label
-from .plotting import COLORS
+from .figstyle import finish, log_axes, loglog_curves
+from .plotting import COLORS, legend_size
 
 __all__ = ["fig_block", "fig_block_pressure"]
 
@@ -55,26 +55,26 @@ def fig_block(block) -> Figure:
     >>> len(fig.axes), fig.axes[0].lines[0].get_label()[:10]
     (3, 'vital, hex')
     """
-    fig = Figure(figsize=(15, 5.2), layout="constrained")
-    axes = fig.subplots(1, len(_PANELS))
+    fig = Figure(figsize=(6.4, 5.4 * len(_PANELS)), layout="constrained")
+    axes = fig.subplots(len(_PANELS), 1)
     for ax, (key, label, slopes) in zip(axes, _PANELS):
-        ticks = set()
+        drawn = []
         for cell, rows in block.rows.items():
             for space in [s for s in SPACES if any(r.space == s for r in rows)]:
                 mine = sorted((r for r in rows if r.space == space), key=lambda r: r.n)
                 n = np.array([r.n for r in mine], float)
                 y = np.array([getattr(r, key) for r in mine])
-                curve(ax, n, y, space, cell,
-                      f"{space}, {cell}" + (slope_label(n, y) if slopes else ""))
-                ticks |= set(n.tolist())
+                drawn.append((n, y, space, cell, f"{space}, {cell}", None))
+        ticks = loglog_curves(ax, drawn, slopes)
         log_axes(ax)
-        ax.set_xticks(sorted(ticks), [f"{t:g}" for t in sorted(ticks)])
+        ax.set_xticks(ticks, [f"{t:g}" for t in ticks])
         ax.set_xlabel("1/h (cells per side)")
         ax.set_ylabel(label)
         ax.set_title(label, fontsize="medium")
         ax.grid(True, alpha=0.3)
         if ax.lines:
-            ax.legend(fontsize="x-small", ncol=1 if slopes else 3)
+            ax.legend(fontsize=legend_size(fig), ncol=1 if slopes else 3, loc="upper center",
+                      bbox_to_anchor=(0.5, -0.16), frameon=False)
     note = _failures_note(block)
     fig.suptitle("the block of skxfem.fem.exact3d (Γ slanted against all three axes): "
                  "errors against h" + (f"\n(missing: {note})" if note else ""),
@@ -97,9 +97,9 @@ def fig_block_pressure(n: int = 8, cells=CELLS, spaces=("naive", "vital")) -> Fi
     'hexahedra, n = 3'
     """
     exact = ExactBlock(exact_block(1).material, P_MAX)
-    fig = Figure(figsize=(4.6 * len(cells), 4.4), layout="constrained")
+    fig = Figure(figsize=(6.4, 5.0 * len(cells)), layout="constrained")
     names = {"hex": "hexahedra", "prism": "prisms", "tet": "tetrahedra"}
-    for ax, cell in zip(np.atleast_1d(fig.subplots(1, len(cells))), cells):
+    for ax, cell in zip(np.atleast_1d(fig.subplots(len(cells), 1)), cells):
         scene = exact_block(n, cell)
         everywhere = exact.pressure(cut(resolve_mesh(scene), scene.levelset).points)
         lo, hi = everywhere.min(), everywhere.max()
@@ -128,5 +128,5 @@ def fig_block_pressure(n: int = 8, cells=CELLS, spaces=("naive", "vital")) -> Fi
                     "dependent multipliers)", transform=ax.transAxes, ha="center",
                     fontsize="small", color=COLORS[refused[0]])
         finish(ax, "exact pressure p at the multiplier point",
-               f"{names[cell]}, n = {n}", "computed pressure p_h")
+               f"{names[cell]}, n = {n}", "computed pressure p_h", below=True)
     return fig
