@@ -41,7 +41,7 @@ The schema in short (all of it, with units: ``skxfem schema``, :data:`SCHEMA`)::
     [interface]
     law = "bonded"                     # one of skxfem.scene.LAWS or CONTACT_LAWS
     space = "vital"                    # one of skxfem.scene.SPACES (default vital)
-    # friction = 0.5                   # Coulomb's mu: law "coulomb" needs it, 0 or 1e-10..1e10
+    # friction = 0.5                   # coulomb only, needed: 0 or 1e-10..1e10
     # rho_n = 10.0                     # contact augmentation, > 0 (default E/h)
     # rho_t = 10.0                     # friction augmentation, > 0
     # steps = [0.5, 1.0]               # load factors of a contact solve
