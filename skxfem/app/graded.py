@@ -545,7 +545,8 @@ def check_book(html_dir: str | Path, instructor: bool = False,
     folder = exercises_folder(root)
     problems = []
     built = [p for p in pages if p.suffix == ".html"     # not _static/, _downloads/ ...
-             and not any(part.startswith("_") for part in p.relative_to(html_dir).parts)]
+             and not any(part.startswith("_") for part in p.relative_to(html_dir).parts)
+             and not _redirect(p)]
     bannered = [instructor == (BANNER in html.unescape(p.read_text(
         encoding="utf-8", errors="replace"))) for p in built]
     if not all(bannered):
@@ -610,6 +611,20 @@ def _write_book_stubs(app) -> None:
     (a chapter's ``{download}`` of ``_stubs/NN_name/exercise.py`` needs the file)."""
     book = Path(app.srcdir)
     write_stubs(book / STUBS, book.parent / "exercises")
+
+
+def _redirect(page: Path) -> bool:
+    """Whether ``page`` only sends the browser on (Jupyter Book's ``index.html``: a
+    ``<meta http-equiv="Refresh">`` and nothing else), a page without a banner.
+
+    >>> import tempfile
+    >>> p = Path(tempfile.mkdtemp()) / "index.html"
+    >>> _ = p.write_text('<meta http-equiv="Refresh" content="0; url=intro.html" />')
+    >>> _redirect(p)
+    True
+    """
+    text = page.read_text(encoding="utf-8", errors="replace")
+    return len(text) < 1000 and 'http-equiv="refresh"' in text.lower()
 
 
 def _banner(app, config) -> None:
