@@ -40,7 +40,7 @@ prisms give the triangles' numbers; the block of
 exact solution varying in x, y and z) is solved on hexahedra, prisms and
 tetrahedra with all three spaces.
 
-``--quick`` took 110 s and 0.9 GB (measured once, 27 November 2026, 2 shared
+``--quick`` took 116 s and 0.9 GB (measured once, 27 November 2026, 2 shared
 cores; 2D up to 1/h = 64, 3D up to 32, the block up to 16 cells per side); the
 default goes one mesh further in each and sweeps a larger frontier (8 minutes and
 2.4 GB, measured once on 23 November 2026).  ``--sizes``
@@ -105,7 +105,7 @@ def parser() -> argparse.ArgumentParser:
                                             "Moës (2007) and write summary.json.")
     p.add_argument("--out", type=Path, default=Path("out"), help="output folder (created)")
     p.add_argument("--quick", action="store_true",
-                   help="coarser meshes: 110 s, measured once on 27 November 2026 on 2 "
+                   help="coarser meshes: 116 s, measured once on 27 November 2026 on 2 "
                         "shared cores (make figures)")
     p.add_argument("--sizes", type=int, nargs="+", metavar="N",
                    help="1/h of every study and of Figures 5, 7, 8 (e.g. 8 16, for tests)")
