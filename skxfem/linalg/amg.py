@@ -27,7 +27,7 @@ from .dependent import unit_rows
 from .saddle import SingularSystemError, floating
 
 __all__ = ["rigid_modes", "axis_name", "motion_name", "free_motion_name", "amg", "refresh",
-           "check_held", "scaled_tie", "augmented", "check_tie_held"]
+           "check_held", "scaled_tie", "scaled_rows", "augmented", "check_tie_held"]
 
 
 def pyamg():
@@ -338,8 +338,13 @@ def scaled_tie(K, B, fixed):
     s = np.where(fixed, 1.0, 1.0 / np.sqrt(np.where(diag > 0, diag, 1.0)))
     keep = sp.diags(np.where(fixed, 0.0, s))
     Ks = (keep @ K @ keep + sp.diags(fixed.astype(float))).tocsr()
-    Bn, rows = unit_rows(B @ keep)
-    return s, Ks, Bn, rows
+    return (s, Ks, *scaled_rows(B, s, fixed))
+
+
+def scaled_rows(B, s, fixed):
+    """The rows of B in the scaling s of :func:`scaled_tie` (imposed columns dropped),
+    each to unit length: B_n = R B S and the row scales R."""
+    return unit_rows(B @ sp.diags(np.where(fixed, 0.0, s)))
 
 
 def augmented(K, B, fixed, r: float):
@@ -367,6 +372,6 @@ def check_tie_held(K, B, fixed, modes, r: float = 3.0, rigid_tol: float = 1e-11,
         s, _, _, Kr = augmented(K, B, fixed, r)
     else:
         s, Ks = scaled
-        Bn = unit_rows(B @ sp.diags(np.where(fixed, 0.0, s)))[0]
+        Bn = scaled_rows(B, s, fixed)[0]
         Kr = Ks + r * (Bn.T @ Bn)
     check_held(Kr, modes / s[:, None], rigid_tol)

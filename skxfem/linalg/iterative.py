@@ -74,8 +74,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .amg import amg, augmented, check_held, pyamg, refresh, scaled_tie
-from .dependent import dependencies, smoothest, unit_rows
+from .amg import amg, augmented, check_held, pyamg, refresh, scaled_rows, scaled_tie
+from .dependent import dependencies, smoothest
 from .pcg import interface_solve, oblique_solve, projected_cg, projected_gmres
 from .saddle import SingularSystemError
 
@@ -389,7 +389,7 @@ def _carried(old: Setup, K, B, S, modes, delta, refine, rigid_tol) -> Setup:
     dK = sp.csr_matrix(K.shape) if _same(K, base.K) else (K - base.K).tocsr()
     if S is not None:
         dK = dK + S
-    Bn, rows = unit_rows(B @ keep)
+    Bn, rows = scaled_rows(B, s, fixed)
     change = (keep @ dK @ keep + r * (Bn.T @ Bn)).tocsr()
     change.eliminate_zeros()
     Kr = base.Kr + (change.tobsr(blocksize=base.Kr.blocksize) if base.Kr.format == "bsr"
