@@ -236,7 +236,7 @@ class TieStep:
         self.K, self.S = step.K, None
         soft = solved & DQ.any(axis=(1, 2))
         if soft.any():  # the sliding force's ΔU part: a symmetric interface stiffness
-            Minv = (np.linalg.pinv if across.any() else np.linalg.inv)(np.eye(k) - DQ[soft])
+            Minv = self.Minv[soft[solved]]  # soft ⊂ solved: M⁻¹ is already there
             W = (laws.rho_t[soft] * iw[soft])[:, None, None] * (Minv @ DQ[soft])
             W = sp.bmat([[sp.diags(W[:, a, b]) for b in range(k)] for a in range(k)])
             Bs = sp.vstack([B[soft] for B in Bt], format="csr")
