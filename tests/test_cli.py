@@ -1110,3 +1110,21 @@ law = "bonded"
 boundary = "ymax"
 x = 2.0
 '''
+
+
+def test_52_progress_is_one_line_per_newton_iteration_and_load_step(tmp_path, capsys):
+    """Issue 27 item 3: --progress prints, on stderr, one line per Newton iteration
+    (residuals, open/stick/slip counts, time) and one per load step; without it, and
+    not on a terminal, nothing."""
+    assert main(["run", CONTACT, "--out", str(tmp_path / "a"), "--progress"]) == 0
+    err = capsys.readouterr().err.splitlines()
+    data = json.loads((tmp_path / "a" / "result.json").read_text())
+    its = [st["newton"]["iterations"] for st in data["steps"]]
+    newton = [line for line in err if ": Newton " in line]
+    done = [line for line in err if ": done in " in line]
+    assert len(newton) == sum(its) and len(done) == len(its) == 2
+    assert all(line.startswith("skxfem: load step ") and "residuals" in line
+               and " open, " in line and " slip; " in line for line in newton)
+    assert done[0].startswith("skxfem: load step 1 of 2") and f"in {its[0]} Newton" in done[0]
+    assert main(["run", CONTACT, "--out", str(tmp_path / "b")]) == 0
+    assert not [line for line in capsys.readouterr().err.splitlines() if "Newton" in line]
