@@ -128,21 +128,29 @@ def test_06_scenes_are_frozen_and_replace_makes_variants(monkeypatch):
 LOW, HIGH = plane((0, 0.3), (0, 1)), plane((0, 0.7), (0, 1))
 
 
-def test_06b_several_interfaces_and_the_list_of_either_kind():
+def test_06b_interfaces_are_a_tuple_in_either_form():
     two = Scene(QUAD, interfaces=[Interface(LOW, "frictionless"),
                                   Interface(HIGH, "coulomb", "winner", 0.4, 2.0)])
-    assert isinstance(two.interfaces, tuple) and two.several and two.dim == 2
-    assert [(i.law, i.space, i.friction, i.rho_n) for i in two.interface_list] == [
+    assert isinstance(two.interfaces, tuple) and len(two.interfaces) == 2 and two.dim == 2
+    assert [(i.law, i.space, i.friction, i.rho_n) for i in two.interfaces] == [
         ("frictionless", "vital", None, None), ("coulomb", "winner", 0.4, 2.0)]
     assert (two.law, two.space, two.levelset) == (None, None, None)   # each Interface's
-    one = Scene(QUAD, LINE, law="bilateral", rho_n=2.0)
-    assert not one.several and one.interface_list == (Interface(LINE, "bilateral",
-                                                                rho_n=2.0),)
+    one = Scene(QUAD, LINE, law="bilateral", rho_n=2.0)   # the short form: a tuple of one
+    assert one.interfaces == (Interface(LINE, "bilateral", rho_n=2.0),)
+    assert one.interface_list == one.interfaces                   # the earlier name
     alone = two.alone(1)                       # the one-interface scene of interface 1
-    assert (alone.law, alone.space, alone.friction, alone.rho_n, alone.interfaces) == (
-        "coulomb", "winner", 0.4, 2.0, None) and alone.levelset is HIGH
+    assert (alone.law, alone.space, alone.friction, alone.rho_n) == (
+        "coulomb", "winner", 0.4, 2.0) and alone.levelset is HIGH
+    assert alone.interfaces == (two.interfaces[1],)
     assert dataclasses.replace(two, name="b").interfaces == two.interfaces
-    assert Scene(QUAD, interfaces=(Interface(LOW),)).interface_list[0].law == "bonded"
+    assert Scene(QUAD, interfaces=(Interface(LOW),)).interfaces[0].law == "bonded"
+    # replace() on the short form builds its interface anew from the fields
+    assert dataclasses.replace(one, law="bonded").interfaces == (
+        Interface(LINE, "bonded", rho_n=2.0),)
+    with pytest.raises(ValueError, match="both a levelset and interfaces"):
+        dataclasses.replace(one, interfaces=(Interface(LOW),))
+    given = dataclasses.replace(one, **one.given_interfaces((Interface(LOW),)))
+    assert given.interfaces == (Interface(LOW),) and given.law is None
 
 
 @pytest.mark.parametrize("kwargs, error, message", [

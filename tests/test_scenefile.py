@@ -10,7 +10,7 @@ import pytest
 
 from skxfem.fem.material import Material
 from skxfem.fem.meshes import box
-from skxfem.scene import Box, Scene, clamped, resolve_mesh, rollers
+from skxfem.scene import Box, Interface, Scene, clamped, resolve_mesh, rollers
 from skxfem.scene import file as scenefile
 from skxfem.scene.expr import Expression
 from skxfem.scene.file import BUILT_BOX, MAX_MAGNITUDE, load_options, load_scene
@@ -601,7 +601,7 @@ space = "winner"
 
 def test_20_interface_tables_give_each_interface_its_level_set_and_law(tmp_path):
     s = load_scene(write(tmp_path, TWO))
-    assert s.several and s.levelset is None and s.law is None and s.steps == (0.5, 1.0)
+    assert len(s.interfaces) == 2 and s.levelset is None and s.law is None and s.steps == (0.5, 1.0)
     low, high = s.interfaces
     assert (low.law, low.space, low.friction, low.rho_n) == ("frictionless", "vital", None,
                                                              None)
@@ -610,7 +610,8 @@ def test_20_interface_tables_give_each_interface_its_level_set_and_law(tmp_path)
     x = np.array([[0.2], [0.5]])
     assert np.allclose([low.levelset(x), high.levelset(x)], [[0.2], [-0.3]])
     old = load_scene(write(tmp_path, MINIMAL))
-    assert old.interfaces is None and old.law == "bonded"          # the old form reads
+    assert old.law == "bonded" and old.interfaces == (
+        Interface(old.levelset, "bonded"),)                      # the short form reads
     top = MINIMAL.replace("[mesh]", "steps = [0.5, 1.0]\n[mesh]")
     assert load_scene(write(tmp_path, top)).steps == (0.5, 1.0)
 

@@ -21,6 +21,7 @@ from .model import (
     Box,
     Displacement,
     Interface,
+    Resolved,
     Scene,
     Solver,
     SurfaceLoad,
@@ -28,6 +29,7 @@ from .model import (
     clamped,
     dirichlet,
     load_facets,
+    resolve,
     resolve_mesh,
     rollers,
     traction,
@@ -35,4 +37,5 @@ from .model import (
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "Scene", "clamped", "rollers",
            "resolve_mesh", "dirichlet", "load_facets", "traction", "LAWS", "CONTACT_LAWS",
-           "SPACES", "CELLS", "check_scene", "MAX_QUADRATURE_ORDER", "Solver", "MAX_STEPS"]
+           "SPACES", "CELLS", "check_scene", "MAX_QUADRATURE_ORDER", "Solver", "MAX_STEPS",
+           "Resolved", "resolve"]

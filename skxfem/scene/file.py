@@ -486,7 +486,7 @@ def _steps(steps, where: str) -> tuple:
 
 
 def _interfaces(data: dict, dim: int) -> tuple[sc.Interface, ...]:
-    """The [[interface]] tables of a scene file with several interfaces."""
+    """The [[interface]] tables of a scene file (one or more interfaces)."""
     if "levelset" in data:
         raise ValueError("[levelset] with [[interface]] tables: with [[interface]] tables "
                          "each gives its own level set (plane, circle, sphere or expr); "
@@ -507,14 +507,14 @@ def _interfaces(data: dict, dim: int) -> tuple[sc.Interface, ...]:
 
 def _scene(data: dict, path: Path) -> sc.Scene:
     keys(data, _TOP, "the top level")
-    several = isinstance(data.get("interface"), list)
-    for key in ("mesh",) + (() if several else ("levelset",)):
+    tables = isinstance(data.get("interface"), list)   # [[interface]], else the short form
+    for key in ("mesh",) + (() if tables else ("levelset",)):
         if key not in data:
             raise ValueError(f"missing table [{key}]")
     mesh, dim, checked = _mesh(table(data["mesh"], "[mesh]", _names("[mesh]"), _TOP_KEYS),
                                   path.parent)
     solver = table(data.get("solver", {}), "[solver]", _names("[solver]"), _TOP_KEYS)
-    if several:
+    if tables:
         interfaces = _interfaces(data, dim)
         fields, laws = {"interfaces": interfaces}, [i.law for i in interfaces]
     else:
@@ -548,9 +548,9 @@ def _scene(data: dict, path: Path) -> sc.Scene:
     _check_boundaries(items, checked, dim)
     material, fields["material_plus"] = _material(table(
         data.get("material", {}), "[material]", _names("[material]"), _TOP_KEYS))
-    if fields["material_plus"] is not None and several:
+    if fields["material_plus"] is not None and len(fields.get("interfaces", ())) > 1:
         raise ValueError("[material] minus, plus: a material per side of Γ is for a scene "
-                         "with one interface ([levelset]); with [[interface]] tables, give "
+                         "with one interface; with several [[interface]] tables, give "
                          "one material")
     if "body_force" in data:
         fields["body_force"] = _body_force(table(data["body_force"], "[body_force]",
@@ -602,19 +602,20 @@ def _states(data: dict, scene: sc.Scene, items: dict, checked, dim: int, laws) -
         _check_boundaries({k: v[len(items[k]):] for k, v in own.items()}, checked, dim)
         fields = {}
         if "law" in t or "friction" in t:
-            if scene.several:
+            if len(scene.interfaces) > 1:
                 raise ValueError(f"{where} law, friction: a state's law is given in scene "
                                  f"files for one interface only; with several, give the "
                                  f"history in Python (skxfem.contact.solve(scene, "
                                  f"history=[...]))")
-            law = choice(t.get("law", scene.law), ("bonded", "bilateral") + sc.CONTACT_LAWS,
+            gamma = scene.interfaces[0]
+            law = choice(t.get("law", gamma.law), ("bonded", "bilateral") + sc.CONTACT_LAWS,
                          f"{where} law")
             friction = number(t["friction"], f"{where} friction") if "friction" in t else \
-                scene.friction if law in FRICTION_LAWS else None
+                gamma.friction if law in FRICTION_LAWS else None
             if law in FRICTION_LAWS and friction is None:
                 raise ValueError(f"{where} law 'coulomb' needs friction (Coulomb's mu): "
                                  f"add friction = 0.3, say")
-            fields = {"law": law, "friction": friction}
+            fields = scene.given_interfaces((replace(gamma, law=law, friction=friction),))
         state = tomlcheck.labelled(where, lambda: replace(
             scene, name=name, displacements=tuple(d for _, d in own["displacement"]),
             loads=tuple(x for _, x in own["load"]), steps=(1.0,), **fields))

@@ -17,18 +17,25 @@ dimension.
 >>> scene.law, scene.space          # the stable space unless asked otherwise
 ('bonded', 'vital')
 
-**Several interfaces.** ``Scene(mesh, interfaces=(Interface(ψ₁, law=...),
-Interface(ψ₂, ...)))`` gives each Γ its own level set, law, μ and ρ (an
-:class:`Interface` each) instead of the scene's ``levelset``, ``law``,
-``space``, ``friction``, ``rho_n``, ``rho_t``, which then stay unset (None).
-Their Γ must not cross or touch: :func:`skxfem.problem.assemble` refuses a
-mesh cell that two of them cut.  :attr:`Scene.interface_list` lists the
-interfaces of either kind of scene.
+**Interfaces.** Every scene holds its interfaces as a tuple, ``Scene.interfaces``,
+an :class:`Interface` each (its level set, law, space, μ and ρ); everything below
+the scene reads them there, and a scene with one interface is the case of a tuple
+of one.  ``Scene(mesh, levelset, law=...)`` is the short form of one interface:
+it builds ``interfaces=(Interface(levelset, law, ...),)`` at once and keeps its
+fields readable (``scene.law``, ``scene.levelset``, ...).  ``Scene(mesh,
+interfaces=(Interface(ψ₁, law=...), Interface(ψ₂, ...)))`` gives each Γ its
+own, and leaves the short fields unset (None).  Their Γ must not cross or
+touch: :func:`skxfem.problem.assemble` refuses a mesh cell that two of them cut.
 
 >>> two = Scene(Box(3, "quad"), interfaces=(Interface(plane((0, 0.3), (0, 1))),
 ...                                          Interface(plane((0, 0.7), (0, 1)), "bilateral")))
->>> [i.law for i in two.interface_list], [i.law for i in scene.interface_list]
+>>> [i.law for i in two.interfaces], [i.law for i in scene.interfaces]
 (['bonded', 'bilateral'], ['bonded'])
+
+A scene is checked when it is built; :func:`resolve` builds or reads its mesh
+once, checks that the scene fits it and returns a :class:`Resolved` scene, which
+:func:`skxfem.problem.assemble`, :func:`skxfem.lbb.inf_sup` and the solvers take
+as they take a scene (they resolve a scene given once, at the top).
 """
 from __future__ import annotations
 
@@ -63,7 +70,7 @@ from .settings import Solver
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "Scene", "clamped", "rollers",
            "resolve_mesh", "dirichlet", "load_facets", "traction", "LAWS", "CONTACT_LAWS",
            "SPACES", "CELLS", "check_scene", "MAX_QUADRATURE_ORDER", "Solver", "MAX_STEPS",
-           "check_steps"]
+           "check_steps", "Resolved", "resolve"]
 
 MAX_STEPS = 1000
 """The most load steps a contact solve takes (``Scene.steps``, a scene file's ``steps``, a
@@ -90,6 +97,11 @@ MAX_QUADRATURE_ORDER = {2: 19, 3: 8}
 """The highest ``Scene.quadrature_order`` per dimension: scikit-fem's triangle
 rules stop at 19 and its tetrahedron rules (the sub-cells of a cut 3D cell) at
 9, which :mod:`skxfem.fem.quadrature` takes for order 8."""
+
+class _ShortForm(tuple):
+    """The interfaces a scene built from its short form (``levelset``, ``law``, ...):
+    a tuple of one, marked so that ``replace(scene, law=...)`` builds it anew."""
+
 
 @dataclass(frozen=True)
 class Scene:
@@ -146,22 +158,18 @@ class Scene:
         if not isinstance(self.mesh, (Box, Mesh, str, Path)):
             raise TypeError(f"Scene mesh must be a Box, a skfem Mesh or a file path, "
                             f"got {type(self.mesh).__name__}")
-        if self.interfaces is not None:
-            self._check_interfaces()
+        if self.levelset is not None or self.interfaces is None or isinstance(
+                self.interfaces, _ShortForm):
+            self._short_form()
         else:
-            if not isinstance(self.levelset, LevelSet):
-                raise TypeError("Scene levelset must be a skxfem.levelset.LevelSet, "
-                                f"got {type(self.levelset).__name__} (several interfaces: "
-                                f"give interfaces=(Interface(...), ...) instead)")
-            object.__setattr__(self, "law", "bonded" if self.law is None else self.law)
-            object.__setattr__(self, "space", "vital" if self.space is None else self.space)
+            self._check_interfaces()
         if not isinstance(self.material, Material):
             raise TypeError(f"Scene material must be a Material, got {self.material!r}")
         if self.material_plus is not None:
             if not isinstance(self.material_plus, Material):
                 raise TypeError(f"Scene material_plus must be a Material (that of Ω⁺) or "
                                 f"None, got {self.material_plus!r:.80}")
-            if self.interfaces is not None:
+            if len(self.interfaces) > 1:
                 raise ValueError("Scene material_plus: a material per side of Γ is for a "
                                  "scene with one interface; with several, the regions are "
                                  "more than two (give one material)")
@@ -175,12 +183,6 @@ class Scene:
                     isinstance(i, kind) for i in items):
                 raise TypeError(f"Scene {field} must be a tuple of {kind.__name__}")
             object.__setattr__(self, field, tuple(items))
-        if self.interfaces is None:
-            check_law_fields("Scene", self.law, self.space, self.friction, self.rho_n,
-                             self.rho_t)
-            for key in ("friction", "rho_n", "rho_t"):   # numpy's numbers as Python's
-                if getattr(self, key) is not None:
-                    object.__setattr__(self, key, float(getattr(self, key)))
         if not isinstance(self.solver, Solver):
             raise TypeError(f"Scene solver must be a skxfem.Solver (linear, linear_tol, "
                             f"max_iter), got {self.solver!r:.80}")
@@ -214,6 +216,25 @@ class Scene:
         if isinstance(self.mesh, (Box, Mesh)):
             _check_dims(self, self.mesh.dim if isinstance(self.mesh, Box) else self.mesh.dim())
 
+    def _short_form(self):
+        """The checks of the short form of one interface, and the tuple it builds."""
+        if not isinstance(self.levelset, LevelSet):
+            raise TypeError("Scene levelset must be a skxfem.levelset.LevelSet, "
+                            f"got {type(self.levelset).__name__} (several interfaces: "
+                            f"give interfaces=(Interface(...), ...) instead)")
+        if self.interfaces is not None and not isinstance(self.interfaces, _ShortForm):
+            raise ValueError("Scene got both a levelset and interfaces: give either "
+                             "levelset= (one interface, its law in law=) or interfaces=("
+                             "Interface(levelset, law=...), ...), not both")
+        object.__setattr__(self, "law", "bonded" if self.law is None else self.law)
+        object.__setattr__(self, "space", "vital" if self.space is None else self.space)
+        check_law_fields("Scene", self.law, self.space, self.friction, self.rho_n, self.rho_t)
+        for key in ("friction", "rho_n", "rho_t"):   # numpy's numbers as Python's
+            if getattr(self, key) is not None:
+                object.__setattr__(self, key, float(getattr(self, key)))
+        object.__setattr__(self, "interfaces", _ShortForm((Interface(
+            self.levelset, self.law, self.space, self.friction, self.rho_n, self.rho_t),)))
+
     def _check_interfaces(self):
         """The checks of ``interfaces`` (several interfaces, module notes)."""
         items = self.interfaces
@@ -225,10 +246,6 @@ class Scene:
             raise ValueError("Scene interfaces is empty: give one Interface per interface "
                              "(or a levelset for a scene with one)")
         object.__setattr__(self, "interfaces", tuple(items))
-        if self.levelset is not None:
-            raise ValueError("Scene got both a levelset and interfaces: give either "
-                             "levelset= (one interface, its law in law=) or interfaces=("
-                             "Interface(levelset, law=...), ...), not both")
         given = [k for k in ("law", "space", "friction", "rho_n", "rho_t")
                  if getattr(self, k) is not None]
         if given:
@@ -244,22 +261,34 @@ class Scene:
     @property
     def dim(self) -> int:
         """The dimension of the problem (that of the level sets)."""
-        return (self.levelset if self.interfaces is None else self.interfaces[0].levelset).dim
+        return self.interfaces[0].levelset.dim
 
     @property
     def interface_list(self) -> tuple[Interface, ...]:
-        """The interfaces of the scene, an :class:`Interface` each: ``interfaces``, or,
-        for a scene with one, the one made of ``levelset``, ``law``, ``space``,
-        ``friction``, ``rho_n`` and ``rho_t``."""
-        if self.interfaces is not None:
-            return self.interfaces
-        return (Interface(self.levelset, self.law, self.space, self.friction, self.rho_n,
-                          self.rho_t),)
+        """``interfaces`` (the name of earlier versions)."""
+        return self.interfaces
 
-    @property
-    def several(self) -> bool:
-        """True for a scene with more than one interface."""
-        return len(self.interface_list) > 1
+    def given_interfaces(self, items) -> dict:
+        """The fields that give this scene the interfaces ``items`` in place of its own,
+        for ``dataclasses.replace(scene, **scene.given_interfaces(items))`` (the short
+        form's fields unset).
+
+        >>> from skxfem.levelset import plane
+        >>> s = Scene(Box(3, "quad"), plane((0, 0.5), (0, 1)))
+        >>> t = replace(s, **s.given_interfaces((Interface(s.levelset, "bilateral"),)))
+        >>> t.law, [i.law for i in t.interfaces]
+        (None, ['bilateral'])
+        """
+        return {"levelset": None, "law": None, "space": None, "friction": None,
+                "rho_n": None, "rho_t": None, "interfaces": tuple(items)}
+
+    def label(self, k: int) -> str:
+        """How a message names interface ``k``: ``"interfaces[1] 'y - 0.7'"``, or ``""``
+        for the one interface of a scene with one (a message then says "the level set").
+        The one place the wording depends on the count; nothing else does."""
+        if len(self.interfaces) == 1:
+            return ""
+        return f"interfaces[{k}] {self.interfaces[k].levelset.name!r}"
 
     def materials(self) -> tuple[Material, Material]:
         """The materials of Ω⁻ and Ω⁺ (the same one unless ``material_plus``)."""
@@ -275,10 +304,9 @@ class Scene:
         >>> s.alone(1).law, s.alone(1).levelset.name == s.interfaces[1].levelset.name
         ('frictionless', True)
         """
-        if self.interfaces is None:
-            if k != 0:
-                raise IndexError(f"the scene has one interface, no interface {k}")
-            return self
+        if not -len(self.interfaces) <= k < len(self.interfaces):
+            raise IndexError(f"the scene has {len(self.interfaces)} interface(s), "
+                             f"no interface {k}")
         i = self.interfaces[k]
         return replace(self, levelset=i.levelset, law=i.law, space=i.space,
                        friction=i.friction, rho_n=i.rho_n, rho_t=i.rho_t, interfaces=None)
@@ -338,10 +366,10 @@ def _for_dim(item: Displacement | SurfaceLoad, dim: int, where: str):
 
 def _check_dims(scene: Scene, dim: int):
     """Raise if the level set, components or tractions do not fit a ``dim``-D mesh."""
-    if scene.interfaces is None and scene.levelset.dim != dim:
-        raise ValueError(f"Scene levelset {scene.levelset.name!r} is {scene.levelset.dim}D "
-                         f"but the mesh is {dim}D")
-    for k, i in enumerate(scene.interfaces or ()):
+    for k, i in enumerate(scene.interfaces):
+        if i.levelset.dim != dim and isinstance(scene.interfaces, _ShortForm):
+            raise ValueError(f"Scene levelset {i.levelset.name!r} is {i.levelset.dim}D "
+                             f"but the mesh is {dim}D")
         if i.levelset.dim != dim:
             raise ValueError(f"Scene interfaces[{k}] level set {i.levelset.name!r} is "
                              f"{i.levelset.dim}D but the mesh is {dim}D")
@@ -369,6 +397,41 @@ def resolve_mesh(scene: Scene) -> Mesh:
     _check_dims(scene, mesh.dim())
     check_magnitudes(scene, mesh)
     return mesh
+
+
+@dataclass(frozen=True)
+class Resolved:
+    """A scene with its mesh built, read or checked once (:func:`resolve`): what the
+    steps below :func:`skxfem.solve` take, so that none resolves it again.  It
+    unpacks as ``scene, mesh = resolved``."""
+
+    scene: Scene
+    mesh: Mesh
+
+    def __iter__(self):
+        return iter((self.scene, self.mesh))
+
+
+def resolve(scene: Scene | Resolved, mesh: Mesh | None = None) -> Resolved:
+    """The scene checked (:func:`check_scene`) with its mesh resolved
+    (:func:`resolve_mesh`), once; a :class:`Resolved` scene is returned as it is.
+    ``mesh``: the mesh of the scene, already resolved (a load state of a solve: the
+    scene is checked against it, not built again).
+
+    >>> from skxfem.levelset import plane
+    >>> r = resolve(Scene(Box(2, "quad"), plane((0, 0.5), (0, 1))))
+    >>> scene, mesh = r
+    >>> int(mesh.nvertices), resolve(r) is r
+    (9, True)
+    """
+    if isinstance(scene, Resolved):
+        return scene
+    scene = check_scene(scene)
+    if mesh is None:
+        return Resolved(scene, resolve_mesh(scene))
+    _check_dims(scene, mesh.dim())
+    check_magnitudes(scene, mesh)
+    return Resolved(scene, mesh)
 
 
 def check_scene(scene) -> Scene:
