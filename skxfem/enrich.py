@@ -69,7 +69,7 @@ from .fem.quadrature import cell_rule, exact_orders
 from .fem.side_bases import Parts, parts, side_bases
 
 __all__ = ["XSpace", "XSpaces", "xfem_space", "stiffness", "mass", "enriched_matrix",
-           "enriched_blocks", "signed_bases", "far_side_fraction", "enriched_load", "body_load",
+           "enriched_blocks", "as_spaces", "signed_bases", "far_side_fraction", "enriched_load", "body_load",
            "jump_matrix", "split_fields", "from_fields", "region_fields"]
 
 
@@ -118,13 +118,34 @@ class XSpace:
 
 @dataclass(frozen=True)
 class XSpaces:
-    """The X-FEM space of several interfaces: one Heaviside enrichment each.
+    """The X-FEM space of a scene's interfaces: one Heaviside enrichment each.
 
     ``per_interface``: the :class:`XSpace` of each interface, on its own unknowns
-    [a, b^k]; the unknowns of the whole are [a, b¹, b², …] (module notes).
+    [a, b^k]; the unknowns of the whole are [a, b¹, b², …] (module notes).  A space
+    of one interface reads its ``cut``, ``rule`` and ``parts`` on itself.
     """
 
     per_interface: tuple[XSpace, ...]
+
+    def __getattr__(self, name):
+        if name in ("cut", "rule", "parts"):  # a space of one interface: its own (a convenience)
+            spaces = self.__dict__.get("per_interface", ())
+            if len(spaces) != 1:
+                raise AttributeError(f"XSpaces.{name} is that of a space of one interface; "
+                                     f"this one has {len(spaces)}: read "
+                                     f"per_interface[k].{name}")
+            return getattr(spaces[0], name)
+        raise AttributeError(f"'XSpaces' object has no attribute {name!r}")
+
+    @property
+    def enr_dofs(self) -> np.ndarray:
+        """(n_enr,) the standard dof of each enriched unknown, interface after interface."""
+        return np.concatenate([V.enr_dofs for V in self.per_interface])
+
+    @property
+    def H_node(self) -> np.ndarray:
+        """(n_enr,) H^k(x_j) of each enriched unknown's node, for its own interface k."""
+        return np.concatenate([V.H_node for V in self.per_interface])
 
     @property
     def mesh(self):
@@ -175,6 +196,21 @@ class XSpaces:
         signs = np.array([np.where(V.cut.psi < 0, -1, 1) for V in self.per_interface])
         patterns, node_region = np.unique(signs.T, axis=0, return_inverse=True)
         return patterns, node_region.ravel()
+
+
+def as_spaces(V: XSpace | XSpaces) -> XSpaces:
+    """``V`` as an :class:`XSpaces`: an :class:`XSpace` is the space of one interface,
+    ``XSpaces((V,))``, with the same unknowns [a, b].
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.levelset import plane
+    >>> from skxfem.cut import cut
+    >>> m = MeshTri1().refined(1)
+    >>> V = xfem_space(m, cut(m, plane((0, 0.3), (0, 1))))
+    >>> as_spaces(V).N == V.N, as_spaces(as_spaces(V)) == as_spaces(V)
+    (True, True)
+    """
+    return V if isinstance(V, XSpaces) else XSpaces((V,))
 
 
 @LinearForm
@@ -242,68 +278,75 @@ def _blocks(V: XSpace, A, AH):
 
 
 def enriched_blocks(V: XSpace | XSpaces, A, AH) -> sp.csr_matrix:
-    """The X-FEM matrix on [a, b] from A = ∫ g(φᵢ, φⱼ) and A_H = ∫ H g(φᵢ, φⱼ)
-    on the standard dofs: the blocks of the module notes (H² = 1).  Only the
-    columns of the enriched dofs of A_H are read.
-
-    For :class:`XSpaces`, ``AH`` holds one A_H per interface (its own H^k) and
-    the matrix is on [a, b¹, b², …]: A, the blocks of each enrichment with A,
-    and zero between two enrichments (module notes)."""
-    if isinstance(V, XSpaces):
-        A = A.tocsr()
-        parts = [_blocks(Vk, A, AHk.tocsr())
-                 for Vk, AHk in zip(V.per_interface, AH, strict=True)]
-        rows = [[A] + [Aab for Aab, _ in parts]]
-        for k, (Aab, Abb) in enumerate(parts):
-            rows.append([Aab.T] + [Abb if j == k else None for j in range(len(parts))])
-        return sp.bmat(rows, format="csr")
-    A, AH = A.tocsr(), AH.tocsr()
-    Aab, Abb = _blocks(V, A, AH)
-    return sp.bmat([[A, Aab], [Aab.T, Abb]], format="csr")
+    """The X-FEM matrix on [a, b¹, b², …] from A = ∫ g(φᵢ, φⱼ) on the standard dofs
+    and, for each interface k, A_H = ∫ H^k g(φᵢ, φⱼ) (``AH``: one per interface, or
+    the one matrix of an :class:`XSpace`): A, the blocks of each enrichment with A
+    (module notes, H² = 1), and zero between two enrichments.  Only the columns of
+    the enriched dofs of each A_H are read."""
+    V = as_spaces(V)
+    AH = AH if isinstance(AH, (list, tuple)) else [AH]
+    A = A.tocsr()
+    parts = [_blocks(Vk, A, AHk.tocsr()) for Vk, AHk in zip(V.per_interface, AH, strict=True)]
+    rows = [[A] + [Aab for Aab, _ in parts]]
+    for k, (Aab, Abb) in enumerate(parts):
+        rows.append([Aab.T] + [Abb if j == k else None for j in range(len(parts))])
+    return sp.bmat(rows, format="csr")
 
 
-def enriched_matrix(V: XSpace, form, orders: tuple[int, int] | None = None) -> sp.csr_matrix:
-    """The X-FEM matrix on [a, b] of a form that reads the Heaviside value w["H"].
+def enriched_matrix(V: XSpace | XSpaces, form,
+                    orders: tuple[int, int] | None = None) -> sp.csr_matrix:
+    """The X-FEM matrix on [a, b¹, …] of a form that reads the Heaviside value w["H"].
 
     The form must be linear in H, H·g(u, v) (as the stiffness and the mass
-    are).  With A = the form at H = 1 (standard) and A_H its signed version, and
-    D = diag(Hⱼ), the blocks follow from H² = 1 (see the module notes); A and
-    A_H come from :func:`skxfem.fem.side_bases.parts`.  ``orders``: see :func:`signed_bases`.
+    are).  With A = the form at H = 1 (standard) and A_H its signed version for
+    each interface, and D = diag(Hⱼ), the blocks follow from H² = 1 (see the module
+    notes); A and A_H come from :func:`skxfem.fem.side_bases.parts`, A assembled
+    once.  ``orders``: see :func:`signed_bases`.
     """
-    cell_q = V.rule if orders is None else cell_rule(V.mesh, orders[0])
-    side_parts = parts(V.mesh, V.cut, V.basis.elem, cell_q, None if orders is None else orders[1])
-    A, AH = side_parts.signed(lambda basis: form.assemble(basis, H=np.ones(basis.dx.shape)))
+    V = as_spaces(V)
+
+    def assembled(basis):
+        return form.assemble(basis, H=np.ones(basis.dx.shape))
+
+    A, AH = None, []
+    for Vk in V.per_interface:
+        cell_q = Vk.rule if orders is None else cell_rule(Vk.mesh, orders[0])
+        side_parts = parts(Vk.mesh, Vk.cut, Vk.basis.elem, cell_q,
+                           None if orders is None else orders[1])
+        A, AHk = side_parts.signed(assembled, A)
+        AH.append(AHk)
     return enriched_blocks(V, A, AH)
 
 
 def stiffness(V: XSpace | XSpaces, material: Material,
               material_plus: Material | None = None) -> sp.csr_matrix:
-    """The X-FEM stiffness on the unknowns [a, b]: ∫ σ(u):ε(v), each part
-    assembled from scalar forms (:func:`skxfem.fem.material.stiffness_matrix`).
-    Several interfaces: on [a, b¹, b², …], A assembled once and A_H per interface.
+    """The X-FEM stiffness on the unknowns [a, b¹, …]: ∫ σ(u):ε(v), each part
+    assembled from scalar forms (:func:`skxfem.fem.material.stiffness_matrix`), A
+    once and A_H per interface.
 
-    ``material_plus``: the material of Ω⁺ (``material`` that of Ω⁻): A = K⁻ + K⁺ and
-    A_H = K⁺ - K⁻, each side assembled on its own cells and sub-cells
-    (:func:`skxfem.fem.side_bases.side_bases`)."""
+    ``material_plus``: the material of Ω⁺ (``material`` that of Ω⁻), for a space of
+    one interface: A = K⁻ + K⁺ and A_H = K⁺ - K⁻, each side assembled on its own
+    cells and sub-cells (:func:`skxfem.fem.side_bases.side_bases`)."""
+    V = as_spaces(V)
     if material_plus is not None and material_plus != material:
+        if len(V.per_interface) != 1:
+            raise ValueError("stiffness: a material per side of Γ (material_plus) is for "
+                             "a space of one interface; give one material")
+        Vk = V.per_interface[0]
         A = AH = 0
-        for basis, side in side_bases(V.mesh, V.cut, V.mesh.elem(), V.rule):
+        for basis, side in side_bases(Vk.mesh, Vk.cut, Vk.mesh.elem(), Vk.rule):
             Ks = stiffness_matrix(material_plus if side > 0 else material, basis)
             A, AH = A + Ks, AH + side * Ks
-        return enriched_blocks(V, A, AH)
+        return enriched_blocks(V, A, [AH])
 
     def form(basis):
         return stiffness_matrix(material, basis)
 
-    if isinstance(V, XSpaces):
-        A, AH = None, []
-        for Vk in V.per_interface:
-            side_parts = Vk.parts or parts(Vk.mesh, Vk.cut, Vk.basis.elem.elem, Vk.rule)
-            A, AHk = side_parts.signed(form, A)
-            AH.append(AHk)
-        return enriched_blocks(V, A, AH)
-    side_parts = V.parts or parts(V.mesh, V.cut, V.basis.elem.elem, V.rule)
-    A, AH = side_parts.signed(form)
+    A, AH = None, []
+    for Vk in V.per_interface:
+        side_parts = Vk.parts or parts(Vk.mesh, Vk.cut, Vk.basis.elem.elem, Vk.rule)
+        A, AHk = side_parts.signed(form, A)
+        AH.append(AHk)
     return enriched_blocks(V, A, AH)
 
 
@@ -312,8 +355,8 @@ def _signed_vector_mass(u, v, w):
     return w["H"] * dot(u, v)
 
 
-def mass(V: XSpace) -> sp.csr_matrix:
-    """The X-FEM mass matrix on the unknowns [a, b]: ∫ u·v, integrated
+def mass(V: XSpace | XSpaces) -> sp.csr_matrix:
+    """The X-FEM mass matrix on the unknowns [a, b¹, …]: ∫ u·v, integrated
     exactly on affine cells (its own orders, :data:`skxfem.fem.quadrature.EXACT_ORDERS`, not the
     stiffness' of ``V``'s basis)."""
     return enriched_matrix(V, _signed_vector_mass, exact_orders(V.mesh, "mass"))
@@ -350,13 +393,12 @@ def body_load(V: XSpace, force) -> tuple[np.ndarray, np.ndarray]:
 
 
 def enriched_load(V: XSpace | XSpaces, f: np.ndarray, f_H) -> np.ndarray:
-    """Load on [a, b] from f = ∫ t·φ and f_H = ∫ H t·φ (standard dofs); for
-    :class:`XSpaces`, on [a, b¹, b², …] from one f_H per interface (its own H^k)."""
-    if isinstance(V, XSpaces):
-        return np.concatenate([f] + [fk[Vk.enr_dofs] - Vk.H_node * f[Vk.enr_dofs]
-                                     for Vk, fk in zip(V.per_interface, f_H, strict=True)])
-    E = V.enr_dofs
-    return np.concatenate([f, f_H[E] - V.H_node * f[E]])
+    """Load on [a, b¹, b², …] from f = ∫ t·φ and, for each interface k, f_H = ∫ H^k t·φ
+    (standard dofs; ``f_H`` one per interface, or the one array of an :class:`XSpace`)."""
+    V = as_spaces(V)
+    f_H = f_H if isinstance(f_H, (list, tuple)) else [f_H]
+    return np.concatenate([f] + [fk[Vk.enr_dofs] - Vk.H_node * f[Vk.enr_dofs]
+                                 for Vk, fk in zip(V.per_interface, f_H, strict=True)])
 
 
 def jump_matrix(V: XSpace, cells: np.ndarray, ref: np.ndarray) -> sp.csr_matrix:
@@ -407,8 +449,8 @@ def region_fields(V: XSpace | XSpaces, U: np.ndarray) -> tuple[np.ndarray, np.nd
 
     In region σ (its sign σ_k = ±1 for each level set), u = a + Σ_k b^k (σ_k - H^k_j)
     at the nodes: the field of that region continued over the cells it meets.
-    One interface: the regions [[-1], [1]], Ω⁻ and Ω⁺, and :func:`split_fields`.
-    Several: :meth:`XSpaces.regions`.
+    The regions are :meth:`XSpaces.regions`; for one interface [[-1], [1]], Ω⁻ and Ω⁺,
+    whose fields are those of :func:`split_fields`.
 
     >>> from skfem import MeshQuad1
     >>> from skxfem.cut import cut
@@ -421,8 +463,7 @@ def region_fields(V: XSpace | XSpaces, U: np.ndarray) -> tuple[np.ndarray, np.nd
     >>> signs.tolist(), [float(abs(j).max()) for j in jumps]
     ([[-1, -1], [1, -1], [1, 1]], [0.0, 1.0])
     """
-    if not isinstance(V, XSpaces):
-        return np.array([[-1], [1]]), np.array(split_fields(V, U))
+    V = as_spaces(V)
     patterns, _ = V.regions()
     a = U[:V.n_std]
     fields = []

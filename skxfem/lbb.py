@@ -34,7 +34,7 @@ import scipy.sparse.linalg as spla
 from .contact.interface import operators, sticking_rows
 from .enrich import mass
 from .problem import assemble
-from .scene.model import check_scene
+from .scene.model import resolve
 
 __all__ = ["InfSup", "inf_sup_constant", "inf_sup"]
 
@@ -136,25 +136,24 @@ def inf_sup(scene, scaling: str = "h", law: str | None = None) -> InfSup:
     """
     if scaling not in ("h", "l2"):
         raise ValueError(f"scaling must be 'h' or 'l2', got {scaling!r}")
-    if check_scene(scene).several:
-        raise ValueError("inf_sup measures the multiplier space of one interface; for "
-                         "a scene with several, measure each: inf_sup(scene.alone(k))")
-    p = assemble(scene, "bilateral" if law == "stick" else law)
-    mesh, cut, V = p.mesh, p.cut, p.V
+    p = assemble(resolve(scene), "bilateral" if law == "stick" else law)
+    mesh, V = p.mesh, p.V
     L = np.ptp(mesh.p, axis=1).max()
-    A = p.K + (scene.material.E / L ** 2) * mass(V)
-    M = sp.kron(sp.identity(p.ncomp), p.M_edges)
+    A = p.K + (p.scene.material.E / L ** 2) * mass(V)
+    # the L² norm of λ_h on each interface, its components apart
+    M = sp.block_diag([sp.kron(sp.identity(q.ncomp), q.M_edges) for q in p.interfaces],
+                      format="csr")
     free = np.setdiff1d(np.arange(V.N), p.D)   # the solver's, enriched ones included
     # mesh size across Γ: the mean length of the cut edges (anisotropic
     # meshes, such as one layer of prisms along x, are measured where it matters)
-    edge = mesh.p[:, cut.edges[0]] - mesh.p[:, cut.edges[1]]
+    edge = np.hstack([mesh.p[:, q.cut.edges[0]] - mesh.p[:, q.cut.edges[1]]
+                      for q in p.interfaces])
     h = float(np.mean(np.linalg.norm(edge, axis=0)))
     B, Ps = p.B, [p.P]
     if law == "stick":
         ops = operators(p)
         B, kept = sticking_rows(p.B, ops.Bt, ops.tangent_held)
         Ps += [Pt[:, d] for Pt, d in zip(ops.Pt, kept)]
-    Mr = (Ps[0].T @ M @ Ps[0] if len(Ps) == 1 else
-          sp.block_diag([P.T @ M @ P for P in Ps], format="csr"))
+    Mr = sp.block_diag([P.T @ M @ P for P in Ps], format="csr")
     Mr = Mr * (h if scaling == "h" else 1.0)
     return inf_sup_constant(A[free][:, free], B[:, free], Mr, h=h)

@@ -12,20 +12,22 @@ The law decides which jump the multipliers act on (:data:`COUPLING`):
 ``bonded`` the vector jump [[u]] (dim multipliers per edge), ``bilateral``
 the normal jump [[u]]·n (one).  A new law (contact) adds one entry there.
 
-**Several interfaces.** A scene with several (:attr:`skxfem.scene.Scene.interface_list`)
-is one problem too: K, F, D, g on the unknowns [a, b¹, b², …] of
-:class:`skxfem.enrich.XSpaces`, and, in ``interfaces``, one :class:`Problem`
-per interface, built by the same steps as a scene with that interface alone
-(its cut, rule, jump operator, multiplier spaces, coupling, on its own
-unknowns [a, b^k]; ``columns`` places them among the whole's).  The whole's B
-stacks the interfaces' couplings and P is block-diagonal; the fields of one
-interface (``cut``, ``rule``, ``J``, ``multiplier_space``, ``ncomp``, ``M_edges``,
-``held_edges``) are those of the pieces.
+**Interfaces.** A scene's interfaces (:attr:`skxfem.scene.Scene.interfaces`,
+one or more) make one problem: K, F, D, g on the unknowns [a, b¹, b², …] of
+:class:`skxfem.enrich.XSpaces`, and, in ``interfaces``, one :class:`Part` per
+interface, built by the same steps for each (its cut, rule, jump operator,
+multiplier spaces, coupling, on its own unknowns [a, b^k]; ``columns`` places
+them among the whole's).  The whole's B stacks the parts' couplings and P is
+block-diagonal.  One interface is the case of one part; a problem with one
+keeps its part's fields readable on itself (``p.cut``, ``p.rule``, ``p.J``, …),
+as a convenience.
 
 >>> from skxfem.scene.benchmarks import strip
 >>> p = assemble(strip(3, cell="tri"))
 >>> p.law, p.ncomp, p.B.shape[0] == p.P.shape[1], p.J.shape[1] == p.K.shape[0]
 ('bonded', 2, True, True)
+>>> len(p.interfaces), p.interfaces[0].cut is p.cut
+(1, True)
 """
 from __future__ import annotations
 
@@ -36,7 +38,6 @@ import numpy as np
 import scipy.sparse as sp
 
 from .cut import Cut, check_apart
-from .cut import cut as cut_mesh
 from .enrich import (
     XSpace,
     XSpaces,
@@ -44,9 +45,9 @@ from .enrich import (
     enriched_load,
     jump_matrix,
     stiffness,
-    xfem_space,
 )
 from .fem.loads import boundary_quadrature, surface_load
+from .gamma import Gamma, gamma
 from .linalg.rigid import short_pieces
 from .multipliers import (
     InterfaceRule,
@@ -59,10 +60,9 @@ from .multipliers import (
 )
 from .scene.boundary import imposed
 from .scene.laws import COUPLING
-from .scene.model import Scene, check_scene, dirichlet, load_facets, resolve_mesh
-from .stabilised import multiplier_space
+from .scene.model import Interface, Resolved, Scene, dirichlet, load_facets, resolve
 
-__all__ = ["Problem", "assemble", "constrained_dofs", "COUPLING", "check_law"]
+__all__ = ["Problem", "Part", "assemble", "constrained_dofs", "COUPLING", "check_law"]
 
 
 def check_law(law: str) -> str:
@@ -77,70 +77,57 @@ def check_law(law: str) -> str:
 
 
 @dataclass(frozen=True)
-class Problem:
-    r"""The discrete interface problem of a scene (paper §3-5), for one tie law.
-
-    With U = [a, b] the X-FEM unknowns ([11], shifted enrichment) and μ
-    the independent multipliers, λ = P μ on the cut edges, the problem is
-    K U + Bᵀ y = F, B U = 0, U[D] = g (y = -μ; :mod:`skxfem.solver`).
+class Part:
+    r"""One interface's part of a :class:`Problem`: its Γ_h, rule, jump and
+    multiplier space (paper §4-5), on the unknowns [a, b^k] of its own X-FEM space.
 
     Attributes
     ----------
-    scene, mesh, cut : the scene, its resolved mesh and :class:`~skxfem.cut.Cut` (§4.1).
-    V : :class:`~skxfem.enrich.XSpace`, the displacement space u_h of [11].
-    K : (N, N) CSR, the stiffness a(u, v) = ∫ σ(u):ε(v) of §3's weak equilibrium,
-        σ from the constitutive law [1].
-    F : (N,), the load l(v) = ∫_{Γ_t} t·v of the surface tractions (§3).
-    D, g : the constrained unknowns (int array) and their values: the scene's
-        displacements, with the enriched dofs they hold on cut boundary
-        facets (:func:`constrained_dofs`).
+    interface : the scene's :class:`~skxfem.scene.Interface` (level set, law, space, …).
+    gamma : its geometry, :class:`skxfem.gamma.Gamma` (the contract of a kind of Γ):
+        what built ``cut``, ``V`` and the multiplier spaces, and gives the normals.
+    mesh, cut : the resolved mesh and the interface's :class:`~skxfem.cut.Cut` (§4.1).
+    V : :class:`~skxfem.enrich.XSpace`, the displacement space [a, b^k] of this interface.
+    D, g : the constrained unknowns of [a, b^k] and their values
+        (:func:`constrained_dofs`).
     rule : :class:`~skxfem.multipliers.InterfaceRule`, the quadrature on Γ_h.
-    J : (dim·nq, N) CSR, U ↦ [[u_h]] at the rule's points, component-major: the
+    J : (dim·nq, n_k) CSR, U_k ↦ [[u_h]] at the rule's points, component-major: the
         jump of §4.1 written with the enriched dofs of [11]
         (:func:`skxfem.enrich.jump_matrix`).
-    multiplier_space : :class:`~skxfem.multipliers.Space`, the scene's multiplier
-        space on all cut edges (§4.2 naive, §5 winner nodes / vital edges).
+    multiplier_space : :class:`~skxfem.multipliers.Space`, the multiplier space
+        on all cut edges (§4.2 naive, §5 winner nodes / vital edges).
     law : the tie law P and B are built for (``"bonded"`` or ``"bilateral"``).
     ncomp : multiplier components per edge: dim (bonded) or 1 (bilateral).
     P : (ncomp·n_edges, m) CSR, the prolongation λ = P μ of the law's
         multipliers, component-major (λ_h of [12] on the cut edges, §5's
-        equalities and linear relations):
-        block-diagonal, one block per component, ``component_spaces[k].P``.
-    B : (m, N) CSR, Pᵀ B_edges, the coupling ∫_Γ λ_h·[[v]] (or λ_h [[v]]·n)
+        equalities and linear relations): block-diagonal, one block per
+        component, ``component_spaces[k].P``.
+    B : (m, n_k) CSR, Pᵀ B_edges, the coupling ∫_Γ λ_h·[[v]] (or λ_h [[v]]·n)
         reduced to the space: the interface terms of §3's mixed formulation,
         with a tie law in place of the contact law [6].
-    M_edges : (n_edges, n_edges) CSR, the interface mass ∫_Γ N_e N_f (the
-        L² norm of λ_h; §5's inf-sup test scales it by h).
+    M_edges : (n_edges, n_edges) CSR, the interface mass ∫_Γ N_e N_f (the L²
+        norm of λ_h; §5's inf-sup test scales it by h).
     held_edges : (ncomp, n_edges) bool, the (component, edge) pairs whose jump a
         support holds: both ends of the edge are fixed for that component
-        (:func:`skxfem.multipliers.fixed_jumps`, from ``D``; bilateral: the
-        normal jump, :func:`skxfem.multipliers.normal_fixed`).  They carry
-        no multiplier of their own: their rows of P are those of a neighbour
-        on Γ (:func:`skxfem.stabilised.extend_to_held`).
+        (:func:`skxfem.multipliers.fixed_jumps`, from ``D``; bilateral: the normal
+        jump, :func:`skxfem.multipliers.normal_fixed`).  They carry no multiplier
+        of their own: their rows of P are those of a neighbour on Γ
+        (:func:`skxfem.stabilised.extend_to_held`).
     component_spaces : the ncomp multiplier spaces of the law's components, each
-        built on the edges it keeps (``multiplier_space`` itself where a
-        component has no fixed node).
-    timings : seconds per stage.
-    per_edge : (n_edges,) bool or None, the edges of the pieces of Γ too small
-        for the stable space, which get a multiplier each
+        built on the edges it keeps (``multiplier_space`` itself where a component
+        has no fixed node).
+    per_edge : (n_edges,) bool or None, the edges of the pieces of Γ too small for
+        the stable space, which get a multiplier each
         (:func:`skxfem.linalg.rigid.short_pieces`).
-    interfaces : several interfaces (module notes): the :class:`Problem` of
-        each, on its own unknowns [a, b^k] (its ``K`` and ``F`` None: the
-        whole's are here); then ``V`` is an :class:`~skxfem.enrich.XSpaces`,
-        ``B`` (Σm, N) stacks theirs, ``P`` is block-diagonal, ``law`` is the law
-        they were assembled for if it is one for all (else None), and ``cut``,
-        ``rule``, ``J``, ``multiplier_space``, ``ncomp``, ``M_edges``, ``held_edges`` are None.
-        Empty for one interface.
-    columns : for a piece of ``interfaces``, the whole's unknowns its own
-        [a, b^k] are (:meth:`skxfem.enrich.XSpaces.columns`); None otherwise.
+    columns : (n_k,) the whole's unknowns its own [a, b^k] are
+        (:meth:`skxfem.enrich.XSpaces.columns`).
     """
 
-    scene: Scene
+    interface: Interface
+    gamma: Gamma
     mesh: object
     cut: Cut
     V: XSpace
-    K: sp.csr_matrix
-    F: np.ndarray
     D: np.ndarray
     g: np.ndarray
     rule: InterfaceRule
@@ -153,22 +140,88 @@ class Problem:
     M_edges: sp.csr_matrix
     held_edges: np.ndarray
     component_spaces: tuple
-    timings: dict = field(default_factory=dict)
     per_edge: np.ndarray | None = None
-    interfaces: tuple = ()
     columns: np.ndarray | None = None
 
     @property
-    def per_interface(self) -> tuple:
-        """The problem of each interface: ``interfaces``, or ``(self,)`` for one."""
-        return self.interfaces or (self,)
+    def space(self) -> str:
+        """The name of the multiplier space (the interface's)."""
+        return self.interface.space
+
+    def normals(self) -> np.ndarray:
+        """Unit normals n = ∇ψ/|∇ψ| (dim, n) at the cut points (:meth:`Gamma.normals`)."""
+        return self.gamma.normals(self.cut)
+
+
+_ONE = ("cut", "rule", "J", "multiplier_space", "ncomp", "M_edges", "held_edges",
+        "component_spaces", "per_edge")
+
+
+@dataclass(frozen=True)
+class Problem:
+    r"""The discrete interface problem of a scene (paper §3-5), for its tie laws.
+
+    With U = [a, b¹, …] the X-FEM unknowns ([11], shifted enrichment) and μ
+    the independent multipliers, λ = P μ on the cut edges, the problem is
+    K U + Bᵀ y = F, B U = 0, U[D] = g (y = -μ; :mod:`skxfem.solver`).
+
+    Attributes
+    ----------
+    scene, mesh : the scene and its resolved mesh.
+    V : :class:`~skxfem.enrich.XSpaces`, the displacement space u_h of [11], one
+        Heaviside enrichment per interface.
+    K : (N, N) CSR, the stiffness a(u, v) = ∫ σ(u):ε(v) of §3's weak equilibrium,
+        σ from the constitutive law [1].
+    F : (N,), the load l(v) of the surface tractions and body force (§3).
+    D, g : the constrained unknowns (int array) and their values: the scene's
+        displacements, with the enriched dofs they hold on cut boundary
+        facets (:func:`constrained_dofs`).
+    P : block-diagonal, the parts' prolongations.
+    B : (Σm, N) CSR, the parts' couplings, each on its columns.
+    interfaces : the :class:`Part` of each interface, in the scene's order.
+    timings : seconds per stage.
+
+    A problem of one interface also reads its part's ``cut``, ``rule``, ``J``,
+    ``multiplier_space``, ``ncomp``, ``M_edges``, ``held_edges``,
+    ``component_spaces`` and ``per_edge`` on itself (``p.cut`` is
+    ``p.interfaces[0].cut``).
+    """
+
+    scene: Scene
+    mesh: object
+    V: XSpaces
+    K: sp.csr_matrix
+    F: np.ndarray
+    D: np.ndarray
+    g: np.ndarray
+    P: sp.csr_matrix
+    B: sp.csr_matrix
+    interfaces: tuple[Part, ...]
+    timings: dict = field(default_factory=dict)
+
+    def __getattr__(self, name):
+        if name in _ONE:  # the one part's field (class notes)
+            parts = self.__dict__.get("interfaces", ())
+            if len(parts) != 1:
+                raise AttributeError(f"Problem.{name} is that of a problem with one "
+                                     f"interface; this one has {len(parts)}: read "
+                                     f"p.interfaces[k].{name}")
+            return getattr(parts[0], name)
+        raise AttributeError(f"'Problem' object has no attribute {name!r}")
+
+    @property
+    def laws(self) -> tuple[str, ...]:
+        """The tie law of each part."""
+        return tuple(q.law for q in self.interfaces)
+
+    @property
+    def law(self) -> str | None:
+        """The tie law of the parts if they share one, else None."""
+        return self.laws[0] if len(set(self.laws)) == 1 else None
 
     def lift(self, k: int, A) -> sp.csr_matrix:
-        """An operator on the unknowns of interface ``k``'s piece, [a, b^k], as one on
-        the whole's, A @ select(k) (:meth:`skxfem.enrich.XSpaces.select`); A itself
-        for one interface."""
-        if not self.interfaces:
-            return sp.csr_matrix(A)
+        """An operator on the unknowns of part ``k``, [a, b^k], as one on the
+        whole's, A @ select(k) (:meth:`skxfem.enrich.XSpaces.select`)."""
         return (sp.csr_matrix(A) @ self.V.select(k)).tocsr()
 
 
@@ -214,10 +267,12 @@ def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndar
             np.concatenate([values, np.zeros(enr.size)]))
 
 
-def assemble(scene: Scene, law: str | None = None) -> Problem:
-    """Assemble the interface problem of ``scene`` for ``law`` (default: ``scene.law``).
+def assemble(scene: Scene | Resolved, law: str | None = None) -> Problem:
+    """Assemble the interface problem of ``scene`` for ``law`` (default: each
+    interface's own).
 
-    The multiplier space is the scene's, per component with the supports'
+    Every interface is assembled by the same steps (module notes): its cut, its
+    X-FEM enrichment, its multiplier space per component with the supports'
     fixed nodes (:func:`skxfem.stabilised.multiplier_space`); a piece of Γ on
     which it holds fewer rigid motions than the law (a corner cut off inside
     one cell: :func:`skxfem.linalg.rigid.short_pieces`) gets a multiplier per edge.
@@ -225,11 +280,13 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
     Parameters
     ----------
     scene
-        A :class:`skxfem.scene.Scene`; its ``quadrature_order`` sets the cell
-        rule of the stiffness (``None``: exact on affine cells).  With several
-        interfaces, one piece each (module notes).
+        A :class:`skxfem.scene.Scene` or the :class:`~skxfem.scene.Resolved` one
+        (:func:`skxfem.scene.resolve`: its mesh built once); its
+        ``quadrature_order`` sets the cell rule of the stiffness (``None``: exact
+        on affine cells).
     law
-        A key of :data:`COUPLING`; ``None`` takes the scene's (each interface's).
+        A key of :data:`COUPLING` for every interface; ``None`` takes each
+        interface's own.
 
     Returns
     -------
@@ -242,31 +299,46 @@ def assemble(scene: Scene, law: str | None = None) -> Problem:
         cuts no cell or vanishes on a region (from :func:`skxfem.cut.cut`), two
         interfaces that cut one cell (:func:`skxfem.cut.check_apart`).
     """
-    if check_scene(scene).several:
-        return _assemble_several(scene, law)
-    scene = scene.alone(0)  # a scene given one Interface: its one-interface form
-    law = check_law(scene.law if law is None else law)
+    scene, mesh = resolve(scene)
+    items = scene.interfaces
+    laws = [check_law(i.law if law is None else law) for i in items]
     timings, lap = _clock()
-    mesh = resolve_mesh(scene)
-    cut = cut_mesh(mesh, scene.levelset)
+    gammas = [gamma(i) for i in items]   # the geometry of each Γ (skxfem.gamma)
+    cuts = tuple(g.cut(mesh, scene.label(k)) for k, g in enumerate(gammas))
+    check_apart(mesh, cuts, [f"interfaces[{k}] ({i.levelset.name!r})"
+                             for k, i in enumerate(items)])
     lap("cut")
-    V = xfem_space(mesh, cut, scene.quadrature_order)
+    V = XSpaces(tuple(g.space(mesh, cut, scene.quadrature_order)
+                      for g, cut in zip(gammas, cuts)))
     lap("enrich")
-    K = stiffness(V, scene.material, scene.material_plus)
+    K = stiffness(V, *scene.materials())
     lap("stiffness")
-    f, f_H = np.zeros(V.n_std), np.zeros(V.n_std)
+    f, f_H = np.zeros(V.n_std), [np.zeros(V.n_std) for _ in cuts]
     for facets, traction in load_facets(scene, mesh):
-        q = boundary_quadrature(mesh, facets, 4, psi_nodes=cut.psi)
-        df, df_H = surface_load(V.basis, q, traction)
-        f, f_H = f + df, f_H + df_H
+        for k, cut in enumerate(cuts):
+            q = boundary_quadrature(mesh, facets, 4, psi_nodes=cut.psi)
+            df, df_H = surface_load(V.basis, q, traction)
+            f = f + df if k == 0 else f
+            f_H[k] = f_H[k] + df_H
     if scene.body_force is not None:
-        df, df_H = body_load(V, scene.body_force)
-        f, f_H = f + df, f_H + df_H
+        for k, Vk in enumerate(V.per_interface):
+            df, df_H = body_load(Vk, scene.body_force)
+            f = f + df if k == 0 else f
+            f_H[k] = f_H[k] + df_H
     F = enriched_load(V, f, f_H)
     lap("load")
-    D, g = constrained_dofs(V, scene, mesh)
+    local = [constrained_dofs(Vk, scene, mesh) for Vk in V.per_interface]
+    std = local[0][0] < V.n_std  # the supports' standard dofs: the same for every interface
+    D = np.concatenate([local[0][0][std]] + [V.columns(k)[Dk[Dk >= V.n_std]]
+                                             for k, (Dk, _) in enumerate(local)])
+    g = np.concatenate([local[0][1][std]] + [gk[Dk >= V.n_std] for Dk, gk in local])
     lap("constraints")
-    return _interface_problem(scene, mesh, cut, V, K, F, D, g, law, timings, lap)
+    parts = tuple(_part(items[k], gammas[k], mesh, cuts[k], V.per_interface[k], *local[k],
+                        laws[k], lap, V.columns(k)) for k in range(len(items)))
+    B = sp.vstack([q.B @ V.select(k) for k, q in enumerate(parts)], format="csr")
+    P = sp.block_diag([q.P for q in parts], format="csr")
+    return Problem(scene=scene, mesh=mesh, V=V, K=K, F=F, D=D, g=g, P=P, B=B,
+                   interfaces=parts, timings=timings)
 
 
 def _clock():
@@ -283,12 +355,12 @@ def _clock():
     return timings, lap
 
 
-def _interface_problem(scene, mesh, cut, V, K, F, D, g, law, timings, lap, columns=None):
-    """The :class:`Problem` of one interface, after its X-FEM space: its multiplier
+def _part(interface, g: Gamma, mesh, cut, V, D, values, law, lap, columns) -> Part:
+    """The :class:`Part` of one interface, after its X-FEM space: its multiplier
     space (§4.2, §5), rule, jump operator, coupling and the spaces of each
     component (with the supports' fixed nodes; a multiplier per edge on the pieces
     of Γ the space leaves loose)."""
-    lam_space = multiplier_space(scene.space, mesh, cut)
+    lam_space = g.multipliers(mesh, cut)
     lap("space")
     rule = interface_rule(mesh, cut)
     J = jump_matrix(V, rule.cells, rule.ref)
@@ -300,71 +372,24 @@ def _interface_problem(scene, mesh, cut, V, K, F, D, g, law, timings, lap, colum
         fixed = normal_fixed(fixed, cut)[None, :]
     held_edges = fixed[:, cut.edges[0]] & fixed[:, cut.edges[1]]
 
-    def problem(lam_space, per_edge=None):
-        spaces = _component_spaces(scene.space, mesh, cut, lam_space, fixed, per_edge)
+    def part(lam_space, per_edge=None):
+        spaces = _component_spaces(g, mesh, cut, lam_space, fixed, per_edge)
         P = sp.block_diag([s.P for s in spaces], format="csr")  # component-major
-        return Problem(scene=scene, mesh=mesh, cut=cut, V=V, K=K, F=F, D=D, g=g, rule=rule,
-                       J=J, multiplier_space=lam_space, law=law, ncomp=held_edges.shape[0], P=P,
-                       B=(P.T @ B_edges).tocsr(), M_edges=M_edges, held_edges=held_edges,
-                       component_spaces=spaces, timings=timings, per_edge=per_edge,
-                       columns=columns)
+        return Part(interface=interface, gamma=g, mesh=mesh, cut=cut, V=V, D=D, g=values,
+                    rule=rule, J=J,
+                    multiplier_space=lam_space, law=law, ncomp=held_edges.shape[0], P=P,
+                    B=(P.T @ B_edges).tocsr(), M_edges=M_edges, held_edges=held_edges,
+                    component_spaces=spaces, per_edge=per_edge, columns=columns)
 
-    p = problem(lam_space)
-    short = short_pieces(p, B_edges)  # pieces of Γ the stable space leaves loose
+    q = part(lam_space)
+    short = short_pieces(q, B_edges)  # pieces of Γ the stable space leaves loose
     if short.any():
-        p = problem(multiplier_space(scene.space, mesh, cut, per_edge=short), short)
+        q = part(g.multipliers(mesh, cut, per_edge=short), short)
     lap("prolongation")
-    return p
+    return q
 
 
-def _assemble_several(scene: Scene, law: str | None) -> Problem:
-    """:func:`assemble` of a scene with several interfaces (module notes)."""
-    items = scene.interface_list
-    laws = [check_law(i.law if law is None else law) for i in items]
-    timings, lap = _clock()
-    mesh = resolve_mesh(scene)
-    cuts = tuple(cut_mesh(mesh, i.levelset, f"interfaces[{k}] {i.levelset.name!r}")
-                 for k, i in enumerate(items))
-    check_apart(mesh, cuts, [f"interfaces[{k}] ({i.levelset.name!r})"
-                             for k, i in enumerate(items)])
-    lap("cut")
-    alone = [scene.alone(k) for k in range(len(items))]
-    V = XSpaces(tuple(xfem_space(mesh, cut, scene.quadrature_order) for cut in cuts))
-    lap("enrich")
-    K = stiffness(V, scene.material)
-    lap("stiffness")
-    f, f_H = np.zeros(V.n_std), [np.zeros(V.n_std) for _ in cuts]
-    for facets, traction in load_facets(scene, mesh):
-        for k, cut in enumerate(cuts):
-            q = boundary_quadrature(mesh, facets, 4, psi_nodes=cut.psi)
-            df, df_H = surface_load(V.basis, q, traction)
-            f = f + df if k == 0 else f
-            f_H[k] = f_H[k] + df_H
-    if scene.body_force is not None:
-        for k, Vk in enumerate(V.per_interface):
-            df, df_H = body_load(Vk, scene.body_force)
-            f = f + df if k == 0 else f
-            f_H[k] = f_H[k] + df_H
-    F = enriched_load(V, f, f_H)
-    lap("load")
-    local = [constrained_dofs(Vk, s, mesh) for Vk, s in zip(V.per_interface, alone)]
-    std = local[0][0] < V.n_std  # the supports' standard dofs: the same for every interface
-    D = np.concatenate([local[0][0][std]] + [V.columns(k)[Dk[Dk >= V.n_std]]
-                                             for k, (Dk, _) in enumerate(local)])
-    g = np.concatenate([local[0][1][std]] + [gk[Dk >= V.n_std] for Dk, gk in local])
-    lap("constraints")
-    pieces = tuple(_interface_problem(alone[k], mesh, cuts[k], V.per_interface[k], None, None,
-                                      *local[k], laws[k], timings, lap, V.columns(k))
-                   for k in range(len(items)))
-    B = sp.vstack([p.B @ V.select(k) for k, p in enumerate(pieces)], format="csr")
-    P = sp.block_diag([p.P for p in pieces], format="csr")
-    return Problem(scene=scene, mesh=mesh, cut=None, V=V, K=K, F=F, D=D, g=g, rule=None,
-                   J=None, multiplier_space=None, law=laws[0] if len(set(laws)) == 1 else None,
-                   ncomp=None, P=P, B=B, M_edges=None, held_edges=None, component_spaces=(),
-                   timings=timings, interfaces=pieces)
-
-
-def _component_spaces(name, mesh, cut, lam_space, fixed, per_edge=None) -> tuple:
+def _component_spaces(g: Gamma, mesh, cut, lam_space, fixed, per_edge=None) -> tuple:
     """The multiplier space of each component, built with that component's
     fixed nodes (``lam_space``, the space of all edges, where none is fixed; one
     build per distinct set of fixed nodes) and a multiplier per ``per_edge`` edge."""
@@ -373,5 +398,5 @@ def _component_spaces(name, mesh, cut, lam_space, fixed, per_edge=None) -> tuple
         key = row.tobytes()
         if key not in built:
             built[key] = (lam_space if not row.any() else
-                          multiplier_space(name, mesh, cut, fixed=row, per_edge=per_edge))
+                          g.multipliers(mesh, cut, fixed=row, per_edge=per_edge))
     return tuple(built[row.tobytes()] for row in fixed)

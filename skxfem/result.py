@@ -28,15 +28,15 @@ the dof that carries most of its multiplier) and the total ``iterations``.
 >>> bool(abs(tie.pressure - glued.pressure).max() < 1e-12)
 True
 
-**Several interfaces.** The interface fields of all interfaces are
-concatenated, interface after interface, with ``interface`` (n,) the index
-of each point's interface and ``facets`` indexing the concatenated points.
-The body is split into more than two regions, so a result has the
-displacement of each region: ``regions`` (R, n_interfaces), the side (±1)
+**Interfaces and regions.** The interface fields of all interfaces are
+concatenated, interface after interface (one interface: its own), with
+``interface`` (n,) the index of each point's interface and ``facets`` indexing
+the concatenated points.  The interfaces split the body into regions, so a result
+has the displacement of each region: ``regions`` (R, n_interfaces), the side (±1)
 of each level set in each region, and ``u_regions`` (R, dim, nverts), each
 region's field at the nodes (:func:`skxfem.enrich.region_fields`).  With one
-interface they are Ω⁻ and Ω⁺ (``[[-1], [1]]``, ``u_minus`` and ``u_plus``);
-with several, ``u_minus`` and ``u_plus`` are None.
+interface they are Ω⁻ and Ω⁺ (``[[-1], [1]]``), which :attr:`Result.u_minus` and
+:attr:`Result.u_plus` read (conveniences, None with several).
 """
 from __future__ import annotations
 
@@ -45,8 +45,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .enrich import XSpace, XSpaces, region_fields, split_fields
-from .levelset import point_normals
+from .enrich import XSpace, region_fields
 
 __all__ = ["Result", "edge_jumps", "result"]
 
@@ -56,8 +55,7 @@ class Result:
     """What :func:`skxfem.solve` returns; the names match ``result.json``.
 
     ``points``, ``normals``, ``traction``, ``jump`` are (dim, n) at the cut
-    edges' points, ``facets`` (dim, nf) index them; ``u_minus``/``u_plus``
-    (dim, nverts) are the nodal fields of each side; ``max_jump`` is the
+    edges' points, ``facets`` (dim, nf) index them; ``max_jump`` is the
     largest jump the law forbids at the interface quadrature points
     (|[[u]]| bonded, |[[u]]·n| bilateral, the largest penetration max(d_n, 0)
     in contact); ``removed`` counts the dependent multipliers removed;
@@ -67,19 +65,16 @@ class Result:
     the iterative solve, its CG ``iterations`` and ``residuals``.
     Contact adds ``steps`` (:class:`skxfem.contact.Step`), ``status`` (n,)
     (0 open, 1 stick, 2 slip), the interface operators ``ops`` and the
-    ``law`` (:class:`skxfem.contact.newton.Law`; several interfaces: a tuple,
-    one per interface); for a tie they are empty.
+    ``law`` (a tuple of :class:`skxfem.contact.newton.Law`, one per interface);
+    for a tie they are empty.
     ``interface`` (n,) is the interface of each point, ``regions`` and
-    ``u_regions`` the regions and their fields (module notes; several
-    interfaces: ``u_minus`` and ``u_plus`` are None).  ``U`` holds the
-    unknowns [a, b] of the X-FEM space ``V`` (:class:`skxfem.enrich.XSpace`, as
-    :attr:`skxfem.problem.Problem.V`) and ``problem`` the assembled problem.
+    ``u_regions`` the regions and their nodal fields (module notes).  ``U`` holds
+    the unknowns [a, b¹, …] of the X-FEM space ``V`` (:class:`skxfem.enrich.XSpaces`,
+    as :attr:`skxfem.problem.Problem.V`) and ``problem`` the assembled problem.
     """
 
     scene: object
     mesh: object
-    u_minus: np.ndarray | None
-    u_plus: np.ndarray | None
     points: np.ndarray
     normals: np.ndarray
     traction: np.ndarray
@@ -91,7 +86,7 @@ class Result:
     removed: int = 0
     timings: dict = field(default_factory=dict)
     U: np.ndarray | None = field(default=None, repr=False)
-    V: XSpace | None = field(default=None, repr=False)
+    V: object = field(default=None, repr=False)
     linear: str = "direct"
     linear_info: dict = field(default_factory=dict)
     problem: object = field(default=None, repr=False)
@@ -102,6 +97,18 @@ class Result:
     interface: np.ndarray | None = None
     regions: np.ndarray | None = None
     u_regions: np.ndarray | None = field(default=None, repr=False)
+
+    @property
+    def u_minus(self) -> np.ndarray | None:
+        """Ω⁻'s nodal field (dim, nverts) of a result of one interface: ``u_regions[0]``
+        (a convenience; None with several level sets, read ``u_regions``)."""
+        return self.u_regions[0] if np.shape(self.regions)[1] == 1 else None
+
+    @property
+    def u_plus(self) -> np.ndarray | None:
+        """Ω⁺'s nodal field (dim, nverts) of a result of one interface: ``u_regions[1]``
+        (a convenience, as :attr:`u_minus`)."""
+        return self.u_regions[1] if np.shape(self.regions)[1] == 1 else None
 
     @property
     def normal_traction(self) -> np.ndarray:
@@ -166,11 +173,12 @@ class Result:
                          for k in range(len(self.scene.displacements))]).reshape(-1, R.shape[0])
 
     def fields(self) -> list[tuple[np.ndarray, object]]:
-        """The displacement fields of the result and their materials: (u⁻, Ω⁻'s), (u⁺,
-        Ω⁺'s), or for several interfaces one (field, material) per region."""
-        if self.u_minus is not None:
-            return list(zip((self.u_minus, self.u_plus), self.scene.materials()))
-        return [(u, self.scene.material) for u in self.u_regions]
+        """The displacement field of each region and its material: one (field,
+        material) per region, in the order of ``regions`` (one interface: (u⁻, Ω⁻'s),
+        (u⁺, Ω⁺'s); a material per side is for one interface only)."""
+        minus, plus = self.scene.materials()
+        return [(u, minus if signs[0] < 0 else plus)
+                for u, signs in zip(self.u_regions, np.asarray(self.regions))]
 
     def strains(self) -> list[np.ndarray]:
         """(dim, dim, ncells) the strain ε = sym ∇u of each field of :meth:`fields` at the
@@ -227,22 +235,15 @@ def result(pb, U: np.ndarray, traction: np.ndarray, max_jump: float, n_multiplie
                   n_dofs=pb.V.N, n_multipliers=int(n_multipliers), timings=timings, U=U,
                   V=pb.V, linear=linear, linear_info=linear_info, problem=pb,
                   regions=regions, u_regions=fields, **contact)
-    if isinstance(pb.V, XSpaces):
-        qs = pb.interfaces
-        sizes = [q.cut.edge_ids.size for q in qs]
-        offsets = np.cumsum([0] + sizes[:-1])
-        return Result(
-            u_minus=None, u_plus=None,
-            points=np.hstack([q.cut.points for q in qs]),
-            normals=np.hstack([point_normals(q.cut, q.scene.levelset) for q in qs]),
-            jump=np.hstack([edge_jumps(q.V, U[q.columns]) for q in qs]),
-            facets=np.hstack([q.cut.facets + o for q, o in zip(qs, offsets)]),
-            interface=np.repeat(np.arange(len(qs)), sizes), **common)
-    u_minus, u_plus = split_fields(pb.V, U)
-    return Result(u_minus=u_minus, u_plus=u_plus, points=pb.cut.points,
-                  normals=point_normals(pb.cut, pb.scene.levelset), jump=edge_jumps(pb.V, U),
-                  facets=pb.cut.facets,
-                  interface=np.zeros(pb.cut.points.shape[1], dtype=np.int64), **common)
+    qs = pb.interfaces
+    sizes = [q.cut.edge_ids.size for q in qs]
+    offsets = np.cumsum([0] + sizes[:-1])
+    return Result(
+        points=np.hstack([q.cut.points for q in qs]),
+        normals=np.hstack([q.normals() for q in qs]),
+        jump=np.hstack([edge_jumps(q.V, U[q.columns]) for q in qs]),
+        facets=np.hstack([q.cut.facets + o for q, o in zip(qs, offsets)]),
+        interface=np.repeat(np.arange(len(qs)), sizes), **common)
 
 
 def on_edges(P: sp.spmatrix, values: np.ndarray) -> np.ndarray:

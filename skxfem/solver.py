@@ -30,7 +30,6 @@ import scipy.sparse as sp
 
 from .contact import history as contact
 from .contact.laws import CONTACT_LAWS
-from .levelset import point_normals
 from .linalg import iterative, saddle
 from .linalg.amg import rigid_modes
 from .linalg.choice import AUTO_ITERATIVE, LINEAR, choose_linear
@@ -39,15 +38,14 @@ from .linalg.rigid import check_held
 from .linalg.threads import limited
 from .problem import Problem, assemble, constrained_dofs
 from .result import Result, result
-from .scene.model import Scene, check_scene
+from .scene.model import Resolved, Scene, resolve
 
 __all__ = ["Result", "solve", "solve_problem", "constrained_dofs", "LINEAR", "AUTO_ITERATIVE",
            "choose_linear"]
 
 
 def _linear(method: str, p: Problem) -> str:
-    """The linear solve ``method`` resolves to for ``p`` (several interfaces with
-    different ties: as for ``bonded``, which solves as they do)."""
+    """The linear solve ``method`` resolves to for ``p``."""
     return choose_linear(method, p.mesh.dim(), p.V.N)
 
 
@@ -64,7 +62,7 @@ def _differences(cut, ncomp: int) -> sp.csr_matrix:
 
 
 @limited
-def solve(scene: Scene, dependent: str = "remove", linear: str | None = None,
+def solve(scene: Scene | Resolved, dependent: str = "remove", linear: str | None = None,
           linear_tol: float | None = None, max_iter: int | None = None,
           progress=None) -> Result:
     """Solve ``scene`` and return a :class:`~skxfem.result.Result`.
@@ -124,8 +122,9 @@ def solve(scene: Scene, dependent: str = "remove", linear: str | None = None,
     """
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
-    settings = check_scene(scene).solver.override(linear, linear_tol, max_iter)
-    laws = [i.law for i in scene.interface_list]
+    scene = resolve(scene)   # checked and its mesh resolved, once
+    settings = scene.scene.solver.override(linear, linear_tol, max_iter)
+    laws = [i.law for i in scene.scene.interfaces]
     if any(law in CONTACT_LAWS for law in laws):
         return contact.solve(scene, linear=settings.linear, linear_tol=settings.linear_tol,
                              max_iter=settings.max_iter, progress=progress)
@@ -157,24 +156,19 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
         removed = (dependencies(Bf).shape[1] if linear == "iterative"
                    else B.shape[0] - saddle.independent_rows(Bf).size)
         if removed:
-            spaces = ", ".join(repr(q.scene.space) for q in p.per_interface)
-            laws = ", ".join(repr(q.law) for q in p.per_interface)
+            spaces = ", ".join(repr(q.space) for q in p.interfaces)
+            laws = ", ".join(repr(q.law) for q in p.interfaces)
             raise ValueError(
                 f"the multiplier space is rank deficient: {removed} of {B.shape[0]} "
                 f"multipliers depend on the others (space {spaces}, law "
                 f"{laws}); use a stabilised space or dependent='remove'")
-    if p.interfaces:
-        check_held(p, normal=[q.law == "bilateral" for q in p.interfaces],
-                   full=[q.law == "bonded" for q in p.interfaces])
-        G = sp.block_diag([_differences(q.cut, q.ncomp) @ q.P for q in p.interfaces],
-                          format="csr")
-    else:
-        check_held(p, normal=p.law == "bilateral", full=p.law == "bonded")
-        G = _differences(p.cut, p.ncomp) @ P
-    if linear == "iterative":  # several interfaces: the motions of every region for the AMG
+    check_held(p, normal=[q.law == "bilateral" for q in p.interfaces],
+               full=[q.law == "bonded" for q in p.interfaces])
+    G = sp.block_diag([_differences(q.cut, q.ncomp) @ q.P for q in p.interfaces],
+                      format="csr")
+    if linear == "iterative":  # the motions of every region for the AMG
         U, mu, info = iterative.solve(p.K, B, p.F, D, p.g, G=G, modes=rigid_modes(V),
-                                      blocksize=mesh.dim(),
-                                      bonded=p.law == "bonded" and not p.interfaces,
+                                      blocksize=mesh.dim(), bonded=p.law == "bonded",
                                       tol=linear_tol)
     else:
         try:
@@ -184,25 +178,25 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
                 raise
             raise saddle.SingularSystemError(  # check_held found every rigid motion held
                 f"the tied system is singular to working precision ({e.detail}), although "
-                f"the displacements and the {p.law} tie hold every rigid motion of each side "
-                f"of Γ: its conditioning is beyond double precision (a part of the body, "
-                f"or a material, far stiffer or smaller than the rest); refine the mesh "
-                f"there or rescale the scene") from e
+                f"the displacements and the {'/'.join(dict.fromkeys(p.laws))} tie hold "
+                f"every rigid motion of each side of Γ: its conditioning is beyond double "
+                f"precision (a part of the body, or a material, far stiffer or smaller "
+                f"than the rest); refine the mesh there or rescale the scene") from e
     timings["solve"] = time.perf_counter() - t0
     its = getattr(info, "iterations", None)
     linear_info = {"residual": float(info.residual), "balance": float(info.balance),
                    "tol": linear_tol, "iterations": its, "residuals": None if its is None
                    else [float(r) for r in info.residuals]}
     tractions, jumps = [], []
-    ends = np.cumsum([0] + [q.P.shape[1] for q in p.per_interface])
-    for q, start, end in zip(p.per_interface, ends[:-1], ends[1:]):  # each interface
+    ends = np.cumsum([0] + [q.P.shape[1] for q in p.interfaces])
+    for q, start, end in zip(p.interfaces, ends[:-1], ends[1:]):  # each interface
         lam = (q.P @ mu[start:end]).reshape(q.ncomp, -1)
-        normals = point_normals(q.cut, q.scene.levelset)
+        normals = q.normals()
         tractions.append(lam if q.ncomp > 1 else lam * normals)
-        J = (q.J @ (U if q.columns is None else U[q.columns])).reshape(mesh.dim(), -1)
+        J = (q.J @ U[q.columns]).reshape(mesh.dim(), -1)
         jn = np.abs((J * q.rule.normals).sum(0)) if q.law == "bilateral" \
             else np.linalg.norm(J, axis=0)
         jumps.append(float(jn.max()))
-    traction = tractions[0] if len(tractions) == 1 else np.hstack(tractions)
+    traction = np.hstack(tractions)
     return result(p, U, traction, max(jumps), B.shape[0] - info.removed, timings,
                   linear, linear_info, removed=info.removed)

@@ -50,7 +50,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..linalg.amg import axis_name
-from ..linalg.rigid import region_names, side_names
+from ..linalg.rigid import region_names
 from .laws import OPEN
 
 __all__ = ["Holding", "holding", "check_held_by_gamma", "FrictionCannotHoldError",
@@ -199,7 +199,7 @@ def check_held_by_gamma(pb, ops, laws, F, modes, label=None, check_rigid=None) -
         (a ValueError) The loads pull the part off Γ: the rigid motions left
         free with Γ open (via ``check_rigid``).
     """
-    names = region_names(pb) if pb.interfaces else list(side_names(pb))
+    names = region_names(pb)
     for h in holding(pb, ops, laws, F, modes):
         if h.held:
             continue

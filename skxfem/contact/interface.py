@@ -54,11 +54,12 @@ every cell; with Γ tilted by 11.3° about e_y it is within 2 % of the tie's
 (which holds the Cartesian u_x, a space the frame n, t₁, t₂ cannot share), with
 no zero mode.
 
-**Several interfaces.** Each interface's operators are those of its piece of
-the problem (:attr:`skxfem.problem.Problem.interfaces`), on its own unknowns
-[a, b^k]; lifted to the whole's unknowns and stacked, interface after
-interface (:func:`join`), they are the operators of the scene: its dofs are
-those of every interface, ``interface`` says whose.
+**Interfaces.** Each interface's operators are those of its part of the
+problem (:attr:`skxfem.problem.Problem.interfaces`, :func:`part_operators`), on
+its own unknowns [a, b^k]; lifted to the whole's unknowns and stacked, interface
+after interface (:func:`join`), they are the operators of the scene: its dofs
+are those of every interface, ``interface`` says whose (one interface: the
+operators of its part, on the same unknowns).
 
 >>> from skxfem.problem import assemble
 >>> from skxfem.scene.benchmarks import strip
@@ -77,9 +78,8 @@ from scipy.sparse.csgraph import min_weight_full_bipartite_matching
 
 from ..linalg.dependent import dependencies, unit_rows
 from ..multipliers import fixed_jumps
-from ..stabilised import multiplier_space
 
-__all__ = ["Operators", "operators", "join", "tangent_frames", "held_tangents",
+__all__ = ["Operators", "operators", "part_operators", "join", "tangent_frames", "held_tangents",
            "tangential_space", "release_dependent", "held_with_normal", "sticking_rows"]
 
 
@@ -99,9 +99,8 @@ class Operators:
         :func:`release_dependent` releases.
     Pt : tuple of k (n_edges, m), each tangent's prolongation from the dofs to
         the cut edges (the normal one, ``Problem.P``, where no support holds it).
-    interface : (m,) the interface of each dof (0 for one interface).
-    pieces : several interfaces: the operators of each, on its own unknowns
-        (module notes); empty for one.
+    interface : (m,) the interface of each dof.
+    pieces : the operators of each interface, on its own unknowns (module notes).
     """
 
     Bn: sp.csr_matrix
@@ -134,10 +133,20 @@ def tangent_frames(normals: np.ndarray) -> np.ndarray:
 
 
 def operators(pb) -> Operators:
-    """The operators of :class:`Operators` for an assembled bilateral problem ``pb``
-    (several interfaces: :func:`join` of each one's)."""
-    if pb.interfaces:
-        return join(pb, [operators(q) for q in pb.interfaces])
+    """The operators of :class:`Operators` for an assembled bilateral problem ``pb``:
+    :func:`join` of those of each interface (:func:`part_operators`)."""
+    return join(pb, [part_operators(q) for q in pb.interfaces])
+
+
+def _edge_lengths(q) -> np.ndarray:
+    """The lengths of the cut edges of a part ``q``."""
+    e = q.cut.edges
+    return np.linalg.norm(q.mesh.p[:, e[0]] - q.mesh.p[:, e[1]], axis=0)
+
+
+def part_operators(pb) -> Operators:
+    """The :class:`Operators` of one interface's part ``pb`` (a
+    :class:`skxfem.problem.Part` assembled bilateral), on its own unknowns [a, b^k]."""
     if pb.law != "bilateral":
         raise ValueError(f"contact needs the problem assembled with law='bilateral' "
                          f"(one multiplier component), got law={pb.law!r}")
@@ -157,7 +166,7 @@ def operators(pb) -> Operators:
     normals = (PNW @ rule.normals.T).T
     normals /= np.linalg.norm(normals, axis=0)
     e = pb.cut.edges
-    h = float(np.linalg.norm(pb.mesh.p[:, e[0]] - pb.mesh.p[:, e[1]], axis=0).mean())
+    h = float(_edge_lengths(pb).mean())
     fixed = fixed_jumps(pb.V, pb.D)
     facet_frames = tangent_frames(pb.cut.normals)  # (k, dim, n_facets)
     fallback = held_tangents(fixed, e, P, normals)
@@ -181,14 +190,13 @@ def operators(pb) -> Operators:
 
 
 def join(pb, parts) -> Operators:
-    """The operators of a problem with several interfaces from those of each (``parts``,
-    on the unknowns of its piece of ``pb``): lifted to the whole's unknowns
+    """The operators of a problem from those of each interface (``parts``, on the
+    unknowns of its part of ``pb``): lifted to the whole's unknowns
     (:meth:`skxfem.problem.Problem.lift`) and stacked, dof after dof; ``h`` is the
     mean length of all cut edges, each interface's own in ``pieces``."""
     k = len(parts[0].Bt)
     sizes = [o.w.size for o in parts]
-    lengths = np.concatenate([np.full(q.cut.edge_ids.size, o.h)
-                              for q, o in zip(pb.interfaces, parts)])
+    lengths = np.concatenate([_edge_lengths(q) for q in pb.interfaces])
     return Operators(
         sp.vstack([pb.lift(j, o.Bn) for j, o in enumerate(parts)], format="csr"),
         tuple(sp.vstack([pb.lift(j, o.Bt[a]) for j, o in enumerate(parts)], format="csr")
@@ -257,8 +265,8 @@ def tangential_space(pb, fixed: np.ndarray):
     P = sp.csc_matrix(pb.P)
     if not fixed.any():
         return np.arange(P.shape[1]), P
-    Pa = sp.csc_matrix(multiplier_space(pb.scene.space, pb.mesh, pb.cut, fixed=fixed,
-                                        per_edge=pb.per_edge).P)
+    Pa = sp.csc_matrix(pb.gamma.multipliers(pb.mesh, pb.cut, fixed=fixed,
+                                            per_edge=pb.per_edge).P)
     a, b = pb.cut.edges
     free = ~(fixed[a] & fixed[b])
 

@@ -51,7 +51,8 @@ def rigid_modes(V, sides: bool = True, centre=None, length: float = 1.0) -> np.n
     Parameters
     ----------
     V
-        An :class:`skxfem.enrich.XSpace`.
+        An :class:`skxfem.enrich.XSpaces` on [a, b¹, b², …] (an
+        :class:`~skxfem.enrich.XSpace`: the space of one interface).
     sides
         ``False``: only the k rigid motions of the whole body (their sums).
     centre, length
@@ -61,17 +62,15 @@ def rigid_modes(V, sides: bool = True, centre=None, length: float = 1.0) -> np.n
 
     Returns
     -------
-    (N, 2k) array, columns 2i and 2i+1 the i-th motion of Ω⁻ and of Ω⁺
-    (``sides=False``: (N, k), their sums); k = 3 in 2D (two translations,
-    one rotation), 6 in 3D.
+    (N, R k) array, column R i + r the i-th motion of region r with the others at
+    rest (R regions, :meth:`~skxfem.enrich.XSpaces.regions`; one interface: R = 2,
+    columns 2i and 2i+1 the i-th motion of Ω⁻ and of Ω⁺), ``sides=False``: (N, k),
+    their sums; k = 3 in 2D (two translations, one rotation), 6 in 3D.
 
-    Several interfaces (``V`` an :class:`skxfem.enrich.XSpaces` on [a, b¹, b², …],
-    R regions, :meth:`~skxfem.enrich.XSpaces.regions`): (N, Rk), column R i + r
-    the i-th motion of region r with the others at rest.  At a node j of region
-    σ enriched by Γ_k, whose far side is the region σ' (σ with its k-th sign
-    flipped), u = a + b^k(H^k - H^k_j) must be R·[σ = r] on its side and
-    R·[σ' = r] on the far one: aⱼ = R(xⱼ)[σ = r], b^k_j = H^k_j R(xⱼ)([σ = r] -
-    [σ' = r])/2 (with R = 2 the formula above).
+    With several interfaces, at a node j of region σ enriched by Γ_k, whose far
+    side is the region σ' (σ with its k-th sign flipped), u = a + b^k(H^k - H^k_j)
+    must be R·[σ = r] on its side and R·[σ' = r] on the far one: aⱼ = R(xⱼ)[σ = r],
+    b^k_j = H^k_j R(xⱼ)([σ = r] - [σ' = r])/2 (with one interface the formula above).
 
     >>> from skxfem.scene.benchmarks import strip
     >>> from skxfem.problem import assemble
@@ -95,46 +94,41 @@ def rigid_modes(V, sides: bool = True, centre=None, length: float = 1.0) -> np.n
                     np.array([-x[1], x[0], np.zeros_like(x[0])])]
     node_of = np.zeros(V.n_std, dtype=np.int64)
     node_of[nd.ravel()] = np.tile(np.arange(x.shape[1]), dim)
-    if hasattr(V, "per_interface"):  # several interfaces: the motions of each region
-        Z = _region_modes(V, motions, node_of)
-        if sides:
-            return Z
-        R = V.regions()[0].shape[0]
-        return sum(Z[:, r::R] for r in range(R))
-    H = np.where(V.cut.psi < 0, -1.0, 1.0)
-    Z = np.zeros((V.N, 2 * len(motions)))
-    for k, R in enumerate(motions):
-        a = np.zeros(V.n_std)
-        a[nd.ravel()] = R.ravel()
-        for j, s in enumerate((-1.0, 1.0)):
-            col = 2 * k + j
-            Z[:V.n_std, col] = np.where(H[node_of] == s, a, 0.0)
-            Z[V.n_std:, col] = 0.5 * s * a[V.enr_dofs]
-    return Z if sides else Z[:, 0::2] + Z[:, 1::2]
+    Z, R = _region_modes(V, motions, node_of)
+    return Z if sides else sum(Z[:, r::R] for r in range(R))
 
 
-def _region_modes(V, motions, node_of) -> np.ndarray:
-    """The motions of each region of an XSpaces ``V`` (:func:`rigid_modes`)."""
-    patterns, node_region = V.regions()
+def _region_modes(V, motions, node_of) -> tuple[np.ndarray, int]:
+    """The motions of each region of ``V`` (:func:`rigid_modes`) and the number of
+    regions R: those of the sign patterns of the level sets at the nodes
+    (:meth:`skxfem.enrich.XSpaces.regions`; an XSpace is the space of one interface,
+    whose regions are Ω⁻ and Ω⁺)."""
+    spaces = getattr(V, "per_interface", (V,))
+    signs = np.array([np.where(Vk.cut.psi < 0, -1, 1) for Vk in spaces])
+    patterns, node_region = np.unique(signs.T, axis=0, return_inverse=True)
+    node_region = node_region.ravel()
     R = patterns.shape[0]
-    index = {tuple(p): r for r, p in enumerate(patterns.tolist())}
+    codes = ((patterns > 0).astype(np.int64) << np.arange(len(spaces))).sum(axis=1)  # a region's signs as bits
+    order = np.argsort(codes)
     nd = V.basis.nodal_dofs
-    Z = np.zeros((V.N, R * len(motions)))
     region_of = node_region[node_of]  # the region of each standard dof's node
+    starts = np.cumsum([V.n_std] + [Vk.n_enr for Vk in spaces])
+    far = []   # the region on the far side of interface k of each of its enriched dofs
+    for k, Vk in enumerate(spaces):
+        want = codes[region_of[Vk.enr_dofs]] ^ (1 << k)
+        at = np.minimum(np.searchsorted(codes[order], want), R - 1)
+        far.append(np.where(codes[order][at] == want, order[at], -1))
+    Z = np.zeros((V.N, R * len(motions)))
     for i, motion in enumerate(motions):
         a = np.zeros(V.n_std)
         a[nd.ravel()] = motion.ravel()
         for r in range(R):
             col = R * i + r
             Z[:V.n_std, col] = np.where(region_of == r, a, 0.0)
-            for k, (Vk, start) in enumerate(zip(V.per_interface, V.offsets)):
-                near = region_of[Vk.enr_dofs]
-                far = patterns[near].copy()
-                far[:, k] *= -1
-                far_r = np.array([index.get(tuple(f), -1) for f in far.tolist()])
-                on = (near == r).astype(float) - (far_r == r)
-                Z[start:start + Vk.n_enr, col] = 0.5 * Vk.H_node * a[Vk.enr_dofs] * on
-    return Z
+            for k, Vk in enumerate(spaces):
+                on = (region_of[Vk.enr_dofs] == r).astype(float) - (far[k] == r)
+                Z[starts[k]:starts[k + 1], col] = 0.5 * Vk.H_node * a[Vk.enr_dofs] * on
+    return Z, R
 
 
 def axis_name(v) -> str:

@@ -407,8 +407,10 @@ def _setup(K, B, fixed, modes, blocksize, bonded, r, delta, refine, rigid_tol) -
     Zs = None if modes is None else modes / s[:, None]
     if Zs is not None:
         check_held(Kr, Zs, rigid_tol)
-        if bonded:
-            Zs = Zs[:, 0::2] + Zs[:, 1::2]
+        if bonded:  # the motions of the whole body: the sum of the R regions' own
+            k = {2: 3, 3: 6}.get(blocksize)
+            R = Zs.shape[1] // k if k else 2
+            Zs = sum(Zs[:, r::R] for r in range(R))
     return Setup(K, B, fixed, r, bonded, s, Bn, rows, Kr, amg(Kr, Zs, blocksize),
                  interface_solve(Bn, delta, refine))
 

@@ -39,12 +39,13 @@ allows and its rotations ("can translate along y", "can translate in every
 direction normal to z and rotate about an axis along z through (0.5, 0.5,
 0.5)", "can rotate about z (about the point (0.5, 0.5))").
 
-**Several interfaces.** The modes are those of each region
-(:func:`skxfem.linalg.amg.rigid_modes` on :class:`skxfem.enrich.XSpaces`), each
-interface holds the relative motion of the two regions beside it (its piece of
+**Regions.** The modes are those of each region the interfaces split the body
+into (:func:`skxfem.linalg.amg.rigid_modes`; one interface: Ω⁻ and Ω⁺), each
+interface holds the relative motion of the two regions beside it (its part of
 the problem, :attr:`skxfem.problem.Problem.interfaces`, on its own columns of
 the modes), and the message names a region by its signs, "the part of the
-body where ψ₀ > 0 and ψ₁ < 0" (ψ_k the level set of ``interfaces[k]``).
+body where ψ₀ > 0 and ψ₁ < 0" (ψ_k the level set of ``interfaces[k]``; one
+interface: Ω⁻ and Ω⁺, :func:`side_names`).
 
 >>> from skxfem.problem import assemble
 >>> from skxfem.scene.benchmarks import strip
@@ -87,20 +88,16 @@ def frame(p: Problem) -> tuple[np.ndarray, float]:
     return 0.5 * (lo + hi), max(0.5 * float(np.linalg.norm(hi - lo)), 1e-300)
 
 
-def _normals(p: Problem) -> np.ndarray:
-    """The level set's unit normals at the interface points; the facets' where
-    its gradient is not finite or vanishes."""
+def _normals(p) -> np.ndarray:
+    """The level set's unit normals at the interface points of a part ``p``
+    (:meth:`skxfem.gamma.Gamma.normals_at`); the facets' where its gradient is not
+    finite or vanishes."""
     rule = p.rule
     try:
-        n = np.asarray(p.scene.levelset.gradient(rule.points), float)
+        n = p.gamma.normals_at(rule.points)
     except (ValueError, TypeError, FloatingPointError):
         return rule.normals
-    with np.errstate(all="ignore"):   # scaled first: the square of 1e300 overflows
-        top = np.abs(n).max(axis=0)
-        ok = np.isfinite(top) & (top > 0)
-        n = n / np.where(ok, top, 1.0)
-        size = np.linalg.norm(n, axis=0)
-    return np.where(ok, n / np.where(ok, size, 1.0), rule.normals)
+    return np.where(np.isfinite(n).all(axis=0), n, rule.normals)
 
 
 def _edges(mask, ne: int) -> np.ndarray:
@@ -166,11 +163,9 @@ def free_motions(p: Problem, normal=None, full=None, rows=None, tol: float = TOL
     if Z is None:
         centre, length = frame(p)
         Z = rigid_modes(p.V, centre=centre, length=length)
-    if p.interfaces:  # several: each interface holds what its law holds, on its columns
-        blocks = [Z[p.D]] + [law_rows(q, Z[q.columns], n, f) for q, n, f in
-                             zip(p.interfaces, _split(p, normal), _split(p, full))]
-    else:
-        blocks = [Z[p.D], law_rows(p, Z, normal, full)]
+    # each interface holds what its law holds, on its columns of the modes
+    blocks = [Z[p.D]] + [law_rows(q, Z[q.columns], n, f) for q, n, f in
+                         zip(p.interfaces, _split(p, normal), _split(p, full))]
     if rows is not None and rows.shape[0]:
         blocks.append(unit_rows(rows)[0] @ Z)
     N = _null(np.vstack(blocks), tol)
@@ -201,19 +196,23 @@ _SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 
 def region_names(p: Problem) -> list[str]:
-    """How a message names each region of a problem with several interfaces (in the
-    order of :meth:`skxfem.enrich.XSpaces.regions`): "the part of the body where
-    ψ₀ > 0 and ψ₁ < 0", ψ_k the level set of ``interfaces[k]``."""
+    """How a message names each region of a problem (in the order of
+    :meth:`skxfem.enrich.XSpaces.regions`): "the part of the body where ψ₀ > 0 and
+    ψ₁ < 0", ψ_k the level set of ``interfaces[k]``; with one level set, Ω⁻ and Ω⁺
+    by :func:`side_names` (the wording alone depends on the count)."""
     patterns = p.V.regions()[0]
+    if patterns.shape[1] == 1:
+        return list(side_names(p.interfaces[0]))
     return ["the part of the body where " + " and ".join(
         f"ψ{str(k).translate(_SUB)} {'<' if s < 0 else '>'} 0" for k, s in enumerate(row))
         for row in patterns.tolist()]
 
 
-def side_names(p: Problem) -> tuple[str, str]:
-    """How a message names Ω⁻ and Ω⁺: "the part of the body inside Γ" for a
-    side on no boundary node (Γ encloses it; the other is then "outside Γ"),
-    else by the sign of ψ."""
+def side_names(p) -> tuple[str, str]:
+    """How a message names Ω⁻ and Ω⁺ of one interface (``p`` a problem of one or a
+    :class:`skxfem.problem.Part`): "the part of the body inside Γ" for a side on no
+    boundary node (Γ encloses it; the other is then "outside Γ"), else by the sign
+    of ψ."""
     boundary = np.unique(p.mesh.facets[:, p.mesh.boundary_facets()])
     signs = set(np.sign(p.cut.psi[boundary]).tolist())
     names = []
@@ -256,32 +255,11 @@ def _side_motions(motions: np.ndarray, dim: int, centre, length: float) -> str:
 
 def describe(p: Problem, N: np.ndarray, centre, length: float) -> str:
     """The free motions of the basis ``N`` (orthonormal columns of mode
-    coefficients, Ω⁻ and Ω⁺ interleaved as :func:`skxfem.linalg.amg.rigid_modes`
-    orders them), in words: those of the whole body, else of Ω⁻ alone, else
-    of Ω⁺ alone (their translations and rotations), else of the two apart.
-    Several interfaces: of the whole body, else of one region alone, else of
-    each region that moves."""
-    if p.interfaces:
-        return _describe_regions(p, N, centre, length)
-    minus, plus = side_names(p)
-    dim, I = p.mesh.dim(), np.eye(N.shape[0])
-    looks = [("the whole body", I[0::2] - I[1::2], 0),   # c⁻ = c⁺
-             (minus, I[1::2], 0),                         # c⁺ = 0
-             (plus, I[0::2], 1)]                          # c⁻ = 0
-    for who, E, side in looks:
-        _, sv, Vt = np.linalg.svd(E @ N, full_matrices=True)
-        motions = N @ Vt[np.r_[sv, np.zeros(Vt.shape[0] - sv.size)] < 1e-6].T
-        if motions.shape[1]:
-            return f"{who} can {_side_motions(motions[side::2], dim, centre, length)}"
-    c = N[:, 0]
-    return (f"{minus} can {motion_name(c[0::2], dim, centre, length)} as {plus} "
-            f"{motion_name(c[1::2], dim, centre, length, verb=False)}")
-
-
-def _describe_regions(p: Problem, N: np.ndarray, centre, length: float) -> str:
-    """:func:`describe` of a problem with several interfaces (R regions, the columns
-    of a motion of region r at R i + r): the whole body, else the fewest regions
-    that move as one body, else each region that moves."""
+    coefficients, R regions, the motion i of region r at column R i + r, as
+    :func:`skxfem.linalg.amg.rigid_modes` orders them), in words: those of the whole
+    body, else of the fewest regions that move as one body (one interface: Ω⁻
+    alone, else Ω⁺ alone), each as its translations and rotations, else of each
+    region that moves."""
     names = region_names(p)
     R, dim, I = len(names), p.mesh.dim(), np.eye(N.shape[0])
     groups = [tuple(range(R))] + [g for size in range(1, R) for g in
@@ -325,11 +303,11 @@ def check_held(p: Problem, normal=None, full=None, rows=None, what: str | None =
     text = describe(p, N, centre, length)
     if hint is None:
         hint = ("add a displacement (support) that holds it" if "whole body" in text else
-                f"hold that {'part' if p.interfaces else 'side'} with a displacement "
+                f"hold that {'part' if len(p.interfaces) > 1 else 'side'} with a displacement "
                 f"(support), or tie it with a law that holds the tangential jump too "
                 f"(bonded)")
     if what is None:
-        laws = [q.law for q in p.per_interface]
+        laws = p.laws
         what = (f"the {laws[0]} tie" if len(laws) == 1 else
                 f"the interfaces' ties ({', '.join(laws)})")
     raise SingularSystemError(

@@ -62,7 +62,7 @@ from ..contact.laws import CONTACT_LAWS
 from ..fem.meshes import CELLS, cell_name
 from ..fem.quadrature import cell_rule
 from ..linalg.choice import choose_linear
-from ..scene.model import Box, Scene, check_scene, resolve_mesh
+from ..scene.model import Box, Resolved, Scene, check_scene, resolve
 from .counts import NVERTS, box_counts, box_size, mesh_counts
 
 __all__ = ["DEFAULT_MAX_BYTES", "Estimate", "TooLargeError", "check", "estimate",
@@ -213,12 +213,15 @@ def estimate(scene: Scene, linear: str | None = None) -> Estimate:
     -------
     Estimate
     """
-    items = check_scene(scene).interface_list
+    mesh = None
+    if isinstance(scene, Resolved):   # its mesh built or read already
+        scene, mesh = scene
+    items = check_scene(scene).interfaces
     linear = scene.solver.linear if linear is None else linear
-    if isinstance(scene.mesh, Box):
+    if mesh is None and isinstance(scene.mesh, Box):
         counts, cell = [box_counts(scene.mesh, i.levelset) for i in items], scene.mesh.cell
     else:
-        mesh = resolve_mesh(scene)
+        mesh = resolve(scene).mesh if mesh is None else mesh
         counts, cell = [mesh_counts(mesh, i.levelset) for i in items], cell_name(mesh)
     return _estimate(scene, linear, *counts[0][:2], [c[2] for c in counts],
                      [c[3] for c in counts], cell)
@@ -228,7 +231,7 @@ def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell) -> Es
     """The :class:`Estimate` of ``scene`` from its counts (enriched nodes and cut
     edges: one count per interface)."""
     dim = scene.dim
-    items = scene.interface_list
+    items = scene.interfaces
     n_enr = dim * sum(n_enr_nodes)
     n_dofs = dim * n_nodes + n_enr
     m = sum((1 if i.law == "bilateral" else dim) * e  # contact: λ_n and friction
@@ -255,7 +258,7 @@ def _floor(scene, linear) -> Estimate | None:
     box = scene.mesh
     if not isinstance(box, Box):
         return None
-    none = [0] * len(scene.interface_list)
+    none = [0] * len(scene.interfaces)
     counts = (*box_size(box), none, none, box.cell)
     floors = []
     for pick in ("direct", "iterative") if linear == "auto" else (linear,):
@@ -296,11 +299,13 @@ def check(scene: Scene, max_bytes: int = DEFAULT_MAX_BYTES,
     """
     if not (isinstance(max_bytes, (int, np.integer)) and max_bytes > 0):
         raise ValueError(f"max_bytes must be a positive integer, got {max_bytes!r}")
-    linear = check_scene(scene).solver.linear if linear is None else linear
+    given = scene   # a Resolved scene's estimate reads its mesh
+    scene = given.scene if isinstance(given, Resolved) else check_scene(given)
+    linear = scene.solver.linear if linear is None else linear
     floor = _floor(scene, linear)
     if floor is not None and floor.bytes > max_bytes:  # refused before ψ is evaluated
         raise _too_large(scene, floor, max_bytes, option, "at least", linear)
-    e = estimate(scene, linear)
+    e = estimate(given, linear)
     if e.bytes > max_bytes:
         raise _too_large(scene, e, max_bytes, option, "about", linear)
     return e

@@ -29,7 +29,7 @@ from ..fem.loads import boundary_quadrature, surface_load
 from ..fem.material import stiffness_matrix
 from ..fem.quadrature import cell_rule
 from ..scene.benchmarks import P_MAX, exact_plate
-from ..scene.model import Box, Scene, check_scene, dirichlet, load_facets, resolve_mesh
+from ..scene.model import Box, Scene, dirichlet, load_facets, resolve
 from .convergence import StudyRow
 
 __all__ = ["ConformingResult", "solve_conforming", "energy_error", "study_conforming"]
@@ -55,18 +55,16 @@ def solve_conforming(scene: Scene) -> ConformingResult:
         part of skxfem), or a mesh with a cell that Γ cuts (nodes on both
         sides of Γ): then the mesh does not follow Γ.
     """
-    scene = check_scene(scene)
-    if scene.several:
-        raise ValueError("solve_conforming solves a scene with one interface, a mesh that "
-                         "follows it; this one has several")
-    if scene.law != "bonded":
+    scene, mesh = resolve(scene)
+    laws = [i.law for i in scene.interfaces]
+    if any(law != "bonded" for law in laws):
         raise ValueError(f"solve_conforming needs law='bonded' (Γ is then no interface "
-                         f"at all), got {scene.law!r}; for other laws use skxfem.solve")
-    mesh = resolve_mesh(scene)
-    psi = scene.levelset(mesh.p)
+                         f"at all), got {laws[0] if len(laws) == 1 else laws!r}; for other "
+                         f"laws use skxfem.solve")
+    psi = np.array([i.levelset(mesh.p) for i in scene.interfaces])   # (n, nverts)
     tol = 1e-12 * float(np.ptp(mesh.p, axis=1).max())
-    v = psi[mesh.t]
-    cut = np.flatnonzero((v < -tol).any(axis=0) & (v > tol).any(axis=0))
+    v = psi[:, mesh.t]           # a cell is cut if one of the Γ has nodes on both sides
+    cut = np.flatnonzero(((v < -tol).any(axis=1) & (v > tol).any(axis=1)).any(axis=0))
     if cut.size:
         raise ValueError(f"the mesh does not follow Γ: Γ cuts {cut.size} cells (first "
                          f"{cut[:3].tolist()}); classical FEM needs Γ on mesh faces, "

@@ -18,7 +18,7 @@ from ..fem.exact3d import ExactBlock
 from ..linalg.saddle import NearlyDependentError
 from ..multipliers import SPACES
 from ..scene.benchmarks import P_MAX, exact_block
-from ..scene.model import resolve_mesh
+from ..scene.model import resolve
 from ..solver import solve
 from ..studies.validation3d import CELLS
 from .figstyle import finish, log_axes, loglog_curves
@@ -101,7 +101,8 @@ def fig_block_pressure(n: int = 8, cells=CELLS, spaces=("naive", "vital")) -> Fi
     names = {"hex": "hexahedra", "prism": "prisms", "tet": "tetrahedra"}
     for ax, cell in zip(np.atleast_1d(fig.subplots(len(cells), 1)), cells):
         scene = exact_block(n, cell)
-        everywhere = exact.pressure(cut(resolve_mesh(scene), scene.levelset).points)
+        scene, mesh = resolve(scene)
+        everywhere = exact.pressure(cut(mesh, scene.interfaces[0].levelset).points)
         lo, hi = everywhere.min(), everywhere.max()
         pad = 0.5 * (hi - lo)
         refused = []
