@@ -158,8 +158,8 @@ class Step:
     the weighted normal jump d (≤ 0 admissible); ``slip`` (m, k) the
     weighted tangential jump (total); ``status`` (m,) 0 open, 1 stick,
     2 slip; ``Lambda`` (m, k) the semi-multiplier Λ = r_τ/(μλ) of eq. 9a
-    (``coulomb``, where p > 0; 0 elsewhere); ``law`` the law of the step
-    (several interfaces: a tuple, the law of each);
+    (``coulomb``, where p > 0; 0 elsewhere); ``law`` the law of the step on each
+    interface (a tuple of names, one per interface);
     ``increments`` how many increments the step took (1 unless cut); ``F`` the load
     vector of the step (on the unknowns: its support reactions are K U - F).
     """
@@ -173,7 +173,7 @@ class Step:
     status: np.ndarray
     Lambda: np.ndarray
     newton: NewtonInfo
-    law: str = ""
+    law: tuple = ()
     increments: int = 1
     F: np.ndarray | None = None
 
@@ -416,8 +416,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
                                    time.perf_counter() - t0, info.iterations))
         check_determined(pb, ops, laws, res.status, res.y, modes, state.label, scaled)
         steps.append(_step(state, ops, it, res, info, pieces, laws))
-    law = states[0].laws[0] if not pb.interfaces else states[0].laws
-    return _result(pb, ops, law, tuple(steps), linear, linear_tol,
+    return _result(pb, ops, states[0].laws, tuple(steps), linear, linear_tol,
                    time.perf_counter() - t0)
 
 
@@ -658,7 +657,7 @@ def _step(state: _State, ops: Operators, it: Iterate, res, info, pieces,
     Lam[ok] = semi_multiplier(it.r[ok], laws.mu[ok], p[ok])
     names = tuple(law.name for law in state.laws)
     return Step(state.label, it.U.copy(), -it.lam, it.r.copy(), ops.Bn @ it.U / ops.w, slip,
-                res.status, Lam, info, names[0] if len(names) == 1 else names, pieces,
+                res.status, Lam, info, names, pieces,
                 np.asarray(state.F))
 
 

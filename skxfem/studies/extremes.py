@@ -722,7 +722,7 @@ def limit_rows(cells=CELL_TYPES, n: int = 4) -> list[Row]:
 
     def bonded():
         result = solve(inclusion("bonded"))
-        return result.max_jump / np.abs(np.r_[result.u_minus, result.u_plus]).max()
+        return result.max_jump / np.abs(result.u_regions).max()
 
     rows.append(attempt("limits", "inclusion, bonded tie", "max jump / max |u|", 1e-2, bonded))
     return rows
