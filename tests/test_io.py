@@ -4,6 +4,7 @@ import errno
 import json
 import multiprocessing
 import os
+import re
 import shutil
 import signal
 import threading
@@ -665,3 +666,90 @@ def test_21_a_folder_holding_other_files_or_the_current_one_is_refused(tmp_path,
         with pytest.raises(ValueError, match="current folder|empty"):
             check_output(out)
     assert list((tmp_path / "here" / "deeper").iterdir()) == []
+
+
+# --- issue 28: one interface is the case N = 1, in the files too ------------------------
+
+SHORT_AND_TABLE = {   # the body of a scene file, with {interface}: its one interface
+    "tie 2D": ('[mesh]\nbox = {n = [4, 5], cell = "quad"}\n[material]\nE = 1.0\nnu = 0.3\n'
+               '[[displacement]]\nboundary = "ymin"\nkind = "clamped"\n'
+               '[[load]]\nboundary = "ymax"\ntraction = [0.5, -1.0]\n{interface}',
+               'plane = {point = [0.0, 0.4], normal = [0.2, 1.0]}', 'law = "bonded"', ""),
+    "coulomb 2D": ('[mesh]\nbox = {n = [4, 5], cell = "quad"}\n[material]\nE = 1.0\n'
+                   'nu = 0.3\n[[displacement]]\nboundary = "ymin"\nkind = "clamped"\n'
+                   '[[displacement]]\nboundary = "ymax"\nx = 2.0\n'
+                   '[[load]]\nboundary = "ymax"\npressure = 1.0\n{interface}',
+                   'plane = {point = [0.0, 0.5], normal = [0.0, 1.0]}',
+                   'law = "coulomb"\nfriction = 0.5', "[0.5, 1.0]"),
+    "frictionless 3D hex": (
+        '[mesh]\nbox = {n = [1, 4, 5], cell = "hex"}\n[material]\nE = 1.0\n'
+        '[[displacement]]\nboundary = "zmin"\nkind = "clamped"\n'
+        '[[displacement]]\nboundary = "zmax"\nx = 0.0\ny = 0.0\nz = "-0.01 * (1 - 2 * y)"\n'
+        '{interface}', 'plane = {point = [0.0, 0.0, 0.5], normal = [0.0, 0.0, 1.0]}',
+        'law = "frictionless"', ""),
+}
+
+
+def one_interface_files(body, levelset, law, steps):
+    """The scene ``body`` with its interface (at ``{interface}``) written in the short
+    form ([levelset] and [interface], the ``steps`` in [interface]) and as one
+    [[interface]] table (the steps at the top level, as with several)."""
+    steps = f"steps = {steps}\n" if steps else ""
+    short = body.replace("{interface}", f"[levelset]\n{levelset}\n[interface]\n{law}\n{steps}")
+    table = steps + body.replace("{interface}", f"[[interface]]\n{levelset}\n{law}\n")
+    return 'name = "one"\n' + short, 'name = "one"\n' + table
+
+
+def _without_clock(text: str) -> str:
+    """result.json's text with the numbers of ``timings`` (wall clock) blanked."""
+    data = json.loads(text)
+    assert set(data["timings"]) == {"cut", "enrich", "assemble", "solve"}
+    head, rest = text.split('"timings": {', 1)
+    block, tail = rest.split("}", 1)
+    return head + '"timings": {' + re.sub(r"-?\d[\d.e+-]*", "T", block) + "}" + tail
+
+
+@pytest.mark.parametrize("case", list(SHORT_AND_TABLE))
+def test_22_one_interface_short_form_or_one_table_give_the_same_files(tmp_path, capsys,
+                                                                      case):
+    """Issue 28: the same scene file with its one interface written as [levelset] +
+    [interface] or as one [[interface]] table gives, through `skxfem run`, the same
+    result.json byte for byte (the wall-clock timings aside) and the same VTU files
+    (points, cells, every point and cell data array exactly), series included."""
+    from skxfem.app.cli import main
+
+    out = {}
+    for form, text in zip(("short", "table"), one_interface_files(*SHORT_AND_TABLE[case])):
+        path = tmp_path / f"{form}.toml"
+        path.write_text(text)
+        assert main(["run", str(path), "--out", str(tmp_path / form)]) == 0, text
+        out[form] = tmp_path / form
+    capsys.readouterr()
+    short, table = out["short"], out["table"]
+    assert sorted(f.name for f in short.iterdir()) == sorted(f.name for f in table.iterdir())
+    a, b = ((d / "result.json").read_text() for d in (short, table))
+    assert _without_clock(a) == _without_clock(b)
+    data = json.loads(a)
+    assert len(data["law"]) == len(data["space"]) == len(data["interfaces"]) == 1
+    assert data["regions"] == [[-1], [1]]
+    assert len(list(short.glob("displacement_*.vtu"))) == data.get("n_steps", 0) == \
+        (2 if case == "coulomb 2D" else 1 if "3D" in case else 0), "the series too"
+    for f in sorted(short.glob("*.vtu")):
+        m, n = meshio.read(f), meshio.read(table / f.name)
+        np.testing.assert_array_equal(m.points, n.points, err_msg=f.name)
+        assert [c.type for c in m.cells] == [c.type for c in n.cells]
+        np.testing.assert_array_equal(m.cells[0].data, n.cells[0].data, err_msg=f.name)
+        assert set(m.point_data) == set(n.point_data) and set(m.cell_data) == set(n.cell_data)
+        for key in m.point_data:
+            np.testing.assert_array_equal(m.point_data[key], n.point_data[key],
+                                          err_msg=f"{f.name} {key}")
+        for key in m.cell_data:
+            np.testing.assert_array_equal(m.cell_data[key][0], n.cell_data[key][0],
+                                          err_msg=f"{f.name} {key}")
+        if f.name == "displacement.vtu":
+            assert {"region", "cut"} <= set(m.cell_data) and "levelset_0" in m.point_data
+            assert not {"side", "levelset"} & {*m.cell_data, *m.point_data}
+        if f.name.startswith("interface"):
+            assert "interface" in m.point_data
+    for f in short.glob("*.pvd"):
+        assert f.read_text() == (table / f.name).read_text()
