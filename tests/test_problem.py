@@ -171,7 +171,7 @@ def test_contact_newton_factorises_a_matrix_once(monkeypatch, law, linear):
     pb, ops = res.problem, res.ops
     free = np.setdiff1d(np.arange(pb.V.N), pb.D)
     step = StepProblem(ops, pb.K, pb.F, free, np.zeros(pb.V.N),
-                       point_laws(res.law, ops.tangent_held), res.law.rho_n)
+                       point_laws(res.law[0], ops.tangent_held), res.law[0].rho_n)
     U = res.steps[-1].U.copy()
     U[free] *= 0.9  # off the answer, in the same active set
     it = Iterate(U, -res.steps[-1].pressure, res.steps[-1].traction)

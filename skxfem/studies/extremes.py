@@ -411,7 +411,8 @@ def rho_rows(factors=RHO_FACTORS, n: int = 8) -> list[Row]:
     scene = friction_scene(n)
     ref = contact_solve(scene)
     h, t_ref = ref.ops.h, _tractions(ref.steps[-1])
-    defaults = {"rho_n": ref.law.rho_n, "rho_t": ref.law.rho_t}
+    [law] = ref.law                                   # one interface: one Law
+    defaults = {"rho_n": law.rho_n, "rho_t": law.rho_t}
     rows = []
     for key, name in (("rho_n", "ρ_n"), ("rho_t", "ρ_τ")):
         unit = "E/h"
