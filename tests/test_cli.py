@@ -280,7 +280,7 @@ def test_18_contact_example_runs_and_its_json_satisfies_signorini(tmp_path, caps
     c = last["counts"]
     assert (f"{c['stick'] + c['slip']} in contact ({c['stick']} stick, {c['slip']} slip), "
             f"{c['open']} open, max pressure {max(last['pressure']):.4g}") in out
-    assert data["law"] == "coulomb" and data["friction"] == 0.5
+    assert data["law"] == ["coulomb"] and data["interfaces"][0]["friction"] == 0.5
     assert [st["load"] for st in data["steps"]] == [0.5, 1.0]     # [interface] steps
     for st in data["steps"]:
         assert set(st["status"]) == {"open", "stick", "slip"}
@@ -1002,7 +1002,7 @@ def test_49_the_reactions_balance_the_loads(tmp_path, capsys, example):
 def test_50_a_bi_material_bar_has_the_exact_jump_in_strain(tmp_path, capsys):
     """A bar pulled by t = 1, E = 1 left of Γ (x = 0.7) and 4 right of it ([material.plus]),
     ν = 0: σ_xx = 1 throughout, ε_xx = 1 on Ω⁻ and 1/4 on Ω⁺ (cell data strain and stress
-    of displacement.vtu, each side's piece its own), and the end moves by 0.7 + 1.3/4."""
+    of displacement.vtu, each region's piece its own), and the end moves by 0.7 + 1.3/4."""
     text = '''
 name = "bar"
 [mesh]
@@ -1030,9 +1030,9 @@ traction = [1.0, 0.0]
     assert (s.material.E, s.material_plus.E, s.material_plus.nu) == (1.0, 4.0, 0.0)
     assert main(["run", path, "--out", str(tmp_path / "out")]) == 0
     m = meshio.read(tmp_path / "out" / "displacement.vtu")
-    side = m.cell_data["side"][0]
+    region = m.cell_data["region"][0]                               # 0: Ω⁻, 1: Ω⁺
     strain, stress = m.cell_data["strain"][0], m.cell_data["stress"][0]
-    np.testing.assert_allclose(strain[:, 0], np.where(side < 0, 1.0, 0.25), rtol=1e-12)
+    np.testing.assert_allclose(strain[:, 0], np.where(region == 0, 1.0, 0.25), rtol=1e-12)
     np.testing.assert_allclose(stress[:, 0], 1.0, rtol=1e-12)
     np.testing.assert_allclose(np.delete(stress, 0, axis=1), 0, atol=1e-12)
     np.testing.assert_allclose(m.cell_data["von_mises"][0], 1.0, rtol=1e-12)

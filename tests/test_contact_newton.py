@@ -260,10 +260,11 @@ def exact_step(mu=0.6, rho=(1.0, 1.0)):
     """The StepProblem of the 3D oblique slip and its exact iterate."""
     sol, res = solve_case("oblique slip", 3, mu)
     pb, ops, st = res.problem, res.ops, res.steps[-1]
-    law = replace(res.law[0], rho_n=rho[0] * res.law[0].rho_n, rho_t=rho[1] * res.law[0].rho_t)
+    [one] = res.law                                           # one interface: one Law
+    law = replace(one, rho_n=rho[0] * one.rho_n, rho_t=rho[1] * one.rho_t)
     free = np.setdiff1d(np.arange(pb.V.N), pb.D)
     step = StepProblem(ops, pb.K, pb.F, free, np.zeros(pb.V.N),
-                       point_laws(law, ops.tangent_held), res.law[0].rho_n)
+                       point_laws(law, ops.tangent_held), one.rho_n)
     return step, Iterate(st.U, -st.pressure, st.traction)
 
 

@@ -67,7 +67,7 @@ def test_the_3d_block_opens_slides_and_sticks_by_coulomb(tmp_path, capsys):
     assert main(["run", str(path), "--out", str(tmp_path)]) == 0
     capsys.readouterr()
     data = json.loads((tmp_path / "result.json").read_text())
-    last, codes, mu = data["steps"][-1], data["status_codes"], data["friction"]
+    last, codes, mu = data["steps"][-1], data["status_codes"], data["interfaces"][0]["friction"]
     points = np.array(data["points"])
     status, p = np.array(last["status"]), np.array(last["pressure"])
     t = np.linalg.norm(np.array(last["tangential_traction"]), axis=1)

@@ -344,10 +344,20 @@ def test_files_of_several_interfaces(tmp_path):
     assert i.cells[0].data.max() == r.points.shape[1] - 1
 
 
-def test_one_interface_files_keep_their_form(tmp_path):
+def test_one_interface_files_have_the_same_form(tmp_path):
+    """One interface is the case N = 1 (issue 28): the same keys and fields as above,
+    with one entry per list and the regions Ω⁻ and Ω⁺."""
     r = skxfem.solve(column("quad").alone(0))
-    data = json.loads(write_result(r, tmp_path / "one")["json"].read_text())
-    assert data["law"] == "bonded" and not {"interfaces", "interface", "regions"} & set(data)
+    paths = write_result(r, tmp_path / "one")
+    data = json.loads(paths["json"].read_text())
+    assert data["law"] == ["bonded"] and data["space"] == ["vital"]
+    assert [i["n_points"] for i in data["interfaces"]] == [r.points.shape[1]]
+    assert data["interface"] == [0] * r.points.shape[1] and data["regions"] == [[-1], [1]]
+    d = meshio.read(paths["displacement"])
+    assert sorted(set(d.cell_data["region"][0].tolist())) == [0, 1]
+    assert "levelset_0" in d.point_data and "levelset_1" not in d.point_data
+    assert meshio.read(paths["interface"]).point_data["interface"].tolist() == \
+        [0] * r.points.shape[1]
 
 
 def test_size_guard_counts_each_interface():

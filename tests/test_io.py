@@ -4,11 +4,13 @@ import errno
 import json
 import multiprocessing
 import os
+import re
 import shutil
 import signal
 import threading
 import time
 from dataclasses import replace
+from pathlib import Path
 from types import SimpleNamespace
 
 import meshio
@@ -17,11 +19,12 @@ import pytest
 
 from skxfem import contact
 from skxfem.app import io
-from skxfem.app.io import cell_sides, check_output, side_pieces, vtk_cells, write_result
+from skxfem.app.io import check_output, region_pieces, vtk_cells, write_result
 from skxfem.enrich import split_fields
 from skxfem.fem import files
 from skxfem.fem.material import Material
 from skxfem.fem.meshes import box
+from skxfem.fem.vtu import node_regions
 from skxfem.levelset import nodal_values, plane
 from skxfem.scene import Box, Displacement, Scene, SurfaceLoad, clamped
 from skxfem.scene.benchmarks import strip
@@ -30,8 +33,37 @@ MESHIO_TYPE = {"tri": "triangle", "quad": "quad", "tet": "tetra", "hex": "hexahe
                "prism": "wedge"}
 
 
+def side_pieces(mesh, psi_nodes, u_minus, u_plus):
+    """The pieces of displacement.vtu before the one format (issue 28), as a reference:
+    cells of Ω⁻ and cut cells, then cells of Ω⁺ and cut cells (a cell is cut where ψ at
+    its vertices takes both signs, else on the side of the sign of their mean), each on
+    its own copy of its nodes with its side's field; the old cell data ``side`` (-1,
+    +1), ``cut``, and point data ``levelset`` (ψ at the nodes).
+
+    Returns (points, cells, side, cut, displacement, levelset, nodes, piece): the last
+    two the mesh vertex and the piece (-1, +1) of each point.
+    """
+    _, t = vtk_cells(mesh)
+    psi = psi_nodes[mesh.t]
+    cut = (psi.min(axis=0) < 0) & (psi.max(axis=0) > 0)
+    sides = np.where(cut, 0, np.sign(psi.mean(axis=0))).astype(np.int64)
+    out = [[] for _ in range(8)]
+    offset = 0
+    for s, u in ((-1, u_minus), (1, u_plus)):
+        keep = sides != -s
+        nodes, local = np.unique(t[keep], return_inverse=True)
+        for row, value in zip(out, (mesh.p[:, nodes].T, local.reshape(-1, t.shape[1]) + offset,
+                                    np.full(int(keep.sum()), s), (sides[keep] == 0) * 1,
+                                    np.asarray(u)[:, nodes].T, psi_nodes[nodes], nodes,
+                                    np.full(nodes.size, s))):
+            row.append(value)
+        offset += nodes.size
+    return tuple(np.concatenate(row) for row in out)
+
+
 def fake_result(cell, n_points=4):
-    """A stand-in for skxfem.solver.Result: a box cut by the plane {last coord = 0.5}."""
+    """A stand-in for skxfem.result.Result: a box cut by the plane {last coord = 0.5}
+    (no node on it), with random fields u⁻ and u⁺ of its regions Ω⁻ and Ω⁺."""
     dim = 2 if cell in ("tri", "quad") else 3
     mesh = box((2, 3) if dim == 2 else (2, 2, 3), cell)
     levelset = plane((0.0,) * (dim - 1) + (0.5,), (0.0,) * (dim - 1) + (1.0,))
@@ -42,9 +74,12 @@ def fake_result(cell, n_points=4):
     normals[-1] = 1.0
     facets = (np.array([[0, 1], [1, 2], [2, 3]]).T if dim == 2
               else np.array([[0, 1, 2], [1, 3, 2]]).T)
+    cut = SimpleNamespace(psi=nodal_values(levelset, mesh))
     return SimpleNamespace(
         scene=scene, mesh=mesh, points=points, normals=normals,
-        u_minus=rng.random((dim, mesh.nvertices)), u_plus=rng.random((dim, mesh.nvertices)),
+        regions=np.array([[-1], [1]]), u_regions=rng.random((2, dim, mesh.nvertices)),
+        interface=np.zeros(n_points, dtype=np.int64),
+        problem=SimpleNamespace(per_interface=(SimpleNamespace(cut=cut),)),
         traction=-normals * np.linspace(1, 2, n_points), pressure=np.linspace(1, 2, n_points),
         jump=0.01 * rng.random((dim, n_points)), facets=facets, max_jump=1e-12, n_dofs=123,
         n_multipliers=n_points,
@@ -60,9 +95,15 @@ def test_01_result_json_has_the_promised_keys(tmp_path, cell):
     assert set(paths) == {"json", "displacement", "interface"}
     data = json.loads(paths["json"].read_text())
     for key in ("scene", "points", "pressure", "max_jump", "n_dofs", "n_multipliers",
-                "timings", "traction", "normals", "law", "space", "linear_solve"):
+                "timings", "traction", "normals", "law", "space", "linear_solve",
+                "interfaces", "interface", "regions"):
         assert key in data, key
     assert data["scene"] == f"fake_{cell}" and data["n_dofs"] == 123
+    assert (data["law"], data["space"]) == (["bonded"], ["vital"]), "one per interface"
+    assert data["regions"] == [[-1], [1]] and data["interface"] == [0] * 4
+    assert data["interfaces"] == [{"levelset": r.scene.levelset.name, "law": "bonded",
+                                   "space": "vital", "friction": None, "rho_n": None,
+                                   "rho_t": None, "n_points": 4}]
     np.testing.assert_allclose(data["points"], r.points.T)       # one list per point
     np.testing.assert_allclose(data["pressure"], r.pressure)
     assert data["timings"] == r.timings
@@ -74,16 +115,19 @@ def test_02_vtu_files_read_back(tmp_path, cell):
     mesh = r.mesh
     m = meshio.read(paths["displacement"])
     [block] = m.cells
-    sides = cell_sides(mesh, nodal_values(r.scene.levelset, mesh))
-    n_cut = int(np.sum(sides == 0))
+    psi = nodal_values(r.scene.levelset, mesh)[mesh.t]
+    n_cut = int(np.sum((psi.min(axis=0) < 0) & (psi.max(axis=0) > 0)))
     assert block.type == MESHIO_TYPE[cell]
     assert block.data.shape == (mesh.nelements + n_cut, mesh.t.shape[0])  # cut cells twice
     assert m.point_data["displacement"].shape == m.points.shape
-    assert set(m.cell_data["side"][0]) == {-1, 1} and m.cell_data["cut"][0].sum() == 2 * n_cut
+    assert set(m.cell_data["region"][0]) == {0, 1} and m.cell_data["cut"][0].sum() == 2 * n_cut
+    assert {"levelset_0", "displacement"} == set(m.point_data)
+    assert {"region", "cut"} == set(m.cell_data), "a stand-in: no strain nor stress"
     i = meshio.read(paths["interface"])
     assert i.cells[0].type == ("line" if mesh.dim() == 2 else "triangle")
     np.testing.assert_array_equal(i.cells[0].data, r.facets.T)
     assert i.point_data["pressure"].shape == (4,)
+    np.testing.assert_array_equal(i.point_data["interface"], r.interface)
     assert i.point_data["traction"].shape == i.point_data["normal"].shape == (4, 3)
 
 
@@ -114,11 +158,19 @@ def test_03_vtk_cells_are_positively_oriented(tmp_path, cell, mirror):
         assert tuple(np.round(padded, 9).ravel()) in copies
 
 
-def test_04_sides_follow_the_sign_convention():
+def test_04_regions_follow_the_sign_convention():
+    """Ω⁻ = {ψ < 0}: with one interface, region 0 (signs [-1]) is Ω⁻, region 1 Ω⁺; with
+    two, a node's region is the row of ``regions`` its signs match."""
     mesh = box((1, 4), "quad")                              # rows at y in [0, .25, ...]
     psi = mesh.p[1] - 0.6                                   # Γ in the third row
-    assert cell_sides(mesh, psi)[np.argsort(mesh.p[1, mesh.t].mean(0))].tolist() == \
-        [-1, -1, 0, 1]
+    assert node_regions(np.array([[-1], [1]]), psi[None]).tolist() == \
+        (psi > 0).astype(int).tolist()
+    two = np.array([psi, mesh.p[1] - 0.3])                  # rows: two at each y
+    regions = np.array([[-1, -1], [-1, 1], [1, 1]])
+    assert node_regions(regions, two)[np.argsort(mesh.p[1], kind="stable")].tolist() == \
+        [0, 0, 0, 0, 1, 1, 2, 2, 2, 2]
+    with pytest.raises(ValueError, match="4 nodes have signs of no region"):
+        node_regions(regions[:2], two)
 
 
 def test_05_nan_is_never_written_and_stages_are_required(tmp_path):
@@ -133,45 +185,48 @@ def test_05_nan_is_never_written_and_stages_are_required(tmp_path):
         write_result(r, tmp_path / "out")
     assert not (tmp_path / "out").exists()
     r = fake_result("quad")
-    r.u_plus = r.u_plus * np.nan
-    with pytest.raises(NotFiniteError, match="u_plus holds NaN"):
+    r.u_regions[1, 0, 3] = np.nan
+    with pytest.raises(NotFiniteError, match=r"u_regions \(the fields of displacement.vtu\) "
+                                             r"holds NaN"):
         write_result(r, tmp_path / "out")
     r.timings = {"cut": 0.1}
     with pytest.raises(ValueError, match="enrich"):
         write_result(r, tmp_path)
 
 
-# --- one displacement field per side, to warp by --------------------------------
+# --- one displacement field per region, to warp by --------------------------------
 
 @pytest.mark.parametrize("cell", ["tri", "hex", "prism"])
-def test_06_each_side_is_a_piece_with_its_own_displacement(tmp_path, cell):
-    """Warp by vector: each copy moves with its side's field, so Γ opens as it should."""
+def test_06_each_region_is_a_piece_with_its_own_displacement(tmp_path, cell):
+    """Warp by vector: each copy moves with its region's field, so Γ opens as it should."""
     r = fake_result(cell)
     m = meshio.read(write_result(r, tmp_path)["displacement"])
     dim = r.mesh.dim()
     psi = nodal_values(r.scene.levelset, r.mesh)
-    np.testing.assert_allclose(m.point_data["levelset"], [
+    np.testing.assert_allclose(m.point_data["levelset_0"], [
         psi[np.flatnonzero(np.all(np.isclose(r.mesh.p.T, q[:dim]), axis=1))[0]]
         for q in m.points])
-    side, cut = m.cell_data["side"][0], m.cell_data["cut"][0]
-    for s, u in ((-1, r.u_minus), (1, r.u_plus)):
-        nodes = np.unique(m.cells[0].data[side == s])
-        for k in nodes:                            # the point is a node of the mesh ...
-            [j] = np.flatnonzero(np.all(np.isclose(r.mesh.p.T, m.points[k, :dim]), axis=1))
-            np.testing.assert_allclose(m.point_data["displacement"][k, :dim], u[:, j])
-        assert np.sum(s * m.point_data["levelset"][nodes] > 0) == np.sum(s * psi > 0)
-    assert np.all(cut[side == -1].sum() == cut[side == 1].sum())
-    pieces = [set(np.unique(m.cells[0].data[side == s])) for s in (-1, 1)]
-    assert not pieces[0] & pieces[1], "the sides share no point: each warps on its own"
+    region, cut = m.cell_data["region"][0], m.cell_data["cut"][0]
+    for k, (s, u) in enumerate(zip((-1, 1), r.u_regions)):   # Ω⁻ then Ω⁺
+        nodes = np.unique(m.cells[0].data[region == k])
+        for i in nodes:                            # the point is a node of the mesh ...
+            [j] = np.flatnonzero(np.all(np.isclose(r.mesh.p.T, m.points[i, :dim]), axis=1))
+            np.testing.assert_allclose(m.point_data["displacement"][i, :dim], u[:, j])
+        assert np.sum(s * m.point_data["levelset_0"][nodes] > 0) == np.sum(s * psi > 0)
+    assert np.all(cut[region == 0].sum() == cut[region == 1].sum())
+    pieces = [set(np.unique(m.cells[0].data[region == k])) for k in (0, 1)]
+    assert not pieces[0] & pieces[1], "the regions share no point: each warps on its own"
 
 
-def test_07_side_pieces_puts_cut_cells_on_both_sides():
+def test_07_region_pieces_puts_cut_cells_in_both_regions():
     mesh = box((1, 4), "quad")                                  # Γ in the third row
-    u_minus, u_plus = np.zeros((2, 10)), np.ones((2, 10))
-    p, c, side, cut, d, psi = side_pieces(mesh, mesh.p[1] - 0.6, u_minus, u_plus)
-    assert side.tolist().count(-1) == 3 and side.tolist().count(1) == 2
+    fields = np.array([np.zeros((2, 10)), np.ones((2, 10))])
+    node_region = node_regions(np.array([[-1], [1]]), (mesh.p[1] - 0.6)[None])
+    p, c, region, cut, d, nodes = region_pieces(mesh, node_region, fields)
+    assert region.tolist().count(0) == 3 and region.tolist().count(1) == 2
     assert cut.sum() == 2 and p.shape == (8 + 6, 2) and c.max() == 13
     assert np.all(d[:8] == 0) and np.all(d[8:] == 1)
+    np.testing.assert_array_equal(p, mesh.p[:, nodes].T)
 
 
 # --- bad output folders and failed writes ------------------------------------------
@@ -239,7 +294,7 @@ def test_11_a_failed_write_into_a_new_folder_leaves_nothing(tmp_path, monkeypatc
 def tagged(tag: float):
     """A fake result whose every file depends on ``tag``: files of two runs differ."""
     r = fake_result("tri")
-    r.pressure, r.u_minus = r.pressure + tag, r.u_minus + tag
+    r.pressure, r.u_regions = r.pressure + tag, r.u_regions + tag
     return r
 
 
@@ -370,9 +425,13 @@ def test_14_contact_json_holds_every_step(tmp_path, contact_results, dim):
     r = contact_results[dim]
     data = json.loads(write_result(r, tmp_path)["json"].read_text())
     m, k = r.ops.w.size, dim - 1
-    assert data["scene"] == r.problem.scene.name and data["law"] == r.problem.scene.law
-    assert (data["friction"], data["rho_n"], data["rho_t"]) == (r.law.mu, r.law.rho_n,
-                                                                r.law.rho_t)
+    assert data["scene"] == r.problem.scene.name and data["law"] == [r.problem.scene.law]
+    [law] = r.law                                                   # one per interface
+    [entry] = data["interfaces"]
+    assert (entry["friction"], entry["rho_n"], entry["rho_t"]) == (law.mu, law.rho_n,
+                                                                   law.rho_t)
+    assert not {"friction", "rho_n", "rho_t"} & set(data), "μ and ρ only in interfaces"
+    assert data["dofs"]["interface"] == [0] * m
     assert data["status_codes"] == {"open": 0, "stick": 1, "slip": 2}
     assert data["n_multipliers"] == m and data["n_dofs"] == r.problem.V.N
     np.testing.assert_allclose(data["points"], r.points.T)          # the cut edges' points
@@ -388,7 +447,7 @@ def test_14_contact_json_holds_every_step(tmp_path, contact_results, dim):
     assert {"open", "slip"} <= set(data["steps"][-1]["status"]), "a partial contact"
     assert data["newton_iterations"] == sum(st.newton.iterations for st in r.steps)
     for got, st in zip(data["steps"], r.steps, strict=True):
-        assert got["load"] == st.load and got["law"] == st.law == r.law.name
+        assert got["load"] == st.load and got["law"] == list(st.law) == [law.name]
         for key, value in (("pressure", st.pressure), ("gap", st.gap), ("slip", st.slip),
                            ("tangential_traction", st.traction), ("Lambda", st.Lambda)):
             assert np.shape(got[key]) == np.shape(value) and np.shape(value)[0] == m, key
@@ -444,13 +503,44 @@ def test_16_contact_vtu_files_read_back(tmp_path, contact_results, dim):
     np.testing.assert_allclose(np.linalg.norm(tangential, axis=1),
                                np.linalg.norm(st.traction, axis=1), atol=1e-12)
     np.testing.assert_allclose(i.point_data["jump"][:, :dim], r.jump.T)  # at the points
-    d = meshio.read(paths["displacement"])                  # the last step, side by side
+    np.testing.assert_array_equal(i.point_data["interface"], 0)
+    d = meshio.read(paths["displacement"])                # the last step, region by region
     mesh = r.problem.mesh
-    u_minus, u_plus = split_fields(r.problem.V, st.U)
-    pieces = side_pieces(mesh, nodal_values(r.problem.scene.levelset, mesh), u_minus, u_plus)
+    pieces = side_pieces(mesh, nodal_values(r.problem.scene.levelset, mesh),
+                         *split_fields(r.problem.V, st.U))           # the former pieces
     np.testing.assert_allclose(d.points[:, :dim], pieces[0])
     np.testing.assert_allclose(d.point_data["displacement"][:, :dim], pieces[4])
-    np.testing.assert_array_equal(d.cell_data["side"][0], pieces[2])
+    np.testing.assert_array_equal(d.cell_data["region"][0], (pieces[2] + 1) // 2)
+
+
+@pytest.mark.parametrize("example", ["strip", "inclusion", "plate"])
+def test_16b_one_interface_writes_the_pieces_users_saw(tmp_path, example):
+    """The one format (issue 28) changed names, not numbers: with one interface
+    displacement.vtu's region pieces are the former side pieces, point for point
+    (region 0 = side -1 = Ω⁻, region 1 = side +1 = Ω⁺), with the same displacements,
+    cut flags and reactions, and levelset_0 is the former levelset (ψ at the nodes;
+    the cut's ψ, equal where no node lies on Γ, as in these scenes)."""
+    from skxfem import solve
+    from skxfem.scene.file import load_scene
+
+    examples = Path(__file__).resolve().parents[1] / "examples"
+    r = solve(load_scene(examples / f"{example}.toml"))
+    mesh, dim = r.mesh, r.mesh.dim()
+    psi = nodal_values(r.scene.levelset, mesh)
+    assert np.all(psi != 0), "no node on Γ: the cut's ψ is the level set's"
+    points, cells, side, cut, disp, levelset, nodes, piece = side_pieces(mesh, psi,
+                                                                         r.u_minus, r.u_plus)
+    d = meshio.read(write_result(r, tmp_path)["displacement"])
+    np.testing.assert_array_equal(d.points[:, :dim], points)
+    np.testing.assert_array_equal(d.cells[0].data, cells)
+    np.testing.assert_array_equal(d.cell_data["region"][0], (side + 1) // 2)
+    np.testing.assert_array_equal(d.cell_data["cut"][0], cut)
+    np.testing.assert_array_equal(d.point_data["displacement"][:, :dim], disp)
+    np.testing.assert_array_equal(d.point_data["levelset_0"], levelset)
+    own = np.where(levelset < 0, -1, 1) == piece          # a node's copy on its own side
+    reaction = np.where(own[:, None], r.reactions[:, nodes].T, 0.0)
+    np.testing.assert_array_equal(d.point_data["reaction"][:, :dim], reaction)
+    assert not {"side", "levelset"} & {*d.cell_data, *d.point_data}
 
 
 def test_17_contact_results_are_written_all_or_nothing(tmp_path, monkeypatch, contact_results):
@@ -576,3 +666,90 @@ def test_21_a_folder_holding_other_files_or_the_current_one_is_refused(tmp_path,
         with pytest.raises(ValueError, match="current folder|empty"):
             check_output(out)
     assert list((tmp_path / "here" / "deeper").iterdir()) == []
+
+
+# --- issue 28: one interface is the case N = 1, in the files too ------------------------
+
+SHORT_AND_TABLE = {   # the body of a scene file, with {interface}: its one interface
+    "tie 2D": ('[mesh]\nbox = {n = [4, 5], cell = "quad"}\n[material]\nE = 1.0\nnu = 0.3\n'
+               '[[displacement]]\nboundary = "ymin"\nkind = "clamped"\n'
+               '[[load]]\nboundary = "ymax"\ntraction = [0.5, -1.0]\n{interface}',
+               'plane = {point = [0.0, 0.4], normal = [0.2, 1.0]}', 'law = "bonded"', ""),
+    "coulomb 2D": ('[mesh]\nbox = {n = [4, 5], cell = "quad"}\n[material]\nE = 1.0\n'
+                   'nu = 0.3\n[[displacement]]\nboundary = "ymin"\nkind = "clamped"\n'
+                   '[[displacement]]\nboundary = "ymax"\nx = 2.0\n'
+                   '[[load]]\nboundary = "ymax"\npressure = 1.0\n{interface}',
+                   'plane = {point = [0.0, 0.5], normal = [0.0, 1.0]}',
+                   'law = "coulomb"\nfriction = 0.5', "[0.5, 1.0]"),
+    "frictionless 3D hex": (
+        '[mesh]\nbox = {n = [1, 4, 5], cell = "hex"}\n[material]\nE = 1.0\n'
+        '[[displacement]]\nboundary = "zmin"\nkind = "clamped"\n'
+        '[[displacement]]\nboundary = "zmax"\nx = 0.0\ny = 0.0\nz = "-0.01 * (1 - 2 * y)"\n'
+        '{interface}', 'plane = {point = [0.0, 0.0, 0.5], normal = [0.0, 0.0, 1.0]}',
+        'law = "frictionless"', ""),
+}
+
+
+def one_interface_files(body, levelset, law, steps):
+    """The scene ``body`` with its interface (at ``{interface}``) written in the short
+    form ([levelset] and [interface], the ``steps`` in [interface]) and as one
+    [[interface]] table (the steps at the top level, as with several)."""
+    steps = f"steps = {steps}\n" if steps else ""
+    short = body.replace("{interface}", f"[levelset]\n{levelset}\n[interface]\n{law}\n{steps}")
+    table = steps + body.replace("{interface}", f"[[interface]]\n{levelset}\n{law}\n")
+    return 'name = "one"\n' + short, 'name = "one"\n' + table
+
+
+def _without_clock(text: str) -> str:
+    """result.json's text with the numbers of ``timings`` (wall clock) blanked."""
+    data = json.loads(text)
+    assert set(data["timings"]) == {"cut", "enrich", "assemble", "solve"}
+    head, rest = text.split('"timings": {', 1)
+    block, tail = rest.split("}", 1)
+    return head + '"timings": {' + re.sub(r"-?\d[\d.e+-]*", "T", block) + "}" + tail
+
+
+@pytest.mark.parametrize("case", list(SHORT_AND_TABLE))
+def test_22_one_interface_short_form_or_one_table_give_the_same_files(tmp_path, capsys,
+                                                                      case):
+    """Issue 28: the same scene file with its one interface written as [levelset] +
+    [interface] or as one [[interface]] table gives, through `skxfem run`, the same
+    result.json byte for byte (the wall-clock timings aside) and the same VTU files
+    (points, cells, every point and cell data array exactly), series included."""
+    from skxfem.app.cli import main
+
+    out = {}
+    for form, text in zip(("short", "table"), one_interface_files(*SHORT_AND_TABLE[case])):
+        path = tmp_path / f"{form}.toml"
+        path.write_text(text)
+        assert main(["run", str(path), "--out", str(tmp_path / form)]) == 0, text
+        out[form] = tmp_path / form
+    capsys.readouterr()
+    short, table = out["short"], out["table"]
+    assert sorted(f.name for f in short.iterdir()) == sorted(f.name for f in table.iterdir())
+    a, b = ((d / "result.json").read_text() for d in (short, table))
+    assert _without_clock(a) == _without_clock(b)
+    data = json.loads(a)
+    assert len(data["law"]) == len(data["space"]) == len(data["interfaces"]) == 1
+    assert data["regions"] == [[-1], [1]]
+    assert len(list(short.glob("displacement_*.vtu"))) == data.get("n_steps", 0) == \
+        (2 if case == "coulomb 2D" else 1 if "3D" in case else 0), "the series too"
+    for f in sorted(short.glob("*.vtu")):
+        m, n = meshio.read(f), meshio.read(table / f.name)
+        np.testing.assert_array_equal(m.points, n.points, err_msg=f.name)
+        assert [c.type for c in m.cells] == [c.type for c in n.cells]
+        np.testing.assert_array_equal(m.cells[0].data, n.cells[0].data, err_msg=f.name)
+        assert set(m.point_data) == set(n.point_data) and set(m.cell_data) == set(n.cell_data)
+        for key in m.point_data:
+            np.testing.assert_array_equal(m.point_data[key], n.point_data[key],
+                                          err_msg=f"{f.name} {key}")
+        for key in m.cell_data:
+            np.testing.assert_array_equal(m.cell_data[key][0], n.cell_data[key][0],
+                                          err_msg=f"{f.name} {key}")
+        if f.name == "displacement.vtu":
+            assert {"region", "cut"} <= set(m.cell_data) and "levelset_0" in m.point_data
+            assert not {"side", "levelset"} & {*m.cell_data, *m.point_data}
+        if f.name.startswith("interface"):
+            assert "interface" in m.point_data
+    for f in short.glob("*.pvd"):
+        assert f.read_text() == (table / f.name).read_text()

@@ -812,7 +812,7 @@ def test_27_a_file_history_of_load_states_is_the_python_history(tmp_path):
     unload = HISTORY + ('\n[[step]]\nname = "unload"\nlaw = "bonded"\n'
                         '[[step.displacement]]\nboundary = "ymax"\nx = 2.0\n')
     last = skxfem.solve(load_scene(write(tmp_path, unload))).steps[-1]
-    assert (last.load, last.law) == ("unload", "bonded")
+    assert (last.load, last.law) == ("unload", ("bonded",))
 
 
 @pytest.mark.parametrize("edit, words", [

@@ -237,9 +237,7 @@ def _closed_words(result) -> str:
     bonded: no slip wherever closed).  Several laws: each with its name, ``coulomb: 2
     stick, 1 slip; bonded: 3 held``."""
     last = result.steps[-1]
-    names = last.law if isinstance(last.law, tuple) else (last.law,)
-    which = result.ops.interface if result.ops.interface is not None and len(names) > 1 \
-        else np.zeros(last.status.size, int)
+    names, which = last.law, np.asarray(result.ops.interface)
     status = np.asarray(last.status)
     words = {}
     for k, name in enumerate(names):
@@ -268,8 +266,7 @@ def _contact_line(result) -> str:
     its = [int(st.newton.iterations) for st in result.steps]
     p = (f"max pressure {last.pressure.max() + 0.0:.4g}"    # + 0.0: -0.0 printed as 0
          if last.pressure.size else "no interface point")
-    law = result.law  # several interfaces: one law each
-    name = "+".join(x.name for x in law) if isinstance(law, tuple) else law.name
+    name = "+".join(law.name for law in result.law)   # one law per interface
     each = ", ".join(map(str, its)) if len(its) <= 6 else \
         f"{', '.join(map(str, its[:3]))}, ..., {its[-1]}; at most {max(its)}"
     return (f"{result.problem.scene.name}: {name}, {len(its)} load step(s), "

@@ -10,53 +10,51 @@
   only its ``tol``, each Newton step's Krylov iterations being in ``steps``).
   NaN or inf is never written: :func:`write_result` refuses such a result
   (:class:`NotFiniteError`) before writing.
-* ``displacement.vtu``: each side of Γ as its own piece of mesh with its own
+* ``result.json`` also describes the interfaces, whatever their number (one is
+  the case N = 1): ``law`` and ``space`` are lists, one per interface;
+  ``interfaces`` has one entry per interface (``levelset``: the level set's
+  name, ``law``, ``space``, ``friction`` μ, ``rho_n``, ``rho_t``: those given,
+  or for a contact solve those used; ``n_points``); ``interface`` is the
+  interface of each point and ``regions`` the sign (±1) of each level set in
+  each region (one interface: ``[[-1], [1]]``, Ω⁻ then Ω⁺).
+* ``displacement.vtu``: each region as its own piece of mesh with its own
   field ``displacement``, so that ParaView's *Warp By Vector* shows the
-  discontinuity: the cells of Ω⁻ and the cut cells with ``u_minus`` on one copy
-  of their nodes, the cells of Ω⁺ and the cut cells with ``u_plus`` on a
-  second copy.  A cut cell is thus written twice, once per side, each copy
-  moving with its side's field; cell data ``side`` (-1 or +1: the copy) and
-  ``cut`` (1 on cut cells), point data ``levelset`` (ψ at the nodes: clip a
-  side's copy at ψ = 0 to see only its own part of the cut cells).
+  discontinuity: piece r holds the cells with a vertex in region r, on its own
+  copy of their nodes, moving with region r's field (one interface: the cells
+  of Ω⁻ and the cut cells with ``u⁻``, then those of Ω⁺ and the cut cells with
+  ``u⁺``).  A cut cell is thus written once per region it meets; cell data
+  ``region`` (the index into ``regions``) and ``cut`` (1 on cut cells), point
+  data ``levelset_0``, ``levelset_1``, ... (ψ of each interface at the nodes
+  as the solve used it, snapped off the nodes: clip a region's copy at each
+  ψ = 0 to see only its own part of the cut cells).
 * Both also carry the support reactions: ``result.json``'s ``reactions``
   (:func:`reaction_summary`: ``applied``, each support's force, their ``total``),
-  ``displacement.vtu``'s point data ``reaction`` (at the copy of each node on its own
-  side) and its cell data ``strain``, ``stress`` (3 x 3, :func:`tensors9`) and
+  ``displacement.vtu``'s point data ``reaction`` (at the copy of each node in its own
+  region) and its cell data ``strain``, ``stress`` (3 x 3, :func:`tensors9`) and
   ``von_mises``, at the centre of each cell from its piece's field.
 * ``interface.vtu``: the interface facets (``line`` cells in 2D, ``triangle``
   cells in 3D) on the multiplier points, with point data ``pressure``,
-  ``traction``, ``tangential_traction``, ``normal``, ``jump`` and ``gap``.
+  ``traction``, ``tangential_traction``, ``normal``, ``jump``, ``gap`` and
+  ``interface`` (the interface of each point).
 
 **A contact result** (content from :func:`contact_summary`) goes into the
 same three files with the same fields, those of the last load step, and a
-``status`` per point.  ``result.json`` adds the law (``friction``, the
-``rho_n``, ``rho_t`` used, ``status_codes``), ``newton_iterations``, the
-multiplier ``dofs`` (``points``, ``normals``, ``tangents``, ``weights``: where
-the laws are imposed; with the winner or vital space they are not the cut
-edges' points) and a list ``steps``, one entry per load step, at the dofs:
-``load``, ``law``, ``pressure``, ``tangential_traction``, ``gap``, ``slip``,
-``Lambda``, ``status`` (strings ``"open"``, ``"stick"``, ``"slip"``), their
-``counts`` and ``newton``: ``iterations`` and ``residuals`` (one list per
-equation, equilibrium, contact and friction: the relative residual at the
-start, then after each iteration) and ``krylov`` (the Krylov iterations of each
-iterative Newton step; empty after direct ones).  ``interface.vtu`` adds the point data
-``status`` (0 open, 1 stick, 2 slip).  The VTU files hold the last step; the
+``status`` per point.  ``result.json`` adds ``status_codes`` (μ and the
+ρ used are in ``interfaces``), ``newton_iterations``, the multiplier ``dofs``
+(``points``, ``normals``, ``tangents``, ``weights``: where the laws are
+imposed; with the winner or vital space they are not the cut edges' points;
+``interface``, the interface of each dof) and a list ``steps``, one entry per
+load step, at the dofs: ``load``, ``law`` (one per interface), ``pressure``,
+``tangential_traction``, ``gap``, ``slip``, ``Lambda``, ``status`` (strings
+``"open"``, ``"stick"``, ``"slip"``), their ``counts`` and ``newton``:
+``iterations`` and ``residuals`` (one list per equation, equilibrium, contact
+and friction: the relative residual at the start, then after each iteration)
+and ``krylov`` (the Krylov iterations of each iterative Newton step; empty
+after direct ones).  ``interface.vtu`` adds the point data ``status`` (0 open,
+1 stick, 2 slip).  The VTU files hold the last step; the
 series adds one of each per load step, ``displacement_0001.vtu`` ...,
 ``interface_0001.vtu`` ..., and their ParaView collections ``displacement.pvd`` and
 ``interface.pvd`` (:data:`SERIES`; the JSON has every step too).
-
-**Several interfaces** (:mod:`skxfem.result`): ``result.json``'s ``law`` and
-``space`` are lists, one per interface, and it adds ``interfaces``, one entry
-per interface (``levelset``: the level set's name, ``law``, ``space``,
-``friction`` μ, ``rho_n``, ``rho_t``: those given, or for a contact solve
-those used; ``n_points``), ``interface``, the interface of each point, and
-``regions``, the sign of each level set in each region; a contact file has μ
-and ρ there only, and its ``dofs`` add ``interface``.  ``displacement.vtu``
-has a piece per region (the cells with a vertex in it, with its field:
-cell data ``region``, the index into ``regions``, and ``cut``; point data
-``levelset_0``, ``levelset_1``, ... the nodal ψ of each interface as the
-solve used it); ``interface.vtu`` adds the point data ``interface``.  A
-scene with one interface writes the files above, unchanged.
 
 **Array shapes.**  :class:`skxfem.result.Result` follows scikit-fem: a set of
 points or vectors is ``(dim, n)`` (``mesh.p``, ``result.points``,
@@ -89,12 +87,11 @@ import numpy as np
 from ..contact.interface import tangent_frames
 from ..contact.laws import STATUS_NAMES
 from ..fem.files import check_folder, quiet, write_set
-from ..fem.vtu import cell_sides, pad3, region_pieces, side_pieces, vectors3, vtk_cells
-from ..levelset import nodal_values
+from ..fem.vtu import interface_levelsets, node_regions, pad3, region_pieces, vectors3, vtk_cells
 
 __all__ = ["write_result", "result_summary", "NotFiniteError", "reaction_summary", "tensors9",
-           "von_mises", "cell_sides", "vtk_cells", "check_output",
-           "side_pieces", "default_folder", "contact_summary", "EQUATIONS"]
+           "von_mises", "vtk_cells", "check_output", "region_pieces", "default_folder",
+           "contact_summary", "EQUATIONS"]
 
 _STAGES = ("cut", "enrich", "assemble", "solve")
 _FILES = {"json": "result.json", "displacement": "displacement.vtu",
@@ -139,12 +136,11 @@ def result_summary(result) -> dict:
     missing = [s for s in _STAGES if s not in timings]
     if missing:
         raise ValueError(f"result.timings lacks the stages {missing}; expected {_STAGES}")
-    several = getattr(result, "u_minus", 0) is None
-    items = result.scene.interface_list if several else ()
+    items = result.scene.interface_list
     data = {
         "scene": result.scene.name,
-        "law": [i.law for i in items] if several else result.scene.law,
-        "space": [i.space for i in items] if several else result.scene.space,
+        "law": [i.law for i in items],
+        "space": [i.space for i in items],
         "points": _plain(np.asarray(result.points).T, "points"),
         "normals": _plain(np.asarray(result.normals).T, "normals"),
         "traction": _plain(np.asarray(result.traction).T, "traction"),
@@ -161,8 +157,7 @@ def result_summary(result) -> dict:
         data["reactions"] = _jsonable(reaction_summary(result), "reactions")
     if result.is_contact:
         data.update(_jsonable(contact_summary(result), "steps"))
-    if several:
-        data.update(_interfaces(result, items, data))
+    data.update(_interfaces(result, items))
     return data
 
 
@@ -186,9 +181,10 @@ def reaction_summary(result) -> dict:
                          for name, f in zip(names, forces, strict=True)]}
 
 
-def _interfaces(result, items, data: dict) -> dict:
-    """What ``result.json`` adds for several interfaces (module notes); ``data`` the
-    rest of it, whose contact ``friction`` and ρ move into ``interfaces``."""
+def _interfaces(result, items) -> dict:
+    """The ``interfaces``, ``interface`` and ``regions`` of ``result.json`` (module
+    notes): of the scene's interfaces ``items``, the μ and ρ given, or for contact
+    those of ``result.law`` (one :class:`~skxfem.contact.newton.Law` per interface)."""
     counts = np.bincount(result.interface, minlength=len(items))
     laws = result.law if result.is_contact else [None] * len(items)
     entries = []
@@ -198,8 +194,6 @@ def _interfaces(result, items, data: dict) -> dict:
                         "rho_n": _plain(i.rho_n if law is None else law.rho_n),
                         "rho_t": _plain(i.rho_t if law is None else law.rho_t),
                         "n_points": int(n)})
-    for key in ("friction", "rho_n", "rho_t"):
-        data.pop(key, None)
     return {"interfaces": entries, "interface": np.asarray(result.interface).tolist(),
             "regions": np.asarray(result.regions).tolist()}
 
@@ -335,43 +329,24 @@ def _reactions(result, nodes: list[np.ndarray], owners: list[np.ndarray]) -> dic
 
 
 def _write_displacement(result, path: Path):
+    """``displacement.vtu``: a piece per region, each with its own field (module notes)."""
     mesh = result.mesh
     cell_type, _ = vtk_cells(mesh)
-    if result.u_minus is None:  # several interfaces: a piece per region
-        V = result.problem.V
-        node_region = V.regions()[1]
-        points, cells, region, cut, disp, nodes = region_pieces(mesh, node_region,
-                                                                result.u_regions)
-        psi = {f"levelset_{k}": Vk.cut.psi[nodes] for k, Vk in enumerate(V.per_interface)}
-        regions_of = node_region[mesh.t]
-        pieces = [np.flatnonzero((regions_of == r).any(axis=0))
-                  for r in range(len(result.u_regions))]
-        per = [np.unique(mesh.t[:, c]) for c in pieces]
-        reaction = _reactions(result, per, [node_region[n] == r for r, n in enumerate(per)])
-        with quiet():
-            meshio.write(path, meshio.Mesh(
-                pad3(points), [(cell_type, cells)],
-                point_data={"displacement": pad3(disp), **psi, **reaction},
-                cell_data={"region": [region], "cut": [cut],
-                           **_cell_fields(result, pieces)}), file_format="vtu")
-        return
-    levelset = getattr(result.scene, "levelset", None)
-    if levelset is None:  # no level set known: every cell on both sides
-        psi_nodes = np.zeros(mesh.nvertices)
-    else:
-        psi_nodes = nodal_values(levelset, mesh)
-    points, cells, side, cut, disp, psi = side_pieces(mesh, psi_nodes, result.u_minus,
-                                                      result.u_plus)
-    sides = cell_sides(mesh, psi_nodes)
-    pieces = [np.flatnonzero(sides != -s) for s in (-1, 1)]
+    psi = interface_levelsets(result)
+    node_region = node_regions(result.regions, psi)
+    points, cells, region, cut, disp, nodes = region_pieces(mesh, node_region,
+                                                            result.u_regions)
+    levelsets = {f"levelset_{k}": psi_k[nodes] for k, psi_k in enumerate(psi)}
+    regions_of = node_region[mesh.t]
+    pieces = [np.flatnonzero((regions_of == r).any(axis=0))
+              for r in range(len(result.u_regions))]
     per = [np.unique(mesh.t[:, c]) for c in pieces]
-    own = [np.where(psi_nodes[n] < 0, -1, 1) == s for n, s in zip(per, (-1, 1))]
+    reaction = _reactions(result, per, [node_region[n] == r for r, n in enumerate(per)])
     with quiet():  # meshio's own messages are not ours to print
         meshio.write(path, meshio.Mesh(
             pad3(points), [(cell_type, cells)],
-            point_data={"displacement": pad3(disp), "levelset": psi,
-                        **_reactions(result, per, own)},
-            cell_data={"side": [side], "cut": [cut], **_cell_fields(result, pieces)}),
+            point_data={"displacement": pad3(disp), **levelsets, **reaction},
+            cell_data={"region": [region], "cut": [cut], **_cell_fields(result, pieces)}),
             file_format="vtu")
 
 
@@ -387,10 +362,9 @@ def _write_interface(result, path: Path):
             "normal": vectors3(n),
             "jump": vectors3(jump),
             "gap": (jump * n).sum(0)}
+    data["interface"] = np.asarray(result.interface, dtype=np.int64)
     if result.is_contact:
         data["status"] = np.asarray(result.status, dtype=np.int64)
-    if result.u_minus is None:  # several interfaces
-        data["interface"] = np.asarray(result.interface, dtype=np.int64)
     with quiet():
         meshio.write(path, meshio.Mesh(vectors3(points),
                                        [(kind, facets.T.reshape(-1, points.shape[0]))],
@@ -474,12 +448,9 @@ def write_result(result, out_dir: str | Path) -> dict[str, Path]:
     """
     out = check_output(out_dir)
     result_summary(result)                      # refuse a bad result before touching disk
-    for key in ("u_minus", "u_plus", "u_regions"):  # the fields of displacement.vtu
-        value = getattr(result, key, None)
-        if value is not None and not all(np.all(np.isfinite(np.asarray(v, dtype=float)))
-                                         for v in (value if key == "u_regions" else [value])):
-            raise NotFiniteError(f"the result's {key} holds NaN or inf; nothing was "
-                                 f"written: please report this scene")
+    if not np.all(np.isfinite(np.asarray(result.u_regions, dtype=float))):
+        raise NotFiniteError("the result's u_regions (the fields of displacement.vtu) "
+                             "holds NaN or inf; nothing was written: please report this scene")
     writers = {name: (lambda path, key=key: _WRITERS[key](result, path))
                for key, name in _FILES.items()}
     series = _series(result)
@@ -525,7 +496,7 @@ def _step(step) -> dict:
     status = [STATUS_NAMES[k] for k in np.asarray(step.status)]
     return {
         "load": step.load if isinstance(step.load, str) else float(step.load),
-        "law": step.law if isinstance(step.law, str) else list(step.law),
+        "law": list(step.law),
         "increments": int(step.increments),
         "pressure": np.asarray(step.pressure, dtype=float),
         "tangential_traction": np.asarray(step.traction, dtype=float),
@@ -541,8 +512,9 @@ def _step(step) -> dict:
 
 
 def contact_summary(result) -> dict:
-    """What a contact ``result.json`` adds to a tie's: the law, the ``status`` of
-    each point, the multiplier ``dofs`` and one entry per load step.
+    """What a contact ``result.json`` adds to a tie's: the ``status`` of each point,
+    the multiplier ``dofs`` (with the interface of each) and one entry per load step
+    (μ and the ρ used are in ``interfaces``, :func:`result_summary`).
 
     Arrays are numpy arrays here (:func:`skxfem.app.io.result_summary` turns
     them into lists, NaN into ``null``); a set of points or vectors is one
@@ -568,18 +540,13 @@ def contact_summary(result) -> dict:
     """
     if len(result.steps) == 0:
         raise ValueError("the contact result has no load step; give a non-empty history")
-    ops, law = result.ops, result.law
+    ops = result.ops
     dofs = {"points": np.asarray(ops.points, dtype=float).T,
             "normals": np.asarray(ops.normals, dtype=float).T,
             "tangents": _tangents(result),
-            "weights": np.asarray(ops.w, dtype=float)}
-    if isinstance(law, tuple):  # several interfaces: μ and ρ per interface (skxfem.app.io)
-        dofs["interface"] = np.asarray(ops.interface).tolist()
-        law = law[0]
+            "weights": np.asarray(ops.w, dtype=float),
+            "interface": np.asarray(ops.interface).tolist()}
     return {
-        "friction": float(law.mu),
-        "rho_n": float(law.rho_n),
-        "rho_t": float(law.rho_t),
         "status_codes": {name: code for code, name in enumerate(STATUS_NAMES)},
         "status": [STATUS_NAMES[k] for k in np.asarray(result.status)],
         "dofs": dofs,

@@ -1,5 +1,5 @@
-"""VTK cells for the VTU files: positively oriented, one piece of mesh per side of Γ
-(per region, with several interfaces).
+"""VTK cells for the VTU files: positively oriented, one piece of mesh per region
+(one interface: Ω⁻ then Ω⁺).
 
 Shared by the writers of :mod:`skxfem.app.io`.
 VTU vectors are ``(n, 3)``: 2D vectors get a zero z component.
@@ -12,7 +12,8 @@ from __future__ import annotations
 import numpy as np
 from skfem.io.meshio import to_meshio
 
-__all__ = ["cell_sides", "vtk_cells", "side_pieces", "region_pieces", "pad3", "vectors3"]
+__all__ = ["vtk_cells", "interface_levelsets", "node_regions", "region_pieces", "pad3",
+           "vectors3"]
 
 # VTK wants cells positively oriented: the simplex of these corners has det > 0
 # (a wedge's face (0, 1, 2) has its right-hand normal pointing *away* from (3, 4, 5));
@@ -34,18 +35,6 @@ def vectors3(a: np.ndarray) -> np.ndarray:
     return np.vstack([a, np.zeros((3 - a.shape[0], a.shape[1]))]).T
 
 
-def cell_sides(mesh, psi_nodes: np.ndarray) -> np.ndarray:
-    """-1 for cells in Ω⁻, +1 in Ω⁺, 0 for cells with vertices on both sides.
-
-    >>> from skfem import MeshTri1                # cells (0, 1, 2) and (1, 3, 2)
-    >>> cell_sides(MeshTri1(), np.array([-1.5, -0.5, -0.5, 0.5])).tolist()
-    [-1, 0]
-    """
-    psi = psi_nodes[mesh.t]
-    cut = (psi.min(axis=0) < 0) & (psi.max(axis=0) > 0)
-    return np.where(cut, 0, np.sign(psi.mean(axis=0))).astype(np.int64)
-
-
 def vtk_cells(mesh) -> tuple[str, np.ndarray]:
     """The meshio cell type and the (ncells, nverts) cells, positively oriented for VTK.
 
@@ -65,47 +54,35 @@ def vtk_cells(mesh) -> tuple[str, np.ndarray]:
     return block.type, t
 
 
-def side_pieces(mesh, psi_nodes: np.ndarray, u_minus: np.ndarray, u_plus: np.ndarray):
-    """The mesh as two pieces, one per side of Γ, each on its own copy of its nodes.
+def interface_levelsets(result) -> np.ndarray:
+    """(n_interfaces, nverts) ψ of each interface of ``result`` at the nodes, as its
+    solve used it: the cut's ψ, snapped off the nodes (:func:`skxfem.cut.snap`)."""
+    return np.array([q.cut.psi for q in result.problem.per_interface])
 
-    Piece -1 holds the cells of Ω⁻ and the cut cells, piece +1 those of Ω⁺
-    and the cut cells; each carries its side's displacement at its nodes.
 
-    Returns
-    -------
-    points : (n, dim) the nodes of piece -1 then those of piece +1
-    cells : (ncells, nverts) VTK-oriented, indices into ``points``
-    side, cut : (ncells,) the piece of each cell (-1/+1) and 1 on cut cells
-    displacement : (n, dim) ``u_minus`` on piece -1, ``u_plus`` on piece +1
-    levelset : (n,) ψ at the points
+def node_regions(regions: np.ndarray, psi: np.ndarray) -> np.ndarray:
+    """(nverts,) the region of each node: the row of ``regions`` (R, n_interfaces),
+    the sign (±1) of each level set in each region, that the node's signs of ``psi``
+    (n_interfaces, nverts) match (Ω⁻ = {ψ < 0}).
 
-    >>> from skfem import MeshTri1                # cells (0, 1, 2) and (1, 3, 2)
-    >>> u = np.zeros((2, 4))
-    >>> p, c, side, cut, d, psi = side_pieces(MeshTri1(), np.array([-1.5, -.5, -.5, .5]), u, u)
-    >>> c.tolist(), side.tolist(), cut.tolist()
-    ([[0, 1, 2], [1, 3, 2], [4, 6, 5]], [-1, -1, 1], [0, 1, 1])
+    >>> node_regions(np.array([[-1], [1]]), np.array([[-0.5, 0.25, -1.0]])).tolist()
+    [0, 1, 0]
+
+    Raises
+    ------
+    ValueError
+        If a node's signs are those of no region.
     """
-    _, t = vtk_cells(mesh)
-    sides = cell_sides(mesh, psi_nodes)
-    points, cells, side, cut, disp, psi = [], [], [], [], [], []
-    offset = 0
-    for s, u in ((-1, u_minus), (1, u_plus)):
-        keep = sides != -s
-        nodes, local = np.unique(t[keep], return_inverse=True)
-        points.append(mesh.p[:, nodes].T)
-        cells.append(local.reshape(-1, t.shape[1]) + offset)
-        side.append(np.full(int(keep.sum()), s))
-        cut.append((sides[keep] == 0).astype(np.int64))
-        disp.append(np.asarray(u)[:, nodes].T)
-        psi.append(psi_nodes[nodes])
-        offset += nodes.size
-    return (np.vstack(points), np.vstack(cells), np.concatenate(side), np.concatenate(cut),
-            np.vstack(disp), np.concatenate(psi))
+    signs = np.where(np.asarray(psi) < 0, -1, 1).T                  # (nverts, n_interfaces)
+    match = (signs[:, None, :] == np.asarray(regions)[None]).all(axis=2)
+    if not match.any(axis=1).all():
+        raise ValueError(f"{int((~match.any(axis=1)).sum())} nodes have signs of no region "
+                         f"of {np.asarray(regions).tolist()}")
+    return match.argmax(axis=1)
 
 
 def region_pieces(mesh, node_region: np.ndarray, fields: np.ndarray):
-    """The mesh as one piece per region (several interfaces), each on its own copy of
-    its nodes: :func:`side_pieces` with R regions.
+    """The mesh as one piece per region, each on its own copy of its nodes.
 
     Piece r holds the cells with a vertex in region r (``node_region`` (nverts,)),
     with its field ``fields[r]`` (dim, nverts) at its nodes; a cell that an

@@ -12,7 +12,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..fem.cells import cell_edges
-from ..fem.vtu import region_pieces, side_pieces, vtk_cells
+from ..fem.vtu import interface_levelsets, node_regions, region_pieces, vtk_cells
 from .plotting import COLORS
 
 REGION_COLORS = ("#c7e9c0", "#dadaeb", "#fcbba1")
@@ -54,15 +54,16 @@ def _figure(images, window_size, title) -> Figure:
 def plot_result_3d(result, scale: float | None = None,
                    window_size: tuple[int, int] = (640, 480),
                    view: tuple = (1.0, -0.6, 0.45), title: str | None = None) -> Figure:
-    """A 3D result: each side warped by its own displacement, and the pressure on Γ.
+    """A 3D result: each region warped by its own displacement, and the pressure on Γ.
 
-    Left: Ω⁻ and Ω⁺ (colours of :data:`~skxfem.viz.plotting.COLORS`), each the
-    part of its own piece of :func:`skxfem.fem.vtu.side_pieces` where ψ has its
-    sign (the cut cells clipped at ψ = 0), moved by ``scale`` times its
+    Left: each region, the part of its own piece of
+    :func:`skxfem.fem.vtu.region_pieces` where every ψ has the region's sign
+    (the cut cells clipped at each ψ = 0), moved by ``scale`` times its
     displacement: what ParaView's *Warp By Vector* shows of
-    ``displacement.vtu``.  Right: the interface facets coloured by the contact
-    pressure p = -λ.  Several interfaces: each region, clipped where every ψ
-    has its sign (:data:`REGION_COLORS` between the first and the last).
+    ``displacement.vtu``.  The first region and the last take Ω⁻'s and Ω⁺'s
+    colours (:data:`~skxfem.viz.plotting.COLORS`; one interface: Ω⁻ and Ω⁺),
+    those between :data:`REGION_COLORS`.  Right: the interface facets coloured
+    by the contact pressure p = -λ.
 
     Parameters
     ----------
@@ -84,20 +85,12 @@ def plot_result_3d(result, scale: float | None = None,
     if mesh.dim() != 3:
         raise ValueError(f"plot_result_3d needs a 3D result, got {mesh.dim()}D; plot "
                          f"result.pressure against result.points instead")
-    if result.u_minus is None:  # several interfaces: a piece per region
-        V = result.V
-        points, cells, side, _, disp, nodes = region_pieces(mesh, V.regions()[1],
-                                                            result.u_regions)
-        psis = [Vk.cut.psi[nodes] for Vk in V.per_interface]
-        signs = result.regions
-        colors = [COLORS["minus"]] + [REGION_COLORS[r % len(REGION_COLORS)]
-                                      for r in range(len(signs) - 2)] + [COLORS["plus"]]
-    else:
-        points, cells, side, _, disp, levelset = side_pieces(mesh, result.V.cut.psi,
-                                                             result.u_minus, result.u_plus)
-        psis, signs, colors = [levelset], np.array([[-1], [1]]), [COLORS["minus"],
-                                                                   COLORS["plus"]]
-        side = (side > 0).astype(int)  # the piece: 0 for Ω⁻, 1 for Ω⁺
+    psi, signs = interface_levelsets(result), result.regions
+    points, cells, region, _, disp, nodes = region_pieces(mesh, node_regions(signs, psi),
+                                                          result.u_regions)
+    psis = psi[:, nodes]
+    colors = [COLORS["minus"]] + [REGION_COLORS[r % len(REGION_COLORS)]
+                                  for r in range(len(signs) - 2)] + [COLORS["plus"]]
     size = float(np.ptp(mesh.p, axis=1).max())
     if scale is None:
         scale = 0.1 * size / max(float(np.abs(disp).max()), 1e-300)
@@ -105,7 +98,7 @@ def plot_result_3d(result, scale: float | None = None,
             "wedge": pv.CellType.WEDGE}[vtk_cells(mesh)[0]]
     plotter = pv.Plotter(off_screen=True, window_size=list(window_size))
     for r, (sign, color) in enumerate(zip(signs, colors)):
-        grid = pv.UnstructuredGrid({kind: cells[side == r]}, points)
+        grid = pv.UnstructuredGrid({kind: cells[region == r]}, points)
         grid.point_data["displacement"] = disp
         for k, psi in enumerate(psis):
             grid.point_data[f"levelset_{k}"] = psi
