@@ -57,11 +57,10 @@ friction holds are refused by a
 direction it slides and the μ it needs; loads that pull it off Γ get the
 rigid-motion diagnosis of an open Γ (:func:`check_determined`'s).
 
-**Several interfaces.** A scene with several (``Scene(interfaces=...)``),
-one of them with a contact law, is solved here as one: the dofs of every
-interface, each with its own law, μ and ρ (:func:`parameters` of the scene
-with that interface alone; the ties as the kinds ``bilateral`` and
-``bonded``), their operators and laws stacked
+**Interfaces.** A scene's interfaces (one or more, one of them with a contact
+law) are solved here as one: the dofs of every interface, each with its own
+law, μ and ρ (:func:`parameters` of that interface; the ties as the kinds
+``bilateral`` and ``bonded``), their operators and laws stacked
 (:func:`skxfem.contact.interface.join`, :func:`skxfem.contact.newton.join_laws`).
 A load state gives each interface its law.  The result's fields are those of
 every interface in turn (:mod:`skxfem.result`), its ``law`` one
@@ -88,8 +87,8 @@ from fractions import Fraction
 
 import numpy as np
 import scipy.sparse as sp
+from skfem import Mesh
 
-from ..levelset import point_normals
 from ..linalg.amg import check_tie_held, rigid_modes, scaled_tie
 from ..linalg.choice import choose_linear
 from ..linalg.dependent import dependencies, unit_rows
@@ -99,7 +98,7 @@ from ..linalg.saddle import SingularSystemError
 from ..linalg.threads import limited
 from ..problem import Problem, assemble
 from ..result import Result, on_edges, result
-from ..scene.model import Scene, check_scene, check_steps
+from ..scene.model import Interface, Resolved, Scene, check_steps, resolve
 from ..scene.settings import MAX_ITER
 from .fixed_point import fixed_point
 from .holding import check_held_by_gamma
@@ -158,8 +157,8 @@ class Step:
     the weighted normal jump d (≤ 0 admissible); ``slip`` (m, k) the
     weighted tangential jump (total); ``status`` (m,) 0 open, 1 stick,
     2 slip; ``Lambda`` (m, k) the semi-multiplier Λ = r_τ/(μλ) of eq. 9a
-    (``coulomb``, where p > 0; 0 elsewhere); ``law`` the law of the step on each
-    interface (a tuple of names, one per interface);
+    (``coulomb``, where p > 0; 0 elsewhere); ``law`` the law of the step, the
+    name of each interface's (a tuple);
     ``increments`` how many increments the step took (1 unless cut); ``F`` the load
     vector of the step (on the unknowns: its support reactions are K U - F).
     """
@@ -178,8 +177,10 @@ class Step:
     F: np.ndarray | None = None
 
 
-def parameters(scene: Scene, h: float) -> Law:
-    """The :class:`~skxfem.contact.newton.Law` of ``scene`` with ρ defaults for mesh size h.
+def parameters(item: Scene | Interface, h: float, E: float | None = None) -> Law:
+    """The :class:`~skxfem.contact.newton.Law` of an interface with ρ defaults E/h for
+    mesh size h: ``item`` an :class:`~skxfem.scene.Interface` with Young's modulus
+    ``E``, or a scene of one interface (its material's E).
 
     ``coulomb`` with μ = 0 is ``frictionless``.
 
@@ -189,13 +190,18 @@ def parameters(scene: Scene, h: float) -> Law:
     >>> law.name, law.mu, law.rho_n, law.rho_t
     ('coulomb', 0.5, 4.0, 4.0)
     """
-    if scene.law not in HISTORY_LAWS:
+    if isinstance(item, Scene):
+        if len(item.interfaces) != 1:
+            raise ValueError(f"parameters takes a scene of one interface or an Interface "
+                             f"and E; this scene has {len(item.interfaces)}")
+        item, E = item.interfaces[0], item.material.E if E is None else E
+    if item.law not in HISTORY_LAWS:
         raise ValueError(f"scene law must be one of {CONTACT_LAWS} for a contact solve, "
-                         f"got {scene.law!r} (ties are solved by skxfem.solver.solve)")
-    default = scene.material.E / h
+                         f"got {item.law!r} (ties are solved by skxfem.solver.solve)")
+    default = E / h
     rho = {}
     for key in ("rho_n", "rho_t"):
-        given = getattr(scene, key)
+        given = getattr(item, key)
         rho[key] = default if given is None else given
         ratio = rho[key] / default   # its ends accepted, whatever the last bit of E/h
         if not RHO_RANGE[0] * (1 - 1e-12) <= ratio <= RHO_RANGE[1] * (1 + 1e-12):
@@ -204,8 +210,8 @@ def parameters(scene: Scene, h: float) -> Law:
                 f"E/h = {default:g}; it is an augmentation (the solution does not depend "
                 f"on it) and outside {RHO_RANGE[0]:g}..{RHO_RANGE[1]:g} x the default the "
                 f"Newton iteration loses its digits: leave it None or choose it near E/h")
-    mu = 0.0 if scene.friction is None else float(scene.friction)  # None: no friction
-    name = "frictionless" if scene.law == "coulomb" and mu == 0 else scene.law
+    mu = 0.0 if item.friction is None else float(item.friction)  # None: no friction
+    name = "frictionless" if item.law == "coulomb" and mu == 0 else item.law
     return Law(name, mu, float(rho["rho_n"]), float(rho["rho_t"]))
 
 
@@ -220,9 +226,9 @@ class _State:
     laws: tuple[Law, ...]
 
 
-def _spaces(scene: Scene):
-    """The multiplier space of a one-interface scene, the list of each interface's."""
-    return scene.space if scene.interfaces is None else [i.space for i in scene.interfaces]
+def _spaces(scene: Scene) -> list[str]:
+    """The multiplier space of each interface of ``scene``."""
+    return [i.space for i in scene.interfaces]
 
 
 def _same_setup(state: Scene, scene: Scene, pb: Problem, state_pb: Problem, i: int):
@@ -233,9 +239,9 @@ def _same_setup(state: Scene, scene: Scene, pb: Problem, state_pb: Problem, i: i
             raise ValueError(f"history[{i}]: a load state must keep the scene's {key} "
                              f"({get(scene)!r}), got {get(state)!r}: the "
                              f"solver keeps one stiffness and one multiplier space")
-    same_cuts = len(state_pb.per_interface) == len(pb.per_interface) and all(
+    same_cuts = len(state_pb.interfaces) == len(pb.interfaces) and all(
         np.array_equal(a.cut.psi, b.cut.psi)
-        for a, b in zip(state_pb.per_interface, pb.per_interface))
+        for a, b in zip(state_pb.interfaces, pb.interfaces))
     if (state_pb.V.N != pb.V.N or not np.array_equal(state_pb.D, pb.D)
             or not same_cuts):
         raise ValueError(f"history[{i}]: a load state must keep the mesh, Γ and "
@@ -247,7 +253,7 @@ def _same_setup(state: Scene, scene: Scene, pb: Problem, state_pb: Problem, i: i
 def _laws(scene: Scene, hs) -> tuple[Law, ...]:
     """The :class:`~skxfem.contact.newton.Law` of each interface of ``scene``, with the
     mean cut-edge length ``hs[k]`` of interface k."""
-    return tuple(parameters(scene.alone(k), h) for k, h in enumerate(hs))
+    return tuple(parameters(i, h, scene.material.E) for i, h in zip(scene.interfaces, hs))
 
 
 def _states(scene: Scene, pb: Problem, history, hs) -> list[_State]:
@@ -265,11 +271,13 @@ def _states(scene: Scene, pb: Problem, history, hs) -> list[_State]:
     out = []
     for i, item in enumerate(history):
         if isinstance(item, Scene):
-            for j in item.interface_list:
+            for j in item.interfaces:
                 if j.law not in HISTORY_LAWS:
                     raise ValueError(f"history[{i}]: the law of a load state must be one "
                                      f"of {HISTORY_LAWS}, got {j.law!r}")
-            state = assemble(item, law="bilateral")
+            same = item.mesh is scene.mesh or (not isinstance(item.mesh, Mesh)
+                                                and item.mesh == scene.mesh)
+            state = assemble(resolve(item, pb.mesh if same else None), law="bilateral")
             _same_setup(item, scene, pb, state, i)
             out.append(_State(item.name, state.F, state.g, _laws(item, hs)))
         elif isinstance(item, (int, float, np.integer, np.floating)) and \
@@ -347,15 +355,18 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     max_cuts = int(max_cuts)
     if not (isinstance(tol, float) and 0 < tol < 1):
         raise ValueError(f"tol must be a float in (0, 1), got {tol!r}")
-    settings = check_scene(scene).solver.override(linear, linear_tol, max_iter)
+    resolved = resolve(scene)   # checked and its mesh resolved, once
+    scene = resolved.scene
+    settings = scene.solver.override(linear, linear_tol, max_iter)
     max_iter = MAX_ITER if settings.max_iter is None else settings.max_iter
-    if not any(i.law in CONTACT_LAWS for i in scene.interface_list):
-        got = scene.law if scene.law is not None else [i.law for i in scene.interfaces]
+    if not any(i.law in CONTACT_LAWS for i in scene.interfaces):
+        got = [i.law for i in scene.interfaces]
         raise ValueError(f"scene law must be one of {CONTACT_LAWS} for a contact solve, "
-                         f"got {got!r} (ties are solved by skxfem.solver.solve)")
-    pb = assemble(scene, law="bilateral")
+                         f"got {got[0] if len(got) == 1 else got!r} (ties are solved by "
+                         f"skxfem.solver.solve)")
+    pb = assemble(resolved, law="bilateral")
     ops = operators(pb)
-    hs = tuple(o.h for o in ops.pieces) or (ops.h,)
+    hs = tuple(o.h for o in ops.pieces)
     states = _states(scene, pb, scene.steps if history is None else history, hs)
     linear = choose_linear(settings.linear, pb.mesh.dim(), pb.V.N)
     linear_tol = settings.linear_tol
@@ -369,8 +380,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     scaled = _scaled(pb, solve_kw.get("setup"))
     m, k = ops.w.size, len(ops.Bt)
     # the reference ρ of the convergence test: E/h, each interface its own h
-    rho_ref = (scene.material.E / ops.h if not ops.pieces
-               else scene.material.E / np.array(hs)[ops.interface])
+    rho_ref = scene.material.E / np.array(hs)[ops.interface]
     it = Iterate(np.zeros(pb.V.N), np.zeros(m), np.zeros((m, k)))
     F, g = np.zeros(pb.V.N), np.zeros(pb.D.size)
     steps = []
@@ -443,8 +453,6 @@ def progress_line(where: str, n, residuals, status, inner: int, elapsed: float,
 
 def _point_laws(laws: tuple[Law, ...], ops: Operators) -> PointLaws:
     """The law of every dof: those of each interface (``laws``) at its dofs."""
-    if not ops.pieces:
-        return point_laws(laws[0], ops.tangent_held)
     return join_laws([point_laws(law, ops.tangent_held[ops.interface == k])
                       for k, law in enumerate(laws)])
 
@@ -454,8 +462,8 @@ def _result(pb: Problem, ops: Operators, law, steps: tuple, linear: str,
     """The :class:`~skxfem.result.Result` of the last step: the dofs' values carried
     to the cut edges by λ = P μ (the status: that of the dof weighing most)."""
     last = steps[-1]
-    qs = pb.per_interface
-    normals = np.hstack([point_normals(q.cut, q.scene.levelset) for q in qs])
+    qs = pb.interfaces
+    normals = np.hstack([q.normals() for q in qs])
     p = on_edges(pb.P, last.pressure)
     r = np.stack([on_edges(Pa, last.traction[:, a]) for a, Pa in enumerate(ops.Pt)],
                  axis=1).reshape(p.size, len(ops.Pt))  # (n, k) on each point's frame
@@ -463,7 +471,7 @@ def _result(pb: Problem, ops: Operators, law, steps: tuple, linear: str,
     traction = -p * normals + np.einsum("nk,kdn->dn", r, frames)
     owner = np.asarray(abs(pb.P).argmax(axis=1)).ravel()
     dim = pb.mesh.dim()
-    Jn = np.concatenate([((q.J @ (last.U if q.columns is None else last.U[q.columns]))
+    Jn = np.concatenate([((q.J @ last.U[q.columns])
                           .reshape(dim, -1) * q.rule.normals).sum(0) for q in qs])
     t = pb.timings
     timings = {"cut": t["cut"] + t["space"], "enrich": t["enrich"],
@@ -546,12 +554,12 @@ def _reason(error: ContactConvergenceError) -> str:
 
 
 def _blame(error: ContactConvergenceError, pb: Problem, ops: Operators) -> str:
-    """``""`` for a scene with one interface; with several, the interfaces of the points
-    that kept changing status in the failed iteration (else those with a contact law),
-    as ``" on interfaces[1] 'y - 0.7' (coulomb)"``."""
-    if not ops.pieces:
+    """The interfaces of the points that kept changing status in the failed iteration
+    (else those with a contact law), as ``" on interfaces[1] 'y - 0.7' (coulomb)"``;
+    ``""`` where the scene names none (one interface: :meth:`skxfem.scene.Scene.label`)."""
+    items = pb.scene.interfaces
+    if not pb.scene.label(0):
         return ""
-    items = pb.scene.interface_list
     seen = getattr(error, "statuses", None)
     ks = []
     if seen is not None and len(seen) > 1:
@@ -560,8 +568,7 @@ def _blame(error: ContactConvergenceError, pb: Problem, ops: Operators) -> str:
         ks = np.unique(ops.interface[moving]).tolist()
     if not ks:
         ks = [k for k, i in enumerate(items) if i.law in CONTACT_LAWS]
-    return " on " + ", ".join(f"interfaces[{k}] {items[k].levelset.name!r} ({items[k].law})"
-                              for k in ks)
+    return " on " + ", ".join(f"{pb.scene.label(k)} ({items[k].law})" for k in ks)
 
 
 def _describe(label) -> str:
@@ -717,7 +724,7 @@ def _held_rows(ops: Operators, laws: PointLaws, status, y, dofs: bool = False):
 
 
 def _names(laws: PointLaws) -> str:
-    """The law of the dofs in words: "the coulomb law", or "the laws a, b" (several)."""
+    """The law of the dofs in words: "the coulomb law", or "the laws a, b"."""
     names = list(dict.fromkeys(laws.name.tolist()))
     return f"the {names[0]} law" if len(names) == 1 else f"the laws {', '.join(names)}"
 

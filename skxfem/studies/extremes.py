@@ -48,7 +48,7 @@ from ..linalg.saddle import independent_rows
 from ..multipliers import coupling, interface_rule
 from ..problem import constrained_dofs
 from ..scene.benchmarks import P_MAX, exact_scene, paper_plate, strip
-from ..scene.model import Box, Displacement, Scene, SurfaceLoad, resolve_mesh, rollers
+from ..scene.model import Box, Displacement, Scene, SurfaceLoad, resolve, rollers
 from ..scene.parts import SIZE_RANGE
 from ..solver import solve
 from ..stabilised import multiplier_space
@@ -257,13 +257,14 @@ class Conditioning:
 def _condition(scene: Scene, sliver: float) -> tuple[float | None, int, float]:
     """cond₂ of the scaled saddle matrix as :func:`skxfem.linalg.saddle.solve` factors it
     (``None``: singular, an unknown without stiffness), nodes dropped, least fraction."""
-    mesh = resolve_mesh(scene)
-    cut = cut_mesh(mesh, scene.levelset)
+    scene, mesh = resolve(scene)
+    (gamma,) = scene.interfaces   # the sliver scenes have one interface (sliver_rows)
+    cut = cut_mesh(mesh, gamma.levelset)
     V = xfem_space(mesh, cut, scene.quadrature_order, sliver=sliver)
     K = stiffness(V, scene.material)
     D, _ = constrained_dofs(V, scene, mesh)
-    lam_space = multiplier_space(scene.space, mesh, cut)
-    B_edges = coupling(V, interface_rule(mesh, cut), scene.law)
+    lam_space = multiplier_space(gamma.space, mesh, cut)
+    B_edges = coupling(V, interface_rule(mesh, cut), gamma.law)
     ncomp = B_edges.shape[0] // cut.points.shape[1]
     B = sp.kron(sp.identity(ncomp), lam_space.P, format="csr").T @ B_edges
     free = np.setdiff1d(np.arange(V.N), D)
@@ -411,8 +412,7 @@ def rho_rows(factors=RHO_FACTORS, n: int = 8) -> list[Row]:
     scene = friction_scene(n)
     ref = contact_solve(scene)
     h, t_ref = ref.ops.h, _tractions(ref.steps[-1])
-    [law] = ref.law                                   # one interface: one Law
-    defaults = {"rho_n": law.rho_n, "rho_t": law.rho_t}
+    defaults = {"rho_n": ref.law[0].rho_n, "rho_t": ref.law[0].rho_t}
     rows = []
     for key, name in (("rho_n", "ρ_n"), ("rho_t", "ρ_τ")):
         unit = "E/h"
