@@ -32,7 +32,8 @@ gets unless it asks for another.
 
 **The tree.** The top level holds the steps of the method in the order of the
 book — ``levelset``, ``cut``, ``enrich``, ``multipliers``, ``lbb``,
-``stabilised`` — then ``problem`` (the one assembled interface problem),
+``stabilised`` — then ``gamma`` (one interface's geometry, the contract of a kind
+of Γ), ``problem`` (the one assembled interface problem),
 ``result`` (what every solve returns) and ``solver``; the rest is grouped in
 subpackages, one layer each.  A module imports only from the layers below its
 own (import-linter checks it in ``make test``; the contract is in
@@ -51,15 +52,15 @@ own (import-linter checks it in ``make test``; the contract is in
    ``boundary``, ``settings`` (:class:`Solver`), ``model`` (the :class:`Scene`),
    ``benchmarks`` (``skxfem.scenes``), ``file`` and ``tomlcheck`` (scene files);
 5. ``cut``;  6. ``enrich``;  7. ``multipliers``;  8. ``stabilised``;
-9. ``problem``;  10. ``result``;
-11. ``contact``: ``laws``, ``interface``, ``step`` (the linear solve of a
+9. ``gamma``;  10. ``problem``;  11. ``result``;
+12. ``contact``: ``laws``, ``interface``, ``step`` (the linear solve of a
     Newton step), ``newton``, ``fixed_point``, ``history`` (``solve``);
-12. ``lbb``, ``solver``;
-13. ``studies``: ``convergence``, ``conforming``, ``validation3d``, the
+13. ``lbb``, ``solver``;
+14. ``studies``: ``convergence``, ``conforming``, ``validation3d``, the
     ``extremes`` tables, ``frontier``, ``budget`` and ``counts`` (the size
     guard), ``progress``;
-14. ``viz``: every module that draws (matplotlib, pyvista; a second contract);
-15. ``app``: ``cli``, ``reproduce``, ``grade`` and ``graded``, ``io`` (the
+15. ``viz``: every module that draws (matplotlib, pyvista; a second contract);
+16. ``app``: ``cli``, ``reproduce``, ``grade`` and ``graded``, ``io`` (the
     result files).
 """
 from importlib.metadata import PackageNotFoundError

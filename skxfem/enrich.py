@@ -69,7 +69,8 @@ from .fem.quadrature import cell_rule, exact_orders
 from .fem.side_bases import Parts, parts, side_bases
 
 __all__ = ["XSpace", "XSpaces", "xfem_space", "stiffness", "mass", "enriched_matrix",
-           "enriched_blocks", "as_spaces", "signed_bases", "far_side_fraction", "enriched_load", "body_load",
+           "enriched_blocks", "as_spaces", "signed_bases", "far_side_fraction",
+           "enriched_load", "body_load",
            "jump_matrix", "split_fields", "from_fields", "region_fields"]
 
 

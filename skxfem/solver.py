@@ -38,6 +38,7 @@ from .linalg.rigid import check_held
 from .linalg.threads import limited
 from .problem import Problem, assemble, constrained_dofs
 from .result import Result, result
+from .scene.laws import in_words
 from .scene.model import Resolved, Scene, resolve
 
 __all__ = ["Result", "solve", "solve_problem", "constrained_dofs", "LINEAR", "AUTO_ITERATIVE",
@@ -131,7 +132,7 @@ def solve(scene: Scene | Resolved, dependent: str = "remove", linear: str | None
     if settings.max_iter is not None:
         raise ValueError(f"max_iter applies to the contact laws {CONTACT_LAWS} (Newton "
                          f"iterations per load step); the scene's law is "
-                         f"{laws[0] if len(laws) == 1 else laws!r}: leave max_iter unset")
+                         f"{in_words(laws)}: leave max_iter unset")
     return solve_problem(assemble(scene), dependent, settings.linear, settings.linear_tol)
 
 
@@ -145,7 +146,7 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
     settings = p.scene.solver.override(linear, linear_tol)
     linear = _linear(settings.linear, p)
     linear_tol = settings.linear_tol
-    mesh, V, B, P, D = p.mesh, p.V, p.B, p.P, p.D
+    mesh, V, B, D = p.mesh, p.V, p.B, p.D
     t = p.timings
     timings = {"cut": t["cut"] + t["space"], "enrich": t["enrich"],
                "assemble": sum(t[k] for k in ("stiffness", "load", "constraints", "interface",

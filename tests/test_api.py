@@ -46,7 +46,8 @@ def test_solve_hands_a_contact_scene_to_the_contact_solver():
 def test_every_module_and_package_stands_on_a_layer():
     """The import-linter layers contract lists every top-level module and subpackage, so
     that a new one cannot escape the layers by being forgotten; and the top level shows
-    the method, not every helper (issue 19: about 15 entries)."""
+    the method, not every helper (issue 19: about 15 entries; issue 28 added
+    skxfem.gamma, the interface object, and issue 29 a subpackage for cracks)."""
     config = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["importlinter"]
     layers = next(c for c in config["contracts"] if c["type"] == "layers")["layers"]
     listed = {m.strip() for line in layers for m in line.split("|")}
@@ -56,7 +57,7 @@ def test_every_module_and_package_stands_on_a_layer():
     packages = {f"skxfem.{p.name}" for p in top.iterdir() if (p / "__init__.py").is_file()}
     assert (modules | packages) - listed == set(), "add these to a layer in pyproject.toml"
     assert listed - (modules | packages) == set(), "these layers name nothing that exists"
-    assert len(modules | packages) <= 16, sorted(modules | packages)
+    assert len(modules | packages) <= 18, sorted(modules | packages)
     assert not [p for p in top.glob("*/*/__init__.py")], "one level of subpackages"
 
 

@@ -14,7 +14,7 @@ EXAMPLES = sorted((Path(__file__).resolve().parents[1] / "examples").glob("*.tom
 
 def test_the_examples_cover_2d_3d_ties_and_contact():
     scenes = [load_scene(p) for p in EXAMPLES]
-    kinds = {(s.dim, all(i.law in ("bonded", "bilateral") for i in s.interface_list))
+    kinds = {(s.dim, all(i.law in ("bonded", "bilateral") for i in s.interfaces))
              for s in scenes}
     assert kinds == {(2, True), (3, True), (2, False), (3, False)}, kinds
     assert any(len(s.interfaces) > 1 for s in scenes), "an example with several interfaces"

@@ -137,7 +137,6 @@ def test_06b_interfaces_are_a_tuple_in_either_form():
     assert (two.law, two.space, two.levelset) == (None, None, None)   # each Interface's
     one = Scene(QUAD, LINE, law="bilateral", rho_n=2.0)   # the short form: a tuple of one
     assert one.interfaces == (Interface(LINE, "bilateral", rho_n=2.0),)
-    assert one.interface_list == one.interfaces                   # the earlier name
     alone = two.alone(1)                       # the one-interface scene of interface 1
     assert (alone.law, alone.space, alone.friction, alone.rho_n) == (
         "coulomb", "winner", 0.4, 2.0) and alone.levelset is HIGH
@@ -497,7 +496,7 @@ def test_26_coulomb_needs_friction_and_the_other_laws_refuse_it(build):
         build(law=law)                               # unset: accepted
     for mu in (0, 0.0, 0.3, np.float64(2.0)):        # 0 given on purpose: frictionless
         built = build(law="coulomb", friction=mu)
-        items = built.interface_list if isinstance(built, Scene) else (built,)
+        items = built.interfaces if isinstance(built, Scene) else (built,)
         assert items[-1].friction == float(mu) and type(items[-1].friction) is float
 
 

@@ -69,6 +69,8 @@ from ..cut import SnapWarning
 from ..linalg.choice import LINEAR_TOL
 from ..linalg.threads import limited
 from ..scene.file import MAX_MAGNITUDE, load_scene, schema
+from ..scene.laws import in_words
+from ..scene.model import Box, resolve
 from ..solver import LINEAR, solve
 from ..studies import budget
 from . import io
@@ -297,17 +299,20 @@ def _run(args, caught: list) -> int:
     given = {k: v for k, v in (("linear", args.linear), ("linear_tol", args.linear_tol),
                                ("max_iter", args.max_iter)) if v is not None}
     settings = s.solver.override(**given)  # the command line overrides the file (checked)
-    laws = [i.law for i in s.interface_list]
+    laws = [i.law for i in s.interfaces]
     contact = any(law in CONTACT_LAWS for law in laws)
     if args.max_iter is not None and not contact:
         raise ValueError(f"--max-iter applies to the contact laws {CONTACT_LAWS}; the scene's "
-                         f"law is {s.law if len(laws) == 1 else laws!r}")
+                         f"law is {in_words(laws)}")
     out = io.check_output(args.out if args.out is not None else io.default_folder(s.name))
-    budget.check(s, args.max_memory, "--max-memory", linear=settings.linear)
+    # a mesh file is read once, for the estimate and the solve; a Box is estimated
+    # before it is built (a box too large is refused without building it)
+    target = s if isinstance(s.mesh, Box) else resolve(s)
+    budget.check(target, args.max_memory, "--max-memory", linear=settings.linear)
     show = args.progress if args.progress is not None else sys.stderr.isatty()
     lines = {"progress": lambda line: _say(f"skxfem: {line}", sys.stderr)} \
         if show and contact else {}
-    result = solve(s, **given, **lines)   # = skxfem.solve: the file's settings, the options
+    result = solve(target, **given, **lines)   # = skxfem.solve: the file's settings, options
     overflow = _overflowed(caught)
     if overflow is not None:
         raise overflow

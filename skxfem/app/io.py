@@ -136,7 +136,7 @@ def result_summary(result) -> dict:
     missing = [s for s in _STAGES if s not in timings]
     if missing:
         raise ValueError(f"result.timings lacks the stages {missing}; expected {_STAGES}")
-    items = result.scene.interface_list
+    items = result.scene.interfaces
     data = {
         "scene": result.scene.name,
         "law": [i.law for i in items],

@@ -98,7 +98,8 @@ from ..linalg.saddle import SingularSystemError
 from ..linalg.threads import limited
 from ..problem import Problem, assemble
 from ..result import Result, on_edges, result
-from ..scene.model import Interface, Resolved, Scene, check_steps, resolve
+from ..scene.laws import in_words
+from ..scene.model import Interface, Scene, check_steps, resolve
 from ..scene.settings import MAX_ITER
 from .fixed_point import fixed_point
 from .holding import check_held_by_gamma
@@ -362,7 +363,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     if not any(i.law in CONTACT_LAWS for i in scene.interfaces):
         got = [i.law for i in scene.interfaces]
         raise ValueError(f"scene law must be one of {CONTACT_LAWS} for a contact solve, "
-                         f"got {got[0] if len(got) == 1 else got!r} (ties are solved by "
+                         f"got {in_words(got)} (ties are solved by "
                          f"skxfem.solver.solve)")
     pb = assemble(resolved, law="bilateral")
     ops = operators(pb)

@@ -56,8 +56,9 @@ def vtk_cells(mesh) -> tuple[str, np.ndarray]:
 
 def interface_levelsets(result) -> np.ndarray:
     """(n_interfaces, nverts) ψ of each interface of ``result`` at the nodes, as its
-    solve used it: the cut's ψ, snapped off the nodes (:func:`skxfem.cut.snap`)."""
-    return np.array([q.cut.psi for q in result.problem.per_interface])
+    solve used it (:meth:`skxfem.gamma.Gamma.nodal`: the cut's ψ, snapped off the
+    nodes, :func:`skxfem.cut.snap`)."""
+    return np.array([q.gamma.nodal(q.cut) for q in result.problem.interfaces])
 
 
 def node_regions(regions: np.ndarray, psi: np.ndarray) -> np.ndarray:

@@ -108,7 +108,8 @@ def _region_modes(V, motions, node_of) -> tuple[np.ndarray, int]:
     patterns, node_region = np.unique(signs.T, axis=0, return_inverse=True)
     node_region = node_region.ravel()
     R = patterns.shape[0]
-    codes = ((patterns > 0).astype(np.int64) << np.arange(len(spaces))).sum(axis=1)  # a region's signs as bits
+    # a region's signs as the bits of one number
+    codes = ((patterns > 0).astype(np.int64) << np.arange(len(spaces))).sum(axis=1)
     order = np.argsort(codes)
     nd = V.basis.nodal_dofs
     region_of = node_region[node_of]  # the region of each standard dof's node

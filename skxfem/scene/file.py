@@ -131,7 +131,7 @@ from ..linalg.choice import LINEAR
 from . import model as sc
 from . import tomlcheck
 from .boundary import select_facets, select_nodes
-from .laws import FRICTION_LAWS
+from .laws import FRICTION_LAWS, in_words
 from .magnitudes import BUILT_BOX, MAX_MAGNITUDE, MAX_SHIFT, check_magnitudes
 from .parts import COMPONENTS, FACES, check_friction
 from .settings import Solver
@@ -533,7 +533,7 @@ def _scene(data: dict, path: Path) -> sc.Scene:
     options = _options(solver)
     if "max_iter" in options and not any(law in sc.CONTACT_LAWS for law in laws):
         raise ValueError(f"[solver] max_iter applies to the contact laws {sc.CONTACT_LAWS}; "
-                         f"the law is {laws[0] if len(laws) == 1 else laws!r}")
+                         f"the law is {in_words(laws)}")
     order = solver.get("quadrature_order")
     if order is not None and (type(order) is not int or order < 1):
         raise ValueError(f"[solver] quadrature_order must be a positive integer, got {order!r}")
@@ -578,7 +578,7 @@ def _states(data: dict, scene: sc.Scene, items: dict, checked, dim: int, laws) -
                          "factors: the loads scaled) or [[step]] tables (load states)")
     if not any(law in sc.CONTACT_LAWS for law in laws):
         raise ValueError(f"[[step]] tables are the load states of a contact solve; the law "
-                         f"is {laws[0] if len(laws) == 1 else laws!r}, a tie, which is linear "
+                         f"is {in_words(laws)}, a tie, which is linear "
                          f"(one state): give its loads as [[load]] tables")
     tables = array(data, "step")
     if not tables:

@@ -20,7 +20,18 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 __all__ = ["LawKind", "LAWS", "TIE_LAWS", "CONTACT_LAWS", "ALL_LAWS",
-           "FRICTION_LAWS", "COUPLING", "SPACES"]
+           "FRICTION_LAWS", "COUPLING", "SPACES", "in_words"]
+
+
+def in_words(laws) -> str:
+    """The laws of a scene's interfaces as a message quotes them: the one law, or the
+    list of them (the one place a message's wording depends on their count).
+
+    >>> in_words(["bonded"]), in_words(["bonded", "coulomb"])
+    ("'bonded'", "['bonded', 'coulomb']")
+    """
+    laws = list(laws)
+    return repr(laws[0]) if len(laws) == 1 else repr(laws)
 
 
 @dataclass(frozen=True)

@@ -263,11 +263,6 @@ class Scene:
         """The dimension of the problem (that of the level sets)."""
         return self.interfaces[0].levelset.dim
 
-    @property
-    def interface_list(self) -> tuple[Interface, ...]:
-        """``interfaces`` (the name of earlier versions)."""
-        return self.interfaces
-
     def given_interfaces(self, items) -> dict:
         """The fields that give this scene the interfaces ``items`` in place of its own,
         for ``dataclasses.replace(scene, **scene.given_interfaces(items))`` (the short

@@ -29,6 +29,7 @@ from ..fem.loads import boundary_quadrature, surface_load
 from ..fem.material import stiffness_matrix
 from ..fem.quadrature import cell_rule
 from ..scene.benchmarks import P_MAX, exact_plate
+from ..scene.laws import in_words
 from ..scene.model import Box, Scene, dirichlet, load_facets, resolve
 from .convergence import StudyRow
 
@@ -59,7 +60,7 @@ def solve_conforming(scene: Scene) -> ConformingResult:
     laws = [i.law for i in scene.interfaces]
     if any(law != "bonded" for law in laws):
         raise ValueError(f"solve_conforming needs law='bonded' (Γ is then no interface "
-                         f"at all), got {laws[0] if len(laws) == 1 else laws!r}; for other "
+                         f"at all), got {in_words(laws)}; for other "
                          f"laws use skxfem.solve")
     psi = np.array([i.levelset(mesh.p) for i in scene.interfaces])   # (n, nverts)
     tol = 1e-12 * float(np.ptp(mesh.p, axis=1).max())
