@@ -57,7 +57,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 __all__ = ["TipFrame", "tip_frame", "straight_frame", "local_coordinates", "polar",
-           "polar_gradients"]
+           "polar_gradients", "ON_FACE"]
+
+ON_FACE = 1e-10
+"""With a ``side``, :func:`polar` puts a point on a crack face when |ψ| ≤ ON_FACE r (and
+φ < 0): the round-off of a point computed on the face in global coordinates, far below
+the distance of any quadrature point off the face."""
 
 
 def as_real(name: str, value: ArrayLike, shape: tuple | None = None,
@@ -221,12 +226,15 @@ def polar(phi: ArrayLike, psi: ArrayLike, side: ArrayLike | None = None
     r = √(ψ² + φ²), θ = atan2(ψ, φ) ∈ [-π, π]; this assumes φ and ψ signed
     distances, orthogonal (see the module notes).  On the crack faces (ψ = 0,
     φ < 0) the side decides: θ = +π on the face of Ω⁺, -π on the face of Ω⁻.
+    Points computed on a face in global coordinates carry ψ of round-off, not
+    zero: with ``side``, points with φ < 0 and |ψ| ≤ :data:`ON_FACE` r count as
+    on the face.
 
     Parameters
     ----------
     phi, psi : arrays of the same shape: φ (> 0 ahead) and ψ (> 0 in Ω⁺).
     side : optional +1 or -1 (array broadcasting with ``phi``): which face the
-        points with ψ = 0, φ < 0 belong to.  Without it the sign of the zero
+        points with |ψ| ≤ ON_FACE r, φ < 0 belong to.  Without it the sign of the zero
         ψ decides, as in ``atan2`` (+0.0: Ω⁺, -0.0: Ω⁻).
 
     Returns
@@ -255,7 +263,7 @@ def polar(phi: ArrayLike, psi: ArrayLike, side: ArrayLike | None = None
         except ValueError:
             raise ValueError(f"side of shape {s.shape} does not broadcast to the shape of "
                              f"phi, {phi.shape}") from None
-        theta = np.where((psi == 0) & (phi < 0), s * np.pi, theta)
+        theta = np.where((np.abs(psi) <= ON_FACE * r) & (phi < 0), s * np.pi, theta)
     return r, theta
 
 
