@@ -2,8 +2,12 @@
 import numpy as np
 import pytest
 
-from skxfem.crack.branch import (branch, branch_gradient, branch_local_gradient,
-                                 branch_polar_derivatives)
+from skxfem.crack.branch import (
+    branch,
+    branch_gradient,
+    branch_local_gradient,
+    branch_polar_derivatives,
+)
 from skxfem.crack.frame import local_coordinates, polar, straight_frame
 
 RNG = np.random.default_rng(2907)

@@ -2,8 +2,7 @@
 import numpy as np
 import pytest
 
-from skxfem.crack.frame import (local_coordinates, polar, polar_gradients, straight_frame,
-                                tip_frame)
+from skxfem.crack.frame import local_coordinates, polar, polar_gradients, straight_frame, tip_frame
 
 RNG = np.random.default_rng(29)
 
@@ -127,3 +126,16 @@ def test_side_puts_points_computed_on_a_face_on_it():
         assert np.array_equal(polar(xl[0], xl[1], side=s)[1], np.full(40, s * np.pi))
     off = polar(np.array([-1.0]), np.array([1e-6]), side=-1)[1]
     assert 0 < off[0] < np.pi                                 # truly off the face: Ω⁺
+
+
+def test_face_tolerance_covers_points_near_a_far_tip():
+    """Close to a tip far from the origin of coordinates (r = 1e-6, |origin| = 1e3) the
+    round-off of ψ is relative to the coordinates, not to r: face_tolerance is."""
+    from skxfem.crack.frame import face_tolerance
+    f, origin = straight_frame(*[np.array(v) for v in random_frame(2)]), np.array([1e3, -7e2])
+    r = np.geomspace(1e-6, 1.0, 30)
+    x = origin[:, None] - r * f.e1[:, None]
+    xl = local_coordinates(x, origin, f)
+    for s in (1, -1):
+        t = polar(xl[0], xl[1], side=s, tol=face_tolerance(x, origin))[1]
+        assert np.array_equal(t, np.full(30, s * np.pi))

@@ -32,8 +32,9 @@ and holds to first order in the distance for a curved one,
 
 θ = 0 ahead of the crack, θ > 0 on the Ω⁺ side, θ = ±π on the crack faces
 only: +π on the face of Ω⁺ and -π on the face of Ω⁻ (:func:`polar` takes the
-side of points lying exactly on the faces), so that off the faces θ ∈ (-π, π).  Their gradients, used by every chain rule
-of the package (:func:`polar_gradients`), are
+side of points lying exactly on the faces), so that off the faces θ ∈ (-π, π).
+Their gradients, used by every chain rule of the package (:func:`polar_gradients`),
+are
 
 .. math:: \nabla r = \cos\theta\, e_1 + \sin\theta\, e_2, \qquad
           \nabla\theta = \frac{-\sin\theta\, e_1 + \cos\theta\, e_2}{r}.
@@ -57,12 +58,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 __all__ = ["TipFrame", "tip_frame", "straight_frame", "local_coordinates", "polar",
-           "polar_gradients", "ON_FACE"]
+           "polar_gradients", "face_tolerance", "ON_FACE"]
 
 ON_FACE = 1e-10
 """With a ``side``, :func:`polar` puts a point on a crack face when |ψ| ≤ ON_FACE r (and
-φ < 0): the round-off of a point computed on the face in global coordinates, far below
-the distance of any quadrature point off the face."""
+φ < 0), or within :func:`face_tolerance` of it: the round-off of a point computed on the
+face in global coordinates, far below the distance of any quadrature point off the face."""
 
 
 def as_real(name: str, value: ArrayLike, shape: tuple | None = None,
@@ -219,23 +220,38 @@ def local_coordinates(x: ArrayLike, origin: ArrayLike, frame: TipFrame) -> np.nd
     return np.tensordot(frame.R, d, axes=(1, 0))
 
 
-def polar(phi: ArrayLike, psi: ArrayLike, side: ArrayLike | None = None
-          ) -> tuple[np.ndarray, np.ndarray]:
+def face_tolerance(x: ArrayLike, origin: ArrayLike) -> np.ndarray:
+    """How far from ψ = 0 the local coordinates of points ``x`` computed on a face may
+    land: :data:`ON_FACE` (|x - origin| + |origin|), the round-off of
+    e₂·(x - origin) for points given in global coordinates.
+
+    >>> face_tolerance(np.array([[3.0], [4.0]]), [0.0, 0.0]).tolist()
+    [5e-10]
+    """
+    x = _field("x", x)
+    o = as_real("origin", origin, (x.shape[0],)).reshape((-1,) + (1,) * (x.ndim - 1))
+    return ON_FACE * (np.sqrt(((x - o) ** 2).sum(axis=0)) + np.sqrt((o ** 2).sum()))
+
+
+def polar(phi: ArrayLike, psi: ArrayLike, side: ArrayLike | None = None,
+          tol: ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Polar coordinates (r, θ) around the front from the level-set values.
 
     r = √(ψ² + φ²), θ = atan2(ψ, φ) ∈ [-π, π]; this assumes φ and ψ signed
     distances, orthogonal (see the module notes).  On the crack faces (ψ = 0,
     φ < 0) the side decides: θ = +π on the face of Ω⁺, -π on the face of Ω⁻.
     Points computed on a face in global coordinates carry ψ of round-off, not
-    zero: with ``side``, points with φ < 0 and |ψ| ≤ :data:`ON_FACE` r count as
-    on the face.
+    zero: with ``side``, points with φ < 0 and |ψ| ≤ ``tol`` count as on the face.
 
     Parameters
     ----------
     phi, psi : arrays of the same shape: φ (> 0 ahead) and ψ (> 0 in Ω⁺).
     side : optional +1 or -1 (array broadcasting with ``phi``): which face the
-        points with |ψ| ≤ ON_FACE r, φ < 0 belong to.  Without it the sign of the zero
+        points with |ψ| ≤ tol, φ < 0 belong to.  Without it the sign of the zero
         ψ decides, as in ``atan2`` (+0.0: Ω⁺, -0.0: Ω⁻).
+    tol : with ``side``, how far from ψ = 0 a point of a face may be (array
+        broadcasting with ``phi``); default :data:`ON_FACE` r.  The round-off of
+        local coordinates is relative to the global ones: :func:`face_tolerance`.
 
     Returns
     -------
@@ -263,7 +279,8 @@ def polar(phi: ArrayLike, psi: ArrayLike, side: ArrayLike | None = None
         except ValueError:
             raise ValueError(f"side of shape {s.shape} does not broadcast to the shape of "
                              f"phi, {phi.shape}") from None
-        theta = np.where((np.abs(psi) <= ON_FACE * r) & (phi < 0), s * np.pi, theta)
+        tol = ON_FACE * r if tol is None else as_real("tol", tol)
+        theta = np.where((np.abs(psi) <= tol) & (phi < 0), s * np.pi, theta)
     return r, theta
 
 

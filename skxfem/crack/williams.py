@@ -55,7 +55,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..fem.material import Material
-from .frame import TipFrame, as_real, local_coordinates, polar
+from .frame import TipFrame, as_real, face_tolerance, local_coordinates, polar
 
 __all__ = ["NearTip", "kolosov", "shear_modulus", "near_tip_local", "near_tip"]
 
@@ -211,7 +211,8 @@ def near_tip(x: ArrayLike, origin: ArrayLike, frame: TipFrame, material: Materia
     origin : (dim,) the tip (a point of the front).
     frame : one :class:`skxfem.crack.frame.TipFrame` (vectors of shape (dim,)).
     material, K : as :func:`near_tip_local`.
-    side : +1 or -1 for points on the crack faces (:func:`skxfem.crack.frame.polar`).
+    side : +1 or -1 for points on the crack faces (:func:`skxfem.crack.frame.polar`,
+        within :func:`skxfem.crack.frame.face_tolerance` of them).
 
     Examples
     --------
@@ -222,7 +223,8 @@ def near_tip(x: ArrayLike, origin: ArrayLike, frame: TipFrame, material: Materia
     True
     """
     xl = local_coordinates(x, origin, frame)
-    r, theta = polar(xl[0], xl[1], side)
+    tol = None if side is None else face_tolerance(x, origin)
+    r, theta = polar(xl[0], xl[1], side, tol)
     loc = near_tip_local(r, theta, material, K, frame.dim)
     return NearTip(frame.to_global(loc.u), frame.tensor_to_global(loc.grad_u),
                    frame.tensor_to_global(loc.sigma))
