@@ -1,0 +1,147 @@
+r"""The four branch functions of the crack tip and their gradients.
+
+Near the front the displacement of every mode is √r times a function of θ
+(:mod:`skxfem.crack.williams`); the four functions
+
+.. math:: F_l(r, \theta) = \sqrt r \,\Bigl\{\sin\frac\theta2,\ \cos\frac\theta2,\
+          \sin\frac\theta2 \sin\theta,\ \cos\frac\theta2 \sin\theta\Bigr\},
+          \qquad l = 1..4,
+
+span them all (Moës, Dolbow & Belytschko 1999), so the X-FEM adds them to the
+nodes near the front.  (r, θ) are the polar coordinates of the tip frame
+(:mod:`skxfem.crack.frame`): θ = ±π on the faces.  Only F₁ is discontinuous
+there: F₁(θ = π) - F₁(θ = -π) = 2√r, while F₂, F₃, F₄ take the same value on
+both faces (cos(±π/2) = 0 and sin(±π) = 0).  F₁ gives the jump, the others the
+singular strain.
+
+Derivatives in polar coordinates
+--------------------------------
+With s = sin(θ/2), c = cos(θ/2),
+
+.. math::
+   \partial_r F_l = \frac{F_l}{2r}, \qquad
+   \partial_\theta F_l = \sqrt r \,\Bigl\{\frac c2,\ -\frac s2,\
+   \frac c2 \sin\theta + s\cos\theta,\ -\frac s2 \sin\theta + c \cos\theta\Bigr\}.
+
+Gradient in the tip frame, then in the global frame
+---------------------------------------------------
+By the chain rule through r = √(x₁² + x₂²), θ = atan2(x₂, x₁), whose
+gradients are ∇r = cos θ e₁ + sin θ e₂ and ∇θ = (-sin θ e₁ + cos θ e₂)/r,
+
+.. math::
+   \frac{\partial F}{\partial x_1} = \cos\theta\,\partial_r F - \frac{\sin\theta}{r}\,
+   \partial_\theta F, \qquad
+   \frac{\partial F}{\partial x_2} = \sin\theta\,\partial_r F + \frac{\cos\theta}{r}\,
+   \partial_\theta F,
+
+and in the global frame ∇F = ∂F/∂x₁ e₁ + ∂F/∂x₂ e₂.  For F₁ and F₂ this is
+the classic ∇F₁ = (-s e₁ + c e₂)/(2√r), ∇F₂ = (c e₁ + s e₂)/(2√r).  Every
+gradient is of order 1/√r: square-integrable, so the enriched energy is finite.
+In 3D the functions do not vary along e₃ (the front is straight at the scale of
+the frame; a curved front adds terms of order √r times its curvature, neglected).
+
+>>> import numpy as np
+>>> F = branch(4.0, np.pi)                       # on the face of Ω⁺, r = 4
+>>> np.round(F, 12).tolist()
+[2.0, 0.0, 0.0, 0.0]
+"""
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .frame import TipFrame, as_real
+
+__all__ = ["branch", "branch_polar_derivatives", "branch_local_gradient", "branch_gradient"]
+
+
+def _polar(r: ArrayLike, theta: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    r, theta = as_real("r", r), as_real("theta", theta)
+    if r.shape != theta.shape:
+        raise ValueError(f"r and theta must have the same shape, got {r.shape} and "
+                         f"{theta.shape}")
+    if np.any(r < 0):
+        raise ValueError("r must be non-negative: it is the distance to the front")
+    if np.any(np.abs(theta) > np.pi):
+        raise ValueError("theta must lie in [-pi, pi] (±pi on the crack faces)")
+    return r, theta
+
+
+def branch(r: ArrayLike, theta: ArrayLike) -> np.ndarray:
+    """The four branch functions F_l(r, θ), shape (4, ...).
+
+    Parameters
+    ----------
+    r, theta : arrays of one shape: polar coordinates of the tip frame, r ≥ 0,
+        θ ∈ [-π, π] (:func:`skxfem.crack.frame.polar`).
+
+    Returns
+    -------
+    ndarray
+        √r {sin θ/2, cos θ/2, sin θ/2 sin θ, cos θ/2 sin θ}, the index l first.
+
+    Examples
+    --------
+    >>> np.round(branch(1.0, np.pi / 2), 12).tolist()
+    [0.707106781187, 0.707106781187, 0.707106781187, 0.707106781187]
+    """
+    r, theta = _polar(r, theta)
+    sr, s, c, st = np.sqrt(r), np.sin(theta / 2), np.cos(theta / 2), np.sin(theta)
+    return sr * np.stack([s, c, s * st, c * st])
+
+
+def branch_polar_derivatives(r: ArrayLike, theta: ArrayLike
+                             ) -> tuple[np.ndarray, np.ndarray]:
+    """∂F_l/∂r and ∂F_l/∂θ, each of shape (4, ...); r > 0.
+
+    Examples
+    --------
+    >>> dr, dt = branch_polar_derivatives(4.0, 0.0)
+    >>> dr.tolist(), dt.tolist()
+    ([0.0, 0.25, 0.0, 0.0], [1.0, -0.0, 0.0, 2.0])
+    """
+    r, theta = _polar(r, theta)
+    if np.any(r == 0):
+        raise ValueError("r must be positive: the branch functions' derivatives are "
+                         "singular on the front (r = 0)")
+    sr, s, c = np.sqrt(r), np.sin(theta / 2), np.cos(theta / 2)
+    st, ct = np.sin(theta), np.cos(theta)
+    d_r = np.stack([s, c, s * st, c * st]) / (2 * sr)
+    d_theta = sr * np.stack([c / 2, -s / 2, c / 2 * st + s * ct, -s / 2 * st + c * ct])
+    return d_r, d_theta
+
+
+def branch_local_gradient(r: ArrayLike, theta: ArrayLike) -> np.ndarray:
+    """∂F_l/∂x_a in the tip frame, shape (4, 2, ...): l the function, a = 1, 2.
+
+    The chain rule of the module notes; r > 0.
+
+    Examples
+    --------
+    >>> g = branch_local_gradient(1.0, 0.0)          # ahead of the tip, r = 1
+    >>> g[:2].tolist()                               # ∇F₁ = e₂/2, ∇F₂ = e₁/2
+    [[0.0, 0.5], [0.5, 0.0]]
+    """
+    r, theta = _polar(r, theta)
+    d_r, d_theta = branch_polar_derivatives(r, theta)
+    ct, st = np.cos(theta), np.sin(theta)
+    return np.stack([ct * d_r - st / r * d_theta, st * d_r + ct / r * d_theta], axis=1)
+
+
+def branch_gradient(r: ArrayLike, theta: ArrayLike, frame: TipFrame) -> np.ndarray:
+    """∇F_l in the global frame, shape (4, dim, ...): ∂F/∂x₁ e₁ + ∂F/∂x₂ e₂.
+
+    ``frame`` is one frame (vectors (dim,)) or one per point (dim, ...) of the
+    shape of ``r``.
+
+    Examples
+    --------
+    >>> from skxfem.crack.frame import straight_frame
+    >>> f = straight_frame([0.0, 1.0], [-1.0, 0.0])  # e₁ = y, e₂ = -x
+    >>> branch_gradient(1.0, 0.0, f)[0].tolist()    # ∇F₁ = e₂/2 ahead of the tip
+    [-0.5, 0.0]
+    """
+    g = branch_local_gradient(r, theta)
+    e1, e2 = (e.reshape(e.shape[:1] + (1,) * (g.ndim - 2 - e.ndim + 1) + e.shape[1:])
+              for e in (frame.e1, frame.e2))
+    return g[:, 0:1] * e1[None] + g[:, 1:2] * e2[None]
