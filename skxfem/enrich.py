@@ -179,12 +179,13 @@ class XSpaces:
         own = self.offsets[k] + np.arange(self.per_interface[k].n_enr)
         return np.r_[np.arange(self.n_std), own]
 
-    def select(self, k: int) -> sp.csr_matrix:
-        """(n_std + n_enr_k, N) the restriction U ↦ [a, b^k]: an operator A_k of
-        interface k's space acts on the whole as A_k @ select(k)."""
-        cols = self.columns(k)
-        return sp.csr_matrix((np.ones(cols.size), (np.arange(cols.size), cols)),
-                             shape=(cols.size, self.N))
+    def lift(self, k: int, A) -> sp.csr_matrix:
+        """An operator A_k on interface k's unknowns [a, b^k] as one on the whole's
+        (A_k composed with the restriction U ↦ [a, b^k]): its columns renumbered by
+        :meth:`columns`, its entries unchanged and in their order."""
+        A = sp.csr_matrix(A)
+        return sp.csr_matrix((A.data, self.columns(k)[A.indices], A.indptr),
+                             shape=(A.shape[0], self.N))
 
     def regions(self) -> tuple[np.ndarray, np.ndarray]:
         """The regions the interfaces split the body into: their signs (R, n_interfaces),
@@ -287,7 +288,8 @@ def enriched_blocks(V: XSpace | XSpaces, A, AH) -> sp.csr_matrix:
     V = as_spaces(V)
     AH = AH if isinstance(AH, (list, tuple)) else [AH]
     A = A.tocsr()
-    parts = [_blocks(Vk, A, AHk.tocsr()) for Vk, AHk in zip(V.per_interface, AH, strict=True)]
+    parts = [_blocks(Vk, A, AHk.tocsr())
+             for Vk, AHk in zip(V.per_interface, AH, strict=True)]
     rows = [[A] + [Aab for Aab, _ in parts]]
     for k, (Aab, Abb) in enumerate(parts):
         rows.append([Aab.T] + [Abb if j == k else None for j in range(len(parts))])
@@ -331,8 +333,8 @@ def stiffness(V: XSpace | XSpaces, material: Material,
     V = as_spaces(V)
     if material_plus is not None and material_plus != material:
         if len(V.per_interface) != 1:
-            raise ValueError("stiffness: a material per side of Γ (material_plus) is for "
-                             "a space of one interface; give one material")
+            raise ValueError("stiffness: a material per side of Γ (material_plus) is "
+                             "for a space of one interface; give one material")
         Vk = V.per_interface[0]
         A = AH = 0
         for basis, side in side_bases(Vk.mesh, Vk.cut, Vk.mesh.elem(), Vk.rule):
@@ -410,14 +412,10 @@ def jump_matrix(V: XSpace, cells: np.ndarray, ref: np.ndarray) -> sp.csr_matrix:
 
 
 def split_fields(V: XSpace, U: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Nodal values (dim, nverts) of the Ω⁻ and Ω⁺ fields, u± = a + b(±1 - H_j)."""
-    a = U[:V.n_std].copy()
-    minus, plus = a.copy(), a.copy()
-    b = U[V.n_std:]
-    minus[V.enr_dofs] += b * (-1.0 - V.H_node)
-    plus[V.enr_dofs] += b * (1.0 - V.H_node)
-    nd = V.basis.nodal_dofs
-    return minus[nd], plus[nd]
+    """Nodal values (dim, nverts) of the Ω⁻ and Ω⁺ fields of a space of one interface,
+    u± = a + b(±1 - H_j): its two regions' (:func:`region_fields`)."""
+    minus, plus = region_fields(V, U)[1]
+    return minus, plus
 
 
 def from_fields(V: XSpace, minus: np.ndarray, plus: np.ndarray) -> np.ndarray:

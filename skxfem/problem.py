@@ -221,8 +221,8 @@ class Problem:
 
     def lift(self, k: int, A) -> sp.csr_matrix:
         """An operator on the unknowns of part ``k``, [a, b^k], as one on the
-        whole's, A @ select(k) (:meth:`skxfem.enrich.XSpaces.select`)."""
-        return (sp.csr_matrix(A) @ self.V.select(k)).tocsr()
+        whole's (:meth:`skxfem.enrich.XSpaces.lift`)."""
+        return self.V.lift(k, A)
 
 
 def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndarray]:
@@ -335,7 +335,7 @@ def assemble(scene: Scene | Resolved, law: str | None = None) -> Problem:
     lap("constraints")
     parts = tuple(_part(items[k], gammas[k], mesh, cuts[k], V.per_interface[k], *local[k],
                         laws[k], lap, V.columns(k)) for k in range(len(items)))
-    B = sp.vstack([q.B @ V.select(k) for k, q in enumerate(parts)], format="csr")
+    B = sp.vstack([V.lift(k, q.B) for k, q in enumerate(parts)], format="csr")
     P = sp.block_diag([q.P for q in parts], format="csr")
     return Problem(scene=scene, mesh=mesh, V=V, K=K, F=F, D=D, g=g, P=P, B=B,
                    interfaces=parts, timings=timings)

@@ -60,5 +60,7 @@ def test_status_2d_of_one_interface_among_several():
     fig = plot_status_2d(r, interface=0)
     gap = fig.axes[1].lines[0].get_ydata()
     assert np.allclose(gap, -0.01) and len(gap) == int((r.ops.interface == 0).sum())
+    first = plot_status_2d(r)                  # the first interface unless asked
+    assert np.array_equal(first.axes[1].lines[0].get_ydata(), gap)
     with pytest.raises(ValueError, match="draws one interface: give interface= one of 0 ... 1"):
-        plot_status_2d(r)
+        plot_status_2d(r, interface=2)

@@ -823,7 +823,7 @@ def test_27_a_file_history_of_load_states_is_the_python_history(tmp_path):
     (lambda t: t.replace('name = "shear"', 'name = "shear"\nlaw = "glue"'),
      "[[step]] #2 law must be one of bonded, bilateral, frictionless, coulomb, adhesive"),
     (lambda t: t.replace('name = "shear"', 'name = "shear"\nfriction = -1.0'),
-     "[[step]] #2: Scene friction (Coulomb's mu) must be a number >= 0"),
+     "[[step]] #2: Interface friction (Coulomb's mu) must be a number >= 0"),
     (lambda t: t.replace("x = 2.0", "x = 5000.0"),
      "[[step]] #2 [[step.displacement]] #1 x: 5000 is more than 1000 times"),
     (lambda t: t.replace("x = 2.0", "x = 2.0\nbogus = 1"),

@@ -615,7 +615,8 @@ def _states(data: dict, scene: sc.Scene, items: dict, checked, dim: int, laws) -
             if law in FRICTION_LAWS and friction is None:
                 raise ValueError(f"{where} law 'coulomb' needs friction (Coulomb's mu): "
                                  f"add friction = 0.3, say")
-            fields = scene.given_interfaces((replace(gamma, law=law, friction=friction),))
+            gamma = tomlcheck.labelled(where, lambda: replace(gamma, law=law, friction=friction))
+            fields = scene.given_interfaces((gamma,))
         state = tomlcheck.labelled(where, lambda: replace(
             scene, name=name, displacements=tuple(d for _, d in own["displacement"]),
             loads=tuple(x for _, x in own["load"]), steps=(1.0,), **fields))

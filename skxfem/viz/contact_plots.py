@@ -22,7 +22,7 @@ STATUS_COLORS = {"open": "#969696", "stick": "#1b9e77", "slip": "#d95f02"}
 
 
 def plot_status_2d(result, step: int = -1, title: str | None = None,
-                   interface: int | None = None) -> Figure:
+                   interface: int = 0) -> Figure:
     """Status map on a 2D Γ: tractions (top) and jumps (bottom) at the multiplier dofs.
 
     The abscissa is the position along Γ (the coordinate along its tangent);
@@ -35,18 +35,17 @@ def plot_status_2d(result, step: int = -1, title: str | None = None,
     step
         Which load step (default: the last).
     interface
-        Several interfaces: which one to draw (required).
+        Which interface to draw (its index in the scene's ``interfaces``; default the
+        first).
     """
     ops, last = result.ops, result.steps[step]
     if ops.points.shape[0] != 2:
         raise ValueError("plot_status_2d needs a 2D result")
-    dofs = np.arange(ops.w.size)
-    if ops.pieces:
-        if interface not in range(len(ops.pieces)):
-            raise ValueError(f"plot_status_2d draws one interface: give interface= one of "
-                             f"0 ... {len(ops.pieces) - 1}, got {interface!r}")
-        dofs = np.flatnonzero(ops.interface == interface)
-        ops = ops.pieces[interface]
+    if interface not in range(len(ops.pieces)):
+        raise ValueError(f"plot_status_2d draws one interface: give interface= one of "
+                         f"0 ... {len(ops.pieces) - 1}, got {interface!r}")
+    dofs = np.flatnonzero(ops.interface == interface)
+    ops = ops.pieces[interface]
     s = ops.tangents[0] @ ops.points
     order = dofs[np.argsort(s)]
     s = np.sort(s)
