@@ -1,0 +1,369 @@
+r"""Assembly on the crack's unknowns [a, b, c]: stiffness, surface loads, supports.
+
+The stiffness
+-------------
+With the virtual functions φᵢ g of :mod:`skxfem.crack.space` (g one of the six
+kinds 1, H, F₁ … F₄) and ũ = T U,
+
+.. math:: K = T^\mathsf{T} \tilde K T, \qquad
+          \tilde K_{(g,i),(g',j)} = \int_\Omega \sigma(\varphi_j g')\!:\!\varepsilon(\varphi_i g),
+          \quad \nabla(\varphi g) = g \nabla\varphi + \varphi \otimes \nabla g .
+
+The block (1, 1) is the standard stiffness, on every cell at the exact rule
+(:func:`skxfem.fem.material.stiffness_matrix`).  Every other block is read by T only
+in the columns of enriched nodes, so it is integrated on the cells of their
+supports only, each with the rule it needs (:func:`rule_groups`): the tip cells
+with the almost-polar rule, the split cells on their sub-triangles, the uncut
+cells of a branch node's support at :data:`skxfem.crack.quadrature.BRANCH_ORDER`,
+the other uncut cells at the exact rule.  Each pair (g, g') is one scikit-fem
+``BilinearForm`` (:func:`pair_form`) assembled on these bases.
+
+Loads and supports
+------------------
+A traction t on boundary facets: f = ∫ t · v over each facet, split where the crack
+meets it (the mouth) so that H is one value on each piece, with a Gauss rule of
+:data:`FACET_POINTS` points per piece (the branch functions are not polynomials).
+
+**Imposed displacements (what the package does at a crack mouth).**  A support
+imposes the standard unknowns aᵢ = g(xᵢ) of its nodes, for its components.  The
+shifted enrichments vanish at the nodes, so u_h(xᵢ) = g(xᵢ).  A Heaviside function
+φⱼ(H - Hⱼ) also vanishes on every facet the crack does not meet (H = Hⱼ there): its
+unknowns are never constrained.  A branch function φ_k(F_l - F_l(x_k)) does not
+vanish along a facet: on a node whose supported facets the crack does not meet, its
+branch unknowns are set to zero (the trace is then the interpolant of g).  On a
+facet the crack meets (the mouth) every enriched unknown stays free: the data is
+imposed at the nodes only and the mouth may open, whatever g does between them
+(a nodal support never clamps the mouth shut; a discontinuous g at a mouth is
+better imposed as a traction, as code_aster's SSLP114 does).
+
+>>> from skfem import MeshTri1
+>>> from skxfem.crack.geometry import crack_geometry
+>>> from skxfem.crack.space import crack_space
+>>> from skxfem.fem.material import Material
+>>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+>>> V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5))
+>>> K = stiffness(V, Material(1.0, 0.3))
+>>> K.shape == (V.N, V.N), bool(abs(K - K.T).max() < 1e-12)
+(True, True)
+"""
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.polynomial.legendre import leggauss
+from numpy.typing import ArrayLike
+from skfem import Basis, BilinearForm, ElementVector
+
+from ..fem.material import Material, stiffness_matrix
+from ..fem.quadrature import cell_rule, exact_orders
+from .quadrature import BRANCH_ORDER, split_rule, tip_rule
+from .space import CrackSpace, evaluation, kinds_at
+
+__all__ = ["FACET_POINTS", "RuleGroup", "rule_groups", "pair_form", "stiffness", "Support",
+           "Load", "facet_pieces", "traction_load", "supported_dofs", "mouth_facets"]
+
+FACET_POINTS = 8
+"""Gauss points on each piece of a loaded boundary facet."""
+
+
+@dataclass(frozen=True)
+class RuleGroup:
+    """Cells integrated by one per-cell rule: ``scalar`` and ``vector`` bases on them,
+    ``side`` (nel, nqp) the side of each point (None: the cells' own side), ``g`` (6,
+    nel, nqp) and ``dg`` (6, 2, nel, nqp) the kinds at the points."""
+
+    scalar: Basis
+    vector: Basis
+    side: np.ndarray | None
+    g: np.ndarray
+    dg: np.ndarray
+
+
+def _group(space: CrackSpace, cells: np.ndarray, X, W, side=None) -> RuleGroup:
+    mesh = space.mesh
+    scalar = Basis(mesh, mesh.elem(), elements=cells, quadrature=(X, W))
+    vector = Basis(mesh, ElementVector(mesh.elem()), elements=cells, quadrature=(X, W))
+    g, dg = kinds_at(space, scalar, side)
+    return RuleGroup(scalar, vector, side, g, dg)
+
+
+def rule_groups(space: CrackSpace, cells: np.ndarray | None = None,
+                order: int = BRANCH_ORDER, plain_order: int | None = None
+                ) -> tuple[RuleGroup, ...]:
+    """The rule groups covering ``cells`` (default: the supports of the enriched nodes).
+
+    Tip cells: :func:`skxfem.crack.quadrature.tip_rule`; split cells: their
+    sub-triangles at ``order`` if they touch a branch node, else at the exact
+    stiffness order; uncut cells: the cell rule of ``order`` if they touch a branch
+    node, else of ``plain_order`` (default: the exact stiffness order).
+    """
+    mesh, geo = space.mesh, space.geometry
+    if cells is None:
+        cells = space.support_cells(space.enriched_nodes())
+    cells = np.unique(cells)
+    near = np.zeros(mesh.t.shape[1], dtype=bool)
+    near[space.support_cells(space.branch)] = True
+    cell_o, sub_o = exact_orders(mesh)
+    plain = cell_o if plain_order is None else plain_order
+    groups = []
+    tip = np.intersect1d(cells, geo.tip_cells)
+    if tip.size:
+        r = tip_rule(geo, order)
+        pick = np.isin(r.cells, tip)
+        groups.append(_group(space, r.cells[pick], r.X[:, pick], r.W[pick], r.V[pick]))
+    split = np.intersect1d(cells, geo.split_cells)
+    for mask, o in ((near[split], order), (~near[split], sub_o if plain_order is None
+                                            else plain_order)):
+        if mask.any():
+            r = split_rule(geo, split[mask], o)
+            groups.append(_group(space, r.cells, r.X, r.W, r.V))
+    uncut = np.setdiff1d(cells, geo.cells)
+    for mask, o in ((near[uncut], order), (~near[uncut], plain)):
+        if mask.any():
+            X, W = cell_rule(mesh, o)
+            groups.append(_group(space, uncut[mask], X, W))
+    return tuple(groups)
+
+
+@lru_cache(maxsize=None)
+def pair_form(lam: float, mu: float) -> BilinearForm:
+    """The form ∫ σ(u g′):ε(v g) of the kinds g (test, ``w["g"]``, ``w["dg"]``) and g′
+    (trial, ``w["gt"]``, ``w["dgt"]``): ∇(u g′) = g′∇u + u ⊗ ∇g′."""
+
+    def grad_of(f, g, dg):
+        return f.grad * np.asarray(g) + np.einsum("i...,j...->ij...", np.asarray(f),
+                                                  np.asarray(dg))
+
+    @BilinearForm
+    def pair(u, v, w):
+        Gu, Gv = grad_of(u, w["gt"], w["dgt"]), grad_of(v, w["g"], w["dg"])
+        Eu = (Gu + np.swapaxes(Gu, 0, 1)) / 2
+        Ev = (Gv + np.swapaxes(Gv, 0, 1)) / 2
+        tr_u, tr_v = Eu[0, 0] + Eu[1, 1], Ev[0, 0] + Ev[1, 1]
+        return lam * tr_u * tr_v + 2 * mu * np.einsum("ij...,ij...->...", Eu, Ev)
+
+    return pair
+
+
+def _kinds_needed(space: CrackSpace) -> list[int]:
+    return [0] + ([1] if space.heaviside.size else []) + \
+        ([2, 3, 4, 5] if space.branch.size else [])
+
+
+def stiffness(space: CrackSpace, material: Material) -> sp.csr_matrix:
+    """The stiffness ∫ σ(u):ε(v) on the unknowns [a, b, c] (module notes).
+
+    >>> from skfem import MeshQuad1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> from skxfem.crack.space import crack_space
+    >>> m = MeshQuad1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+    >>> V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5), "topological")
+    >>> U = np.zeros(V.N); U[V.basis.nodal_dofs[0]] = 1.0      # a rigid translation
+    >>> bool(abs(stiffness(V, Material(1.0, 0.3)) @ U).max() < 1e-12)
+    True
+    """
+    if not isinstance(material, Material):
+        raise ValueError(f"material must be a skxfem Material, got {type(material).__name__}")
+    n = space.n_std
+    lam, mu = material.lame(2)
+    form = pair_form(lam, mu)
+    kinds = _kinds_needed(space)
+    blocks = [[None] * 6 for _ in range(6)]
+    blocks[0][0] = stiffness_matrix(material, Basis(space.mesh, space.mesh.elem(),
+                                                    quadrature=cell_rule(space.mesh)))
+    groups = rule_groups(space)
+    for i, p in enumerate(kinds):                         # at most 6 kinds: 20 pairs
+        for q in kinds[i:]:
+            if p == q == 0:
+                continue
+            A = sum(form.assemble(G.vector, g=G.g[p], dg=G.dg[p], gt=G.g[q], dgt=G.dg[q])
+                    for G in groups)
+            blocks[p][q] = A.tocsr()
+            if p != q:
+                blocks[q][p] = A.T.tocsr()
+    for p in range(6):                                    # empty kinds: zero blocks
+        if blocks[p][p] is None:
+            blocks[p][p] = sp.csr_matrix((n, n))
+    Kv = sp.bmat(blocks, format="csr")
+    return (space.T.T @ Kv @ space.T).tocsr()
+
+
+@dataclass(frozen=True)
+class Support:
+    """Imposed displacements: on the nodes of boundary ``facets`` (indices into
+    ``mesh.facets``) and/or on ``nodes``, u_c = ``value(x)[c]`` for c in ``components``
+    (``value``: (2, n) points -> (2, n); None: zero)."""
+
+    facets: ArrayLike | None = None
+    nodes: ArrayLike | None = None
+    value: Callable | None = None
+    components: tuple = (0, 1)
+
+
+@dataclass(frozen=True)
+class Load:
+    """A traction on boundary ``facets``: ``traction(x)`` (2, n) at points x (2, n)."""
+
+    facets: ArrayLike
+    traction: Callable
+
+
+def _facets(mesh, facets, name: str) -> np.ndarray:
+    f = np.asarray(facets)
+    if f.ndim != 1 or (f.size and (f.dtype.kind not in "iu" or f.min() < 0
+                                   or f.max() >= mesh.facets.shape[1])):
+        raise ValueError(f"{name} must be indices into mesh.facets (0 .. "
+                         f"{mesh.facets.shape[1] - 1}), got {f!r:.60}")
+    if f.size and not np.all(mesh.f2t[1, f] == -1):
+        raise ValueError(f"{name} must be boundary facets; {int((mesh.f2t[1, f] >= 0).sum())}"
+                         f" of them lie inside the mesh")
+    return f.astype(int)
+
+
+def _crossing(space: CrackSpace, facets: np.ndarray):
+    """For each facet: where along it (t ∈ [0, 1]) ψ_h vanishes, and whether the crack
+    meets it there (ψ changes sign or vanishes, φ < 0 at that point)."""
+    geo = space.geometry
+    a, b = space.mesh.facets[:, facets]
+    pa, pb = geo.psi[a], geo.psi[b]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(pa != pb, pa / (pa - pb), 0.5)
+    meets = (pa * pb <= 0) & ((pa != 0) | (pb != 0) | True)
+    f_at = geo.phi[a] + np.clip(t, 0, 1) * (geo.phi[b] - geo.phi[a])
+    both_zero = (pa == 0) & (pb == 0)
+    f_at = np.where(both_zero, np.minimum(geo.phi[a], geo.phi[b]), f_at)
+    return np.clip(t, 0, 1), meets & (f_at < 0)
+
+
+def mouth_facets(space: CrackSpace, facets: ArrayLike) -> np.ndarray:
+    """The boundary ``facets`` the crack meets (the mouth), a boolean per facet.
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> from skxfem.crack.space import crack_space
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+    >>> V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    >>> f = m.facets_satisfying(lambda x: x[0] < 1e-12)
+    >>> m.p[:, m.facets[:, f[mouth_facets(V, f)]].ravel()].T.tolist()
+    [[0.0, 0.4], [0.0, 0.6000000000000001]]
+    """
+    f = _facets(space.mesh, facets, "facets")
+    return _crossing(space, f)[1]
+
+
+def facet_pieces(space: CrackSpace, facets: ArrayLike, points: int = FACET_POINTS):
+    """A rule on boundary facets cut at the crack: points (2, n), weights (n,), their
+    cells (n,), reference coordinates (2, n), sides (n,).
+
+    Each facet is cut into two pieces at the point where ψ_h vanishes if the crack
+    meets it there, else at its midpoint; each piece holds ``points`` Gauss points."""
+    mesh = space.mesh
+    f = _facets(mesh, facets, "facets")
+    t_cut, meets = _crossing(space, f)
+    t_cut = np.where(meets, t_cut, 0.5)
+    s, w = leggauss(points)
+    s, w = (s + 1) / 2, w / 2
+    a, b = mesh.p[:, mesh.facets[0, f]], mesh.p[:, mesh.facets[1, f]]
+    length = np.linalg.norm(b - a, axis=0)
+    ts = np.concatenate([t_cut[:, None] * s, t_cut[:, None] + (1 - t_cut)[:, None] * s],
+                        axis=1)                           # (nf, 2 points)
+    ws = np.concatenate([t_cut[:, None] * w, (1 - t_cut)[:, None] * w], axis=1)
+    x = a[:, :, None] + ts[None] * (b - a)[:, :, None]      # (2, nf, 2 points)
+    psi = space.geometry.psi
+    pa, pb = psi[mesh.facets[0, f]], psi[mesh.facets[1, f]]
+    ps = pa[:, None] + ts * (pb - pa)[:, None]
+    side = np.where(ps < 0, -1.0, 1.0)
+    cells = np.repeat(mesh.f2t[0, f], 2 * points)
+    xf = x.reshape(2, -1)
+    ref = mesh.mapping().invF(xf[:, :, None], tind=cells)[:, :, 0]
+    return xf, (ws * length[:, None]).ravel(), cells, ref, side.ravel()
+
+
+def traction_load(space: CrackSpace, loads) -> np.ndarray:
+    """f = Σ ∫ t · v over the loads' facets, on the unknowns [a, b, c] (module notes).
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> from skxfem.crack.space import crack_space
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+    >>> V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    >>> top = m.facets_satisfying(lambda x: x[1] > 1 - 1e-12)
+    >>> f = traction_load(V, [Load(top, lambda x: np.stack([0 * x[0], 1 + 0 * x[0]]))])
+    >>> round(float(f[V.basis.nodal_dofs[1]].sum()), 12)    # the resultant, 1 × length 1
+    1.0
+    """
+    f = np.zeros(space.N)
+    for load in loads:
+        x, w, cells, ref, side = facet_pieces(space, load.facets)
+        t = np.asarray(load.traction(x), float)
+        if t.shape != x.shape or not np.all(np.isfinite(t)):
+            raise ValueError(f"a load's traction must return finite values of shape "
+                             f"{x.shape} (2, n), got {t.shape}")
+        E = evaluation(space, cells, ref, side)
+        f += E.value.T @ (t * w).ravel()
+    return f
+
+
+def supported_dofs(space: CrackSpace, supports) -> tuple[np.ndarray, np.ndarray]:
+    """The constrained unknowns and their values (module notes: what a support does at a
+    crack mouth).
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> from skxfem.crack.space import crack_space
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+    >>> V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    >>> left = m.facets_satisfying(lambda x: x[0] < 1e-12)
+    >>> D, g = supported_dofs(V, [Support(left)])
+    >>> D.size, bool(np.isin(V.heaviside_dofs(), D).any())      # mouth left free
+    (12, False)
+    """
+    mesh = space.mesh
+    nd = space.basis.nodal_dofs
+    dofs, vals = [], []
+    branch_of = np.full(mesh.p.shape[1], -1)
+    branch_of[space.branch] = np.arange(space.branch.size)
+    cd = space.branch_dofs()
+    for k, s in enumerate(supports):
+        comps = np.asarray(s.components, dtype=int)
+        if comps.size == 0 or not np.all(np.isin(comps, (0, 1))):
+            raise ValueError(f"supports[{k}].components must be among (0, 1), got "
+                             f"{s.components!r}")
+        nodes, clamp = [], []
+        if s.facets is not None:
+            f = _facets(mesh, s.facets, f"supports[{k}].facets")
+            mouth = _crossing(space, f)[1]
+            fn = np.unique(mesh.facets[:, f])
+            at_mouth = np.unique(mesh.facets[:, f[mouth]])
+            nodes.append(fn)
+            clamp.append(np.setdiff1d(fn, at_mouth))
+        if s.nodes is not None:
+            nn = np.asarray(s.nodes)
+            if nn.ndim != 1 or nn.dtype.kind not in "iu" or (
+                    nn.size and (nn.min() < 0 or nn.max() >= mesh.p.shape[1])):
+                raise ValueError(f"supports[{k}].nodes must be node indices, got {nn!r:.60}")
+            nodes.append(nn.astype(int))
+        nodes = np.unique(np.concatenate(nodes)) if nodes else np.zeros(0, int)
+        x = mesh.p[:, nodes]
+        g = np.zeros_like(x) if s.value is None else np.asarray(s.value(x), float)
+        if g.shape != x.shape or not np.all(np.isfinite(g)):
+            raise ValueError(f"supports[{k}].value must return finite values of shape "
+                             f"{x.shape} (2, n), got {g.shape}")
+        for c in comps:
+            dofs.append(nd[c, nodes])
+            vals.append(g[c])
+        clamp = np.concatenate(clamp) if clamp else np.zeros(0, int)
+        kb = branch_of[clamp]
+        kb = kb[kb >= 0]
+        for c in comps:
+            d = cd[kb][:, :, c].ravel()
+            dofs.append(d)
+            vals.append(np.zeros(d.size))
+    if not dofs:
+        return np.zeros(0, int), np.zeros(0)
+    D, first = np.unique(np.concatenate(dofs), return_index=True)
+    return D, np.concatenate(vals)[first]
