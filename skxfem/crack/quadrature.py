@@ -49,7 +49,7 @@ from ..fem.quadrature import SubcellRule
 __all__ = ["BRANCH_ORDER", "POLAR_POINTS", "MAX_ANGLE", "angular_pieces", "almost_polar", "simplex_points", "pack",
            "split_rule", "tip_rule"]
 
-BRANCH_ORDER = 8
+BRANCH_ORDER = 16
 """Order of the triangle rule on (sub-)cells in the support of branch-enriched nodes."""
 
 POLAR_POINTS = (6, 10)

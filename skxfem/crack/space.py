@@ -332,13 +332,15 @@ def _branch_blocks(space: CrackSpace) -> np.ndarray:
     return np.hstack([a, space.branch_dofs().reshape(-1, 8)])
 
 
-def nodal_scaling(K: sp.spmatrix, space: CrackSpace, kind: str | None = "block"
-                  ) -> sp.csr_matrix:
+def nodal_scaling(K: sp.spmatrix, space: CrackSpace, kind: str | None = "block",
+                  fixed: np.ndarray | None = None) -> sp.csr_matrix:
     """The scaling S of the unknowns, K_s = Sᵀ K S, U = S U_s (module notes).
 
     ``kind``: ``"block"`` (Béchet: each branch node's block [a_k, c_k] by the inverse
     transpose of the Cholesky factor of its diagonal block, 1/√K_ii elsewhere),
-    ``"jacobi"`` (1/√K_ii everywhere) or None (the identity).
+    ``"jacobi"`` (1/√K_ii everywhere) or None (the identity).  ``fixed``: the
+    constrained unknowns; a branch node with one among its block is scaled by
+    1/√K_ii, so that S is diagonal on every constrained unknown.
 
     >>> from skfem import MeshTri1
     >>> from skxfem.crack.geometry import crack_geometry
@@ -366,6 +368,10 @@ def nodal_scaling(K: sp.spmatrix, space: CrackSpace, kind: str | None = "block"
     if kind == "jacobi" or space.branch.size == 0:
         return sp.diags(s).tocsr()
     B = _branch_blocks(space)                              # (nb, 10)
+    if fixed is not None and len(fixed):
+        B = B[~np.isin(B, fixed).any(axis=1)]
+        if B.shape[0] == 0:
+            return sp.diags(s).tocsr()
     blocks = np.asarray(K[B[:, :, None].repeat(10, 2).ravel(),
                           B[:, None, :].repeat(10, 1).ravel()]).reshape(-1, 10, 10)
     L = np.linalg.cholesky(blocks)
