@@ -57,7 +57,7 @@ from skfem import Basis
 
 from ..fem.material import Material, stiffness_matrix
 from ..fem.quadrature import cell_rule, exact_orders
-from .quadrature import BRANCH_ORDER, split_rule, tip_rule
+from .quadrature import BRANCH_ORDER, NEAR_ORDER, split_rule, tip_rule
 from .space import CrackSpace, evaluation
 
 __all__ = ["FACET_POINTS", "RuleGroup", "rule_groups", "stiffness", "Support",
@@ -101,36 +101,41 @@ def rule_groups(space: CrackSpace, cells: np.ndarray | None = None,
                 ) -> tuple[RuleGroup, ...]:
     """The rule groups covering ``cells`` (default: the supports of the enriched nodes).
 
-    Tip cells: :func:`skxfem.crack.quadrature.tip_rule`; split cells: their
-    sub-triangles at ``order`` if they touch a branch node, else at the exact
-    stiffness order; uncut cells: the cell rule of ``order`` if they touch a branch
-    node, else of ``plain_order`` (default: the exact stiffness order).
+    Tip cells: :func:`skxfem.crack.quadrature.tip_rule`; the other cells by the
+    order of their integrand: around the tip cells (sharing a node with one)
+    :data:`~skxfem.crack.quadrature.NEAR_ORDER`; touching a branch node ``order``;
+    else ``plain_order`` (default: the exact stiffness order).  Split cells on their
+    sub-triangles, uncut cells on the whole cell.
     """
     mesh, geo = space.mesh, space.geometry
     if cells is None:
         cells = space.support_cells(space.enriched_nodes())
     cells = np.unique(cells)
-    near = np.zeros(mesh.t.shape[1], dtype=bool)
-    near[space.support_cells(space.branch)] = True
+    nc = mesh.t.shape[1]
+    level = np.zeros(nc, dtype=int)                       # 0 plain, 1 branch, 2 near tip
+    level[space.support_cells(space.branch)] = 1
+    level[space.support_cells(np.unique(mesh.t[:, geo.tip_cells]))] = 2
     cell_o, sub_o = exact_orders(mesh)
     plain = cell_o if plain_order is None else plain_order
+    sub_plain = sub_o if plain_order is None else plain_order
+    orders = {0: (sub_plain, plain), 1: (order, order), 2: (NEAR_ORDER, NEAR_ORDER)}
     groups = []
     tip = np.intersect1d(cells, geo.tip_cells)
     if tip.size:
-        r = tip_rule(geo, order)
+        r = tip_rule(geo, NEAR_ORDER)
         pick = np.isin(r.cells, tip)
         groups.append(_group(space, r.cells[pick], r.X[:, pick], r.W[pick], r.V[pick]))
-    split = np.intersect1d(cells, geo.split_cells)
-    for mask, o in ((near[split], order), (~near[split], sub_o if plain_order is None
-                                            else plain_order)):
-        if mask.any():
-            r = split_rule(geo, split[mask], o)
-            groups.append(_group(space, r.cells, r.X, r.W, r.V))
+    split = np.setdiff1d(np.intersect1d(cells, geo.split_cells), tip)
     uncut = np.setdiff1d(cells, geo.cells)
-    for mask, o in ((near[uncut], order), (~near[uncut], plain)):
-        if mask.any():
-            X, W = cell_rule(mesh, o)
-            groups.append(_group(space, uncut[mask], X, W))
+    for lv, (o_sub, o_cell) in orders.items():
+        here = split[level[split] == lv]
+        if here.size:
+            r = split_rule(geo, here, o_sub)
+            groups.append(_group(space, r.cells, r.X, r.W, r.V))
+        here = uncut[level[uncut] == lv]
+        if here.size:
+            X, W = cell_rule(mesh, o_cell)
+            groups.append(_group(space, here, X, W))
     return tuple(groups)
 
 
