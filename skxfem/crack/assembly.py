@@ -61,7 +61,8 @@ from .quadrature import BRANCH_ORDER, NEAR_ORDER, split_rule, tip_rule
 from .space import CrackSpace, evaluation
 
 __all__ = ["FACET_POINTS", "RuleGroup", "rule_groups", "stiffness", "Support",
-           "Load", "facet_pieces", "traction_load", "supported_dofs", "mouth_facets"]
+           "Load", "facet_pieces", "traction_load", "face_rule", "face_load",
+           "supported_dofs", "mouth_facets"]
 
 FACET_POINTS = 8
 """Gauss points on each piece of a loaded boundary facet."""
@@ -287,6 +288,71 @@ def traction_load(space: CrackSpace, loads) -> np.ndarray:
             raise ValueError(f"a load's traction must return finite values of shape "
                              f"{x.shape} (2, n), got {t.shape}")
         E = evaluation(space, cells, ref, side)
+        f += E.value.T @ (t * w).ravel()
+    return f
+
+
+def face_rule(space: CrackSpace, points: int = FACET_POINTS):
+    """Gauss points on the crack pieces of the geometry: points (2, n), weights (n,),
+    cells (n,), reference coordinates (2, n); the same for both faces.
+
+    On a piece that ends at a tip T the integrands hold √r (the branch functions) or
+    1/√r (the auxiliary strain of the SIF's face term): there x = T + s²(P - T), so that
+    r^{k/2} ds becomes a polynomial in s (as the almost-polar rule does in the tip cell).
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> from skxfem.crack.space import crack_space
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+    >>> V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    >>> x, w, _, _ = face_rule(V)
+    >>> bool(abs(w @ (1 / np.sqrt(0.5 - x[0])) - 2 * np.sqrt(0.5)) < 1e-12)  # ∫ 1/√r
+    True
+    """
+    geo, mesh = space.geometry, space.mesh
+    s, w = leggauss(points)
+    s, w = (s + 1) / 2, w / 2
+    A, B = geo.segments[0].copy(), geo.segments[1].copy()  # (2, nseg)
+    L = np.linalg.norm(B - A, axis=0)
+    near = lambda P: (np.linalg.norm(P[:, :, None] - geo.tips[:, None], axis=0)  # noqa: E731
+                      <= 1e-9 * L[:, None]).any(axis=1)
+    at_b = near(B)
+    A[:, at_b], B[:, at_b] = B[:, at_b], A[:, at_b].copy()  # the tip end first
+    tip = near(A)
+    t = np.where(tip[:, None], s ** 2, s)                  # (nseg, points)
+    dt = np.where(tip[:, None], 2 * s * w, w)
+    x = (A[:, :, None] + t * (B - A)[:, :, None]).reshape(2, -1)
+    wts = (L[:, None] * dt).ravel()
+    cells = np.repeat(geo.segment_cell, points)
+    ref = mesh.mapping().invF(x[:, :, None], tind=cells)[:, :, 0]
+    return x, wts, cells, ref
+
+
+def face_load(space: CrackSpace, face_traction: Callable) -> np.ndarray:
+    """f = Σ_± ∫_{face ±} t± · v± ds: the load of tractions on the crack faces.
+
+    ``face_traction(x, side)`` gives t = σ·m* (2, n) on the face of ``side`` (+1: the
+    face of Ω⁺, whose outward normal is m* = -n; -1: that of Ω⁻, m* = +n); a pressure p
+    in the crack is t = -p m*, i.e. ``side * p * n``.  The test functions are taken on
+    the face's own side (H = ±1, θ = ±π).
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> from skxfem.crack.space import crack_space
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+    >>> V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    >>> f = face_load(V, lambda x, side: np.stack([0 * x[0], side + 0 * x[0]]))  # p = 1
+    >>> round(float(f[V.basis.nodal_dofs[1]].sum()), 12)      # pressures balance
+    0.0
+    """
+    x, w, cells, ref = face_rule(space)
+    f = np.zeros(space.N)
+    for side in (1, -1):
+        t = np.asarray(face_traction(x, side), float)
+        if t.shape != x.shape or not np.all(np.isfinite(t)):
+            raise ValueError(f"face_traction must return finite values of shape {x.shape} "
+                             f"(2, n), got {t.shape}")
+        E = evaluation(space, cells, ref, np.full(cells.size, float(side)))
         f += E.value.T @ (t * w).ravel()
     return f
 

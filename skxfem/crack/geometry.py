@@ -47,7 +47,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import ArrayLike
 from skfem import MeshQuad1, MeshTri1
 
 from ..fem.cells import reference_simplices

@@ -47,8 +47,8 @@ from skfem.refdom import RefTri
 
 from ..fem.quadrature import SubcellRule
 
-__all__ = ["BRANCH_ORDER", "NEAR_ORDER", "POLAR_POINTS", "MAX_ANGLE", "angular_pieces", "almost_polar", "simplex_points", "pack",
-           "split_rule", "tip_rule"]
+__all__ = ["BRANCH_ORDER", "NEAR_ORDER", "POLAR_POINTS", "MAX_ANGLE", "angular_pieces",
+           "almost_polar", "simplex_points", "pack", "split_rule", "tip_rule"]
 
 BRANCH_ORDER = 8
 """Order of the triangle rule on (sub-)cells in the support of branch-enriched nodes."""
@@ -66,7 +66,8 @@ MAX_ANGLE = np.pi / 4
 """Fan triangles are cut into pieces of at most this angle at the tip before the
 almost-polar rule (:func:`angular_pieces`): 1/|x - V₀| along the opposite edge is analytic
 in v, but the nearer that edge passes to V₀ (a wide angle) the slower Gauss converges
-(measured on a right angle, ∫ 1/r: 6e-7 with 8 points; 45°: below 1e-13 with 10; ∫ √r over a tip cell to 4e-12 with 10, 1e-13 with 12)."""
+(measured on a right angle, ∫ 1/r: 6e-7 with 8 points; 45°: below 1e-13 with 10; ∫ √r
+over a tip cell: 4e-12 with 10, 1e-13 with 12)."""
 
 
 def angular_pieces(tris: np.ndarray, max_angle: float = MAX_ANGLE

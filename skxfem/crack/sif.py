@@ -34,11 +34,10 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
-from numpy.polynomial.legendre import leggauss
 from skfem import Basis
 
 from ..fem.material import Material
-from .assembly import rule_groups
+from .assembly import face_rule, rule_groups
 from .frame import TipFrame, tip_frame
 from .interaction import CrackFace, q_function, stress_intensity
 from .space import CrackSpace, evaluation
@@ -88,17 +87,11 @@ def nodal_q(space: CrackSpace, origin: np.ndarray, r_d: float, plateau: float,
     return q
 
 
-def _faces(space, q_nodes, face_traction, points=8):
-    """The two :class:`CrackFace` rules of the crack segments, with their tractions."""
-    geo, mesh = space.geometry, space.mesh
-    s, w = leggauss(points)
-    s, w = (s + 1) / 2, w / 2
-    A, B = geo.segments[0], geo.segments[1]                # (2, nseg)
-    x = (A[:, :, None] + s * (B - A)[:, :, None]).reshape(2, -1)
-    wts = (np.linalg.norm(B - A, axis=0)[:, None] * w).ravel()
-    cells = np.repeat(geo.segment_cell, points)
-    ref = mesh.mapping().invF(x[:, :, None], tind=cells)
-    b = Basis(mesh, mesh.elem(), elements=cells, quadrature=(ref, np.ones((cells.size, 1))))
+def _faces(space, q_nodes, face_traction):
+    """The two :class:`CrackFace` rules of the crack pieces, with their tractions."""
+    x, w, cells, ref = face_rule(space)
+    b = Basis(space.mesh, space.mesh.elem(), elements=cells,
+              quadrature=(ref[:, :, None], np.ones((cells.size, 1))))
     q = np.asarray(b.interpolate(q_nodes))[:, 0]
     faces = []
     for side in (1, -1):
@@ -106,7 +99,7 @@ def _faces(space, q_nodes, face_traction, points=8):
         if t.shape != x.shape or not np.all(np.isfinite(t)):
             raise ValueError(f"face_traction must return finite values of shape {x.shape}, "
                              f"got {t.shape}")
-        faces.append(CrackFace(x, wts, t, q, side))
+        faces.append(CrackFace(x, w, t, q, side))
     return faces
 
 

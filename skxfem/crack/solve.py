@@ -4,7 +4,8 @@ r"""One plain 2D crack problem, solved: geometry, space, assembly, solve, K.
 
 1. :func:`skxfem.crack.geometry.crack_geometry`: tips, tip and split cells, sub-cells;
 2. :func:`skxfem.crack.space.crack_space`: the unknowns [a, b, c];
-3. :func:`skxfem.crack.assembly.stiffness`, :func:`~skxfem.crack.assembly.traction_load`,
+3. :func:`skxfem.crack.assembly.stiffness`, :func:`~skxfem.crack.assembly.traction_load`
+   (and :func:`~skxfem.crack.assembly.face_load` for loaded faces),
    :func:`~skxfem.crack.assembly.supported_dofs`;
 4. the scaling of :func:`skxfem.crack.space.nodal_scaling`, K_s = Sᵀ K S, and a direct
    solve of the supported system for U = S U_s;
@@ -34,10 +35,18 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import spsolve
 
 from ..fem.material import Material
-from .assembly import Load, Support, rule_groups, stiffness, supported_dofs, traction_load
+from .assembly import (
+    Load,
+    Support,
+    face_load,
+    rule_groups,
+    stiffness,
+    supported_dofs,
+    traction_load,
+)
 from .geometry import crack_geometry
-from .space import CrackSpace, condition_number, crack_space, evaluation, nodal_scaling
 from .sif import sif
+from .space import CrackSpace, condition_number, crack_space, evaluation, nodal_scaling
 
 __all__ = ["CrackSolution", "solve_crack", "Support", "Load"]
 
@@ -112,7 +121,9 @@ def solve_crack(mesh, psi, phi, material: Material, supports=(), loads=(),
     enrichment, radius : :func:`skxfem.crack.space.crack_space`.
     scaling : :func:`skxfem.crack.space.nodal_scaling` (``"block"``, ``"jacobi"``, None).
     sif_radius : the interaction domain's r_d (:func:`skxfem.crack.sif.sif`).
-    face_traction : the faces' traction, for the SIF's face term (None: free faces).
+    face_traction : ``(x, side) -> (2, n)`` the traction σ·m* on the crack face of
+        ``side`` (:func:`skxfem.crack.assembly.face_load`): loaded in the solve and in the
+        SIF's face term; None: free faces.
     condition : also measure the condition number of the scaled, supported stiffness.
     """
     if not isinstance(material, Material):
@@ -121,6 +132,8 @@ def solve_crack(mesh, psi, phi, material: Material, supports=(), loads=(),
     V = crack_space(mesh, geometry, enrichment, radius)
     K = stiffness(V, material)
     f = traction_load(V, loads)
+    if face_traction is not None:
+        f = f + face_load(V, face_traction)
     D, g = supported_dofs(V, supports)
     S = nodal_scaling(K, V, scaling, D)
     Ks, fs = (S.T @ K @ S).tocsr(), S.T @ f
