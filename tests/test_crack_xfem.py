@@ -297,15 +297,20 @@ def test_williams_square_on_quadrilaterals():
     assert np.allclose(s.K[0], (1.0, 0.0), atol=0.004), f"K = {s.K[0]}"
 
 
-@pytest.mark.parametrize("where", ["node", "edge", "past node"])
-def test_tip_at_a_node_on_an_edge_just_past_a_node(where):
-    n = 20
-    h = 1 / n
-    tip, beta = {"node": ((0.5, 0.5), 0.2), "edge": ((0.5, 0.525), 0.0),
-                 "past node": ((0.5 + 1e-4 * h * np.cos(0.2), 0.5 + 1e-4 * h * np.sin(0.2)),
-                               0.2)}[where]
-    s, _ = williams_problem(n, (1.0, 0.5), "geometric", tip=tip, beta=beta)
-    print(where, s.K[0])
+TIPS = {"node": ((0.5, 0.5), 0.2), "edge": ((0.5, 0.525), 0.0),
+        "past node": ((0.5 + 5e-6 * np.cos(0.2), 0.5 + 5e-6 * np.sin(0.2)), 0.2),
+        "node, crack along edges": ((0.5, 0.5), 0.0),
+        "mid-edge, crack along edges": ((0.525, 0.5), 0.0)}
+
+
+@pytest.mark.parametrize("cell", ["tri", "quad"])
+@pytest.mark.parametrize("where", list(TIPS))
+def test_tip_at_a_node_on_an_edge_just_past_a_node(where, cell):
+    """h = 1/20, K = (1, 0.5), geometric: measured within 0.35 % in every case (tri),
+    0.1 % (quad); "past node": 1e-4 h beyond a node of the crack."""
+    tip, beta = TIPS[where]
+    s, _ = williams_problem(20, (1.0, 0.5), "geometric", cell, tip=tip, beta=beta)
+    print(where, cell, s.K[0])
     assert np.allclose(s.K[0], (1.0, 0.5), atol=0.01), f"K = {s.K[0]} with the tip {where}"
 
 

@@ -13,7 +13,10 @@ nodes, so aᵢ is the displacement of node i.  The sets of nodes:
   ``"geometric"``, the nodes within the radius r_e of a tip (and the tip cells'
   nodes): a fixed area, whatever h (Béchet et al. 2005, Laborde et al. 2005);
 * J, **Heaviside** nodes: the nodes of split cells (the crack crosses their
-  support completely) not in K.  H_j = sign ψ(x_j), 0 for a node on the crack.
+  support completely) not in K, whose support holds a part of positive area on the
+  other side of the crack (a crack along mesh edges only touches the supports of the
+  nodes beside it: φⱼ(H - Hⱼ) would vanish there).  H_j = sign ψ(x_j), 0 for a node
+  on the crack: φⱼ H.
 
 Unknowns [a, b, c], node by node with the component fastest (as
 :mod:`skxfem.enrich`): b_j of Heaviside node j at ``n_std + 2 j' + comp``, c_{kl}
@@ -61,7 +64,7 @@ from skfem.assembly import CellBasis
 
 from ..fem.quadrature import cell_rule
 from .branch import branch, branch_local_gradient
-from .geometry import CrackGeometry, check_mesh_2d
+from .geometry import AREA_TOL, CrackGeometry, check_mesh_2d
 
 __all__ = ["KINDS", "ENRICHMENTS", "CrackSpace", "crack_space", "kinds_at", "evaluation",
            "Evaluation", "nodal_scaling", "condition_number"]
@@ -183,11 +186,33 @@ def crack_space(mesh, geometry: CrackGeometry, enrichment: str = "geometric",
         branch_nodes, radius = topo, None
     heav = np.setdiff1d(np.unique(mesh.t[:, geometry.split_cells]), branch_nodes)
     H_node = np.sign(geometry.psi[heav])
+    keep = _far_side(mesh, geometry)[heav, (H_node > 0).astype(int)] | (H_node == 0)
+    heav, H_node = heav[keep], H_node[keep]
     F_node = branch(*_polar_nodes(geometry, branch_nodes))
     basis = Basis(mesh, ElementVector(mesh.elem()), quadrature=cell_rule(mesh, 0))
     T = _virtual_map(basis, heav, H_node, branch_nodes, F_node)
     return CrackSpace(mesh, geometry, basis, heav, H_node, branch_nodes, F_node,
                       enrichment, radius, T)
+
+
+def _far_side(mesh, geometry: CrackGeometry) -> np.ndarray:
+    """(nverts, 2): does the support of each node hold a part of positive area of Ω⁺
+    (column 0: the far side of a node of Ω⁻) or of Ω⁻ (column 1: the far side of a node
+    of Ω⁺)?  A crack along mesh edges touches the supports of the nodes beside it
+    without crossing them: their φⱼ(H - Hⱼ) would vanish."""
+    nc = mesh.t.shape[1]
+    has = np.zeros((nc, 2), dtype=bool)                   # [cell, (Ω⁺, Ω⁻)]
+    whole = geometry.side != 0
+    has[whole, 0], has[whole, 1] = geometry.side[whole] > 0, geometry.side[whole] < 0
+    d1 = geometry.sub_ref[:, 1] - geometry.sub_ref[:, 0]
+    d2 = geometry.sub_ref[:, 2] - geometry.sub_ref[:, 0]
+    area = np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) > 2 * AREA_TOL
+    np.logical_or.at(has[:, 0], geometry.sub_cell[area & (geometry.sub_side > 0)], True)
+    np.logical_or.at(has[:, 1], geometry.sub_cell[area & (geometry.sub_side < 0)], True)
+    out = np.zeros((mesh.p.shape[1], 2), dtype=bool)
+    for k in range(mesh.t.shape[0]):                      # the 3 or 4 nodes of a cell
+        np.logical_or.at(out, mesh.t[k], has)
+    return out
 
 
 def _virtual_map(basis, heav, H_node, branch_nodes, F_node) -> sp.csr_matrix:
