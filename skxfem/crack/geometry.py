@@ -130,6 +130,20 @@ class CrackGeometry:
     sub_ref : (nsub, 3, 2) sub-triangles of the split and tip cells in reference
         coordinates; ``sub_cell`` (nsub,), ``sub_side`` (nsub,) ±1; ``sub_fan``
         (nsub,) True for a tip cell's fan triangle, whose vertex 0 is the tip.
+
+    The fields of a :class:`skxfem.cut.Cut`, in its names, for the crack kind of Γ of
+    :mod:`skxfem.gamma` (``psi``, ``cells``, ``side``, ``sub_*`` above too):
+
+    edge_ids : (ne,) the mesh edges (``mesh.facets``) the crack crosses strictly, where
+        the multipliers live; an edge ψ_h crosses ahead of the tip is not one.
+        ``edges`` (2, ne) their nodes, ``points`` (2, ne) the crossings.
+    enriched : the nodes of the split and tip cells (the space chooses Heaviside or
+        branch for each, :mod:`skxfem.crack.space`).
+    facets : (2, nseg) each crack piece's ends as indices into ``points``; -1 for an end
+        that is no crossing of a cut edge: the tip (the facets stop at the front), a
+        node on the crack, or a point of a quadrilateral's diagonal.  ``facet_ref``
+        (2, 2, nseg) [end, coordinate, piece] in the cell's reference coordinates,
+        ``facet_cell``, ``normals`` (2, nseg) unit, into Ω⁺, ``measures`` (nseg,).
     """
 
     psi: np.ndarray
@@ -146,6 +160,23 @@ class CrackGeometry:
     sub_cell: np.ndarray
     sub_side: np.ndarray
     sub_fan: np.ndarray
+    edge_ids: np.ndarray
+    edges: np.ndarray
+    points: np.ndarray
+    enriched: np.ndarray
+    facets: np.ndarray
+    facet_ref: np.ndarray
+    normals: np.ndarray
+
+    @property
+    def facet_cell(self) -> np.ndarray:
+        """(nseg,) the cell of each crack piece (:class:`skxfem.cut.Cut`'s name)."""
+        return self.segment_cell
+
+    @property
+    def measures(self) -> np.ndarray:
+        """(nseg,) the lengths of the crack pieces (:class:`skxfem.cut.Cut`'s name)."""
+        return self.segments_length()
 
     @property
     def cells(self) -> np.ndarray:
@@ -279,6 +310,7 @@ def crack_geometry(mesh, psi, phi) -> CrackGeometry:
     h = np.ptp(mesh.p[:, mesh.t], axis=1).max(axis=0)
     keep = length > AREA_TOL * h[cell_of[mask]]
     seg, seg_cell = seg[:, :, keep], cell_of[mask][keep]
+    seg_ref, seg_tri = piece[mask][keep], np.flatnonzero(mask)[keep]
     if seg_cell.size == 0:
         raise ValueError(f"the crack {{psi = 0, phi < 0}} meets no cell of the mesh (psi in "
                          f"[{psi.min():.3g}, {psi.max():.3g}], phi in [{phi.min():.3g}, "
@@ -334,9 +366,48 @@ def crack_geometry(mesh, psi, phi) -> CrackGeometry:
     sub, sub_cell = np.concatenate(subs), np.concatenate(cells_)
     sub_side, sub_fan = np.concatenate(sides), np.concatenate(fans)
     keep = _area(sub) > AREA_TOL * 0.5
+    edge_ids, points, facets = _cut_edges(mesh, psi, phi, seg, seg_cell, h)
+    normals = _segment_normals(P[seg_tri], ps[seg_tri], seg)
     return CrackGeometry(psi, phi, tips, tip_cells, tip_of_cell, tip_ref, split_cells, side,
                          seg, seg_cell, sub[keep], sub_cell[keep], sub_side[keep],
-                         sub_fan[keep])
+                         sub_fan[keep], edge_ids, mesh.facets[:, edge_ids], points,
+                         np.unique(mesh.t[:, np.union1d(split_cells, tip_cells)]), facets,
+                         np.transpose(seg_ref, (1, 2, 0)), normals)
+
+
+def _cut_edges(mesh, psi, phi, seg, seg_cell, h):
+    """The mesh edges the crack crosses strictly (ψ changes sign, φ < 0 at the crossing),
+    their crossing points, and each crack piece's ends as indices into them (-1: an end
+    that is no such crossing, the tip or a node on the crack)."""
+    a, b = mesh.facets
+    strict = psi[a] * psi[b] < 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(strict, psi[a] / (psi[a] - psi[b]), 0.0)
+    ids = np.flatnonzero(strict & (phi[a] + t * (phi[b] - phi[a]) < 0))
+    points = mesh.p[:, a[ids]] + t[ids] * (mesh.p[:, b[ids]] - mesh.p[:, a[ids]])
+    index = np.full(mesh.facets.shape[1], -1)
+    index[ids] = np.arange(ids.size)
+    cand = index[mesh.t2f[:, seg_cell]]                  # (nle, nseg) points of the cell
+    facets = np.full((2, seg_cell.size), -1)
+    if ids.size == 0:                                     # a crack along mesh edges
+        return ids, points, facets
+    for end in (0, 1):
+        d = np.linalg.norm(points[:, np.maximum(cand, 0)] - seg[end][:, None], axis=0)
+        d = np.where(cand >= 0, d, np.inf)
+        k = np.argmin(d, axis=0)
+        hit = d[k, np.arange(k.size)] <= 1e-9 * h[seg_cell]
+        facets[end] = np.where(hit, cand[k, np.arange(k.size)], -1)
+    return ids, points, facets
+
+
+def _segment_normals(P, ps, seg):
+    """Unit normals (2, nseg) of the crack pieces, pointing into Ω⁺ (along ∇ψ_h of the
+    physical triangle P (nseg, 3, 2) with ψ values ps (nseg, 3) that holds each)."""
+    A = np.stack([P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]], axis=1)   # rows: edge vectors
+    grad = np.linalg.solve(A, (ps[:, 1:] - ps[:, :1])[..., None])[..., 0]
+    d = seg[1] - seg[0]
+    n = np.stack([-d[1], d[0]]) / np.linalg.norm(d, axis=0)
+    return n * np.where((n * grad.T).sum(axis=0) < 0, -1.0, 1.0)
 
 
 def _unique_points(x: np.ndarray, h: np.ndarray) -> np.ndarray:

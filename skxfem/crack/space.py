@@ -41,10 +41,22 @@ Conditioning
 ------------
 Geometric enrichment adds many nearly dependent functions far from the tip
 (F_l is smooth there and φ_k(F_l - F_l(x_k)) nearly a combination of the
-neighbours' standard functions): the condition number grows like h⁻⁴ or worse
-instead of h⁻².  The cure of Béchet et al. (2005): scale each branch node's block
-of unknowns [a_k, c_k] (2 + 8) by the inverse of the Cholesky factor of its
-diagonal block, every other unknown by 1/√K_ii (:func:`nodal_scaling`).
+neighbours' standard functions).  The cure of Béchet et al. (2005): scale each
+branch node's block of unknowns [a_k, c_k] (2 + 8) by the inverse of the Cholesky
+factor of its diagonal block, every other unknown by 1/√K_ii (:func:`nodal_scaling`).
+Measured (:func:`condition_number` of the supported stiffness, Williams square, E = 1,
+triangles, r_e = 0.3):
+
+======  ===========  ===========  ===========  ===========  ===========  ===========
+1/h     topological  topo. Jacobi topo. block  geometric    geo. Jacobi  geo. block
+======  ===========  ===========  ===========  ===========  ===========  ===========
+11      1.35e4       346          284          1.02e8       3.78e5       282
+21      2.66e4       1.26e3       1.04e3       9.68e9       1.04e7       1.05e3
+41      5.24e4       4.78e3       3.97e3       1.18e12      3.13e8       4.01e3
+81      1.04e5       1.86e4       1.55e4       1.05e14      7.25e9       1.57e4
+======  ===========  ===========  ===========  ===========  ===========  ===========
+
+Jacobi alone does not cure it: the near dependence is within a node's block.
 
 >>> from skfem import MeshTri1
 >>> from skxfem.crack.geometry import crack_geometry
