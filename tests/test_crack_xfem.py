@@ -302,9 +302,9 @@ def test_traction_load_and_supports_at_the_mouth():
                                                 ("geometric", 21, 0.004),
                                                 ("geometric", 41, 0.0015)])
 def test_williams_square_gives_K(K, enrichment, n, tol):
-    """Measured (K_I of mode I, K_II of mode II): topological +1.39 %, -0.27 % at h = 1/21,
-    +0.74 %, ... at 1/41; geometric (r_e = 0.3) +0.35 %, -0.03 % at 1/21, +0.09 %, -0.01 % at
-    1/41 (sif_radius 0.3)."""
+    """Measured (K_I of mode I, K_II of mode II; r_e = 0.3, sif_radius 0.3): topological
+    +1.39 %, +0.16 % at h = 1/21, +0.74 %, +0.12 % at 1/41; geometric +0.35 %, -0.03 % at
+    1/21, +0.09 %, -0.01 % at 1/41."""
     s, _ = williams(n, K, enrichment)
     print(f"h = 1/{n} {enrichment} K = {s.K[0]}")
     assert np.allclose(s.K[0], K, atol=tol), f"K = {s.K[0]}, expected {K} within {tol:.2%}"
@@ -406,6 +406,9 @@ def test_pressurised_crack_equals_remote_tension_with_the_face_term():
 
 
 def test_energy_error_rates_geometric_one_topological_half():
+    """Measured relative energy errors at h = 1/11, 1/21, 1/41 (and 1/81, not run here):
+    topological 0.248, 0.184, 0.134 (0.0957), rate 0.48; geometric (r_e = 0.3) 0.164, 0.090,
+    0.047 (0.0243), rate 0.96."""
     ns = (11, 21, 41)
     rates = {}
     for kind in ("topological", "geometric"):
