@@ -188,8 +188,7 @@ def test_almost_polar_rule_integrates_tip_singularities_exactly(power):
     pb = Basis(m, m.elem(), elements=g.tip_cells, quadrature=(X, W))
     xp = pb.mapping.F(X, tind=g.tip_cells)
     plain = (pb.dx * np.hypot(xp[0] - tip[0], xp[1] - tip[1]) ** power).sum()
-    if power < 0:
-        assert abs(plain / exact - 1) > 1e-6, "the plain rule was expected to miss it"
+    assert abs(plain / exact - 1) > 1e-3, "the plain rule was expected to miss it"
 
 
 def test_sub_triangle_rule_has_the_order_asked():

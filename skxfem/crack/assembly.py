@@ -216,11 +216,10 @@ def _crossing(space: CrackSpace, facets: np.ndarray):
     pa, pb = geo.psi[a], geo.psi[b]
     with np.errstate(divide="ignore", invalid="ignore"):
         t = np.where(pa != pb, pa / (pa - pb), 0.5)
-    meets = (pa * pb <= 0) & ((pa != 0) | (pb != 0) | True)
     f_at = geo.phi[a] + np.clip(t, 0, 1) * (geo.phi[b] - geo.phi[a])
-    both_zero = (pa == 0) & (pb == 0)
+    both_zero = (pa == 0) & (pb == 0)                     # a facet along the crack
     f_at = np.where(both_zero, np.minimum(geo.phi[a], geo.phi[b]), f_at)
-    return np.clip(t, 0, 1), meets & (f_at < 0)
+    return np.clip(t, 0, 1), (pa * pb <= 0) & (f_at < 0)
 
 
 def mouth_facets(space: CrackSpace, facets: ArrayLike) -> np.ndarray:

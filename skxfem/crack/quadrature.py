@@ -29,8 +29,12 @@ The integrands and the orders chosen
   r^{k/2}, k ≥ -2, becomes a polynomial in s: a Gauss–Legendre rule of n_r points
   in s integrates them exactly along each ray, n_θ points in v integrate the
   smooth angular part (every θ-function is analytic in v on a fan triangle, whose
-  edges carry the crack).  A plain triangle rule does neither: it converges only
-  algebraically for 1/√r (tests/test_crack_xfem.py).
+  edges carry the crack; fan triangles are first cut into pieces of at most
+  :data:`MAX_ANGLE` at the tip, :func:`angular_pieces`, where Gauss in v converges
+  fast).  ∫ r^{1/2}, r^{-1/2}, r^{-1} over a tip cell: exact to 1e-13 with the
+  default :data:`POLAR_POINTS` (792 points in a cell fanned into 11 pieces), where a
+  plain triangle rule of order 16 on the cell (61 points) misses them by 0.25 %, 2 %
+  and 10 % (measured, tests/test_crack_xfem.py).
 
 >>> import numpy as np
 >>> tri = np.array([[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]])

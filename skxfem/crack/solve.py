@@ -143,7 +143,7 @@ def solve_crack(mesh, psi, phi, material: Material, supports=(), loads=(),
     rhs = fs[free] - Ks[free][:, D] @ Us[D]
     Us[free] = spsolve(sp.csc_matrix(Ks[free][:, free]), rhs)
     U = S @ Us
-    Ks_tips = np.array([sif(V, U, material, sif_radius, tip=k, face_traction=face_traction)
+    K_tips = np.array([sif(V, U, material, sif_radius, tip=k, face_traction=face_traction)
                         for k in range(geometry.tips.shape[1])])
     cond = condition_number(Ks, free) if condition else None
-    return CrackSolution(U, V, material, Ks_tips, cond)
+    return CrackSolution(U, V, material, K_tips, cond)
