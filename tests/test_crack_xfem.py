@@ -309,6 +309,25 @@ def test_williams_square_gives_K(K, enrichment, n, tol):
     assert np.allclose(s.K[0], K, atol=tol), f"K = {s.K[0]}, expected {K} within {tol:.2%}"
 
 
+@pytest.mark.parametrize("n", [20, 21], ids=["mouth at a node", "mouth mid-facet"])
+def test_displacement_imposed_on_the_cut_face_does_not_clamp_the_mouth(n):
+    """The exact Williams displacement on all four faces, the cut one too (issue 29 item
+    5): the support imposes the nodal values only, the mouth's enrichment stays free, a
+    node on the crack is left free; K as good as with the traction there."""
+    m = square(n)
+    psi, phi, frame = straight((0.5, 0.5), 0.0)
+
+    def exact(p):
+        return near_tip(p, np.array([0.5, 0.5]), frame, MAT, (1.0, 0.5),
+                        side=np.where(p[1] >= 0.5, 1, -1))
+
+    s = solve_crack(m, psi, phi, MAT, [Support(m.boundary_facets(),
+                                               value=lambda p: exact(p).u)], (),
+                    "geometric", 0.3, sif_radius=0.3)
+    print(n, s.K[0])
+    assert np.allclose(s.K[0], (1.0, 0.5), atol=0.005), f"K = {s.K[0]}"
+
+
 def test_sif_does_not_depend_on_the_domain_radius():
     """From 2h to beyond the distance to the boundary (then clipped to it): K_I of the
     same solution within 1 % (measured 0.9994 ... 1.0037 at h = 1/21)."""
