@@ -389,7 +389,8 @@ def test_edge_cracked_plate_in_tension_matches_tada(cell):
                     "geometric", 2.0, sif_radius=2.5)
     K = np.sqrt(np.pi * a) * tada(a, W)
     print(cell, s.K[0], K, s.K_I / K - 1)
-    assert abs(s.K_I / K - 1) < 0.02 and abs(s.K_II) < 0.01 * K
+    # measured -0.63 % (tri), -0.25 % (quad); tri at 61 × 139 cells: -0.32 %
+    assert abs(s.K_I / K - 1) < 0.01 and abs(s.K_II) < 0.01 * K
 
 
 def test_pressurised_crack_equals_remote_tension_with_the_face_term():

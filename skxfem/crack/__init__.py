@@ -44,7 +44,7 @@ from .interaction import (
 )
 from .sif import sif
 from .solve import CrackSolution, solve_crack
-from .space import CrackSpace, crack_space, evaluation, nodal_scaling
+from .space import CrackSpace, crack_space, evaluation, evaluation_at, nodal_scaling
 from .williams import NearTip, kolosov, near_tip, near_tip_local, shear_modulus
 
 __all__ = ["TipFrame", "tip_frame", "straight_frame", "local_coordinates", "polar",
@@ -53,5 +53,5 @@ __all__ = ["TipFrame", "tip_frame", "straight_frame", "local_coordinates", "pola
            "near_tip_local", "near_tip", "CrackFace", "q_function", "interaction_integrals",
            "effective_modulus", "sif_from_interaction", "stress_intensity",
            "CrackGeometry", "crack_geometry", "CrackSpace", "crack_space", "evaluation",
-           "nodal_scaling", "Load", "Support", "stiffness", "traction_load", "face_load",
-           "supported_dofs", "sif", "CrackSolution", "solve_crack"]
+           "evaluation_at", "nodal_scaling", "Load", "Support", "stiffness", "traction_load",
+           "face_load", "supported_dofs", "sif", "CrackSolution", "solve_crack"]

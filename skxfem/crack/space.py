@@ -79,7 +79,7 @@ from .branch import branch, branch_local_gradient
 from .geometry import AREA_TOL, CrackGeometry, check_mesh_2d
 
 __all__ = ["KINDS", "ENRICHMENTS", "CrackSpace", "crack_space", "kinds_at", "evaluation",
-           "Evaluation", "nodal_scaling", "condition_number"]
+           "evaluation_at", "Evaluation", "nodal_scaling", "condition_number"]
 
 KINDS = ("1", "H", "F1", "F2", "F3", "F4")
 """The six kinds g of virtual functions φᵢ g (module notes)."""
@@ -361,6 +361,27 @@ def evaluation(space: CrackSpace, cells: np.ndarray, ref: np.ndarray,
 
     return Evaluation(assemble(rows_v, cols_v, vals_v, 2 * npts),
                       assemble(rows_g, cols_g, vals_g, 4 * npts))
+
+
+def evaluation_at(space: CrackSpace, cells: np.ndarray, x: np.ndarray,
+                  side: np.ndarray | None = None) -> Evaluation:
+    """:func:`evaluation` at physical points ``x`` (2, npts) of the given ``cells``
+    (their reference coordinates by the inverse of each cell's map).
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+    >>> V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5), "geometric", 0.5)
+    >>> U = np.zeros(V.N); U[V.branch_dofs()[:, 0, 1]] = 1.0    # c = 1 on F₁, along y
+    >>> x = np.array([[0.3, 0.3], [0.5, 0.5]])        # one point of the crack, both faces
+    >>> cells = m.element_finder()(*x)
+    >>> u, _ = evaluation_at(V, cells, x, np.array([-1.0, 1.0])).at(U)
+    >>> bool(abs(u[1, 1] - u[1, 0] - 2 * np.sqrt(0.2)) < 1e-12)   # F₁ = ±√r on the faces
+    True
+    """
+    cells = np.asarray(cells)
+    ref = space.mesh.mapping().invF(np.asarray(x, float)[:, :, None], tind=cells)[:, :, 0]
+    return evaluation(space, cells, ref, side)
 
 
 def _branch_blocks(space: CrackSpace) -> np.ndarray:
