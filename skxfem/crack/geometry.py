@@ -1,0 +1,419 @@
+r"""The geometry of a 2D crack on a mesh: split cells, tip cells, tips and sub-cells.
+
+A crack is given by two level sets (:mod:`skxfem.crack.frame`): the crack is
+{ψ = 0, φ < 0}, its front (in 2D: the tip) {ψ = φ = 0}.  On a mesh both are
+interpolated at the nodes and, in each cell, read on the cell's reference
+triangles (a triangle is one; a quadrilateral is split into two along its
+diagonal 0-2, :func:`skxfem.fem.cells.reference_simplices`), where they are
+linear.  Level sets linear in x are then exact on triangles and on
+parallelogram quadrilaterals (the straight cracks of the tests).
+
+In each reference triangle
+--------------------------
+* the zero set of ψ_h is a segment [P₀, P₁] (or nothing): its ends are the
+  points of the edges where ψ_h changes sign and the vertices where ψ_h = 0 (a
+  crack through a node is treated exactly: nodal values within :data:`ZERO` edge
+  lengths of zero are set to zero, never moved off it);
+* φ_h is linear along it, with values f₀, f₁ at the ends: the crack piece is
+  the part where φ_h < 0, and if f₀ < 0 < f₁ the tip is
+  T = P₀ + f₀/(f₀ - f₁) (P₁ - P₀) (likewise with an end at φ_h = 0 and the other
+  end behind it: a tip on an edge or at a node).
+
+In the mesh
+-----------
+* **tip cells**: the cells whose closure holds a tip (one cell for a tip inside
+  a cell, two on an edge, every cell around a node);
+* **split cells**: the other cells holding a crack piece of positive length:
+  the crack crosses them completely;
+* **sub-cells**: each split cell's reference triangles are split by ψ_h into
+  sub-triangles of one side each (:func:`skxfem.fem.simplex.split`); in a tip
+  cell, each reference triangle holding the tip is fanned from the tip T to its
+  vertices and to the points where ψ_h = 0 on its edges, so that the crack
+  segment [T, P] is an edge of two sub-triangles; these *fan* sub-triangles
+  carry the tip as their vertex 0 (for the almost-polar rule of
+  :mod:`skxfem.crack.quadrature`).  Sub-cells are in the parent's reference
+  coordinates, with their side ±1 (the sign of ψ_h inside).
+
+>>> from skfem import MeshTri1
+>>> m = MeshTri1.init_tensor(np.linspace(0, 1, 4), np.linspace(0, 1, 4))
+>>> g = crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5)
+>>> g.tips.ravel().tolist(), g.tip_cells.size, g.split_cells.size   # tip on a diagonal
+([0.5, 0.5], 2, 2)
+>>> bool(np.isclose(g.segments_length().sum(), 0.5))
+True
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from skfem import MeshQuad1, MeshTri1
+
+from ..fem.cells import reference_simplices
+from ..fem.simplex import split
+from ..levelset import nodal_values
+
+__all__ = ["CrackGeometry", "crack_geometry", "check_mesh_2d", "level_set_values", "ZERO",
+           "AREA_TOL"]
+
+ZERO = 1e-9
+"""Nodal level-set values closer to zero than ZERO times the node's shortest edge (as a
+distance: |ψ_i| over the steepest slope of ψ along its edges) are set to exactly zero:
+a crack through a node is treated exactly."""
+
+AREA_TOL = 1e-13
+"""Sub-triangles below AREA_TOL times the reference area are dropped (zero-area pieces
+of a crack through a vertex or along an edge)."""
+
+
+def check_mesh_2d(mesh, name: str = "mesh"):
+    """``mesh`` if it is a 2D MeshTri1 or MeshQuad1, else a ValueError naming ``name``.
+
+    >>> check_mesh_2d(MeshTri1()).nelements
+    2
+    """
+    if not isinstance(mesh, (MeshTri1, MeshQuad1)):
+        dim = getattr(mesh, "dim", lambda: "?")()
+        raise ValueError(f"{name} must be a 2D MeshTri1 or MeshQuad1 (the crack modules are "
+                         f"2D, linear elements), got a {dim}D {type(mesh).__name__}")
+    return mesh
+
+
+def level_set_values(name: str, value, mesh) -> np.ndarray:
+    """Nodal values of a level set ``value`` (a callable or one value per node), checked:
+    a ValueError naming ``name`` for NaN, inf or a wrong shape.  Values within
+    :data:`ZERO` edge lengths of zero are set to zero (module notes).
+
+    >>> level_set_values("psi", lambda x: x[1] - 0.5, MeshTri1()).tolist()
+    [-0.5, -0.5, 0.5, 0.5]
+    """
+    if callable(value):
+        try:
+            v = nodal_values(value, mesh)
+        except ValueError as err:
+            raise ValueError(f"{name}: {err}") from None
+    else:
+        v = np.asarray(value)
+        if v.dtype.kind not in "iuf" or v.shape != (mesh.p.shape[1],):
+            raise ValueError(f"{name} must be a callable or one real value per mesh node, "
+                             f"shape ({mesh.p.shape[1]},); got {v.dtype} of shape {v.shape}")
+        v = v.astype(float)
+    if not np.all(np.isfinite(v)):
+        raise ValueError(f"{name} holds {int((~np.isfinite(v)).sum())} NaN or infinite "
+                         f"nodal value(s); it must be finite at every node")
+    a, b = mesh.facets
+    length = np.linalg.norm(mesh.p[:, a] - mesh.p[:, b], axis=0)
+    slope = np.abs(v[a] - v[b]) / length
+    g, h = np.zeros(v.size), np.full(v.size, np.inf)
+    for end in (a, b):
+        np.maximum.at(g, end, slope)
+        np.minimum.at(h, end, length)
+    return np.where(np.abs(v) <= ZERO * h * g, 0.0, v)
+
+
+@dataclass(frozen=True)
+class CrackGeometry:
+    """A 2D crack {ψ = 0, φ < 0} on a mesh (module notes).
+
+    Attributes
+    ----------
+    psi, phi : (nverts,) the nodal level sets as used (near-zero values set to 0).
+    tips : (2, ntips) the tip points.
+    tip_cells : (nt,) the cells whose closure holds a tip; ``tip_of_cell`` (nt,) which
+        tip; ``tip_ref`` (2, nt) the tip in that cell's reference coordinates.
+    split_cells : (ns,) the cells the crack crosses completely.
+    side : (ncells,) -1 / +1 for cells on one side (the sign of the mean nodal ψ; a
+        cell ψ = 0 crosses ahead of a tip has no crack and takes it too), 0 for split
+        and tip cells.
+    segments : (2, 2, nseg) the crack pieces [end, coordinate, piece], physical;
+        ``segment_cell`` (nseg,) their cells.
+    sub_ref : (nsub, 3, 2) sub-triangles of the split and tip cells in reference
+        coordinates; ``sub_cell`` (nsub,), ``sub_side`` (nsub,) ±1; ``sub_fan``
+        (nsub,) True for a tip cell's fan triangle, whose vertex 0 is the tip.
+
+    The fields of a :class:`skxfem.cut.Cut`, in its names, for the crack kind of Γ of
+    :mod:`skxfem.gamma` (``psi``, ``cells``, ``side``, ``sub_*`` above too):
+
+    edge_ids : (ne,) the mesh edges (``mesh.facets``) the crack crosses strictly, where
+        the multipliers live; an edge ψ_h crosses ahead of the tip is not one.
+        ``edges`` (2, ne) their nodes, ``points`` (2, ne) the crossings.
+    enriched : the nodes of the split and tip cells (the space chooses Heaviside or
+        branch for each, :mod:`skxfem.crack.space`).
+    facets : (2, nseg) each crack piece's ends as indices into ``points``; -1 for an end
+        that is no crossing of a cut edge: the tip (the facets stop at the front), a
+        node on the crack, or a point of a quadrilateral's diagonal.  ``facet_ref``
+        (2, 2, nseg) [end, coordinate, piece] in the cell's reference coordinates,
+        ``facet_cell``, ``normals`` (2, nseg) unit, into Ω⁺, ``measures`` (nseg,).
+    """
+
+    psi: np.ndarray
+    phi: np.ndarray
+    tips: np.ndarray
+    tip_cells: np.ndarray
+    tip_of_cell: np.ndarray
+    tip_ref: np.ndarray
+    split_cells: np.ndarray
+    side: np.ndarray
+    segments: np.ndarray
+    segment_cell: np.ndarray
+    sub_ref: np.ndarray
+    sub_cell: np.ndarray
+    sub_side: np.ndarray
+    sub_fan: np.ndarray
+    edge_ids: np.ndarray
+    edges: np.ndarray
+    points: np.ndarray
+    enriched: np.ndarray
+    facets: np.ndarray
+    facet_ref: np.ndarray
+    normals: np.ndarray
+
+    @property
+    def facet_cell(self) -> np.ndarray:
+        """(nseg,) the cell of each crack piece (:class:`skxfem.cut.Cut`'s name)."""
+        return self.segment_cell
+
+    @property
+    def measures(self) -> np.ndarray:
+        """(nseg,) the lengths of the crack pieces (:class:`skxfem.cut.Cut`'s name)."""
+        return self.segments_length()
+
+    @property
+    def cells(self) -> np.ndarray:
+        """Split and tip cells, sorted: the cells integrated on sub-cells."""
+        return np.union1d(self.split_cells, self.tip_cells)
+
+    def segments_length(self) -> np.ndarray:
+        """(nseg,) the lengths of the crack pieces."""
+        return np.linalg.norm(self.segments[1] - self.segments[0], axis=0)
+
+
+def _zero_segments(X, ps, ph):
+    """The segment {ψ_h = 0} of each reference triangle: ends (n, 2, 2), φ_h at them
+    (n, 2) and whether there is one (n,).  X (n, 3, 2), ps and ph (n, 3)."""
+    n = ps.shape[0]
+    pts = np.zeros((n, 6, 2))
+    fs = np.zeros((n, 6))
+    ok = np.zeros((n, 6), dtype=bool)
+    pts[:, :3], fs[:, :3], ok[:, :3] = X, ph, ps == 0
+    for k, (a, b) in enumerate(((0, 1), (1, 2), (2, 0))):
+        strict = ps[:, a] * ps[:, b] < 0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = np.where(strict, ps[:, a] / (ps[:, a] - ps[:, b]), 0.0)
+        pts[:, 3 + k] = X[:, a] + t[:, None] * (X[:, b] - X[:, a])
+        fs[:, 3 + k] = ph[:, a] + t * (ph[:, b] - ph[:, a])
+        ok[:, 3 + k] = strict
+    count = ok.sum(axis=1)
+    first = np.argsort(~ok, axis=1, kind="stable")[:, :2]
+    ends = np.take_along_axis(pts, first[..., None], axis=1)
+    f = np.take_along_axis(fs, first, axis=1)
+    return ends, f, count == 2
+
+
+def _crack_pieces(ends, f, has):
+    """The part φ_h < 0 of each segment (n, 2, 2) with a mask, and the tips (m, 2) with
+    their triangle."""
+    f0, f1 = f[:, 0], f[:, 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(f0 != f1, f0 / (f0 - f1), 0.0)
+    T = ends[:, 0] + t[:, None] * (ends[:, 1] - ends[:, 0])
+    behind0, behind1 = f0 <= 0, f1 <= 0
+    both = has & behind0 & behind1 & ~((f0 == 0) & (f1 == 0))
+    cross01 = has & (f0 < 0) & (f1 > 0)
+    cross10 = has & (f1 < 0) & (f0 > 0)
+    piece = ends.copy()
+    piece[cross01, 1] = T[cross01]
+    piece[cross10, 0] = T[cross10]
+    mask = both | cross01 | cross10
+    tip = cross01 | cross10 | (both & ((f0 == 0) | (f1 == 0)))
+    tip_pt = np.where(((f0 == 0) & both)[:, None], ends[:, 0],
+                      np.where(((f1 == 0) & both)[:, None], ends[:, 1], T))
+    flat = has & (f0 == 0) & (f1 == 0)
+    return piece, mask, tip_pt[tip], np.flatnonzero(tip), flat
+
+
+def _barycentric(P, x):
+    """Barycentric coordinates (n, 3) of points x (n, 2) in triangles P (n, 3, 2)."""
+    A = np.stack([P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]], axis=2)       # (n, 2, 2)
+    lam = np.linalg.solve(A, (x - P[:, 0])[..., None])[..., 0]
+    return np.column_stack([1 - lam.sum(axis=1), lam])
+
+
+def _area(T):
+    """Areas (n,) of triangles T (n, 3, 2)."""
+    d1, d2 = T[:, 1] - T[:, 0], T[:, 2] - T[:, 0]
+    return 0.5 * np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
+
+
+def _fan(T, X, ps):
+    """Fan of the reference triangle X (3, 2) from the point T (2,) in it: to its vertices
+    and to the points where ψ_h (ps, (3,)) changes sign on its edges.  Sub-triangles
+    (m, 3, 2), vertex 0 at T, and their sides (the sign of ψ_h at the centroid)."""
+    ring = []
+    for a, b in ((0, 1), (1, 2), (2, 0)):
+        ring.append(X[a])
+        if ps[a] * ps[b] < 0:
+            ring.append(X[a] + ps[a] / (ps[a] - ps[b]) * (X[b] - X[a]))
+    ring = np.array(ring)
+    tris = np.stack([np.broadcast_to(T, ring.shape), ring, np.roll(ring, -1, axis=0)], axis=1)
+    tris = tris[_area(tris) > AREA_TOL * 0.5]
+    lam = _barycentric(np.broadcast_to(X, (tris.shape[0], 3, 2)), tris.mean(axis=1))
+    return tris, np.where(lam @ ps < 0, -1, 1)
+
+
+def crack_geometry(mesh, psi, phi) -> CrackGeometry:
+    """The :class:`CrackGeometry` of the crack {ψ = 0, φ < 0} on a 2D mesh.
+
+    Parameters
+    ----------
+    mesh : a ``MeshTri1`` or ``MeshQuad1`` (linear cells).
+    psi : the level set of the crack's line (callable or nodal values), Ω⁺ = {ψ > 0}.
+    phi : the level set of the front (callable or nodal values), φ > 0 ahead.
+
+    Raises
+    ------
+    ValueError
+        A mesh that is not 2D (``mesh``), NaN level sets (``psi``, ``phi``), a crack
+        that meets no cell (``psi``, ``phi``), a φ that never vanishes on it (``phi``),
+        φ ≡ 0 along ψ = 0 (``phi``), two tips in one cell (refine the mesh).
+
+    Examples
+    --------
+    >>> from skfem import MeshQuad1
+    >>> m = MeshQuad1.init_tensor(np.linspace(0, 1, 4), np.linspace(0, 1, 4))
+    >>> g = crack_geometry(m, lambda x: x[1] - 0.5, lambda x: x[0] - 0.5)
+    >>> g.tip_cells.tolist(), int(g.sub_fan.sum())   # 3 fan triangles per half
+    ([4], 6)
+    """
+    check_mesh_2d(mesh)
+    psi = level_set_values("psi", psi, mesh)
+    phi = level_set_values("phi", phi, mesh)
+    ref = mesh.elem().doflocs                            # (nloc, 2)
+    simp = reference_simplices(mesh)                     # (ns, 3)
+    nc, ns = mesh.t.shape[1], simp.shape[0]
+    X = np.broadcast_to(ref[simp], (nc, ns, 3, 2)).reshape(-1, 3, 2)
+    nodes = mesh.t[simp].transpose(2, 0, 1).reshape(-1, 3)    # (nc * ns, 3)
+    cell_of = np.repeat(np.arange(nc), ns)
+    ps, ph = psi[nodes], phi[nodes]
+    if np.any((ps == 0).all(axis=1)):
+        raise ValueError("psi vanishes on a whole cell: it must be zero on a line only")
+
+    ends, f, has = _zero_segments(X, ps, ph)
+    piece, mask, tip_ref, tip_tri, flat = _crack_pieces(ends, f, has)
+    if np.any(flat):
+        raise ValueError(f"phi vanishes along psi = 0 in {int(flat.sum())} cell(s): the "
+                         f"level sets must cross (∇φ not parallel to ∇ψ) at the front")
+    F = mesh.mapping().F
+    seg = np.stack([F(piece[mask][:, k].T[:, :, None], tind=cell_of[mask])[:, :, 0]
+                    for k in (0, 1)])                    # (2, 2, nseg)
+    length = np.linalg.norm(seg[1] - seg[0], axis=0)
+    h = np.ptp(mesh.p[:, mesh.t], axis=1).max(axis=0)
+    keep = length > AREA_TOL * h[cell_of[mask]]
+    seg, seg_cell = seg[:, :, keep], cell_of[mask][keep]
+    seg_ref, seg_tri = piece[mask][keep], np.flatnonzero(mask)[keep]
+    if seg_cell.size == 0:
+        raise ValueError(f"the crack {{psi = 0, phi < 0}} meets no cell of the mesh (psi in "
+                         f"[{psi.min():.3g}, {psi.max():.3g}], phi in [{phi.min():.3g}, "
+                         f"{phi.max():.3g}] at the nodes): check psi and phi")
+    if tip_tri.size == 0:
+        raise ValueError("phi < 0 all along psi = 0 in the mesh: phi never vanishes on the "
+                         "crack, so it has no tip inside the body (a crack that cuts the "
+                         "body through is an interface of skxfem.cut)")
+    tips = _unique_points(F(tip_ref.T[:, :, None], tind=cell_of[tip_tri])[:, :, 0],
+                          h[cell_of[tip_tri]])
+
+    # tip cells: the closure of one of their reference triangles holds a tip
+    P = F(np.transpose(X, (2, 0, 1)), tind=cell_of)     # (2, n, 3) physical triangles
+    P = np.transpose(P, (1, 2, 0))
+    tip_cells, tip_of_cell = [], []
+    for k in range(tips.shape[1]):                      # the few tips
+        lam = _barycentric(P, np.broadcast_to(tips[:, k], (P.shape[0], 2)))
+        cells = np.unique(cell_of[(lam >= -1e-10).all(axis=1)])
+        tip_cells.append(cells)
+        tip_of_cell.append(np.full(cells.size, k))
+    tip_cells, tip_of_cell = np.concatenate(tip_cells), np.concatenate(tip_of_cell)
+    if np.unique(tip_cells).size < tip_cells.size:
+        raise ValueError("two tips lie in one cell: the crack is shorter than a cell or "
+                         "its tips are too close; refine the mesh")
+    order = np.argsort(tip_cells)
+    tip_cells, tip_of_cell = tip_cells[order], tip_of_cell[order]
+    tip_ref = mesh.mapping().invF(tips[:, tip_of_cell][:, :, None], tind=tip_cells)[:, :, 0]
+    split_cells = np.setdiff1d(np.unique(seg_cell), tip_cells)
+
+    side = np.where(psi[mesh.t].mean(axis=0) < 0, -1, 1)
+    side[split_cells] = 0
+    side[tip_cells] = 0
+
+    # sub-cells: split cells by ψ_h, tip cells fanned from the tip
+    in_split = np.isin(cell_of, split_cells)
+    sub, parent, sub_side = split(X[in_split], ps[in_split])
+    sub_cell = cell_of[in_split][parent]
+    subs, cells_, sides, fans = [sub], [sub_cell], [sub_side], [np.zeros(sub_cell.size, bool)]
+    for c, T in zip(tip_cells, tip_ref.T):              # the few tip cells
+        for k in range(ns):
+            i = c * ns + k
+            lam = _barycentric(X[i][None], T[None])[0]
+            if np.all(lam >= -1e-10):
+                tris, s = _fan(T, X[i], ps[i])
+                fan = np.ones(s.size, bool)
+            else:
+                tris, _, s = split(X[i][None], ps[i][None])
+                fan = np.zeros(s.size, bool)
+            subs.append(tris)
+            cells_.append(np.full(s.size, c))
+            sides.append(s)
+            fans.append(fan)
+    sub, sub_cell = np.concatenate(subs), np.concatenate(cells_)
+    sub_side, sub_fan = np.concatenate(sides), np.concatenate(fans)
+    keep = _area(sub) > AREA_TOL * 0.5
+    edge_ids, points, facets = _cut_edges(mesh, psi, phi, seg, seg_cell, h)
+    normals = _segment_normals(P[seg_tri], ps[seg_tri], seg)
+    return CrackGeometry(psi, phi, tips, tip_cells, tip_of_cell, tip_ref, split_cells, side,
+                         seg, seg_cell, sub[keep], sub_cell[keep], sub_side[keep],
+                         sub_fan[keep], edge_ids, mesh.facets[:, edge_ids], points,
+                         np.unique(mesh.t[:, np.union1d(split_cells, tip_cells)]), facets,
+                         np.transpose(seg_ref, (1, 2, 0)), normals)
+
+
+def _cut_edges(mesh, psi, phi, seg, seg_cell, h):
+    """The mesh edges the crack crosses strictly (ψ changes sign, φ < 0 at the crossing),
+    their crossing points, and each crack piece's ends as indices into them (-1: an end
+    that is no such crossing, the tip or a node on the crack)."""
+    a, b = mesh.facets
+    strict = psi[a] * psi[b] < 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(strict, psi[a] / (psi[a] - psi[b]), 0.0)
+    ids = np.flatnonzero(strict & (phi[a] + t * (phi[b] - phi[a]) < 0))
+    points = mesh.p[:, a[ids]] + t[ids] * (mesh.p[:, b[ids]] - mesh.p[:, a[ids]])
+    index = np.full(mesh.facets.shape[1], -1)
+    index[ids] = np.arange(ids.size)
+    cand = index[mesh.t2f[:, seg_cell]]                  # (nle, nseg) points of the cell
+    facets = np.full((2, seg_cell.size), -1)
+    if ids.size == 0:                                     # a crack along mesh edges
+        return ids, points, facets
+    for end in (0, 1):
+        d = np.linalg.norm(points[:, np.maximum(cand, 0)] - seg[end][:, None], axis=0)
+        d = np.where(cand >= 0, d, np.inf)
+        k = np.argmin(d, axis=0)
+        hit = d[k, np.arange(k.size)] <= 1e-9 * h[seg_cell]
+        facets[end] = np.where(hit, cand[k, np.arange(k.size)], -1)
+    return ids, points, facets
+
+
+def _segment_normals(P, ps, seg):
+    """Unit normals (2, nseg) of the crack pieces, pointing into Ω⁺ (along ∇ψ_h of the
+    physical triangle P (nseg, 3, 2) with ψ values ps (nseg, 3) that holds each)."""
+    A = np.stack([P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]], axis=1)   # rows: edge vectors
+    grad = np.linalg.solve(A, (ps[:, 1:] - ps[:, :1])[..., None])[..., 0]
+    d = seg[1] - seg[0]
+    n = np.stack([-d[1], d[0]]) / np.linalg.norm(d, axis=0)
+    return n * np.where((n * grad.T).sum(axis=0) < 0, -1.0, 1.0)
+
+
+def _unique_points(x: np.ndarray, h: np.ndarray) -> np.ndarray:
+    """The distinct points among the columns of x (2, m), within 1e-9 of the cell size."""
+    out = []
+    for k in range(x.shape[1]):                          # a few candidates per tip
+        if not any(np.linalg.norm(x[:, k] - y) <= 1e-9 * h[k] for y in out):
+            out.append(x[:, k])
+    return np.array(out).T

@@ -1,0 +1,147 @@
+r"""Stress intensity factors of a solved X-FEM field: the interaction integral on the mesh.
+
+:func:`skxfem.crack.interaction.stress_intensity` takes arrays at quadrature
+points; this module makes them from a solution U on the crack's space:
+
+1. **the tip and its frame**: the tip T of the geometry and e₁, e₂ from ∇φ_h, ∇ψ_h
+   in a tip cell (:func:`skxfem.crack.frame.tip_frame`);
+2. **the domain**: q is the P1/Q1 interpolant of the nodal values
+   q(r_i) = :func:`skxfem.crack.interaction.q_function` of the nodes' distance to T,
+   1 inside ρR, 0 beyond R, with R = min(r_d, distance from T to the boundary); the
+   integrand holds ∇q, so the domain is the cells where the nodal q differ (a ring
+   away from the tip once ρR exceeds a cell);
+3. **the points**: the cells' own rules (:func:`skxfem.crack.assembly.rule_groups`:
+   sub-triangles in split cells, the almost-polar rule in a tip cell, a Gauss rule of
+   order 8 elsewhere): the X-FEM sub-cell weights, not whole-cell ones (crack-notes,
+   trap 3);
+4. **the fields**: ∇u_h at the points (:func:`skxfem.crack.space.evaluation`), σ by
+   Hooke's law, ∇q;
+5. **the faces**: if the faces carry a traction, its term −∫ t·u^aux_{,1} q ds on each
+   face (Gauss points on the crack segments, q interpolated there); a free crack has
+   none.
+
+>>> from skfem import MeshTri1
+>>> from skxfem.crack.geometry import crack_geometry
+>>> from skxfem.crack.space import crack_space
+>>> from skxfem.fem.material import Material
+>>> m = MeshTri1.init_tensor(np.linspace(0, 1, 8), np.linspace(0, 1, 8))
+>>> V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5))
+>>> np.round(sif(V, np.zeros(V.N), Material(1.0, 0.3)), 12).tolist()   # no field, no K
+[0.0, 0.0]
+"""
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+from skfem import Basis
+
+from ..fem.material import Material
+from .assembly import face_rule, rule_groups
+from .frame import TipFrame, tip_frame
+from .interaction import CrackFace, q_function, stress_intensity
+from .space import CrackSpace, evaluation
+
+__all__ = ["DEFAULT_CELLS", "tip_and_frame", "boundary_distance", "nodal_q", "sif"]
+
+DEFAULT_CELLS = 4.0
+"""The default domain radius r_d, in sizes of the tip cell."""
+
+
+def tip_and_frame(space: CrackSpace, tip: int = 0) -> tuple[np.ndarray, TipFrame, float]:
+    """The tip point (2,), its frame from ∇φ_h, ∇ψ_h in its first tip cell, and the size
+    (diameter) of that cell."""
+    geo = space.geometry
+    if not 0 <= tip < geo.tips.shape[1]:
+        raise ValueError(f"tip must be in 0 .. {geo.tips.shape[1] - 1}, got {tip!r}")
+    k = np.flatnonzero(geo.tip_of_cell == tip)[0]
+    cell, ref = geo.tip_cells[k], geo.tip_ref[:, k]
+    b = Basis(space.mesh, space.mesh.elem(), elements=np.array([cell]),
+              quadrature=(ref[:, None], np.ones(1)))
+    gphi = b.interpolate(geo.phi).grad[:, 0, 0]
+    gpsi = b.interpolate(geo.psi).grad[:, 0, 0]
+    h = float(np.ptp(space.mesh.p[:, space.mesh.t[:, cell]], axis=1).max())
+    return geo.tips[:, tip], tip_frame(gphi, gpsi), h
+
+
+def boundary_distance(mesh, x: np.ndarray) -> float:
+    """The distance from the point x (2,) to the boundary facets of ``mesh``.
+
+    >>> from skfem import MeshTri1
+    >>> boundary_distance(MeshTri1(), np.array([0.25, 0.5]))
+    0.25
+    """
+    f = mesh.boundary_facets()
+    a, b = mesh.p[:, mesh.facets[0, f]], mesh.p[:, mesh.facets[1, f]]
+    d = b - a
+    t = np.clip(((x[:, None] - a) * d).sum(axis=0) / (d * d).sum(axis=0), 0, 1)
+    return float(np.linalg.norm(a + t * d - x[:, None], axis=0).min())
+
+
+def nodal_q(space: CrackSpace, origin: np.ndarray, r_d: float, plateau: float,
+            boundary: float) -> np.ndarray:
+    """q at the nodes: :func:`skxfem.crack.interaction.q_function` of their distance."""
+    d = space.mesh.p - origin[:, None]
+    r = np.linalg.norm(d, axis=0)
+    q, _ = q_function(r, d / np.where(r > 0, r, 1.0), r_d, plateau, boundary)
+    return q
+
+
+def _faces(space, q_nodes, face_traction):
+    """The two :class:`CrackFace` rules of the crack pieces, with their tractions."""
+    x, w, cells, ref = face_rule(space)
+    b = Basis(space.mesh, space.mesh.elem(), elements=cells,
+              quadrature=(ref[:, :, None], np.ones((cells.size, 1))))
+    q = np.asarray(b.interpolate(q_nodes))[:, 0]
+    faces = []
+    for side in (1, -1):
+        t = np.asarray(face_traction(x, side), float)
+        if t.shape != x.shape or not np.all(np.isfinite(t)):
+            raise ValueError(f"face_traction must return finite values of shape {x.shape}, "
+                             f"got {t.shape}")
+        faces.append(CrackFace(x, w, t, q, side))
+    return faces
+
+
+def sif(space: CrackSpace, U: np.ndarray, material: Material, r_d: float | None = None,
+        plateau: float = 0.5, tip: int = 0, face_traction: Callable | None = None
+        ) -> np.ndarray:
+    """(K_I, K_II) at a tip of the solution U by the domain interaction integral.
+
+    Parameters
+    ----------
+    space, U : the crack's space and the unknowns [a, b, c].
+    material : the :class:`skxfem.fem.material.Material` (plane strain or stress).
+    r_d : the domain radius; default :data:`DEFAULT_CELLS` tip-cell sizes; clipped to the
+        distance from the tip to the boundary.
+    plateau : ρ: q = 1 inside ρR (:func:`skxfem.crack.interaction.q_function`).
+    tip : which tip of the geometry.
+    face_traction : ``(x, side) -> (2, n)`` the traction σ·m* the face of ``side``
+        (+1: Ω⁺, -1: Ω⁻) carries at points x; None for a free crack.
+    """
+    U = np.asarray(U, float)
+    if U.shape != (space.N,):
+        raise ValueError(f"U must hold the {space.N} unknowns [a, b, c], got shape {U.shape}")
+    origin, frame, h = tip_and_frame(space, tip)
+    r_d = DEFAULT_CELLS * h if r_d is None else r_d
+    boundary = boundary_distance(space.mesh, origin)
+    q_nodes = nodal_q(space, origin, r_d, plateau, boundary)
+    qt = q_nodes[space.mesh.t]
+    domain = np.flatnonzero(qt.max(axis=0) > qt.min(axis=0))
+    xs, ws, gus, sigs, gqs = [], [], [], [], []
+    lam, mu = material.lame(2)
+    for G in rule_groups(space, domain, plain_order=4):
+        cells, ref, side, x, w = G.points()
+        _, gu = evaluation(space, cells, ref, side).at(U)
+        eps = (gu + np.swapaxes(gu, 0, 1)) / 2
+        sig = 2 * mu * eps + lam * (eps[0, 0] + eps[1, 1]) * np.eye(2)[:, :, None]
+        live = G.scalar.dx > 0
+        xs.append(x)
+        ws.append(w)
+        gus.append(gu)
+        sigs.append(sig)
+        gqs.append(np.asarray(G.scalar.interpolate(q_nodes).grad)[:, live])
+    faces = () if face_traction is None else _faces(space, q_nodes, face_traction)
+    return stress_intensity(np.hstack(xs), np.concatenate(ws), np.concatenate(gus, axis=2),
+                            np.concatenate(sigs, axis=2), np.hstack(gqs), origin, frame,
+                            material, faces)
