@@ -46,13 +46,11 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.polynomial.legendre import leggauss
-from skfem.quadrature import get_quadrature
-from skfem.refdom import RefTri
 
-from ..fem.quadrature import SubcellRule
+from ..fem.quadrature import SubcellRule, pack_rules, simplex_points
 
 __all__ = ["BRANCH_ORDER", "NEAR_ORDER", "POLAR_POINTS", "MAX_ANGLE", "angular_pieces",
-           "almost_polar", "simplex_points", "pack", "split_rule", "tip_rule"]
+           "almost_polar", "split_rule", "tip_rule"]
 
 BRANCH_ORDER = 8
 """Order of the triangle rule on (sub-)cells in the support of branch-enriched nodes."""
@@ -145,52 +143,6 @@ def almost_polar(tris: np.ndarray, n_r: int = POLAR_POINTS[0], n_t: int = POLAR_
     return x, det[:, None] * W0[None]
 
 
-def simplex_points(tris: np.ndarray, order: int) -> tuple[np.ndarray, np.ndarray]:
-    """scikit-fem's triangle rule of ``order`` mapped into triangles (m, 3, 2): points
-    (m, nq, 2) and weights (m, nq).
-
-    >>> x, w = simplex_points(np.array([[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]]), 2)
-    >>> round(float(w.sum()), 15), round(float(w[0] @ x[0, :, 0]), 15)   # ∫ x = 1/3
-    (0.5, 0.333333333333333)
-    """
-    Xs, Ws = get_quadrature(RefTri, order)
-    tris = np.asarray(tris, float)
-    A = np.stack([tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]], axis=2)
-    x = tris[:, None, 0] + np.einsum("mij,jq->mqi", A, Xs)
-    return x, np.abs(np.linalg.det(A))[:, None] * Ws[None]
-
-
-def pack(points: np.ndarray, weights: np.ndarray, parent: np.ndarray,
-         values: np.ndarray | None = None) -> SubcellRule:
-    """Pack the rules of pieces (points (m, nq, 2), weights (m, nq), their parent cells
-    (m,), a value per piece (m,)) into one rule per parent cell, padded with zero
-    weights at the centroid of the reference triangle (inside every reference cell).
-
-    >>> x, w = simplex_points(np.array([[[0, 0], [1, 0], [1, 1]], [[0, 0], [1, 1], [0, 1]]]), 1)
-    >>> r = pack(x, w, np.array([5, 5]), np.array([-1, 1]))
-    >>> r.cells.tolist(), r.X.shape, round(float(r.W.sum()), 14), r.V[0].tolist()
-    ([5], (2, 1, 6), 1.0, [-1.0, -1.0, -1.0, 1.0, 1.0, 1.0])
-    """
-    parent = np.asarray(parent)
-    m, nq = weights.shape
-    order = np.argsort(parent, kind="stable")
-    cells, first, counts = np.unique(parent[order], return_index=True, return_counts=True)
-    group = np.repeat(np.arange(cells.size), counts)
-    slot = np.arange(m) - first[group]
-    nslots = int(counts.max()) if m else 0
-    X = np.full((cells.size, nslots, nq, 2), 1.0 / 3)
-    X[group, slot] = points[order]
-    W = np.zeros((cells.size, nslots, nq))
-    W[group, slot] = weights[order]
-    V = None
-    if values is not None:
-        V = np.zeros((cells.size, nslots, nq))
-        V[group, slot] = np.asarray(values, float)[order, None]
-        V = V.reshape(cells.size, -1)
-    return SubcellRule(cells, np.moveaxis(X.reshape(cells.size, -1, 2), 2, 0),
-                       W.reshape(cells.size, -1), V)
-
-
 def split_rule(geometry, cells: np.ndarray, order: int) -> SubcellRule:
     """The rule of order ``order`` on the sub-triangles of the split ``cells`` of a
     :class:`skxfem.crack.geometry.CrackGeometry`; ``V`` the side of each point.
@@ -205,7 +157,7 @@ def split_rule(geometry, cells: np.ndarray, order: int) -> SubcellRule:
     """
     pick = np.isin(geometry.sub_cell, cells) & ~geometry.sub_fan
     x, w = simplex_points(geometry.sub_ref[pick], order)
-    return pack(x, w, geometry.sub_cell[pick], geometry.sub_side[pick])
+    return pack_rules(x, w, geometry.sub_cell[pick], geometry.sub_side[pick])
 
 
 def tip_rule(geometry, order: int = BRANCH_ORDER, n_r: int = POLAR_POINTS[0],
@@ -235,4 +187,4 @@ def tip_rule(geometry, order: int = BRANCH_ORDER, n_r: int = POLAR_POINTS[0],
         ws.append(np.concatenate([w, np.zeros((w.shape[0], pad))], axis=1))
     parent = np.concatenate([geometry.sub_cell[fan], geometry.sub_cell[other]])
     side = np.concatenate([geometry.sub_side[fan], geometry.sub_side[other]])
-    return pack(np.concatenate(xs), np.concatenate(ws), parent, side)
+    return pack_rules(np.concatenate(xs), np.concatenate(ws), parent, side)

@@ -36,6 +36,8 @@ __all__ = [
     "SubcellRule",
     "cell_rule",
     "subcell_rule",
+    "pack_rules",
+    "simplex_points",
     "wedge_rule",
 ]
 
@@ -255,7 +257,7 @@ def subcell_rule(ref_simplices: ArrayLike, parent: ArrayLike, order: int,
             f"(triangles) or 3 (tetrahedra), got {simplices.shape}")
     if not np.all(np.isfinite(simplices)):
         raise ValueError("ref_simplices contains NaN or inf; check the cut")
-    nsub, dim = simplices.shape[0], simplices.shape[2]
+    nsub = simplices.shape[0]
     parent = np.asarray(parent)
     if parent.shape != (nsub,) or not np.issubdtype(parent.dtype, np.integer) \
             or (nsub and parent.min() < 0):
@@ -268,32 +270,53 @@ def subcell_rule(ref_simplices: ArrayLike, parent: ArrayLike, order: int,
             raise ValueError(f"values must have shape ({nsub},), one per "
                              f"sub-simplex, got {values.shape}")
 
+    return pack_rules(*simplex_points(simplices, order), parent, values)
+
+
+def simplex_points(simplices: ArrayLike, order: int) -> tuple[np.ndarray, np.ndarray]:
+    """The simplex rule of ``order`` mapped into each of ``simplices`` (m, dim + 1, dim)
+    by x = V₀ + A ξ, A = [V₁ - V₀, …]: points (m, nq, dim) and weights × |det A| (m, nq).
+
+    >>> x, w = simplex_points(np.array([[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]]), 2)
+    >>> round(float(w.sum()), 15), round(float(w[0] @ x[0, :, 0]), 15)   # ∫ x = 1/3
+    (0.5, 0.333333333333333)
+    """
+    simplices = np.asarray(simplices, dtype=float)
+    dim = simplices.shape[2]
     Xs, Ws = simplex_or_tensor_rule(RefTri if dim == 2 else RefTet, _check_order(order))
-    nq0 = Ws.size
-
-    # affine map of every sub-simplex: points (nsub, nq0, dim), weights (nsub, nq0)
     A = np.transpose(simplices[:, 1:] - simplices[:, :1], (0, 2, 1))  # columns V_i - V_0
-    pts = simplices[:, None, 0] + np.einsum("kij,jq->kqi", A, Xs)
-    wts = np.abs(np.linalg.det(A))[:, None] * Ws
+    return (simplices[:, None, 0] + np.einsum("kij,jq->kqi", A, Xs),
+            np.abs(np.linalg.det(A))[:, None] * Ws)
 
-    # slot of each sub-simplex within its parent: rank in the sorted order
-    order_ = np.argsort(parent, kind="stable")
+
+def pack_rules(points: np.ndarray, weights: np.ndarray, parent: np.ndarray,
+               values: ArrayLike | None = None) -> SubcellRule:
+    """Pack the rules of pieces of cells into one rule per parent cell: ``points``
+    (m, nq, dim) in parent reference coordinates, ``weights`` (m, nq), the ``parent``
+    cell of each piece (m,) and, optionally, a value per piece (m,).  The pieces of a
+    parent sit side by side; cells with fewer pieces are padded with zero-weight points
+    at the centroid of the reference simplex, which lies inside every reference cell.
+
+    >>> r = pack_rules(np.full((2, 1, 2), 0.25), np.ones((2, 1)), np.array([4, 4]))
+    >>> r.cells.tolist(), r.X.shape, r.W.tolist()
+    ([4], (2, 1, 2), [[1.0, 1.0]])
+    """
+    parent = np.asarray(parent)
+    m, nq, dim = points.shape
+    order_ = np.argsort(parent, kind="stable")   # each piece's slot: its rank in its parent
     cells, first, counts = np.unique(parent[order_], return_index=True,
                                      return_counts=True)
     group = np.repeat(np.arange(cells.size), counts)
-    slot = np.arange(nsub) - first[group]
-    nslots = counts.max() if nsub else 0
-
-    # scatter into (ncells, nslots, nq0, ...) arrays initialised with padding
-    X = np.empty((cells.size, nslots, nq0, dim))
-    X[...] = 1.0 / (dim + 1)
-    X[group, slot] = pts[order_]
-    W = np.zeros((cells.size, nslots, nq0))
-    W[group, slot] = wts[order_]
+    slot = np.arange(m) - first[group]
+    nslots = int(counts.max()) if m else 0
+    X = np.full((cells.size, nslots, nq, dim), 1.0 / (dim + 1))   # padding
+    X[group, slot] = points[order_]
+    W = np.zeros((cells.size, nslots, nq))
+    W[group, slot] = weights[order_]
     V = None
     if values is not None:
-        V = np.zeros((cells.size, nslots, nq0))
-        V[group, slot] = values[order_, None]
+        V = np.zeros((cells.size, nslots, nq))
+        V[group, slot] = np.asarray(values, float)[order_, None]
         V = V.reshape(cells.size, -1)
     X = np.moveaxis(X.reshape(cells.size, -1, dim), 2, 0)
     return SubcellRule(cells, X, W.reshape(cells.size, -1), V)
