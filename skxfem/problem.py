@@ -219,11 +219,6 @@ class Problem:
         """The tie law of the parts if they share one, else None."""
         return self.laws[0] if len(set(self.laws)) == 1 else None
 
-    def lift(self, k: int, A) -> sp.csr_matrix:
-        """An operator on the unknowns of part ``k``, [a, b^k], as one on the
-        whole's (:meth:`skxfem.enrich.XSpaces.lift`)."""
-        return self.V.lift(k, A)
-
 
 def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndarray]:
     """Constrained unknowns of the X-FEM space and their values.

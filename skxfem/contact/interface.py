@@ -192,14 +192,14 @@ def part_operators(pb) -> Operators:
 def join(pb, parts) -> Operators:
     """The operators of a problem from those of each interface (``parts``, on the
     unknowns of its part of ``pb``): lifted to the whole's unknowns
-    (:meth:`skxfem.problem.Problem.lift`) and stacked, dof after dof; ``h`` is the
+    (:meth:`skxfem.enrich.XSpaces.lift`) and stacked, dof after dof; ``h`` is the
     mean length of all cut edges, each interface's own in ``pieces``."""
     k = len(parts[0].Bt)
     sizes = [o.w.size for o in parts]
     lengths = np.concatenate([_edge_lengths(q) for q in pb.interfaces])
     return Operators(
-        sp.vstack([pb.lift(j, o.Bn) for j, o in enumerate(parts)], format="csr"),
-        tuple(sp.vstack([pb.lift(j, o.Bt[a]) for j, o in enumerate(parts)], format="csr")
+        sp.vstack([pb.V.lift(j, o.Bn) for j, o in enumerate(parts)], format="csr"),
+        tuple(sp.vstack([pb.V.lift(j, o.Bt[a]) for j, o in enumerate(parts)], format="csr")
               for a in range(k)),
         np.concatenate([o.w for o in parts]), float(lengths.mean()),
         np.hstack([o.points for o in parts]), np.hstack([o.normals for o in parts]),
