@@ -36,6 +36,17 @@ else changes.  Each method must meet:
 5. ``nodal(cut) -> (nverts,)``: the level set at the nodes, as the files write
    it (``levelset_k``): the ψ the solve used.
 
+**What a crack kind will add** (issue 29; the 2D pieces are in :mod:`skxfem.crack`:
+``crack_geometry`` carries the fields of a Cut, ``crack_space`` the unknowns [a, b, c],
+``crack.assembly.stiffness`` its blocks, ``crack.sif`` the stress intensity factors).
+Three places below the kinds read more than the contract above and must then ask
+the kind instead: :func:`skxfem.enrich.stiffness` integrates a Heaviside space by
+its ``parts`` (a crack's branch functions bring their own blocks, Bᵀ W C B on the
+tip cells' almost-polar rules); the regions of :meth:`skxfem.enrich.XSpaces.regions`
+(rigid modes, held checks, the pieces of the files) take every Γ as splitting the
+body in two, which a Γ that ends inside it does not; and a law without multipliers
+(``free``) gives a part with no column in P.
+
 >>> from skfem import MeshTri1
 >>> from skxfem.levelset import plane
 >>> from skxfem.scene import Interface

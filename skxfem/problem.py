@@ -62,7 +62,8 @@ from .scene.boundary import imposed
 from .scene.laws import COUPLING
 from .scene.model import Interface, Resolved, Scene, dirichlet, load_facets, resolve
 
-__all__ = ["Problem", "Part", "assemble", "constrained_dofs", "COUPLING", "check_law"]
+__all__ = ["Problem", "Part", "assemble", "state_loads", "constrained_dofs", "COUPLING",
+           "check_law"]
 
 
 def check_law(law: str) -> str:
@@ -308,10 +309,35 @@ def assemble(scene: Scene | Resolved, law: str | None = None) -> Problem:
     lap("enrich")
     K = stiffness(V, *scene.materials())
     lap("stiffness")
-    f, f_H = np.zeros(V.n_std), [np.zeros(V.n_std) for _ in cuts]
+    F = _load(scene, mesh, V)
+    lap("load")
+    D, g, local = _constraints(scene, mesh, V)
+    lap("constraints")
+    parts = tuple(_part(items[k], gammas[k], mesh, cuts[k], V.per_interface[k], *local[k],
+                        laws[k], lap, V.columns(k)) for k in range(len(items)))
+    B = sp.vstack([V.lift(k, q.B) for k, q in enumerate(parts)], format="csr")
+    P = sp.block_diag([q.P for q in parts], format="csr")
+    return Problem(scene=scene, mesh=mesh, V=V, K=K, F=F, D=D, g=g, P=P, B=B,
+                   interfaces=parts, timings=timings)
+
+
+def state_loads(pb: Problem, scene: Scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The load F and the constrained unknowns D and values g of ``scene`` on the space
+    of the assembled problem ``pb``: a load state of a contact history, which keeps the
+    problem's mesh, Γ and space and changes its loads and imposed values (the
+    callers check that it does; ``pb``'s own scene gives ``pb.F``, ``pb.D``, ``pb.g``).
+    """
+    D, g, _ = _constraints(scene, pb.mesh, pb.V)
+    return _load(scene, pb.mesh, pb.V), D, g
+
+
+def _load(scene: Scene, mesh, V: XSpaces) -> np.ndarray:
+    """F on [a, b¹, …]: the scene's surface loads and body force (:func:`enriched_load`
+    of f and each interface's f_H)."""
+    f, f_H = np.zeros(V.n_std), [np.zeros(V.n_std) for _ in V.per_interface]
     for facets, traction in load_facets(scene, mesh):
-        for k, cut in enumerate(cuts):
-            q = boundary_quadrature(mesh, facets, 4, psi_nodes=cut.psi)
+        for k, Vk in enumerate(V.per_interface):
+            q = boundary_quadrature(mesh, facets, 4, psi_nodes=Vk.cut.psi)
             df, df_H = surface_load(V.basis, q, traction)
             f = f + df if k == 0 else f
             f_H[k] = f_H[k] + df_H
@@ -320,20 +346,18 @@ def assemble(scene: Scene | Resolved, law: str | None = None) -> Problem:
             df, df_H = body_load(Vk, scene.body_force)
             f = f + df if k == 0 else f
             f_H[k] = f_H[k] + df_H
-    F = enriched_load(V, f, f_H)
-    lap("load")
+    return enriched_load(V, f, f_H)
+
+
+def _constraints(scene: Scene, mesh, V: XSpaces):
+    """(D, g) on [a, b¹, …] and each interface's own (D_k, g_k) on [a, b^k]
+    (:func:`constrained_dofs`)."""
     local = [constrained_dofs(Vk, scene, mesh) for Vk in V.per_interface]
     std = local[0][0] < V.n_std  # the supports' standard dofs: the same for every interface
     D = np.concatenate([local[0][0][std]] + [V.columns(k)[Dk[Dk >= V.n_std]]
                                              for k, (Dk, _) in enumerate(local)])
     g = np.concatenate([local[0][1][std]] + [gk[Dk >= V.n_std] for Dk, gk in local])
-    lap("constraints")
-    parts = tuple(_part(items[k], gammas[k], mesh, cuts[k], V.per_interface[k], *local[k],
-                        laws[k], lap, V.columns(k)) for k in range(len(items)))
-    B = sp.vstack([V.lift(k, q.B) for k, q in enumerate(parts)], format="csr")
-    P = sp.block_diag([q.P for q in parts], format="csr")
-    return Problem(scene=scene, mesh=mesh, V=V, K=K, F=F, D=D, g=g, P=P, B=B,
-                   interfaces=parts, timings=timings)
+    return D, g, local
 
 
 def _clock():

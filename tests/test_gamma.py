@@ -130,3 +130,29 @@ def test_load_states_are_checked_against_the_resolved_mesh(monkeypatch):
     bad = replace(base, loads=(SurfaceLoad("ymax", pressure=1e300),))
     with pytest.raises(ValueError, match="beyond the largest load"):
         skxfem.contact.solve(base, history=[base, bad])   # still checked
+
+
+def test_load_states_take_the_problems_space_and_refuse_another_gamma_or_mesh(monkeypatch):
+    """A load state is not assembled again: its loads and imposed values are taken on
+    the scene's space (skxfem.problem.state_loads); a Γ given by another but equal level
+    set is the same Γ, a moved Γ or another mesh is refused."""
+    base = replace(strip(3), law="frictionless",
+                   displacements=strip(3).displacements + (rollers("xmin"),))
+    twice = replace(base, name="twice", loads=tuple(
+        replace(load, pressure=f"2*({load.pressure.text})") for load in base.loads))
+    assembled = []
+    real = problem_module.assemble
+    monkeypatch.setattr(skxfem.contact.history, "assemble",
+                        lambda *a, **k: assembled.append(1) or real(*a, **k))
+    r = skxfem.contact.solve(base, history=[base, twice])
+    assert len(assembled) == 1                     # the scene's, not the states'
+    assert np.allclose(r.steps[1].pressure, 2 * r.steps[0].pressure, atol=1e-12)
+    gamma0 = base.interfaces[0].levelset
+    equal = replace(twice, levelset=plane((0.0, 0.5), (0.0, 1.0)))   # another object
+    assert equal.levelset is not gamma0
+    again = skxfem.contact.solve(base, history=[base, equal])
+    assert np.array_equal(again.steps[1].pressure, r.steps[1].pressure)
+    for bad in (replace(twice, levelset=plane((0.0, 0.45), (0.0, 1.0))),
+                replace(twice, mesh=Box(4, "quad"))):
+        with pytest.raises(ValueError, match=r"history\[1\]: a load state must keep"):
+            skxfem.contact.solve(base, history=[base, bad])

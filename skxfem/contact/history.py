@@ -89,6 +89,7 @@ import numpy as np
 import scipy.sparse as sp
 from skfem import Mesh
 
+from ..gamma import gamma
 from ..linalg.amg import check_tie_held, rigid_modes, scaled_tie
 from ..linalg.choice import choose_linear
 from ..linalg.dependent import dependencies, unit_rows
@@ -96,7 +97,7 @@ from ..linalg.iterative import stiffness_setup
 from ..linalg.rigid import check_held
 from ..linalg.saddle import SingularSystemError
 from ..linalg.threads import limited
-from ..problem import Problem, assemble
+from ..problem import Problem, assemble, state_loads
 from ..result import Result, on_edges, result
 from ..scene.laws import in_words
 from ..scene.model import Interface, Scene, check_steps, resolve
@@ -232,23 +233,30 @@ def _spaces(scene: Scene) -> list[str]:
     return [i.space for i in scene.interfaces]
 
 
-def _same_setup(state: Scene, scene: Scene, pb: Problem, state_pb: Problem, i: int):
-    """Refuse a load state that changes what one solve keeps (module notes)."""
+def _state(state: Scene, scene: Scene, pb: Problem, i: int):
+    """(F, g) of a load state on the problem's space, refusing one that changes what
+    one solve keeps (module notes): its mesh, Γ, material, spaces and supports."""
     for key, get in (("material", lambda s: s.materials()), ("space", _spaces),
                      ("quadrature_order", lambda s: s.quadrature_order)):
         if get(state) != get(scene):
             raise ValueError(f"history[{i}]: a load state must keep the scene's {key} "
                              f"({get(scene)!r}), got {get(state)!r}: the "
                              f"solver keeps one stiffness and one multiplier space")
-    same_cuts = len(state_pb.interfaces) == len(pb.interfaces) and all(
-        np.array_equal(a.cut.psi, b.cut.psi)
-        for a, b in zip(state_pb.interfaces, pb.interfaces))
-    if (state_pb.V.N != pb.V.N or not np.array_equal(state_pb.D, pb.D)
-            or not same_cuts):
+    same = state.mesh is scene.mesh or (not isinstance(state.mesh, Mesh)
+                                         and state.mesh == scene.mesh)
+    _, mesh = resolve(state, pb.mesh if same else None)   # checked, the mesh not rebuilt
+    kept = (np.array_equal(mesh.p, pb.mesh.p) and np.array_equal(mesh.t, pb.mesh.t)
+            and len(state.interfaces) == len(pb.interfaces)
+            and all(a.levelset is q.interface.levelset
+                    or np.array_equal(gamma(a).cut(mesh).psi, q.cut.psi)   # Γ as it was
+                    for a, q in zip(state.interfaces, pb.interfaces)))
+    F, D, g = state_loads(pb, state) if kept else (None, None, None)
+    if not kept or not np.array_equal(D, pb.D):
         raise ValueError(f"history[{i}]: a load state must keep the mesh, Γ and "
                          f"the supported boundaries of the scene (same constrained "
                          f"unknowns); give a zero displacement where a support "
                          f"is released")
+    return F, g
 
 
 def _laws(scene: Scene, hs) -> tuple[Law, ...]:
@@ -276,11 +284,7 @@ def _states(scene: Scene, pb: Problem, history, hs) -> list[_State]:
                 if j.law not in HISTORY_LAWS:
                     raise ValueError(f"history[{i}]: the law of a load state must be one "
                                      f"of {HISTORY_LAWS}, got {j.law!r}")
-            same = item.mesh is scene.mesh or (not isinstance(item.mesh, Mesh)
-                                                and item.mesh == scene.mesh)
-            state = assemble(resolve(item, pb.mesh if same else None), law="bilateral")
-            _same_setup(item, scene, pb, state, i)
-            out.append(_State(item.name, state.F, state.g, _laws(item, hs)))
+            out.append(_State(item.name, *_state(item, scene, pb, i), _laws(item, hs)))
         elif isinstance(item, (int, float, np.integer, np.floating)) and \
                 not isinstance(item, bool) and np.isfinite(item):
             out.append(_State(float(item), item * pb.F, item * pb.g, laws))
