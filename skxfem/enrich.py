@@ -116,6 +116,10 @@ class XSpace:
     def N(self) -> int:
         return self.n_std + self.n_enr
 
+    def regions(self) -> tuple[np.ndarray, np.ndarray]:
+        """Ω⁻ and Ω⁺, ``[[-1], [1]]``, and the region of each node: :meth:`XSpaces.regions`."""
+        return XSpaces((self,)).regions()
+
 
 @dataclass(frozen=True)
 class XSpaces:

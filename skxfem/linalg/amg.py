@@ -100,13 +100,10 @@ def rigid_modes(V, sides: bool = True, centre=None, length: float = 1.0) -> np.n
 
 def _region_modes(V, motions, node_of) -> tuple[np.ndarray, int]:
     """The motions of each region of ``V`` (:func:`rigid_modes`) and the number of
-    regions R: those of the sign patterns of the level sets at the nodes
-    (:meth:`skxfem.enrich.XSpaces.regions`; an XSpace is the space of one interface,
-    whose regions are Ω⁻ and Ω⁺)."""
+    regions R (:meth:`skxfem.enrich.XSpaces.regions`; an XSpace is the space of one
+    interface, whose regions are Ω⁻ and Ω⁺)."""
     spaces = getattr(V, "per_interface", (V,))
-    signs = np.array([np.where(Vk.cut.psi < 0, -1, 1) for Vk in spaces])
-    patterns, node_region = np.unique(signs.T, axis=0, return_inverse=True)
-    node_region = node_region.ravel()
+    patterns, node_region = V.regions()
     R = patterns.shape[0]
     # a region's signs as the bits of one number
     codes = ((patterns > 0).astype(np.int64) << np.arange(len(spaces))).sum(axis=1)
