@@ -60,7 +60,7 @@ def of(recorder, name):
 
 def test_the_course_has_its_exercises():
     assert NAMES == ["01_levelset", "02_cut", "03_enrich", "04_multipliers", "05_lbb",
-                     "06_stabilised", "07_contact"]
+                     "06_stabilised", "07_contact", "08_crack"]
     for name in NAMES:
         folder = EXERCISES / name
         assert (folder / "README.md").exists() and (folder / "exercise.py").exists()

@@ -70,7 +70,7 @@ def test_readme_book_and_exercises_have_no_other_path():
     assert ".venv/bin/pytest exercises/01_levelset" in readme
     assert ".venv/bin/skxfem grade exercises/01_levelset" in readme
     chapters = [p for p in (ROOT / "book").glob("*.md") if "## Graded exercise" in p.read_text()]
-    assert len(chapters) == len(EXERCISE_READMES) == 7
+    assert len(chapters) == len(EXERCISE_READMES) == 8
     for chapter in chapters:
         text = chapter.read_text(encoding="utf-8")
         name = re.search(r"exercises/(\d\d_\w+)/exercise\.py", text).group(1)

@@ -55,7 +55,7 @@ def test_the_stubs_are_what_the_graders_ask_for():
     """graded() is the tests' ASKED; each stub defines exactly those, in that order."""
     found = graded()
     assert list(found) == sorted(p.parent.name for p in EXERCISES.glob("*/exercise.py"))
-    assert len(found) == 7
+    assert len(found) == 8
     for exercise, names in found.items():
         assert names == asked(exercise), exercise
         tree = ast.parse((EXERCISES / exercise / "exercise.py").read_text(encoding="utf-8"))
@@ -155,7 +155,7 @@ def test_the_instructors_book_shows_every_answer(tmp_path, capsys):
     (book / "07_contact.html").unlink()
     problems = check_book(book, instructor=True)
     assert problems and all("07_contact" in p for p in problems[1:])
-    assert problems[0].startswith("1 of the 7 pages lack the instructors' banner")
+    assert problems[0].startswith("1 of the 8 pages lack the instructors' banner")
     assert {p.split()[6].rstrip(";") for p in problems[1:]} == set(answers("07_contact"))
     assert main([str(book), "--instructor"]) == 1
     assert main([str(book)]) == 1           # a students' book must show none of them

@@ -12,7 +12,8 @@ from skxfem.app.reproduce import LEGEND, main
 
 FIGURES = ["fig5", "fig6", "fig7", "fig8", "fig7_2d", "fig8_2d", "fig9", "fig10", "inf_sup",
            "frontier_energy", "frontier_pressure", "fig1", "fig2", "fig3", "fig4", "block3d",
-           "block3d_pressure", "vital_3d"]
+           "block3d_pressure", "vital_3d", "crack_convergence", "crack_condition", "crack_K",
+           "crack_branch"]
 
 
 @pytest.fixture(scope="module")
@@ -110,6 +111,26 @@ def test_block3d_numbers(run):
         block["studies"]["tet"]["naive"]["pressure_l2"][0] > 10
     assert [(f["cell"], f["space"], f["n"]) for f in block["failures"]] == [("tet", "naive", 4)]
     assert block["gamma"]["normal"] == [0.2, 0.3, 1.0]
+
+
+def test_crack_numbers(run):
+    """The crack part of a reduced run: the Williams square on 1/h = 9, 17 (the sizes made
+    odd), the conditioning on the same meshes, the plate on 33 cells across."""
+    _, _, summary = run
+    crack = summary["crack"]
+    assert summary["sizes"]["crack"] == [9, 17] and summary["timings"]["crack"] > 0
+    rows = crack["williams"]["rows"]
+    assert {(r["mode"], r["enrichment"], r["n"]) for r in rows} == {
+        (m, e, n) for m in ("I", "II") for e in ("topological", "geometric") for n in (9, 17)}
+    assert all(r["K_error"] < 0.05 for r in rows)
+    rates = crack["williams"]["energy_rates"]
+    assert rates["geometric"] > rates["topological"] + 0.2, rates
+    kappa = {(r["enrichment"], r["scaling"], r["n"]): r["condition"]
+             for r in crack["conditioning"]}
+    assert len(kappa) == 12
+    assert kappa["geometric", "block", 17] <= 2 * kappa["topological", "block", 17]
+    assert [(r["cell"], r["nx"]) for r in crack["tada"]] == [("tri", 33), ("quad", 33)]
+    assert all(abs(r["error"]) < 0.02 for r in crack["tada"])
 
 
 def test_the_printed_tables_are_sorted_explained_and_followed_by_the_failures(run):

@@ -25,6 +25,13 @@ writes into ``--out``
   speed-accuracy frontier (:mod:`skxfem.studies.frontier`): error against wall time
   for every method a user can choose, with the Pareto front; its per-method
   summary is also under ``frontier`` in ``summary.json``;
+* ``crack_convergence.png``, ``crack_condition.png``, ``crack_K.png``,
+  ``crack_branch.png``: a crack with a tip (:mod:`skxfem.studies.cracks`,
+  :mod:`skxfem.viz.crack_plots`): the energy error of the Williams square against h
+  (geometric ≈ h¹, topological ≈ h^½), the condition numbers (raw, Jacobi, block
+  scaling), the K errors, the four branch functions; their numbers under ``crack``
+  in ``summary.json`` (K per mesh, enrichment and mode, the fitted energy rates, the
+  condition numbers, the edge-cracked plate against Tada's factor);
 
 and prints the tables of :func:`report`: sorted, their columns explained, every
 mesh without a result below them (and, on a terminal, one progress line per part).
@@ -41,7 +48,8 @@ exact solution varying in x, y and z) is solved on hexahedra, prisms and
 tetrahedra with all three spaces.
 
 ``--quick`` took 116 s and 0.9 GB (measured once, 27 November 2026, 2 shared
-cores; 2D up to 1/h = 64, 3D up to 32, the block up to 16 cells per side); the
+cores; 2D up to 1/h = 64, 3D up to 32, the block up to 16 cells per side), and the
+crack part added since 13 s (the Williams square up to 1/h = 41, measured once); the
 default goes one mesh further in each and sweeps a larger frontier (8 minutes and
 2.4 GB, measured once on 23 November 2026).  ``--sizes``
 replaces every list of meshes (for tests; the block, n³ cells, takes the
@@ -66,12 +74,13 @@ from ..lbb import inf_sup
 from ..multipliers import SPACES
 from ..scene.benchmarks import exact_scene
 from ..stabilised import vital_edges, winner_nodes
+from ..studies import cracks
 from ..studies.conforming import study_conforming
 from ..studies.convergence import observed_rates, study
 from ..studies.progress import Progress
 from ..studies.validation3d import study_block
 from ..studies.validation3d import summary as block_summary
-from ..viz import figures, schematics
+from ..viz import crack_plots, figures, schematics
 from ..viz.frontier_plots import reproduce_frontier
 from ..viz.validation3d_plots import fig_block, fig_block_pressure
 
@@ -79,13 +88,14 @@ __all__ = ["main", "parser", "plan", "report", "LEGEND"]
 
 SETS = {
     "quick": {"d2": (8, 16, 32, 64), "d3": (8, 16, 32), "fig5": 8, "fig7": (4, 8, 16, 32),
-              "fig8": (8, 16), "block": (4, 8, 16)},
+              "fig8": (8, 16), "block": (4, 8, 16), "crack": (11, 21, 41), "tada": (41,)},
     "full": {"d2": (8, 16, 32, 64, 128), "d3": (8, 16, 32, 64), "fig5": 16,
-             "fig7": (4, 8, 16, 32, 64), "fig8": (16, 32), "block": (4, 8, 16, 32)},
+             "fig7": (4, 8, 16, 32, 64), "fig8": (16, 32), "block": (4, 8, 16, 32),
+             "crack": (11, 21, 41, 81), "tada": (41, 81)},
 }
 PARTS = ("fig5", "fig6", "fig7", "fig8", "fig7_2d", "fig8_2d", "study_tri", "study_quad",
          "study_prism", "study_hex", "fem_conforming", "study_block", "block_pressure",
-         "vital_3d", "frontier")
+         "vital_3d", "frontier", "crack")
 """The timed parts of a run, in order (one progress line each, on a terminal)."""
 CELLS = {"tri": ("naive", "winner", "vital"), "quad": ("naive", "winner", "vital"),
          "prism": ("naive", "winner", "vital"), "hex": ("naive",)}
@@ -114,16 +124,20 @@ def parser() -> argparse.ArgumentParser:
 
 def plan(quick: bool, sizes=None) -> dict:
     """The meshes of each part: ``d2``/``d3`` study sizes, ``fig5`` n, ``fig7``/``fig8`` ns,
-    ``block`` the cells per side of the 3D block.
+    ``block`` the cells per side of the 3D block, ``crack`` those of the Williams square
+    (odd: the crack runs mid-cell; the condition numbers on its first three), ``tada``
+    the cells across the edge-cracked plate.
 
-    >>> plan(True, [8, 16])
-    {'d2': (8, 16), 'd3': (8, 16), 'fig5': 8, 'fig7': (8, 16), 'fig8': (8, 16), 'block': (4, 8)}
+    >>> plan(True, [8, 16])["block"], plan(True, [8, 16])["crack"], plan(True)["crack"]
+    ((4, 8), (9, 17), (11, 21, 41))
     """
     if not sizes:
         return dict(SETS["quick" if quick else "full"])
     sizes = tuple(sorted(set(sizes)))
     return {"d2": sizes, "d3": sizes, "fig5": min(8, sizes[-1]), "fig7": sizes,
-            "fig8": sizes[-2:], "block": tuple(sorted({max(2, sizes[0] // 2), sizes[0]}))}
+            "fig8": sizes[-2:], "block": tuple(sorted({max(2, sizes[0] // 2), sizes[0]})),
+            "crack": tuple(sorted({n + 1 - n % 2 for n in sizes})),
+            "tada": (2 * sizes[-1] + 1,)}
 
 
 def _measure(cell, ns):
@@ -252,6 +266,18 @@ def report(summary: dict) -> str:
     return "\n".join(lines)
 
 
+def _crack(out, save, ns, nxs) -> dict:
+    """The crack studies and figures (:mod:`skxfem.studies.cracks`); their summary."""
+    williams = cracks.williams_study(ns)
+    conditioning = cracks.conditioning_study(ns[:3])
+    plates = cracks.tada_study(nxs)
+    save(crack_plots.fig_crack_convergence(williams), "crack_convergence")
+    save(crack_plots.fig_crack_conditioning(conditioning), "crack_condition")
+    save(crack_plots.fig_crack_K(williams), "crack_K")
+    save(crack_plots.fig_branch_functions(), "crack_branch")
+    return cracks.summary(williams, conditioning, plates)
+
+
 def main(argv=None) -> int:
     """Compute, draw and write everything; returns the exit code 0."""
     args = parser().parse_args(argv)
@@ -308,6 +334,7 @@ def main(argv=None) -> int:
     save(timed("vital_3d", figures.fig_vital_3d), "vital_3d")
 
     frontier = timed("frontier", lambda: reproduce_frontier(out, args.quick, args.sizes))
+    crack = timed("crack", lambda: _crack(out, save, sizes["crack"], sizes["tada"]))
 
     quad = studies["quad"]
     summary = {
@@ -332,6 +359,7 @@ def main(argv=None) -> int:
             "n_dofs": [r.n_dofs for r in fem]}},
         "block3d": block_summary(block),
         "frontier": frontier,
+        "crack": crack,
         "timings": timings,
     }
     timings["total"] = round(time.perf_counter() - start, 2)

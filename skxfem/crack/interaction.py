@@ -161,9 +161,9 @@ def _check(w, grad_u, sigma, grad_q, x):
             as_real("sigma", sigma, (dim, dim) + pts), as_real("grad_q", grad_q, (dim,) + pts))
 
 
-def interaction_integrals(x: ArrayLike, w: ArrayLike, grad_u: ArrayLike, sigma: ArrayLike,
-                          grad_q: ArrayLike, origin: ArrayLike, frame: TipFrame,
-                          material: Material, faces=()) -> np.ndarray:
+def interaction_integrals(x: ArrayLike, w: ArrayLike, grad_u: ArrayLike,
+                          sigma: ArrayLike, grad_q: ArrayLike, origin: ArrayLike,
+                          frame: TipFrame, material: Material, faces=()) -> np.ndarray:
     """I for the auxiliary Williams fields of unit K_I, K_II (and K_III in 3D).
 
     Parameters

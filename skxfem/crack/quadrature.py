@@ -110,8 +110,8 @@ def _gauss01(n: int) -> tuple[np.ndarray, np.ndarray]:
     return (s + 1) / 2, w / 2
 
 
-def almost_polar(tris: np.ndarray, n_r: int = POLAR_POINTS[0], n_t: int = POLAR_POINTS[1]
-                 ) -> tuple[np.ndarray, np.ndarray]:
+def almost_polar(tris: np.ndarray, n_r: int = POLAR_POINTS[0],
+                 n_t: int = POLAR_POINTS[1]) -> tuple[np.ndarray, np.ndarray]:
     """The almost-polar rule on triangles collapsed at their vertex 0 (module notes).
 
     Parameters

@@ -1,0 +1,411 @@
+r"""The known answers of a 2D crack, measured: K errors, energy-error rates, conditioning.
+
+Every study solves with :func:`skxfem.crack.solve.solve_crack` and returns small frozen
+rows; nothing here draws (:mod:`skxfem.viz.crack_plots` does).  The problems:
+
+* :func:`williams_square`: the unit square with a crack from its left face to the
+  tip (0.5, 0.5), under the exact Williams near-tip field of modes (K_I, K_II)
+  (:func:`skxfem.crack.williams.near_tip`): its displacement on the three uncut faces,
+  its traction on the cut face (code_aster SSLP114).  :func:`williams_study` measures,
+  per mesh and enrichment, the relative K error and the relative energy error;
+  :func:`energy_rates` fits the rate (≈ h^½ topological, ≈ h¹ geometric).
+* :func:`conditioning_study`: the condition number of the supported stiffness of the
+  same square, raw, Jacobi-scaled and block-scaled (:func:`skxfem.crack.space.nodal_scaling`).
+* :func:`edge_cracked_plate`: Moës et al.'s plate, W = 7, L = 16, an edge crack
+  a = 3.5 under remote tension σ = 1; :func:`tada_study` compares K_I with
+  σ√(πa) F(a/W) (:func:`tada_factor`, Tada, Paris & Irwin, 0.5 %).
+* :func:`closed_crack`: the square under a uniform compression p across the crack,
+  the faces loaded by p: K = 0 with the interaction integral's face term, K_I ≈
+  -0.7 p√(π r_d) without it.
+* :func:`tip_quadrature`: ∫ r^k over a tip cell by the almost-polar rule and by a
+  plain Gauss rule, against :func:`polar_integral`.
+
+Units: E = 1, ν = 0.3, plane strain (:data:`MATERIAL`), K = 1 in the Williams square.
+
+>>> rows = williams_study([11], enrichments=("geometric",), modes=("I",))
+>>> rows[0].enrichment, rows[0].K_error < 0.02, rows[0].energy < 0.2
+('geometric', True, True)
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.integrate import quad
+from skfem import Basis, MeshQuad1, MeshTri1
+
+from ..crack.assembly import Load, Support
+from ..crack.frame import straight_frame
+from ..crack.geometry import crack_geometry
+from ..crack.quadrature import tip_rule
+from ..crack.sif import sif
+from ..crack.solve import CrackSolution, solve_crack
+from ..crack.williams import near_tip
+from ..fem.material import Material
+from ..fem.quadrature import cell_rule
+
+__all__ = ["MATERIAL", "MODES", "ENRICHMENTS", "SCALINGS", "RADIUS", "SIF_RADIUS", "PLATE",
+           "unit_square", "straight_crack", "williams_square", "WilliamsRow",
+           "williams_study", "energy_rates", "ConditionRow", "conditioning_study",
+           "tada_factor", "edge_cracked_plate", "PlateRow", "tada_study", "ClosedCrack",
+           "closed_crack", "polar_integral", "TipQuadrature", "tip_quadrature", "summary"]
+
+MATERIAL = Material(1.0, 0.3)
+"""E = 1, ν = 0.3, plane strain."""
+MODES = {"I": (1.0, 0.0), "II": (0.0, 1.0)}
+"""(K_I, K_II) of the pure modes of the Williams square."""
+ENRICHMENTS = ("topological", "geometric")
+SCALINGS = (None, "jacobi", "block")
+"""The scalings of :func:`skxfem.crack.space.nodal_scaling`; None: raw."""
+RADIUS = 0.3
+"""r_e, the radius of geometric enrichment in the Williams square (side 1)."""
+SIF_RADIUS = 0.3
+"""r_d, the interaction domain's radius in the Williams square."""
+PLATE = {"W": 7.0, "L": 16.0, "a": 3.5}
+"""Moës, Dolbow & Belytschko (1999)'s edge-cracked plate."""
+_CELLS = {"tri": MeshTri1, "quad": MeshQuad1}
+
+
+def unit_square(n: int, cell: str = "tri"):
+    """The unit square of n × n cells (``"tri"``: two triangles each; ``"quad"``).
+
+    >>> unit_square(4).t.shape[1], unit_square(4, "quad").t.shape[1]
+    (32, 16)
+    """
+    x = np.linspace(0, 1, n + 1)
+    return _CELLS[cell].init_tensor(x, x)
+
+
+def straight_crack(tip, beta: float) -> tuple:
+    """ψ, φ (callables) and the frame of a straight crack ending at ``tip``, e₁ at the
+    angle β (the crack lies behind the tip, where φ < 0).
+
+    >>> psi, phi, frame = straight_crack((0.5, 0.5), 0.0)
+    >>> float(psi(np.array([0.2, 0.7]))), float(phi(np.array([0.2, 0.7]))), frame.e2.tolist()
+    (0.19999999999999996, -0.3, [-0.0, 1.0])
+    """
+    e1 = np.array([np.cos(beta), np.sin(beta)])
+    e2 = np.array([-e1[1], e1[0]])
+    O = np.asarray(tip, float)
+
+    def psi(p):
+        return e2[0] * (p[0] - O[0]) + e2[1] * (p[1] - O[1])
+
+    def phi(p):
+        return e1[0] * (p[0] - O[0]) + e1[1] * (p[1] - O[1])
+
+    return psi, phi, straight_frame(e1, e2)
+
+
+def _facets(mesh, where):
+    return mesh.facets_satisfying(where, boundaries_only=True)
+
+
+def williams_square(n: int, K=(1.0, 0.0), enrichment: str = "geometric", cell: str = "tri",
+                    tip=(0.5, 0.5), beta: float = 0.0, radius: float = RADIUS,
+                    sif_radius: float = SIF_RADIUS, scaling: str | None = "block",
+                    condition: bool = False) -> tuple[CrackSolution, callable]:
+    """Solve the Williams square (module notes) and return (solution, exact), ``exact(x)``
+    the :class:`skxfem.crack.williams.NearTip` of the modes ``K`` at points x (2, ...).
+
+    >>> s, exact = williams_square(7, (1.0, 0.0))
+    >>> abs(s.K_I - 1) < 0.05, abs(s.K_II) < 0.01
+    (True, True)
+    """
+    m = unit_square(n, cell)
+    psi, phi, frame = straight_crack(tip, beta)
+    O = np.asarray(tip, float)
+
+    def exact(p):
+        return near_tip(p, O, frame, MATERIAL, K)
+
+    uncut = np.concatenate([_facets(m, lambda p: p[1] < 1e-12),
+                            _facets(m, lambda p: p[1] > 1 - 1e-12),
+                            _facets(m, lambda p: p[0] > 1 - 1e-12)])
+    s = solve_crack(m, psi, phi, MATERIAL, [Support(uncut, value=lambda p: exact(p).u)],
+                    [Load(_facets(m, lambda p: p[0] < 1e-12), lambda p: -exact(p).sigma[:, 0])],
+                    enrichment, radius, scaling=scaling, sif_radius=sif_radius,
+                    condition=condition)
+    return s, exact
+
+
+@dataclass(frozen=True)
+class WilliamsRow:
+    """One solve of the Williams square: K (K_I, K_II) against the imposed modes, the
+    K error max |K - K_exact| (relative: |K_exact| = 1), the relative energy error."""
+
+    n: int
+    h: float
+    enrichment: str
+    mode: str
+    K: tuple
+    K_error: float
+    energy: float
+    n_dofs: int
+
+
+def williams_study(ns, enrichments=ENRICHMENTS, modes=("I", "II"), cell: str = "tri"
+                   ) -> tuple[WilliamsRow, ...]:
+    """The Williams square for every n (cells per side), enrichment and mode."""
+    rows = []
+    for mode in modes:
+        for kind in enrichments:
+            for n in ns:
+                s, exact = williams_square(n, MODES[mode], kind, cell)
+                energy = s.energy_error(lambda p: exact(p).grad_u)[0]
+                rows.append(WilliamsRow(n, 1 / n, kind, mode, tuple(map(float, s.K[0])),
+                                        float(np.abs(s.K[0] - MODES[mode]).max()),
+                                        energy, s.space.N))
+    return tuple(rows)
+
+
+def energy_rates(rows, mode: str = "I") -> dict:
+    """The rate of the energy error per enrichment: the slope of log e against log h,
+    fitted by least squares over the meshes of ``rows`` (of one ``mode``); none for an
+    enrichment with one mesh.
+
+    >>> rows = [WilliamsRow(n, 1 / n, "x", "I", (1, 0), 0, n ** -0.5, 0) for n in (4, 16)]
+    >>> energy_rates(rows)
+    {'x': 0.5}
+    """
+    out = {}
+    for kind in dict.fromkeys(r.enrichment for r in rows if r.mode == mode):
+        sel = [r for r in rows if r.mode == mode and r.enrichment == kind]
+        if len({r.n for r in sel}) < 2:
+            continue
+        out[kind] = round(float(np.polyfit(np.log([r.h for r in sel]),
+                                           np.log([r.energy for r in sel]), 1)[0]), 12)
+    return out
+
+
+@dataclass(frozen=True)
+class ConditionRow:
+    """The condition number of the supported stiffness of the Williams square (mode I)
+    after the nodal ``scaling`` (``"raw"``, ``"jacobi"``, ``"block"``)."""
+
+    n: int
+    h: float
+    enrichment: str
+    scaling: str
+    condition: float
+
+
+def conditioning_study(ns, enrichments=ENRICHMENTS, scalings=SCALINGS
+                       ) -> tuple[ConditionRow, ...]:
+    """Condition numbers (:func:`skxfem.crack.space.condition_number`) for every n,
+    enrichment and scaling.
+
+    >>> row = conditioning_study([5], ("geometric",), ("block",))[0]
+    >>> row.scaling, 10 < row.condition < 1e4
+    ('block', True)
+    """
+    rows = []
+    for kind in enrichments:
+        for scaling in scalings:
+            for n in ns:
+                s, _ = williams_square(n, MODES["I"], kind, scaling=scaling, condition=True)
+                rows.append(ConditionRow(n, 1 / n, kind, scaling or "raw", s.condition))
+    return tuple(rows)
+
+
+def tada_factor(a: float, W: float) -> float:
+    """F(a/W) of a single edge crack a in a plate of width W under tension (Tada, Paris &
+    Irwin 2000, 0.5 %): K_I = σ√(πa) F.
+
+    >>> round(float(np.sqrt(np.pi * 3.5) * tada_factor(3.5, 7.0)), 2)   # Moës et al. 1999
+    9.37
+    """
+    t = np.pi * a / (2 * W)
+    return float(np.sqrt(np.tan(t) / t) * (0.752 + 2.02 * a / W
+                                           + 0.37 * (1 - np.sin(t)) ** 3) / np.cos(t))
+
+
+def edge_cracked_plate(nx: int = 41, cell: str = "tri", radius: float = 2.0,
+                       sif_radius: float = 2.5, face_traction=None, remote: bool = True
+                       ) -> CrackSolution:
+    """The plate of :data:`PLATE` on nx × ny cells, σ = 1 on its ends (``remote``), the
+    crack {y = L/2, x < a}; two nodes hold the rigid modes.  ny: the odd number nearest
+    above nx L/W, so that the crack runs mid-cell (nx = 41: 95).
+
+    >>> s = edge_cracked_plate(14)
+    >>> bool(abs(s.K_I / (np.sqrt(np.pi * 3.5) * tada_factor(3.5, 7.0)) - 1) < 0.05)
+    True
+    """
+    W, L, a = PLATE["W"], PLATE["L"], PLATE["a"]
+    ny = int(np.ceil(nx * L / W))
+    ny += 1 - ny % 2
+    m = _CELLS[cell].init_tensor(np.linspace(0, W, nx + 1), np.linspace(0, L, ny + 1))
+
+    def up(p):
+        return np.stack([0 * p[0], 1 + 0 * p[0]])
+
+    loads = [Load(_facets(m, lambda p: p[1] > L - 1e-9), up),
+             Load(_facets(m, lambda p: p[1] < 1e-9), lambda p: -up(p))] if remote else []
+    c0 = int(np.argmin(np.hypot(m.p[0], m.p[1])))
+    c1 = int(np.argmin(np.hypot(m.p[0] - W, m.p[1])))
+    sup = [Support(nodes=np.array([c0])), Support(nodes=np.array([c1]), components=(1,))]
+    return solve_crack(m, lambda p: p[1] - L / 2, lambda p: p[0] - a, MATERIAL, sup, loads,
+                       "geometric", radius, sif_radius=sif_radius, face_traction=face_traction)
+
+
+@dataclass(frozen=True)
+class PlateRow:
+    """The edge-cracked plate on one mesh: K against σ√(πa) F(a/W)."""
+
+    cell: str
+    nx: int
+    h: float
+    K_I: float
+    K_II: float
+    K_ref: float
+    error: float
+
+
+def tada_study(nxs=(41,), cells=("tri", "quad")) -> tuple[PlateRow, ...]:
+    """:func:`edge_cracked_plate` for every mesh and cell; ``error`` = K_I / K_ref - 1."""
+    W, a = PLATE["W"], PLATE["a"]
+    K_ref = float(np.sqrt(np.pi * a) * tada_factor(a, W))
+    rows = []
+    for cell in cells:
+        for nx in nxs:
+            s = edge_cracked_plate(nx, cell)
+            rows.append(PlateRow(cell, nx, W / nx, s.K_I, s.K_II, K_ref, s.K_I / K_ref - 1))
+    return tuple(rows)
+
+
+@dataclass(frozen=True)
+class ClosedCrack:
+    """K of a crack pressed shut by p with and without the face term, over p√(π r_d)."""
+
+    p: float
+    sif_radius: float
+    with_face_term: tuple
+    without_face_term: tuple
+
+
+def closed_crack(n: int = 21, p: float = 1.0, sif_radius: float = SIF_RADIUS
+                 ) -> ClosedCrack:
+    """The square of :func:`williams_square`'s crack under σ = -p e₂⊗e₂: the uniform
+    strain's displacement on the uncut faces, its traction (none) on the cut face and
+    the pressure p on both crack faces (what contact would carry).  The exact field is
+    uniform, K = 0.
+
+    >>> c = closed_crack(9)
+    >>> max(map(abs, c.with_face_term)) < 1e-6, -0.9 < c.without_face_term[0] < -0.5
+    (True, True)
+    """
+    m = unit_square(n)
+    psi, phi, frame = straight_crack((0.5, 0.5), 0.0)
+    lam, mu = MATERIAL.lame(2)
+    # σ = -p e₂⊗e₂ in plane strain: ε_yy = -p (λ + 2μ)/(4μ(λ + μ)), ε_xx = p λ/(4μ(λ + μ))
+    exx, eyy = p * lam / (4 * mu * (lam + mu)), -p * (lam + 2 * mu) / (4 * mu * (lam + mu))
+
+    def u(x):
+        return np.stack([exx * x[0], eyy * x[1]])
+
+    def pressure(x, side):                       # σ·m*, m* = -side e₂: side p e₂
+        return np.stack([0 * x[0], side * p + 0 * x[0]])
+
+    uncut = np.concatenate([_facets(m, lambda x: x[1] < 1e-12),
+                            _facets(m, lambda x: x[1] > 1 - 1e-12),
+                            _facets(m, lambda x: x[0] > 1 - 1e-12)])
+    s = solve_crack(m, psi, phi, MATERIAL, [Support(uncut, value=u)], (), "geometric",
+                    RADIUS, sif_radius=sif_radius, face_traction=pressure)
+    scale = p * np.sqrt(np.pi * sif_radius)
+    free = sif(s.space, s.U, MATERIAL, sif_radius)
+    return ClosedCrack(p, sif_radius, tuple(float(k) for k in s.K[0] / scale),
+                       tuple(float(k) for k in free / scale))
+
+
+def polar_integral(tip, triangle, power: float) -> float:
+    """∫ r^power over ``triangle`` (3, 2) that holds ``tip``, r = |x - tip|: the sum over
+    its three edges of ∫ R(α)^(power+2)/(power+2) dα in polar coordinates about the tip,
+    R(α) = d / cos(α - α_n) on an edge at distance d (scipy's adaptive quad, to 1e-13).
+
+    >>> round(polar_integral((0, 0), np.array([[0, 0], [1, 0], [0, 1]]), 0.0), 14)
+    0.5
+    """
+    T, P = np.asarray(tip, float), np.asarray(triangle, float)
+    k = power + 2
+    total = 0.0
+    for i in range(3):
+        A, B = P[i] - T, P[(i + 1) % 3] - T
+        cross = A[0] * B[1] - A[1] * B[0]
+        if abs(cross) < 1e-300:                  # the tip on this edge: no area
+            continue
+        t = B - A
+        nrm = np.array([t[1], -t[0]]) / np.linalg.norm(t)
+        d = A @ nrm
+        if d < 0:
+            nrm, d = -nrm, -d
+        an = np.arctan2(nrm[1], nrm[0])
+        a0 = np.arctan2(A[1], A[0])
+        span = np.arctan2(cross, A @ B)           # signed angle from A to B
+        val = quad(lambda a: (d / np.cos(a - an)) ** k / k, a0, a0 + span,
+                   epsabs=0, epsrel=1e-13, limit=200)[0]
+        total += val
+    return abs(total)
+
+
+@dataclass(frozen=True)
+class TipQuadrature:
+    """∫ r^power over one tip cell: exact, almost-polar rule, plain Gauss rule (its
+    order and point count)."""
+
+    power: float
+    exact: float
+    polar: float
+    polar_points: int
+    plain: float
+    plain_order: int
+    plain_points: int
+
+
+def tip_quadrature(power: float = -0.5, n: int = 5, tip=(0.513, 0.459), beta: float = 0.3,
+                   plain_order: int = 16) -> TipQuadrature:
+    """∫ r^power over the tip cell of a straight crack ending inside a cell of the n × n
+    square, by :func:`skxfem.crack.quadrature.tip_rule` and by a Gauss rule of
+    ``plain_order`` on the whole cell, against :func:`polar_integral`.
+
+    >>> q = tip_quadrature(-0.5)
+    >>> abs(q.polar / q.exact - 1) < 1e-12, abs(q.plain / q.exact - 1) > 1e-3
+    (True, True)
+    """
+    m = unit_square(n)
+    O = np.asarray(tip, float)
+    psi, phi, _ = straight_crack(O, beta)
+    g = crack_geometry(m, psi, phi)
+    if g.tip_cells.size != 1:
+        raise ValueError(f"the tip {tuple(tip)} must lie inside one cell, not on its edges")
+    rule = tip_rule(g)
+    b = Basis(m, m.elem(), elements=rule.cells, quadrature=(rule.X, rule.W))
+    x = b.mapping.F(rule.X, tind=rule.cells)
+    live = b.dx > 0
+    polar = float((b.dx[live] * np.hypot(x[0] - O[0], x[1] - O[1])[live] ** power).sum())
+    X, W = cell_rule(m, plain_order)
+    pb = Basis(m, m.elem(), elements=g.tip_cells, quadrature=(X, W))
+    xp = pb.mapping.F(X, tind=g.tip_cells)
+    plain = float((pb.dx * np.hypot(xp[0] - O[0], xp[1] - O[1]) ** power).sum())
+    exact = polar_integral(O, m.p[:, m.t[:, g.tip_cells[0]]].T, power)
+    return TipQuadrature(power, exact, polar, int(live.sum()), plain, plain_order, W.size)
+
+
+def summary(williams=(), conditioning=(), plates=()) -> dict:
+    """The numbers of the studies for ``summary.json``: per row a dict, and the fitted
+    energy rates of mode I.
+
+    >>> summary(plates=[PlateRow("tri", 41, 7 / 41, 9.3, 0.0, 9.37, -0.0075)])["tada"][0]["cell"]
+    'tri'
+    """
+    def rows(rs):
+        return [{k: (list(v) if isinstance(v, tuple) else v) for k, v in vars(r).items()}
+                for r in rs]
+
+    return {"material": {"E": MATERIAL.E, "nu": MATERIAL.nu, "plane": MATERIAL.plane},
+            "williams": {"scene": "unit square, crack from x = 0 to the tip (0.5, 0.5), exact "
+                                  "Williams field: displacements on 3 faces, traction on the "
+                                  f"cut face; r_e = {RADIUS}, r_d = {SIF_RADIUS}",
+                         "rows": rows(williams),
+                         "energy_rates": energy_rates(williams) if williams else {}},
+            "conditioning": rows(conditioning),
+            "tada": rows(plates)}
