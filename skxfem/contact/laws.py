@@ -58,7 +58,7 @@ contact laws and, within a load history, the two ties: a state may switch an
 interface to ``bilateral`` (tension carried, free sliding) or ``bonded`` (no
 further slip), from the jump it has reached."""
 
-HISTORY_LAWS = tuple(LAWS)
+HISTORY_LAWS = tuple(name for name, law in LAWS.items() if law.coupling != "none")
 
 OPEN, STICK, SLIP = 0, 1, 2
 STATUS_NAMES = ("open", "stick", "slip")

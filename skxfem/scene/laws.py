@@ -3,13 +3,14 @@ and the names of the multiplier spaces.
 
 A law says what holds on Γ.  The *ties* (``bonded``, ``bilateral``) are linear:
 the solver of :mod:`skxfem.solver` imposes them with multipliers on the jump
-(the vector jump, or its normal part: their ``coupling``).  The *contact* laws
+(the vector jump, or its normal part: their ``coupling``).  ``free`` imposes
+nothing: traction-free faces (a crack's), no multiplier (its coupling ``"none"``).  The *contact* laws
 are unilateral (Signorini's conditions on the normal, with no friction,
 Coulomb's or no slip): :mod:`skxfem.contact` solves them by Newton's method, and
 within a load history a state may also switch an interface to a tie.
 
 >>> [law.name for law in LAWS.values() if law.tie]
-['bonded', 'bilateral']
+['bonded', 'bilateral', 'free']
 >>> LAWS["coulomb"].unilateral, LAWS["coulomb"].tangential
 (True, 'coulomb')
 >>> FRICTION_LAWS                 # the laws that take Coulomb's μ (``friction``)
@@ -43,8 +44,9 @@ class LawKind:
     tied (d_n = 0, λ of either sign).  ``tangential``: ``"free"`` (r_τ = 0),
     ``"stick"`` (no slip, or no slip increment where closed) or ``"coulomb"``
     (eq. 8).  ``coupling``: the jump a tie's multipliers act on, ``"bonded"``
-    (the vector [[u]]) or ``"bilateral"`` (its normal part); the contact laws'
-    normal multipliers are those of the bilateral tie.
+    (the vector [[u]]) or ``"bilateral"`` (its normal part), ``"none"`` for a law
+    without multipliers (``free``); the contact laws' normal multipliers are those
+    of the bilateral tie.
     """
 
     name: str
@@ -63,6 +65,7 @@ class LawKind:
 LAWS = {law.name: law for law in (
     LawKind("bonded", tie=True, unilateral=False, tangential="stick", coupling="bonded"),
     LawKind("bilateral", tie=True, unilateral=False, tangential="free", coupling="bilateral"),
+    LawKind("free", tie=True, unilateral=False, tangential="free", coupling="none"),
     LawKind("frictionless", tie=False, unilateral=True, tangential="free",
             coupling="bilateral"),
     LawKind("coulomb", tie=False, unilateral=True, tangential="coulomb", coupling="bilateral"),

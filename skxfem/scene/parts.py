@@ -29,6 +29,9 @@ from ..fem.cells import CELL_TYPES
 from ..levelset import LevelSet
 from .expr import Expression
 from .laws import CONTACT_LAWS, FRICTION_LAWS, SPACES
+
+CRACK_ENRICHMENTS = ("geometric", "topological")
+"""The enrichments of a crack's tip (:data:`skxfem.crack.space.ENRICHMENTS`)."""
 from .laws import TIE_LAWS as LAWS
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "clamped", "rollers", "CELLS",
@@ -305,6 +308,12 @@ class Interface:
     augmentations of a contact law (``None``: E/h).  The fields and their
     checks are those of a one-interface :class:`~skxfem.scene.Scene`.
 
+    A crack: ``front`` a second level set φ; Γ is then {ψ = 0, φ < 0}, which ends
+    inside the body at the front {ψ = φ = 0} (2D, law ``free``: :func:`check_crack_fields`);
+    ``enrichment`` the tip enrichment (``"geometric"``: the nodes within a radius of
+    the tip, or ``"topological"``: the tip cells'); ``sif_radius`` the interaction
+    integral's radius (None: a few cells, :func:`skxfem.crack.sif.sif`).
+
     >>> from skxfem.levelset import plane
     >>> i = Interface(plane((0, 0.3), (0, 1)), law="frictionless")
     >>> i.law, i.space, i.friction
@@ -319,6 +328,9 @@ class Interface:
     friction: float | None = None
     rho_n: float | None = None
     rho_t: float | None = None
+    front: LevelSet | None = None
+    enrichment: str = "geometric"
+    sif_radius: float | None = None
 
     def __post_init__(self):
         if not isinstance(self.levelset, LevelSet):
@@ -329,3 +341,46 @@ class Interface:
         for key in ("friction", "rho_n", "rho_t"):
             if getattr(self, key) is not None:
                 object.__setattr__(self, key, float(getattr(self, key)))
+        check_crack_fields(self)
+        if self.sif_radius is not None:
+            object.__setattr__(self, "sif_radius", float(self.sif_radius))
+
+
+def check_crack_fields(interface: Interface) -> None:
+    """Refuse a crack's ``front``, ``enrichment`` or ``sif_radius`` that no solve takes.
+
+    A front φ is a :class:`~skxfem.levelset.LevelSet` of ψ's dimension, 2D for now,
+    with law ``free`` (contact on the faces comes later); ``enrichment`` is
+    ``"geometric"`` or ``"topological"`` (:mod:`skxfem.crack.space`); ``sif_radius``
+    a positive number or None, and both only with a front.
+
+    >>> from skxfem.levelset import plane
+    >>> Interface(plane((0, 0.5), (0, 1)), front=plane((0.5, 0), (1, 0)))
+    Traceback (most recent call last):
+    ...
+    ValueError: Interface front: contact on crack faces is not supported yet; a crack ...
+    """
+    front, law = interface.front, interface.law
+    if interface.enrichment not in CRACK_ENRICHMENTS:
+        raise ValueError(f"Interface enrichment must be one of {CRACK_ENRICHMENTS}, got "
+                         f"{interface.enrichment!r}")
+    r = interface.sif_radius
+    if r is not None and not (is_number(r) and np.isfinite(r) and r > 0):
+        raise ValueError(f"Interface sif_radius must be a positive number or None (a few "
+                         f"cells), got {r!r}")
+    if front is None:
+        if r is not None or interface.enrichment != "geometric":
+            raise ValueError("Interface sif_radius and enrichment are those of a crack: "
+                             "give its front (a level set φ, the crack where φ < 0)")
+        return
+    if not isinstance(front, LevelSet):
+        raise ValueError(f"Interface front must be a skxfem.levelset.LevelSet (the crack "
+                         f"where φ < 0), got {type(front).__name__}")
+    if front.dim != interface.levelset.dim:
+        raise ValueError(f"Interface front must have the dimension of the level set "
+                         f"({interface.levelset.dim}), got {front.dim}")
+    if front.dim != 2:
+        raise ValueError("Interface front: 3D cracks are not supported yet (2D only)")
+    if law != "free":
+        raise ValueError(f"Interface front: contact on crack faces is not supported yet; "
+                         f"a crack takes law 'free', got {law!r}")
