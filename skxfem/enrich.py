@@ -120,6 +120,44 @@ class XSpace:
         """Ω⁻ and Ω⁺, ``[[-1], [1]]``, and the region of each node: :meth:`XSpaces.regions`."""
         return XSpaces((self,)).regions()
 
+    splits = True
+    """Γ splits the body in two (:meth:`XSpaces.regions` takes its signs)."""
+
+    def signed_stiffness(self, material: Material, A=None):
+        """(A, A_H): the standard stiffness ∫ σ(u):ε(v) (``A`` if given: assembled once
+        for every interface) and its signed version, from :attr:`parts`
+        (:func:`stiffness`)."""
+        side_parts = self.parts or parts(self.mesh, self.cut, self.basis.elem.elem, self.rule)
+        return side_parts.signed(lambda basis: stiffness_matrix(material, basis), A)
+
+    def blocks(self, A: sp.csr_matrix, AH) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+        """(A_ab, A_bb), the enriched blocks of this space from A and its A_H
+        (:func:`enriched_blocks`)."""
+        return _blocks(self, A, AH.tocsr())
+
+    def load(self, facet_loads, body_force=None, f: np.ndarray | None = None):
+        """(f, f_b): the load ∫ t·φ + ∫ b·φ on the standard dofs (``f`` if given: the
+        first interface's) and on this space's enriched unknowns, f_H[E] - H f[E]
+        (:func:`enriched_load`).  ``facet_loads``: ``(facets, t(x, n))`` pairs
+        (:func:`skxfem.scene.load_facets`); ``body_force``: :func:`body_load`'s."""
+        from .fem.loads import boundary_quadrature, surface_load
+        own, f_H = np.zeros(self.n_std), np.zeros(self.n_std)
+        for facets, traction in facet_loads:
+            q = boundary_quadrature(self.mesh, facets, 4, psi_nodes=self.cut.psi)
+            df, df_H = surface_load(self.basis, q, traction)
+            own, f_H = own + df, f_H + df_H
+        if body_force is not None:
+            df, df_H = body_load(self, body_force)
+            own, f_H = own + df, f_H + df_H
+        f = own if f is None else f
+        return f, f_H[self.enr_dofs] - self.H_node * f[self.enr_dofs]
+
+    def constraints(self, scene, mesh) -> tuple[np.ndarray, np.ndarray]:
+        """The constrained unknowns of [a, b] and their values
+        (:func:`skxfem.problem.constrained_dofs`)."""
+        from .problem import constrained_dofs
+        return constrained_dofs(self, scene, mesh)
+
 
 @dataclass(frozen=True)
 class XSpaces:
@@ -197,9 +235,11 @@ class XSpaces:
 
         A region is a sign pattern taken by a node (the level sets are snapped off
         the nodes, :func:`skxfem.cut.snap`): no cell is cut twice, so every region
-        that meets a cut cell holds one of its nodes.
+        that meets a cut cell holds one of its nodes.  A Γ that ends inside the body
+        (a crack: its space's ``splits`` False) splits no region and has no sign.
         """
-        signs = np.array([np.where(V.cut.psi < 0, -1, 1) for V in self.per_interface])
+        signs = np.array([np.where(V.cut.psi < 0, -1, 1) for V in self.per_interface
+                          if V.splits]).reshape(-1, self.mesh.p.shape[1])
         patterns, node_region = np.unique(signs.T, axis=0, return_inverse=True)
         return patterns, node_region.ravel()
 
@@ -292,8 +332,7 @@ def enriched_blocks(V: XSpace | XSpaces, A, AH) -> sp.csr_matrix:
     V = as_spaces(V)
     AH = AH if isinstance(AH, (list, tuple)) else [AH]
     A = A.tocsr()
-    parts = [_blocks(Vk, A, AHk.tocsr())
-             for Vk, AHk in zip(V.per_interface, AH, strict=True)]
+    parts = [Vk.blocks(A, AHk) for Vk, AHk in zip(V.per_interface, AH, strict=True)]
     rows = [[A] + [Aab for Aab, _ in parts]]
     for k, (Aab, Abb) in enumerate(parts):
         rows.append([Aab.T] + [Abb if j == k else None for j in range(len(parts))])
@@ -346,13 +385,9 @@ def stiffness(V: XSpace | XSpaces, material: Material,
             A, AH = A + Ks, AH + side * Ks
         return enriched_blocks(V, A, [AH])
 
-    def form(basis):
-        return stiffness_matrix(material, basis)
-
     A, AH = None, []
-    for Vk in V.per_interface:
-        side_parts = Vk.parts or parts(Vk.mesh, Vk.cut, Vk.basis.elem.elem, Vk.rule)
-        A, AHk = side_parts.signed(form, A)
+    for Vk in V.per_interface:  # each space signs its own (a crack: its own blocks)
+        A, AHk = Vk.signed_stiffness(material, A)
         AH.append(AHk)
     return enriched_blocks(V, A, AH)
 
@@ -451,7 +486,9 @@ def region_fields(V: XSpace | XSpaces, U: np.ndarray) -> tuple[np.ndarray, np.nd
     """The regions and the nodal values (R, dim, nverts) of each region's field.
 
     In region σ (its sign σ_k = ±1 for each level set), u = a + Σ_k b^k (σ_k - H^k_j)
-    at the nodes: the field of that region continued over the cells it meets.
+    at the nodes: the field of that region continued over the cells it meets.  A Γ
+    that splits no region (a crack: ``splits`` False) adds nothing at the nodes (its
+    shifted enrichment vanishes there).
     The regions are :meth:`XSpaces.regions`; for one interface [[-1], [1]], Ω⁻ and Ω⁺,
     whose fields are those of :func:`split_fields`.
 
@@ -470,9 +507,10 @@ def region_fields(V: XSpace | XSpaces, U: np.ndarray) -> tuple[np.ndarray, np.nd
     patterns, _ = V.regions()
     a = U[:V.n_std]
     fields = []
+    splitting = [(Vk, start) for Vk, start in zip(V.per_interface, V.offsets) if Vk.splits]
     for sigma in patterns:
         u = a.copy()
-        for k, (Vk, start) in enumerate(zip(V.per_interface, V.offsets)):
+        for k, (Vk, start) in enumerate(splitting):
             u[Vk.enr_dofs] += U[start:start + Vk.n_enr] * (sigma[k] - Vk.H_node)
         fields.append(u[V.basis.nodal_dofs])
     return patterns, np.array(fields)

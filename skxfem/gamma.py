@@ -61,16 +61,22 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
 
+from .crack.assembly import face_rule as face_rule_of
+from .crack.geometry import crack_geometry
+from .crack.kind import CrackXSpace
+from .crack.sif import sif
+from .crack.space import crack_space, evaluation
 from .cut import Cut
 from .cut import cut as cut_mesh
-from .enrich import XSpace, xfem_space
+from .enrich import XSpace, jump_matrix, xfem_space
 from .levelset import point_normals, unit
-from .multipliers import Space
+from .multipliers import InterfaceRule, Space, interface_rule
 from .scene.parts import Interface
 from .stabilised import multiplier_space
 
-__all__ = ["Gamma", "gamma"]
+__all__ = ["Gamma", "Crack", "gamma"]
 
 
 @dataclass(frozen=True)
@@ -113,11 +119,84 @@ class Gamma:
         """ψ at the nodes as the solve used it (snapped off the nodes: ``cut.psi``)."""
         return cut.psi
 
+    def rule(self, mesh, cut: Cut) -> InterfaceRule:
+        """The quadrature on Γ_h (:func:`skxfem.multipliers.interface_rule`)."""
+        return interface_rule(mesh, cut)
+
+    def jump(self, V: XSpace, rule: InterfaceRule) -> sp.csr_matrix:
+        """U ↦ [[u_h]] at the rule's points (:func:`skxfem.enrich.jump_matrix`)."""
+        return jump_matrix(V, rule.cells, rule.ref)
+
+    def front(self, V, U: np.ndarray, material) -> dict | None:
+        """The stress intensity factors along Γ's front: None, Γ has none."""
+        return None
+
+
+@dataclass(frozen=True)
+class Crack(Gamma):
+    """A 2D crack: Γ = {ψ = 0, φ < 0}, φ the interface's ``front``, which ends inside the
+    body at the front {ψ = φ = 0} (module notes; the mathematics in :mod:`skxfem.crack`).
+
+    Its cut is the :class:`~skxfem.crack.geometry.CrackGeometry` (the fields of a Cut),
+    its space the :class:`~skxfem.crack.kind.CrackXSpace` of [a, b, c], its rule Gauss
+    points on the crack pieces; it takes law ``free`` only (no multipliers)."""
+
+    def cut(self, mesh, label: str = ""):
+        """The crack's geometry on ``mesh`` (:func:`skxfem.crack.geometry.crack_geometry`);
+        a ValueError naming ``label`` if it crosses no cell."""
+        i = self.interface
+        geo = crack_geometry(mesh, i.levelset.fun, i.front.fun)
+        if geo.segments.shape[-1] == 0:
+            raise ValueError(f"{label or 'the crack'}: the crack {{ψ = 0, φ < 0}} "
+                             f"({i.levelset.name!r}, front {i.front.name!r}) crosses no cell")
+        return geo
+
+    def space(self, mesh, cut, order: int | None = None):
+        """The crack's space [a, b, c] (:func:`skxfem.crack.space.crack_space` with the
+        interface's ``enrichment``); ``order`` is not used (its own rules)."""
+        return CrackXSpace(crack_space(mesh, cut, self.interface.enrichment))
+
+    def multipliers(self, mesh, cut, fixed=None, per_edge=None) -> Space:
+        """None: a crack's faces are free (law ``free``) and carry no multiplier."""
+        raise ValueError("a crack's faces take law 'free': contact on crack faces is not "
+                         "supported yet, so it has no multiplier space")
+
+    def normals(self, cut) -> np.ndarray:
+        """∇ψ/|∇ψ| (dim, n) at the crack's cut points."""
+        return self.normals_at(cut.points)
+
+    def rule(self, mesh, cut) -> InterfaceRule:
+        """Gauss points on the crack pieces (:func:`skxfem.crack.assembly.face_rule`,
+        √r-graded at a tip), the normals of their pieces; no multiplier functions."""
+        x, w, cells, ref = face_rule_of(self._space(mesh, cut))
+        per_piece = x.shape[1] // max(cut.segment_cell.size, 1)
+        return InterfaceRule(points=x, normals=np.repeat(cut.normals, per_piece, axis=1),
+                             weights=w, cells=cells, ref=ref,
+                             N=sp.csr_matrix((x.shape[1], cut.edge_ids.size)))
+
+    def jump(self, V, rule: InterfaceRule) -> sp.csr_matrix:
+        """U ↦ [[u_h]] = u(Ω⁺ face) - u(Ω⁻ face) at the rule's points, component-major."""
+        n = rule.cells.size
+        plus, minus = (evaluation(V.space, rule.cells, rule.ref, np.full(n, s)).value
+                       for s in (1.0, -1.0))
+        return sp.csr_matrix(plus - minus)
+
+    def front(self, V, U: np.ndarray, material) -> dict:
+        """``points`` (m, dim) the front's points (the tips) and ``K_I``, ``K_II`` (m,) there
+        (:func:`skxfem.crack.sif.sif` with the interface's ``sif_radius``)."""
+        tips = V.cut.tips
+        K = np.array([sif(V.space, U, material, self.interface.sif_radius, tip=k)
+                      for k in range(tips.shape[1])]).reshape(-1, 2)
+        return {"points": tips.T.copy(), "K_I": K[:, 0], "K_II": K[:, 1]}
+
+    def _space(self, mesh, cut):
+        return crack_space(mesh, cut, self.interface.enrichment)
+
 
 def gamma(interface: Interface) -> Gamma:
-    """The :class:`Gamma` of a scene's interface: its kind (module notes; today every
-    interface cuts the body through)."""
+    """The :class:`Gamma` of a scene's interface, by its kind: a :class:`Crack` for an
+    interface with a ``front``, else a Γ that cuts the body through."""
     if not isinstance(interface, Interface):
         raise TypeError(f"interface must be a skxfem.scene.Interface, got "
                         f"{type(interface).__name__}")
-    return Gamma(interface)
+    return Gamma(interface) if interface.front is None else Crack(interface)

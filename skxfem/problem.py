@@ -38,15 +38,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .cut import Cut, check_apart
-from .enrich import (
-    XSpace,
-    XSpaces,
-    body_load,
-    enriched_load,
-    jump_matrix,
-    stiffness,
-)
-from .fem.loads import boundary_quadrature, surface_load
+from .enrich import XSpace, XSpaces, stiffness
 from .gamma import Gamma, gamma
 from .linalg.rigid import short_pieces
 from .multipliers import (
@@ -55,7 +47,6 @@ from .multipliers import (
     coupling,
     fixed_jumps,
     interface_mass,
-    interface_rule,
     normal_fixed,
 )
 from .scene.boundary import imposed
@@ -96,7 +87,8 @@ class Part:
         jump of §4.1 written with the enriched dofs of [11]
         (:func:`skxfem.enrich.jump_matrix`).
     multiplier_space : :class:`~skxfem.multipliers.Space`, the multiplier space
-        on all cut edges (§4.2 naive, §5 winner nodes / vital edges).
+        on all cut edges (§4.2 naive, §5 winner nodes / vital edges); None for a law
+        without multipliers (``free``).
     law : the tie law P and B are built for (``"bonded"`` or ``"bilateral"``).
     ncomp : multiplier components per edge: dim (bonded) or 1 (bilateral).
     P : (ncomp·n_edges, m) CSR, the prolongation λ = P μ of the law's
@@ -133,7 +125,7 @@ class Part:
     g: np.ndarray
     rule: InterfaceRule
     J: sp.csr_matrix
-    multiplier_space: Space
+    multiplier_space: Space | None
     law: str
     ncomp: int
     P: sp.csr_matrix
@@ -332,27 +324,21 @@ def state_loads(pb: Problem, scene: Scene) -> tuple[np.ndarray, np.ndarray, np.n
 
 
 def _load(scene: Scene, mesh, V: XSpaces) -> np.ndarray:
-    """F on [a, b¹, …]: the scene's surface loads and body force (:func:`enriched_load`
-    of f and each interface's f_H)."""
-    f, f_H = np.zeros(V.n_std), [np.zeros(V.n_std) for _ in V.per_interface]
-    for facets, traction in load_facets(scene, mesh):
-        for k, Vk in enumerate(V.per_interface):
-            q = boundary_quadrature(mesh, facets, 4, psi_nodes=Vk.cut.psi)
-            df, df_H = surface_load(V.basis, q, traction)
-            f = f + df if k == 0 else f
-            f_H[k] = f_H[k] + df_H
-    if scene.body_force is not None:
-        for k, Vk in enumerate(V.per_interface):
-            df, df_H = body_load(Vk, scene.body_force)
-            f = f + df if k == 0 else f
-            f_H[k] = f_H[k] + df_H
-    return enriched_load(V, f, f_H)
+    """F on [a, b¹, …]: the scene's surface loads and body force, each space's enriched
+    part by its own rule (:meth:`skxfem.enrich.XSpace.load`), the standard part the
+    first space's."""
+    facet_loads = load_facets(scene, mesh)
+    f, parts = None, []
+    for Vk in V.per_interface:
+        f, fk = Vk.load(facet_loads, scene.body_force, f)
+        parts.append(fk)
+    return np.concatenate([f] + parts)
 
 
 def _constraints(scene: Scene, mesh, V: XSpaces):
     """(D, g) on [a, b¹, …] and each interface's own (D_k, g_k) on [a, b^k]
     (:func:`constrained_dofs`)."""
-    local = [constrained_dofs(Vk, scene, mesh) for Vk in V.per_interface]
+    local = [Vk.constraints(scene, mesh) for Vk in V.per_interface]
     std = local[0][0] < V.n_std  # the supports' standard dofs: the same for every interface
     D = np.concatenate([local[0][0][std]] + [V.columns(k)[Dk[Dk >= V.n_std]]
                                              for k, (Dk, _) in enumerate(local)])
@@ -378,11 +364,14 @@ def _part(interface, g: Gamma, mesh, cut, V, D, values, law, lap, columns) -> Pa
     """The :class:`Part` of one interface, after its X-FEM space: its multiplier
     space (§4.2, §5), rule, jump operator, coupling and the spaces of each
     component (with the supports' fixed nodes; a multiplier per edge on the pieces
-    of Γ the space leaves loose)."""
+    of Γ the space leaves loose).  A law without multipliers (``free``) gives P with
+    no column (dim rows per cut edge: λ = P μ = 0) and B with no row."""
+    if COUPLING[law] == "none":
+        return _free_part(interface, g, mesh, cut, V, D, values, law, lap, columns)
     lam_space = g.multipliers(mesh, cut)
     lap("space")
-    rule = interface_rule(mesh, cut)
-    J = jump_matrix(V, rule.cells, rule.ref)
+    rule = g.rule(mesh, cut)
+    J = g.jump(V, rule)
     B_edges = coupling(V, rule, COUPLING[law], J=J)
     M_edges = interface_mass(rule)
     lap("interface")
@@ -406,6 +395,23 @@ def _part(interface, g: Gamma, mesh, cut, V, D, values, law, lap, columns) -> Pa
         q = part(g.multipliers(mesh, cut, per_edge=short), short)
     lap("prolongation")
     return q
+
+
+def _free_part(interface, g: Gamma, mesh, cut, V, D, values, law, lap, columns) -> Part:
+    """The :class:`Part` of an interface whose law has no multipliers: its rule and jump
+    (for the results), P (dim·n_edges, 0), B (0, n_k), no multiplier space."""
+    lap("space")
+    rule = g.rule(mesh, cut)
+    J = g.jump(V, rule)
+    lap("interface")
+    ne, dim = cut.edge_ids.size, mesh.dim()
+    part = Part(interface=interface, gamma=g, mesh=mesh, cut=cut, V=V, D=D, g=values,
+                rule=rule, J=J, multiplier_space=None, law=law, ncomp=dim,
+                P=sp.csr_matrix((dim * ne, 0)), B=sp.csr_matrix((0, V.N)),
+                M_edges=sp.csr_matrix((ne, ne)), held_edges=np.zeros((dim, ne), bool),
+                component_spaces=(), columns=columns)
+    lap("prolongation")
+    return part
 
 
 def _component_spaces(g: Gamma, mesh, cut, lam_space, fixed, per_edge=None) -> tuple:

@@ -71,6 +71,10 @@ class Result:
     ``u_regions`` the regions and their nodal fields (module notes).  ``U`` holds
     the unknowns [a, b¹, …] of the X-FEM space ``V`` (:class:`skxfem.enrich.XSpaces`,
     as :attr:`skxfem.problem.Problem.V`) and ``problem`` the assembled problem.
+    ``front``: one dict per interface with a front (a crack, :class:`skxfem.gamma.Crack`),
+    in the scene's order: ``points`` (m, dim) the front's points and ``K_I``, ``K_II``
+    (m,) the stress intensity factors there (:func:`skxfem.crack.sif.sif`); empty
+    without a crack.
     """
 
     scene: object
@@ -97,6 +101,7 @@ class Result:
     interface: np.ndarray | None = None
     regions: np.ndarray | None = None
     u_regions: np.ndarray | None = field(default=None, repr=False)
+    front: tuple = ()
 
     @property
     def u_minus(self) -> np.ndarray | None:
@@ -177,7 +182,7 @@ class Result:
         material) per region, in the order of ``regions`` (one interface: (u⁻, Ω⁻'s),
         (u⁺, Ω⁺'s); a material per side is for one interface only)."""
         minus, plus = self.scene.materials()
-        return [(u, minus if signs[0] < 0 else plus)
+        return [(u, minus if (signs[:1] < 0).any() else plus)  # no sign: no Γ splits it
                 for u, signs in zip(self.u_regions, np.asarray(self.regions))]
 
     def strains(self) -> list[np.ndarray]:
@@ -243,7 +248,14 @@ def result(pb, U: np.ndarray, traction: np.ndarray, max_jump: float, n_multiplie
         normals=np.hstack([q.normals() for q in qs]),
         jump=np.hstack([edge_jumps(q.V, U[q.columns]) for q in qs]),
         facets=np.hstack([q.cut.facets + o for q, o in zip(qs, offsets)]),
-        interface=np.repeat(np.arange(len(qs)), sizes), **common)
+        interface=np.repeat(np.arange(len(qs)), sizes), front=_fronts(pb, U), **common)
+
+
+def _fronts(pb, U: np.ndarray) -> tuple:
+    """The stress intensity factors of each interface with a front (its kind's
+    :meth:`skxfem.gamma.Gamma.front`; None for one that has none)."""
+    fronts = (q.gamma.front(q.V, U[q.columns], pb.scene.material) for q in pb.interfaces)
+    return tuple(f for f in fronts if f is not None)
 
 
 def on_edges(P: sp.spmatrix, values: np.ndarray) -> np.ndarray:

@@ -51,10 +51,12 @@ def _linear(method: str, p: Problem) -> str:
 
 
 def _differences(cut, ncomp: int) -> sp.csr_matrix:
-    """G: λ_i - λ_j over the sides (i, j) of the interface facets, per component."""
+    """G: λ_i - λ_j over the sides (i, j) of the interface facets, per component (a
+    side with an end -1, no cut point, has none)."""
     nv = cut.facets.shape[0]
     pairs = np.hstack([cut.facets[[i, (i + 1) % nv]] for i in range(nv if nv > 2 else 1)])
     pairs = np.unique(np.sort(pairs, axis=0), axis=1)
+    pairs = pairs[:, (pairs >= 0).all(axis=0)]  # an end that is no cut point (a crack's tip)
     k = pairs.shape[1]
     G = sp.csr_matrix((np.r_[np.ones(k), -np.ones(k)],
                        (np.r_[np.arange(k), np.arange(k)], np.r_[pairs[0], pairs[1]])),

@@ -17,6 +17,9 @@
   or for a contact solve those used; ``n_points``); ``interface`` is the
   interface of each point and ``regions`` the sign (±1) of each level set in
   each region (one interface: ``[[-1], [1]]``, Ω⁻ then Ω⁺).
+* ``front`` (only for a scene with a crack, an interface with a ``front``): one entry
+  per crack, ``points`` (one list per front point), ``K_I`` and ``K_II`` (one number per
+  point), the stress intensity factors of :attr:`skxfem.result.Result.front`.
 * ``displacement.vtu``: each region as its own piece of mesh with its own
   field ``displacement``, so that ParaView's *Warp By Vector* shows the
   discontinuity: piece r holds the cells with a vertex in region r, on its own
@@ -158,6 +161,11 @@ def result_summary(result) -> dict:
     if result.is_contact:
         data.update(_jsonable(contact_summary(result), "steps"))
     data.update(_interfaces(result, items))
+    if result.front:  # a crack's stress intensity factors (none: the key is absent)
+        data["front"] = [{"points": _plain(np.asarray(f["points"]), "front points"),
+                          "K_I": _plain(np.asarray(f["K_I"]), "K_I"),
+                          "K_II": _plain(np.asarray(f["K_II"]), "K_II")}
+                         for f in result.front]
     return data
 
 

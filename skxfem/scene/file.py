@@ -133,7 +133,7 @@ from . import tomlcheck
 from .boundary import select_facets, select_nodes
 from .laws import FRICTION_LAWS, in_words
 from .magnitudes import BUILT_BOX, MAX_MAGNITUDE, MAX_SHIFT, check_magnitudes
-from .parts import COMPONENTS, FACES, check_friction
+from .parts import COMPONENTS, CRACK_ENRICHMENTS, FACES, check_friction
 from .settings import Solver
 from .tomlcheck import array, choice, formula, keys, number, one_of, table, vector
 
@@ -214,6 +214,8 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
         Key("sphere", "table {center, radius}", "3D: Ω⁻ inside the sphere",
             {"center": [0.5, 0.5, 0.5], "radius": 0.3}),
         Key("expr", "formula [L]", "ψ itself, best a signed distance", "y - 0.5"),
+        Key("front", "formula [L]", "a crack: φ, Γ is then {ψ = 0, φ < 0}, ending inside "
+            "the body at the front {ψ = φ = 0} (2D, law free)", "x - 0.5"),
     ), (("plane", "circle", "sphere", "expr"),)),
     Table("[levelset] plane", "", (
         Key("point", "dim numbers [L]", "a point of the plane (required)", [0.0, 0.5]),
@@ -287,7 +289,8 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
     )),
     Table("[interface]", "the law on Γ and its multiplier space", (
         Key("law", "one of " + " ".join(sc.LAWS + sc.CONTACT_LAWS), "ties: bonded "
-            "(default), bilateral; contact: frictionless, coulomb, adhesive", "coulomb"),
+            "(default), bilateral; free: traction-free faces (a crack's), no multiplier; "
+            "contact: frictionless, coulomb, adhesive", "coulomb"),
         Key("space", "one of " + " ".join(sc.SPACES), "the multiplier space (default "
             "vital, the stable one)", "vital"),
         Key("friction", "0, or 1e-10 to 1e10", "Coulomb's mu: required by law coulomb (0: it "
@@ -298,6 +301,11 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             "cut-edge size)", 10.0),
         Key("steps", "list of numbers", "the load factors of a contact solve, in order, at "
             "most 1000 (default [1])", [0.5, 1.0]),
+        Key("enrichment", "one of " + " ".join(CRACK_ENRICHMENTS), "a crack's tip "
+            "enrichment: the nodes within a radius of the tip (geometric, default) or the "
+            "tip cells' (topological)", "geometric"),
+        Key("sif_radius", "number > 0 [L]", "a crack: the radius of the interaction "
+            "integral's domain (default a few cells)", 0.3),
     )),
     Table("[[interface]]", "several interfaces, one table each (in place of [levelset] "
           "and [interface]) with its level set (a key of [levelset], as there) and its "
@@ -317,6 +325,10 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             "refused by the others", 0.5),
         Key("rho_n", "number > 0 [F/L³]", "its contact augmentation (default E/h)", 10.0),
         Key("rho_t", "number > 0 [F/L³]", "its friction augmentation (default E/h)", 10.0),
+        Key("front", "formula [L]", "as [levelset] front: a crack (law free)", "x - 0.5"),
+        Key("enrichment", "one of " + " ".join(CRACK_ENRICHMENTS), "as [interface] "
+            "enrichment", "topological"),
+        Key("sif_radius", "number > 0 [L]", "as [interface] sif_radius", 0.3),
     ), (("plane", "circle", "sphere", "expr"),)),
     Table("[solver]", "how the scene is solved, by skxfem run and skxfem.solve alike "
           "(skxfem run's --linear, --linear-tol, --max-iter and skxfem.solve's keywords "
@@ -476,6 +488,23 @@ def _law_fields(t: dict, where: str) -> dict:
     return fields
 
 
+def _crack_fields(front, t: dict, dim: int, where: str) -> dict:
+    """The ``front`` (a formula φ), ``enrichment`` and ``sif_radius`` of a crack, as
+    keywords of an :class:`~skxfem.scene.Interface` (which checks them together);
+    ``t`` the [interface] or [[interface]] table ``where``; {} if none is given."""
+    out = {}
+    if front is not None:
+        if not isinstance(front, str):
+            raise TypeError(f"{where} front must be a formula string (φ: the crack where "
+                            f"φ < 0), got {front!r}")
+        out["front"] = ls.LevelSet(formula(front, f"{where} front", dim), dim, front)
+    if "enrichment" in t:
+        out["enrichment"] = choice(t["enrichment"], CRACK_ENRICHMENTS, f"{where} enrichment")
+    if "sif_radius" in t:
+        out["sif_radius"] = number(t["sif_radius"], f"{where} sif_radius")
+    return out
+
+
 def _steps(steps, where: str) -> tuple:
     if not (isinstance(steps, list) and steps and all(
             isinstance(f, (int, float)) and not isinstance(f, bool) for f in steps)):
@@ -497,7 +526,7 @@ def _interfaces(data: dict, dim: int) -> tuple[sc.Interface, ...]:
         t = table(t, where, _names("[[interface]]"), _TOP_KEYS)
         kind = one_of(t, _exclusive("[[interface]]"), where)
         levelset = _levelset({kind: t[kind]}, dim, where)
-        fields = _law_fields(t, where)
+        fields = {**_law_fields(t, where), **_crack_fields(t.get("front"), t, dim, where)}
         out.append(tomlcheck.labelled(where, lambda: sc.Interface(levelset, **fields)))
     if not out:
         raise ValueError("interface is an empty list: give [[interface]] tables, one per "
@@ -528,6 +557,13 @@ def _scene(data: dict, path: Path) -> sc.Scene:
                                  "level: keep one")
             fields["steps"] = _steps(interface["steps"], "[interface] steps")
         fields["levelset"] = _levelset(data["levelset"], dim)
+        crack = _crack_fields(data["levelset"].get("front"), interface, dim, "[interface]")
+        if crack:   # a crack in the short form: the interfaces form at once
+            own = {k: fields.pop(k) for k in ("levelset", "law", "space", "friction",
+                                               "rho_n", "rho_t") if k in fields}
+            interfaces = (tomlcheck.labelled("[interface]", lambda: sc.Interface(
+                own.pop("levelset"), **own, **crack)),)
+            fields["interfaces"] = interfaces
     if "steps" in data:
         fields["steps"] = _steps(data["steps"], "steps")
     options = _options(solver)
