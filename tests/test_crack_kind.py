@@ -1,0 +1,186 @@
+"""A crack as one more kind of interface (issue 29, 2D, law free): a scene with an
+interface that has a front goes through the one path (assemble, solve, result, files)
+and reproduces the harness :func:`skxfem.crack.solve.solve_crack` on the Williams square;
+bad inputs are refused naming the argument."""
+import json
+
+import numpy as np
+import pytest
+
+from skxfem.app.cli import main
+from skxfem.crack.assembly import Load, Support
+from skxfem.crack.solve import solve_crack
+from skxfem.crack.williams import near_tip
+from skxfem.gamma import Crack, Gamma, gamma
+from skxfem.levelset import LevelSet, plane
+from skxfem.problem import assemble
+from skxfem.scene import Displacement, Interface, Scene, SurfaceLoad
+from skxfem.scene.file import load_scene
+from skxfem.solver import solve
+from skxfem.studies.cracks import MATERIAL, _facets, straight_crack, unit_square
+
+N, SIF_RADIUS = 11, 0.3
+TIP = np.array([0.5, 0.5])
+
+
+def _exact():
+    _, _, frame = straight_crack(TIP, 0.0)
+    return lambda p: near_tip(p, TIP, frame, MATERIAL, (1.0, 0.0))
+
+
+def harness(enrichment="geometric"):
+    """The Williams square, mode I, solved by the crack harness (radius: its default)."""
+    m = unit_square(N)
+    psi, phi, _ = straight_crack(TIP, 0.0)
+    ex = _exact()
+    uncut = np.concatenate([_facets(m, lambda p: p[1] < 1e-12),
+                            _facets(m, lambda p: p[1] > 1 - 1e-12),
+                            _facets(m, lambda p: p[0] > 1 - 1e-12)])
+    return solve_crack(m, psi, phi, MATERIAL, [Support(uncut, value=lambda p: ex(p).u)],
+                       [Load(_facets(m, lambda p: p[0] < 1e-12),
+                             lambda p: -ex(p).sigma[:, 0])],
+                       enrichment, None, sif_radius=SIF_RADIUS)
+
+
+def crack_scene(enrichment="geometric"):
+    """The same problem as a scene: an interface with a front, law free."""
+    psi, phi, _ = straight_crack(TIP, 0.0)
+    ex = _exact()
+    disp = tuple(Displacement(b, {"x": lambda p: ex(p).u[0], "y": lambda p: ex(p).u[1]})
+                 for b in ("ymin", "ymax", "xmax"))
+    load = SurfaceLoad("xmin", traction=(lambda p: -ex(p).sigma[0, 0],
+                                         lambda p: -ex(p).sigma[1, 0]))
+    crack = Interface(LevelSet(psi, 2, "psi"), law="free", front=LevelSet(phi, 2, "phi"),
+                      enrichment=enrichment, sif_radius=SIF_RADIUS)
+    return Scene(unit_square(N), material=MATERIAL, displacements=disp, loads=(load,),
+                 interfaces=(crack,))
+
+
+def test_an_interface_with_a_front_is_a_crack_kind():
+    psi, phi = plane((0, 0.5), (0, 1)), plane((0.5, 0), (1, 0))
+    assert type(gamma(Interface(psi))) is Gamma
+    assert type(gamma(Interface(psi, law="free", front=phi))) is Crack
+
+
+@pytest.mark.parametrize("enrichment", ["geometric", "topological"])
+def test_crack_scene_reproduces_the_harness(enrichment):
+    """The one path (assemble, solve, result) gives the harness' K, F, U and K_I, K_II."""
+    s = harness(enrichment)
+    p = assemble(crack_scene(enrichment))
+    assert p.K.shape == (s.space.N, s.space.N), "the crack's unknowns [a, b, c]"
+    assert p.P.shape[1] == 0 and p.B.shape[0] == 0, "law free: no multiplier"
+    r = solve(crack_scene(enrichment), linear="direct")
+    assert np.abs(r.U - s.U).max() < 1e-10 * np.abs(s.U).max()
+    (front,) = r.front
+    assert np.allclose(front["points"], [TIP])
+    assert abs(front["K_I"][0] - s.K_I) < 1e-10 and abs(front["K_II"][0] - s.K_II) < 1e-10
+    assert abs(front["K_I"][0] - 1) < 0.05, "mode I, K_I = 1 at this mesh within 5 %"
+
+
+def test_a_scene_without_a_front_has_no_front():
+    from skxfem.scene.benchmarks import strip
+    assert solve(strip(3, cell="tri")).front == ()
+
+
+WILLIAMS_TOML = """
+name = "williams"
+[mesh]
+box = {{n = {n}, cell = "tri", size = [1, 1]}}
+[levelset]
+expr = "y - 0.5"
+front = "x - 0.5"
+[interface]
+law = "free"
+enrichment = "{enrichment}"
+sif_radius = {sif_radius}
+[material]
+E = 1.0
+nu = 0.3
+{supports}
+[[load]]
+boundary = "xmin"
+traction = ["{tx}", "{ty}"]
+[solver]
+linear = "direct"
+"""
+
+_R = "sqrt((x - 0.5)**2 + (y - 0.5)**2)"
+_T = "atan2(y - 0.5, x - 0.5)"
+_MU, _KAPPA = 1.0 / (2 * 1.3), 3 - 4 * 0.3
+_UX = (f"1/(2*{_MU!r})*sqrt({_R}/(2*pi))*cos({_T}/2)*({_KAPPA!r} - 1 + 2*sin({_T}/2)**2)")
+_UY = (f"1/(2*{_MU!r})*sqrt({_R}/(2*pi))*sin({_T}/2)*({_KAPPA!r} + 1 - 2*cos({_T}/2)**2)")
+_SXX = f"1/sqrt(2*pi*{_R})*cos({_T}/2)*(1 - sin({_T}/2)*sin(3*{_T}/2))"
+_SXY = f"1/sqrt(2*pi*{_R})*sin({_T}/2)*cos({_T}/2)*cos(3*{_T}/2)"
+
+
+def _toml(enrichment="geometric"):
+    supports = "\n".join(f'[[displacement]]\nboundary = "{b}"\nx = "{_UX}"\ny = "{_UY}"'
+                         for b in ("ymin", "ymax", "xmax"))
+    return WILLIAMS_TOML.format(n=N, enrichment=enrichment, sif_radius=SIF_RADIUS,
+                                supports=supports, tx=f"-({_SXX})", ty=f"-({_SXY})")
+
+
+def test_crack_scene_file_through_skxfem_run_writes_front(tmp_path):
+    path = tmp_path / "williams.toml"
+    path.write_text(_toml())
+    scene = load_scene(path)
+    assert scene.interfaces[0].front is not None and scene.interfaces[0].law == "free"
+    assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 0
+    data = json.loads((tmp_path / "out" / "result.json").read_text())
+    s = harness()
+    (front,) = data["front"]
+    assert front["points"] == [[0.5, 0.5]]
+    assert abs(front["K_I"][0] - s.K_I) < 1e-10 and abs(front["K_II"][0] - s.K_II) < 1e-10
+    assert data["law"] == ["free"] and data["n_multipliers"] == 0
+
+
+def test_crack_scene_file_in_interface_tables(tmp_path):
+    text = _toml().replace('[levelset]\nexpr = "y - 0.5"\nfront = "x - 0.5"\n[interface]',
+                           '[[interface]]\nexpr = "y - 0.5"\nfront = "x - 0.5"')
+    path = tmp_path / "tables.toml"
+    path.write_text(text)
+    short = tmp_path / "short.toml"
+    short.write_text(_toml())
+    a, b = load_scene(path).interfaces[0], load_scene(short).interfaces[0]
+    assert (a.law, a.enrichment, a.sif_radius, a.front.name) == \
+        (b.law, b.enrichment, b.sif_radius, b.front.name)
+
+
+@pytest.mark.parametrize("kwargs, words", [
+    (dict(front=plane((0.5, 0), (1, 0))), "contact on crack faces is not supported yet"),
+    (dict(law="bonded", front=plane((0.5, 0), (1, 0))), "contact on crack faces"),
+    (dict(law="free", front="x - 0.5"), "front must be a skxfem.levelset.LevelSet"),
+    (dict(law="free", front=plane((0.5, 0, 0), (1, 0, 0))), "front must have the dimension"),
+    (dict(law="free", front=plane((0.5, 0), (1, 0)), enrichment="tip"), "enrichment"),
+    (dict(law="free", front=plane((0.5, 0), (1, 0)), sif_radius=-1.0), "sif_radius"),
+    (dict(sif_radius=0.3), "give its front"),
+])
+def test_bad_crack_inputs_are_refused_naming_the_argument(kwargs, words):
+    with pytest.raises(ValueError, match=words):
+        Interface(plane((0, 0.5), (0, 1)), **kwargs)
+
+
+def test_a_3d_crack_is_refused_for_now():
+    with pytest.raises(ValueError, match="3D cracks are not supported yet"):
+        Interface(plane((0, 0, 0.5), (0, 0, 1)), law="free",
+                  front=plane((0.5, 0, 0), (1, 0, 0)))
+
+
+@pytest.mark.parametrize("edit, words", [
+    (lambda t: t.replace('law = "free"', 'law = "bonded"'), "contact on crack faces"),
+    (lambda t: t.replace('enrichment = "geometric"', 'enrichment = "tip"'), "enrichment"),
+    (lambda t: t.replace('front = "x - 0.5"\n', ''), "give its front"),
+    (lambda t: t.replace('front = "x - 0.5"', 'front = 3'), "front must be a formula"),
+])
+def test_bad_crack_scene_files_are_refused(tmp_path, edit, words):
+    path = tmp_path / "bad.toml"
+    path.write_text(edit(_toml()))
+    with pytest.raises((ValueError, TypeError), match=words):
+        load_scene(path)
+
+
+def test_schema_documents_the_crack_keys(capsys):
+    assert main(["schema"]) == 0
+    out = capsys.readouterr().out
+    for key in ("front", "enrichment", "sif_radius", "free"):
+        assert key in out
