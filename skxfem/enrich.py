@@ -127,7 +127,8 @@ class XSpace:
         """(A, A_H): the standard stiffness ∫ σ(u):ε(v) (``A`` if given: assembled once
         for every interface) and its signed version, from :attr:`parts`
         (:func:`stiffness`)."""
-        side_parts = self.parts or parts(self.mesh, self.cut, self.basis.elem.elem, self.rule)
+        side_parts = self.parts or parts(self.mesh, self.cut, self.basis.elem.elem,
+                                         self.rule)
         return side_parts.signed(lambda basis: stiffness_matrix(material, basis), A)
 
     def blocks(self, A: sp.csr_matrix, AH) -> tuple[sp.csr_matrix, sp.csr_matrix]:

@@ -37,9 +37,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..fem.material import Material
-from .assembly import Load, Support, stiffness, supported_dofs, traction_load
+from .assembly import FACET_POINTS, Load, Support, stiffness, supported_dofs, traction_load
 from .assembly import _facets as check_facets
-from .assembly import FACET_POINTS
 from .space import CrackSpace
 
 __all__ = ["CrackXSpace"]

@@ -4,8 +4,8 @@ and the names of the multiplier spaces.
 A law says what holds on Γ.  The *ties* (``bonded``, ``bilateral``) are linear:
 the solver of :mod:`skxfem.solver` imposes them with multipliers on the jump
 (the vector jump, or its normal part: their ``coupling``).  ``free`` imposes
-nothing: traction-free faces (a crack's), no multiplier (its coupling ``"none"``).  The *contact* laws
-are unilateral (Signorini's conditions on the normal, with no friction,
+nothing: traction-free faces (a crack's), no multiplier (its coupling ``"none"``).
+The *contact* laws are unilateral (Signorini's conditions on the normal, with no friction,
 Coulomb's or no slip): :mod:`skxfem.contact` solves them by Newton's method, and
 within a load history a state may also switch an interface to a tie.
 

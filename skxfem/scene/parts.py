@@ -29,10 +29,10 @@ from ..fem.cells import CELL_TYPES
 from ..levelset import LevelSet
 from .expr import Expression
 from .laws import CONTACT_LAWS, FRICTION_LAWS, SPACES
+from .laws import TIE_LAWS as LAWS
 
 CRACK_ENRICHMENTS = ("geometric", "topological")
 """The enrichments of a crack's tip (:data:`skxfem.crack.space.ENRICHMENTS`)."""
-from .laws import TIE_LAWS as LAWS
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "clamped", "rollers", "CELLS",
            "SIZE_RANGE", "FRICTION_RANGE", "COMPONENTS", "FACES", "is_number", "check_law_fields",
