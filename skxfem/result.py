@@ -247,8 +247,14 @@ def result(pb, U: np.ndarray, traction: np.ndarray, max_jump: float, n_multiplie
         points=np.hstack([q.cut.points for q in qs]),
         normals=np.hstack([q.normals() for q in qs]),
         jump=np.hstack([edge_jumps(q.V, U[q.columns]) for q in qs]),
-        facets=np.hstack([q.cut.facets + o for q, o in zip(qs, offsets)]),
+        facets=np.hstack([_joined(q.cut.facets) + o for q, o in zip(qs, offsets)]),
         interface=np.repeat(np.arange(len(qs)), sizes), front=_fronts(pb, U), **common)
+
+
+def _joined(facets: np.ndarray) -> np.ndarray:
+    """The interface facets whose ends are all cut points (a crack's facet that ends at
+    the front, end -1, joins no two points)."""
+    return facets[:, (facets >= 0).all(axis=0)]
 
 
 def _fronts(pb, U: np.ndarray) -> tuple:

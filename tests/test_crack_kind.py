@@ -184,3 +184,41 @@ def test_schema_documents_the_crack_keys(capsys):
     out = capsys.readouterr().out
     for key in ("front", "enrichment", "sif_radius", "free"):
         assert key in out
+
+
+def test_law_free_on_a_through_cut_leaves_each_side_on_its_own_supports():
+    """Law free on a Γ that cuts the body through: no multiplier, each side moves as its
+    own supports say (Ω⁻ clamped, Ω⁺ given a uniform displacement)."""
+    from skfem import MeshQuad1
+
+    from skxfem.scene import clamped
+
+    m = MeshQuad1.init_tensor(np.linspace(0, 1, 5), np.linspace(0, 1, 6))
+    scene = Scene(m, plane((0, 0.5), (0, 1)), law="free",
+                  displacements=(clamped("ymin"), Displacement("ymax", {"x": 0.1, "y": 0.2})))
+    r = solve(scene, linear="direct")
+    assert r.n_multipliers == 0 and r.problem.P.shape[1] == 0
+    y = m.p[1]                       # Γ at 0.5 cuts the cells between 0.4 and 0.6
+    assert np.allclose(r.u_minus[:, y < 0.7], 0, atol=1e-12)
+    assert np.allclose(r.u_plus[:, y > 0.3], [[0.1], [0.2]], atol=1e-12)
+    with pytest.raises(ValueError, match="free"):   # Ω⁺ held by nothing: named
+        solve(Scene(m, plane((0, 0.5), (0, 1)), law="free",
+                    displacements=(clamped("ymin"),)), linear="direct")
+
+
+def test_a_crack_and_a_through_cut_in_one_scene(tmp_path):
+    """A crack beside a bonded Γ that cuts the body through: two regions (the crack splits
+    none), the crack's front and K; the files hold only facets between cut points."""
+    from dataclasses import replace
+
+    from skxfem.app.io import write_result
+
+    scene = crack_scene()
+    scene = replace(scene, interfaces=scene.interfaces + (
+        Interface(plane((0, 0.13), (0, 1)), law="bonded"),))
+    r = solve(scene, linear="direct")
+    assert r.regions.tolist() == [[-1], [1]]
+    assert len(r.front) == 1 and abs(r.front[0]["K_I"][0] - 1) < 0.05
+    assert r.facets.min() >= 0
+    files = write_result(r, tmp_path)
+    assert json.loads(files["json"].read_text())["front"][0]["points"] == [[0.5, 0.5]]

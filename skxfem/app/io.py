@@ -90,7 +90,15 @@ import numpy as np
 from ..contact.interface import tangent_frames
 from ..contact.laws import STATUS_NAMES
 from ..fem.files import check_folder, quiet, write_set
-from ..fem.vtu import interface_levelsets, node_regions, pad3, region_pieces, vectors3, vtk_cells
+from ..fem.vtu import (
+    interface_levelsets,
+    node_regions,
+    pad3,
+    region_levelsets,
+    region_pieces,
+    vectors3,
+    vtk_cells,
+)
 
 __all__ = ["write_result", "result_summary", "NotFiniteError", "reaction_summary", "tensors9",
            "von_mises", "vtk_cells", "check_output", "region_pieces", "default_folder",
@@ -161,11 +169,12 @@ def result_summary(result) -> dict:
     if result.is_contact:
         data.update(_jsonable(contact_summary(result), "steps"))
     data.update(_interfaces(result, items))
-    if result.front:  # a crack's stress intensity factors (none: the key is absent)
+    fronts = getattr(result, "front", ())   # a result-like object may have none
+    if fronts:  # a crack's stress intensity factors (none: the key is absent)
         data["front"] = [{"points": _plain(np.asarray(f["points"]), "front points"),
                           "K_I": _plain(np.asarray(f["K_I"]), "K_I"),
                           "K_II": _plain(np.asarray(f["K_II"]), "K_II")}
-                         for f in result.front]
+                         for f in fronts]
     return data
 
 
@@ -341,7 +350,7 @@ def _write_displacement(result, path: Path):
     mesh = result.mesh
     cell_type, _ = vtk_cells(mesh)
     psi = interface_levelsets(result)
-    node_region = node_regions(result.regions, psi)
+    node_region = node_regions(result.regions, region_levelsets(result))
     points, cells, region, cut, disp, nodes = region_pieces(mesh, node_region,
                                                             result.u_regions)
     levelsets = {f"levelset_{k}": psi_k[nodes] for k, psi_k in enumerate(psi)}

@@ -12,8 +12,8 @@ from __future__ import annotations
 import numpy as np
 from skfem.io.meshio import to_meshio
 
-__all__ = ["vtk_cells", "interface_levelsets", "node_regions", "region_pieces", "pad3",
-           "vectors3"]
+__all__ = ["vtk_cells", "interface_levelsets", "region_levelsets", "node_regions",
+           "region_pieces", "pad3", "vectors3"]
 
 # VTK wants cells positively oriented: the simplex of these corners has det > 0
 # (a wedge's face (0, 1, 2) has its right-hand normal pointing *away* from (3, 4, 5));
@@ -59,6 +59,15 @@ def interface_levelsets(result) -> np.ndarray:
     solve used it (:meth:`skxfem.gamma.Gamma.nodal`: the cut's ψ, snapped off the
     nodes, :func:`skxfem.cut.snap`)."""
     return np.array([q.gamma.nodal(q.cut) for q in result.problem.interfaces])
+
+
+def region_levelsets(result) -> np.ndarray:
+    """(n_splitting, nverts) the rows of :func:`interface_levelsets` whose Γ splits the
+    body (its space's ``splits``; a crack's does not): the signs ``result.regions``
+    holds."""
+    psi = interface_levelsets(result)
+    keep = [bool(q.V.splits) for q in result.problem.interfaces]
+    return psi[keep].reshape(-1, psi.shape[-1])
 
 
 def node_regions(regions: np.ndarray, psi: np.ndarray) -> np.ndarray:

@@ -323,6 +323,8 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float =
     U[free] = red.s * x[:free.size]
     mu = np.zeros(m)
     mu[red.keep] = -red.r * x[free.size:]
+    if m == 0:  # no multiplier (law free): nothing to balance, step 2's residual is all
+        return U, mu, SaddleInfo(0, float(residual), 0.0)
     reaction = (K @ U - F)[free]
     scale = max(np.linalg.norm(reaction), np.linalg.norm(F[free]), 1e-300)
 

@@ -12,7 +12,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..fem.cells import cell_edges
-from ..fem.vtu import interface_levelsets, node_regions, region_pieces, vtk_cells
+from ..fem.vtu import node_regions, region_levelsets, region_pieces, vtk_cells
 from .plotting import COLORS
 
 REGION_COLORS = ("#c7e9c0", "#dadaeb", "#fcbba1")
@@ -85,7 +85,7 @@ def plot_result_3d(result, scale: float | None = None,
     if mesh.dim() != 3:
         raise ValueError(f"plot_result_3d needs a 3D result, got {mesh.dim()}D; plot "
                          f"result.pressure against result.points instead")
-    psi, signs = interface_levelsets(result), result.regions
+    psi, signs = region_levelsets(result), result.regions
     points, cells, region, _, disp, nodes = region_pieces(mesh, node_regions(signs, psi),
                                                           result.u_regions)
     psis = psi[:, nodes]
