@@ -35,17 +35,29 @@ else changes.  Each method must meet:
    ``normals_at(points)`` the same at any points on Γ (the interface rule's).
 5. ``nodal(cut) -> (nverts,)``: the level set at the nodes, as the files write
    it (``levelset_k``): the ψ the solve used.
+6. ``rule(mesh, cut) -> InterfaceRule`` and ``jump(V, rule)``: the quadrature on Γ_h
+   and the operator U ↦ [[u_h]] at its points (component-major rows).
+7. ``front(V, U, material) -> dict | None``: the stress intensity factors along Γ's
+   front, ``points`` (m, dim), ``K_I``, ``K_II`` (m,); None for a Γ without a front.
+8. ``splits``: whether Γ splits the body into regions (the files' pieces read the ψ
+   of those that do; its space's ``splits`` says the same to :mod:`skxfem.enrich`).
 
-**What a crack kind will add** (issue 29; the 2D pieces are in :mod:`skxfem.crack`:
-``crack_geometry`` carries the fields of a Cut, ``crack_space`` the unknowns [a, b, c],
-``crack.assembly.stiffness`` its blocks, ``crack.sif`` the stress intensity factors).
-Three places below the kinds read more than the contract above and must then ask
-the kind instead: :func:`skxfem.enrich.stiffness` integrates a Heaviside space by
-its ``parts`` (a crack's branch functions bring their own blocks, Bᵀ W C B on the
-tip cells' almost-polar rules); the regions of :meth:`skxfem.enrich.XSpaces.regions`
-(rigid modes, held checks, the pieces of the files) take every Γ as splitting the
-body in two, which a Γ that ends inside it does not; and a law without multipliers
-(``free``) gives a part with no column in P.
+The space a kind returns is asked, by :func:`skxfem.enrich.stiffness`,
+:func:`skxfem.problem.assemble` and :meth:`skxfem.enrich.XSpaces.regions`, for its own
+``signed_stiffness(material, A)`` and ``blocks(A, AH)`` (its enriched blocks: the
+Heaviside space's arithmetic of :func:`skxfem.enrich.enriched_blocks`, a crack's own
+blocks on its almost-polar rules), ``load(facet_loads, body_force, f)`` (its enriched
+load), ``constraints(scene, mesh)`` (its constrained unknowns: a crack never clamps a
+mouth shut) and ``splits`` (whether Γ splits the body into regions: a crack does not).
+A law without multipliers (``free``) gives a part whose P has no column and B no row.
+
+**The crack kind** (:class:`Crack`, issue 29, 2D, law ``free``): an interface with a
+``front`` φ; its cut is :func:`skxfem.crack.geometry.crack_geometry` (the fields of a
+Cut), its space :class:`skxfem.crack.kind.CrackXSpace` (the unknowns [a, b, c] of
+:func:`skxfem.crack.space.crack_space`), its rule Gauss points on the crack pieces, its
+front the K of :func:`skxfem.crack.sif.sif` (``Result.front``, ``result.json``'s
+``front``).  Not yet: contact laws on crack faces (a multiplier space on a Γ that ends
+inside a cell), a body force with a crack, 3D fronts.
 
 >>> from skfem import MeshTri1
 >>> from skxfem.levelset import plane
@@ -87,6 +99,8 @@ class Gamma:
     the contract of the module notes."""
 
     interface: Interface
+    splits = True
+    """Γ splits the body into regions (its sign is one of theirs)."""
 
     def cut(self, mesh, label: str = "") -> Cut:
         """The :class:`~skxfem.cut.Cut` of Γ on ``mesh`` (``label`` names it in messages)."""
@@ -140,6 +154,9 @@ class Crack(Gamma):
     Its cut is the :class:`~skxfem.crack.geometry.CrackGeometry` (the fields of a Cut),
     its space the :class:`~skxfem.crack.kind.CrackXSpace` of [a, b, c], its rule Gauss
     points on the crack pieces; it takes law ``free`` only (no multipliers)."""
+
+    splits = False
+    """A crack ends inside the body: it splits no region."""
 
     def cut(self, mesh, label: str = ""):
         """The crack's geometry on ``mesh`` (:func:`skxfem.crack.geometry.crack_geometry`);

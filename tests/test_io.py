@@ -80,7 +80,7 @@ def fake_result(cell, n_points=4):
         regions=np.array([[-1], [1]]), u_regions=rng.random((2, dim, mesh.nvertices)),
         interface=np.zeros(n_points, dtype=np.int64),
         problem=SimpleNamespace(interfaces=(SimpleNamespace(
-            cut=cut, gamma=SimpleNamespace(nodal=lambda c: c.psi)),)),
+            cut=cut, gamma=SimpleNamespace(nodal=lambda c: c.psi, splits=True)),)),
         traction=-normals * np.linspace(1, 2, n_points), pressure=np.linspace(1, 2, n_points),
         jump=0.01 * rng.random((dim, n_points)), facets=facets, max_jump=1e-12, n_dofs=123,
         n_multipliers=n_points,

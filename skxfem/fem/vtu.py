@@ -63,10 +63,10 @@ def interface_levelsets(result) -> np.ndarray:
 
 def region_levelsets(result) -> np.ndarray:
     """(n_splitting, nverts) the rows of :func:`interface_levelsets` whose Γ splits the
-    body (its space's ``splits``; a crack's does not): the signs ``result.regions``
-    holds."""
+    body (:attr:`skxfem.gamma.Gamma.splits`; a crack does not): the signs
+    ``result.regions`` holds."""
     psi = interface_levelsets(result)
-    keep = [bool(q.V.splits) for q in result.problem.interfaces]
+    keep = [bool(q.gamma.splits) for q in result.problem.interfaces]
     return psi[keep].reshape(-1, psi.shape[-1])
 
 
