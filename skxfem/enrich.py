@@ -67,11 +67,12 @@ from .fem.evaluate import evaluation_matrix
 from .fem.material import Material, stiffness_matrix
 from .fem.quadrature import cell_rule, exact_orders
 from .fem.side_bases import Parts, parts, side_bases
+from .scene.boundary import dirichlet, imposed
 
 __all__ = ["XSpace", "XSpaces", "xfem_space", "stiffness", "mass", "enriched_matrix",
            "enriched_blocks", "as_spaces", "signed_bases", "far_side_fraction",
            "enriched_load", "body_load",
-           "jump_matrix", "split_fields", "from_fields", "region_fields"]
+           "jump_matrix", "split_fields", "from_fields", "region_fields", "constrained_dofs"]
 
 
 @dataclass(frozen=True)
@@ -154,9 +155,7 @@ class XSpace:
         return f, f_H[self.enr_dofs] - self.H_node * f[self.enr_dofs]
 
     def constraints(self, scene, mesh) -> tuple[np.ndarray, np.ndarray]:
-        """The constrained unknowns of [a, b] and their values
-        (:func:`skxfem.problem.constrained_dofs`)."""
-        from .problem import constrained_dofs
+        """The constrained unknowns of [a, b] and their values (:func:`constrained_dofs`)."""
         return constrained_dofs(self, scene, mesh)
 
 
@@ -243,6 +242,48 @@ class XSpaces:
                           if V.splits]).reshape(-1, self.mesh.p.shape[1])
         patterns, node_region = np.unique(signs.T, axis=0, return_inverse=True)
         return patterns, node_region.ravel()
+
+
+def constrained_dofs(V: XSpace, scene, mesh) -> tuple[np.ndarray, np.ndarray]:
+    """Constrained unknowns of the X-FEM space and their values.
+
+    The shifted enrichment φⱼ(H - Hⱼ) vanishes on a boundary facet that Γ
+    does not cut, so there imposing aᵢ imposes u.  On a facet that Γ cuts,
+    u = a + b(H - Hⱼ) takes both signs of H, so where a displacement acts on
+    the whole facet (it selects all the facet's vertices) the enriched dofs
+    of its components at the facet's nodes are set to zero as well.  Each
+    displacement is taken on its own: two supports whose nodes together
+    cover a facet do not constrain it.
+
+    Parameters
+    ----------
+    V
+        The X-FEM space (:func:`skxfem.enrich.xfem_space`).
+    scene, mesh
+        The scene and its resolved mesh.
+
+    Returns
+    -------
+    dofs, values
+        Indices into the unknowns [a, b] (``V.N`` of them) and imposed values.
+    """
+    dofs, values = dirichlet(scene, mesh, V.basis)
+    psi = V.cut.psi
+    bf = mesh.facets[:, mesh.boundary_facets()]
+    cut_bf = bf[:, (psi[bf] < 0).any(axis=0) & (psi[bf] > 0).any(axis=0)]
+    pos = np.full(V.n_std, -1)
+    pos[V.enr_dofs] = np.arange(V.n_enr)
+    enr = [np.zeros(0, dtype=np.int64)]
+    for support_nodes, components in imposed(scene, mesh):
+        selected = np.zeros(mesh.p.shape[1], dtype=bool)
+        selected[support_nodes] = True
+        nodes = np.unique(cut_bf[:, selected[cut_bf].all(axis=0)])
+        for comp in components:
+            b = pos[V.basis.nodal_dofs[comp, nodes]]
+            enr.append(V.n_std + b[b >= 0])
+    enr = np.unique(np.concatenate(enr))
+    return (np.concatenate([dofs, enr]),
+            np.concatenate([values, np.zeros(enr.size)]))
 
 
 def as_spaces(V: XSpace | XSpaces) -> XSpaces:

@@ -53,7 +53,7 @@ A law without multipliers (``free``) gives a part whose P has no column and B no
 
 **The crack kind** (:class:`Crack`, issue 29, 2D, law ``free``): an interface with a
 ``front`` φ; its cut is :func:`skxfem.crack.geometry.crack_geometry` (the fields of a
-Cut), its space :class:`skxfem.crack.kind.CrackXSpace` (the unknowns [a, b, c] of
+Cut), its space :class:`CrackXSpace` (the unknowns [a, b, c] of
 :func:`skxfem.crack.space.crack_space`), its rule Gauss points on the crack pieces, its
 front the K of :func:`skxfem.crack.sif.sif` (``Result.front``, ``result.json``'s
 ``front``).  Not yet: contact laws on crack faces (a multiplier space on a Γ that ends
@@ -75,20 +75,23 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
+from .crack.assembly import FACET_POINTS, Load, Support, stiffness, supported_dofs, traction_load
+from .crack.assembly import _facets as check_facets
 from .crack.assembly import face_rule as face_rule_of
 from .crack.geometry import crack_geometry
-from .crack.kind import CrackXSpace
 from .crack.sif import sif
-from .crack.space import crack_space, evaluation
+from .crack.space import CrackSpace, crack_space, evaluation
 from .cut import Cut
 from .cut import cut as cut_mesh
 from .enrich import XSpace, jump_matrix, xfem_space
+from .fem.material import Material
 from .levelset import point_normals, unit
 from .multipliers import InterfaceRule, Space, interface_rule
+from .scene.boundary import _values, imposed
 from .scene.parts import Interface
 from .stabilised import multiplier_space
 
-__all__ = ["Gamma", "Crack", "gamma"]
+__all__ = ["Gamma", "Crack", "CrackXSpace", "gamma"]
 
 
 @dataclass(frozen=True)
@@ -152,7 +155,7 @@ class Crack(Gamma):
     body at the front {ψ = φ = 0} (module notes; the mathematics in :mod:`skxfem.crack`).
 
     Its cut is the :class:`~skxfem.crack.geometry.CrackGeometry` (the fields of a Cut),
-    its space the :class:`~skxfem.crack.kind.CrackXSpace` of [a, b, c], its rule Gauss
+    its space the :class:`CrackXSpace` of [a, b, c], its rule Gauss
     points on the crack pieces; it takes law ``free`` only (no multipliers)."""
 
     splits = False
@@ -208,6 +211,144 @@ class Crack(Gamma):
 
     def _space(self, mesh, cut):
         return crack_space(mesh, cut, self.interface.enrichment)
+
+
+@dataclass(frozen=True)
+class CrackXSpace:
+    r"""The X-FEM space of the crack kind of Γ: ``space`` its
+    :class:`~skxfem.crack.space.CrackSpace` (the unknowns [a, b, c]: standard,
+    Heaviside, branch), with the methods that :func:`skxfem.enrich.stiffness`,
+    :func:`skxfem.problem.assemble`'s load and constraints, and
+    :meth:`skxfem.enrich.XSpaces.regions` ask every space (module notes):
+
+    * ``signed_stiffness(material, A)`` and ``blocks(A, K)``: the crack's own stiffness
+      (:func:`skxfem.crack.assembly.stiffness`, its tip cells on the almost-polar
+      rule), given as its standard block and its enriched blocks;
+    * ``load(facet_loads, body_force, f)``: the scene's surface loads on [a, b, c]
+      (:func:`skxfem.crack.assembly.traction_load`);
+    * ``constraints(scene, mesh)``: the scene's displacements on [a, b, c]
+      (:func:`skxfem.crack.assembly.supported_dofs`: a mouth is never clamped shut);
+    * ``splits = False``: a crack ends inside the body and splits no region.
+
+    Each enriched unknown's standard dof is ``enr_dofs`` and its ``H_node`` that of its
+    Heaviside node (0 for a branch unknown): the nodal fields of the regions hold
+    a + Σ b(σ - H) with the crack's unknowns left out (its shifted enrichment vanishes
+    at the nodes).
+
+    >>> from skfem import MeshTri1
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+    >>> V = CrackXSpace(crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5)))
+    >>> V.N == V.space.N, V.enr_dofs.size == V.n_enr, V.splits
+    (True, True, False)
+    """
+
+    space: CrackSpace
+    splits = False
+
+    @property
+    def mesh(self):
+        return self.space.mesh
+
+    @property
+    def cut(self):
+        """The crack's geometry (the fields of a :class:`skxfem.cut.Cut`)."""
+        return self.space.geometry
+
+    @property
+    def basis(self):
+        return self.space.basis
+
+    @property
+    def n_std(self) -> int:
+        return self.space.n_std
+
+    @property
+    def n_enr(self) -> int:
+        return self.space.N - self.space.n_std
+
+    @property
+    def N(self) -> int:
+        return self.space.N
+
+    @property
+    def enr_dofs(self) -> np.ndarray:
+        """(n_enr,) the standard dof of each enriched unknown [b, c] (its node and
+        component)."""
+        V, nd = self.space, self.space.basis.nodal_dofs
+        heav = nd[:, V.heaviside].T                        # (nh, 2)
+        branch = np.repeat(nd[:, V.branch].T[:, None, :], 4, axis=1)   # (nb, 4, 2)
+        return np.concatenate([heav.ravel(), branch.ravel()]).astype(np.int64)
+
+    @property
+    def H_node(self) -> np.ndarray:
+        """(n_enr,) H(x_j) of each Heaviside unknown's node, 0 for a branch unknown."""
+        V = self.space
+        return np.concatenate([np.repeat(V.H_node, 2), np.zeros(V.n_branch)])
+
+    def signed_stiffness(self, material: Material, A=None):
+        """(A, K): the standard block of the crack's stiffness K (``A`` if given) and K
+        itself, whose enriched blocks :meth:`blocks` reads."""
+        K = stiffness(self.space, material).tocsr()
+        n = self.n_std
+        return (K[:n, :n] if A is None else A), K
+
+    def blocks(self, A, K) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+        """(K_ab, K_bb): the crack stiffness' blocks of its enriched unknowns."""
+        n = self.n_std
+        return K[:n, n:].tocsr(), K[n:, n:].tocsr()
+
+    def load(self, facet_loads, body_force=None, f: np.ndarray | None = None):
+        """(f, f_b): the surface loads on the standard dofs (``f`` if given) and on the
+        enriched unknowns [b, c] (:func:`skxfem.crack.assembly.traction_load`, each
+        facet's outward normal given to the traction ``t(x, n)``)."""
+        if body_force is not None:
+            raise ValueError("a body force on a scene with a crack is not supported yet")
+        mesh = self.mesh
+        loads = []
+        for facets, traction in facet_loads:
+            fac = check_facets(mesh, facets, "a load's facets")
+            n = _outward_normals(mesh, fac)
+            n_pts = np.repeat(n, 2 * FACET_POINTS, axis=1)  # facet_pieces' order
+
+            def t(x, traction=traction, n_pts=n_pts):
+                return np.asarray(traction(x, n_pts), float)
+
+            loads.append(Load(fac, t))
+        F = traction_load(self.space, loads)
+        return (F[:self.n_std] if f is None else f), F[self.n_std:]
+
+    def constraints(self, scene, mesh) -> tuple[np.ndarray, np.ndarray]:
+        """The scene's displacements as the crack's supports on [a, b, c]
+        (:func:`skxfem.crack.assembly.supported_dofs`)."""
+        supports = []
+        for nodes, components in imposed(scene, mesh):
+            for c, (value, what) in components.items():
+                def u(x, c=c, value=value, what=what):
+                    out = np.zeros_like(x, dtype=float)
+                    out[c] = _values(value, x, what)
+                    return out
+
+                supports.append(Support(_facets_of(mesh, nodes), np.asarray(nodes), u, (c,)))
+        return supported_dofs(self.space, supports)
+
+
+def _outward_normals(mesh, facets: np.ndarray) -> np.ndarray:
+    """(2, nf) the outward unit normals of boundary facets of a 2D mesh."""
+    a, b = mesh.p[:, mesh.facets[0, facets]], mesh.p[:, mesh.facets[1, facets]]
+    d = b - a
+    n = np.array([d[1], -d[0]]) / np.linalg.norm(d, axis=0)
+    centre = mesh.p[:, mesh.t[:, mesh.f2t[0, facets]]].mean(axis=1)
+    flip = ((centre - a) * n).sum(axis=0) > 0
+    return np.where(flip, -n, n)
+
+
+def _facets_of(mesh, nodes: np.ndarray) -> np.ndarray:
+    """The boundary facets whose nodes are all among ``nodes`` (a support's facets: where
+    :func:`skxfem.crack.assembly.supported_dofs` decides what a mouth keeps free)."""
+    mark = np.zeros(mesh.p.shape[1], dtype=bool)
+    mark[nodes] = True
+    bf = mesh.boundary_facets()
+    return bf[mark[mesh.facets[:, bf]].all(axis=0)]
 
 
 def gamma(interface: Interface) -> Gamma:

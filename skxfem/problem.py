@@ -38,7 +38,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .cut import Cut, check_apart
-from .enrich import XSpace, XSpaces, stiffness
+from .enrich import XSpace, XSpaces, constrained_dofs, stiffness
 from .gamma import Gamma, gamma
 from .linalg.rigid import short_pieces
 from .multipliers import (
@@ -49,9 +49,8 @@ from .multipliers import (
     interface_mass,
     normal_fixed,
 )
-from .scene.boundary import imposed
 from .scene.laws import COUPLING
-from .scene.model import Interface, Resolved, Scene, dirichlet, load_facets, resolve
+from .scene.model import Interface, Resolved, Scene, load_facets, resolve
 
 __all__ = ["Problem", "Part", "assemble", "state_loads", "constrained_dofs", "COUPLING",
            "check_law"]
@@ -211,48 +210,6 @@ class Problem:
     def law(self) -> str | None:
         """The tie law of the parts if they share one, else None."""
         return self.laws[0] if len(set(self.laws)) == 1 else None
-
-
-def constrained_dofs(V: XSpace, scene: Scene, mesh) -> tuple[np.ndarray, np.ndarray]:
-    """Constrained unknowns of the X-FEM space and their values.
-
-    The shifted enrichment φⱼ(H - Hⱼ) vanishes on a boundary facet that Γ
-    does not cut, so there imposing aᵢ imposes u.  On a facet that Γ cuts,
-    u = a + b(H - Hⱼ) takes both signs of H, so where a displacement acts on
-    the whole facet (it selects all the facet's vertices) the enriched dofs
-    of its components at the facet's nodes are set to zero as well.  Each
-    displacement is taken on its own: two supports whose nodes together
-    cover a facet do not constrain it.
-
-    Parameters
-    ----------
-    V
-        The X-FEM space (:func:`skxfem.enrich.xfem_space`).
-    scene, mesh
-        The scene and its resolved mesh.
-
-    Returns
-    -------
-    dofs, values
-        Indices into the unknowns [a, b] (``V.N`` of them) and imposed values.
-    """
-    dofs, values = dirichlet(scene, mesh, V.basis)
-    psi = V.cut.psi
-    bf = mesh.facets[:, mesh.boundary_facets()]
-    cut_bf = bf[:, (psi[bf] < 0).any(axis=0) & (psi[bf] > 0).any(axis=0)]
-    pos = np.full(V.n_std, -1)
-    pos[V.enr_dofs] = np.arange(V.n_enr)
-    enr = [np.zeros(0, dtype=np.int64)]
-    for support_nodes, components in imposed(scene, mesh):
-        selected = np.zeros(mesh.p.shape[1], dtype=bool)
-        selected[support_nodes] = True
-        nodes = np.unique(cut_bf[:, selected[cut_bf].all(axis=0)])
-        for comp in components:
-            b = pos[V.basis.nodal_dofs[comp, nodes]]
-            enr.append(V.n_std + b[b >= 0])
-    enr = np.unique(np.concatenate(enr))
-    return (np.concatenate([dofs, enr]),
-            np.concatenate([values, np.zeros(enr.size)]))
 
 
 def assemble(scene: Scene | Resolved, law: str | None = None) -> Problem:

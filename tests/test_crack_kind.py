@@ -28,9 +28,9 @@ def _exact():
     return lambda p: near_tip(p, TIP, frame, MATERIAL, (1.0, 0.0))
 
 
-def harness(enrichment="geometric"):
+def harness(enrichment="geometric", cell="tri"):
     """The Williams square, mode I, solved by the crack harness (radius: its default)."""
-    m = unit_square(N)
+    m = unit_square(N, cell)
     psi, phi, _ = straight_crack(TIP, 0.0)
     ex = _exact()
     uncut = np.concatenate([_facets(m, lambda p: p[1] < 1e-12),
@@ -42,7 +42,7 @@ def harness(enrichment="geometric"):
                        enrichment, None, sif_radius=SIF_RADIUS)
 
 
-def crack_scene(enrichment="geometric"):
+def crack_scene(enrichment="geometric", cell="tri"):
     """The same problem as a scene: an interface with a front, law free."""
     psi, phi, _ = straight_crack(TIP, 0.0)
     ex = _exact()
@@ -52,7 +52,7 @@ def crack_scene(enrichment="geometric"):
                                          lambda p: -ex(p).sigma[1, 0]))
     crack = Interface(LevelSet(psi, 2, "psi"), law="free", front=LevelSet(phi, 2, "phi"),
                       enrichment=enrichment, sif_radius=SIF_RADIUS)
-    return Scene(unit_square(N), material=MATERIAL, displacements=disp, loads=(load,),
+    return Scene(unit_square(N, cell), material=MATERIAL, displacements=disp, loads=(load,),
                  interfaces=(crack,))
 
 
@@ -62,14 +62,15 @@ def test_an_interface_with_a_front_is_a_crack_kind():
     assert type(gamma(Interface(psi, law="free", front=phi))) is Crack
 
 
-@pytest.mark.parametrize("enrichment", ["geometric", "topological"])
-def test_crack_scene_reproduces_the_harness(enrichment):
+@pytest.mark.parametrize("enrichment, cell", [("geometric", "tri"), ("topological", "tri"),
+                                              ("geometric", "quad")])
+def test_crack_scene_reproduces_the_harness(enrichment, cell):
     """The one path (assemble, solve, result) gives the harness' K, F, U and K_I, K_II."""
-    s = harness(enrichment)
-    p = assemble(crack_scene(enrichment))
+    s = harness(enrichment, cell)
+    p = assemble(crack_scene(enrichment, cell))
     assert p.K.shape == (s.space.N, s.space.N), "the crack's unknowns [a, b, c]"
     assert p.P.shape[1] == 0 and p.B.shape[0] == 0, "law free: no multiplier"
-    r = solve(crack_scene(enrichment), linear="direct")
+    r = solve(crack_scene(enrichment, cell), linear="direct")
     assert np.abs(r.U - s.U).max() < 1e-10 * np.abs(s.U).max()
     (front,) = r.front
     assert np.allclose(front["points"], [TIP])
