@@ -72,7 +72,8 @@ from .scene.boundary import dirichlet, imposed
 __all__ = ["XSpace", "XSpaces", "xfem_space", "stiffness", "mass", "enriched_matrix",
            "enriched_blocks", "as_spaces", "signed_bases", "far_side_fraction",
            "enriched_load", "body_load",
-           "jump_matrix", "split_fields", "from_fields", "region_fields", "constrained_dofs"]
+           "jump_matrix", "split_fields", "from_fields", "region_fields", "constrained_dofs",
+           "edge_jumps"]
 
 
 @dataclass(frozen=True)
@@ -490,6 +491,31 @@ def jump_matrix(V: XSpace, cells: np.ndarray, ref: np.ndarray) -> sp.csr_matrix:
     Phi = evaluation_matrix(V.basis, cells, ref)
     return sp.hstack([sp.csr_matrix((Phi.shape[0], V.n_std)),
                       -2.0 * Phi[:, V.enr_dofs]], format="csr")
+
+
+def edge_jumps(V: XSpace, U: np.ndarray) -> np.ndarray:
+    """[[u]] (dim, ne) at the cut edges' points: -2((1 - t) b_a + t b_b).
+
+    Along an edge (a, b) the shape functions of its two ends are the only ones
+    left, and linear, so the jump -2 Σ_j φ_j b_j at the point t of the edge
+    (ψ's zero, t = ψ_a/(ψ_a - ψ_b)) needs the enriched dofs of a and b only.
+
+    >>> from skfem import MeshQuad1
+    >>> from skxfem.cut import cut
+    >>> from skxfem.levelset import plane
+    >>> m = MeshQuad1().refined(1)
+    >>> V = xfem_space(m, cut(m, plane((0, 0.3), (0, 1))))
+    >>> U = np.zeros(V.N); U[V.n_std:] = -0.5          # b = -1/2: [[u]] = 1
+    >>> edge_jumps(V, U).round(12).tolist()[0]
+    [1.0, 1.0, 1.0]
+    """
+    cut = V.cut
+    a, b = cut.edges
+    t = cut.psi[a] / (cut.psi[a] - cut.psi[b])
+    bvals = np.zeros(V.n_std)
+    bvals[V.enr_dofs] = U[V.n_std:]
+    nodal = bvals[V.basis.nodal_dofs]  # (dim, nverts)
+    return -2.0 * ((1 - t) * nodal[:, a] + t * nodal[:, b])
 
 
 def split_fields(V: XSpace, U: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -37,8 +37,10 @@ else changes.  Each method must meet:
    it (``levelset_k``): the ψ the solve used.
 6. ``rule(mesh, cut) -> InterfaceRule`` and ``jump(V, rule)``: the quadrature on Γ_h
    and the operator U ↦ [[u_h]] at its points (component-major rows).
-7. ``front(V, U, material) -> dict | None``: the stress intensity factors along Γ's
-   front, ``points`` (m, dim), ``K_I``, ``K_II`` (m,); None for a Γ without a front.
+7. ``point_jumps(V, U) -> (dim, n)``: [[u]] = u⁻ - u⁺ at the cut points (the
+   results' ``jump``); ``front(V, U, material) -> dict | None``: the stress
+   intensity factors along Γ's front, ``points`` (m, dim), ``K_I``, ``K_II`` (m,);
+   None for a Γ without a front.
 8. ``splits``: whether Γ splits the body into regions (the files' pieces read the ψ
    of those that do; its space's ``splits`` says the same to :mod:`skxfem.enrich`).
 
@@ -83,7 +85,7 @@ from .crack.sif import sif
 from .crack.space import CrackSpace, crack_space, evaluation
 from .cut import Cut
 from .cut import cut as cut_mesh
-from .enrich import XSpace, jump_matrix, xfem_space
+from .enrich import XSpace, edge_jumps, jump_matrix, xfem_space
 from .fem.material import Material
 from .levelset import point_normals, unit
 from .multipliers import InterfaceRule, Space, interface_rule
@@ -144,6 +146,11 @@ class Gamma:
         """U ↦ [[u_h]] at the rule's points (:func:`skxfem.enrich.jump_matrix`)."""
         return jump_matrix(V, rule.cells, rule.ref)
 
+    def point_jumps(self, V: XSpace, U: np.ndarray) -> np.ndarray:
+        """[[u]] = u⁻ - u⁺ (dim, n) at the cut points, U on [a, b]
+        (:func:`skxfem.enrich.edge_jumps`)."""
+        return edge_jumps(V, U)
+
     def front(self, V, U: np.ndarray, material) -> dict | None:
         """The stress intensity factors along Γ's front: None, Γ has none."""
         return None
@@ -195,11 +202,17 @@ class Crack(Gamma):
                              N=sp.csr_matrix((x.shape[1], cut.edge_ids.size)))
 
     def jump(self, V, rule: InterfaceRule) -> sp.csr_matrix:
-        """U ↦ [[u_h]] = u(Ω⁺ face) - u(Ω⁻ face) at the rule's points, component-major."""
-        n = rule.cells.size
-        plus, minus = (evaluation(V.space, rule.cells, rule.ref, np.full(n, s)).value
-                       for s in (1.0, -1.0))
-        return sp.csr_matrix(plus - minus)
+        """U ↦ [[u_h]] = u⁻ - u⁺ (the Ω⁻ face's less the Ω⁺ face's) at the rule's points,
+        component-major."""
+        return _face_jump(V, rule.cells, rule.ref)
+
+    def point_jumps(self, V, U: np.ndarray) -> np.ndarray:
+        """[[u]] = u⁻ - u⁺ (dim, n) at the crack's cut points (the crossings of its cut
+        edges, each in a cell of its edge), U on [a, b, c]."""
+        cut, mesh = V.cut, V.mesh
+        cells = mesh.f2t[0, cut.edge_ids]
+        ref = mesh.mapping().invF(cut.points[:, :, None], tind=cells)[:, :, 0]
+        return (_face_jump(V, cells, ref) @ U).reshape(mesh.dim(), -1)
 
     def front(self, V, U: np.ndarray, material) -> dict:
         """``points`` (m, dim) the front's points (the tips) and ``K_I``, ``K_II`` (m,) there
@@ -349,6 +362,14 @@ def _facets_of(mesh, nodes: np.ndarray) -> np.ndarray:
     mark[nodes] = True
     bf = mesh.boundary_facets()
     return bf[mark[mesh.facets[:, bf]].all(axis=0)]
+
+
+def _face_jump(V, cells: np.ndarray, ref: np.ndarray) -> sp.csr_matrix:
+    """U ↦ u⁻ - u⁺ at points of a crack's faces (cells, reference coordinates),
+    component-major rows (:func:`skxfem.crack.space.evaluation` on each side)."""
+    n = cells.size
+    minus, plus = (evaluation(V.space, cells, ref, np.full(n, s)).value for s in (-1.0, 1.0))
+    return sp.csr_matrix(minus - plus)
 
 
 def gamma(interface: Interface) -> Gamma:

@@ -45,7 +45,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .enrich import XSpace, region_fields
+from .enrich import edge_jumps, region_fields
 
 __all__ = ["Result", "edge_jumps", "result"]
 
@@ -204,32 +204,6 @@ class Result:
         return [m.stress(eps, dim) for eps, (_, m) in zip(self.strains(), self.fields())]
 
 
-def edge_jumps(V: XSpace, U: np.ndarray) -> np.ndarray:
-    """[[u]] (dim, ne) at the cut edges' points: -2((1 - t) b_a + t b_b).
-
-    Along an edge (a, b) the shape functions of its two ends are the only ones
-    left, and linear, so the jump -2 Σ_j φ_j b_j at the point t of the edge
-    (ψ's zero, t = ψ_a/(ψ_a - ψ_b)) needs the enriched dofs of a and b only.
-
-    >>> from skfem import MeshQuad1
-    >>> from skxfem.cut import cut
-    >>> from skxfem.enrich import xfem_space
-    >>> from skxfem.levelset import plane
-    >>> m = MeshQuad1().refined(1)
-    >>> V = xfem_space(m, cut(m, plane((0, 0.3), (0, 1))))
-    >>> U = np.zeros(V.N); U[V.n_std:] = -0.5          # b = -1/2: [[u]] = 1
-    >>> edge_jumps(V, U).round(12).tolist()[0]
-    [1.0, 1.0, 1.0]
-    """
-    cut = V.cut
-    a, b = cut.edges
-    t = cut.psi[a] / (cut.psi[a] - cut.psi[b])
-    bvals = np.zeros(V.n_std)
-    bvals[V.enr_dofs] = U[V.n_std:]
-    nodal = bvals[V.basis.nodal_dofs]  # (dim, nverts)
-    return -2.0 * ((1 - t) * nodal[:, a] + t * nodal[:, b])
-
-
 def result(pb, U: np.ndarray, traction: np.ndarray, max_jump: float, n_multipliers: int,
            timings: dict, linear: str, linear_info: dict, **contact) -> Result:
     """The :class:`Result` of the assembled problem ``pb`` solved as U, with the
@@ -246,7 +220,7 @@ def result(pb, U: np.ndarray, traction: np.ndarray, max_jump: float, n_multiplie
     return Result(
         points=np.hstack([q.cut.points for q in qs]),
         normals=np.hstack([q.normals() for q in qs]),
-        jump=np.hstack([edge_jumps(q.V, U[q.columns]) for q in qs]),
+        jump=np.hstack([q.gamma.point_jumps(q.V, U[q.columns]) for q in qs]),
         facets=np.hstack([_joined(q.cut.facets) + o for q, o in zip(qs, offsets)]),
         interface=np.repeat(np.arange(len(qs)), sizes), front=_fronts(pb, U), **common)
 

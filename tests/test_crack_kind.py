@@ -223,3 +223,15 @@ def test_a_crack_and_a_through_cut_in_one_scene(tmp_path):
     assert r.facets.min() >= 0
     files = write_result(r, tmp_path)
     assert json.loads(files["json"].read_text())["front"][0]["points"] == [[0.5, 0.5]]
+
+
+def test_the_jump_at_the_crack_points_is_the_opening_of_mode_I():
+    """[[u]] = u⁻ - u⁺ at the crack's cut points, against the exact Williams opening:
+    mode I opens the crack, u_y(Ω⁺ face) > u_y(Ω⁻ face), so [[u]]_y < 0 behind the tip."""
+    r = solve(crack_scene(), linear="direct")
+    ex = _exact()
+    x = r.points
+    eps = 1e-9
+    exact = ex(x - [[0], [eps]]).u - ex(x + [[0], [eps]]).u
+    assert np.all(r.jump[1] < 0)
+    assert np.abs(r.jump - exact).max() < 0.1 * np.abs(exact).max()   # 5 % at n = 11
