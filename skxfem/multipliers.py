@@ -33,12 +33,13 @@ from skfem.refdom import RefLine, RefTri
 
 from .cut import Cut
 from .enrich import XSpace, jump_matrix
-from .scene.laws import SPACES, TIE_LAWS
+from .scene.laws import COUPLING, SPACES, TIE_LAWS
 
 __all__ = ["Space", "naive", "fixed_jumps", "normal_fixed", "direction_fixed", "SPACES",
            "InterfaceRule", "interface_rule", "coupling", "interface_mass", "LAWS"]
 
-LAWS = TIE_LAWS
+LAWS = tuple(law for law in TIE_LAWS if COUPLING[law] != "none")
+"""The ties whose multipliers couple the jump (``free`` has none)."""
 
 
 @dataclass(frozen=True)
