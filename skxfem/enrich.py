@@ -73,6 +73,7 @@ __all__ = ["XSpace", "XSpaces", "xfem_space", "stiffness", "mass", "enriched_mat
            "enriched_blocks", "as_spaces", "signed_bases", "far_side_fraction",
            "enriched_load", "body_load",
            "jump_matrix", "split_fields", "from_fields", "region_fields", "constrained_dofs",
+           "one_interface",
            "edge_jumps"]
 
 
@@ -171,15 +172,8 @@ class XSpaces:
 
     per_interface: tuple[XSpace, ...]
 
-    def __getattr__(self, name):
-        if name in ("cut", "rule", "parts"):  # a space of one interface: its own (a convenience)
-            spaces = self.__dict__.get("per_interface", ())
-            if len(spaces) != 1:
-                raise AttributeError(f"XSpaces.{name} is that of a space of one interface; "
-                                     f"this one has {len(spaces)}: read "
-                                     f"per_interface[k].{name}")
-            return getattr(spaces[0], name)
-        raise AttributeError(f"'XSpaces' object has no attribute {name!r}")
+    def __getattr__(self, name):  # a space of one interface: its own (a convenience)
+        return one_interface(self, "per_interface", ("cut", "rule", "parts"), name)
 
     @property
     def enr_dofs(self) -> np.ndarray:
@@ -243,6 +237,21 @@ class XSpaces:
                           if V.splits]).reshape(-1, self.mesh.p.shape[1])
         patterns, node_region = np.unique(signs.T, axis=0, return_inverse=True)
         return patterns, node_region.ravel()
+
+
+def one_interface(owner, field: str, names: tuple, name: str):
+    """``getattr(items[0], name)`` for ``name`` in ``names``, ``items`` the tuple
+    ``owner.field`` of one interface's parts: the one-interface conveniences of
+    :class:`XSpaces` and :class:`skxfem.problem.Problem`, as ``__getattr__``; an
+    AttributeError for another name, or with more interfaces than one."""
+    kind = type(owner).__name__
+    if name not in names:
+        raise AttributeError(f"'{kind}' object has no attribute {name!r}")
+    items = owner.__dict__.get(field, ())
+    if len(items) != 1:
+        raise AttributeError(f"{kind}.{name} is that of one interface; this one has "
+                             f"{len(items)}: read {field}[k].{name}")
+    return getattr(items[0], name)
 
 
 def constrained_dofs(V: XSpace, scene, mesh) -> tuple[np.ndarray, np.ndarray]:

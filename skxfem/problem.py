@@ -38,7 +38,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .cut import Cut, check_apart
-from .enrich import XSpace, XSpaces, constrained_dofs, stiffness
+from .enrich import XSpace, XSpaces, constrained_dofs, one_interface, stiffness
 from .gamma import Gamma, gamma
 from .linalg.rigid import short_pieces
 from .multipliers import (
@@ -191,15 +191,8 @@ class Problem:
     interfaces: tuple[Part, ...]
     timings: dict = field(default_factory=dict)
 
-    def __getattr__(self, name):
-        if name in _ONE:  # the one part's field (class notes)
-            parts = self.__dict__.get("interfaces", ())
-            if len(parts) != 1:
-                raise AttributeError(f"Problem.{name} is that of a problem with one "
-                                     f"interface; this one has {len(parts)}: read "
-                                     f"p.interfaces[k].{name}")
-            return getattr(parts[0], name)
-        raise AttributeError(f"'Problem' object has no attribute {name!r}")
+    def __getattr__(self, name):  # the one part's field (class notes)
+        return one_interface(self, "interfaces", _ONE, name)
 
     @property
     def laws(self) -> tuple[str, ...]:
