@@ -72,9 +72,10 @@ class Result:
     the unknowns [a, b¹, …] of the X-FEM space ``V`` (:class:`skxfem.enrich.XSpaces`,
     as :attr:`skxfem.problem.Problem.V`) and ``problem`` the assembled problem.
     ``front``: one dict per interface with a front (a crack, :class:`skxfem.gamma.Crack`),
-    in the scene's order: ``points`` (m, dim) the front's points and ``K_I``, ``K_II``
-    (m,) the stress intensity factors there (:func:`skxfem.crack.sif.sif`); empty
-    without a crack.
+    in the scene's order: ``points`` (m, dim) the front's points, ``K_I``, ``K_II``
+    (m,) the stress intensity factors there (:func:`skxfem.crack.sif.sif`) and
+    ``interface`` the index of the crack in the scene's interfaces; empty without a
+    crack.
     """
 
     scene: object
@@ -233,9 +234,10 @@ def _joined(facets: np.ndarray) -> np.ndarray:
 
 def _fronts(pb, U: np.ndarray) -> tuple:
     """The stress intensity factors of each interface with a front (its kind's
-    :meth:`skxfem.gamma.Gamma.front`; None for one that has none)."""
+    :meth:`skxfem.gamma.Gamma.front`; None for one that has none), each with the
+    index of its ``interface`` in the scene."""
     fronts = (q.gamma.front(q.V, U[q.columns], pb.scene.material) for q in pb.interfaces)
-    return tuple(f for f in fronts if f is not None)
+    return tuple(dict(f, interface=k) for k, f in enumerate(fronts) if f is not None)
 
 
 def on_edges(P: sp.spmatrix, values: np.ndarray) -> np.ndarray:

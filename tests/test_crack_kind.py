@@ -4,6 +4,7 @@ and reproduces the harness :func:`skxfem.crack.solve.solve_crack` on the William
 bad inputs are refused naming the argument."""
 import json
 
+import meshio
 import numpy as np
 import pytest
 
@@ -132,7 +133,16 @@ def test_crack_scene_file_through_skxfem_run_writes_front(tmp_path):
     (front,) = data["front"]
     assert front["points"] == [[0.5, 0.5]]
     assert abs(front["K_I"][0] - s.K_I) < 1e-10 and abs(front["K_II"][0] - s.K_II) < 1e-10
-    assert data["law"] == ["free"] and data["n_multipliers"] == 0
+    assert data["law"] == ["free"] and data["n_multipliers"] == 0 and front["interface"] == 0
+    vtu = meshio.read(tmp_path / "out" / "interface.vtu")
+    (tip,) = vtu.cells_dict["vertex"][:, 0]
+    assert np.allclose(vtu.points[tip], [0.5, 0.5, 0.0])
+    assert vtu.point_data["K_I"][tip] == front["K_I"][0]
+    assert vtu.point_data["K_II"][tip] == front["K_II"][0]
+    others = np.arange(len(vtu.points)) != tip
+    assert np.isnan(vtu.point_data["K_I"][others]).all(), "K only at the front point"
+    assert np.isnan(vtu.point_data["pressure"][tip]) and vtu.point_data["interface"][tip] == 0
+    assert np.isfinite(vtu.point_data["jump"][others]).all()
 
 
 def test_crack_scene_file_in_interface_tables(tmp_path):

@@ -18,8 +18,9 @@
   interface of each point and ``regions`` the sign (±1) of each level set in
   each region (one interface: ``[[-1], [1]]``, Ω⁻ then Ω⁺).
 * ``front`` (only for a scene with a crack, an interface with a ``front``): one entry
-  per crack, ``points`` (one list per front point), ``K_I`` and ``K_II`` (one number per
-  point), the stress intensity factors of :attr:`skxfem.result.Result.front`.
+  per crack, ``interface`` (its index in ``interfaces``), ``points`` (one list per front
+  point), ``K_I`` and ``K_II`` (and ``K_III`` in 3D; one number per point), the stress
+  intensity factors of :attr:`skxfem.result.Result.front`.
 * ``displacement.vtu``: each region as its own piece of mesh with its own
   field ``displacement``, so that ParaView's *Warp By Vector* shows the
   discontinuity: piece r holds the cells with a vertex in region r, on its own
@@ -38,7 +39,9 @@
 * ``interface.vtu``: the interface facets (``line`` cells in 2D, ``triangle``
   cells in 3D) on the multiplier points, with point data ``pressure``,
   ``traction``, ``tangential_traction``, ``normal``, ``jump``, ``gap`` and
-  ``interface`` (the interface of each point).
+  ``interface`` (the interface of each point).  With a crack, its front points follow
+  as ``vertex`` cells carrying the point data ``K_I``, ``K_II`` (``K_III``), NaN at
+  the cut points; the cut points' fields are NaN there (``status`` -1).
 
 **A contact result** (content from :func:`contact_summary`) goes into the
 same three files with the same fields, those of the last load step, and a
@@ -171,9 +174,10 @@ def result_summary(result) -> dict:
     data.update(_interfaces(result, items))
     fronts = getattr(result, "front", ())   # a result-like object may have none
     if fronts:  # a crack's stress intensity factors (none: the key is absent)
-        data["front"] = [{"points": _plain(np.asarray(f["points"]), "front points"),
-                          "K_I": _plain(np.asarray(f["K_I"]), "K_I"),
-                          "K_II": _plain(np.asarray(f["K_II"]), "K_II")}
+        data["front"] = [{"interface": int(f["interface"]),
+                          "points": _plain(np.asarray(f["points"]), "front points"),
+                          **{k: _plain(np.asarray(f[k]), k)
+                             for k in ("K_I", "K_II", "K_III") if k in f}}
                          for f in fronts]
     return data
 
@@ -382,10 +386,35 @@ def _write_interface(result, path: Path):
     data["interface"] = np.asarray(result.interface, dtype=np.int64)
     if result.is_contact:
         data["status"] = np.asarray(result.status, dtype=np.int64)
+    cells = [(kind, facets.T.reshape(-1, points.shape[0]))]
+    points = vectors3(points)
+    fronts = getattr(result, "front", ())   # a result-like object may have none
+    if fronts:
+        points, cells, data = _with_fronts(fronts, points, cells, data)
     with quiet():
-        meshio.write(path, meshio.Mesh(vectors3(points),
-                                       [(kind, facets.T.reshape(-1, points.shape[0]))],
-                                       point_data=data), file_format="vtu")
+        meshio.write(path, meshio.Mesh(points, cells, point_data=data), file_format="vtu")
+
+
+def _with_fronts(fronts, points: np.ndarray, cells: list, data: dict):
+    """interface.vtu's points, cells and point data with each crack's front points
+    appended as ``vertex`` cells: point data ``K_I``, ``K_II`` (``K_III``) there and NaN
+    at the cut points; at the front points the cut points' fields are NaN (``status``
+    -1) and ``interface`` is the crack's."""
+    front = np.vstack([vectors3(np.asarray(f["points"], dtype=float).T) for f in fronts])
+    n, m = len(points), len(front)
+    owner = np.concatenate([np.full(len(f["points"]), f["interface"]) for f in fronts])
+    data = {name: np.concatenate([a, owner if name == "interface" else
+                                  np.full((m,) + a.shape[1:], -1 if a.dtype.kind == "i"
+                                          else np.nan)])
+            for name, a in data.items()}
+    for key in ("K_I", "K_II", "K_III"):
+        if any(key in f for f in fronts):
+            at_front = np.concatenate([np.asarray(f.get(key, np.full(len(f["points"]),
+                                                                     np.nan)), dtype=float)
+                                       for f in fronts])
+            data[key] = np.concatenate([np.full(n, np.nan), at_front])
+    return (np.vstack([points, front]),
+            cells + [("vertex", np.arange(n, n + m, dtype=np.int64)[:, None])], data)
 
 
 _WRITERS = {"json": _write_json, "displacement": _write_displacement,
