@@ -1049,7 +1049,7 @@ def test_51_every_load_step_is_a_file_of_a_paraview_series(tmp_path, capsys):
     pressures those of result.json's step); a later run with fewer steps replaces it."""
     import xml.etree.ElementTree as ET
 
-    path = scene_file(tmp_path, HISTORY_TEXT, "history.toml")
+    path = str(EXAMPLES / "history.toml")
     out = tmp_path / "out"
     assert main(["run", path, "--out", str(out)]) == 0
     data = json.loads((out / "result.json").read_text())
@@ -1073,43 +1073,6 @@ def test_51_every_load_step_is_a_file_of_a_paraview_series(tmp_path, capsys):
         "displacement.pvd", "displacement.vtu", "displacement_0001.vtu",
         "displacement_0002.vtu", "interface.pvd", "interface.vtu", "interface_0001.vtu",
         "interface_0002.vtu", "result.json"]
-
-
-HISTORY_TEXT = '''
-name = "history"
-[mesh]
-box = {n = [4, 5], cell = "quad"}
-[levelset]
-plane = {point = [0.0, 0.5], normal = [0.0, 1.0]}
-[[displacement]]
-boundary = "ymin"
-kind = "clamped"
-[interface]
-law = "coulomb"
-friction = 0.5
-[[step]]
-name = "press"
-[[step.load]]
-boundary = "ymax"
-pressure = 1.0
-[[step.displacement]]
-boundary = "ymax"
-x = 0.0
-[[step]]
-name = "shear"
-[[step.load]]
-boundary = "ymax"
-pressure = 1.0
-[[step.displacement]]
-boundary = "ymax"
-x = 2.0
-[[step]]
-name = "unload"
-law = "bonded"
-[[step.displacement]]
-boundary = "ymax"
-x = 2.0
-'''
 
 
 def test_52_progress_is_one_line_per_newton_iteration_and_load_step(tmp_path, capsys):
