@@ -180,8 +180,9 @@ class Crack(Gamma):
 
     def space(self, mesh, cut, order: int | None = None):
         """The crack's space [a, b, c] (:func:`skxfem.crack.space.crack_space` with the
-        interface's ``enrichment``); ``order`` is not used (its own rules)."""
-        return CrackXSpace(crack_space(mesh, cut, self.interface.enrichment))
+        interface's ``enrichment`` and ``enrichment_radius``); ``order`` is not used (its
+        own rules)."""
+        return CrackXSpace(self._space(mesh, cut))
 
     def multipliers(self, mesh, cut, fixed=None, per_edge=None) -> Space:
         """None: a crack's faces are free (law ``free``) and carry no multiplier."""
@@ -223,7 +224,8 @@ class Crack(Gamma):
         return {"points": tips.T.copy(), "K_I": K[:, 0], "K_II": K[:, 1]}
 
     def _space(self, mesh, cut):
-        return crack_space(mesh, cut, self.interface.enrichment)
+        return crack_space(mesh, cut, self.interface.enrichment,
+                           self.interface.enrichment_radius)
 
 
 @dataclass(frozen=True)

@@ -390,7 +390,8 @@ def place(table: str, key: str, example):
     if key in ("max_iter", "friction", "step"):   # options of the contact laws
         part(data, "[[interface]]" if table == "[[interface]]" else "[interface]")["law"] = \
             "coulomb"
-    if key in ("front", "enrichment", "sif_radius"):  # a crack's keys: a front, law free
+    if key in ("front", "enrichment", "enrichment_radius", "sif_radius"):
+        # a crack's keys: a front, law free
         own = data["interface"][0] if table == "[[interface]]" else data["levelset"]
         own.setdefault("front", "x - 0.5")
         part(data, "[[interface]]" if table == "[[interface]]" else "[interface]")["law"] = \

@@ -304,8 +304,12 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
         Key("enrichment", "one of " + " ".join(CRACK_ENRICHMENTS), "a crack's tip "
             "enrichment: the nodes within a radius of the tip (geometric, default) or the "
             "tip cells' (topological)", "geometric"),
+        Key("enrichment_radius", "number > 0 [L]", "a crack: r_e, the tip's enriched zone "
+            "with geometric enrichment (default 0.2 mesh diameters, at least 5.3 tip "
+            "cells)", 0.4),
         Key("sif_radius", "number > 0 [L]", "a crack: the radius of the interaction "
-            "integral's domain (default a few cells)", 0.3),
+            "integral's domain (default 0.75 enrichment_radius, at least 4 tip cells; "
+            "clipped to the distance to the boundary and half that to other tips)", 0.3),
     )),
     Table("[[interface]]", "several interfaces, one table each (in place of [levelset] "
           "and [interface]) with its level set (a key of [levelset], as there) and its "
@@ -328,6 +332,7 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
         Key("front", "formula [L]", "as [levelset] front: a crack (law free)", "x - 0.5"),
         Key("enrichment", "one of " + " ".join(CRACK_ENRICHMENTS), "as [interface] "
             "enrichment", "topological"),
+        Key("enrichment_radius", "number > 0 [L]", "as [interface] enrichment_radius", 0.4),
         Key("sif_radius", "number > 0 [L]", "as [interface] sif_radius", 0.3),
     ), (("plane", "circle", "sphere", "expr"),)),
     Table("[solver]", "how the scene is solved, by skxfem run and skxfem.solve alike "
@@ -489,7 +494,8 @@ def _law_fields(t: dict, where: str) -> dict:
 
 
 def _crack_fields(front, t: dict, dim: int, where: str) -> dict:
-    """The ``front`` (a formula φ), ``enrichment`` and ``sif_radius`` of a crack, as
+    """The ``front`` (a formula φ), ``enrichment``, ``enrichment_radius`` and
+    ``sif_radius`` of a crack, as
     keywords of an :class:`~skxfem.scene.Interface` (which checks them together);
     ``t`` the [interface] or [[interface]] table ``where``; {} if none is given."""
     out = {}
@@ -500,8 +506,9 @@ def _crack_fields(front, t: dict, dim: int, where: str) -> dict:
         out["front"] = ls.LevelSet(formula(front, f"{where} front", dim), dim, front)
     if "enrichment" in t:
         out["enrichment"] = choice(t["enrichment"], CRACK_ENRICHMENTS, f"{where} enrichment")
-    if "sif_radius" in t:
-        out["sif_radius"] = number(t["sif_radius"], f"{where} sif_radius")
+    for key in ("enrichment_radius", "sif_radius"):
+        if key in t:
+            out[key] = number(t[key], f"{where} {key}")
     return out
 
 

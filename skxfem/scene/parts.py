@@ -311,8 +311,10 @@ class Interface:
     A crack: ``front`` a second level set φ; Γ is then {ψ = 0, φ < 0}, which ends
     inside the body at the front {ψ = φ = 0} (2D, law ``free``: :func:`check_crack_fields`);
     ``enrichment`` the tip enrichment (``"geometric"``: the nodes within a radius of
-    the tip, or ``"topological"``: the tip cells'); ``sif_radius`` the interaction
-    integral's radius (None: a few cells, :func:`skxfem.crack.sif.sif`).
+    the tip, or ``"topological"``: the tip cells'); ``enrichment_radius`` that radius
+    r_e (None: :data:`skxfem.crack.space.DEFAULT_RADIUS` of the mesh's diameter);
+    ``sif_radius`` the interaction integral's radius (None: 0.75 r_e and at least a few
+    cells, :func:`skxfem.crack.sif.default_radius`).
 
     >>> from skxfem.levelset import plane
     >>> i = Interface(plane((0, 0.3), (0, 1)), law="frictionless")
@@ -330,6 +332,7 @@ class Interface:
     rho_t: float | None = None
     front: LevelSet | None = None
     enrichment: str = "geometric"
+    enrichment_radius: float | None = None
     sif_radius: float | None = None
 
     def __post_init__(self):
@@ -342,17 +345,20 @@ class Interface:
             if getattr(self, key) is not None:
                 object.__setattr__(self, key, float(getattr(self, key)))
         check_crack_fields(self)
-        if self.sif_radius is not None:
-            object.__setattr__(self, "sif_radius", float(self.sif_radius))
+        for key in ("enrichment_radius", "sif_radius"):
+            if getattr(self, key) is not None:
+                object.__setattr__(self, key, float(getattr(self, key)))
 
 
 def check_crack_fields(interface: Interface) -> None:
-    """Refuse a crack's ``front``, ``enrichment`` or ``sif_radius`` that no solve takes.
+    """Refuse a crack's ``front``, ``enrichment``, ``enrichment_radius`` or ``sif_radius``
+    that no solve takes.
 
     A front φ is a :class:`~skxfem.levelset.LevelSet` of ψ's dimension, 2D for now,
     with law ``free`` (contact on the faces comes later); ``enrichment`` is
-    ``"geometric"`` or ``"topological"`` (:mod:`skxfem.crack.space`); ``sif_radius``
-    a positive number or None, and both only with a front.
+    ``"geometric"`` or ``"topological"`` (:mod:`skxfem.crack.space`);
+    ``enrichment_radius`` (geometric only) and ``sif_radius`` positive numbers or None,
+    and all of them only with a front.
 
     >>> from skxfem.levelset import plane
     >>> Interface(plane((0, 0.5), (0, 1)), front=plane((0.5, 0), (1, 0)))
@@ -364,15 +370,20 @@ def check_crack_fields(interface: Interface) -> None:
     if interface.enrichment not in CRACK_ENRICHMENTS:
         raise ValueError(f"Interface enrichment must be one of {CRACK_ENRICHMENTS}, got "
                          f"{interface.enrichment!r}")
-    r = interface.sif_radius
-    if r is not None and not (is_number(r) and np.isfinite(r) and r > 0):
-        raise ValueError(f"Interface sif_radius must be a positive number or None (a few "
-                         f"cells), got {r!r}")
+    r, r_e = interface.sif_radius, interface.enrichment_radius
+    for key, v in (("sif_radius", r), ("enrichment_radius", r_e)):
+        if v is not None and not (is_number(v) and np.isfinite(v) and v > 0):
+            raise ValueError(f"Interface {key} must be a positive number or None (the "
+                             f"default), got {v!r}")
     if front is None:
-        if r is not None or interface.enrichment != "geometric":
-            raise ValueError("Interface sif_radius and enrichment are those of a crack: "
-                             "give its front (a level set φ, the crack where φ < 0)")
+        if r is not None or r_e is not None or interface.enrichment != "geometric":
+            raise ValueError("Interface sif_radius, enrichment and enrichment_radius are "
+                             "those of a crack: give its front (a level set φ, the crack "
+                             "where φ < 0)")
         return
+    if r_e is not None and interface.enrichment != "geometric":
+        raise ValueError("Interface enrichment_radius is the radius of geometric "
+                         "enrichment: leave it out with enrichment='topological'")
     if not isinstance(front, LevelSet):
         raise ValueError(f"Interface front must be a skxfem.levelset.LevelSet (the crack "
                          f"where φ < 0), got {type(front).__name__}")
