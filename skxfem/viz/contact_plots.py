@@ -14,8 +14,7 @@ from matplotlib.lines import Line2D
 from ..contact.laws import STATUS_NAMES
 from .plotting import COLORS, CURVE_COLORS, legend_size
 
-__all__ = ["STATUS_COLORS", "edge_status", "plot_status_2d", "plot_status_3d",
-           "plot_iterations"]
+__all__ = ["STATUS_COLORS", "edge_status", "plot_status_2d", "plot_status_3d"]
 
 #: One colour per point status (skxfem.contact.laws.STATUS_NAMES).
 STATUS_COLORS = {"open": "#969696", "stick": "#1b9e77", "slip": "#d95f02"}
@@ -72,29 +71,6 @@ def plot_status_2d(result, step: int = -1, title: str | None = None,
                fontsize=legend_size(fig))
     bottom.legend(fontsize=legend_size(fig))
     top.set_title(title or f"status on Γ, step {last.load}")
-    return fig
-
-
-def plot_iterations(rhos, iterations: dict, title: str | None = None) -> Figure:
-    """Newton iterations against ρ_n h/E, one curve per case.
-
-    Parameters
-    ----------
-    rhos
-        (n,) ρ_n in units of E/h.
-    iterations
-        Case label -> (n,) iteration counts.
-    """
-    fig = Figure(figsize=(6.0, 3.5), layout="constrained")
-    ax = fig.subplots()
-    for i, (label, its) in enumerate(iterations.items()):
-        ax.semilogx(rhos, its, "o-", color=CURVE_COLORS[i % len(CURVE_COLORS)], label=label)
-    ax.set_xlabel("ρ_n h / E")
-    ax.set_ylabel("Newton iterations")
-    ax.set_ylim(0, max(max(v) for v in iterations.values()) + 1)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=legend_size(ax.figure))
-    ax.set_title(title or "semi-smooth Newton iterations against ρ_n")
     return fig
 
 
