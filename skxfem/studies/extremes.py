@@ -198,6 +198,14 @@ def patch_error(scene: Scene, load: float = P) -> tuple[float, str]:
     return energy_error(result, strain), note
 
 
+def _patch_row(group: str, case: str, mesh: Box, levelset, tol: float = PATCH_TOL,
+               **scene) -> Row:
+    """The patch test (:func:`patch_error`) of ``mesh`` cut by ``levelset`` as a row;
+    ``scene``: more keywords of :func:`patch_scene`."""
+    return attempt(group, case, "energy error (patch)", tol,
+                   lambda: patch_error(patch_scene(mesh, levelset, **scene)))
+
+
 def _row_plane(cell: str, n: int, offset: float) -> tuple[Box, object]:
     """The unit box of ``n`` cells and Γ ``offset``·h above its middle row of nodes."""
     dim = _dim(cell)
@@ -222,19 +230,16 @@ def position_rows(cells=CELL_TYPES, offsets=OFFSETS, n: int = 4,
     for cell in cells:
         for offset in offsets:
             mesh, psi = _row_plane(cell, n, offset)
-            rows.append(attempt("position", f"{cell}, Γ at {offset:g} h from a node row",
-                                "energy error (patch)", PATCH_TOL,
-                                lambda: patch_error(patch_scene(mesh, psi, space=space))))
+            rows.append(_patch_row("position", f"{cell}, Γ at {offset:g} h from a node row",
+                                   mesh, psi, space=space))
         dim = _dim(cell)
         node = (0.5,) * dim
         slant = plane(node, (0.3,) + (0.0,) * (dim - 2) + (1.0,))
-        rows.append(attempt("position", f"{cell}, Γ through one node", "energy error (patch)",
-                            PATCH_TOL, lambda: patch_error(
-                                patch_scene(Box(n, cell), slant, space=space))))
+        rows.append(_patch_row("position", f"{cell}, Γ through one node", Box(n, cell),
+                               slant, space=space))
         mesh, psi = _row_plane(cell, n, 0.0)
-        rows.append(attempt("position", f"{cell}, Γ along cell faces", "energy error (patch)",
-                            PATCH_TOL, lambda: patch_error(patch_scene(mesh, psi,
-                                                                       space=space))))
+        rows.append(_patch_row("position", f"{cell}, Γ along cell faces", mesh, psi,
+                               space=space))
     return rows
 
 
@@ -440,8 +445,7 @@ def one_cell_rows(cells=CELL_TYPES) -> list[Row]:
     for cell in cells:
         d = _dim(cell)
         psi = plane((0.5,) * (d - 1) + (0.55,), (0.0,) * (d - 1) + (1.0,))
-        rows.append(attempt("size", f"{cell}, one cell across Γ", "energy error (patch)",
-                            PATCH_TOL, lambda: patch_error(patch_scene(Box(1, cell), psi))))
+        rows.append(_patch_row("size", f"{cell}, one cell across Γ", Box(1, cell), psi))
     return rows
 
 
@@ -524,9 +528,8 @@ def shape_rows(cells=CELL_TYPES, n2: int = 8, n3: int = 4, space: str = "vital")
         n = n2 if d == 2 else n3
         for name, psi in _shapes(d).items():
             tol = PATCH_TOL if name.startswith("slanted") else 1.0 / n
-            rows.append(attempt("shape", f"{cell}, {name} (h = 1/{n})", "energy error (patch)",
-                                tol, lambda: patch_error(patch_scene(Box(n, cell), psi,
-                                                                     space=space))))
+            rows.append(_patch_row("shape", f"{cell}, {name} (h = 1/{n})", Box(n, cell), psi,
+                                   tol, space=space))
     return rows
 
 
@@ -583,10 +586,8 @@ def support_rows(cells=CELL_TYPES, n: int = 4, space: str = "vital") -> list[Row
     for cell in cells:
         for name in CROSSINGS:
             psi = _crossing(_dim(cell), name)
-            rows.append(attempt("support", f"{cell}, Γ crossing the supported bottom, {name}",
-                                "energy error (patch)", PATCH_TOL,
-                                lambda: patch_error(patch_scene(Box(n, cell), psi,
-                                                                space=space))))
+            rows.append(_patch_row("support", f"{cell}, Γ crossing the supported bottom, "
+                                   f"{name}", Box(n, cell), psi, space=space))
     return rows
 
 
@@ -604,10 +605,8 @@ def piece_rows(cells=CELL_TYPES, sizes=PIECES, n: int = 4, space: str = "vital")
         d = _dim(cell)
         for size in sizes:
             psi = plane((d - size,) + (0.0,) * (d - 1), (1.0,) * d)
-            rows.append(attempt("piece", f"{cell}, a corner of {size:g} cut off the loaded end",
-                                "energy error (patch)", PATCH_TOL,
-                                lambda: patch_error(patch_scene(Box(n, cell), psi,
-                                                                space=space))))
+            rows.append(_patch_row("piece", f"{cell}, a corner of {size:g} cut off the "
+                                   f"loaded end", Box(n, cell), psi, space=space))
     return rows
 
 
@@ -680,17 +679,15 @@ def limit_rows(cells=CELL_TYPES, n: int = 4) -> list[Row]:
         d = _dim(cell)
         flat = (0.0,) * (d - 1) + (1.0,)
         middle = (0.5,) * (d - 1) + (0.53,)
-        rows.append(attempt("limits", f"{cell}, ν = {NU_MAX}", "energy error (patch)",
-                            PATCH_TOL, lambda: patch_error(patch_scene(
-                                Box(n, cell), plane(middle, flat),
-                                material=Material(1.0, NU_MAX)))))
+        rows.append(_patch_row("limits", f"{cell}, ν = {NU_MAX}", Box(n, cell),
+                               plane(middle, flat), material=Material(1.0, NU_MAX)))
         huge = plane(middle, tuple(1e200 * np.r_[(0.3,) + (0.0,) * (d - 2) + (1.0,)]))
-        rows.append(attempt("limits", f"{cell}, plane normal of size 1e200",
-                            "energy error (patch)", PATCH_TOL,
-                            lambda: patch_error(patch_scene(Box(n, cell), huge))))
+        rows.append(_patch_row("limits", f"{cell}, plane normal of size 1e200", Box(n, cell),
+                               huge))
         for size in SIZE_RANGE:
-            rows.append(attempt("limits", f"{cell}, Box size {size:g}", "energy error (patch)",
-                                PATCH_TOL, lambda: patch_error(_sized(cell, n, size))))
+            sized = (0.5 * size,) * (d - 1) + (0.53 * size,)
+            rows.append(_patch_row("limits", f"{cell}, Box size {size:g}",
+                                   Box(n, cell, size=(size,) * d), plane(sized, flat)))
 
     def bonded():
         result = solve(inclusion("bonded"))
@@ -698,13 +695,6 @@ def limit_rows(cells=CELL_TYPES, n: int = 4) -> list[Row]:
 
     rows.append(attempt("limits", "inclusion, bonded tie", "max jump / max |u|", 1e-2, bonded))
     return rows
-
-
-def _sized(cell: str, n: int, size: float) -> Scene:
-    """:func:`patch_scene` on the box of side ``size``."""
-    d = _dim(cell)
-    psi = plane((0.5 * size,) * (d - 1) + (0.53 * size,), (0.0,) * (d - 1) + (1.0,))
-    return patch_scene(Box(n, cell, size=(size,) * d), psi)
 
 
 # -----------------------------------------------------------------------------
