@@ -45,11 +45,6 @@ __all__ = ["Result", "solve", "solve_problem", "constrained_dofs", "LINEAR", "AU
            "choose_linear"]
 
 
-def _linear(method: str, p: Problem) -> str:
-    """The linear solve ``method`` resolves to for ``p``."""
-    return choose_linear(method, p.mesh.dim(), p.V.N)
-
-
 def _differences(cut, ncomp: int) -> sp.csr_matrix:
     """G: λ_i - λ_j over the sides (i, j) of the interface facets, per component (a
     side with an end -1, no cut point, has none)."""
@@ -146,7 +141,7 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
     settings = p.scene.solver.override(linear, linear_tol)
-    linear = _linear(settings.linear, p)
+    linear = choose_linear(settings.linear, p.mesh.dim(), p.V.N)
     linear_tol = settings.linear_tol
     mesh, V, B, D = p.mesh, p.V, p.B, p.D
     t = p.timings

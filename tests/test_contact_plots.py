@@ -9,7 +9,7 @@ from skxfem.fem.material import Material
 from skxfem.levelset import plane
 from skxfem.scene import Box, Displacement, Scene, clamped
 from skxfem.scene.benchmarks import strip
-from skxfem.viz.contact_plots import edge_status, plot_iterations, plot_status_2d, plot_status_3d
+from skxfem.viz.contact_plots import edge_status, plot_status_2d, plot_status_3d
 
 
 def turned(dim):
@@ -40,11 +40,6 @@ def test_edge_status_and_3d_render():
     assert np.array_equal(st, res.steps[-1].status)  # naive space: one dof per edge
     fig = plot_status_3d(res, window_size=(320, 240))
     assert fig.axes[0].images[0].get_array().shape == (240, 320, 3)
-
-
-def test_iterations_plot():
-    fig = plot_iterations([1e-3, 1.0], {"a": [2, 3], "b": [4, 4]})
-    assert len(fig.axes[0].lines) == 2 and fig.axes[0].get_ylim()[1] == 5
 
 
 def test_status_2d_of_one_interface_among_several():

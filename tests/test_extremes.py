@@ -10,8 +10,8 @@ from skxfem.studies.extremes import (
     Row,
     attempt,
     conditioning,
-    format_rows,
     largest,
+    markdown_rows,
     memory_rows,
     modulus_rows,
     one_cell_rows,
@@ -134,7 +134,7 @@ def test_patch_error_is_round_off_and_format_is_one_line_per_row():
     error, note = patch_error(scene)
     assert error < 1e-12 and note == ""
     row = attempt("position", "quad", "energy error (patch)", 1e-8, lambda: error)
-    assert len(format_rows([row, row]).splitlines()) == 3
+    assert len(markdown_rows([row, row]).splitlines()) == 4
 
 
 # issue 18: Γ across a support, small pieces, what is refused -------------------------

@@ -13,7 +13,8 @@ from skxfem.fem.meshes import box
 from skxfem.scene import Box, Interface, Scene, clamped, resolve_mesh, rollers
 from skxfem.scene import file as scenefile
 from skxfem.scene.expr import Expression
-from skxfem.scene.file import BUILT_BOX, MAX_MAGNITUDE, load_options, load_scene
+from skxfem.scene.file import BUILT_BOX, MAX_MAGNITUDE, load_scene
+from skxfem.scene.settings import Solver
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -227,34 +228,33 @@ def test_09_a_scene_file_never_runs_code(tmp_path, monkeypatch):
 
 
 def test_10_solve_options_are_read_and_checked(tmp_path):
-    """[solver] linear and max_iter are options of the solve: load_options gives
-    those the file sets, checked; load_scene accepts them."""
-    assert load_options(write(tmp_path, MINIMAL)) == {}
+    """[solver] linear and max_iter are options of the solve: load_scene reads those
+    the file sets into Scene.solver, checked."""
+    assert load_scene(write(tmp_path, MINIMAL)).solver == Solver()
     text = MINIMAL + "[interface]\nlaw = 'frictionless'\n[solver]\nlinear = 'iterative'\n" \
         "max_iter = 40\n"
-    assert load_options(write(tmp_path, text)) == {"linear": "iterative", "max_iter": 40}
-    assert load_scene(write(tmp_path, text)).law == "frictionless"
+    scene = load_scene(write(tmp_path, text))
+    assert (scene.law, scene.solver) == ("frictionless", Solver("iterative", max_iter=40))
     for bad, key in (("linear = 'cholesky'", "linear"), ("max_iter = 0", "max_iter"),
                      ("max_iter = 2.5", "max_iter")):
         with pytest.raises(ValueError, match=rf"^bad.toml: \[solver\] {key} must be"):
-            load_options(write(tmp_path, MINIMAL + f"[solver]\n{bad}\n", "bad.toml"))
+            load_scene(write(tmp_path, MINIMAL + f"[solver]\n{bad}\n", "bad.toml"))
 
 
 def test_11_a_missing_folder_or_binary_scene_file_is_named(tmp_path):
-    """load_scene and load_options refuse alike, naming the file and the fix."""
+    """load_scene refuses them, naming the file and the fix."""
     (tmp_path / "folder.toml").mkdir()
     (tmp_path / "latin1.toml").write_bytes('name = "f\xfchrung"\n'.encode("latin-1"))
     cases = [("missing.toml", ["does not exist", "check the path"]),
              ("folder.toml", ["is a folder", ".toml file"]),
              ("latin1.toml", ["not UTF-8", "0xfc", "save it as UTF-8"])]
-    for read in (load_scene, load_options):
-        for name, words in cases:
-            with pytest.raises(ValueError) as info:
-                read(tmp_path / name)
-            message = str(info.value)
-            assert message.startswith(f"{name}: ") and "\n" not in message, message
-            for w in words:
-                assert w in message, f"{w!r} not in {message!r}"
+    for name, words in cases:
+        with pytest.raises(ValueError) as info:
+            load_scene(tmp_path / name)
+        message = str(info.value)
+        assert message.startswith(f"{name}: ") and "\n" not in message, message
+        for w in words:
+            assert w in message, f"{w!r} not in {message!r}"
     with pytest.raises(FileNotFoundError):      # also what it was before: callers catch it
         load_scene(tmp_path / "missing.toml")
     with pytest.raises(TypeError, match="path must be the path of a .toml file"):
@@ -282,11 +282,10 @@ def test_12_boundaries_of_a_mesh_file_are_checked_with_the_file_numbering(tmp_pa
 
 
 def test_13_load_scene_checks_the_solve_options_too(tmp_path):
-    """A bad [solver] linear is refused by load_scene as by load_options (it was accepted)."""
+    """A bad [solver] linear is refused by load_scene (it was accepted)."""
     bad = MINIMAL + "[solver]\nlinear = 'cholesky'\n"
-    for load in (load_scene, load_options):
-        with pytest.raises(ValueError, match=r"^bad.toml: \[solver\] linear must be one of"):
-            load(write(tmp_path, bad, "bad.toml"))
+    with pytest.raises(ValueError, match=r"^bad.toml: \[solver\] linear must be one of"):
+        load_scene(write(tmp_path, bad, "bad.toml"))
 
 
 # The schema (skxfem schema): printed from the tables the reader checks.
@@ -663,8 +662,7 @@ def test_22_interface_forms_refused_together(tmp_path):
                                          r"is \['bonded', 'bilateral'\]"):
         load_scene(write(tmp_path, ties))
     with_contact = TWO + "[solver]\nmax_iter = 5\n"
-    assert load_options(write(tmp_path, with_contact)) == {"max_iter": 5}
-    load_scene(write(tmp_path, with_contact))
+    assert load_scene(write(tmp_path, with_contact)).solver.max_iter == 5
 
 
 # --- issue 26: what the file says ---------------------------------------------------------
@@ -694,15 +692,11 @@ def test_26_coulomb_needs_its_friction_and_no_other_law_takes_one(tmp_path, law)
 
 def test_26b_the_solver_table_is_the_scenes_solver(tmp_path):
     """[solver] linear, linear_tol and max_iter load into Scene.solver (else the
-    defaults), as load_options reads them."""
-    from skxfem import Solver
-
+    defaults)."""
     assert load_scene(write(tmp_path, MINIMAL)).solver == Solver()
     text = (MINIMAL + "[interface]\nlaw = 'frictionless'\n[solver]\nlinear = 'direct'\n"
             "linear_tol = 1e-9\nmax_iter = 40\n")
     assert load_scene(write(tmp_path, text)).solver == Solver("direct", 1e-9, 40)
-    assert load_options(write(tmp_path, text)) == {"linear": "direct", "linear_tol": 1e-9,
-                                                   "max_iter": 40}
     for bad, key in (("linear_tol = 0", "linear_tol"), ("linear_tol = true", "linear_tol"),
                      ("max_iter = true", "max_iter")):
         with pytest.raises(ValueError, match=rf"^bad.toml: \[solver\] {key} must be"):

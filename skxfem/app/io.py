@@ -511,16 +511,6 @@ def write_result(result, out_dir: str | Path) -> dict[str, Path]:
 # -----------------------------------------------------------------------------
 # What ``result.json`` adds for a contact result: the law, and every load step at the dofs.
 # -----------------------------------------------------------------------------
-# :func:`skxfem.app.io.write_result` writes a contact result into the same three
-# files as a tie result, with the same fields at the cut edges' points (the last
-# step's); this section gives what a contact ``result.json`` adds (the file layout
-# is described in the module notes): the law's parameters, the ``status`` of each
-# point, and ``dofs`` and ``steps``, the values at the multiplier dofs (the
-# points where the laws are imposed, :mod:`skxfem.contact.interface`):
-# ``pressure`` p = -λ (≥ 0), ``gap`` the weighted normal jump d (≤ 0
-# admissible), ``slip`` and ``tangential_traction`` the components of the
-# weighted tangential jump and of r_τ on the ``tangents`` of the dof (k = 1 in
-# 2D, 2 in 3D), ``status`` open / stick / slip.
 
 
 EQUATIONS = ("equilibrium", "contact", "friction")
@@ -559,8 +549,11 @@ def _step(step) -> dict:
 
 def contact_summary(result) -> dict:
     """What a contact ``result.json`` adds to a tie's: the ``status`` of each point,
-    the multiplier ``dofs`` (with the interface of each) and one entry per load step
-    (μ and the ρ used are in ``interfaces``, :func:`result_summary`).
+    the multiplier ``dofs`` (with the interface of each: where the laws are imposed,
+    :mod:`skxfem.contact.interface`) and one entry per load step at the dofs
+    (``pressure`` p = -λ ≥ 0, ``gap`` the weighted normal jump d ≤ 0, ``slip`` and
+    ``tangential_traction`` on the dof's ``tangents``, ``status``); μ and the ρ
+    used are in ``interfaces`` (:func:`result_summary`).
 
     Arrays are numpy arrays here (:func:`skxfem.app.io.result_summary` turns
     them into lists, NaN into ``null``); a set of points or vectors is one

@@ -76,7 +76,7 @@ from ..scene.benchmarks import exact_scene
 from ..stabilised import vital_edges, winner_nodes
 from ..studies import cracks
 from ..studies.conforming import study_conforming
-from ..studies.convergence import observed_rates, study
+from ..studies.convergence import study, summary_columns, summary_rates
 from ..studies.progress import Progress
 from ..studies.validation3d import study_block
 from ..studies.validation3d import summary as block_summary
@@ -151,31 +151,17 @@ def _measure(cell, ns):
     return rows, betas
 
 
-def _rates(h, e):
-    return [round(float(r), 4) for r in observed_rates(h, e)] if len(h) > 1 else []
-
-
 def _table(cell, rows, betas) -> dict:
     out = {}
     for space in CELLS[cell]:
-        mine = [r for r in rows if r.space == space]
-        h = [r.h for r in mine]
         out[space] = {
-            "n": [r.n for r in mine], "h": h,
+            **summary_columns([r for r in rows if r.space == space]),
             "beta_h": [r.beta for r in betas["h", space]],
             "beta_l2": [r.beta for r in betas["l2", space]],
             "h_cut_edges": [r.h for r in betas["h", space]],
             "n_zero": [r.n_zero for r in betas["h", space]],
             "beta_h_bonded": [r.beta for r in betas["bonded", space]],
             "n_zero_bonded": [r.n_zero for r in betas["bonded", space]],
-            "pressure_l2": [r.pressure_l2 for r in mine],
-            "pressure_l2_rates": _rates(h, [r.pressure_l2 for r in mine]),
-            "pressure_max": [r.pressure_max for r in mine],
-            "energy": [r.energy for r in mine],
-            "energy_rates": _rates(h, [r.energy for r in mine]),
-            "n_dofs": [r.n_dofs for r in mine],
-            "n_multipliers": [r.n_multipliers for r in mine],
-            "seconds_solve": [round(r.seconds, 3) for r in mine],
         }
     return out
 
@@ -355,7 +341,7 @@ def main(argv=None) -> int:
             "scene": "exact_plate(n, 'hex', nx=1) on 1 x n x n cells: Γ on mesh faces",
             "n": [r.n for r in fem], "h": [r.h for r in fem],
             "energy": [r.energy for r in fem],
-            "energy_rates": _rates([r.h for r in fem], [r.energy for r in fem]),
+            "energy_rates": summary_rates([r.h for r in fem], [r.energy for r in fem]),
             "n_dofs": [r.n_dofs for r in fem]}},
         "block3d": block_summary(block),
         "frontier": frontier,

@@ -5,8 +5,8 @@ In 3D, σ = 2μ ε + λ tr(ε) I with the Lamé constants of (E, ν).  In 2D the
 stress (σ_zz = 0, which replaces λ by 2μλ/(λ + 2μ) = Eν/(1 - ν²)).  The
 constants and σ(ε) are scikit-fem's own (:mod:`skfem.models.elasticity`:
 ``lame_parameters``, ``plane_stress``, ``linear_stress``); this module adds
-the validation, the Heaviside-signed form of the X-FEM and a faster assembly
-of the same matrix from scalar forms (:func:`stiffness_matrix`).
+the validation and a faster assembly of the same matrix from scalar forms
+(:func:`stiffness_matrix`).
 
 >>> m = Material(E=1.0, nu=0.0)
 >>> m.lame(2), m.lame(3)
@@ -21,11 +21,9 @@ from functools import lru_cache
 import numpy as np
 import scipy.sparse as sp
 from skfem import BilinearForm
-from skfem.helpers import ddot, sym_grad
 from skfem.models.elasticity import lame_parameters, linear_elasticity, linear_stress, plane_stress
 
-__all__ = ["Material", "E_RANGE", "NU_MAX", "stiffness_form", "signed_stiffness_form",
-           "partial_form", "stiffness_matrix"]
+__all__ = ["Material", "E_RANGE", "NU_MAX", "stiffness_form", "partial_form", "stiffness_matrix"]
 
 E_RANGE = (1e-100, 1e100)
 """The Young's moduli a :class:`Material` accepts."""
@@ -102,19 +100,6 @@ class Material:
 def stiffness_form(material: Material, dim: int) -> BilinearForm:
     """The elasticity form a(u, v) = ∫ σ(u) : ε(v): scikit-fem's ``linear_elasticity``."""
     return linear_elasticity(*material.lame(dim))
-
-
-def signed_stiffness_form(material: Material, dim: int) -> BilinearForm:
-    """The form ∫ H σ(u) : ε(v) with the Heaviside value H passed as ``w["H"]``.
-
-    It couples standard and Heaviside-enriched dofs (paper eq. 11).
-    """
-
-    @BilinearForm
-    def signed_elasticity(u, v, w):
-        return w["H"] * ddot(material.stress(sym_grad(u), dim), sym_grad(v))
-
-    return signed_elasticity
 
 
 @lru_cache(maxsize=None)

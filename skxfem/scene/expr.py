@@ -49,7 +49,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["MAX_DEPTH", "MAX_LENGTH", "FUNCTIONS", "Expression", "compile_expression"]
+__all__ = ["MAX_DEPTH", "MAX_LENGTH", "FUNCTIONS", "Expression"]
 
 MAX_LENGTH = 1000
 """Longest expression text accepted, in characters."""
@@ -163,16 +163,6 @@ class Expression:
         value = value.astype(float)
         _finite(value, x, self, f"expression {_short(self.text)} gives NaN or inf")
         return value
-
-
-def compile_expression(text: str, dim: int, boolean: bool = False) -> Expression:
-    """Check ``text`` and return it as a callable :class:`Expression`.
-
-    >>> import numpy as np
-    >>> compile_expression("2*pi", 3)(np.zeros((3, 2)))
-    array([6.28318531, 6.28318531])
-    """
-    return Expression(text, dim, boolean)
 
 
 def _short(text: str, limit: int = 60) -> str:

@@ -95,7 +95,7 @@ itself is the first::
 :class:`~skxfem.scene.settings.Solver` (``Scene.solver``): ``skxfem run`` and
 ``skxfem.solve(load_scene(path))`` solve alike, ``skxfem run``'s ``--linear``,
 ``--linear-tol``, ``--max-iter`` and the keywords of ``skxfem.solve`` override
-them (:func:`load_options` gives those the file sets).
+them.
 
 Every table and key, what it takes, its unit and default are in :data:`SCHEMA`,
 which the reader checks against (the keys allowed, the ones exclusive of each
@@ -137,7 +137,7 @@ from .parts import COMPONENTS, CRACK_ENRICHMENTS, FACES, check_friction
 from .settings import Solver
 from .tomlcheck import array, choice, formula, keys, number, one_of, table, vector
 
-__all__ = ["load_scene", "load_options", "Key", "Table", "SCHEMA", "UNITS", "schema",
+__all__ = ["load_scene", "Key", "Table", "SCHEMA", "UNITS", "schema",
            "MAX_MAGNITUDE", "MAX_SHIFT"]
 
 
@@ -436,22 +436,6 @@ def load_scene(path: str | Path) -> sc.Scene:
         return _scene(data, path)
     except (ValueError, TypeError) as e:
         raise type(e)(f"{path.name}: {e}") from e
-
-
-def load_options(path: str | Path) -> dict:
-    r"""The solve options of a scene file's ``[solver]`` table, ``linear``, ``max_iter``
-    and ``linear_tol``,
-    those given only: keywords of ``skxfem.solve`` or ``skxfem.contact.solve``.
-
-    >>> import pathlib, tempfile
-    >>> f = pathlib.Path(tempfile.mkdtemp()) / "s.toml"
-    >>> _ = f.write_text('[solver]\nlinear = "direct"\n')
-    >>> load_options(f)
-    {'linear': 'direct'}
-    """
-    path, data = tomlcheck.read_toml(path)
-    solver = data.get("solver", {})  # not a table: load_scene refuses it
-    return tomlcheck.labelled(path.name, _options, solver if isinstance(solver, dict) else {})
 
 
 def _options(solver: dict) -> dict:

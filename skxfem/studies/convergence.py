@@ -30,7 +30,7 @@ from ..solver import solve
 from .progress import Progress
 
 __all__ = ["PressureError", "pressure_error", "energy_error", "observed_rates", "StudyRow",
-           "study"]
+           "study", "summary_rates", "summary_columns"]
 
 
 @dataclass(frozen=True)
@@ -93,6 +93,12 @@ def observed_rates(h, errors) -> np.ndarray:
     return np.log(e[:-1] / e[1:]) / np.log(h[:-1] / h[1:])
 
 
+def summary_rates(h, errors) -> list[float]:
+    """:func:`observed_rates` as ``summary.json`` stores them: rounded to 4 digits,
+    none for a single mesh."""
+    return [round(float(r), 4) for r in observed_rates(h, errors)] if len(h) > 1 else []
+
+
 @dataclass(frozen=True)
 class StudyRow:
     """One mesh of a convergence study (see :func:`study`)."""
@@ -141,3 +147,23 @@ def study(make_scene: Callable, ns, spaces=("naive", "winner", "vital"),
                                  result.n_multipliers, seconds))
             progress.step(f"{scene.name} ({space})")
     return rows
+
+
+def summary_columns(rows: list[StudyRow]) -> dict:
+    """The columns of ``summary.json`` of one space's rows, coarsest first: ``n``, ``h``,
+    the errors with their rates (:func:`summary_rates`), the sizes and the solve time.
+
+    >>> row = lambda n: StudyRow(n, 1 / n, "vital", 0.0, 0, 1 / n, 0.0, 1 / n**2, 0, 0, 0.0)
+    >>> summary_columns([row(2), row(4)])["energy_rates"]
+    [2.0]
+    """
+    h = [r.h for r in rows]
+    return {"n": [r.n for r in rows], "h": h,
+            "energy": [r.energy for r in rows],
+            "energy_rates": summary_rates(h, [r.energy for r in rows]),
+            "pressure_l2": [r.pressure_l2 for r in rows],
+            "pressure_l2_rates": summary_rates(h, [r.pressure_l2 for r in rows]),
+            "pressure_max": [r.pressure_max for r in rows],
+            "n_dofs": [r.n_dofs for r in rows],
+            "n_multipliers": [r.n_multipliers for r in rows],
+            "seconds_solve": [round(r.seconds, 3) for r in rows]}

@@ -17,7 +17,7 @@ by :func:`patch_scene`; the rows by the ``*_rows`` functions, one section of
 this module per part of the table: Γ near nodes (:func:`position_rows`), the
 numbers a scene carries (E, ν, ρ), the geometry (one cell, memory, slanted
 and curved Γ, supports, small pieces), what is refused and the limits
-accepted; :func:`table` gathers them all and :func:`format_rows` prints them.
+accepted; :func:`table` gathers them all and :func:`markdown_rows` writes them.
 
 >>> row = attempt("demo", "a refused case", "energy error", 1e-8,
 ...               lambda: (_ for _ in ()).throw(ValueError("no: fix the input")))
@@ -61,7 +61,7 @@ __all__ = ["Row", "Conditioning", "attempt", "patch_scene", "uniform_strain", "p
            "RHO_FACTORS", "modulus_rows", "poisson_rows", "exact_strip_for", "friction_scene",
            "rho_rows", "one_cell_rows", "memory_scene", "largest", "memory_rows", "shape_rows",
            "UNSTABLE", "space_rows", "CROSSINGS", "support_rows", "PIECES", "piece_rows",
-           "inclusion", "refused_rows", "limit_rows", "table", "format_rows", "markdown_rows"]
+           "inclusion", "refused_rows", "limit_rows", "table", "markdown_rows"]
 
 CELL_TYPES = CELLS
 OFFSETS = (1e-14, 1e-10, 1e-6, 1e-3, 0.5)
@@ -123,13 +123,10 @@ def attempt(group: str, case: str, measure: str, tolerance: float,
                time.perf_counter() - t0)
 
 
-def _at(*coords):
-    return lambda x: np.all([np.abs(x[i] - c) < 1e-12 for i, c in enumerate(coords)], axis=0)
-
-
-def patch_scene(mesh, levelset, material: Material = Material(), space: str = "vital",
+def patch_scene(mesh: Box, levelset, material: Material = Material(), space: str = "vital",
                 law: str = "bonded", load: float = P) -> Scene:
-    """Uniaxial compression of the unit box: the patch test of every row.
+    """Uniaxial compression of the box ``mesh`` (the unit box unless its ``size`` says
+    otherwise): the patch test of every row.
 
     The bottom (``ymin`` in 2D, ``zmin`` in 3D) is on rollers, the rigid
     motions left are held at one (2D) or two (3D) bottom nodes, the top is
@@ -141,11 +138,17 @@ def patch_scene(mesh, levelset, material: Material = Material(), space: str = "v
     """
     dim = levelset.dim
     up = "xyz"[dim - 1]
+    size = (mesh.size or (1.0,))[0]
+
+    def at(*c):
+        return lambda x: np.all([np.abs(x[i] - v) <= 1e-9 * size for i, v in enumerate(c)],
+                                axis=0)
+
     if dim == 2:
-        fix = (Displacement(_at(0.0, 0.0), {"x": 0.0}),)
+        fix = (Displacement(at(0.0, 0.0), {"x": 0.0}),)
     else:
-        fix = (Displacement(_at(0.0, 0.0, 0.0), {"x": 0.0, "y": 0.0}),
-               Displacement(_at(1.0, 0.0, 0.0), {"y": 0.0}))
+        fix = (Displacement(at(0.0, 0.0, 0.0), {"x": 0.0, "y": 0.0}),
+               Displacement(at(size, 0.0, 0.0), {"y": 0.0}))
     return Scene(mesh, levelset, material, (rollers(up + "min"),) + fix,
                  (SurfaceLoad(up + "max", pressure=load),), law, space, name="patch")
 
@@ -195,9 +198,17 @@ def patch_error(scene: Scene, load: float = P) -> tuple[float, str]:
     return energy_error(result, strain), note
 
 
+def _patch_row(group: str, case: str, mesh: Box, levelset, tol: float = PATCH_TOL,
+               **scene) -> Row:
+    """The patch test (:func:`patch_error`) of ``mesh`` cut by ``levelset`` as a row;
+    ``scene``: more keywords of :func:`patch_scene`."""
+    return attempt(group, case, "energy error (patch)", tol,
+                   lambda: patch_error(patch_scene(mesh, levelset, **scene)))
+
+
 def _row_plane(cell: str, n: int, offset: float) -> tuple[Box, object]:
     """The unit box of ``n`` cells and Γ ``offset``·h above its middle row of nodes."""
-    dim = 2 if cell in ("tri", "quad") else 3
+    dim = _dim(cell)
     y0 = (n // 2) / n + offset / n
     point, normal = (0.5,) * (dim - 1) + (y0,), (0.0,) * (dim - 1) + (1.0,)
     return Box(n, cell), plane(point, normal)
@@ -219,19 +230,16 @@ def position_rows(cells=CELL_TYPES, offsets=OFFSETS, n: int = 4,
     for cell in cells:
         for offset in offsets:
             mesh, psi = _row_plane(cell, n, offset)
-            rows.append(attempt("position", f"{cell}, Γ at {offset:g} h from a node row",
-                                "energy error (patch)", PATCH_TOL,
-                                lambda: patch_error(patch_scene(mesh, psi, space=space))))
-        dim = 2 if cell in ("tri", "quad") else 3
+            rows.append(_patch_row("position", f"{cell}, Γ at {offset:g} h from a node row",
+                                   mesh, psi, space=space))
+        dim = _dim(cell)
         node = (0.5,) * dim
         slant = plane(node, (0.3,) + (0.0,) * (dim - 2) + (1.0,))
-        rows.append(attempt("position", f"{cell}, Γ through one node", "energy error (patch)",
-                            PATCH_TOL, lambda: patch_error(
-                                patch_scene(Box(n, cell), slant, space=space))))
+        rows.append(_patch_row("position", f"{cell}, Γ through one node", Box(n, cell),
+                               slant, space=space))
         mesh, psi = _row_plane(cell, n, 0.0)
-        rows.append(attempt("position", f"{cell}, Γ along cell faces", "energy error (patch)",
-                            PATCH_TOL, lambda: patch_error(patch_scene(mesh, psi,
-                                                                       space=space))))
+        rows.append(_patch_row("position", f"{cell}, Γ along cell faces", mesh, psi,
+                               space=space))
     return rows
 
 
@@ -305,19 +313,6 @@ def conditioning(cells=CELL_TYPES, offsets=(1e-11, 1e-9, 1e-7, 1e-5, 1e-3, 1e-1,
 # -----------------------------------------------------------------------------
 # Extremes of the numbers a scene carries: E, ν and the contact laws' ρ_n, ρ_τ.
 # -----------------------------------------------------------------------------
-# Rows:
-#
-# * :func:`modulus_rows`: E from 10⁻⁶ to 10⁹ on the strip, with the load scaled
-#   alike (the displacement must not change) and unscaled (it must scale as
-#   1/E); the measure is the relative deviation from the E = 1 solution, held
-#   to 1e-8;
-# * :func:`poisson_rows`: ν up to 0.4999 against the exact solution of
-#   :mod:`skxfem.fem.exact`; the energy error is held to twice its value at ν = 0.3,
-#   so the first "inaccurate" row is where volumetric locking starts;
-# * :func:`rho_rows`: ρ_n and ρ_τ from 10⁻⁶ to 10⁹ × E/h on a frictional
-#   contact case (:func:`skxfem.contact.solve`); the measure is the deviation
-#   of the contact tractions from those of the default ρ, held to 1e-8, and the
-#   note gives the Newton iterations.
 
 
 MODULI = (1e-6, 1e-3, 1.0, 1e3, 1e6, 1e9)
@@ -341,7 +336,8 @@ def _deviation(result, ref, u_factor: float, p_factor: float) -> float:
 
 
 def modulus_rows(moduli=MODULI, n: int = 8) -> list[Row]:
-    """E over ``moduli``, loads scaled alike (u unchanged, p ∝ E) and unscaled (u ∝ 1/E).
+    """E over ``moduli`` on the strip, loads scaled alike (u unchanged, p ∝ E) and
+    unscaled (u ∝ 1/E): the relative deviation from the E = 1 solution, held to 1e-8.
 
     >>> rows = modulus_rows([1e6], n=2)
     >>> [r.outcome for r in rows]
@@ -380,7 +376,8 @@ def _energy(material: Material, n: int, cell: str) -> float:
 
 def poisson_rows(ratios=POISSON, n: int = 8, cells=("tri", "quad")) -> list[Row]:
     """ν over ``ratios`` (the first must be the reference, 0.3): the energy error
-    against the exact solution, held to twice its value at the first ν."""
+    against the exact solution, held to twice its value at the first ν: the first
+    "inaccurate" row is where volumetric locking starts."""
     rows = []
     for cell in cells:
         first = _energy(Material(1.0, ratios[0]), n, cell)
@@ -429,25 +426,9 @@ def rho_rows(factors=RHO_FACTORS, n: int = 8) -> list[Row]:
 
 
 # -----------------------------------------------------------------------------
-# Extremes of the geometry: one cell, the largest mesh, slanted and curved Γ.
+# Extremes of the geometry: one cell, the largest mesh, slanted and curved Γ,
+# Γ across a support, small pieces.
 # -----------------------------------------------------------------------------
-# Rows:
-#
-# * :func:`one_cell_rows`: a single cell of each type, cut through its middle,
-#   under the patch test (:func:`patch_error`);
-# * :func:`memory_rows`: the largest paper plate (hex, prism, tet) or strip
-#   (tri, quad) whose estimated memory (:func:`skxfem.studies.budget.estimate`) fits
-#   the default 4 GB limit with each linear solver, direct and iterative — an
-#   estimate, not a run — and the refusal of the next size by
-#   :func:`skxfem.studies.budget.check`;
-# * :func:`shape_rows`: Γ slanted at 45°, curved (a circle, a sphere) and
-#   touching or crossing the boundary, under the patch test;
-# * :func:`space_rows`: the naive and winner spaces near a node on the exact
-#   benchmark, where their multipliers become nearly dependent;
-# * :func:`support_rows`: Γ crossing the supported bottom face at three angles
-#   and cutting off its supported corner, under the patch test;
-# * :func:`piece_rows`: Γ cutting a small corner off the loaded end, a piece of
-#   the body that only the tie holds, under the patch test.
 
 
 def _dim(cell: str) -> int:
@@ -464,8 +445,7 @@ def one_cell_rows(cells=CELL_TYPES) -> list[Row]:
     for cell in cells:
         d = _dim(cell)
         psi = plane((0.5,) * (d - 1) + (0.55,), (0.0,) * (d - 1) + (1.0,))
-        rows.append(attempt("size", f"{cell}, one cell across Γ", "energy error (patch)",
-                            PATCH_TOL, lambda: patch_error(patch_scene(Box(1, cell), psi))))
+        rows.append(_patch_row("size", f"{cell}, one cell across Γ", Box(1, cell), psi))
     return rows
 
 
@@ -503,8 +483,9 @@ def largest(cell: str, max_bytes: int = DEFAULT_MAX_BYTES, linear: str = "direct
 
 def memory_rows(cells=CELL_TYPES, max_bytes: int = DEFAULT_MAX_BYTES,
                 solvers=("direct", "iterative")) -> list[Row]:
-    """For each cell type and linear solver, the largest mesh under ``max_bytes``
-    and the next one refused."""
+    """For each cell type and linear solver, the largest :func:`memory_scene` under
+    ``max_bytes`` (estimated, :func:`skxfem.studies.budget.estimate`: not run) and
+    the next one refused (:func:`skxfem.studies.budget.check`)."""
     rows = []
     for cell, linear in itertools.product(cells, solvers):
         n = largest(cell, max_bytes, linear)
@@ -547,9 +528,8 @@ def shape_rows(cells=CELL_TYPES, n2: int = 8, n3: int = 4, space: str = "vital")
         n = n2 if d == 2 else n3
         for name, psi in _shapes(d).items():
             tol = PATCH_TOL if name.startswith("slanted") else 1.0 / n
-            rows.append(attempt("shape", f"{cell}, {name} (h = 1/{n})", "energy error (patch)",
-                                tol, lambda: patch_error(patch_scene(Box(n, cell), psi,
-                                                                     space=space))))
+            rows.append(_patch_row("shape", f"{cell}, {name} (h = 1/{n})", Box(n, cell), psi,
+                                   tol, space=space))
     return rows
 
 
@@ -606,10 +586,8 @@ def support_rows(cells=CELL_TYPES, n: int = 4, space: str = "vital") -> list[Row
     for cell in cells:
         for name in CROSSINGS:
             psi = _crossing(_dim(cell), name)
-            rows.append(attempt("support", f"{cell}, Γ crossing the supported bottom, {name}",
-                                "energy error (patch)", PATCH_TOL,
-                                lambda: patch_error(patch_scene(Box(n, cell), psi,
-                                                                space=space))))
+            rows.append(_patch_row("support", f"{cell}, Γ crossing the supported bottom, "
+                                   f"{name}", Box(n, cell), psi, space=space))
     return rows
 
 
@@ -627,29 +605,15 @@ def piece_rows(cells=CELL_TYPES, sizes=PIECES, n: int = 4, space: str = "vital")
         d = _dim(cell)
         for size in sizes:
             psi = plane((d - size,) + (0.0,) * (d - 1), (1.0,) * d)
-            rows.append(attempt("piece", f"{cell}, a corner of {size:g} cut off the loaded end",
-                                "energy error (patch)", PATCH_TOL,
-                                lambda: patch_error(patch_scene(Box(n, cell), psi,
-                                                                space=space))))
+            rows.append(_patch_row("piece", f"{cell}, a corner of {size:g} cut off the "
+                                   f"loaded end", Box(n, cell), psi, space=space))
     return rows
 
 
 # -----------------------------------------------------------------------------
-# What the library refuses, and why: the rows of the extremes table that must be refused.
+# What the library refuses, and the nearest inputs it accepts: both sides of every
+# stated range.
 # -----------------------------------------------------------------------------
-# Each row tries one input the library refuses (:func:`refused_rows`) and
-# records its one-line message; next to the limits it also solves the nearest
-# accepted input under the patch test (:func:`limit_rows`), so the table shows
-# both sides of every stated range:
-#
-# * a nearly incompressible material, ν within 1e-6 of 0.5
-#   (:data:`skxfem.fem.material.NU_MAX`), and E outside :data:`skxfem.fem.material.E_RANGE`;
-# * box lengths outside :data:`skxfem.scene.parts.SIZE_RANGE`;
-# * a plane with a zero normal (one of any non-zero size is only a direction);
-# * a side of Γ that the supports and the law leave free to move
-#   (:func:`skxfem.linalg.rigid.check_held`): a disc tied by its normal jump alone (a
-#   bilateral tie, or frictionless contact) turns about its centre; the upper
-#   part of the strip slides along a bilateral Γ; a body without supports floats.
 
 
 def inclusion(law: str = "bonded") -> Scene:
@@ -675,7 +639,13 @@ def _max_jump(scene) -> float:
 
 def refused_rows() -> list[Row]:
     """The inputs the library refuses, each with its message (measure: none; a
-    row that is not refused reports 0, or the max jump of what it solved).
+    row that is not refused reports 0, or the max jump of what it solved): ν too
+    close to 0.5 (:data:`~skxfem.fem.material.NU_MAX`), E outside
+    :data:`~skxfem.fem.material.E_RANGE`, box lengths outside
+    :data:`~skxfem.scene.parts.SIZE_RANGE`, a plane of zero normal, and a side of Γ
+    left free to move (:func:`skxfem.linalg.rigid.check_held`: a disc tied by its
+    normal jump alone turns, the strip's top slides along a bilateral Γ, a body
+    without supports floats).
 
     >>> [r.outcome for r in refused_rows()][:2]
     ['refused', 'refused']
@@ -706,20 +676,18 @@ def limit_rows(cells=CELL_TYPES, n: int = 4) -> list[Row]:
     and the bonded inclusion (its max jump, held to 1e-2 of its |u|)."""
     rows = []
     for cell in cells:
-        d = 2 if cell in ("tri", "quad") else 3
+        d = _dim(cell)
         flat = (0.0,) * (d - 1) + (1.0,)
         middle = (0.5,) * (d - 1) + (0.53,)
-        rows.append(attempt("limits", f"{cell}, ν = {NU_MAX}", "energy error (patch)",
-                            PATCH_TOL, lambda: patch_error(patch_scene(
-                                Box(n, cell), plane(middle, flat),
-                                material=Material(1.0, NU_MAX)))))
+        rows.append(_patch_row("limits", f"{cell}, ν = {NU_MAX}", Box(n, cell),
+                               plane(middle, flat), material=Material(1.0, NU_MAX)))
         huge = plane(middle, tuple(1e200 * np.r_[(0.3,) + (0.0,) * (d - 2) + (1.0,)]))
-        rows.append(attempt("limits", f"{cell}, plane normal of size 1e200",
-                            "energy error (patch)", PATCH_TOL,
-                            lambda: patch_error(patch_scene(Box(n, cell), huge))))
+        rows.append(_patch_row("limits", f"{cell}, plane normal of size 1e200", Box(n, cell),
+                               huge))
         for size in SIZE_RANGE:
-            rows.append(attempt("limits", f"{cell}, Box size {size:g}", "energy error (patch)",
-                                PATCH_TOL, lambda: patch_error(_sized(cell, n, size))))
+            sized = (0.5 * size,) * (d - 1) + (0.53 * size,)
+            rows.append(_patch_row("limits", f"{cell}, Box size {size:g}",
+                                   Box(n, cell, size=(size,) * d), plane(sized, flat)))
 
     def bonded():
         result = solve(inclusion("bonded"))
@@ -729,36 +697,15 @@ def limit_rows(cells=CELL_TYPES, n: int = 4) -> list[Row]:
     return rows
 
 
-def _sized(cell: str, n: int, size: float) -> Scene:
-    """:func:`patch_scene` on the box of side ``size``."""
-    d = 2 if cell in ("tri", "quad") else 3
-    psi = plane((0.5 * size,) * (d - 1) + (0.53 * size,), (0.0,) * (d - 1) + (1.0,))
-    base = patch_scene(Box(n, cell, size=(size,) * d), psi)
-
-    def at(*c):
-        return lambda x: np.all([np.abs(x[i] - v) <= 1e-9 * size for i, v in enumerate(c)],
-                                axis=0)
-
-    fix = (Displacement(at(0.0, 0.0), {"x": 0.0}),) if d == 2 else (
-        Displacement(at(0.0, 0.0, 0.0), {"x": 0.0, "y": 0.0}),
-        Displacement(at(size, 0.0, 0.0), {"y": 0.0}))
-    return replace(base, displacements=base.displacements[:1] + fix)
-
-
 # -----------------------------------------------------------------------------
-# The whole extremes table of issue 11, and its text form.
+# The whole extremes table of issue 11, and its Markdown form.
 # -----------------------------------------------------------------------------
-# :func:`table` gathers the rows of every section above: Γ near nodes, E, ν and ρ,
-# the geometry (one cell, memory, slanted and curved Γ, Γ across a support, small
-# pieces), and what is refused with the limits accepted;
-# :func:`format_rows` prints them, one line each, with the refusal messages cut
-# to a width (the rows keep them whole).  ``progress`` (a
-# :class:`skxfem.studies.progress.Progress`; by default one that is on in a terminal
-# only) reports each part.
 
 
 def table(cells=CELL_TYPES, progress: Progress | None = None) -> list[Row]:
-    """Every row of the extremes table (about 25 s here)."""
+    """Every row of the extremes table (about 25 s here), each section above in turn;
+    ``progress`` (by default a :class:`~skxfem.studies.progress.Progress` that is on in
+    a terminal only) reports each part."""
     parts = [("Γ near nodes", lambda: position_rows(cells) + space_rows()),
              ("E", modulus_rows), ("ν", poisson_rows), ("ρ", rho_rows),
              ("one cell, memory", lambda: one_cell_rows(cells) + memory_rows(cells)),
@@ -771,22 +718,6 @@ def table(cells=CELL_TYPES, progress: Progress | None = None) -> list[Row]:
         rows += make()
         progress.step(name)
     return rows
-
-
-def format_rows(rows, width: int = 90) -> str:
-    """The rows as a fixed-width text table; notes and messages cut to ``width``.
-
-    >>> print(format_rows([Row("E", "E = 1", "solved", "deviation", 0.0, 1e-8, "", 0.01)]))
-    group    case                                               outcome        value      tol  note
-    E        E = 1                                              solved      0.00e+00    1e-08
-    """
-    lines = [f"{'group':8} {'case':50} {'outcome':10} {'value':>9} {'tol':>8}  note"]
-    for r in rows:
-        value = "-" if r.value is None else f"{r.value:.2e}"
-        note = r.message if len(r.message) <= width else r.message[:width - 3] + "..."
-        lines.append(f"{r.group:8} {r.case:50} {r.outcome:10} {value:>9} {r.tolerance:>8.3g}"
-                     f"  {note}".rstrip())
-    return "\n".join(lines)
 
 
 def markdown_rows(rows) -> str:

@@ -36,7 +36,7 @@ from ..fem.exact3d import GAMMA_NORMAL, GAMMA_POINT, ExactBlock
 from ..linalg.saddle import NearlyDependentError
 from ..multipliers import SPACES
 from ..scene.benchmarks import P_MAX, exact_block
-from .convergence import observed_rates, study
+from .convergence import observed_rates, study, summary_columns
 from .progress import Progress
 
 __all__ = ["CELLS", "EXPECTED_RATES", "NAIVE_TET_MAX_N", "Failure", "BlockStudy",
@@ -117,10 +117,6 @@ def study_block(ns, cells=CELLS, spaces=SPACES, progress: Progress | None = None
     return BlockStudy(rows, tuple(failures))
 
 
-def _rates(h, e) -> list:
-    return [round(float(r), 4) for r in observed_rates(h, e)] if len(h) > 1 else []
-
-
 def summary(block: BlockStudy) -> dict:
     """The numbers of a :class:`BlockStudy`, as ``summary.json`` stores them.
 
@@ -136,19 +132,7 @@ def summary(block: BlockStudy) -> dict:
     for cell, rows in block.rows.items():
         studies[cell] = {}
         for space in [s for s in SPACES if any(r.space == s for r in rows)]:
-            mine = [r for r in rows if r.space == space]
-            h = [r.h for r in mine]
-            studies[cell][space] = {
-                "n": [r.n for r in mine], "h": h,
-                "energy": [r.energy for r in mine],
-                "energy_rates": _rates(h, [r.energy for r in mine]),
-                "pressure_l2": [r.pressure_l2 for r in mine],
-                "pressure_l2_rates": _rates(h, [r.pressure_l2 for r in mine]),
-                "pressure_max": [r.pressure_max for r in mine],
-                "n_dofs": [r.n_dofs for r in mine],
-                "n_multipliers": [r.n_multipliers for r in mine],
-                "seconds_solve": [round(r.seconds, 3) for r in mine],
-            }
+            studies[cell][space] = summary_columns([r for r in rows if r.space == space])
     return {
         "scene": "exact_block(n, cell): unit cube, n cells per side",
         "reference": "exact: skxfem.fem.exact3d.ExactBlock (Love's solution), pressure "

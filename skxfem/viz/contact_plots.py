@@ -1,11 +1,9 @@
-"""Figures of the contact chapter: the status map on Γ and the Newton iteration counts.
+"""Figures of the contact chapter: the status map on Γ, in 2D and in 3D.
 
 >>> STATUS_COLORS["open"], STATUS_COLORS["stick"], STATUS_COLORS["slip"]
 ('#969696', '#1b9e77', '#d95f02')
 """
 from __future__ import annotations
-
-import os
 
 import numpy as np
 from matplotlib.figure import Figure
@@ -13,9 +11,9 @@ from matplotlib.lines import Line2D
 
 from ..contact.laws import STATUS_NAMES
 from .plotting import COLORS, CURVE_COLORS, legend_size
+from .render3d import _figure, _pyvista, _screenshot
 
-__all__ = ["STATUS_COLORS", "edge_status", "plot_status_2d", "plot_status_3d",
-           "plot_iterations"]
+__all__ = ["STATUS_COLORS", "edge_status", "plot_status_2d", "plot_status_3d"]
 
 #: One colour per point status (skxfem.contact.laws.STATUS_NAMES).
 STATUS_COLORS = {"open": "#969696", "stick": "#1b9e77", "slip": "#d95f02"}
@@ -75,29 +73,6 @@ def plot_status_2d(result, step: int = -1, title: str | None = None,
     return fig
 
 
-def plot_iterations(rhos, iterations: dict, title: str | None = None) -> Figure:
-    """Newton iterations against ρ_n h/E, one curve per case.
-
-    Parameters
-    ----------
-    rhos
-        (n,) ρ_n in units of E/h.
-    iterations
-        Case label -> (n,) iteration counts.
-    """
-    fig = Figure(figsize=(6.0, 3.5), layout="constrained")
-    ax = fig.subplots()
-    for i, (label, its) in enumerate(iterations.items()):
-        ax.semilogx(rhos, its, "o-", color=CURVE_COLORS[i % len(CURVE_COLORS)], label=label)
-    ax.set_xlabel("ρ_n h / E")
-    ax.set_ylabel("Newton iterations")
-    ax.set_ylim(0, max(max(v) for v in iterations.values()) + 1)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=legend_size(ax.figure))
-    ax.set_title(title or "semi-smooth Newton iterations against ρ_n")
-    return fig
-
-
 def edge_status(result, step: int = -1) -> np.ndarray:
     """Status (n_edges,) of every cut edge: that of the multiplier dof it depends on most."""
     P = result.problem.P.tocsr()
@@ -119,9 +94,7 @@ def plot_status_3d(result, step: int = -1, window_size: tuple[int, int] = (800, 
 
     pyvista (the ``viz`` extra) is imported here.
     """
-    os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
-    import pyvista as pv
-
+    pv = _pyvista()
     pb = result.problem
     if pb.mesh.dim() != 3:
         raise ValueError("plot_status_3d needs a 3D result; use plot_status_2d")
@@ -132,23 +105,16 @@ def plot_status_3d(result, step: int = -1, window_size: tuple[int, int] = (800, 
                         for n in STATUS_NAMES], dtype=np.uint8)
     surface.point_data["rgb"] = palette[edge_status(result, step)]
     plotter = pv.Plotter(off_screen=True, window_size=list(window_size))
-    plotter.set_background("white")
     plotter.add_mesh(pv.PolyData(pb.mesh.p.T).outline(), color=COLORS["mesh"], line_width=2)
     plotter.add_mesh(surface, scalars="rgb", rgb=True, show_edges=True, edge_color="#ffffff",
                      interpolate_before_map=False)
     plotter.add_mesh(pv.PolyData(c.points.T), scalars=palette[edge_status(result, step)],
                      rgb=True, point_size=10, render_points_as_spheres=True)
     plotter.add_axes(color="black")
-    plotter.view_vector(view, viewup=(0.0, 0.0, 1.0))
-    image = plotter.screenshot(return_img=True)
-    plotter.close()
-    width, height = window_size
-    fig = Figure(figsize=(width / 100, height / 100 + 0.4), dpi=100)
-    ax = fig.add_axes((0.0, 0.0, 1.0, height / (height + 40)))
-    ax.imshow(image)
-    ax.set_axis_off()
+    text = title or f"status on Γ, step {result.steps[step].load}"
+    fig = _figure([_screenshot(plotter, view)], window_size, text)
     fig.legend(handles=[Line2D([], [], ls="", marker="o", color=col, label=name)
                         for name, col in STATUS_COLORS.items()], loc="upper right", ncol=3,
                fontsize=legend_size(fig))
-    fig.suptitle(title or f"status on Γ, step {result.steps[step].load}", x=0.3)
+    fig.suptitle(text, x=0.3)   # left of the legend
     return fig
