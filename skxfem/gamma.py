@@ -38,9 +38,10 @@ else changes.  Each method must meet:
 6. ``rule(mesh, cut) -> InterfaceRule`` and ``jump(V, rule)``: the quadrature on Γ_h
    and the operator U ↦ [[u_h]] at its points (component-major rows).
 7. ``point_jumps(V, U) -> (dim, n)``: [[u]] = u⁻ - u⁺ at the cut points (the
-   results' ``jump``); ``front(V, U, material) -> dict | None``: the stress
-   intensity factors along Γ's front, ``points`` (m, dim), ``K_I``, ``K_II`` (m,);
-   None for a Γ without a front.
+   results' ``jump``); ``front(V, U, material, traction=None) -> dict | None``: the
+   stress intensity factors along Γ's front, ``points`` (m, dim), ``K_I``, ``K_II``
+   (m,), ``traction`` (dim, n) the interface traction at the cut points that loaded
+   faces carry (the crack-face term); None for a Γ without a front.
 8. ``splits``: whether Γ splits the body into regions (the files' pieces read the ψ
    of those that do; its space's ``splits`` says the same to :mod:`skxfem.enrich`).
 
@@ -80,6 +81,7 @@ import scipy.sparse as sp
 from .crack.assembly import FACET_POINTS, Load, Support, stiffness, supported_dofs, traction_load
 from .crack.assembly import _facets as check_facets
 from .crack.assembly import face_rule as face_rule_of
+from .crack.faces import crack_multipliers, face_functions, face_traction
 from .crack.geometry import crack_geometry
 from .crack.sif import sif
 from .crack.space import CrackSpace, crack_space, evaluation
@@ -151,7 +153,7 @@ class Gamma:
         (:func:`skxfem.enrich.edge_jumps`)."""
         return edge_jumps(V, U)
 
-    def front(self, V, U: np.ndarray, material) -> dict | None:
+    def front(self, V, U: np.ndarray, material, traction=None) -> dict | None:
         """The stress intensity factors along Γ's front: None, Γ has none."""
         return None
 
@@ -184,9 +186,10 @@ class Crack(Gamma):
         return CrackXSpace(crack_space(mesh, cut, self.interface.enrichment))
 
     def multipliers(self, mesh, cut, fixed=None, per_edge=None) -> Space:
-        """None: a crack's faces are free (law ``free``) and carry no multiplier."""
-        raise ValueError("a crack's faces take law 'free': contact on crack faces is not "
-                         "supported yet, so it has no multiplier space")
+        """The interface's multiplier space on the crack's crossed edges, up to the front
+        (:func:`skxfem.crack.faces.crack_multipliers`)."""
+        return crack_multipliers(self.interface.space, mesh, cut, fixed=fixed,
+                                 per_edge=per_edge)
 
     def normals(self, cut) -> np.ndarray:
         """∇ψ/|∇ψ| (dim, n) at the crack's cut points."""
@@ -194,12 +197,17 @@ class Crack(Gamma):
 
     def rule(self, mesh, cut) -> InterfaceRule:
         """Gauss points on the crack pieces (:func:`skxfem.crack.assembly.face_rule`,
-        √r-graded at a tip), the normals of their pieces; no multiplier functions."""
+        √r-graded at a tip), the normals of their pieces and the multiplier functions
+        there (:func:`skxfem.crack.faces.face_functions`, constant from the last crossed
+        edge to the tip; none if the crack crosses no edge strictly)."""
         x, w, cells, ref = face_rule_of(self._space(mesh, cut))
-        per_piece = x.shape[1] // max(cut.segment_cell.size, 1)
+        nseg = cut.segment_cell.size
+        per_piece = x.shape[1] // max(nseg, 1)
+        piece = np.repeat(np.arange(nseg), per_piece)
+        N = (face_functions(cut, x, piece) if cut.edge_ids.size else
+             sp.csr_matrix((x.shape[1], 0)))
         return InterfaceRule(points=x, normals=np.repeat(cut.normals, per_piece, axis=1),
-                             weights=w, cells=cells, ref=ref,
-                             N=sp.csr_matrix((x.shape[1], cut.edge_ids.size)))
+                             weights=w, cells=cells, ref=ref, N=N)
 
     def jump(self, V, rule: InterfaceRule) -> sp.csr_matrix:
         """U ↦ [[u_h]] = u⁻ - u⁺ (the Ω⁻ face's less the Ω⁺ face's) at the rule's points,
@@ -214,11 +222,23 @@ class Crack(Gamma):
         ref = mesh.mapping().invF(cut.points[:, :, None], tind=cells)[:, :, 0]
         return (_face_jump(V, cells, ref) @ U).reshape(mesh.dim(), -1)
 
-    def front(self, V, U: np.ndarray, material) -> dict:
+    def front(self, V, U: np.ndarray, material, traction=None) -> dict:
         """``points`` (m, dim) the front's points (the tips) and ``K_I``, ``K_II`` (m,) there
-        (:func:`skxfem.crack.sif.sif` with the interface's ``sif_radius``)."""
+        (:func:`skxfem.crack.sif.sif` with the interface's ``sif_radius``).
+
+        ``traction`` (dim, ne): the interface traction r = σ·n at the cut points (the
+        multipliers of a tie or a contact, λ = P μ); the faces then carry t⁻ = r (Ω⁻'s
+        face) and t⁺ = -r (Ω⁺'s), interpolated by the multiplier functions up to the
+        front (:func:`skxfem.crack.faces.face_traction`), and the interaction integral
+        takes them in its face term: a crack pressed shut gives K = 0.  None or all
+        zero: free faces."""
         tips = V.cut.tips
-        K = np.array([sif(V.space, U, material, self.interface.sif_radius, tip=k)
+        faces = None
+        if traction is not None and np.any(traction):
+            faces = face_traction(V.cut, np.asarray(traction, float),
+                                  face_rule_of(V.space)[0])
+        K = np.array([sif(V.space, U, material, self.interface.sif_radius, tip=k,
+                          face_traction=faces)
                       for k in range(tips.shape[1])]).reshape(-1, 2)
         return {"points": tips.T.copy(), "K_I": K[:, 0], "K_II": K[:, 1]}
 
