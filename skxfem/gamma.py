@@ -46,9 +46,10 @@ else changes.  Each method must meet:
    of those that do; its space's ``splits`` says the same to :mod:`skxfem.enrich`).
 
 The space a kind returns is asked, by :func:`skxfem.enrich.stiffness`,
-:func:`skxfem.problem.assemble` and :meth:`skxfem.enrich.XSpaces.regions`, for its own
-``signed_stiffness(material, A)`` and ``blocks(A, AH)`` (its enriched blocks: the
-Heaviside space's arithmetic of :func:`skxfem.enrich.enriched_blocks`, a crack's own
+:func:`skxfem.enrich.mass`, :func:`skxfem.problem.assemble` and
+:meth:`skxfem.enrich.XSpaces.regions`, for its own ``signed_stiffness(material, A)``,
+``signed_mass(A)`` and ``blocks(A, AH)`` (its enriched blocks: the Heaviside space's
+arithmetic of :func:`skxfem.enrich.enriched_blocks`, a crack's own
 blocks on its almost-polar rules), ``load(facet_loads, body_force, f)`` (its enriched
 load), ``constraints(scene, mesh)`` (its constrained unknowns: a crack never clamps a
 mouth shut) and ``splits`` (whether Γ splits the body into regions: a crack does not).
@@ -81,6 +82,7 @@ import scipy.sparse as sp
 from .crack.assembly import FACET_POINTS, Load, Support, stiffness, supported_dofs, traction_load
 from .crack.assembly import _facets as check_facets
 from .crack.assembly import face_rule as face_rule_of
+from .crack.assembly import mass as crack_mass
 from .crack.faces import crack_multipliers, face_functions, face_traction
 from .crack.geometry import crack_geometry
 from .crack.sif import sif
@@ -256,7 +258,8 @@ class CrackXSpace:
 
     * ``signed_stiffness(material, A)`` and ``blocks(A, K)``: the crack's own stiffness
       (:func:`skxfem.crack.assembly.stiffness`, its tip cells on the almost-polar
-      rule), given as its standard block and its enriched blocks;
+      rule), given as its standard block and its enriched blocks; ``signed_mass(A)``
+      the same for its mass (:func:`skxfem.crack.assembly.mass`, :mod:`skxfem.lbb`);
     * ``load(facet_loads, body_force, f)``: the scene's surface loads on [a, b, c]
       (:func:`skxfem.crack.assembly.traction_load`);
     * ``constraints(scene, mesh)``: the scene's displacements on [a, b, c]
@@ -324,6 +327,13 @@ class CrackXSpace:
         K = stiffness(self.space, material).tocsr()
         n = self.n_std
         return (K[:n, :n] if A is None else A), K
+
+    def signed_mass(self, A=None):
+        """(A, M): the standard block of the crack's mass M (``A`` if given) and M itself
+        (:func:`skxfem.crack.assembly.mass`), whose enriched blocks :meth:`blocks` reads."""
+        M = crack_mass(self.space)
+        n = self.n_std
+        return (M[:n, :n] if A is None else A), M
 
     def blocks(self, A, K) -> tuple[sp.csr_matrix, sp.csr_matrix]:
         """(K_ab, K_bb): the crack stiffness' blocks of its enriched unknowns."""

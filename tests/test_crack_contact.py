@@ -15,7 +15,7 @@ from skxfem.levelset import LevelSet
 from skxfem.problem import assemble
 from skxfem.scene import Displacement, Interface, Scene, SurfaceLoad
 from skxfem.solver import solve
-from skxfem.studies.cracks import MATERIAL, unit_square
+from skxfem.studies.cracks import MATERIAL, crack_inf_sup, unit_square
 
 
 def _square(n, cell):
@@ -170,3 +170,16 @@ def test_griffith_field_is_exact_elasticity():
 def test_bad_griffith_inputs_are_refused(kwargs, words):
     with pytest.raises(ValueError, match=words):
         InclinedCrack(**kwargs)
+
+
+def test_inf_sup_of_the_crack_spaces_near_the_front():
+    """β_h (skxfem.lbb with the crack's mass) up to the front: winner and vital stay
+    bounded below (≥ 0.5 from h = 1/11 to 1/41), naive falls with h (below 0.1, halved
+    twice over)."""
+    rows = crack_inf_sup([11, 21, 41])
+    beta = {(r.space, r.n): r.beta for r in rows}
+    assert all(r.n_zero == 0 for r in rows)
+    for name in ("winner", "vital"):
+        assert min(beta[name, n] for n in (11, 21, 41)) > 0.5
+        assert beta[name, 41] > 0.85 * beta[name, 11]
+    assert beta["naive", 11] < 0.1 and beta["naive", 41] < 0.4 * beta["naive", 11]
