@@ -3,9 +3,14 @@ multiplier spaces on the crossed edges (skxfem.crack.faces), the contact Newton 
 the crack kind of Γ, the face term of the interaction integral fed by the multipliers
 (a closed crack gives K = 0) and the closed inclined crack with Coulomb friction
 (skxfem.crack.griffith) against Dolbow, Moës & Belytschko's K_II."""
+import json
+from pathlib import Path
+
 import numpy as np
 import pytest
 from skfem import MeshQuad1, MeshTri1
+
+from skxfem.app.cli import main
 
 from skxfem.crack.faces import crack_multipliers, edge_graph, end_values, face_functions
 from skxfem.crack.geometry import crack_geometry
@@ -14,6 +19,7 @@ from skxfem.gamma import gamma
 from skxfem.levelset import LevelSet
 from skxfem.problem import assemble
 from skxfem.scene import Displacement, Interface, Scene, SurfaceLoad
+from skxfem.scene.file import load_scene
 from skxfem.solver import solve
 from skxfem.studies.cracks import MATERIAL, crack_inf_sup, unit_square
 
@@ -183,3 +189,37 @@ def test_inf_sup_of_the_crack_spaces_near_the_front():
         assert min(beta[name, n] for n in (11, 21, 41)) > 0.5
         assert beta[name, 41] > 0.85 * beta[name, 11]
     assert beta["naive", 11] < 0.1 and beta["naive", 41] < 0.4 * beta["naive", 11]
+
+
+EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "crack.toml"
+
+
+@pytest.mark.parametrize("friction, sticks", [(0.5, True), (0.2, False)])
+def test_a_coulomb_crack_scene_file_through_skxfem_run_writes_front(tmp_path, friction,
+                                                                    sticks):
+    """examples/crack.toml: an edge crack pressed (p = 1) and sheared (τ = 0.3) by the
+    uniform field's displacements.  μ = 0.5 ≥ τ/p: the faces stick, K = 0, the traction
+    is (τ, -p); μ = 0.2: they slide, K_II > 0 (the Ω⁺ face towards the tip), the
+    shear μ p.  result.json's front is that of the same scene solved in Python."""
+    path = tmp_path / "crack.toml"
+    path.write_text(EXAMPLE.read_text().replace("friction = 0.5", f"friction = {friction}"))
+    assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 0
+    data = json.loads((tmp_path / "out" / "result.json").read_text())
+    (front,) = data["front"]
+    assert data["law"] == ["coulomb"] and front["points"] == [[0.5, 0.5]]
+    scale = np.sqrt(np.pi * 0.5)
+    t = np.array(data["traction"])
+    assert abs(t[:, 1].mean() + 1) < 0.005, "the contact pressure p = 1"
+    assert abs(front["K_I"][0]) < 1e-3 * scale
+    if sticks:
+        assert abs(front["K_II"][0]) < 1e-3 * scale and abs(t[:, 0].mean() - 0.3) < 0.005
+    else:
+        assert front["K_II"][0] > 0.05 * scale and np.allclose(t[:, 0], 0.2 * -t[:, 1])
+    r = solve(load_scene(path))
+    assert abs(r.front[0]["K_II"][0] - front["K_II"][0]) < 1e-10
+
+
+def test_schema_says_a_crack_takes_any_law(capsys):
+    assert main(["schema"]) == 0
+    out = " ".join(capsys.readouterr().out.split())     # the wrapped columns joined
+    assert "any law: free faces, or a tie or contact on the faces" in out
