@@ -11,7 +11,6 @@ import pytest
 from skfem import MeshQuad1, MeshTri1
 
 from skxfem.app.cli import main
-
 from skxfem.crack.faces import crack_multipliers, edge_graph, end_values, face_functions
 from skxfem.crack.geometry import crack_geometry
 from skxfem.crack.griffith import InclinedCrack
