@@ -404,9 +404,10 @@ def tip_quadrature(power: float = -0.5, n: int = 5, tip=(0.513, 0.459), beta: fl
     return TipQuadrature(power, exact, polar, int(live.sum()), plain, plain_order, W.size)
 
 
-def summary(williams=(), conditioning=(), plates=()) -> dict:
+def summary(williams=(), conditioning=(), plates=(), friction=(), inf_sup=()) -> dict:
     """The numbers of the studies for ``summary.json``: per row a dict, and the fitted
-    energy rates of mode I.
+    energy rates of mode I; ``friction`` (:func:`friction_study`) and ``inf_sup``
+    (:func:`crack_inf_sup`) rows of contact on the faces.
 
     >>> summary(plates=[PlateRow("tri", 41, 7 / 41, 9.3, 0.0, 9.37, -0.0075)])["tada"][0]["cell"]
     'tri'
@@ -422,7 +423,9 @@ def summary(williams=(), conditioning=(), plates=()) -> dict:
                          "rows": rows(williams),
                          "energy_rates": energy_rates(williams) if williams else {}},
             "conditioning": rows(conditioning),
-            "tada": rows(plates)}
+            "tada": rows(plates),
+            "friction": rows(friction),
+            "inf_sup": rows(inf_sup)}
 
 
 def inclined_scene(n: int = 21, beta: float = 30.0, friction: float = 0.3,
