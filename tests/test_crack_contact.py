@@ -14,13 +14,14 @@ from skxfem.app.cli import main
 from skxfem.crack.faces import crack_multipliers, edge_graph, end_values, face_functions
 from skxfem.crack.geometry import crack_geometry
 from skxfem.crack.griffith import InclinedCrack
+from skxfem.crack.williams import near_tip
 from skxfem.gamma import gamma
 from skxfem.levelset import LevelSet
 from skxfem.problem import assemble
 from skxfem.scene import Displacement, Interface, Scene, SurfaceLoad
 from skxfem.scene.file import load_scene
 from skxfem.solver import solve
-from skxfem.studies.cracks import MATERIAL, crack_inf_sup, unit_square
+from skxfem.studies.cracks import MATERIAL, crack_inf_sup, straight_crack, unit_square
 
 
 def _square(n, cell):
@@ -70,7 +71,7 @@ def _pressed(n, cell, law="frictionless", space="vital", p=1.0):
                  loads=(SurfaceLoad("ymax", traction=(0.0, -p)),), interfaces=(crack,))
 
 
-@pytest.mark.parametrize("law", ["frictionless", "coulomb", "bilateral", "bonded"])
+@pytest.mark.parametrize("law", ["frictionless", "coulomb", "adhesive", "bilateral", "bonded"])
 @pytest.mark.parametrize("cell", ["tri", "quad"])
 def test_a_crack_pressed_shut_gives_K_zero_with_the_face_term(law, cell):
     """σ_yy = -p everywhere (the faces carry p, the multipliers): |K| ≤ 1e-3 p√(πa)
@@ -222,3 +223,31 @@ def test_schema_says_a_crack_takes_any_law(capsys):
     assert main(["schema"]) == 0
     out = " ".join(capsys.readouterr().out.split())     # the wrapped columns joined
     assert "any law: free faces, or a tie or contact on the faces" in out
+
+
+@pytest.mark.parametrize("law", ["frictionless", "coulomb"])
+def test_an_open_crack_under_a_contact_law_is_the_free_crack(law):
+    """The Williams square in mode I opens its faces everywhere: a contact law leaves
+    them free, and the solve is that of law free (K_I = 1 at this mesh within 5 %)."""
+    tip = np.array([0.5, 0.5])
+    psi, phi, frame = straight_crack(tip, 0.0)
+
+    def exact(p):
+        return near_tip(p, tip, frame, MATERIAL, (1.0, 0.0))
+
+    def scene(law, friction=None):
+        disp = tuple(Displacement(b, {"x": lambda p: exact(p).u[0],
+                                      "y": lambda p: exact(p).u[1]})
+                     for b in ("ymin", "ymax", "xmax"))
+        load = SurfaceLoad("xmin", traction=(lambda p: -exact(p).sigma[0, 0],
+                                             lambda p: -exact(p).sigma[1, 0]))
+        crack = Interface(LevelSet(psi, 2, "psi"), law=law, friction=friction,
+                          front=LevelSet(phi, 2, "phi"), sif_radius=0.3)
+        return Scene(unit_square(11), material=MATERIAL, displacements=disp, loads=(load,),
+                     interfaces=(crack,))
+
+    free = solve(scene("free"))
+    r = solve(scene(law, 0.3 if law == "coulomb" else None))
+    assert np.all(r.normal_traction == 0) and np.all(r.gap < 0), "open: [[u]]·n < 0"
+    assert abs(r.front[0]["K_I"][0] - free.front[0]["K_I"][0]) < 1e-8
+    assert abs(r.front[0]["K_I"][0] - 1) < 0.05
