@@ -55,13 +55,15 @@ load), ``constraints(scene, mesh)`` (its constrained unknowns: a crack never cla
 mouth shut) and ``splits`` (whether Γ splits the body into regions: a crack does not).
 A law without multipliers (``free``) gives a part whose P has no column and B no row.
 
-**The crack kind** (:class:`Crack`, issue 29, 2D, law ``free``): an interface with a
+**The crack kind** (:class:`Crack`, issue 29, 2D, any law): an interface with a
 ``front`` φ; its cut is :func:`skxfem.crack.geometry.crack_geometry` (the fields of a
 Cut), its space :class:`CrackXSpace` (the unknowns [a, b, c] of
-:func:`skxfem.crack.space.crack_space`), its rule Gauss points on the crack pieces, its
-front the K of :func:`skxfem.crack.sif.sif` (``Result.front``, ``result.json``'s
-``front``).  Not yet: contact laws on crack faces (a multiplier space on a Γ that ends
-inside a cell), a body force with a crack, 3D fronts.
+:func:`skxfem.crack.space.crack_space`), its multipliers those of the crossed edges up
+to the front (:func:`skxfem.crack.faces.crack_multipliers`), its rule Gauss points on
+the crack pieces with the multiplier functions there, its front the K of
+:func:`skxfem.crack.sif.sif` with the faces' traction from the multipliers
+(``Result.front``, ``result.json``'s ``front``).  Not yet: a body force with a crack,
+3D fronts.
 
 >>> from skfem import MeshTri1
 >>> from skxfem.levelset import plane
@@ -166,8 +168,9 @@ class Crack(Gamma):
     body at the front {ψ = φ = 0} (module notes; the mathematics in :mod:`skxfem.crack`).
 
     Its cut is the :class:`~skxfem.crack.geometry.CrackGeometry` (the fields of a Cut),
-    its space the :class:`CrackXSpace` of [a, b, c], its rule Gauss
-    points on the crack pieces; it takes law ``free`` only (no multipliers)."""
+    its space the :class:`CrackXSpace` of [a, b, c], its rule Gauss points on the
+    crack pieces; any law: ``free`` faces carry no multiplier, the others multipliers
+    on the crossed edges up to the front (:mod:`skxfem.crack.faces`)."""
 
     splits = False
     """A crack ends inside the body: it splits no region."""
