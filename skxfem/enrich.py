@@ -134,6 +134,15 @@ class XSpace:
                                          self.rule)
         return side_parts.signed(lambda basis: stiffness_matrix(material, basis), A)
 
+    def signed_mass(self, A=None):
+        """(A, A_H): the standard mass ∫ u·v (``A`` if given) and its signed version,
+        integrated exactly on affine cells (:func:`mass`)."""
+        cell, sub = exact_orders(self.mesh, "mass")
+        side_parts = parts(self.mesh, self.cut, self.basis.elem,
+                           cell_rule(self.mesh, cell), sub)
+        return side_parts.signed(
+            lambda basis: _signed_vector_mass.assemble(basis, H=np.ones(basis.dx.shape)), A)
+
     def blocks(self, A: sp.csr_matrix, AH) -> tuple[sp.csr_matrix, sp.csr_matrix]:
         """(A_ab, A_bb), the enriched blocks of this space from A and its A_H
         (:func:`enriched_blocks`)."""
@@ -453,7 +462,12 @@ def mass(V: XSpace | XSpaces) -> sp.csr_matrix:
     """The X-FEM mass matrix on the unknowns [a, b¹, …]: ∫ u·v, integrated
     exactly on affine cells (its own orders, :data:`skxfem.fem.quadrature.EXACT_ORDERS`, not the
     stiffness' of ``V``'s basis)."""
-    return enriched_matrix(V, _signed_vector_mass, exact_orders(V.mesh, "mass"))
+    V = as_spaces(V)
+    A, AH = None, []
+    for Vk in V.per_interface:  # each space signs its own (a crack: its own blocks)
+        A, AHk = Vk.signed_mass(A)
+        AH.append(AHk)
+    return enriched_blocks(V, A, AH)
 
 
 def body_load(V: XSpace, force) -> tuple[np.ndarray, np.ndarray]:

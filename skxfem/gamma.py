@@ -38,28 +38,32 @@ else changes.  Each method must meet:
 6. ``rule(mesh, cut) -> InterfaceRule`` and ``jump(V, rule)``: the quadrature on Γ_h
    and the operator U ↦ [[u_h]] at its points (component-major rows).
 7. ``point_jumps(V, U) -> (dim, n)``: [[u]] = u⁻ - u⁺ at the cut points (the
-   results' ``jump``); ``front(V, U, material) -> dict | None``: the stress
-   intensity factors along Γ's front, ``points`` (m, dim), ``K_I``, ``K_II`` (m,);
-   None for a Γ without a front.
+   results' ``jump``); ``front(V, U, material, traction=None) -> dict | None``: the
+   stress intensity factors along Γ's front, ``points`` (m, dim), ``K_I``, ``K_II``
+   (m,), ``traction`` (dim, n) the interface traction at the cut points that loaded
+   faces carry (the crack-face term); None for a Γ without a front.
 8. ``splits``: whether Γ splits the body into regions (the files' pieces read the ψ
    of those that do; its space's ``splits`` says the same to :mod:`skxfem.enrich`).
 
 The space a kind returns is asked, by :func:`skxfem.enrich.stiffness`,
-:func:`skxfem.problem.assemble` and :meth:`skxfem.enrich.XSpaces.regions`, for its own
-``signed_stiffness(material, A)`` and ``blocks(A, AH)`` (its enriched blocks: the
-Heaviside space's arithmetic of :func:`skxfem.enrich.enriched_blocks`, a crack's own
+:func:`skxfem.enrich.mass`, :func:`skxfem.problem.assemble` and
+:meth:`skxfem.enrich.XSpaces.regions`, for its own ``signed_stiffness(material, A)``,
+``signed_mass(A)`` and ``blocks(A, AH)`` (its enriched blocks: the Heaviside space's
+arithmetic of :func:`skxfem.enrich.enriched_blocks`, a crack's own
 blocks on its almost-polar rules), ``load(facet_loads, body_force, f)`` (its enriched
 load), ``constraints(scene, mesh)`` (its constrained unknowns: a crack never clamps a
 mouth shut) and ``splits`` (whether Γ splits the body into regions: a crack does not).
 A law without multipliers (``free``) gives a part whose P has no column and B no row.
 
-**The crack kind** (:class:`Crack`, issue 29, 2D, law ``free``): an interface with a
+**The crack kind** (:class:`Crack`, issue 29, 2D, any law): an interface with a
 ``front`` φ; its cut is :func:`skxfem.crack.geometry.crack_geometry` (the fields of a
 Cut), its space :class:`CrackXSpace` (the unknowns [a, b, c] of
-:func:`skxfem.crack.space.crack_space`), its rule Gauss points on the crack pieces, its
-front the K of :func:`skxfem.crack.sif.sif` (``Result.front``, ``result.json``'s
-``front``).  Not yet: contact laws on crack faces (a multiplier space on a Γ that ends
-inside a cell), a body force with a crack, 3D fronts.
+:func:`skxfem.crack.space.crack_space`), its multipliers those of the crossed edges up
+to the front (:func:`skxfem.crack.faces.crack_multipliers`), its rule Gauss points on
+the crack pieces with the multiplier functions there, its front the K of
+:func:`skxfem.crack.sif.sif` with the faces' traction from the multipliers
+(``Result.front``, ``result.json``'s ``front``).  Not yet: a body force with a crack,
+3D fronts.
 
 >>> from skfem import MeshTri1
 >>> from skxfem.levelset import plane
@@ -80,6 +84,8 @@ import scipy.sparse as sp
 from .crack.assembly import FACET_POINTS, Load, Support, stiffness, supported_dofs, traction_load
 from .crack.assembly import _facets as check_facets
 from .crack.assembly import face_rule as face_rule_of
+from .crack.assembly import mass as crack_mass
+from .crack.faces import crack_multipliers, face_functions, face_traction
 from .crack.geometry import crack_geometry
 from .crack.sif import sif
 from .crack.space import CrackSpace, crack_space, evaluation
@@ -151,7 +157,7 @@ class Gamma:
         (:func:`skxfem.enrich.edge_jumps`)."""
         return edge_jumps(V, U)
 
-    def front(self, V, U: np.ndarray, material) -> dict | None:
+    def front(self, V, U: np.ndarray, material, traction=None) -> dict | None:
         """The stress intensity factors along Γ's front: None, Γ has none."""
         return None
 
@@ -162,8 +168,9 @@ class Crack(Gamma):
     body at the front {ψ = φ = 0} (module notes; the mathematics in :mod:`skxfem.crack`).
 
     Its cut is the :class:`~skxfem.crack.geometry.CrackGeometry` (the fields of a Cut),
-    its space the :class:`CrackXSpace` of [a, b, c], its rule Gauss
-    points on the crack pieces; it takes law ``free`` only (no multipliers)."""
+    its space the :class:`CrackXSpace` of [a, b, c], its rule Gauss points on the
+    crack pieces; any law: ``free`` faces carry no multiplier, the others multipliers
+    on the crossed edges up to the front (:mod:`skxfem.crack.faces`)."""
 
     splits = False
     """A crack ends inside the body: it splits no region."""
@@ -185,9 +192,10 @@ class Crack(Gamma):
         return CrackXSpace(self._space(mesh, cut))
 
     def multipliers(self, mesh, cut, fixed=None, per_edge=None) -> Space:
-        """None: a crack's faces are free (law ``free``) and carry no multiplier."""
-        raise ValueError("a crack's faces take law 'free': contact on crack faces is not "
-                         "supported yet, so it has no multiplier space")
+        """The interface's multiplier space on the crack's crossed edges, up to the front
+        (:func:`skxfem.crack.faces.crack_multipliers`)."""
+        return crack_multipliers(self.interface.space, mesh, cut, fixed=fixed,
+                                 per_edge=per_edge)
 
     def normals(self, cut) -> np.ndarray:
         """∇ψ/|∇ψ| (dim, n) at the crack's cut points."""
@@ -195,12 +203,17 @@ class Crack(Gamma):
 
     def rule(self, mesh, cut) -> InterfaceRule:
         """Gauss points on the crack pieces (:func:`skxfem.crack.assembly.face_rule`,
-        √r-graded at a tip), the normals of their pieces; no multiplier functions."""
+        √r-graded at a tip), the normals of their pieces and the multiplier functions
+        there (:func:`skxfem.crack.faces.face_functions`, constant from the last crossed
+        edge to the tip; none if the crack crosses no edge strictly)."""
         x, w, cells, ref = face_rule_of(self._space(mesh, cut))
-        per_piece = x.shape[1] // max(cut.segment_cell.size, 1)
+        nseg = cut.segment_cell.size
+        per_piece = x.shape[1] // max(nseg, 1)
+        piece = np.repeat(np.arange(nseg), per_piece)
+        N = (face_functions(cut, x, piece) if cut.edge_ids.size else
+             sp.csr_matrix((x.shape[1], 0)))
         return InterfaceRule(points=x, normals=np.repeat(cut.normals, per_piece, axis=1),
-                             weights=w, cells=cells, ref=ref,
-                             N=sp.csr_matrix((x.shape[1], cut.edge_ids.size)))
+                             weights=w, cells=cells, ref=ref, N=N)
 
     def jump(self, V, rule: InterfaceRule) -> sp.csr_matrix:
         """U ↦ [[u_h]] = u⁻ - u⁺ (the Ω⁻ face's less the Ω⁺ face's) at the rule's points,
@@ -215,11 +228,23 @@ class Crack(Gamma):
         ref = mesh.mapping().invF(cut.points[:, :, None], tind=cells)[:, :, 0]
         return (_face_jump(V, cells, ref) @ U).reshape(mesh.dim(), -1)
 
-    def front(self, V, U: np.ndarray, material) -> dict:
+    def front(self, V, U: np.ndarray, material, traction=None) -> dict:
         """``points`` (m, dim) the front's points (the tips) and ``K_I``, ``K_II`` (m,) there
-        (:func:`skxfem.crack.sif.sif` with the interface's ``sif_radius``)."""
+        (:func:`skxfem.crack.sif.sif` with the interface's ``sif_radius``).
+
+        ``traction`` (dim, ne): the interface traction r = σ·n at the cut points (the
+        multipliers of a tie or a contact, λ = P μ); the faces then carry t⁻ = r (Ω⁻'s
+        face) and t⁺ = -r (Ω⁺'s), interpolated by the multiplier functions up to the
+        front (:func:`skxfem.crack.faces.face_traction`), and the interaction integral
+        takes them in its face term: a crack pressed shut gives K = 0.  None or all
+        zero: free faces."""
         tips = V.cut.tips
-        K = np.array([sif(V.space, U, material, self.interface.sif_radius, tip=k)
+        faces = None
+        if traction is not None and np.any(traction):
+            faces = face_traction(V.cut, np.asarray(traction, float),
+                                  face_rule_of(V.space)[0])
+        K = np.array([sif(V.space, U, material, self.interface.sif_radius, tip=k,
+                          face_traction=faces)
                       for k in range(tips.shape[1])]).reshape(-1, 2)
         return {"points": tips.T.copy(), "K_I": K[:, 0], "K_II": K[:, 1]}
 
@@ -238,7 +263,8 @@ class CrackXSpace:
 
     * ``signed_stiffness(material, A)`` and ``blocks(A, K)``: the crack's own stiffness
       (:func:`skxfem.crack.assembly.stiffness`, its tip cells on the almost-polar
-      rule), given as its standard block and its enriched blocks;
+      rule), given as its standard block and its enriched blocks; ``signed_mass(A)``
+      the same for its mass (:func:`skxfem.crack.assembly.mass`, :mod:`skxfem.lbb`);
     * ``load(facet_loads, body_force, f)``: the scene's surface loads on [a, b, c]
       (:func:`skxfem.crack.assembly.traction_load`);
     * ``constraints(scene, mesh)``: the scene's displacements on [a, b, c]
@@ -306,6 +332,13 @@ class CrackXSpace:
         K = stiffness(self.space, material).tocsr()
         n = self.n_std
         return (K[:n, :n] if A is None else A), K
+
+    def signed_mass(self, A=None):
+        """(A, M): the standard block of the crack's mass M (``A`` if given) and M itself
+        (:func:`skxfem.crack.assembly.mass`), whose enriched blocks :meth:`blocks` reads."""
+        M = crack_mass(self.space)
+        n = self.n_std
+        return (M[:n, :n] if A is None else A), M
 
     def blocks(self, A, K) -> tuple[sp.csr_matrix, sp.csr_matrix]:
         """(K_ab, K_bb): the crack stiffness' blocks of its enriched unknowns."""

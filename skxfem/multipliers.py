@@ -117,8 +117,9 @@ def direction_fixed(fixed: np.ndarray, cut: Cut, directions: np.ndarray,
     dim = fixed.shape[0]
     part = np.zeros((dim, cut.edge_ids.size), dtype=bool)
     for k in range(cut.facets.shape[0]):
+        ok = cut.facets[k] >= 0                      # -1: no cut point (a crack's tip)
         for comp in range(dim):
-            np.logical_or.at(part[comp], cut.facets[k], np.abs(directions[comp]) > tol)
+            np.logical_or.at(part[comp], cut.facets[k][ok], np.abs(directions[comp][ok]) > tol)
     at_node = np.zeros(fixed.shape, dtype=bool)
     for i in (0, 1):
         for comp in range(dim):

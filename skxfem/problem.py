@@ -340,7 +340,9 @@ def _part(interface, g: Gamma, mesh, cut, V, D, values, law, lap, columns) -> Pa
                     component_spaces=spaces, per_edge=per_edge, columns=columns)
 
     q = part(lam_space)
-    short = short_pieces(q, B_edges)  # pieces of Γ the stable space leaves loose
+    # pieces of Γ the stable space leaves loose; a Γ that splits no region (a crack)
+    # has no relative rigid motion of two sides to hold
+    short = short_pieces(q, B_edges) if V.splits else np.zeros(cut.edge_ids.size, bool)
     if short.any():
         q = part(g.multipliers(mesh, cut, per_edge=short), short)
     lap("prolongation")

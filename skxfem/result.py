@@ -223,7 +223,7 @@ def result(pb, U: np.ndarray, traction: np.ndarray, max_jump: float, n_multiplie
         normals=np.hstack([q.normals() for q in qs]),
         jump=np.hstack([q.gamma.point_jumps(q.V, U[q.columns]) for q in qs]),
         facets=np.hstack([_joined(q.cut.facets) + o for q, o in zip(qs, offsets)]),
-        interface=np.repeat(np.arange(len(qs)), sizes), front=_fronts(pb, U), **common)
+        interface=np.repeat(np.arange(len(qs)), sizes), front=_fronts(pb, U, traction), **common)
 
 
 def _joined(facets: np.ndarray) -> np.ndarray:
@@ -232,11 +232,14 @@ def _joined(facets: np.ndarray) -> np.ndarray:
     return facets[:, (facets >= 0).all(axis=0)]
 
 
-def _fronts(pb, U: np.ndarray) -> tuple:
+def _fronts(pb, U: np.ndarray, traction: np.ndarray) -> tuple:
     """The stress intensity factors of each interface with a front (its kind's
-    :meth:`skxfem.gamma.Gamma.front`; None for one that has none), each with the
-    index of its ``interface`` in the scene."""
-    fronts = (q.gamma.front(q.V, U[q.columns], pb.scene.material) for q in pb.interfaces)
+    :meth:`skxfem.gamma.Gamma.front`, given the interface's ``traction`` at its cut
+    points, which loaded faces carry; None for one that has none), each with the index
+    of its ``interface`` in the scene."""
+    ends = np.cumsum([0] + [q.cut.edge_ids.size for q in pb.interfaces])
+    fronts = (q.gamma.front(q.V, U[q.columns], pb.scene.material, traction[:, a:b])
+              for q, a, b in zip(pb.interfaces, ends[:-1], ends[1:]))
     return tuple(dict(f, interface=k) for k, f in enumerate(fronts) if f is not None)
 
 

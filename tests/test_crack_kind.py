@@ -158,8 +158,6 @@ def test_crack_scene_file_in_interface_tables(tmp_path):
 
 
 @pytest.mark.parametrize("kwargs, words", [
-    (dict(front=plane((0.5, 0), (1, 0))), "contact on crack faces is not supported yet"),
-    (dict(law="bonded", front=plane((0.5, 0), (1, 0))), "contact on crack faces"),
     (dict(law="free", front="x - 0.5"), "front must be a skxfem.levelset.LevelSet"),
     (dict(law="free", front=plane((0.5, 0, 0), (1, 0, 0))), "front must have the dimension"),
     (dict(law="free", front=plane((0.5, 0), (1, 0)), enrichment="tip"), "enrichment"),
@@ -185,7 +183,6 @@ def test_a_3d_crack_is_refused_for_now():
 
 
 @pytest.mark.parametrize("edit, words", [
-    (lambda t: t.replace('law = "free"', 'law = "bonded"'), "contact on crack faces"),
     (lambda t: t.replace('enrichment = "geometric"', 'enrichment = "tip"'), "enrichment"),
     (lambda t: t.replace('front = "x - 0.5"\n', ''), "give its front"),
     (lambda t: t.replace('front = "x - 0.5"', 'front = 3'), "front must be a formula"),

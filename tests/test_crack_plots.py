@@ -5,12 +5,20 @@ from matplotlib.colors import to_rgba
 from matplotlib.figure import Figure
 
 from skxfem.crack.branch import branch
-from skxfem.studies.cracks import ConditionRow, WilliamsRow, conditioning_study, williams_study
+from skxfem.studies.cracks import (
+    ConditionRow,
+    FrictionRow,
+    InfSupRow,
+    WilliamsRow,
+    conditioning_study,
+    williams_study,
+)
 from skxfem.viz.crack_plots import (
     ENRICHMENT_COLORS,
     fig_branch_functions,
     fig_crack_conditioning,
     fig_crack_convergence,
+    fig_crack_friction,
     fig_crack_K,
 )
 from skxfem.viz.plotting import COLORS
@@ -97,3 +105,22 @@ def test_branch_figure_shows_the_four_functions_and_their_jump():
     # F₁ jumps by 2√r across the faces (θ = ±π), the others are continuous there
     F = branch(np.full(2, 4.0), np.array([np.pi, -np.pi]))
     assert np.allclose(F[:, 0] - F[:, 1], [4.0, 0, 0, 0])
+
+
+def test_friction_figure_draws_the_exact_line_the_solves_and_the_inf_sup():
+    """Top: per β the line sin β cos β - μ cos² β clipped at 0 (it reaches 0 at tan β),
+    the |K_II| of both tips as markers; below: β_h per space in the space's colour."""
+    k = np.sin(np.radians(30)) * np.cos(np.radians(30))
+    rows_ = [FrictionRow("tri", 21, 30.0, mu, mu < 0.577, (0, 0), (v, -v), (v, -v), 0,
+                         0.0, 1, 0) for mu, v in ((0.0, k), (0.8, 0.0))]
+    inf = [InfSupRow(s, "tri", n, 1 / n, b / n ** 0.1, n, 0)
+           for s, b in (("naive", 0.1), ("winner", 0.5), ("vital", 0.6)) for n in (11, 21)]
+    top, below = fig_crack_friction(rows_, inf).axes
+    line, marks = top.lines[0], top.lines[1]
+    mu, exact = line.get_data()
+    assert np.isclose(exact[0], k) and exact[mu > np.tan(np.radians(30))].max() == 0
+    assert np.allclose(marks.get_ydata(), [k, k, 0, 0]), "both tips, |K_II|"
+    assert [ln.get_label() for ln in below.lines] == ["naive", "winner", "vital"]
+    for ln in below.lines:
+        assert same_colour(ln.get_color(), COLORS[ln.get_label()])
+    assert len(fig_crack_friction(rows_).axes) == 1

@@ -13,7 +13,7 @@ from skxfem.app.reproduce import LEGEND, main
 FIGURES = ["fig5", "fig6", "fig7", "fig8", "fig7_2d", "fig8_2d", "fig9", "fig10", "inf_sup",
            "frontier_energy", "frontier_pressure", "fig1", "fig2", "fig3", "fig4", "block3d",
            "block3d_pressure", "vital_3d", "crack_convergence", "crack_condition", "crack_K",
-           "crack_branch"]
+           "crack_branch", "crack_friction"]
 
 
 @pytest.fixture(scope="module")
@@ -131,6 +131,14 @@ def test_crack_numbers(run):
     assert kappa["geometric", "block", 17] <= 2 * kappa["topological", "block", 17]
     assert [(r["cell"], r["nx"]) for r in crack["tada"]] == [("tri", 33), ("quad", 33)]
     assert all(abs(r["error"]) < 0.02 for r in crack["tada"])
+    # contact on the faces: the closed inclined crack on 1/h = 21, β_h on the crack sizes
+    friction = crack["friction"]
+    assert {(r["beta"], r["friction"]) for r in friction} == {
+        (b, m) for b in (20.0, 30.0) for m in (0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8)}
+    assert all(r["K_II_rel"] < 0.02 for r in friction if r["slides"])
+    assert all(r["K_II_error"] < 3e-3 for r in friction if not r["slides"])
+    beta = {(r["space"], r["n"]): r["beta"] for r in crack["inf_sup"]}
+    assert min(beta["vital", n] for n in (9, 17)) > 0.5 > 0.2 > beta["naive", 17]
 
 
 def test_the_printed_tables_are_sorted_explained_and_followed_by_the_failures(run):

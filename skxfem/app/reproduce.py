@@ -26,12 +26,14 @@ writes into ``--out``
   for every method a user can choose, with the Pareto front; its per-method
   summary is also under ``frontier`` in ``summary.json``;
 * ``crack_convergence.png``, ``crack_condition.png``, ``crack_K.png``,
-  ``crack_branch.png``: a crack with a tip (:mod:`skxfem.studies.cracks`,
-  :mod:`skxfem.viz.crack_plots`): the energy error of the Williams square against h
-  (geometric ≈ h¹, topological ≈ h^½), the condition numbers (raw, Jacobi, block
-  scaling), the K errors, the four branch functions; their numbers under ``crack``
-  in ``summary.json`` (K per mesh, enrichment and mode, the fitted energy rates, the
-  condition numbers, the edge-cracked plate against Tada's factor);
+  ``crack_branch.png``, ``crack_friction.png``: a crack with a tip
+  (:mod:`skxfem.studies.cracks`, :mod:`skxfem.viz.crack_plots`): the energy error of
+  the Williams square against h (geometric ≈ h¹, topological ≈ h^½), the condition
+  numbers (raw, Jacobi, block scaling), the K errors, the four branch functions, the
+  closed inclined crack's K_II against the friction and the inf-sup constant of the
+  contact spaces up to the front; their numbers under ``crack`` in ``summary.json`` (K
+  per mesh, enrichment and mode, the fitted energy rates, the condition numbers, the
+  edge-cracked plate against Tada's factor, ``friction`` and ``inf_sup`` rows);
 
 and prints the tables of :func:`report`: sorted, their columns explained, every
 mesh without a result below them (and, on a terminal, one progress line per part).
@@ -252,6 +254,11 @@ def report(summary: dict) -> str:
     return "\n".join(lines)
 
 
+FRICTIONS = (0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8)
+"""The frictions μ of the closed inclined crack in ``crack_friction.png`` (β = 20°, 30°
+on 1/h = 21: the faces stick from μ = tan β)."""
+
+
 def _crack(out, save, ns, nxs) -> dict:
     """The crack studies and figures (:mod:`skxfem.studies.cracks`); their summary."""
     williams = cracks.williams_study(ns)
@@ -261,7 +268,10 @@ def _crack(out, save, ns, nxs) -> dict:
     save(crack_plots.fig_crack_conditioning(conditioning), "crack_condition")
     save(crack_plots.fig_crack_K(williams), "crack_K")
     save(crack_plots.fig_branch_functions(), "crack_branch")
-    return cracks.summary(williams, conditioning, plates)
+    friction = cracks.friction_study((21,), (20.0, 30.0), FRICTIONS)
+    inf_sup = cracks.crack_inf_sup(ns)
+    save(crack_plots.fig_crack_friction(friction, inf_sup), "crack_friction")
+    return cracks.summary(williams, conditioning, plates, friction, inf_sup)
 
 
 def main(argv=None) -> int:

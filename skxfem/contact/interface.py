@@ -235,11 +235,12 @@ def held_with_normal(fixed: np.ndarray, cut, directions: np.ndarray,
     held = np.ones(fixed.shape[1], bool)
     touched = np.zeros(fixed.shape[1], bool)
     for k in range(cut.facets.shape[0]):
-        e = cut.facets[k]
+        ok = cut.facets[k] >= 0                      # -1: no cut point (a crack's tip)
+        e = cut.facets[k][ok]
         for i in (0, 1):
             node = cut.edges[i, e]
             free = ~fixed[:, node]
-            d, n = directions * free, cut.normals * free
+            d, n = directions[:, ok] * free, cut.normals[:, ok] * free
             nn = (n * n).sum(axis=0)
             c = np.where(nn > 0, (n * d).sum(axis=0) / np.where(nn > 0, nn, 1.0), 0.0)
             np.logical_and.at(held, node, np.linalg.norm(d - c * n, axis=0) < tol)

@@ -65,7 +65,7 @@ from ..fem.quadrature import cell_rule, exact_orders
 from .quadrature import BRANCH_ORDER, NEAR_ORDER, split_rule, tip_rule
 from .space import CrackSpace, evaluation
 
-__all__ = ["FACET_POINTS", "RuleGroup", "rule_groups", "stiffness", "Support",
+__all__ = ["FACET_POINTS", "RuleGroup", "rule_groups", "stiffness", "mass", "Support",
            "Load", "facet_pieces", "traction_load", "face_rule", "face_load",
            "supported_dofs", "mouth_facets"]
 
@@ -179,6 +179,31 @@ def stiffness(space: CrackSpace, material: Material) -> sp.csr_matrix:
                  + e22.T @ W @ ((lam + 2 * mu) * e22 + lam * e11)
                  + 4 * mu * (e12.T @ W @ e12))
     return K.tocsr()
+
+
+def mass(space: CrackSpace) -> sp.csr_matrix:
+    """The mass ∫ u·v on the unknowns [a, b, c] (the inf-sup test's displacement norm,
+    :mod:`skxfem.lbb`): every cell on the rules of :func:`rule_groups` (the tip cells on
+    the almost-polar rule, the split cells on their sub-triangles), the plain cells at
+    order 4 (exact for P1 and Q1 on affine cells).
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> from skxfem.crack.space import crack_space
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+    >>> V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    >>> U = np.zeros(V.N); U[V.basis.nodal_dofs[1]] = 1.0      # u = (0, 1)
+    >>> round(float(U @ mass(V) @ U), 12)                      # the area
+    1.0
+    """
+    M = sp.csr_matrix((space.N, space.N))
+    for G in rule_groups(space, np.arange(space.mesh.t.shape[1]), plain_order=4):
+        cells, ref, side, _, w = G.points()
+        E = evaluation(space, cells, ref, side).value     # rows (component) npts + p
+        n = cells.size
+        W = sp.diags(w)
+        M = M + E[:n].T @ W @ E[:n] + E[n:].T @ W @ E[n:]
+    return M.tocsr()
 
 
 @dataclass(frozen=True)

@@ -328,7 +328,9 @@ def pieces(cut) -> np.ndarray:
     """
     ne = cut.edge_ids.size
     cells = np.tile(cut.facet_cell, cut.facets.shape[0])
-    in_cell = sp.csr_matrix((np.ones(cells.size), (cut.facets.ravel(), cells)),
+    ends = cut.facets.ravel()
+    ok = ends >= 0                                   # -1: no cut point (a crack's tip)
+    in_cell = sp.csr_matrix((np.ones(ok.sum()), (ends[ok], cells[ok])),
                             shape=(ne, int(cells.max()) + 1 if cells.size else 0))
     return connected_components(in_cell @ in_cell.T, directed=False)[1]
 

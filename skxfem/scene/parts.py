@@ -309,7 +309,7 @@ class Interface:
     checks are those of a one-interface :class:`~skxfem.scene.Scene`.
 
     A crack: ``front`` a second level set φ; Γ is then {ψ = 0, φ < 0}, which ends
-    inside the body at the front {ψ = φ = 0} (2D, law ``free``: :func:`check_crack_fields`);
+    inside the body at the front {ψ = φ = 0} (2D, any law: :func:`check_crack_fields`);
     ``enrichment`` the tip enrichment (``"geometric"``: the nodes within a radius of
     the tip, or ``"topological"``: the tip cells'); ``enrichment_radius`` that radius
     r_e (None: :data:`skxfem.crack.space.DEFAULT_RADIUS` of the mesh's diameter);
@@ -355,18 +355,22 @@ def check_crack_fields(interface: Interface) -> None:
     that no solve takes.
 
     A front φ is a :class:`~skxfem.levelset.LevelSet` of ψ's dimension, 2D for now,
-    with law ``free`` (contact on the faces comes later); ``enrichment`` is
-    ``"geometric"`` or ``"topological"`` (:mod:`skxfem.crack.space`);
-    ``enrichment_radius`` (geometric only) and ``sif_radius`` positive numbers or None,
-    and all of them only with a front.
+    with any law (``free`` faces, or a tie or contact on the faces up to the front,
+    :mod:`skxfem.crack.faces`); ``enrichment`` is ``"geometric"`` or
+    ``"topological"`` (:mod:`skxfem.crack.space`); ``enrichment_radius`` (geometric
+    only) and ``sif_radius`` positive numbers or None, and all of them only with a
+    front.
 
     >>> from skxfem.levelset import plane
-    >>> Interface(plane((0, 0.5), (0, 1)), front=plane((0.5, 0), (1, 0)))
+    >>> Interface(plane((0, 0.5), (0, 1)), law="coulomb", friction=0.3,
+    ...           front=plane((0.5, 0), (1, 0))).law                 # contact on its faces
+    'coulomb'
+    >>> Interface(plane((0, 0.5), (0, 1)), sif_radius=0.2)
     Traceback (most recent call last):
     ...
-    ValueError: Interface front: contact on crack faces is not supported yet; a crack ...
+    ValueError: Interface sif_radius, enrichment and enrichment_radius are those of a crack: ...
     """
-    front, law = interface.front, interface.law
+    front = interface.front
     if interface.enrichment not in CRACK_ENRICHMENTS:
         raise ValueError(f"Interface enrichment must be one of {CRACK_ENRICHMENTS}, got "
                          f"{interface.enrichment!r}")
@@ -392,6 +396,3 @@ def check_crack_fields(interface: Interface) -> None:
                          f"({interface.levelset.dim}), got {front.dim}")
     if front.dim != 2:
         raise ValueError("Interface front: 3D cracks are not supported yet (2D only)")
-    if law != "free":
-        raise ValueError(f"Interface front: contact on crack faces is not supported yet; "
-                         f"a crack takes law 'free', got {law!r}")

@@ -19,6 +19,14 @@ rows; nothing here draws (:mod:`skxfem.viz.crack_plots` does).  The problems:
   -0.7 p√(π r_d) without it.
 * :func:`tip_quadrature`: ∫ r^k over a tip cell by the almost-polar rule and by a
   plain Gauss rule, against :func:`polar_integral`.
+* :func:`inclined_scene`: contact on the crack faces, the closed inclined Griffith
+  crack under compression with Coulomb friction (:mod:`skxfem.crack.griffith`) in the
+  unit square, its exact displacement on the four sides, solved through the one path
+  (:func:`skxfem.solver.solve`, the contact Newton); :func:`friction_study` measures
+  K_II against σ√(πa)(sin β cos β - μ cos² β) (0 where the faces stick), K_I and the
+  contact pressure against σ cos² β.
+* :func:`crack_inf_sup`: the inf-sup constant (:func:`skxfem.lbb.inf_sup`) of the
+  naive, winner and vital spaces on a crack's faces up to its front.
 
 Units: E = 1, ν = 0.3, plane strain (:data:`MATERIAL`), K = 1 in the Williams square.
 
@@ -37,18 +45,24 @@ from skfem import Basis, MeshQuad1, MeshTri1
 from ..crack.assembly import Load, Support
 from ..crack.frame import straight_frame
 from ..crack.geometry import crack_geometry
+from ..crack.griffith import InclinedCrack
 from ..crack.quadrature import tip_rule
 from ..crack.sif import sif
 from ..crack.solve import CrackSolution, solve_crack
 from ..crack.williams import near_tip
 from ..fem.material import Material
 from ..fem.quadrature import cell_rule
+from ..lbb import inf_sup
+from ..levelset import LevelSet
+from ..scene import Displacement, Interface, Scene
+from ..solver import solve
 
 __all__ = ["MATERIAL", "MODES", "ENRICHMENTS", "SCALINGS", "RADIUS", "SIF_RADIUS", "PLATE",
            "unit_square", "straight_crack", "williams_square", "WilliamsRow",
            "williams_study", "energy_rates", "ConditionRow", "conditioning_study",
            "tada_factor", "edge_cracked_plate", "PlateRow", "tada_study", "ClosedCrack",
-           "closed_crack", "polar_integral", "TipQuadrature", "tip_quadrature", "summary"]
+           "closed_crack", "polar_integral", "TipQuadrature", "tip_quadrature", "summary",
+           "inclined_scene", "FrictionRow", "friction_study", "InfSupRow", "crack_inf_sup"]
 
 MATERIAL = Material(1.0, 0.3)
 """E = 1, ν = 0.3, plane strain."""
@@ -392,9 +406,10 @@ def tip_quadrature(power: float = -0.5, n: int = 5, tip=(0.513, 0.459), beta: fl
     return TipQuadrature(power, exact, polar, int(live.sum()), plain, plain_order, W.size)
 
 
-def summary(williams=(), conditioning=(), plates=()) -> dict:
+def summary(williams=(), conditioning=(), plates=(), friction=(), inf_sup=()) -> dict:
     """The numbers of the studies for ``summary.json``: per row a dict, and the fitted
-    energy rates of mode I.
+    energy rates of mode I; ``friction`` (:func:`friction_study`) and ``inf_sup``
+    (:func:`crack_inf_sup`) rows of contact on the faces.
 
     >>> summary(plates=[PlateRow("tri", 41, 7 / 41, 9.3, 0.0, 9.37, -0.0075)])["tada"][0]["cell"]
     'tri'
@@ -410,4 +425,125 @@ def summary(williams=(), conditioning=(), plates=()) -> dict:
                          "rows": rows(williams),
                          "energy_rates": energy_rates(williams) if williams else {}},
             "conditioning": rows(conditioning),
-            "tada": rows(plates)}
+            "tada": rows(plates),
+            "friction": rows(friction),
+            "inf_sup": rows(inf_sup)}
+
+
+def inclined_scene(n: int = 21, beta: float = 30.0, friction: float = 0.3,
+                   cell: str = "tri", a: float = 0.25, space: str = "vital"
+                   ) -> tuple[InclinedCrack, Scene]:
+    """The closed inclined crack (:class:`skxfem.crack.griffith.InclinedCrack`, β in
+    degrees, half-length ``a``, centre (0.5, 0.5), σ = 1) in the unit square of n × n
+    cells: its exact displacement on the four sides, law ``coulomb`` (``frictionless``
+    for μ = 0) on the crack with the multiplier space ``space``.
+
+    >>> c, scene = inclined_scene(11, 30.0, 0.3)
+    >>> scene.interfaces[0].law, round(float(c.pressure), 4)
+    ('coulomb', 0.75)
+    """
+    c = InclinedCrack(a=a, beta=np.radians(beta), sigma=1.0, friction=friction,
+                      center=(0.5, 0.5))
+
+    def u(k):
+        return lambda p: c.field(p, MATERIAL)[0][k]
+
+    disp = tuple(Displacement(b, {"x": u(0), "y": u(1)})
+                 for b in ("xmin", "xmax", "ymin", "ymax"))
+    crack = Interface(LevelSet(c.psi, 2, "crack line"),
+                      law="coulomb" if friction > 0 else "frictionless", space=space,
+                      friction=friction if friction > 0 else None,
+                      front=LevelSet(c.phi, 2, "crack ends"))
+    return c, Scene(unit_square(n, cell), material=MATERIAL, displacements=disp,
+                    interfaces=(crack,))
+
+
+@dataclass(frozen=True)
+class FrictionRow:
+    """One solve of :func:`inclined_scene`: ``slides`` whether the faces slide
+    (μ < tan β); ``K_II`` (two tips) and ``K_I`` over σ√(πa); ``K_II_exact`` over
+    σ√(πa) with the tip frame's sign; ``K_II_error`` the largest |K_II - exact| over
+    σ√(πa) (relative to |exact| where it slides: ``K_II_rel``); ``pressure`` the mean
+    contact pressure over σ cos² β, ``pressure_dev`` the largest deviation of a point."""
+
+    cell: str
+    n: int
+    beta: float
+    friction: float
+    slides: bool
+    K_I: tuple
+    K_II: tuple
+    K_II_exact: tuple
+    K_II_error: float
+    K_II_rel: float | None
+    pressure: float
+    pressure_dev: float
+
+
+def friction_study(ns=(21,), betas=(30.0,), frictions=(0.0, 0.3, 0.8), cells=("tri",)
+                   ) -> tuple[FrictionRow, ...]:
+    """:func:`inclined_scene` solved (:func:`skxfem.solver.solve`) for every mesh,
+    angle β (degrees), friction μ and cell.
+
+    >>> (r,) = friction_study([11], frictions=[0.3])
+    >>> r.slides, r.K_II_rel < 0.05, abs(r.pressure - 1) < 0.01
+    (True, True, True)
+    """
+    rows = []
+    for cell in cells:
+        for n in ns:
+            for beta in betas:
+                for mu in frictions:
+                    c, scene = inclined_scene(n, beta, mu, cell)
+                    r = solve(scene)
+                    (front,) = r.front
+                    scale = c.sigma * np.sqrt(np.pi * c.a)
+                    exact = np.array([c.K_II_at(p) for p in front["points"]])
+                    err = np.abs(front["K_II"] - exact)
+                    p = -r.normal_traction / c.pressure
+                    rows.append(FrictionRow(
+                        cell, n, float(beta), float(mu), bool(c.slides),
+                        tuple(float(k) for k in front["K_I"] / scale),
+                        tuple(float(k) for k in front["K_II"] / scale),
+                        tuple(float(k) for k in exact / scale), float(err.max() / scale),
+                        float((err / np.abs(exact)).max()) if c.slides else None,
+                        float(p.mean()), float(np.abs(p - 1).max())))
+    return tuple(rows)
+
+
+@dataclass(frozen=True)
+class InfSupRow:
+    """The inf-sup constant β_h (:class:`skxfem.lbb.InfSup`) of a multiplier ``space``
+    on a crack's faces: ``h`` the mean crossed-edge length, ``size`` the multipliers,
+    ``n_zero`` the spurious modes."""
+
+    space: str
+    cell: str
+    n: int
+    h: float
+    beta: float
+    size: int
+    n_zero: int
+
+
+def crack_inf_sup(ns=(11, 21, 41, 81), spaces=("naive", "winner", "vital"),
+                  cell: str = "tri") -> tuple[InfSupRow, ...]:
+    """β_h of each space on an edge crack from x = 0 to the tip (0.5, 0.5) of the unit
+    square of n × n cells (n odd: the crack runs mid-cell), the bottom clamped, the normal
+    tie (``bilateral``) on the faces: :func:`skxfem.lbb.inf_sup` with the crack's mass.
+
+    >>> rows = crack_inf_sup([11], ("naive", "vital"))
+    >>> [(r.space, r.size, round(r.beta, 2)) for r in rows]
+    [('naive', 11, 0.09), ('vital', 6, 0.64)]
+    """
+    rows = []
+    for n in ns:
+        for name in spaces:
+            crack = Interface(LevelSet(lambda x: x[1] - 0.5, 2, "y - 0.5"), law="bilateral",
+                              space=name, front=LevelSet(lambda x: x[0] - 0.5, 2, "x - 0.5"))
+            scene = Scene(unit_square(n, cell), material=MATERIAL,
+                          displacements=(Displacement("ymin", {"x": 0.0, "y": 0.0}),),
+                          interfaces=(crack,))
+            r = inf_sup(scene)
+            rows.append(InfSupRow(name, cell, n, r.h, r.beta, r.size, r.n_zero))
+    return tuple(rows)

@@ -7,7 +7,10 @@ r"""Figures of a crack with a front (:mod:`skxfem.studies.cracks`, :mod:`skxfem.
   geometric, raw, Jacobi- and block-scaled;
 * :func:`fig_crack_K`: the error of K against h, per enrichment and mode;
 * :func:`fig_branch_functions`: the four branch functions around the tip, one panel
-  each, the crack drawn where they jump.
+  each, the crack drawn where they jump;
+* :func:`fig_crack_friction`: contact on the crack faces, the closed inclined crack's
+  K_II against the friction μ with Dolbow et al.'s line (0 where the faces stick), and
+  the inf-sup constant of the naive, winner and vital spaces up to the front against h.
 
 Each takes data (rows of the studies) and returns a :class:`matplotlib.figure.Figure`
 built without pyplot, in the style of :mod:`skxfem.viz.figstyle`: log axes, grid,
@@ -25,7 +28,8 @@ from .figstyle import finish, log_axes
 from .plotting import COLORS, CURVE_COLORS
 
 __all__ = ["ENRICHMENT_COLORS", "SCALING_STYLE", "fig_crack_convergence",
-           "fig_crack_conditioning", "fig_crack_K", "fig_branch_functions"]
+           "fig_crack_conditioning", "fig_crack_K", "fig_branch_functions",
+           "fig_crack_friction"]
 
 ENRICHMENT_COLORS = {"topological": CURVE_COLORS[1], "geometric": CURVE_COLORS[0]}
 """One colour per enrichment, in every crack figure."""
@@ -196,4 +200,52 @@ def fig_branch_functions(radius: float = 1.0, n_r: int = 40, n_theta: int = 181)
     for ax in axes[:, 0]:
         ax.set_ylabel("x₂ (into Ω⁺: e₂)")
     fig.colorbar(mesh, ax=axes, shrink=0.8, label="F_l (r in units of the radius)")
+    return fig
+
+
+def fig_crack_friction(friction_rows, inf_sup_rows=()) -> Figure:
+    """Top: |K_II| / σ√(πa) of the closed inclined crack against μ, one colour per β
+    (markers: the solves at both tips; line: sin β cos β - μ cos² β, 0 once μ ≥ tan β).
+    Below (with ``inf_sup_rows``): β_h of each multiplier space against h, log axes.
+
+    Parameters
+    ----------
+    friction_rows
+        :class:`skxfem.studies.cracks.FrictionRow` s (one mesh).
+    inf_sup_rows
+        :class:`skxfem.studies.cracks.InfSupRow` s.
+
+    >>> from skxfem.studies.cracks import FrictionRow, InfSupRow
+    >>> rows = [FrictionRow("tri", 21, 30.0, mu, True, (0, 0), (k, -k), (k, -k), 0, 0, 1, 0)
+    ...         for mu, k in ((0.0, 0.43), (0.3, 0.21))]
+    >>> inf = [InfSupRow(s, "tri", n, 1 / n, b, n, 0) for s, b in (("naive", 0.1),
+    ...        ("vital", 0.6)) for n in (11, 21)]
+    >>> fig = fig_crack_friction(rows, inf)
+    >>> [ln.get_label() for ln in fig.axes[1].lines]
+    ['naive', 'vital']
+    """
+    fig = Figure(figsize=(6.2, 8.8 if inf_sup_rows else 4.6), layout="constrained")
+    ax = fig.add_subplot(2 if inf_sup_rows else 1, 1, 1)
+    mus = np.linspace(0.0, max(1.0, max(r.friction for r in friction_rows)), 201)
+    for k, beta in enumerate(dict.fromkeys(r.beta for r in friction_rows)):
+        color = CURVE_COLORS[k % len(CURVE_COLORS)]
+        b = np.radians(beta)
+        exact = np.maximum(np.sin(b) * np.cos(b) - mus * np.cos(b) ** 2, 0.0)
+        ax.plot(mus, exact, color=color, lw=1.2, label=f"β = {beta:g}°: exact")
+        sel = [r for r in friction_rows if r.beta == beta]
+        ax.plot([r.friction for r in sel for _ in r.K_II],
+                [abs(k) for r in sel for k in r.K_II], ls="none", marker="o", ms=5,
+                mfc="none", color=color, label=f"β = {beta:g}°: X-FEM, both tips")
+        ax.axvline(np.tan(b), color=color, ls=":", lw=1.0)
+    finish(ax, "friction μ (dotted: tan β, the faces stick beyond)",
+           "Closed inclined crack under compression", ylabel="|K_II| / σ√(πa)")
+    if inf_sup_rows:
+        ax = fig.add_subplot(2, 1, 2)
+        for name in dict.fromkeys(r.space for r in inf_sup_rows):
+            sel = _select(inf_sup_rows, space=name)
+            ax.plot([r.h for r in sel], [r.beta for r in sel], marker="o", ms=5, lw=1.5,
+                    color=COLORS.get(name, COLORS["mesh"]), label=name)
+        log_axes(ax)
+        finish(ax, "h (mean crossed-edge length)", "Inf-sup constant up to the crack front",
+               ylabel="β_h")
     return fig

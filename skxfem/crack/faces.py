@@ -1,0 +1,208 @@
+r"""Contact on the crack faces: the multipliers on the crossed edges, up to the front.
+
+A crack's multipliers live where those of a Γ that cuts the body through live: one
+λ_e at the crossing x_e of every mesh edge e the crack crosses strictly
+(``edge_ids`` of :class:`~skxfem.crack.geometry.CrackGeometry`; an edge ψ_h crosses
+ahead of the front is not one, nor is an edge of the tip cell the crack does not
+reach).  The spaces are those of :mod:`skxfem.stabilised` (naive, winner nodes =
+algo1, vital edges = algo2) on the graph of these edges: its nodes are the ends of
+the crossed edges, so the tip cell's nodes beyond the front carry no multiplier.
+
+**The multiplier functions on the faces.**  A crack piece (the part of Γ_h in one
+reference triangle) may end at a point that is no crossing: the tip, a point of a
+quadrilateral's diagonal, a node on the crack.  The value of λ_h there is the
+harmonic extension of the edge values along the chain of pieces (a graph with the
+piece ends as vertices, weights 1/length, the crossings held): linear in arc length
+between two crossings, **constant from the last crossing to the tip**.  On each piece
+λ_h is linear between its ends.  So every row of the map from the edge λ to λ_h sums to
+one: a constant traction stays in the space up to the front (the patch test), and
+the tip piece carries the λ of the crossed edge it enters by.
+
+**Vital edges at the front (what the package does; the paper leaves it open).**  The
+edge cover of algo2 runs on the ends of the crossed edges only: the tip cell enters by
+the edge it is crossed through, and its nodes beyond the front get no multiplier and
+no vital edge; the tip piece takes the λ of its entry edge (above).  No relation is
+extrapolated past the last crossing.  The inf-sup constant of these spaces near the
+front is measured by :func:`skxfem.studies.cracks.crack_inf_sup` (book chapter
+``crack``).
+
+>>> from skfem import MeshTri1
+>>> from skxfem.crack.geometry import crack_geometry
+>>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+>>> g = crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.55)
+>>> E = end_values(g)                               # λ at each piece end, per edge λ
+>>> bool(np.allclose(E.sum(axis=1), 1.0))          # a constant is kept
+True
+>>> crack_multipliers("vital", m, g).P.shape        # 6 crossed edges, 3 stars
+(6, 3)
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
+
+from ..multipliers import Space
+from ..stabilised import multiplier_space
+
+__all__ = ["EdgeGraph", "edge_graph", "end_values", "face_functions", "crack_multipliers",
+           "face_traction"]
+
+
+@dataclass(frozen=True)
+class EdgeGraph:
+    """The crossed edges of a crack as :func:`skxfem.stabilised.multiplier_space`
+    reads a :class:`~skxfem.cut.Cut`: ``edge_ids``, ``edges`` (2, ne), ``psi``,
+    ``points`` (2, ne), and ``facets`` (2, nf) / ``facet_cell`` (nf,): the crack
+    pieces that touch a crossing, each end an index into ``points`` (an end that is
+    no crossing takes the piece's other end, so that the pieces say which crossed
+    edges share a cell)."""
+
+    edge_ids: np.ndarray
+    edges: np.ndarray
+    psi: np.ndarray
+    points: np.ndarray
+    facets: np.ndarray
+    facet_cell: np.ndarray
+
+
+def edge_graph(geo) -> EdgeGraph:
+    """The :class:`EdgeGraph` of a :class:`~skxfem.crack.geometry.CrackGeometry`.
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+    >>> bool(edge_graph(crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.55)).facets.min() >= 0)
+    True
+    """
+    f = geo.facets
+    f = np.where(f < 0, f[::-1], f)                      # a lone crossing: both ends
+    keep = (f >= 0).all(axis=0)
+    return EdgeGraph(geo.edge_ids, geo.edges, geo.psi, geo.points, f[:, keep],
+                     geo.segment_cell[keep])
+
+
+def _check_crossed(geo) -> None:
+    if geo.edge_ids.size == 0:
+        raise ValueError("the crack crosses no mesh edge strictly (it runs along mesh edges "
+                         "or through nodes only), so it has no point to carry multipliers: "
+                         "contact on its faces needs a crack that crosses cells (move it off "
+                         "the mesh lines, e.g. an odd number of cells) or law 'free'")
+
+
+def end_values(geo) -> sp.csr_matrix:
+    """(2 nseg, ne) λ_h at the ends of the crack pieces from the edge multipliers:
+    row k·nseg + s is end k of piece s (``geo.segments[k][:, s]``).
+
+    A crossing end is its edge's λ; the other ends (a tip, a quadrilateral's diagonal,
+    a node on the crack) take the harmonic extension along the chain of pieces (module
+    notes): linear in arc length between crossings, constant to a tip.  Ends of a run
+    of pieces that reaches no crossing get 0 (no multiplier there).
+
+    Raises
+    ------
+    ValueError
+        If the crack crosses no edge strictly (no multiplier at all).
+    """
+    _check_crossed(geo)
+    ne, nseg = geo.edge_ids.size, geo.segment_cell.size
+    ends = geo.facets.ravel()                            # end-major (2 nseg,)
+    x = np.transpose(geo.segments, (0, 2, 1)).reshape(-1, 2)
+    length = geo.segments_length()
+    other = np.flatnonzero(ends < 0)
+    vertex = ends.copy()
+    if other.size:                                       # merge equal points
+        tol = 1e-9 * float(length.max())
+        pairs = cKDTree(x[other]).query_pairs(tol, output_type="ndarray")
+        link = sp.csr_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])),
+                             shape=(other.size,) * 2)
+        _, comp = connected_components(link, directed=False)
+        vertex[other] = ne + comp
+    nv = int(vertex.max()) + 1
+    v0, v1 = vertex[:nseg], vertex[nseg:]
+    w = 1.0 / length
+    adj = sp.csr_matrix((np.r_[w, w], (np.r_[v0, v1], np.r_[v1, v0])), shape=(nv, nv))
+    lap = (sp.diags(np.asarray(adj.sum(axis=1)).ravel()) - adj).tocsr()
+    free = np.arange(ne, nv)
+    values = sp.lil_matrix((nv, ne))
+    values[np.arange(ne), np.arange(ne)] = 1.0
+    if free.size:
+        _, piece = connected_components(adj, directed=False)
+        reached = np.isin(piece[free], piece[:ne])
+        f = free[reached]
+        if f.size:
+            rhs = -(lap[f][:, :ne]).toarray()
+            X = np.linalg.solve(lap[f][:, f].toarray(), rhs)   # a few ends per crack
+            X[np.abs(X) < 1e-14] = 0.0
+            values[f] = X
+    return sp.csr_matrix(values)[vertex]
+
+
+def face_functions(geo, x: np.ndarray, piece: np.ndarray) -> sp.csr_matrix:
+    """(n, ne) the multiplier functions N_e at points ``x`` (2, n) of the crack pieces
+    ``piece`` (n,): linear on each piece between its :func:`end_values`."""
+    E = end_values(geo)
+    nseg = geo.segment_cell.size
+    A, B = geo.segments[0][:, piece], geo.segments[1][:, piece]
+    d = B - A
+    t = np.clip(((x - A) * d).sum(axis=0) / (d * d).sum(axis=0), 0.0, 1.0)
+    return (sp.diags(1 - t) @ E[piece] + sp.diags(t) @ E[nseg + piece]).tocsr()
+
+
+def crack_multipliers(name: str, mesh, geo, fixed=None, per_edge=None) -> Space:
+    """The multiplier space ``name`` ("naive", "winner", "vital") on the crack's
+    crossed edges (:func:`skxfem.stabilised.multiplier_space` on its
+    :class:`EdgeGraph`; module notes for the front).  ``fixed``, ``per_edge``: as
+    there.
+
+    Raises
+    ------
+    ValueError
+        If the crack crosses no edge strictly, or ``name`` is not a space.
+    """
+    _check_crossed(geo)
+    return multiplier_space(name, mesh, edge_graph(geo), fixed=fixed, per_edge=per_edge)
+
+
+def face_traction(geo, traction: np.ndarray, x_rule: np.ndarray):
+    """The tractions the faces carry, for :func:`skxfem.crack.sif.sif`'s
+    ``face_traction``: ``(x, side) -> (2, n)`` at the points ``x_rule`` (2, n) of
+    :func:`skxfem.crack.assembly.face_rule` (the points the SIF asks at).
+
+    ``traction`` (2, ne) is the interface traction r = σ·n at the crossings (the
+    multipliers, :mod:`skxfem.levelset`'s sign: n into Ω⁺); on the faces r_h = Σ N_e r_e
+    (:func:`face_functions`, constant to the tip), and the face of Ω⁻ (outward normal
+    +n) carries t⁻ = r_h, that of Ω⁺ (outward normal -n) t⁺ = -r_h
+    (:mod:`skxfem.crack.interaction`).
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.assembly import face_rule
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> from skxfem.crack.space import crack_space
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+    >>> g = crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.55)
+    >>> x = face_rule(crack_space(m, g))[0]
+    >>> r = np.array([[0.0], [-2.0]]) * np.ones(g.edge_ids.size)   # a pressure 2
+    >>> t = face_traction(g, r, x)
+    >>> bool(np.allclose(t(x, 1), [[0.0], [2.0]])), bool(np.allclose(t(x, -1), -t(x, 1)))
+    (True, True)
+    """
+    traction = np.asarray(traction, float)
+    ne = geo.edge_ids.size
+    if traction.shape != (2, ne) or not np.all(np.isfinite(traction)):
+        raise ValueError(f"traction must hold finite values of shape (2, {ne}) (one vector "
+                         f"per crossed edge), got {traction.shape}")
+    nseg = geo.segment_cell.size
+    piece = np.repeat(np.arange(nseg), x_rule.shape[1] // max(nseg, 1))
+    r = (face_functions(geo, x_rule, piece) @ traction.T).T      # (2, n)
+
+    def at(x, side):
+        if x.shape != x_rule.shape or not np.allclose(x, x_rule):
+            raise ValueError("face_traction: asked at points that are not those of the "
+                             "crack's face rule (skxfem.crack.assembly.face_rule)")
+        return -side * r
+
+    return at
