@@ -214,7 +214,9 @@ def test_a_level_set_through_nodes_is_cut_exactly(cell):
 def test_a_vertex_near_gamma_is_put_on_it_with_one_warning(cell):
     """Γ 1e-12 h from a row of nodes (within SNAP = 1e-9 h): those nodes are put on
     Γ (ψ = 0), one SnapWarning gives the count and the shift, and the cut is that of
-    Γ through them."""
+    Γ through them; 1e-15 h (within ROUND_OFF = 1.4e-14 h) the same, silently."""
+    import warnings
+
     from skxfem.cut import SnapWarning
 
     m = mesh_of(cell, 4)
@@ -229,6 +231,10 @@ def test_a_vertex_near_gamma_is_put_on_it_with_one_warning(cell):
     assert np.array_equal(near.psi[row], np.zeros(row.sum()))
     assert np.array_equal(near.edge_ids, on.edge_ids)
     assert np.array_equal(near.points, on.points)
+    with warnings.catch_warnings():                        # 1e-15 h: the round-off of ψ
+        warnings.simplefilter("error")
+        rounded = cut(m, plane((0.5,) * (dim - 1) + (0.5 + 2.5e-16,), up))
+    assert np.array_equal(rounded.points, on.points)
 
 
 def test_a_quad_cut_along_its_diagonal():
