@@ -148,7 +148,8 @@ def inf_sup(scene, scaling: str = "h", law: str | None = None) -> InfSup:
     # mesh size across Γ: the mean length of the cut edges (anisotropic
     # meshes, such as one layer of prisms along x, are measured where it matters;
     # at a vertex on Γ the mean of its edges: skxfem.cut.point_lengths)
-    h = float(np.mean(np.concatenate([point_lengths(mesh, q.cut) for q in p.interfaces])))
+    h = float(np.mean(np.concatenate([point_lengths(mesh, q.cut)
+                                      for q in p.interfaces])))
     B, Ps = p.B, [p.P]
     if law == "stick":
         ops = operators(p)
