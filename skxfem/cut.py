@@ -113,12 +113,15 @@ class Cut:
     enriched : (nenr,) nodes whose support Γ_h splits (nodes of cut cells and
         vertices of mesh facets on Γ), which carry Heaviside dofs.
     facets : (dim, nf) interface facets as indices into ``points``
-        (segments in 2D, triangles in 3D); ``facet_cell`` : (nf,) parent cell;
+        (segments in 2D, triangles in 3D), those of the cut cells first, then
+        those of the mesh facets on Γ; ``facet_cell`` : (nf,) parent cell (the
+        Ω⁻ cell of a mesh facet on Γ);
         ``facet_ref`` : (dim, dim, nf) their vertices in the parent's
         reference coordinates, ``[vertex, coordinate, facet]``;
         ``normals`` : (dim, nf) unit normals into Ω⁺; ``measures`` : (nf,).
-    sub_ref : (nsub, dim + 1, dim) sub-simplices in parent reference
-        coordinates; ``sub_cell`` : (nsub,) parent; ``sub_side`` : (nsub,) ±1.
+    sub_ref : (nsub, dim + 1, dim) sub-simplices of the cut cells in parent
+        reference coordinates, none of zero measure; ``sub_cell`` : (nsub,)
+        parent; ``sub_side`` : (nsub,) ±1.
     """
 
     psi: np.ndarray

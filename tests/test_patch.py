@@ -217,12 +217,14 @@ def test_curved_interface_hydrostatic_patch(cell, space):
 
 CROSSING_2D = {  # Γ crossing the bottom face y = 0 at 25°, 45° and 70°, and a corner cut
     "25°": plane((0.3, 0.0), (-0.47, 1.0)), "45°": plane((0.37, 0.0), (-1.0, 1.0)),
-    "70°": plane((0.6, 0.0), (1.0, -0.36)), "corner": plane((0.05, 0.0), (1.0, 1.0))}
+    "70°": plane((0.6, 0.0), (1.0, -0.36)), "corner": plane((0.05, 0.0), (1.0, 1.0)),
+    "nodes": plane((0.25, 0.0), (-0.8, 1.0))}  # through nodes of the 4 x 5 mesh
 CROSSING_3D = {  # Γ crossing the bottom face z = 0, tilted about two axes; a corner cut
     "25°": plane((0.3, 0.4, 0.0), (-0.4, 0.21, 1.0)),
     "45°": plane((0.37, 0.4, 0.0), (-0.9, 0.37, 1.0)),
     "70°": plane((0.6, 0.4, 0.0), (1.0, 0.31, -0.36)),
-    "corner": plane((0.05, 0.0, 0.0), (1.0, 1.0, 1.0))}
+    "corner": plane((0.05, 0.0, 0.0), (1.0, 1.0, 1.0)),
+    "nodes": plane((1 / 3, 0.0, 0.0), (-0.75, 0.0, 1.0))}  # through nodes of 3 x 3 x 4
 SHEAR = {2: [[0.3, 0.2], [0.2, -0.5]], 3: [[0.3, 0.2, 0.1], [0.2, -0.5, 0.15],
                                            [0.1, 0.15, 0.2]]}
 
@@ -262,11 +264,14 @@ def crossing(cell, where, law, supports):
     return Scene(Box(n, cell), psi, material, displacements, tuple(loads), law), eps, sigma
 
 
-@pytest.mark.parametrize("where", ["25°", "45°", "70°", "corner"])
+@pytest.mark.parametrize("where", ["25°", "45°", "70°", "corner", "nodes"])
 @pytest.mark.parametrize("law, supports", [("bonded", "clamped"), ("bonded", "rollers"),
                                            ("bilateral", "clamped")])
 def test_gamma_crossing_a_supported_face_keeps_a_uniform_state_exact(cell, where, law,
                                                                     supports):
+    """``where = "nodes"``: Γ through rows of nodes, meeting the supported bottom at a
+    node (or a row of them), so that boundary facets of one side touch Γ at a node of
+    the other side (its enriched dofs held there too: enrich.constrained_dofs)."""
     scene, eps, sigma = crossing(cell, where, law, supports)
     result = solve(scene)
     assert patch_energy_error(result, eps) <= 1e-8
