@@ -308,7 +308,8 @@ def cut(mesh, psi, name: str = "") -> Cut:
     zero = psi == 0
     at = np.zeros(psi.size, dtype=bool)
     at[mesh.t[:, cells][zero[mesh.t[:, cells]]]] = True
-    at[mesh.facets[:, on_gamma]] = True
+    if on_gamma.size:
+        at[mesh.facets[:, on_gamma]] = True
     vertices = np.flatnonzero(at)
     ne = edge_ids.size
     point_of_edge = np.full(all_edges.shape[1], -1)
@@ -324,7 +325,9 @@ def cut(mesh, psi, name: str = "") -> Cut:
     support_plus[mesh.t[:, side >= 0]] = True
     node_side = np.where(psi < 0, -1, 1)
     node_side[zero & ~support_plus] = -1
-    enriched = np.union1d(np.unique(mesh.t[:, cells]), np.unique(mesh.facets[:, on_gamma]))
+    enriched = np.unique(mesh.t[:, cells])
+    if on_gamma.size:
+        enriched = np.union1d(enriched, mesh.facets[:, on_gamma])
 
     slots = np.vstack([point_of_edge[t2e[:, cells]], point_of_vertex[mesh.t[:, cells]]])
     facets, facet_cell, facet_ref = _interface(mesh, psi, local, slots, cells,
@@ -343,6 +346,8 @@ def cut(mesh, psi, name: str = "") -> Cut:
 def _facets_on_gamma(mesh, psi: np.ndarray, side: np.ndarray) -> np.ndarray:
     """The mesh facets with ψ = 0 at all their vertices between a cell of Ω⁻ and
     one of Ω⁺: facets of Γ_h."""
+    if not (psi == 0).any():              # (the mesh's facets are not even built then)
+        return np.zeros(0, dtype=np.int64)
     f2t = mesh.f2t
     inner = f2t[1] >= 0
     on = (psi[mesh.facets] == 0).all(axis=0) & inner
@@ -588,6 +593,8 @@ def _subcells(mesh, psi, cells):
     X = np.broadcast_to(ref[simp], (cells.size, ns, nv, mesh.dim())).reshape(-1, nv, mesh.dim())
     pv = psi[mesh.t[:, cells]].T[:, simp].reshape(-1, nv)
     sub, parent, side = split(X, pv)
+    if not (pv == 0).any():
+        return sub, cells[parent // ns], side
     # a vertex on Γ makes pieces with two equal vertices (zero measure): drop them
     same = (sub[:, :, None, :] == sub[:, None, :, :]).all(axis=-1)
     keep = ~np.triu(same, 1).any(axis=(1, 2))
