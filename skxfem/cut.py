@@ -22,16 +22,30 @@ facets and the faces of the sub-cells lie on the same plane, so integrals over
 patch tests pass to round-off.
 
 **Vertices on Γ.** A vertex where ψ vanishes (the natural first scene: Γ at
-z = 10 on a 20-cell mesh) belongs to no side, and its edges are not strictly
-cut.  As production X-FEM codes do, the nodal values are *snapped*
-(:func:`snap`): a vertex closer to Γ than :data:`SNAP` times its shortest edge,
-the distance measured as |ψ_i| over the steepest slope of ψ along its edges
-(so that the test does not depend on the scale of ψ), is moved to that
-distance on its own side (Ω⁺ where ψ_i = 0), with one :class:`SnapWarning`
-giving the count and the largest shift.  The interface then passes
-:data:`SNAP` edge lengths from those vertices: the answer is that of the scene
-with Γ shifted by as much.  A cell whose cut edges do not form one polygon (a
-saddle) is refused: refine the mesh.
+z = 10 on a 20-cell mesh) lies *on* Γ, exactly.  A vertex closer to Γ than
+:data:`SNAP` times its shortest edge (the distance measured as |ψ_i| over the
+steepest slope of ψ along its edges, so that the test does not depend on the
+scale of ψ) is put on it, ψ_i = 0 (:func:`snap`); only that moves Γ, by less
+than :data:`SNAP` edge lengths, and one :class:`SnapWarning` gives the count
+and the largest shift (a vertex with ψ_i = 0, or within the round-off of ψ,
+:data:`ROUND_OFF` edge lengths, moves nothing and warns nothing).  Then, with
+ψ_i = 0 at the vertices on Γ:
+
+* a cell is **cut** if it has a vertex in Ω⁻ (ψ < 0) and one in Ω⁺ (ψ > 0);
+  a cell whose other vertices all lie on one side is uncut, all of it on
+  that side, even where vertices (an edge, a face) touch Γ;
+* a vertex on Γ of a cut cell is a **point** of Γ_h, as the intersection
+  point of a strictly cut edge is: the point list holds the cut edges' points
+  first, then these vertex points, recorded as the degenerate edge (v, v)
+  with edge id -1 (:class:`Cut`);
+* a **mesh facet on Γ** (all its vertices on it) between a cell of Ω⁻ and one
+  of Ω⁺ is a facet of Γ_h, its vertices points, integrated in the Ω⁻ cell;
+* no zero-measure sub-cell is made: a sub-simplex with two equal vertices
+  (a cut "point" at a vertex) is dropped.
+
+So Γ through mesh nodes, or along mesh facets, is cut exactly and the
+two sides' volumes still sum to the cell's.  A cell whose cut points do not
+form one polygon (a saddle) is refused: refine the mesh.
 
 >>> from skfem import MeshQuad1
 >>> from skxfem.levelset import plane
@@ -39,6 +53,9 @@ saddle) is refused: refine the mesh.
 >>> cut = cut_mesh(MeshQuad1().refined(1), plane((0, 0.4), (0, 1)))
 >>> cut.points.shape, round(float(cut.measures.sum()), 12)
 ((2, 3), 1.0)
+>>> on = cut_mesh(MeshQuad1().refined(1), plane((0, 0.5), (0, 1)))   # along the facets
+>>> on.edge_ids.tolist(), on.cells.size, round(float(on.measures.sum()), 15)
+([-1, -1, -1], 0, 1.0)
 """
 from __future__ import annotations
 
@@ -47,21 +64,28 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .fem.cells import cell_edges, faces_of_edges, reference_simplices
+from .fem.cells import cell_edges, reference_simplices
 from .fem.meshes import cell_name
 from .fem.simplex import edge_point, split
 from .levelset import nodal_values
 
 __all__ = ["Cut", "cut", "strictly_cut_edges", "snap", "SNAP", "SnapWarning", "check_apart",
-           "rescaled", "PSI_RANGE", "PSI_FLOOR"]
+           "point_lengths", "ROUND_OFF", "rescaled", "PSI_RANGE", "PSI_FLOOR"]
 
 SNAP = 1e-9
-"""Vertices closer to Γ than SNAP times their shortest edge are moved to that
-distance (:func:`snap`)."""
+"""Vertices closer to Γ than SNAP times their shortest edge are put on it, ψ = 0
+(:func:`snap`)."""
+
+
+ROUND_OFF = 64 * np.finfo(float).eps
+"""Vertices closer to Γ than ROUND_OFF (1.4e-14) times their shortest edge are on it
+up to the round-off of ψ (a plane through them, evaluated): put on it silently."""
 
 
 class SnapWarning(UserWarning):
-    """Vertices on (or within :data:`SNAP` edge lengths of) Γ were moved off it."""
+    """Vertices within :data:`SNAP` edge lengths of Γ, not on it, were put on it
+    (ψ set to 0): Γ moved by less than SNAP edge lengths.  Vertices on Γ (ψ = 0,
+    or within :data:`ROUND_OFF` edge lengths) raise none."""
 
 
 @dataclass(frozen=True)
@@ -70,21 +94,34 @@ class Cut:
 
     Attributes
     ----------
-    psi : (nverts,) nodal level set values.
-    edge_ids : (ne,) indices of the strictly cut edges S_e among the mesh edges
-        (``mesh.edges`` in 3D, ``mesh.facets`` in 2D).
-    edges : (2, ne) their vertices.
-    points : (dim, ne) intersection points: one multiplier each.
-    cells : (ncut,) cut cells.  ``side`` : (ncells,) -1 / +1 for cells in
-        Ω⁻ / Ω⁺, 0 for cut cells.
-    enriched : (nenr,) nodes of cut cells, which carry Heaviside dofs.
+    psi : (nverts,) nodal level set values as used: 0 at the vertices on Γ
+        (:func:`snap`).
+    edge_ids : (ne,) for each point of Γ_h on the mesh edges, the index of its
+        strictly cut edge among the mesh edges (``mesh.edges`` in 3D,
+        ``mesh.facets`` in 2D), -1 for a vertex on Γ.  The cut edges S_e come
+        first, then the vertices on Γ; ``ne`` counts both.
+    edges : (2, ne) the ends of each point's edge; (v, v) for a vertex v on Γ.
+    points : (dim, ne) the points: an edge's intersection point, or the vertex
+        itself.  One multiplier each.
+    cells : (ncut,) cut cells: a vertex in Ω⁻ and one in Ω⁺.  ``side`` :
+        (ncells,) -1 / +1 for cells in Ω⁻ / Ω⁺ (their vertices not on Γ all
+        on that side), 0 for cut cells.
+    node_side : (nverts,) -1 / +1, the side of each node: the sign of ψ off
+        Γ; a node on Γ is on Ω⁺ if a cell of its support has a part there,
+        else on Ω⁻ (so a node on Γ split by it takes Ω⁺, one that only
+        touches Γ the side of its support).
+    enriched : (nenr,) nodes whose support Γ_h splits (nodes of cut cells and
+        vertices of mesh facets on Γ), which carry Heaviside dofs.
     facets : (dim, nf) interface facets as indices into ``points``
-        (segments in 2D, triangles in 3D); ``facet_cell`` : (nf,) parent cell;
+        (segments in 2D, triangles in 3D), those of the cut cells first, then
+        those of the mesh facets on Γ; ``facet_cell`` : (nf,) parent cell (the
+        Ω⁻ cell of a mesh facet on Γ);
         ``facet_ref`` : (dim, dim, nf) their vertices in the parent's
         reference coordinates, ``[vertex, coordinate, facet]``;
         ``normals`` : (dim, nf) unit normals into Ω⁺; ``measures`` : (nf,).
-    sub_ref : (nsub, dim + 1, dim) sub-simplices in parent reference
-        coordinates; ``sub_cell`` : (nsub,) parent; ``sub_side`` : (nsub,) ±1.
+    sub_ref : (nsub, dim + 1, dim) sub-simplices of the cut cells in parent
+        reference coordinates, none of zero measure; ``sub_cell`` : (nsub,)
+        parent; ``sub_side`` : (nsub,) ±1.
     """
 
     psi: np.ndarray
@@ -93,6 +130,7 @@ class Cut:
     points: np.ndarray
     cells: np.ndarray
     side: np.ndarray
+    node_side: np.ndarray
     enriched: np.ndarray
     facets: np.ndarray
     facet_cell: np.ndarray
@@ -129,18 +167,19 @@ def strictly_cut_edges(edges, psi, x) -> tuple[np.ndarray, np.ndarray]:
 
 
 def snap(mesh, psi: np.ndarray, edges: np.ndarray | None = None):
-    """ψ with the vertices within :data:`SNAP` edge lengths of Γ moved off it.
+    """ψ with the vertices within :data:`SNAP` edge lengths of Γ put on it (ψ_i = 0).
 
     The distance of vertex i to Γ is taken as |ψ_i| / g_i, g_i the steepest
     slope |ψ_j - ψ_i| / |x_j - x_i| over its edges; a vertex with d_i < SNAP h_i
-    (h_i its shortest edge) gets ψ_i = ±SNAP h_i g_i, the sign of ψ_i (+ where
-    ψ_i = 0).  ``edges`` (2, n_edges): the mesh edges (default: computed).
+    (h_i its shortest edge) gets ψ_i = 0.  ``edges`` (2, n_edges): the mesh
+    edges (default: computed).
 
     Returns
     -------
     psi, moved, shift
-        The snapped values, the number of vertices moved and the largest
-        distance moved.
+        The values, the number of vertices put on Γ that were farther from it
+        than round-off (d_i ≥ :data:`ROUND_OFF` h_i: Γ passes near them, not
+        through them) and the largest such distance (0.0 if none).
 
     Raises
     ------
@@ -150,8 +189,11 @@ def snap(mesh, psi: np.ndarray, edges: np.ndarray | None = None):
     >>> from skfem import MeshQuad1
     >>> m = MeshQuad1().refined(1)                    # vertices at y = 0, 0.5, 1
     >>> psi, moved, shift = snap(m, m.p[1] - 0.5)     # Γ through a row of vertices
-    >>> moved, float(psi[m.p[1] == 0.5].min()) > 0, shift <= SNAP * 0.5
-    (3, True, True)
+    >>> int((psi == 0).sum()), moved, shift           # on Γ already: nothing moves
+    (3, 0, 0.0)
+    >>> psi, moved, shift = snap(m, m.p[1] - 0.5 + 1e-12)
+    >>> int((psi == 0).sum()), moved, shift <= 1e-12
+    (3, 3, True)
     """
     cell_name(mesh)  # TypeError for an unsupported mesh type
     if edges is None:
@@ -173,13 +215,35 @@ def snap(mesh, psi: np.ndarray, edges: np.ndarray | None = None):
             f"gradient at the interface")
     with np.errstate(divide="ignore", invalid="ignore"):
         distance = np.where(g > 0, np.abs(psi) / g, np.inf)
-    near = distance < SNAP * h
+    near = (distance < SNAP * h) & (psi != 0)
     if not near.any():
         return psi, 0, 0.0
     out = psi.copy()
-    out[near] = np.where(psi[near] < 0, -1.0, 1.0) * SNAP * h[near] * g[near]
-    shift = float(np.max(SNAP * h[near] - distance[near]))
-    return out, int(near.sum()), shift
+    out[near] = 0.0
+    moved = near & (distance >= ROUND_OFF * h)
+    return out, int(moved.sum()), float(distance[moved].max()) if moved.any() else 0.0
+
+
+def point_lengths(mesh, cut: Cut) -> np.ndarray:
+    """(ne,) a mesh length at each point of Γ_h: its cut edge's length, or, for a
+    vertex on Γ, the mean length of the mesh edges at it (the mesh size there).
+
+    >>> from skfem import MeshQuad1
+    >>> from skxfem.levelset import plane
+    >>> m = MeshQuad1().refined(2)
+    >>> point_lengths(m, cut(m, plane((0, 0.5), (0, 1)))).tolist()    # 5 vertices on Γ
+    [0.25, 0.25, 0.25, 0.25, 0.25]
+    """
+    a, b = cut.edges
+    lengths = np.linalg.norm(mesh.p[:, a] - mesh.p[:, b], axis=0)
+    on = np.flatnonzero(a == b)
+    if on.size:
+        edges = cell_edges(mesh)[2]
+        size = np.linalg.norm(mesh.p[:, edges[0]] - mesh.p[:, edges[1]], axis=0)
+        total = np.bincount(edges.ravel(), np.tile(size, 2), minlength=mesh.p.shape[1])
+        count = np.bincount(edges.ravel(), minlength=mesh.p.shape[1])
+        lengths[on] = total[a[on]] / count[a[on]]
+    return lengths
 
 
 def cut(mesh, psi, name: str = "") -> Cut:
@@ -192,14 +256,15 @@ def cut(mesh, psi, name: str = "") -> Cut:
     psi
         A level set callable (see :mod:`skxfem.levelset`) or its nodal values.
     name
-        What the :class:`SnapWarning` calls the interface (a scene with several:
-        ``"interfaces[1] 'y - 0.7'"``); ``""``: "the level set".
+        What the :class:`SnapWarning` and errors call the interface (a scene with
+        several: ``"interfaces[1] 'y - 0.7'"``); ``""``: "the level set".
 
     Raises
     ------
     ValueError
-        If the level set cuts no cell, vanishes on a region, or cuts a cell
-        in more than one piece.  Vertices on Γ are snapped (:func:`snap`).
+        If the level set cuts no cell, vanishes on a region (or on a whole
+        cell), lies on the boundary, or cuts a cell in more than one piece.
+        Vertices on Γ stay on it (module notes).
     """
     if callable(psi):
         psi = nodal_values(psi, mesh)
@@ -209,50 +274,136 @@ def cut(mesh, psi, name: str = "") -> Cut:
                          f"({mesh.p.shape[1]},); got shape {psi.shape}")
     psi = rescaled(psi, name)
     local, t2e, all_edges = cell_edges(mesh)
-    given = psi
     psi, moved, shift = snap(mesh, psi, all_edges)
-    if moved:
-        _check_crosses(mesh, given, psi != given, name)
+    if (psi == 0).any():
+        _check_crosses(mesh, psi, psi == 0, name)
     if moved:
         warnings.warn(
             f"{name or 'the level set'} passes within {SNAP:g} edge lengths of {moved} mesh "
-            f"vertices: "
-            f"moved them off it by up to {shift:.1e} (to the side psi > 0 where psi = 0), "
-            f"so Γ moves by as much (skxfem.cut.SNAP)", SnapWarning, stacklevel=2)
+            f"vertices (not through them): put them on it (psi = 0), so Γ moves by up to "
+            f"{shift:.1e} (skxfem.cut.SNAP)", SnapWarning, stacklevel=2)
 
     edge_ids, points = strictly_cut_edges(all_edges, psi, mesh.p)
-    if edge_ids.size == 0:
+    vals = psi[mesh.t]
+    neg, pos = (vals < 0).any(axis=0), (vals > 0).any(axis=0)
+    if not (neg | pos).all():
+        i = np.flatnonzero(~(neg | pos))[0]
+        raise ValueError(
+            f"{name or 'the level set'} vanishes at every vertex of cell {i} (around "
+            f"{np.round(mesh.p[:, mesh.t[:, i]].mean(axis=1), 6).tolist()}): it is zero on a "
+            f"region, not on a surface; give psi a nonzero gradient at the interface")
+    cells = np.flatnonzero(neg & pos)
+    side = np.where(neg, -1, 1)
+    side[cells] = 0
+    on_gamma = _facets_on_gamma(mesh, psi, side)
+    if cells.size == 0 and on_gamma.size == 0:
         raise ValueError(
             f"the level set cuts no cell of the mesh (psi ranges over "
-            f"[{psi.min():.3g}, {psi.max():.3g}] at the nodes, one sign at all of them): "
+            f"[{psi.min():.3g}, {psi.max():.3g}] at the nodes, one sign at all of them "
+            f"but where it vanishes): "
             f"move the interface inside the domain, or, if it is there but inside a "
             f"single cell (smaller than the mesh size), refine the mesh")
-    edges = all_edges[:, edge_ids]
-    is_cut = np.zeros(all_edges.shape[1], dtype=bool)
-    is_cut[edge_ids] = True
-    cut_index = np.full(all_edges.shape[1], -1)
-    cut_index[edge_ids] = np.arange(edge_ids.size)
 
-    # cut cells, sides, enriched nodes
-    cell_cut = is_cut[t2e]  # (nle, ncells)
-    cells = np.flatnonzero(cell_cut.any(axis=0))
-    side = np.where(psi[mesh.t].mean(axis=0) < 0, -1, 1)
-    side[cells] = 0
+    # the points: cut edges first, then the vertices on Γ of cut cells and Γ's facets
+    zero = psi == 0
+    at = np.zeros(psi.size, dtype=bool)
+    at[mesh.t[:, cells][zero[mesh.t[:, cells]]]] = True
+    if on_gamma.size:
+        at[mesh.facets[:, on_gamma]] = True
+    vertices = np.flatnonzero(at)
+    ne = edge_ids.size
+    point_of_edge = np.full(all_edges.shape[1], -1)
+    point_of_edge[edge_ids] = np.arange(ne)
+    point_of_vertex = np.full(psi.size, -1)
+    point_of_vertex[vertices] = ne + np.arange(vertices.size)
+    edges = np.hstack([all_edges[:, edge_ids], np.vstack([vertices, vertices])])
+    points = np.hstack([points, mesh.p[:, vertices]])
+    edge_ids = np.r_[edge_ids, np.full(vertices.size, -1)]
+
+    # the nodes' sides, the enriched nodes
+    support_plus = np.zeros(psi.size, dtype=bool)
+    support_plus[mesh.t[:, side >= 0]] = True
+    node_side = np.where(psi < 0, -1, 1)
+    node_side[zero & ~support_plus] = -1
     enriched = np.unique(mesh.t[:, cells])
+    if on_gamma.size:
+        enriched = np.union1d(enriched, mesh.facets[:, on_gamma])
 
-    facets, facet_cell, facet_ref = _interface(mesh, psi, local, cut_index[t2e[:, cells]],
-                                               cells, faces_of_edges(mesh, local))
-    normals, measures = _facet_geometry(mesh, facet_ref, facet_cell, psi)
+    slots = np.vstack([point_of_edge[t2e[:, cells]], point_of_vertex[mesh.t[:, cells]]])
+    facets, facet_cell, facet_ref = _interface(mesh, psi, local, slots, cells,
+                                               _slots_on_faces(mesh, local))
+    direction = _plus_direction(mesh, psi, facet_cell)
+    if on_gamma.size:
+        f, fc, fr, fd = _gamma_facets(mesh, side, on_gamma, point_of_vertex)
+        facets, facet_cell = np.hstack([facets, f]), np.r_[facet_cell, fc]
+        facet_ref, direction = np.concatenate([facet_ref, fr], axis=2), np.hstack([direction, fd])
+    normals, measures = _facet_geometry(mesh, facet_ref, facet_cell, direction)
     sub_ref, sub_cell, sub_side = _subcells(mesh, psi, cells)
-    return Cut(psi, edge_ids, edges, points, cells, side, enriched, facets, facet_cell,
-               facet_ref, normals, measures, sub_ref, sub_cell, sub_side)
+    return Cut(psi, edge_ids, edges, points, cells, side, node_side, enriched, facets,
+               facet_cell, facet_ref, normals, measures, sub_ref, sub_cell, sub_side)
+
+
+def _facets_on_gamma(mesh, psi: np.ndarray, side: np.ndarray) -> np.ndarray:
+    """The mesh facets with ψ = 0 at all their vertices between a cell of Ω⁻ and
+    one of Ω⁺: facets of Γ_h."""
+    if not (psi == 0).any():              # (the mesh's facets are not even built then)
+        return np.zeros(0, dtype=np.int64)
+    f2t = mesh.f2t
+    inner = f2t[1] >= 0
+    on = (psi[mesh.facets] == 0).all(axis=0) & inner
+    on &= side[f2t[0]] * np.where(inner, side[np.maximum(f2t[1], 0)], 0) == -1
+    return np.flatnonzero(on)
+
+
+def _gamma_facets(mesh, side, on_gamma, point_of_vertex):
+    """The interface facets of the mesh facets ``on_gamma``, in their Ω⁻ cell:
+    (facets, facet_cell, facet_ref, direction) as :func:`_interface` and
+    :func:`_plus_direction` give them; a quadrilateral split into two triangles."""
+    f2t = mesh.f2t[:, on_gamma]
+    parent = np.where(side[f2t[0]] < 0, f2t[0], f2t[1])
+    verts = mesh.facets[:, on_gamma]                                   # (nfv, n)
+    ordered = np.sort(verts, axis=0)                  # a prism's triangles repeat a vertex
+    count = 1 + (np.diff(ordered, axis=0) != 0).sum(axis=0)
+    out_f, out_c, out_r, out_d = [], [], [], []
+    for k in np.unique(count):
+        idx = np.flatnonzero(count == k)
+        srt = ordered[:, idx]
+        keep = np.vstack([np.ones(idx.size, bool), srt[1:] != srt[:-1]])
+        v = np.take_along_axis(srt, np.argsort(~keep, axis=0, kind="stable")[:k], axis=0)
+        local = np.argmax(mesh.t[:, parent[idx]][:, None, :] == v[None], axis=0)  # (k, n)
+        r = mesh.elem().doflocs[local]                                 # (k, n, dim)
+        if k > 3:   # in order around the (planar) reference face
+            c = r.mean(axis=0)
+            u = r[0] - c
+            w = np.cross(np.cross(r[1] - r[0], r[2] - r[0]), u)
+            ang = np.arctan2(((r - c) * w).sum(-1), ((r - c) * u).sum(-1))
+            sel = np.argsort(ang, axis=0)
+            v = np.take_along_axis(v, sel, axis=0)
+            r = np.take_along_axis(r, sel[..., None], axis=0)
+        out_of = (mesh.p[:, v].mean(axis=1)
+                  - mesh.p[:, mesh.t[:, parent[idx]]].mean(axis=1))   # out of the Ω⁻ cell
+        for tri in ([[0, 1]] if k == 2 else [[0, i, i + 1] for i in range(1, k - 1)]):
+            out_f.append(point_of_vertex[v[tri]])
+            out_c.append(parent[idx])
+            out_r.append(np.transpose(r[tri], (0, 2, 1)))
+            out_d.append(out_of)
+    return (np.hstack(out_f), np.concatenate(out_c), np.concatenate(out_r, axis=2),
+            np.hstack(out_d))
+
+
+def _slots_on_faces(mesh, local) -> np.ndarray:
+    """Boolean (nle + nv, nle + nv): do two points of a cell, each on a local edge
+    or at a local vertex, lie on a common face of it?"""
+    faces = [set(f) for f in mesh.elem().refdom.facets]
+    slots = [set(e) for e in local] + [{v} for v in range(mesh.t.shape[0])]
+    on = np.array([[s <= f for f in faces] for s in slots])
+    return (on.astype(int) @ on.T.astype(int)) > 0
 
 
 def _check_crosses(mesh, psi: np.ndarray, near: np.ndarray, name: str) -> None:
     """Refuse a level set that vanishes (within :data:`SNAP`) at the vertices ``near``
     and has one sign at all the others: Γ lies on the boundary of the body (or touches
-    it from outside), and snapping would make it a sliver of one side or no cut at all,
-    depending on the sign of ψ (module notes)."""
+    it from outside) and splits nothing (module notes)."""
     far = psi[~near]
     if far.size and not (np.all(far > 0) or np.all(far < 0)):
         return
@@ -345,16 +496,19 @@ def check_apart(mesh, cuts, names) -> None:
 
 
 def _local_points(mesh, psi, local, cells):
-    """Reference coordinates (ncut, nle, dim) of each local edge's cut point."""
+    """Reference coordinates (ncut, nle + nv, dim) of each local edge's cut point,
+    then of each local vertex."""
     ref = mesh.elem().doflocs
     pv = psi[mesh.t[:, cells]].T  # (ncut, nverts)
     a, b = local[:, 0], local[:, 1]
     with np.errstate(divide="ignore", invalid="ignore"):  # uncut edges: unused values
-        return edge_point(ref[a][None], ref[b][None], pv[:, a], pv[:, b])
+        X = edge_point(ref[a][None], ref[b][None], pv[:, a], pv[:, b])
+    return np.concatenate([X, np.broadcast_to(ref, (cells.size,) + ref.shape)], axis=1)
 
 
 def _interface(mesh, psi, local, cut_ids, cells, share_face):
-    """Order each cut cell's intersection points into a polygon and fan it."""
+    """Order each cut cell's points (``cut_ids`` (nle + nv, ncut): the point of each
+    local edge, then of each local vertex, -1 for none) into a polygon and fan it."""
     dim = mesh.dim()
     X = _local_points(mesh, psi, local, cells)  # reference coordinates
     k = (cut_ids >= 0).sum(axis=0)
@@ -372,9 +526,9 @@ def _interface(mesh, psi, local, cut_ids, cells, share_face):
             # direction from the Ω⁻ vertices to the Ω⁺ vertices
             ref = mesh.elem().doflocs
             pv = psi[mesh.t[:, cells[idx]]].T
-            neg = pv < 0
+            neg, pos = pv < 0, pv > 0
             m = (neg @ ref) / neg.sum(1, keepdims=True)
-            p = (~neg @ ref) / (~neg).sum(1, keepdims=True)
+            p = (pos @ ref) / pos.sum(1, keepdims=True)
             nrm = p - m
             helper = np.eye(3)[np.argmin(np.abs(nrm), axis=1)]
             u = np.cross(nrm, helper)
@@ -400,12 +554,24 @@ def _interface(mesh, psi, local, cut_ids, cells, share_face):
         raise ValueError(
             f"{bad.sum()} cell(s) are cut into more than one piece (e.g. cell {cell}); "
             f"the interface is too curved for this mesh: refine the mesh")
+    if not facets:   # Γ along mesh facets only
+        return np.zeros((dim, 0), int), np.zeros(0, int), np.zeros((dim, dim, 0))
     return (np.concatenate(facets, axis=1), np.concatenate(facet_cell),
             np.concatenate(facet_ref, axis=2))
 
 
-def _facet_geometry(mesh, facet_ref, facet_cell, psi):
-    """Unit normals (into Ω⁺) and measures of the (affinely mapped) facets."""
+def _plus_direction(mesh, psi, facet_cell):
+    """(dim, nf) a direction from Ω⁻ to Ω⁺ across each facet of a cut cell: from the
+    centroid of the cell's vertices in Ω⁻ to that of those in Ω⁺."""
+    pv = psi[mesh.t[:, facet_cell]]
+    xc = mesh.p[:, mesh.t[:, facet_cell]]  # (dim, nverts, nf)
+    w_plus, w_minus = (pv > 0), (pv < 0)
+    return (xc * w_plus).sum(1) / w_plus.sum(0) - (xc * w_minus).sum(1) / w_minus.sum(0)
+
+
+def _facet_geometry(mesh, facet_ref, facet_cell, direction):
+    """Unit normals (into Ω⁺, along ``direction`` (dim, nf)) and measures of the
+    (affinely mapped) facets."""
     mapping = mesh.mapping()
     x = mapping.F(np.transpose(facet_ref, (1, 2, 0)), tind=facet_cell)  # (dim, nf, nv)
     t = x[:, :, 1:] - x[:, :, :1]
@@ -415,11 +581,6 @@ def _facet_geometry(mesh, facet_ref, facet_cell, psi):
         n = np.cross(t[:, :, 0].T, t[:, :, 1].T).T / 2.0
     measures = np.linalg.norm(n, axis=0)
     n = n / measures
-    # orient from Ω⁻ to Ω⁺: compare with the vertex centroids of the parent cell
-    pv = psi[mesh.t[:, facet_cell]]
-    xc = mesh.p[:, mesh.t[:, facet_cell]]  # (dim, nverts, nf)
-    w_plus, w_minus = (pv > 0), (pv < 0)
-    direction = ((xc * w_plus).sum(1) / w_plus.sum(0) - (xc * w_minus).sum(1) / w_minus.sum(0))
     n = n * np.where((n * direction).sum(0) < 0, -1.0, 1.0)
     return n, measures
 
@@ -432,4 +593,9 @@ def _subcells(mesh, psi, cells):
     X = np.broadcast_to(ref[simp], (cells.size, ns, nv, mesh.dim())).reshape(-1, nv, mesh.dim())
     pv = psi[mesh.t[:, cells]].T[:, simp].reshape(-1, nv)
     sub, parent, side = split(X, pv)
-    return sub, cells[parent // ns], side
+    if not (pv == 0).any():
+        return sub, cells[parent // ns], side
+    # a vertex on Γ makes pieces with two equal vertices (zero measure): drop them
+    same = (sub[:, :, None, :] == sub[:, None, :, :]).all(axis=-1)
+    keep = ~np.triu(same, 1).any(axis=(1, 2))
+    return sub[keep], cells[parent[keep] // ns], side[keep]

@@ -237,12 +237,12 @@ class XSpaces:
         """The regions the interfaces split the body into: their signs (R, n_interfaces),
         ±1 per level set, in lexicographic order, and the region of each node (nverts,).
 
-        A region is a sign pattern taken by a node (the level sets are snapped off
-        the nodes, :func:`skxfem.cut.snap`): no cell is cut twice, so every region
-        that meets a cut cell holds one of its nodes.  A Γ that ends inside the body
+        A region is a sign pattern taken by a node (its side of each level set,
+        ``cut.node_side``: a node on Γ takes a side too): no cell is cut twice, so
+        every region that meets a cut cell holds one of its nodes.  A Γ that ends inside the body
         (a crack: its space's ``splits`` False) splits no region and has no sign.
         """
-        signs = np.array([np.where(V.cut.psi < 0, -1, 1) for V in self.per_interface
+        signs = np.array([V.cut.node_side for V in self.per_interface
                           if V.splits]).reshape(-1, self.mesh.p.shape[1])
         patterns, node_region = np.unique(signs.T, axis=0, return_inverse=True)
         return patterns, node_region.ravel()
@@ -267,10 +267,12 @@ def constrained_dofs(V: XSpace, scene, mesh) -> tuple[np.ndarray, np.ndarray]:
     """Constrained unknowns of the X-FEM space and their values.
 
     The shifted enrichment φⱼ(H - Hⱼ) vanishes on a boundary facet that Γ
-    does not cut, so there imposing aᵢ imposes u.  On a facet that Γ cuts,
-    u = a + b(H - Hⱼ) takes both signs of H, so where a displacement acts on
-    the whole facet (it selects all the facet's vertices) the enriched dofs
-    of its components at the facet's nodes are set to zero as well.  Each
+    does not cut, so there imposing aᵢ imposes u, except at a node on Γ of the
+    other side (Hⱼ ≠ H there: a facet of Ω⁻ touching Γ at a node of Ω⁺).  On a
+    facet that Γ cuts, u = a + b(H - Hⱼ) takes both signs of H.  So where a
+    displacement acts on the whole facet (it selects all the facet's vertices)
+    the enriched dofs of its components at those nodes (all the nodes of a cut
+    facet) are set to zero as well.  Each
     displacement is taken on its own: two supports whose nodes together
     cover a facet do not constrain it.
 
@@ -287,16 +289,20 @@ def constrained_dofs(V: XSpace, scene, mesh) -> tuple[np.ndarray, np.ndarray]:
         Indices into the unknowns [a, b] (``V.N`` of them) and imposed values.
     """
     dofs, values = dirichlet(scene, mesh, V.basis)
-    psi = V.cut.psi
+    psi, node_side = V.cut.psi, V.cut.node_side
     bf = mesh.facets[:, mesh.boundary_facets()]
-    cut_bf = bf[:, (psi[bf] < 0).any(axis=0) & (psi[bf] > 0).any(axis=0)]
+    neg, plus = (psi[bf] < 0).any(axis=0), (psi[bf] > 0).any(axis=0)
+    # the nodes where H - Hⱼ does not vanish on the facet: all of a cut facet's; on
+    # an uncut one (side s) its nodes on Γ of the other side, Hⱼ = -s
+    differs = (neg & plus) | (node_side[bf] != np.where(neg, -1, 1))
     pos = np.full(V.n_std, -1)
     pos[V.enr_dofs] = np.arange(V.n_enr)
     enr = [np.zeros(0, dtype=np.int64)]
     for support_nodes, components in imposed(scene, mesh):
         selected = np.zeros(mesh.p.shape[1], dtype=bool)
         selected[support_nodes] = True
-        nodes = np.unique(cut_bf[:, selected[cut_bf].all(axis=0)])
+        whole = selected[bf].all(axis=0)
+        nodes = np.unique(bf[:, whole][differs[:, whole]])
         for comp in components:
             b = pos[V.basis.nodal_dofs[comp, nodes]]
             enr.append(V.n_std + b[b >= 0])
@@ -339,7 +345,7 @@ def far_side_fraction(mesh, cut: Cut, scalar_parts: Parts | None = None) -> np.n
         lambda basis: _signed_mass.assemble(basis, H=np.ones(basis.dx.shape)))
     j = cut.enriched  # signed is exact there only
     frac = np.zeros(mesh.p.shape[1])
-    frac[j] = 0.5 * (total[j] - np.sign(cut.psi[j]) * signed[j]) / total[j]
+    frac[j] = 0.5 * (total[j] - cut.node_side[j] * signed[j]) / total[j]
     return np.clip(frac, 0.0, 1.0)
 
 
@@ -359,7 +365,7 @@ def xfem_space(mesh, cut: Cut, order: int | None = None, sliver: float = 1e-8) -
     scalar = parts(mesh, cut, mesh.elem(), rule)
     nodes = cut.enriched[far_side_fraction(mesh, cut, scalar)[cut.enriched] >= sliver]
     enr = basis.nodal_dofs[:, nodes].T  # (nenr_nodes, dim)
-    H_node = np.repeat(np.sign(cut.psi[nodes]), mesh.dim())
+    H_node = np.repeat(cut.node_side[nodes], mesh.dim()).astype(float)
     return XSpace(mesh, cut, basis, enr.ravel(), H_node, rule, scalar)
 
 
@@ -521,7 +527,8 @@ def edge_jumps(V: XSpace, U: np.ndarray) -> np.ndarray:
 
     Along an edge (a, b) the shape functions of its two ends are the only ones
     left, and linear, so the jump -2 Σ_j φ_j b_j at the point t of the edge
-    (ψ's zero, t = ψ_a/(ψ_a - ψ_b)) needs the enriched dofs of a and b only.
+    (ψ's zero, t = ψ_a/(ψ_a - ψ_b)) needs the enriched dofs of a and b only; at a
+    vertex v on Γ (the point (v, v)), [[u]] = -2 b_v.
 
     >>> from skfem import MeshQuad1
     >>> from skxfem.cut import cut
@@ -534,7 +541,8 @@ def edge_jumps(V: XSpace, U: np.ndarray) -> np.ndarray:
     """
     cut = V.cut
     a, b = cut.edges
-    t = cut.psi[a] / (cut.psi[a] - cut.psi[b])
+    with np.errstate(invalid="ignore"):   # a vertex on Γ, (v, v): its own b
+        t = np.where(a == b, 0.0, cut.psi[a] / (cut.psi[a] - cut.psi[b]))
     bvals = np.zeros(V.n_std)
     bvals[V.enr_dofs] = U[V.n_std:]
     nodal = bvals[V.basis.nodal_dofs]  # (dim, nverts)
@@ -568,7 +576,7 @@ def from_fields(V: XSpace, minus: np.ndarray, plus: np.ndarray) -> np.ndarray:
     """
     nd = V.basis.nodal_dofs
     a, b = np.zeros(V.n_std), np.zeros(V.n_std)
-    a[nd] = np.where(V.cut.psi < 0, minus, plus)
+    a[nd] = np.where(V.cut.node_side < 0, minus, plus)
     b[nd] = 0.5 * (np.asarray(plus, float) - minus)
     return np.concatenate([a, b[V.enr_dofs]])
 

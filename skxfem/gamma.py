@@ -18,8 +18,10 @@ else changes.  Each method must meet:
 1. ``cut(mesh, label) -> Cut``: the :class:`skxfem.cut.Cut` of Γ_h on ``mesh``:
    the cut edges and their points (where the multipliers live), the interface
    facets joining them, the cut cells' sub-cells with their sides, the nodal ψ
-   as used (``cut.psi``: its sign gives each node its side), and the nodes to
-   enrich (``cut.enriched``).  Refuse, with a ValueError naming ``label``, a Γ
+   as used (``cut.psi``, 0 at the nodes on Γ), each node's side
+   (``cut.node_side``, ±1, a node on Γ too; read for a Γ that ``splits``) and
+   the nodes to enrich (``cut.enriched``).  A point at a vertex on Γ is the
+   edge (v, v), edge id -1.  Refuse, with a ValueError naming ``label``, a Γ
    that does not cross the body.  A Γ that ends inside a cell cuts that cell
    partially: its facets stop at the front, and the edges it does not cross are
    not cut edges.
@@ -141,7 +143,7 @@ class Gamma:
         return np.where(ok, n, np.nan)
 
     def nodal(self, cut: Cut) -> np.ndarray:
-        """ψ at the nodes as the solve used it (snapped off the nodes: ``cut.psi``)."""
+        """ψ at the nodes as the solve used it (0 at the nodes on Γ: ``cut.psi``)."""
         return cut.psi
 
     def rule(self, mesh, cut: Cut) -> InterfaceRule:

@@ -32,6 +32,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from .contact.interface import operators, sticking_rows
+from .cut import point_lengths
 from .enrich import mass
 from .problem import assemble
 from .scene.model import resolve
@@ -145,10 +146,10 @@ def inf_sup(scene, scaling: str = "h", law: str | None = None) -> InfSup:
                       format="csr")
     free = np.setdiff1d(np.arange(V.N), p.D)   # the solver's, enriched ones included
     # mesh size across Γ: the mean length of the cut edges (anisotropic
-    # meshes, such as one layer of prisms along x, are measured where it matters)
-    edge = np.hstack([mesh.p[:, q.cut.edges[0]] - mesh.p[:, q.cut.edges[1]]
-                      for q in p.interfaces])
-    h = float(np.mean(np.linalg.norm(edge, axis=0)))
+    # meshes, such as one layer of prisms along x, are measured where it matters;
+    # at a vertex on Γ the mean of its edges: skxfem.cut.point_lengths)
+    h = float(np.mean(np.concatenate([point_lengths(mesh, q.cut)
+                                      for q in p.interfaces])))
     B, Ps = p.B, [p.P]
     if law == "stick":
         ops = operators(p)

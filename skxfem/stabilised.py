@@ -316,7 +316,9 @@ def multiplier_space(name: str, mesh, cut: Cut, fixed=None, per_edge=None) -> Sp
     ``per_edge`` (n_edges,) bool: edges that get a multiplier each, as in the
     naive space, the stable one being built on the others (the pieces of Γ
     too small for it to hold them: :func:`skxfem.linalg.rigid.short_pieces`).
-    Default: none.
+    Default: none.  A vertex on Γ (a point (v, v), edge id -1) always gets a
+    multiplier of its own: it is no edge of the graph of algo1/algo2, and its
+    jump is its own node's enriched dof (:func:`skxfem.enrich.edge_jumps`).
     """
     if name not in SPACES:
         raise ValueError(f"space must be one of {SPACES}, got {name!r}")
@@ -325,6 +327,7 @@ def multiplier_space(name: str, mesh, cut: Cut, fixed=None, per_edge=None) -> Sp
     if own.shape != (ne,):
         raise ValueError(f"per_edge must be one bool per cut edge, shape ({ne},); "
                          f"got {own.shape}")
+    own = own | (cut.edge_ids < 0)           # a vertex on Γ: a multiplier of its own
     if fixed is None or not np.any(fixed):
         fixed = None
         sub = np.arange(ne)

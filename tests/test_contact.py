@@ -552,46 +552,74 @@ def test_tangential_dofs_that_depend_on_the_others_are_released(monkeypatch):
     assert (ops.Bn != raw.Bn).nnz == 0
 
 
-def test_a_contact_through_a_row_of_nodes_is_snapped_with_one_warning():
+def test_a_contact_through_a_row_of_nodes_is_exact_and_one_near_it_warns_once():
     """Γ through the nodes z = 0.5 of a pressed cube (ν = 0: a uniform stress), solved
-    over a load history: the nodes are snapped once (one SnapWarning for the whole
-    solve, not one per state) and the pressure is the load, p = 1, at every dof."""
+    over a load history: no warning, the pressure is the load, p = 1, at every dof to
+    round-off.  Γ 1e-12 h above them: the nodes are put on Γ once (one SnapWarning for
+    the whole solve, not one per state), the same answer."""
     import warnings
 
     from skxfem.cut import SnapWarning
 
-    s = cube(n=(2, 2, 4), law="coulomb", mu=0.5, top={"x": 0.0, "y": 0.0}, nu=0.0,
-             loads=(SurfaceLoad("zmax", pressure=1.0),))
-    with warnings.catch_warnings(record=True) as record:
-        warnings.simplefilter("always")
+    for z, warned in ((0.5, 0), (0.5 + 2.5e-13, 1)):
+        s = Scene(Box((2, 2, 4), "hex"), plane((0, 0, z), (0, 0, 1)), Material(1.0, 0.0),
+                  displacements=(clamped("zmin"), Displacement("zmax", {"x": 0.0, "y": 0.0})),
+                  loads=(SurfaceLoad("zmax", pressure=1.0),), law="coulomb", friction=0.5)
+        with warnings.catch_warnings(record=True) as record:
+            warnings.simplefilter("always")
+            res = contact.solve(s, history=(0.5, 1.0))
+        assert sum(issubclass(w.category, SnapWarning) for w in record) == warned
+        assert np.abs(res.steps[-1].pressure - 1.0).max() < 1e-13
+
+
+@pytest.mark.parametrize("cell", ["hex", "tet", "prism"])
+def test_an_inclined_contact_through_nodes_is_exact(cell):
+    """SSNV182-like (code_aster: LSN = Z + Y/2 - 15, through 66 nodes): a cube of 2 x 2
+    x 4 cells pressed by p = 1 on top (ν = 0, top held in x, y), Γ = {z + y/2 = 3/4}
+    through 9 nodes, Coulomb μ = 1 > tan θ = 1/2: it sticks, and the traction is the
+    uniform stress's, -p n_z e_z (pressure p n_z² = 0.8), within 1e-12 at every dof
+    (measured ≤ 9.3e-15 on hex, tet and prism; with Γ snapped 1e-9 h off the nodes it
+    was 1.4e-9)."""
+    import warnings
+
+    s = Scene(Box((2, 2, 4), cell), plane((0, 0.5, 0.5), (0, 0.5, 1)), Material(1.0, 0.0),
+              displacements=(clamped("zmin"), Displacement("zmax", {"x": 0.0, "y": 0.0})),
+              loads=(SurfaceLoad("zmax", pressure=1.0),), law="coulomb", friction=1.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", UserWarning)          # through the nodes: no warning
         res = contact.solve(s, history=(0.5, 1.0))
-    assert sum(issubclass(w.category, SnapWarning) for w in record) == 1
-    assert np.abs(res.steps[-1].pressure - 1.0).max() < 1e-10
+    st = res.steps[-1]
+    n = np.array([0.0, 0.5, 1.0]) / np.sqrt(1.25)
+    assert np.all(st.status == 1), "stuck"
+    assert np.abs(st.pressure - n[2] ** 2).max() < 1e-12
+    assert np.abs(res.traction - np.array([0.0, 0.0, -n[2]])[:, None]).max() < 1e-12
 
 
 def test_a_multiplier_on_a_sliver_of_gamma_is_refused_for_contact():
-    """Γ tilted, snapped 2e-10 off five nodes, the winner space on tetrahedra beside
-    rollers: the tie's u_x space has a multiplier living on slivers, which the tie sets
-    to its smoothest value; no contact law can fix it (it would be round-off over 1e-17),
-    so contact refuses, naming the cure, and the vital space equals the tie."""
+    """Γ tilted, 1e-9 above five nodes (farther than SNAP h: not put on Γ), the winner
+    space on tetrahedra beside rollers: the tie's u_x space has a multiplier living on
+    slivers, which the tie sets to its smoothest value; no contact law can fix it (it
+    would be round-off over 1e-17), so contact refuses, naming the cure, and the vital
+    space equals the tie.  Γ through the five nodes: no sliver, both spaces solve and
+    equal the tie."""
     from skxfem.scene import rollers
 
-    def scene(space):
-        return Scene(Box((4, 4, 5), "tet"), plane((0, 0, 0.5), (0, 0.2, 1)),
+    def scene(space, d):
+        return Scene(Box((4, 4, 5), "tet"), plane((0, 0, 0.5 + d), (0, 0.2, 1)),
                      Material(E=1.0, nu=0.3),
                      displacements=(clamped("zmin"), rollers("xmin"), rollers("xmax")),
                      loads=(SurfaceLoad("zmax", pressure=lambda x: 1.5 - x[1]),),
                      space=space, law="coulomb", friction=5.0)
 
-    with pytest.warns(UserWarning, match="passes within"):
-        with pytest.raises(ValueError, match=r"(?s)barely see the jump.*slivers of Γ.*"
-                                             r"use space='vital'"):
-            contact.solve(scene("winner"), linear="direct")
-        res = contact.solve(scene("vital"), linear="direct")
-        tie = solver.solve(replace(scene("vital"), law="bonded", friction=None),
+    with pytest.raises(ValueError, match=r"(?s)barely see the jump.*slivers of Γ.*"
+                                         r"use space='vital'"):
+        contact.solve(scene("winner", 1e-9), linear="direct")
+    for space, d in (("vital", 1e-9), ("vital", 0.0), ("winner", 0.0)):
+        res = contact.solve(scene(space, d), linear="direct")
+        tie = solver.solve(replace(scene(space, d), law="bonded", friction=None),
                            linear="direct")
-    assert np.all(res.steps[-1].status == 1)
-    assert rel(res.steps[-1].U, tie.U) < 1e-8 and rel(res.traction, tie.traction) < 1e-8
+        assert np.all(res.steps[-1].status == 1)
+        assert rel(res.steps[-1].U, tie.U) < 1e-8 and rel(res.traction, tie.traction) < 1e-8
 
 
 def test_a_frictionless_plate_on_rollers_is_refused_naming_the_motion():

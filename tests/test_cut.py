@@ -159,25 +159,96 @@ def test_errors_are_clear():
         cut(mesh_of("quad", 1), lambda x: (x[0] - 0.5) * (x[1] - 0.5))
 
 
+def side_volumes(m, c):
+    """(|Ω⁻_h|, |Ω⁺_h|): the uncut cells of each side and the sub-cells of the cut ones."""
+    full = Basis(m, m.elem(), quadrature=cell_rule(m, 2)).dx.sum(axis=1)
+    vol = [full[c.side == s].sum() for s in (-1, 1)]
+    if c.sub_ref.size:
+        rule = subcell_rule(c.sub_ref, c.sub_cell, 2, values=c.sub_side)
+        b = Basis(m, m.elem(), elements=rule.cells, quadrature=(rule.X, rule.W))
+        vol = [vol[0] + (b.dx * (rule.V < 0)).sum(), vol[1] + (b.dx * (rule.V > 0)).sum()]
+    return vol
+
+
 @pytest.mark.parametrize("cell", ["tri", "quad", "tet", "hex", "prism"])
-def test_a_level_set_through_nodes_is_snapped_off_them(cell):
-    """Γ through a row of nodes: those nodes move to SNAP·h on the side ψ > 0, one
-    SnapWarning gives the count and the shift, and the cut is that of ψ + SNAP·h."""
-    from skxfem.cut import SNAP, SnapWarning
+def test_a_level_set_through_nodes_is_cut_exactly(cell):
+    """Γ through mesh nodes stays there (ψ = 0, no warning).  Along a row of mesh
+    facets (z = 1/2, z = 1/4): no cell is cut, the points are the row's vertices
+    (edge id -1, edge (v, v)), the facets of Γ_h the mesh facets, area 1; across
+    the diagonals (x + z = 1: through nodes, cutting cells through them): the two
+    sides' volumes are exact, 1/2 each, to 1e-14, with no zero-measure sub-cell."""
+    import warnings
 
     m = mesh_of(cell, 4)
     dim = m.dim()
-    up = (0.0,) * (dim - 1) + (1.0,)
+    up = np.eye(dim)[-1]
+    for height in (0.5, 0.25):
+        row = np.isclose(m.p[-1], height)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")                 # no SnapWarning
+            c = cut(m, plane((0.5,) * (dim - 1) + (height,), up))
+        assert np.array_equal(c.psi[row], np.zeros(row.sum()))
+        assert c.cells.size == 0 and c.sub_ref.shape[0] == 0
+        assert np.array_equal(np.sort(c.edges[0]), np.flatnonzero(row))
+        assert np.array_equal(c.edges[0], c.edges[1]) and np.all(c.edge_ids == -1)
+        assert np.array_equal(c.points, m.p[:, c.edges[0]])
+        assert np.array_equal(np.sort(c.enriched), np.flatnonzero(row))
+        assert abs(c.measures.sum() - 1.0) < 1e-14
+        assert np.abs(c.normals - up[:, None]).max() < 1e-15
+        minus, plus = side_volumes(m, c)
+        assert abs(minus - height) < 1e-14 and abs(plus - (1 - height)) < 1e-14
+        assert np.array_equal(c.node_side, np.where(m.p[-1] < height, -1, 1))
+    n = np.r_[1.0, np.zeros(dim - 2), 1.0] / np.sqrt(2)
+    c = cut(m, plane((0.5,) * dim, n))
+    assert np.sum(c.psi == 0) == (5 if dim == 2 else 25)
+    assert np.all(c.edge_ids[c.edges[0] == c.edges[1]] == -1)
+    minus, plus = side_volumes(m, c)
+    assert abs(minus - 0.5) < 1e-14 and abs(plus - 0.5) < 1e-14
+    assert abs(c.measures.sum() - np.sqrt(2)) < 1e-14
+    assert np.abs(c.normals - n[:, None]).max() < 1e-15
+    size = np.abs(np.linalg.det(c.sub_ref[:, 1:] - c.sub_ref[:, :1]))
+    assert size.min() > 1e-3                               # no zero-measure sub-cell
+
+
+@pytest.mark.parametrize("cell", ["tri", "quad", "tet", "hex", "prism"])
+def test_a_vertex_near_gamma_is_put_on_it_with_one_warning(cell):
+    """Γ 1e-12 h from a row of nodes (within SNAP = 1e-9 h): those nodes are put on
+    Γ (ψ = 0), one SnapWarning gives the count and the shift, and the cut is that of
+    Γ through them; 1e-15 h (within ROUND_OFF = 1.4e-14 h) the same, silently."""
+    import warnings
+
+    from skxfem.cut import SnapWarning
+
+    m = mesh_of(cell, 4)
+    dim = m.dim()
+    up = np.eye(dim)[-1]
     row = np.isclose(m.p[-1], 0.5)
-    with pytest.warns(SnapWarning, match=rf"{row.sum()} mesh vertices: moved them off it by "
-                      r"up to 2\.5e-10") as record:
-        snapped = cut(m, plane((0.5,) * dim, up))
+    with pytest.warns(SnapWarning, match=rf"{row.sum()} mesh vertices \(not through them\): "
+                      r"put them on it \(psi = 0\), so Γ moves by up to 2\.5e-13") as record:
+        near = cut(m, plane((0.5,) * (dim - 1) + (0.5 + 2.5e-13,), up))
     assert sum(issubclass(w.category, SnapWarning) for w in record) == 1, "warned once"
-    assert np.allclose(snapped.psi[row], SNAP * 0.25, rtol=1e-12)
-    assert np.array_equal(snapped.psi[~row], m.p[-1][~row] - 0.5)
-    shifted = cut(m, plane((0.5,) * (dim - 1) + (0.5 - SNAP * 0.25,), up))
-    assert np.array_equal(snapped.edge_ids, shifted.edge_ids)
-    assert np.allclose(snapped.points, shifted.points, atol=1e-15)
+    on = cut(m, plane((0.5,) * dim, up))
+    assert np.array_equal(near.psi[row], np.zeros(row.sum()))
+    assert np.array_equal(near.edge_ids, on.edge_ids)
+    assert np.array_equal(near.points, on.points)
+    with warnings.catch_warnings():                        # 1e-15 h: the round-off of ψ
+        warnings.simplefilter("error")
+        rounded = cut(m, plane((0.5,) * (dim - 1) + (0.5 + 2.5e-16,), up))
+    assert np.array_equal(rounded.points, on.points)
+
+
+def test_a_quad_cut_along_its_diagonal():
+    """ψ = x - y on one quad: ψ = 0 at two corners, the cell is cut along its
+    diagonal (no edge is strictly cut): two vertex points, one facet of length √2,
+    two sides of area 1/2."""
+    from skfem import MeshQuad1
+
+    m = MeshQuad1()
+    c = cut(m, lambda x: x[0] - x[1])
+    assert c.cells.tolist() == [0] and np.all(c.edge_ids == -1)
+    assert c.facets.shape == (2, 1) and abs(c.measures[0] - np.sqrt(2)) < 1e-15
+    minus, plus = side_volumes(m, c)
+    assert abs(minus - 0.5) < 1e-15 and abs(plus - 0.5) < 1e-15
 
 
 def test_snapping_measures_distance_not_the_scale_of_psi():

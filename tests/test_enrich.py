@@ -409,3 +409,53 @@ def test_mass_integrates_linear_fields_exactly(cell):
     exact = 1 / 3 + 3 * ((1 - x0) / 3 + a / 12)
     got = U @ mass(V) @ U
     assert abs(got - exact) < 1e-13, f"∫|u|² = {got:.15g}, exact {exact:.15g}"
+
+
+# 4. Γ through mesh nodes ----------------------------------------------------------------
+
+@pytest.mark.parametrize("normal", ["along facets", "through diagonals"])
+def test_gamma_through_nodes_splits_the_space_exactly(cell, normal):
+    """Γ through mesh nodes (ψ = 0 there, :mod:`skxfem.cut`): along the facets x = 1/2
+    the enriched nodes are the nodes on Γ, each of side Ω⁺ (H_j = +1, its support split);
+    through the diagonals (x + y = 1) the nodes of the cut cells.  Either way K has
+    the rigid motions of each side as null space, nothing else, and the jump of a
+    piecewise rigid motion is exact on Γ_h and at the points (vertices on Γ too)."""
+    from skxfem.enrich import edge_jumps
+
+    dim = dim_of(cell)
+    mesh = box(4, cell)
+    n = np.r_[1.0, np.zeros(dim - 1)] if normal == "along facets" else \
+        np.r_[1.0, 1.0, np.zeros(dim - 2)] / np.sqrt(2)
+    psi = plane((0.5,) * dim, n)
+    c = cut(mesh, psi)
+    V = xfem_space(mesh, c)
+    on = np.flatnonzero(c.psi == 0)
+    assert on.size == (5 if dim == 2 else 25)
+    if normal == "along facets":
+        assert np.array_equal(c.enriched, on) and c.cells.size == 0
+    assert np.all(np.isin(on, c.enriched))
+    assert np.array_equal(c.node_side[on], np.ones(on.size, int))
+    assert np.array_equal(V.H_node, np.repeat(c.node_side[c.enriched], dim).astype(float))
+    K = stiffness(V, MATERIAL)
+    R = np.array([xfem_vector(V, r, zero) for r in rigid_motions(dim)]
+                 + [xfem_vector(V, zero, r) for r in rigid_motions(dim)]).T
+    n_rigid = 6 if dim == 2 else 12
+    scale = abs(K).max()
+    assert abs(K @ R).max() < 1e-12 * scale
+    ev = np.linalg.eigvalsh(K.toarray()) / scale
+    assert int(np.sum(np.abs(ev) < 1e-10)) == n_rigid and ev[n_rigid] > 1e-6
+    rng = np.random.default_rng(8)
+    wm, wp = rng.standard_normal((2, len(rigid_motions(dim))))
+
+    def rm(y):
+        return sum(w * r(y) for w, r in zip(wm, rigid_motions(dim)))
+
+    def rp(y):
+        return sum(w * r(y) for w, r in zip(wp, rigid_motions(dim)))
+
+    U = xfem_vector(V, rm, rp)
+    cells, ref, x = interface_points(c)
+    assert np.abs(psi(x)).max() < 1e-15
+    jump = (jump_matrix(V, cells, ref) @ U).reshape(dim, -1)
+    assert np.abs(jump - (rm(x) - rp(x))).max() < 1e-12
+    assert np.abs(edge_jumps(V, U) - (rm(c.points) - rp(c.points))).max() < 1e-12

@@ -118,6 +118,27 @@ def test_winner_nodes_lose_stability_on_tetrahedra_as_gamma_nears_a_node_row():
         f"winner nodes: β_h = {winner} for d = 0.5, 1e-2, 1e-3"
 
 
+@pytest.mark.parametrize("cell", ["tri", "tet", "hex", "prism"])
+def test_gamma_along_mesh_facets_has_one_stable_multiplier_per_node(cell):
+    """Γ along a row of mesh facets (through the nodes, exactly): every point is a
+    vertex with a multiplier of its own, so the three spaces are one, nodal on Γ, and
+    stable: β_h = 0.64, 0.43, 0.48, 0.36 (tri 8², tet, hex, prism 4³), no zero mode,
+    where the naive space on tetrahedra with Γ half a cell off the nodes has 32."""
+    from skxfem.levelset import plane
+    from skxfem.scene import Box, Scene, clamped
+
+    dim = 2 if cell == "tri" else 3
+    n = 8 if dim == 2 else 4
+    betas = []
+    for space in ("naive", "winner", "vital"):
+        scene = Scene(Box(n, cell), plane((0.5,) * dim, np.eye(dim)[-1]),
+                      displacements=(clamped("ymin" if dim == 2 else "zmin"),), space=space)
+        r = inf_sup(scene, law="bilateral")
+        assert r.n_zero == 0 and r.size == (n + 1) ** (dim - 1)
+        betas.append(r.beta)
+    assert betas[0] == betas[1] == betas[2] and betas[0] > 0.3, betas
+
+
 # ------------------------------------------ Γ meets a support (issue 7) -----------
 SUPPORTED = [3, 5, 7, 9]
 

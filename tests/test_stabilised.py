@@ -377,3 +377,30 @@ def test_per_edge_edges_get_a_multiplier_each_and_the_rest_keeps_its_space(name)
     assert np.linalg.matrix_rank(P) == S.size
     with pytest.raises(ValueError, match="per_edge must be one bool per cut edge"):
         multiplier_space(name, mesh, c, per_edge=own[:-1])
+
+
+# ---------------------------------------------------------------- Γ through nodes
+@pytest.mark.parametrize("name", ["naive", "winner", "vital"])
+def test_a_vertex_on_gamma_gets_a_multiplier_of_its_own(name):
+    """Γ through mesh nodes: a vertex point (edge id -1) takes its own column, the
+    cut edges the space built on them alone (a vertex is no edge of the graph);
+    rows sum to 1, P has full column rank.  Along the facets every point is a
+    vertex: P = I, one μ per node on Γ."""
+    from skxfem.cut import cut
+    from skxfem.levelset import plane
+    from skxfem.stabilised import multiplier_space
+
+    mesh = MeshTri1().refined(3)                         # h = 1/8
+    c = cut(mesh, plane((0.5, 0.5), (0.2, 1.0)))         # through the node (1/2, 1/2)
+    vertex = c.edge_ids < 0
+    assert vertex.sum() >= 1 and (~vertex).sum() > 3
+    S = multiplier_space(name, mesh, c)
+    P = S.P.toarray()
+    assert np.allclose(P.sum(axis=1), 1.0)
+    solo = P[vertex]
+    assert np.all(solo.max(axis=1) == 1.0) and np.all((solo != 0).sum(axis=1) == 1)
+    assert not np.any(P[~vertex][:, np.flatnonzero(solo.any(axis=0))])
+    assert np.linalg.matrix_rank(P) == S.size
+    flat = cut(mesh, plane((0.5, 0.5), (0.0, 1.0)))      # along the facets y = 1/2
+    assert np.all(flat.edge_ids == -1)
+    assert np.array_equal(multiplier_space(name, mesh, flat).P.toarray(), np.eye(9))

@@ -36,7 +36,7 @@ The scene is solved by :func:`skxfem.solve` with the scene file's ``[solver]``
 settings (``Scene.solver``) and the options given in their place, so that
 ``skxfem.solve(skxfem.load_scene(path))`` gives the same answer.  skxfem's own
 notices (:data:`NOTICES`: each retry and each cut of a contact load step, vertices
-moved off Γ) are printed as they are raised, one line ``skxfem: note: ...`` each
+put on Γ) are printed as they are raised, one line ``skxfem: note: ...`` each
 on stderr.  Other Python warnings (numpy's floating-point warnings, meshio's,
 scikit-fem's) are not printed: the summary line counts them (``--debug`` shows them), and a
 floating-point overflow in the solve refuses the result (exit 2): the numbers
@@ -189,7 +189,7 @@ def _say(text: str, stream=None):
 NOTICES = (StepRetryWarning, StepCutWarning, SnapWarning)
 """skxfem's own notices, printed as ``skxfem: note: ...`` lines on stderr as they are
 raised: a contact load step solved again by another method or cut into smaller
-increments, vertices moved off Γ."""
+increments, vertices near Γ put on it (:class:`skxfem.cut.SnapWarning`)."""
 
 
 @contextlib.contextmanager

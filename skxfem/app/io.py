@@ -29,7 +29,7 @@
   ``u⁺``).  A cut cell is thus written once per region it meets; cell data
   ``region`` (the index into ``regions``) and ``cut`` (1 on cut cells), point
   data ``levelset_0``, ``levelset_1``, ... (ψ of each interface at the nodes
-  as the solve used it, snapped off the nodes: clip a region's copy at each
+  as the solve used it, 0 at the nodes on Γ: clip a region's copy at each
   ψ = 0 to see only its own part of the cut cells).
 * Both also carry the support reactions: ``result.json``'s ``reactions``
   (:func:`reaction_summary`: ``applied``, each support's force, their ``total``),

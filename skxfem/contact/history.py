@@ -132,7 +132,7 @@ have a singular value below this fraction of the largest is refused
 (:func:`check_closed`): the tie's threshold for multipliers it leaves to the
 smoothing (:data:`skxfem.linalg.saddle.FIXED_TOL`).  Measured: the paper's plate
 ≥ 0.06 (n = 5-15, every cell and stable space); winner on tetrahedra beside the
-rollers with Γ snapped 2e-10 off nodes, 5e-17."""
+rollers with Γ 2e-10 off nodes, 5e-17."""
 
 RHO_RANGE = (1e-9, 1e12)
 """The ρ_n, ρ_τ accepted, relative to their defaults E/h."""

@@ -76,6 +76,7 @@ import scipy.sparse as sp
 from scipy.linalg import qr
 from scipy.sparse.csgraph import min_weight_full_bipartite_matching
 
+from ..cut import point_lengths
 from ..linalg.dependent import dependencies, unit_rows
 from ..multipliers import fixed_jumps
 
@@ -139,9 +140,9 @@ def operators(pb) -> Operators:
 
 
 def _edge_lengths(q) -> np.ndarray:
-    """The lengths of the cut edges of a part ``q``."""
-    e = q.cut.edges
-    return np.linalg.norm(q.mesh.p[:, e[0]] - q.mesh.p[:, e[1]], axis=0)
+    """The lengths of the cut edges of a part ``q`` (the mesh size at a vertex on Γ:
+    :func:`skxfem.cut.point_lengths`)."""
+    return point_lengths(q.mesh, q.cut)
 
 
 def part_operators(pb) -> Operators:

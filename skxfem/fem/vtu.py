@@ -56,8 +56,8 @@ def vtk_cells(mesh) -> tuple[str, np.ndarray]:
 
 def interface_levelsets(result) -> np.ndarray:
     """(n_interfaces, nverts) ψ of each interface of ``result`` at the nodes, as its
-    solve used it (:meth:`skxfem.gamma.Gamma.nodal`: the cut's ψ, snapped off the
-    nodes, :func:`skxfem.cut.snap`)."""
+    solve used it (:meth:`skxfem.gamma.Gamma.nodal`: the cut's ψ, 0 at the nodes on
+    Γ, :func:`skxfem.cut.snap`)."""
     return np.array([q.gamma.nodal(q.cut) for q in result.problem.interfaces])
 
 

@@ -214,7 +214,7 @@ def side_names(p) -> tuple[str, str]:
     boundary node (Γ encloses it; the other is then "outside Γ"), else by the sign
     of ψ."""
     boundary = np.unique(p.mesh.facets[:, p.mesh.boundary_facets()])
-    signs = set(np.sign(p.cut.psi[boundary]).tolist())
+    signs = set(np.asarray(p.cut.node_side[boundary], float).tolist())
     names = []
     for sign, sym in ((-1.0, "⁻"), (1.0, "⁺")):
         where = ("inside Γ" if sign not in signs else "outside Γ" if len(signs) == 1

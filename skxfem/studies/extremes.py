@@ -95,7 +95,7 @@ def attempt(group: str, case: str, measure: str, tolerance: float,
             run: Callable[[], float | tuple[float, str]]) -> Row:
     """Run ``run()`` (the measured value, or ``(value, note)``) into a :class:`Row`.
 
-    A :class:`~skxfem.cut.SnapWarning` (vertices on Γ moved off it) is noted.
+    A :class:`~skxfem.cut.SnapWarning` (vertices near Γ, not on it, put on it) is noted.
     A ValueError (the library's refusals: bad input, a singular or nearly
     dependent system, a scene too large) or a
     :class:`~skxfem.contact.newton.ContactConvergenceError` becomes a refused
@@ -113,7 +113,7 @@ def attempt(group: str, case: str, measure: str, tolerance: float,
                        time.perf_counter() - t0)
     value, note = out if isinstance(out, tuple) else (out, "")
     if any(issubclass(w.category, SnapWarning) for w in caught):
-        snapped = "vertices on Γ snapped off it (cut.SNAP)"
+        snapped = "vertices near Γ put on it (cut.SNAP)"
         note = "; ".join(filter(None, (note, snapped)))
     value = float(value)
     if not np.isfinite(value):

@@ -225,7 +225,7 @@ def plot_cut_2d(mesh, cut, ax=None, title: str | None = None) -> Figure:
     ax.add_collection(LineCollection(segments, colors=COLORS["gamma"], linewidths=2.0))
     ax.plot(*cut.points, "o", ms=4, mfc="#ffffff", mec=COLORS["gamma"], mew=1.2)
     for s, key in ((-1, "minus_node"), (1, "plus_node")):
-        nodes = cut.enriched[np.sign(cut.psi[cut.enriched]) == s]
+        nodes = cut.enriched[cut.node_side[cut.enriched] == s]
         ax.plot(*mesh.p[:, nodes], "s", ms=4, color=COLORS[key])
     handles = [Patch(color=COLORS["minus"], label="Ω⁻ (ψ < 0)"),
                Patch(color=COLORS["plus"], label="Ω⁺ (ψ > 0)"),
