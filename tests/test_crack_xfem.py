@@ -378,3 +378,19 @@ def test_an_inclined_crack_in_mixed_mode_gives_both_K(beta, enrichment, tol):
     0.25 % (30°); topological 0.81 %, 1.22 %; at 1/41 geometric 0.05 %, 0.08 %."""
     s, _ = williams_problem(21, (1.0, 0.5), enrichment, beta=np.radians(beta))
     assert np.allclose(s.K[0], (1.0, 0.5), atol=tol), f"K = {s.K[0]} at β = {beta}°"
+
+
+def test_rule_group_points_keep_negative_weights():
+    """RuleGroup.points drops only padding (zero weights): scikit-fem's triangle rule of
+    order 3 weighs its centroid -27/96; dropping it made ∫ 1 over a cell 1.56 its area."""
+    from skfem import MeshTri1
+
+    from skxfem.crack.assembly import rule_groups
+
+    m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+    V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    far = np.flatnonzero(m.p[:, m.t].mean(axis=1)[1] > 0.85)      # uncut, plain cells
+    G, = rule_groups(V, far, plain_order=3)
+    _, _, _, _, w = G.points()
+    assert (w < 0).any()
+    assert np.isclose(w.sum(), far.size * 0.02)                     # cells of area 1/50
