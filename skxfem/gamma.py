@@ -58,8 +58,9 @@ A law without multipliers (``free``) gives a part whose P has no column and B no
 Cut), its space :class:`CrackXSpace` (the unknowns [a, b, c] of
 :func:`skxfem.crack.space.crack_space`), its rule Gauss points on the crack pieces, its
 front the K of :func:`skxfem.crack.sif.sif` (``Result.front``, ``result.json``'s
-``front``).  Not yet: contact laws on crack faces (a multiplier space on a Γ that ends
-inside a cell), a body force with a crack, 3D fronts.
+``front``).  A 3D front (a ``MeshTet1``) is the kind :class:`skxfem.crack.kind3d.Crack3D`,
+its front K_I, K_II, K_III along it.  Not yet: contact laws on crack faces (a multiplier
+space on a Γ that ends inside a cell), a body force with a crack.
 
 >>> from skfem import MeshTri1
 >>> from skxfem.levelset import plane
@@ -81,6 +82,7 @@ from .crack.assembly import FACET_POINTS, Load, Support, stiffness, supported_do
 from .crack.assembly import _facets as check_facets
 from .crack.assembly import face_rule as face_rule_of
 from .crack.geometry import crack_geometry
+from .crack.kind3d import Crack3D
 from .crack.sif import sif
 from .crack.space import CrackSpace, crack_space, evaluation
 from .cut import Cut
@@ -374,8 +376,11 @@ def _face_jump(V, cells: np.ndarray, ref: np.ndarray) -> sp.csr_matrix:
 
 def gamma(interface: Interface) -> Gamma:
     """The :class:`Gamma` of a scene's interface, by its kind: a :class:`Crack` for an
-    interface with a ``front``, else a Γ that cuts the body through."""
+    interface with a 2D ``front``, a :class:`skxfem.crack.kind3d.Crack3D` with a 3D one,
+    else a Γ that cuts the body through."""
     if not isinstance(interface, Interface):
         raise TypeError(f"interface must be a skxfem.scene.Interface, got "
                         f"{type(interface).__name__}")
-    return Gamma(interface) if interface.front is None else Crack(interface)
+    if interface.front is None:
+        return Gamma(interface)
+    return Crack3D(interface) if interface.front.dim == 3 else Crack(interface)

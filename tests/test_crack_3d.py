@@ -165,3 +165,71 @@ def test_sif_checks_its_arguments():
     with pytest.raises(ValueError, match="radius must be"):
         sif_3d(V, np.zeros(V.N), MAT, radius=-1.0)
     assert front_points(V).shape[0] == 3
+
+
+SLAB_TOML = """
+name = "slab"
+[mesh]
+box = {n = [7, 7, 3], cell = "tet"}
+[levelset]
+expr = "z - 0.5"
+front = "x - 0.5"
+[interface]
+law = "free"
+enrichment = "topological"
+[material]
+E = 1.0
+nu = 0.3
+[[displacement]]
+boundary = "zmin"
+kind = "clamped"
+[[load]]
+boundary = "zmax"
+traction = [0.0, 0.0, 1.0]
+[solver]
+linear = "direct"
+"""
+
+
+def _slab_harness():
+    """The slab of SLAB_TOML by the 3D harness: an edge crack z = 0.5, x < 0.5 in the unit
+    cube, clamped at z = 0 and pulled at z = 1."""
+    from skxfem.crack.space3d import Load3D
+    m = MeshTet1.init_tensor(np.linspace(0, 1, 8), np.linspace(0, 1, 8), np.linspace(0, 1, 4))
+    bottom = m.facets_satisfying(lambda x: x[2] < 1e-12)
+    top = m.facets_satisfying(lambda x: x[2] > 1 - 1e-12)
+    return solve_crack_3d(m, lambda x: x[2] - 0.5, lambda x: x[0] - 0.5, MAT,
+                          [Support3D(bottom)],
+                          [Load3D(top, lambda x: np.stack([0 * x[0], 0 * x[0], 1 + 0 * x[0]]))],
+                          enrichment="topological")
+
+
+def test_a_3d_crack_scene_file_runs_through_skxfem_run_and_writes_K_III(tmp_path):
+    import json
+
+    import meshio
+
+    from skxfem.app.cli import main
+    from skxfem.scene.file import load_scene
+    from skxfem.solver import solve
+
+    path = tmp_path / "slab.toml"
+    path.write_text(SLAB_TOML)
+    assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 0
+    data = json.loads((tmp_path / "out" / "result.json").read_text())
+    (front,) = data["front"]
+    s = _slab_harness()
+    assert np.allclose(front["points"], s.points.T)
+    for k, key in enumerate(("K_I", "K_II", "K_III")):
+        assert np.allclose(front[key], s.K[:, k], rtol=1e-8, atol=1e-10), key
+    # mode I dominates: the crack opens under the pull, K_I ≈ 2.4 in the middle
+    mid = np.argmin(np.abs(np.array(front["points"])[:, 1] - 0.5))
+    assert 2.0 < front["K_I"][mid] < 3.0
+    assert abs(front["K_II"][mid]) < 0.1 * front["K_I"][mid]
+    assert abs(front["K_III"][mid]) < 0.1 * front["K_I"][mid]
+    vtu = meshio.read(tmp_path / "out" / "interface.vtu")
+    tips = vtu.cells_dict["vertex"][:, 0]
+    assert np.allclose(vtu.point_data["K_III"][tips], front["K_III"])
+    # the Python scene gives the same front
+    r = solve(load_scene(path))
+    assert np.allclose(r.front[0]["K_I"], front["K_I"], rtol=1e-10)

@@ -10,8 +10,9 @@ of a ``MeshTet1`` and are linear in each tetrahedron, so that in a cell
   are set to zero);
 * φ_h is linear on that polygon: the cell is a **front cell** if φ_h takes both signs
   (or vanishes) on it, the front crossing it along the segment {ψ_h = φ_h = 0}; a
-  **split cell** if φ_h < 0 on the whole polygon (the crack crosses it completely);
-  else the crack does not reach it (ψ_h changes sign ahead of the front).
+  **split cell** if φ_h < 0 on the whole polygon (the crack crosses it completely, or
+  runs along one of its faces: ψ_h = 0 at three nodes); else the crack does not reach
+  it (ψ_h changes sign ahead of the front).
 
 Sub-tetrahedra
 --------------
@@ -139,6 +140,17 @@ class CrackGeometry3D:
         ``face_cell`` (nface,), ``face_normal`` (3, nface) unit, into Ω⁺.
     segments : (2, 3, nseg) the front's segments [end, coordinate, segment], one per
         front cell it crosses with positive length; ``segment_cell`` (nseg,).
+
+    The fields of a :class:`skxfem.cut.Cut`, in its names, for the crack kind of Γ
+    (:mod:`skxfem.crack.kind3d`):
+
+    edge_ids : (ne,) the mesh edges (``mesh.edges``) the crack crosses strictly (ψ changes
+        sign, φ < 0 at the crossing); ``edges`` (2, ne) their nodes, ``points`` (3, ne)
+        the crossings.
+    enriched : the nodes of the split and front cells.
+    facets : (3, nface) each face's vertices as indices into ``points``, -1 for a vertex
+        that is no crossing of a cut edge (on the front, at a node, inside a cell's
+        face); ``facet_cell``, ``normals``, ``measures`` the faces' cells, normals, areas.
     """
 
     psi: np.ndarray
@@ -155,6 +167,26 @@ class CrackGeometry3D:
     face_normal: np.ndarray
     segments: np.ndarray
     segment_cell: np.ndarray
+    edge_ids: np.ndarray
+    edges: np.ndarray
+    points: np.ndarray
+    enriched: np.ndarray
+    facets: np.ndarray
+
+    @property
+    def facet_cell(self) -> np.ndarray:
+        """(nface,) the cell of each face (:class:`skxfem.cut.Cut`'s name)."""
+        return self.face_cell
+
+    @property
+    def normals(self) -> np.ndarray:
+        """(3, nface) the faces' unit normals into Ω⁺ (:class:`skxfem.cut.Cut`'s name)."""
+        return self.face_normal
+
+    @property
+    def measures(self) -> np.ndarray:
+        """(nface,) the faces' areas (:class:`skxfem.cut.Cut`'s name)."""
+        return self.face_areas()
 
     @property
     def cells(self) -> np.ndarray:
@@ -236,7 +268,9 @@ def crack_geometry_3d(mesh, psi, phi) -> CrackGeometry3D:
     if np.any(flat & ((ps < 0).any(axis=1) & (ps > 0).any(axis=1))):
         raise ValueError("phi vanishes on psi = 0 in a whole cell: the level sets must "
                          "cross (∇φ not parallel to ∇ψ) at the front")
-    crossed = (ps < 0).any(axis=1) & (ps > 0).any(axis=1)
+    # ψ_h = 0 on a part of positive area of the cell's closure: it changes sign in the
+    # cell, or vanishes on a whole face (a crack along mesh faces)
+    crossed = ((ps < 0).any(axis=1) & (ps > 0).any(axis=1)) | ((ps == 0).sum(axis=1) == 3)
     front = has & (lo <= 0) & (hi >= 0)
     split_ = crossed & (hi < 0) & ~front
     if not np.any(crossed & (lo < 0)):
@@ -284,9 +318,35 @@ def crack_geometry_3d(mesh, psi, phi) -> CrackGeometry3D:
     faces, face_cell = _faces(sub, sub_cell, sub_side, on_psi, fv, tol, gphi)
     normal = gpsi[:, face_cell] / np.linalg.norm(gpsi[:, face_cell], axis=0)
     segments, segment_cell = _segments(sub, sub_cell, on, h)
+    edge_ids, points, facets = _cut_edges(mesh, psi, phi, faces, face_cell, h)
     return CrackGeometry3D(psi, phi, front_cells, split_cells, side, sub, sub_cell,
                            sub_side, sub_front, faces, face_cell, normal, segments,
-                           segment_cell)
+                           segment_cell, edge_ids, mesh.edges[:, edge_ids], points,
+                           np.unique(t[:, cells]), facets)
+
+
+def _cut_edges(mesh, psi, phi, faces, face_cell, h):
+    """The mesh edges the crack crosses strictly, their crossings, and each face's
+    vertices as indices into them (-1: no crossing)."""
+    a, b = mesh.edges
+    strict = psi[a] * psi[b] < 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(strict, psi[a] / (psi[a] - psi[b]), 0.0)
+    ids = np.flatnonzero(strict & (phi[a] + t * (phi[b] - phi[a]) < 0))
+    points = mesh.p[:, a[ids]] + t[ids] * (mesh.p[:, b[ids]] - mesh.p[:, a[ids]])
+    index = np.full(mesh.edges.shape[1], -1)
+    index[ids] = np.arange(ids.size)
+    facets = np.full((3, face_cell.size), -1)
+    if ids.size == 0 or face_cell.size == 0:
+        return ids, points, facets
+    cand = index[mesh.t2e[:, face_cell]]                  # (6, nface)
+    for v in range(3):
+        d = np.linalg.norm(points[:, np.maximum(cand, 0)] - faces[:, v].T[:, None], axis=0)
+        d = np.where(cand >= 0, d, np.inf)
+        k = np.argmin(d, axis=0)
+        hit = d[k, np.arange(k.size)] <= 1e-9 * h[face_cell]
+        facets[v] = np.where(hit, cand[k, np.arange(k.size)], -1)
+    return ids, points, facets
 
 
 def mesh_cells(mesh, cells: np.ndarray) -> np.ndarray:

@@ -69,7 +69,8 @@ from .space3d import (
 )
 from .williams import near_tip_local
 
-__all__ = ["DEFAULT_RADIUS", "DEFAULT_LENGTH", "front_points", "front_frame", "sif_3d",
+__all__ = ["DEFAULT_RADIUS", "DEFAULT_LENGTH", "front_points", "front_frame", "front_sizes",
+           "boundary_reach", "sif_3d",
            "CrackSolution3D", "solve_crack_3d"]
 
 DEFAULT_RADIUS = 3.0
@@ -136,6 +137,35 @@ def front_frame(space, points: np.ndarray) -> TipFrame:
     return tip_frame(gphi, gpsi)
 
 
+def boundary_reach(mesh, points: np.ndarray, e3: np.ndarray, length: float) -> np.ndarray:
+    """For each front point P (3, m) with its tangent e₃ (3, m): the distance, in the plane
+    normal to the front, from P to the boundary facets within ``length`` of that plane
+    (sampled at their vertices, edge midpoints and centroids), leaving out the facets
+    nearly normal to e₃ (|n·e₃| > 0.9: the free surfaces the front ends on).  The radial
+    cone is clipped to it, so that q vanishes on the rest of the boundary.
+
+    >>> from skfem import MeshTet1
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 5),) * 3)
+    >>> boundary_reach(m, np.array([[0.5], [0.3], [0.5]]), np.array([[0.0], [0.0], [1.0]]),
+    ...                0.25).round(12).tolist()
+    [0.3]
+    """
+    from .space3d import outward_normals
+    f = mesh.boundary_facets()
+    n = outward_normals(mesh, f)
+    a, b, c = (mesh.p[:, mesh.facets[k, f]] for k in range(3))
+    samples = np.hstack([a, b, c, (a + b) / 2, (b + c) / 2, (a + c) / 2, (a + b + c) / 3])
+    normal = np.tile(n, 7)
+    out = np.empty(points.shape[1])
+    for k in range(points.shape[1]):
+        d = samples - points[:, k, None]
+        along = e3[:, k] @ d
+        radial = np.sqrt(np.maximum((d * d).sum(axis=0) - along ** 2, 0.0))
+        use = (np.abs(along) <= length) & (np.abs(e3[:, k] @ normal) <= 0.9)
+        out[k] = radial[use].min() if use.any() else np.inf
+    return out
+
+
 def _hat_integral(geo, P, e3, L):
     """∫ Λ ds along the front's segments for each point (m,)."""
     s, w = leggauss(6)
@@ -157,6 +187,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     :func:`front_points`) by the domain interaction integral (module notes).
 
     ``radius`` R of the radial cone (default :data:`DEFAULT_RADIUS` front-cell sizes),
+    clipped at each point to the distance to the boundary (:func:`boundary_reach`);
     ``length`` L the hat's half-width (default :data:`DEFAULT_LENGTH` sizes), ``plateau``
     ρ: q_r = 1 inside ρR.
     """
@@ -219,12 +250,13 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
                        np.concatenate(rs), np.hstack(grs))
     A = [np.hstack(a) for a in As]
     B = [np.concatenate(b) for b in Bs]
-    inner = plateau * R
-    qr = np.clip((R - r) / (R - inner), 0.0, 1.0)
-    dqr = np.where((r > inner) & (r < R), -1.0 / (R - inner), 0.0)
+    Rk = np.minimum(R, boundary_reach(mesh, P, frames.e3, L))
     den = _hat_integral(geo, P, frames.e3, L)
     K = np.zeros((P.shape[1], 3))
     for k in range(P.shape[1]):
+        R, inner = Rk[k], plateau * Rk[k]
+        qr = np.clip((R - r) / (R - inner), 0.0, 1.0)
+        dqr = np.where((r > inner) & (r < R), -1.0 / (R - inner), 0.0)
         s = frames.e3[:, k] @ (X - P[:, k, None])
         hat = np.clip(1 - np.abs(s) / L, 0, None)
         dhat = np.where(np.abs(s) < L, -np.sign(s) / L, 0.0)

@@ -64,8 +64,8 @@ from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
 from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
 
 __all__ = ["BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "functions_at", "evaluation",
-           "field_at", "rules", "stiffness", "Support3D", "Load3D", "traction_load",
-           "supported_dofs", "nodal_scaling", "front_distance"]
+           "field_at", "rules", "stiffness", "Support3D", "Load3D", "outward_normals",
+           "traction_load", "supported_dofs", "nodal_scaling", "front_distance"]
 
 ENRICHMENTS = ("topological", "geometric")
 
@@ -461,10 +461,30 @@ class Support3D:
 
 @dataclass(frozen=True)
 class Load3D:
-    """A traction on boundary ``facets``: ``traction(x)`` (3, n) at points x (3, n)."""
+    """A traction on boundary ``facets``: ``traction(x)`` (3, n) at points x (3, n), or
+    ``traction(x, n)`` with the facets' outward unit normals n (3, n) if ``normal``."""
 
     facets: ArrayLike
     traction: Callable
+    normal: bool | None = None
+
+
+def outward_normals(mesh, facets: np.ndarray) -> np.ndarray:
+    """(3, n) the outward unit normals of boundary facets (triangles) of a tetrahedral
+    mesh.
+
+    >>> from skfem import MeshTet1
+    >>> m = MeshTet1()
+    >>> f = m.facets_satisfying(lambda x: x[2] > 1 - 1e-12)
+    >>> outward_normals(m, f).T.tolist()
+    [[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]]
+    """
+    a, b, c = (mesh.p[:, mesh.facets[k, facets]] for k in range(3))
+    n = np.cross((b - a).T, (c - a).T).T
+    n = n / np.linalg.norm(n, axis=0)
+    centre = mesh.p[:, mesh.t[:, mesh.f2t[0, facets]]].mean(axis=1)
+    flip = ((centre - a) * n).sum(axis=0) > 0
+    return np.where(flip, -n, n) + 0.0
 
 
 def _boundary_facets(mesh, facets, name: str) -> np.ndarray:
@@ -545,7 +565,7 @@ def supported_dofs(space: CrackSpace3D, supports) -> tuple[np.ndarray, np.ndarra
 
 def facet_rule(space: CrackSpace3D, facets: np.ndarray, n: int = 4):
     """Gauss points on boundary facets split by ψ_h where the crack meets them: points
-    (3, m), weights (m,), cells (m,), sides (m,)."""
+    (3, m), weights (m,), cells (m,), sides (m,) and the facet of each point (m,)."""
     mesh, geo = space.mesh, space.geometry
     tri = np.transpose(mesh.p[:, mesh.facets[:, facets]], (2, 1, 0))   # (nf, 3, 3)
     ps = geo.psi[mesh.facets[:, facets]].T
@@ -564,7 +584,8 @@ def facet_rule(space: CrackSpace3D, facets: np.ndarray, n: int = 4):
     area2 = np.linalg.norm(np.cross(B - A, C - A), axis=1)
     wts = area2[:, None] * W[None]
     cells = np.repeat(mesh.f2t[0, owner], W.size)
-    return x.reshape(-1, 3).T, wts.ravel(), cells, np.repeat(sides, W.size)
+    return (x.reshape(-1, 3).T, wts.ravel(), cells, np.repeat(sides, W.size),
+            np.repeat(owner, W.size))
 
 
 def traction_load(space: CrackSpace3D, loads) -> np.ndarray:
@@ -582,8 +603,9 @@ def traction_load(space: CrackSpace3D, loads) -> np.ndarray:
     f = np.zeros(space.N)
     for load in loads:
         fac = _boundary_facets(space.mesh, load.facets, "a load's facets")
-        x, w, cells, side = facet_rule(space, fac)
-        t = np.asarray(load.traction(x), float)
+        x, w, cells, side, owner = facet_rule(space, fac)
+        t = (np.asarray(load.traction(x), float) if load.normal is None else
+             np.asarray(load.traction(x, outward_normals(space.mesh, owner)), float))
         if t.shape != x.shape or not np.all(np.isfinite(t)):
             raise ValueError(f"a load's traction must return finite values of shape "
                              f"{x.shape} (3, n), got {t.shape}")

@@ -309,7 +309,8 @@ class Interface:
     checks are those of a one-interface :class:`~skxfem.scene.Scene`.
 
     A crack: ``front`` a second level set φ; Γ is then {ψ = 0, φ < 0}, which ends
-    inside the body at the front {ψ = φ = 0} (2D, law ``free``: :func:`check_crack_fields`);
+    inside the body at the front {ψ = φ = 0} (2D, or 3D on tetrahedra; law ``free``:
+    :func:`check_crack_fields`);
     ``enrichment`` the tip enrichment (``"geometric"``: the nodes within a radius of
     the tip, or ``"topological"``: the tip cells'); ``sif_radius`` the interaction
     integral's radius (None: a few cells, :func:`skxfem.crack.sif.sif`).
@@ -349,10 +350,11 @@ class Interface:
 def check_crack_fields(interface: Interface) -> None:
     """Refuse a crack's ``front``, ``enrichment`` or ``sif_radius`` that no solve takes.
 
-    A front φ is a :class:`~skxfem.levelset.LevelSet` of ψ's dimension, 2D for now,
-    with law ``free`` (contact on the faces comes later); ``enrichment`` is
-    ``"geometric"`` or ``"topological"`` (:mod:`skxfem.crack.space`); ``sif_radius``
-    a positive number or None, and both only with a front.
+    A front φ is a :class:`~skxfem.levelset.LevelSet` of ψ's dimension (2D, or 3D on a
+    tetrahedral mesh: :mod:`skxfem.crack.kind3d`), with law ``free`` (contact on the
+    faces comes later); ``enrichment`` is ``"geometric"`` or ``"topological"``
+    (:mod:`skxfem.crack.space`); ``sif_radius`` a positive number or None, and both
+    only with a front.
 
     >>> from skxfem.levelset import plane
     >>> Interface(plane((0, 0.5), (0, 1)), front=plane((0.5, 0), (1, 0)))
@@ -379,8 +381,6 @@ def check_crack_fields(interface: Interface) -> None:
     if front.dim != interface.levelset.dim:
         raise ValueError(f"Interface front must have the dimension of the level set "
                          f"({interface.levelset.dim}), got {front.dim}")
-    if front.dim != 2:
-        raise ValueError("Interface front: 3D cracks are not supported yet (2D only)")
     if law != "free":
         raise ValueError(f"Interface front: contact on crack faces is not supported yet; "
                          f"a crack takes law 'free', got {law!r}")
