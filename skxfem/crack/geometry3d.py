@@ -113,10 +113,12 @@ def barycentric(mesh, cells: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.
     >>> bool(np.isclose(lam.sum(), 1.0)), bool(np.allclose(dlam.sum(axis=1), 0.0))
     (True, True)
     """
-    P = mesh.p[:, mesh.t[:, cells]]                      # (3, 4, n)
-    A = np.transpose(P[:, 1:] - P[:, :1], (2, 0, 1))     # (n, 3, 3) columns V_i - V_0
-    Ainv = np.linalg.inv(A)                               # rows: ∇λ₁..₃
-    l123 = np.einsum("nij,nj->ni", Ainv, (x - P[:, 0]).T)
+    cells = np.asarray(cells)
+    uc, inv = np.unique(cells, return_inverse=True)      # one inverse per cell
+    P = mesh.p[:, mesh.t[:, uc]]                         # (3, 4, nc)
+    A = np.transpose(P[:, 1:] - P[:, :1], (2, 0, 1))     # (nc, 3, 3) columns V_i - V_0
+    Ainv = np.linalg.inv(A)[inv.ravel()]                  # rows: ∇λ₁..₃
+    l123 = np.einsum("nij,nj->ni", Ainv, (x - P[:, 0][:, inv.ravel()]).T)
     lam = np.column_stack([1 - l123.sum(axis=1), l123])
     dlam = np.concatenate([-Ainv.sum(axis=1, keepdims=True), Ainv], axis=1)
     return lam, dlam

@@ -166,6 +166,27 @@ def boundary_reach(mesh, points: np.ndarray, e3: np.ndarray, length: float) -> n
     return out
 
 
+def _to_global(Rt: np.ndarray, T: np.ndarray) -> np.ndarray:
+    """Rᵀ T R of tensors T (3, 3, n) in per-point frames Rt (n, 3, 3): global components."""
+    out = np.matmul(np.matmul(np.swapaxes(Rt, 1, 2), np.moveaxis(T, 2, 0)), Rt)
+    return np.moveaxis(out, 0, 2)
+
+
+def _nodal_directions(space, cells: np.ndarray) -> np.ndarray:
+    """(nverts, 3) e₁ at the nodes of ``cells``: the mean of the cells' own e₁ (from
+    ∇φ_h, ∇ψ_h) around each node, unit (zero at the other nodes)."""
+    mesh, geo = space.mesh, space.geometry
+    _, dlam = barycentric(mesh, cells, mesh.p[:, mesh.t[0, cells]])
+    gph = np.einsum("nk,nki->in", geo.phi[mesh.t[:, cells]].T, dlam)
+    gps = np.einsum("nk,nki->in", geo.psi[mesh.t[:, cells]].T, dlam)
+    e1 = tip_frame(gph, gps).e1                           # (3, nc)
+    out = np.zeros((mesh.p.shape[1], 3))
+    for k in range(4):                                    # the 4 nodes of a cell
+        np.add.at(out, mesh.t[k, cells], e1.T)
+    size = np.linalg.norm(out, axis=1, keepdims=True)
+    return np.where(size > 0, out / np.where(size > 0, size, 1.0), 0.0)
+
+
 def _hat_integral(geo, P, e3, L):
     """∫ Λ ds along the front's segments for each point (m,)."""
     s, w = leggauss(6)
@@ -214,9 +235,11 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     d = np.linalg.norm(mesh.p[:, :, None] - P[:, None], axis=0).min(axis=1)
     cells = np.flatnonzero((d[mesh.t] <= reach).any(axis=0))
     lam_, mu = material.lame(3)
-    xs, ws, As, Bs, e1s, rs, grs = [], [], [[], [], []], [[], [], []], [], [], []
+    e1_nodes = _nodal_directions(space, cells)
+    xs, ws, As, Bs, Cs, e1s, rs, grs = [], [], [[], [], []], [[], [], []], [[], [], []], [], \
+        [], []
     for c, x, w, side in rules(space, cells, plain=3):
-        live = w > 0
+        live = w != 0
         cc = np.broadcast_to(c[:, None], w.shape)[live]
         X, W, S = x[live].T, w[live], side[live]
         _, gu = field_at(space, U, cc, X, S)
@@ -228,28 +251,37 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         gph = np.einsum("nk,nki->in", geo.phi[nodes], dlam)
         gps = np.einsum("nk,nki->in", geo.psi[nodes], dlam)
         fr = tip_frame(gph, gps)
+        Rt = np.transpose(fr.R, (2, 0, 1))                # (n, 3, 3), rows e₁, e₂, e₃
+        # the extension direction Q/q = e₁ₕ, the P1 interpolant of nodal e₁, and ∂ⱼe₁ₖ
+        e1 = np.einsum("nk,nki->in", lam, e1_nodes[nodes])
+        G = np.einsum("nkj,nki->jin", dlam, e1_nodes[nodes])          # [j, k, n]
         r = np.hypot(ph, ps)
         theta = np.arctan2(ps, ph)
         theta = np.where((ph < 0) & (np.sign(ps) != S), S * np.pi, theta)
         r = np.maximum(r, 1e-300)
-        du1 = np.einsum("ijn,jn->in", gu, fr.e1)
+        du1 = np.einsum("ijn,jn->in", gu, e1)
         for mode in range(3):
             aux = near_tip_local(r, theta, material, np.eye(3)[mode], dim=3)
-            agu, asig = fr.tensor_to_global(aux.grad_u), fr.tensor_to_global(aux.sigma)
+            agu, asig = _to_global(Rt, aux.grad_u), _to_global(Rt, aux.sigma)
             aeps = (agu + np.swapaxes(agu, 0, 1)) / 2
-            dua1 = np.einsum("ijn,jn->in", agu, fr.e1)
+            dua1 = np.einsum("ijn,jn->in", agu, e1)
+            work = np.einsum("ikn,ikn->n", sig, aeps)
             As[mode].append(np.einsum("in,ijn->jn", dua1, sig)
                             + np.einsum("in,ijn->jn", du1, asig))
-            Bs[mode].append(np.einsum("ikn,ikn->n", sig, aeps))
+            Bs[mode].append(work)
+            Cs[mode].append((np.einsum("ijn,ikn->jkn", sig, agu) * G).sum(axis=(0, 1))
+                            + (np.einsum("ijn,ikn->jkn", asig, gu) * G).sum(axis=(0, 1))
+                            - work * np.einsum("jjn->n", G))
         xs.append(X)
         ws.append(W)
-        e1s.append(fr.e1)
+        e1s.append(e1)
         rs.append(r)
         grs.append((ph * gph + ps * gps) / r)
     X, W, e1, r, gr = (np.hstack(xs), np.concatenate(ws), np.hstack(e1s),
                        np.concatenate(rs), np.hstack(grs))
     A = [np.hstack(a) for a in As]
     B = [np.concatenate(b) for b in Bs]
+    C = [np.concatenate(c) for c in Cs]
     Rk = np.minimum(R, boundary_reach(mesh, P, frames.e3, L))
     den = _hat_integral(geo, P, frames.e3, L)
     K = np.zeros((P.shape[1], 3))
@@ -262,7 +294,9 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         dhat = np.where(np.abs(s) < L, -np.sign(s) / L, 0.0)
         gq = hat * dqr * gr + qr * dhat * frames.e3[:, k, None]
         q1 = (gq * e1).sum(axis=0)
-        I = np.array([(W * ((A[m] * gq).sum(axis=0) - B[m] * q1)).sum() for m in range(3)])
+        q = qr * hat
+        I = np.array([(W * ((A[m] * gq).sum(axis=0) - B[m] * q1 + q * C[m])).sum()
+                      for m in range(3)])
         K[k] = sif_from_interaction(I / den[k], material, 3)
     return K
 

@@ -364,7 +364,8 @@ def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS):
 
 def _pack(pieces):
     """Pieces of cells (cell (m,), x (m, nq, 3), w (m, nq), side (m, nq)) of various nq
-    into one batch of whole cells, padded with zero weights."""
+    into batches of whole cells, each cell's points padded with zero weights up to the
+    power of 2 of its batch."""
     if not pieces:
         return []
     flat = [(c, x.reshape(-1, 3), w.ravel(), s.ravel(), np.repeat(c, w.shape[1]))
@@ -376,18 +377,25 @@ def _pack(pieces):
     order = np.argsort(owner, kind="stable")
     owner, X, W, Sd = owner[order], X[order], W[order], Sd[order]
     cells, first, counts = np.unique(owner, return_index=True, return_counts=True)
-    nq = counts.max()
     slot = np.arange(owner.size) - np.repeat(first, counts)
     row = np.repeat(np.arange(cells.size), counts)
-    x = np.zeros((cells.size, nq, 3))
-    w = np.zeros((cells.size, nq))
-    s = np.ones((cells.size, nq))
-    x[row, slot], w[row, slot], s[row, slot] = X, W, Sd
-    # padding at the points' own cell: the first point of the cell
-    pad = w == 0
-    x[pad] = np.broadcast_to(x[:, :1], x.shape)[pad]
-    s[pad] = np.broadcast_to(s[:, :1], s.shape)[pad]
-    return [(cells, x, w, s)]
+    size = 2 ** np.ceil(np.log2(counts)).astype(int)      # batches of like counts
+    out = []
+    for nq in np.unique(size):
+        pick = size == nq
+        here = pick[row]
+        new_row = np.cumsum(pick) - 1
+        x = np.zeros((pick.sum(), nq, 3))
+        w = np.zeros((pick.sum(), nq))
+        s = np.ones((pick.sum(), nq))
+        r, sl = new_row[row[here]], slot[here]
+        x[r, sl], w[r, sl], s[r, sl] = X[here], W[here], Sd[here]
+        # padding at the points' own cell: the first point of the cell
+        pad = np.arange(nq)[None, :] >= counts[pick][:, None]
+        x[pad] = np.broadcast_to(x[:, :1], x.shape)[pad]
+        s[pad] = np.broadcast_to(s[:, :1], s.shape)[pad]
+        out.append((cells[pick], x, w, s))
+    return out
 
 
 def _cell_stiffness(space, cells, x, w, side, lam_, mu):
