@@ -37,15 +37,19 @@ from __future__ import annotations
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
-__all__ = ["POLAR_POINTS", "NEAR_POINTS", "collapsed", "edge_polar", "vertex_polar",
+__all__ = ["POLAR_POINTS", "NEAR_POINTS", "VERTEX_POINTS", "collapsed", "edge_polar", "vertex_polar",
            "order_points"]
 
 POLAR_POINTS = (5, 3, 8)
 """(n_r, n_s, n_θ): Gauss points along the rays (in σ = √u), along the front and across
-the rays of :func:`edge_polar`; :func:`vertex_polar` takes (n_r, n_θ, n_θ)."""
+the rays of :func:`edge_polar`."""
 
 NEAR_POINTS = 5
-"""Points per direction of :func:`collapsed` on the cells around the front cells."""
+"""Points per direction of :func:`collapsed` on the cells around the front cells and on
+the front cells' sub-tetrahedra off the front."""
+
+VERTEX_POINTS = (4, 4)
+"""(n_r, n_θ) of :func:`vertex_polar` (its integrand is regular: r⁻¹ u² ∝ u)."""
 
 
 def _gauss01(n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -93,8 +97,8 @@ def collapsed(T: np.ndarray, n: int = NEAR_POINTS) -> tuple[np.ndarray, np.ndarr
     return _conical(T, u, s, t, w * u ** 2 * s)
 
 
-def vertex_polar(T: np.ndarray, n_r: int = POLAR_POINTS[0],
-                 n_t: int = POLAR_POINTS[2]) -> tuple[np.ndarray, np.ndarray]:
+def vertex_polar(T: np.ndarray, n_r: int = VERTEX_POINTS[0],
+                 n_t: int = VERTEX_POINTS[1]) -> tuple[np.ndarray, np.ndarray]:
     """The almost-polar rule of tetrahedra T (m, 4, 3) with vertex V₀ on the front.
 
     >>> T = np.array([[[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]])

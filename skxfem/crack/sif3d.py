@@ -233,7 +233,9 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     # the cells of every point's domain
     reach = np.hypot(R, L) + 2 * h
     d = np.linalg.norm(mesh.p[:, :, None] - P[:, None], axis=0).min(axis=1)
-    cells = np.flatnonzero((d[mesh.t] <= reach).any(axis=0))
+    radial = np.hypot(geo.phi, geo.psi)                   # r of the nodes (q_r = 0 beyond R)
+    cells = np.flatnonzero((d[mesh.t] <= reach).any(axis=0)
+                           & (radial[mesh.t] <= R + 2 * h).any(axis=0))
     lam_, mu = material.lame(3)
     e1_nodes = _nodal_directions(space, cells)
     xs, ws, As, Bs, Cs, e1s, rs, grs = [], [], [[], [], []], [[], [], []], [[], [], []], [], \

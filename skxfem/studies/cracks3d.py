@@ -20,11 +20,14 @@ h      unknowns  median K    worst   COD    notes
 0.2    10 158    0.927       0.902   0.919  direct solve, 11 s
 0.125  24 576    0.936       0.923          CG + AMG, 429 iterations
 0.1    34 950    0.964       0.949   0.971  CG + AMG, 775 iterations
+0.08   64 086    0.976       0.968   0.983  CG + AMG, 1558 iterations
 =====  ========  ==========  ======  =====  =========================
 
-(COD: the opening at ρ = 0.3 a over the exact one.)  K follows the opening, which
-converges from below as O(h) (P1 tetrahedra): the error is the discretisation's, not
-the integral's.
+(COD: the opening at ρ = 0.3 a over the exact one; times on a shared 2-core machine:
+h = 0.08 took 7 min, 5.6 of them in CG.)  K follows the opening, which converges from
+below about as O(h) (P1 tetrahedra): the error is the discretisation's, not the
+integral's.  Issue 29's targets, median within 2 % and worst point within 5 %: the worst
+point is met from h = 0.1 on, the median reaches 2.4 % at h = 0.08.
 
 >>> x = graded(0.0, 0.5, 2.0)
 >>> np.round(x, 3).tolist()
