@@ -37,8 +37,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
-__all__ = ["POLAR_POINTS", "NEAR_POINTS", "VERTEX_POINTS", "collapsed", "edge_polar", "vertex_polar",
-           "order_points"]
+__all__ = ["POLAR_POINTS", "NEAR_POINTS", "VERTEX_POINTS", "collapsed", "edge_polar",
+           "vertex_polar", "order_points"]
 
 POLAR_POINTS = (5, 3, 8)
 """(n_r, n_s, n_θ): Gauss points along the rays (in σ = √u), along the front and across
