@@ -72,8 +72,11 @@ class Crack3D:
 
     def space(self, mesh, cut, order: int | None = None):
         """The crack's space [a, b, c] (:func:`skxfem.crack.space3d.crack_space_3d` with the
-        interface's ``enrichment``); ``order`` is not used (its own rules)."""
-        return CrackXSpace3D(crack_space_3d(mesh, cut, self.interface.enrichment))
+        interface's ``enrichment`` and, if it has one, its ``enrichment_radius``);
+        ``order`` is not used (its own rules)."""
+        i = self.interface
+        radius = getattr(i, "enrichment_radius", None) if i.enrichment == "geometric" else None
+        return CrackXSpace3D(crack_space_3d(mesh, cut, i.enrichment, radius))
 
     def multipliers(self, mesh, cut, fixed=None, per_edge=None):
         """None: a crack's faces are free (law ``free``) and carry no multiplier."""
