@@ -27,8 +27,8 @@ h      unknowns  median K    worst   COD    notes
 h = 0.08 took 7 min, 5.6 of them in CG.)  K follows the opening, which converges from
 below about as O(h) (P1 tetrahedra): the error is the discretisation's, not the
 integral's, nor the far mesh's (growth 1.2 instead of 1.4 at h = 0.1, 58 410 unknowns:
-median 0.967, worst 0.952).  Issue 29's targets, median within 2 % and worst point within 5 %: the worst
-point is met from h = 0.1 on, the median reaches 2.4 % at h = 0.08.
+median 0.967, worst 0.952).  Issue 29's targets, median within 2 % and worst point
+within 5 %: the worst point is met from h = 0.1 on, the median reaches 2.4 % at h = 0.08.
 
 >>> x = graded(0.0, 0.5, 2.0)
 >>> np.round(x, 3).tolist()
