@@ -64,8 +64,9 @@ Cut), its space :class:`CrackXSpace` (the unknowns [a, b, c] of
 to the front (:func:`skxfem.crack.faces.crack_multipliers`), its rule Gauss points on
 the crack pieces with the multiplier functions there, its front the K of
 :func:`skxfem.crack.sif.sif` with the faces' traction from the multipliers
-(``Result.front``, ``result.json``'s ``front``).  Not yet: a body force with a crack,
-3D fronts.
+(``Result.front``, ``result.json``'s ``front``).  A 3D front (a ``MeshTet1``) is the
+kind :class:`skxfem.crack.kind3d.Crack3D` (law ``free``), its front K_I, K_II, K_III
+along it.  Not yet: a body force with a crack, contact on a 3D crack's faces.
 
 >>> from skfem import MeshTri1
 >>> from skxfem.levelset import plane
@@ -89,6 +90,7 @@ from .crack.assembly import face_rule as face_rule_of
 from .crack.assembly import mass as crack_mass
 from .crack.faces import crack_multipliers, face_functions, face_traction
 from .crack.geometry import crack_geometry
+from .crack.kind3d import Crack3D
 from .crack.sif import sif
 from .crack.space import CrackSpace, crack_space, evaluation
 from .cut import Cut
@@ -411,8 +413,11 @@ def _face_jump(V, cells: np.ndarray, ref: np.ndarray) -> sp.csr_matrix:
 
 def gamma(interface: Interface) -> Gamma:
     """The :class:`Gamma` of a scene's interface, by its kind: a :class:`Crack` for an
-    interface with a ``front``, else a Γ that cuts the body through."""
+    interface with a 2D ``front``, a :class:`skxfem.crack.kind3d.Crack3D` with a 3D one,
+    else a Γ that cuts the body through."""
     if not isinstance(interface, Interface):
         raise TypeError(f"interface must be a skxfem.scene.Interface, got "
                         f"{type(interface).__name__}")
-    return Gamma(interface) if interface.front is None else Crack(interface)
+    if interface.front is None:
+        return Gamma(interface)
+    return Crack3D(interface) if interface.front.dim == 3 else Crack(interface)

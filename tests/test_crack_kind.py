@@ -176,9 +176,18 @@ def test_bad_crack_inputs_are_refused_naming_the_argument(kwargs, words):
         Interface(plane((0, 0.5), (0, 1)), **kwargs)
 
 
-def test_a_3d_crack_is_refused_for_now():
-    with pytest.raises(ValueError, match="3D cracks are not supported yet"):
-        Interface(plane((0, 0, 0.5), (0, 0, 1)), law="free",
+def test_a_3d_crack_is_the_3d_kind_and_takes_tetrahedra_only():
+    from skfem import MeshHex1
+
+    from skxfem.crack.kind3d import Crack3D
+
+    g = gamma(Interface(plane((0, 0, 0.5), (0, 0, 1)), law="free",
+                        front=plane((0.5, 0, 0), (1, 0, 0))))
+    assert type(g) is Crack3D and not g.splits
+    with pytest.raises(ValueError, match="MeshTet1"):
+        g.cut(MeshHex1().refined(1), "interfaces[0]")
+    with pytest.raises(ValueError, match="a 3D crack takes law 'free', got 'frictionless'"):
+        Interface(plane((0, 0, 0.5), (0, 0, 1)), law="frictionless",
                   front=plane((0.5, 0, 0), (1, 0, 0)))
 
 

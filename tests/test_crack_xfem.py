@@ -400,3 +400,19 @@ def test_the_domain_of_one_tip_stops_halfway_to_the_other():
 
 def _up(p):
     return np.stack([0 * p[0], 1 + 0 * p[0]])
+
+
+def test_rule_group_points_keep_negative_weights():
+    """RuleGroup.points drops only padding (zero weights): scikit-fem's triangle rule of
+    order 3 weighs its centroid -27/96; dropping it made ∫ 1 over a cell 1.56 its area."""
+    from skfem import MeshTri1
+
+    from skxfem.crack.assembly import rule_groups
+
+    m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+    V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    far = np.flatnonzero(m.p[:, m.t].mean(axis=1)[1] > 0.85)      # uncut, plain cells
+    G, = rule_groups(V, far, plain_order=3)
+    _, _, _, _, w = G.points()
+    assert (w < 0).any()
+    assert np.isclose(w.sum(), far.size * 0.02)                     # cells of area 1/50

@@ -391,6 +391,7 @@ def _write_interface(result, path: Path):
     fronts = getattr(result, "front", ())   # a result-like object may have none
     if fronts:
         points, cells, data = _with_fronts(fronts, points, cells, data)
+        cells = [c for c in cells if len(c[1])]   # a crack along mesh faces: no cut point
     with quiet():
         meshio.write(path, meshio.Mesh(points, cells, point_data=data), file_format="vtu")
 

@@ -87,7 +87,7 @@ class RuleGroup:
         """The points of non-zero weight: cells (n,), reference coordinates (2, n), sides
         (n,), physical coordinates (2, n) and weights dx (n,)."""
         b = self.scalar
-        live = b.dx > 0
+        live = b.dx != 0                                  # a rule may weigh a point < 0
         cells = np.broadcast_to(b.tind[:, None], live.shape)[live]
         X = b.X if b.X.ndim == 3 else np.broadcast_to(b.X[:, None], (2,) + live.shape)
         side = self.side if self.side is not None else np.broadcast_to(

@@ -309,7 +309,8 @@ class Interface:
     checks are those of a one-interface :class:`~skxfem.scene.Scene`.
 
     A crack: ``front`` a second level set φ; Γ is then {ψ = 0, φ < 0}, which ends
-    inside the body at the front {ψ = φ = 0} (2D, any law: :func:`check_crack_fields`);
+    inside the body at the front {ψ = φ = 0} (2D, any law; 3D on tetrahedra, law
+    ``free``: :func:`check_crack_fields`);
     ``enrichment`` the tip enrichment (``"geometric"``: the nodes within a radius of
     the tip, or ``"topological"``: the tip cells'); ``enrichment_radius`` that radius
     r_e (None: :data:`skxfem.crack.space.DEFAULT_RADIUS` of the mesh's diameter);
@@ -354,9 +355,10 @@ def check_crack_fields(interface: Interface) -> None:
     """Refuse a crack's ``front``, ``enrichment``, ``enrichment_radius`` or ``sif_radius``
     that no solve takes.
 
-    A front φ is a :class:`~skxfem.levelset.LevelSet` of ψ's dimension, 2D for now,
-    with any law (``free`` faces, or a tie or contact on the faces up to the front,
-    :mod:`skxfem.crack.faces`); ``enrichment`` is ``"geometric"`` or
+    A front φ is a :class:`~skxfem.levelset.LevelSet` of ψ's dimension: 2D, with any law
+    (``free`` faces, or a tie or contact on the faces up to the front,
+    :mod:`skxfem.crack.faces`), or 3D on a tetrahedral mesh with law ``free``
+    (:mod:`skxfem.crack.kind3d`); ``enrichment`` is ``"geometric"`` or
     ``"topological"`` (:mod:`skxfem.crack.space`); ``enrichment_radius`` (geometric
     only) and ``sif_radius`` positive numbers or None, and all of them only with a
     front.
@@ -394,5 +396,7 @@ def check_crack_fields(interface: Interface) -> None:
     if front.dim != interface.levelset.dim:
         raise ValueError(f"Interface front must have the dimension of the level set "
                          f"({interface.levelset.dim}), got {front.dim}")
-    if front.dim != 2:
-        raise ValueError("Interface front: 3D cracks are not supported yet (2D only)")
+    if front.dim == 3 and interface.law != "free":
+        raise ValueError(f"Interface front: contact on the faces of a 3D crack is not "
+                         f"supported yet; a 3D crack takes law 'free', got "
+                         f"{interface.law!r}")

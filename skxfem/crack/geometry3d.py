@@ -1,0 +1,465 @@
+r"""The geometry of a 3D crack on a tetrahedral mesh: split cells, front cells, the front.
+
+The 3D twin of :mod:`skxfem.crack.geometry`.  The crack is {ψ = 0, φ < 0}, its front
+{ψ = φ = 0} (:mod:`skxfem.crack.frame`); both level sets are interpolated at the nodes
+of a ``MeshTet1`` and are linear in each tetrahedron, so that in a cell
+
+* the zero set of ψ_h is a plane polygon (a triangle or a quadrilateral), whose
+  vertices are the nodes where ψ_h = 0 and the points of the edges where ψ_h changes
+  sign (nodal values within :data:`~skxfem.crack.geometry.ZERO` edge lengths of zero
+  are set to zero);
+* φ_h is linear on that polygon: the cell is a **front cell** if φ_h takes both signs
+  (or vanishes) on it, the front crossing it along the segment {ψ_h = φ_h = 0}; a
+  **split cell** if φ_h < 0 on the whole polygon (the crack crosses it completely, or
+  runs along one of its faces: ψ_h = 0 at three nodes); else the crack does not reach
+  it (ψ_h changes sign ahead of the front).
+
+Sub-tetrahedra
+--------------
+Split and front cells are split by ψ_h (:func:`skxfem.fem.simplex.split`), the
+sub-tetrahedra of front cells once more by φ_h, so that each holds one sign of ψ_h
+and (in front cells) one of φ_h.  Such a sub-tetrahedron lies in a quarter wedge
+around the front, which it therefore meets along one of its edges, at one vertex, or
+not at all: ``sub_front`` counts its vertices on the front (2, 1, 0), which come first
+in its vertex order (for the almost-polar rules of :mod:`skxfem.crack.quadrature3d`).
+The crack's faces are the faces of the sub-tetrahedra of Ω⁻ on {ψ_h = 0} where
+φ_h ≤ 0 (``faces``).
+
+The front
+---------
+In each front cell the front is a segment; the segments of the cells are chained
+into polylines (:func:`front_chains`): one open chain for a front that ends on the
+boundary (a through-thickness front), a closed one for a penny.
+
+>>> from skfem import MeshTet1
+>>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 4),) * 2, np.linspace(0, 1, 3))
+>>> g = crack_geometry_3d(m, lambda x: x[1] - 0.5, lambda x: x[0] - 0.5)
+>>> chains = front_chains(g)
+>>> len(chains), np.round(chains[0][0][2], 12).tolist()   # x = y = 0.5, z from 0 to 1
+(1, [0.0, 0.25, 0.5, 0.75, 1.0])
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from skfem import MeshTet1
+
+from ..fem.simplex import split
+from ..levelset import nodal_values
+from .geometry import ZERO
+
+__all__ = ["CrackGeometry3D", "crack_geometry_3d", "check_mesh_3d", "front_chains",
+           "barycentric", "VOLUME_TOL"]
+
+VOLUME_TOL = 1e-12
+"""Sub-tetrahedra below VOLUME_TOL times their cell's volume are dropped (zero-volume
+pieces of a level set through a node or along an edge)."""
+
+_EDGES = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
+
+
+def check_mesh_3d(mesh, name: str = "mesh"):
+    """``mesh`` if it is a ``MeshTet1``, else a ValueError naming ``name``.
+
+    >>> check_mesh_3d(MeshTet1()).nelements
+    5
+    """
+    if not isinstance(mesh, MeshTet1):
+        dim = getattr(mesh, "dim", lambda: "?")()
+        raise ValueError(f"{name} must be a MeshTet1 (3D cracks take linear tetrahedra), "
+                         f"got a {dim}D {type(mesh).__name__}")
+    return mesh
+
+
+def nodal_level_set(name: str, value, mesh) -> np.ndarray:
+    """Nodal values of a level set ``value`` (callable or one value per node), checked,
+    with values within :data:`~skxfem.crack.geometry.ZERO` edge lengths of zero set to
+    zero.
+
+    >>> m = MeshTet1()
+    >>> bool(np.allclose(nodal_level_set("psi", lambda x: x[2] - 0.5, m), m.p[2] - 0.5))
+    True
+    """
+    if callable(value):
+        try:
+            v = nodal_values(value, mesh)
+        except ValueError as err:
+            raise ValueError(f"{name}: {err}") from None
+    else:
+        v = np.asarray(value)
+        if v.dtype.kind not in "iuf" or v.shape != (mesh.p.shape[1],):
+            raise ValueError(f"{name} must be a callable or one real value per mesh node, "
+                             f"shape ({mesh.p.shape[1]},); got {v.dtype} of shape {v.shape}")
+        v = v.astype(float)
+    if not np.all(np.isfinite(v)):
+        raise ValueError(f"{name} holds {int((~np.isfinite(v)).sum())} NaN or infinite "
+                         f"nodal value(s); it must be finite at every node")
+    a, b = mesh.edges
+    length = np.linalg.norm(mesh.p[:, a] - mesh.p[:, b], axis=0)
+    slope = np.abs(v[a] - v[b]) / length
+    g, h = np.zeros(v.size), np.full(v.size, np.inf)
+    for end in (a, b):
+        np.maximum.at(g, end, slope)
+        np.minimum.at(h, end, length)
+    return np.where(np.abs(v) <= ZERO * h * g, 0.0, v)
+
+
+def barycentric(mesh, cells: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Barycentric coordinates λ (n, 4) of points x (3, n) in their ``cells`` (n,) and
+    the gradients ∇λ (n, 4, 3): the P1 shape functions and their gradients.
+
+    >>> lam, dlam = barycentric(MeshTet1(), np.array([0]), np.array([[0.1], [0.2], [0.3]]))
+    >>> bool(np.isclose(lam.sum(), 1.0)), bool(np.allclose(dlam.sum(axis=1), 0.0))
+    (True, True)
+    """
+    cells = np.asarray(cells)
+    uc, inv = np.unique(cells, return_inverse=True)      # one inverse per cell
+    P = mesh.p[:, mesh.t[:, uc]]                         # (3, 4, nc)
+    A = np.transpose(P[:, 1:] - P[:, :1], (2, 0, 1))     # (nc, 3, 3) columns V_i - V_0
+    Ainv = np.linalg.inv(A)[inv.ravel()]                  # rows: ∇λ₁..₃
+    l123 = np.einsum("nij,nj->ni", Ainv, (x - P[:, 0][:, inv.ravel()]).T)
+    lam = np.column_stack([1 - l123.sum(axis=1), l123])
+    dlam = np.concatenate([-Ainv.sum(axis=1, keepdims=True), Ainv], axis=1)
+    return lam, dlam
+
+
+@dataclass(frozen=True)
+class CrackGeometry3D:
+    """A 3D crack {ψ = 0, φ < 0} on a ``MeshTet1`` (module notes).
+
+    Attributes
+    ----------
+    psi, phi : (nverts,) the nodal level sets as used (near-zero values set to 0).
+    front_cells : (nf,) the cells whose closure meets the front.
+    split_cells : (ns,) the other cells the crack crosses completely.
+    side : (ncells,) -1 / +1 for cells of one side (the sign of the mean nodal ψ), 0 for
+        split and front cells.
+    sub : (nsub, 4, 3) sub-tetrahedra of the split and front cells, physical
+        coordinates; ``sub_cell`` (nsub,), ``sub_side`` (nsub,) ±1; ``sub_front``
+        (nsub,) how many of its vertices lie on the front (they come first).
+    faces : (nface, 3, 3) the crack's faces: triangles of {ψ_h = 0, φ_h ≤ 0};
+        ``face_cell`` (nface,), ``face_normal`` (3, nface) unit, into Ω⁺.
+    segments : (2, 3, nseg) the front's segments [end, coordinate, segment], one per
+        front cell it crosses with positive length; ``segment_cell`` (nseg,).
+
+    The fields of a :class:`skxfem.cut.Cut`, in its names, for the crack kind of Γ
+    (:mod:`skxfem.crack.kind3d`):
+
+    edge_ids : (ne,) the mesh edges (``mesh.edges``) the crack crosses strictly (ψ changes
+        sign, φ < 0 at the crossing); ``edges`` (2, ne) their nodes, ``points`` (3, ne)
+        the crossings.
+    enriched : the nodes of the split and front cells.
+    facets : (3, nface) each face's vertices as indices into ``points``, -1 for a vertex
+        that is no crossing of a cut edge (on the front, at a node, inside a cell's
+        face); ``facet_cell``, ``normals``, ``measures`` the faces' cells, normals, areas.
+    """
+
+    psi: np.ndarray
+    phi: np.ndarray
+    front_cells: np.ndarray
+    split_cells: np.ndarray
+    side: np.ndarray
+    sub: np.ndarray
+    sub_cell: np.ndarray
+    sub_side: np.ndarray
+    sub_front: np.ndarray
+    faces: np.ndarray
+    face_cell: np.ndarray
+    face_normal: np.ndarray
+    segments: np.ndarray
+    segment_cell: np.ndarray
+    edge_ids: np.ndarray
+    edges: np.ndarray
+    points: np.ndarray
+    enriched: np.ndarray
+    facets: np.ndarray
+
+    @property
+    def facet_cell(self) -> np.ndarray:
+        """(nface,) the cell of each face (:class:`skxfem.cut.Cut`'s name)."""
+        return self.face_cell
+
+    @property
+    def normals(self) -> np.ndarray:
+        """(3, nface) the faces' unit normals into Ω⁺ (:class:`skxfem.cut.Cut`'s name)."""
+        return self.face_normal
+
+    @property
+    def measures(self) -> np.ndarray:
+        """(nface,) the faces' areas (:class:`skxfem.cut.Cut`'s name)."""
+        return self.face_areas()
+
+    @property
+    def cells(self) -> np.ndarray:
+        """Split and front cells, sorted: the cells integrated on sub-tetrahedra."""
+        return np.union1d(self.split_cells, self.front_cells)
+
+    @property
+    def tip_cells(self) -> np.ndarray:
+        """The front cells (the 2D name: :class:`skxfem.crack.geometry.CrackGeometry`)."""
+        return self.front_cells
+
+    def face_areas(self) -> np.ndarray:
+        """(nface,) the areas of the crack's faces."""
+        F = self.faces
+        return 0.5 * np.linalg.norm(np.cross(F[:, 1] - F[:, 0], F[:, 2] - F[:, 0]), axis=1)
+
+
+def _polygon_phi(ps, ph):
+    """min and max of φ_h on the polygon {ψ_h = 0} of each cell (ps, ph (n, 4)), and
+    whether it has one."""
+    vals = [np.where(ps[:, i] == 0, ph[:, i], np.nan) for i in range(4)]
+    for a, b in _EDGES:
+        strict = ps[:, a] * ps[:, b] < 0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = np.where(strict, ps[:, a] / (ps[:, a] - ps[:, b]), 0.0)
+        vals.append(np.where(strict, ph[:, a] + t * (ph[:, b] - ph[:, a]), np.nan))
+    V = np.stack(vals, axis=1)
+    has = ~np.isnan(V).all(axis=1)
+    with np.errstate(all="ignore"):
+        lo = np.where(has, np.nanmin(np.where(has[:, None], V, 0.0), axis=1), np.nan)
+        hi = np.where(has, np.nanmax(np.where(has[:, None], V, 0.0), axis=1), np.nan)
+    return lo, hi, has
+
+
+def _values_at(mesh, cells, X, nodal):
+    """A P1 nodal field at the vertices of sub-tetrahedra X (m, 4, 3) of ``cells`` (m,)."""
+    m = X.shape[0]
+    lam, _ = barycentric(mesh, np.repeat(cells, 4), X.reshape(-1, 3).T)
+    return (lam * nodal[mesh.t[:, np.repeat(cells, 4)]].T).sum(axis=1).reshape(m, 4)
+
+
+def _volumes(X):
+    d = X[:, 1:] - X[:, :1]
+    return np.abs(np.linalg.det(d)) / 6
+
+
+def crack_geometry_3d(mesh, psi, phi) -> CrackGeometry3D:
+    """The :class:`CrackGeometry3D` of the crack {ψ = 0, φ < 0} on a tetrahedral mesh.
+
+    Parameters
+    ----------
+    mesh : a ``MeshTet1``.
+    psi : the level set of the crack's surface (callable or nodal values), Ω⁺ = {ψ > 0}.
+    phi : the level set of the front (callable or nodal values), φ > 0 ahead.
+
+    Raises
+    ------
+    ValueError
+        A mesh that is not a MeshTet1 (``mesh``), NaN level sets (``psi``, ``phi``), a
+        crack that meets no cell or has no front inside the body (``psi``, ``phi``), φ ≡ 0
+        on ψ = 0 in a cell (``phi``).
+
+    Examples
+    --------
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 4),) * 2, np.linspace(0, 1, 3))
+    >>> g = crack_geometry_3d(m, lambda x: x[1] - 0.5, lambda x: x[0] - 0.5)
+    >>> bool(np.isclose(g.face_areas().sum(), 0.5)), int(g.front_cells.size) > 0
+    (True, True)
+    """
+    check_mesh_3d(mesh)
+    psi = nodal_level_set("psi", psi, mesh)
+    phi = nodal_level_set("phi", phi, mesh)
+    t = mesh.t
+    ps, ph = psi[t].T, phi[t].T                           # (nc, 4)
+    if np.any((ps == 0).all(axis=1)):
+        raise ValueError("psi vanishes on a whole cell: it must be zero on a surface only")
+    lo, hi, has = _polygon_phi(ps, ph)
+    flat = has & (lo == 0) & (hi == 0) & ((ps == 0).sum(axis=1) < 3)
+    if np.any(flat & ((ps < 0).any(axis=1) & (ps > 0).any(axis=1))):
+        raise ValueError("phi vanishes on psi = 0 in a whole cell: the level sets must "
+                         "cross (∇φ not parallel to ∇ψ) at the front")
+    # ψ_h = 0 on a part of positive area of the cell's closure: it changes sign in the
+    # cell, or vanishes on a whole face (a crack along mesh faces)
+    crossed = ((ps < 0).any(axis=1) & (ps > 0).any(axis=1)) | ((ps == 0).sum(axis=1) == 3)
+    front = has & (lo <= 0) & (hi >= 0)
+    split_ = crossed & (hi < 0) & ~front
+    if not np.any(crossed & (lo < 0)):
+        raise ValueError(f"the crack {{psi = 0, phi < 0}} crosses no cell of the mesh (psi in "
+                         f"[{psi.min():.3g}, {psi.max():.3g}], phi in [{phi.min():.3g}, "
+                         f"{phi.max():.3g}] at the nodes): check psi and phi")
+    if not np.any(front):
+        raise ValueError("phi < 0 all over psi = 0 in the mesh: the crack has no front "
+                         "inside the body (a surface that cuts the body through is an "
+                         "interface of skxfem.cut)")
+    front_cells, split_cells = np.flatnonzero(front), np.flatnonzero(split_)
+    side = np.where(ps.mean(axis=1) < 0, -1, 1)
+    side[front_cells] = 0
+    side[split_cells] = 0
+
+    cells = np.union1d(split_cells, front_cells)
+    P = np.transpose(mesh.p[:, t[:, cells]], (2, 1, 0))   # (n, 4, 3)
+    sub, parent, sub_side = split(P, ps[cells])
+    sub_cell = cells[parent]
+    vol = _volumes(P)
+    keep = _volumes(sub) > VOLUME_TOL * vol[parent]
+    sub, sub_cell, sub_side = sub[keep], sub_cell[keep], sub_side[keep]
+    in_front = front[sub_cell]
+    fs = _values_at(mesh, sub_cell[in_front], sub[in_front], phi)
+    sub2, parent2, _ = split(sub[in_front], fs)
+    c2 = sub_cell[in_front][parent2]
+    keep2 = _volumes(sub2) > VOLUME_TOL * _volumes(mesh_cells(mesh, c2))
+    sub = np.concatenate([sub[~in_front], sub2[keep2]])
+    sub_side = np.concatenate([sub_side[~in_front], sub_side[in_front][parent2][keep2]])
+    sub_cell = np.concatenate([sub_cell[~in_front], c2[keep2]])
+
+    # the vertices on the front first, counted
+    h = np.ptp(mesh.p[:, t], axis=1).max(axis=0)          # (nc,) cell sizes
+    pv, fv = _values_at(mesh, sub_cell, sub, psi), _values_at(mesh, sub_cell, sub, phi)
+    gpsi, gphi = _gradients(mesh, psi), _gradients(mesh, phi)
+    tol = 1e-9 * h[sub_cell][:, None]
+    on_psi = np.abs(pv) <= tol * np.linalg.norm(gpsi[:, sub_cell], axis=0)[:, None]
+    on_phi = np.abs(fv) <= tol * np.linalg.norm(gphi[:, sub_cell], axis=0)[:, None]
+    on = on_psi & on_phi & front[sub_cell][:, None]
+    order = np.argsort(~on, axis=1, kind="stable")
+    sub = np.take_along_axis(sub, order[:, :, None], axis=1)
+    on_psi, fv, on = (np.take_along_axis(a, order, axis=1) for a in (on_psi, fv, on))
+    sub_front = np.minimum(on.sum(axis=1), 2)
+
+    faces, face_cell = _faces(sub, sub_cell, sub_side, on_psi, fv, tol, gphi)
+    normal = gpsi[:, face_cell] / np.linalg.norm(gpsi[:, face_cell], axis=0)
+    segments, segment_cell = _segments(sub, sub_cell, on, h)
+    edge_ids, points, facets = _cut_edges(mesh, psi, phi, faces, face_cell, h)
+    return CrackGeometry3D(psi, phi, front_cells, split_cells, side, sub, sub_cell,
+                           sub_side, sub_front, faces, face_cell, normal, segments,
+                           segment_cell, edge_ids, mesh.edges[:, edge_ids], points,
+                           np.unique(t[:, cells]), facets)
+
+
+def _cut_edges(mesh, psi, phi, faces, face_cell, h):
+    """The mesh edges the crack crosses strictly, their crossings, and each face's
+    vertices as indices into them (-1: no crossing)."""
+    a, b = mesh.edges
+    strict = psi[a] * psi[b] < 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(strict, psi[a] / (psi[a] - psi[b]), 0.0)
+    ids = np.flatnonzero(strict & (phi[a] + t * (phi[b] - phi[a]) < 0))
+    points = mesh.p[:, a[ids]] + t[ids] * (mesh.p[:, b[ids]] - mesh.p[:, a[ids]])
+    index = np.full(mesh.edges.shape[1], -1)
+    index[ids] = np.arange(ids.size)
+    facets = np.full((3, face_cell.size), -1)
+    if ids.size == 0 or face_cell.size == 0:
+        return ids, points, facets
+    cand = index[mesh.t2e[:, face_cell]]                  # (6, nface)
+    for v in range(3):
+        d = np.linalg.norm(points[:, np.maximum(cand, 0)] - faces[:, v].T[:, None], axis=0)
+        d = np.where(cand >= 0, d, np.inf)
+        k = np.argmin(d, axis=0)
+        hit = d[k, np.arange(k.size)] <= 1e-9 * h[face_cell]
+        facets[v] = np.where(hit, cand[k, np.arange(k.size)], -1)
+    return ids, points, facets
+
+
+def mesh_cells(mesh, cells: np.ndarray) -> np.ndarray:
+    """The tetrahedra (n, 4, 3) of ``cells``."""
+    return np.transpose(mesh.p[:, mesh.t[:, cells]], (2, 1, 0))
+
+
+def _gradients(mesh, nodal: np.ndarray) -> np.ndarray:
+    """∇ of the P1 interpolant of ``nodal`` in each cell, (3, ncells)."""
+    cells = np.arange(mesh.t.shape[1])
+    _, dlam = barycentric(mesh, cells, mesh.p[:, mesh.t[0]])
+    return np.einsum("nk,nki->in", nodal[mesh.t].T, dlam)
+
+
+def _faces(sub, sub_cell, sub_side, on_psi, fv, tol, gphi):
+    """The faces of the Ω⁻ sub-tetrahedra lying on ψ_h = 0 with φ_h ≤ 0 there."""
+    out, cell = [], []
+    minus = sub_side < 0
+    for drop in range(4):                                 # the face opposite each vertex
+        keep = [i for i in range(4) if i != drop]
+        on = on_psi[:, keep].all(axis=1) & minus
+        behind = (fv[:, keep] <= tol[:, :1] * np.linalg.norm(gphi[:, sub_cell], axis=0)[:, None]
+                  ).all(axis=1)
+        pick = on & behind
+        out.append(sub[pick][:, keep])
+        cell.append(sub_cell[pick])
+    F, c = np.concatenate(out), np.concatenate(cell)
+    area = 0.5 * np.linalg.norm(np.cross(F[:, 1] - F[:, 0], F[:, 2] - F[:, 0]), axis=1)
+    big = area > 0 if area.size == 0 else area > 1e-12 * area.max()
+    return F[big], c[big]
+
+
+def _segments(sub, sub_cell, on, h):
+    """The front segment of each front cell: the two farthest front vertices of its
+    sub-tetrahedra (the front is straight in a cell)."""
+    with2 = on.sum(axis=1) >= 2
+    A, B, c = sub[with2, 0], sub[with2, 1], sub_cell[with2]
+    segs, cells = [], []
+    for cell in np.unique(c):                             # the few front cells
+        pts = np.concatenate([A[c == cell], B[c == cell]])
+        d = np.linalg.norm(pts[:, None] - pts[None], axis=2)
+        i, j = np.unravel_index(np.argmax(d), d.shape)
+        if d[i, j] > 1e-9 * h[cell]:
+            segs.append(np.stack([pts[i], pts[j]]))
+            cells.append(cell)
+    if not segs:
+        return np.zeros((2, 3, 0)), np.zeros(0, int)
+    segs, cells = np.array(segs), np.array(cells)
+    # a segment along a face shared by two front cells counts once
+    scale = 1e-7 * np.ptp(segs.reshape(-1, 3), axis=0).max()
+    key = np.round(segs / scale).astype(np.int64)           # (nseg, 2, 3)
+    lo = np.where(_less(key[:, 0], key[:, 1])[:, None], key[:, 0], key[:, 1])
+    hi = np.where(_less(key[:, 0], key[:, 1])[:, None], key[:, 1], key[:, 0])
+    _, keep = np.unique(np.hstack([lo, hi]), axis=0, return_index=True)
+    keep = np.sort(keep)
+    return np.transpose(segs[keep], (1, 2, 0)), cells[keep]
+
+
+def _less(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise lexicographic a < b for integer rows (n, 3)."""
+    out = np.zeros(a.shape[0], dtype=bool)
+    decided = np.zeros(a.shape[0], dtype=bool)
+    for k in range(a.shape[1]):
+        out |= ~decided & (a[:, k] < b[:, k])
+        decided |= a[:, k] != b[:, k]
+    return out
+
+
+def front_chains(geometry: CrackGeometry3D) -> list[tuple[np.ndarray, bool]]:
+    """The front as polylines: a list of (points (3, m), closed), the segments of the
+    front cells chained end to end (a segment shared by two cells, along their common
+    face, counts once).
+
+    >>> from skfem import MeshTet1
+    >>> m = MeshTet1.init_tensor(*(np.linspace(-1, 1, 9),) * 3)
+    >>> g = crack_geometry_3d(m, lambda x: x[2] - 0.01,
+    ...                       lambda x: np.sqrt(x[0] ** 2 + x[1] ** 2) - 0.6)
+    >>> [(c[1], c[0].shape[1] > 8) for c in front_chains(g)]      # a closed loop
+    [(True, True)]
+    """
+    S = geometry.segments
+    if S.shape[2] == 0:
+        return []
+    pts = np.concatenate([S[0].T, S[1].T])                # (2 nseg, 3)
+    scale = np.ptp(pts, axis=0).max() or 1.0
+    key = np.round(pts / (1e-7 * scale)).astype(np.int64)
+    _, ids = np.unique(key, axis=0, return_inverse=True)
+    ids = ids.ravel()
+    n = S.shape[2]
+    a, b = ids[:n], ids[n:]
+    edges = {tuple(sorted(e)) for e in zip(a.tolist(), b.tolist()) if e[0] != e[1]}
+    where = {}
+    for i, j in edges:
+        where.setdefault(i, []).append(j)
+        where.setdefault(j, []).append(i)
+    coords = np.zeros((ids.max() + 1, 3))
+    coords[ids] = pts
+    seen, chains = set(), []
+    starts = [v for v, nb in where.items() if len(nb) == 1] + list(where)
+    for s in starts:                                      # ends first, then loops
+        if s in seen:
+            continue
+        chain, prev, cur = [s], None, s
+        seen.add(s)
+        while True:
+            nxt = [v for v in where[cur] if v != prev and v not in seen]
+            if not nxt:
+                break
+            prev, cur = cur, nxt[0]
+            chain.append(cur)
+            seen.add(cur)
+        closed = len(chain) > 2 and s in where[cur] and len(where[s]) == 2
+        chains.append((coords[chain].T.copy(), closed))
+    return chains

@@ -1,0 +1,235 @@
+r"""The 3D crack kind of Γ: a crack with a front on a tetrahedral mesh, for the scene.
+
+The objects :func:`skxfem.gamma.gamma` returns for an interface with a 3D ``front``:
+:class:`Crack3D`, with the methods of the contract of :mod:`skxfem.gamma`, and its space
+:class:`CrackXSpace3D`, with the methods :func:`skxfem.enrich.stiffness`,
+:func:`skxfem.problem.assemble` and :meth:`skxfem.enrich.XSpaces.regions` ask every space.
+They wrap the modules of the 3D crack (:mod:`~skxfem.crack.geometry3d`,
+:mod:`~skxfem.crack.space3d`, :mod:`~skxfem.crack.sif3d`) as :class:`skxfem.gamma.Crack`
+wraps the 2D ones.  Law ``free`` only; no body force; the front's ``K_I``, ``K_II``,
+``K_III`` at :func:`~skxfem.crack.sif3d.front_points` (``result.json``'s ``front``).
+
+>>> from skfem import MeshTet1
+>>> from skxfem.levelset import plane
+>>> from skxfem.scene import Interface
+>>> i = Interface(plane((0, 0.5, 0), (0, 1, 0)), law="free",
+...               front=plane((0.5, 0, 0), (1, 0, 0)))
+>>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 6),) * 2, np.linspace(0, 1, 3))
+>>> g = Crack3D(i)
+>>> c = g.cut(m, "")
+>>> V = g.space(m, c)
+>>> V.N == V.n_std + V.n_enr, g.normals(c)[:, 0].tolist()
+(True, [0.0, 1.0, 0.0])
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.polynomial.legendre import leggauss
+from skfem import Basis, ElementTetP1, ElementVector
+
+from ..fem.material import Material
+from ..fem.quadrature import cell_rule
+from ..levelset import unit
+from ..multipliers import InterfaceRule
+from ..scene.boundary import _values, imposed
+from .geometry3d import barycentric, crack_geometry_3d
+from .sif3d import front_points, sif_3d
+from .space3d import (
+    CrackSpace3D,
+    Load3D,
+    Support3D,
+    crack_space_3d,
+    evaluation,
+    stiffness,
+    supported_dofs,
+    traction_load,
+)
+
+__all__ = ["Crack3D", "CrackXSpace3D"]
+
+
+@dataclass(frozen=True)
+class Crack3D:
+    """A 3D crack: Γ = {ψ = 0, φ < 0} on a ``MeshTet1``, φ the interface's ``front``
+    (module notes; the contract's methods in :mod:`skxfem.gamma`)."""
+
+    interface: object
+    splits = False
+    """A crack ends inside the body: it splits no region."""
+
+    def cut(self, mesh, label: str = ""):
+        """The crack's geometry (:func:`skxfem.crack.geometry3d.crack_geometry_3d`); a
+        ValueError naming ``label`` if it crosses no cell."""
+        i = self.interface
+        try:
+            return crack_geometry_3d(mesh, i.levelset.fun, i.front.fun)
+        except ValueError as err:
+            raise ValueError(f"{label or 'the crack'} ({i.levelset.name!r}, front "
+                             f"{i.front.name!r}): {err}") from None
+
+    def space(self, mesh, cut, order: int | None = None):
+        """The crack's space [a, b, c] (:func:`skxfem.crack.space3d.crack_space_3d` with the
+        interface's ``enrichment`` and, if it has one, its ``enrichment_radius``);
+        ``order`` is not used (its own rules)."""
+        i = self.interface
+        radius = getattr(i, "enrichment_radius", None) if i.enrichment == "geometric" else None
+        return CrackXSpace3D(crack_space_3d(mesh, cut, i.enrichment, radius))
+
+    def multipliers(self, mesh, cut, fixed=None, per_edge=None):
+        """None: a crack's faces are free (law ``free``) and carry no multiplier."""
+        raise ValueError("a crack's faces take law 'free': contact on crack faces is not "
+                         "supported yet, so it has no multiplier space")
+
+    def normals_at(self, points: np.ndarray) -> np.ndarray:
+        """∇ψ/|∇ψ| (3, n) at ``points`` on Γ."""
+        n = np.asarray(self.interface.levelset.gradient(points), float)
+        return unit(n)[0]
+
+    def normals(self, cut) -> np.ndarray:
+        """∇ψ/|∇ψ| (3, n) at the crack's cut points."""
+        return self.normals_at(cut.points)
+
+    def nodal(self, cut) -> np.ndarray:
+        """ψ at the nodes as the solve used it."""
+        return cut.psi
+
+    def rule(self, mesh, cut) -> InterfaceRule:
+        """Gauss points (16 per face) on the crack's faces, their normals; no multiplier
+        functions."""
+        s, w = leggauss(4)
+        s, w = (s + 1) / 2, w / 2
+        U, V = (a.ravel() for a in np.meshgrid(s, s, indexing="ij"))
+        W = np.outer(w, w).ravel() * U
+        F = cut.faces
+        A, B, C = F[:, 0], F[:, 1], F[:, 2]
+        x = (A[:, None] + U[None, :, None] * (B - A)[:, None]
+             + (U * V)[None, :, None] * (C - B)[:, None]).reshape(-1, 3).T
+        weights = (2 * cut.face_areas()[:, None] * W[None]).ravel()
+        cells = np.repeat(cut.face_cell, W.size)
+        lam, _ = barycentric(mesh, cells, x)
+        return InterfaceRule(points=x, normals=np.repeat(cut.face_normal, W.size, axis=1),
+                             weights=weights, cells=cells, ref=lam[:, 1:].T.copy(),
+                             N=sp.csr_matrix((x.shape[1], cut.edge_ids.size)))
+
+    def jump(self, V, rule: InterfaceRule) -> sp.csr_matrix:
+        """U ↦ [[u_h]] = u⁻ - u⁺ at the rule's points, component-major."""
+        return _face_jump(V.space, rule.cells, rule.points)
+
+    def point_jumps(self, V, U: np.ndarray) -> np.ndarray:
+        """[[u]] = u⁻ - u⁺ (3, n) at the crack's cut points."""
+        mesh, cut = V.mesh, V.cut
+        owner = np.full(mesh.edges.shape[1], -1)
+        for k in range(6):                                # the 6 edges of a cell
+            owner[mesh.t2e[k]] = np.arange(mesh.t.shape[1])
+        return (_face_jump(V.space, owner[cut.edge_ids], cut.points) @ U).reshape(3, -1)
+
+    def front(self, V, U: np.ndarray, material) -> dict:
+        """``points`` (m, 3) along the front (:func:`skxfem.crack.sif3d.front_points`) and
+        ``K_I``, ``K_II``, ``K_III`` (m,) there (:func:`skxfem.crack.sif3d.sif_3d`, the
+        interface's ``sif_radius`` the radial cone's radius)."""
+        P = front_points(V.space)
+        K = sif_3d(V.space, U, material, P, self.interface.sif_radius)
+        return {"points": P.T.copy(), "K_I": K[:, 0], "K_II": K[:, 1], "K_III": K[:, 2]}
+
+
+def _face_jump(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray) -> sp.csr_matrix:
+    n = cells.size
+    minus, plus = (evaluation(space, cells, x, np.full(n, s)) for s in (-1.0, 1.0))
+    return (minus - plus).tocsr()
+
+
+@dataclass(frozen=True)
+class CrackXSpace3D:
+    """The X-FEM space of the 3D crack kind: ``space`` its
+    :class:`~skxfem.crack.space3d.CrackSpace3D`, with the methods every space is asked
+    (as :class:`skxfem.gamma.CrackXSpace` in 2D)."""
+
+    space: CrackSpace3D
+    splits = False
+
+    @property
+    def mesh(self):
+        return self.space.mesh
+
+    @property
+    def cut(self):
+        return self.space.geometry
+
+    @property
+    def basis(self):
+        """The standard vector basis (it numbers the standard dofs as the space does)."""
+        m = self.space.mesh
+        return Basis(m, ElementVector(ElementTetP1()), quadrature=cell_rule(m, 0))
+
+    @property
+    def n_std(self) -> int:
+        return self.space.n_std
+
+    @property
+    def n_enr(self) -> int:
+        return self.space.N - self.space.n_std
+
+    @property
+    def N(self) -> int:
+        return self.space.N
+
+    @property
+    def enr_dofs(self) -> np.ndarray:
+        """(n_enr,) the standard dof of each enriched unknown [b, c]."""
+        V, nd = self.space, self.space.nodal_dofs
+        heav = nd[:, V.heaviside].T
+        branch = np.repeat(nd[:, V.branch].T[:, None, :], 4, axis=1)
+        return np.concatenate([heav.ravel(), branch.ravel()]).astype(np.int64)
+
+    @property
+    def H_node(self) -> np.ndarray:
+        """(n_enr,) H(x_j) of each Heaviside unknown's node, 0 for a branch unknown."""
+        V = self.space
+        return np.concatenate([np.repeat(V.H_node, 3), np.zeros(V.n_branch)])
+
+    def signed_stiffness(self, material: Material, A=None):
+        """(A, K): the standard block of the crack's stiffness K (``A`` if given), K."""
+        K = stiffness(self.space, material).tocsr()
+        n = self.n_std
+        return (K[:n, :n] if A is None else A), K
+
+    def blocks(self, A, K) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+        """(K_ab, K_bb): the crack stiffness' blocks of its enriched unknowns."""
+        n = self.n_std
+        return K[:n, n:].tocsr(), K[n:, n:].tocsr()
+
+    def load(self, facet_loads, body_force=None, f: np.ndarray | None = None):
+        """(f, f_b): the surface loads on the standard dofs (``f`` if given) and on the
+        enriched unknowns (:func:`skxfem.crack.space3d.traction_load`)."""
+        if body_force is not None:
+            raise ValueError("a body force on a scene with a crack is not supported yet")
+        loads = [Load3D(facets, lambda x, n, t=t: t(x, n), normal=True)
+                 for facets, t in facet_loads]
+        F = traction_load(self.space, loads)
+        return (F[:self.n_std] if f is None else f), F[self.n_std:]
+
+    def constraints(self, scene, mesh) -> tuple[np.ndarray, np.ndarray]:
+        """The scene's displacements as the crack's supports
+        (:func:`skxfem.crack.space3d.supported_dofs`: a mouth is never clamped shut)."""
+        supports = []
+        for nodes, components in imposed(scene, mesh):
+            for c, (value, what) in components.items():
+                def u(x, c=c, value=value, what=what):
+                    out = np.zeros_like(x, dtype=float)
+                    out[c] = _values(value, x, what)
+                    return out
+
+                supports.append(Support3D(_facets_of(mesh, nodes), np.asarray(nodes), u,
+                                          (c,)))
+        return supported_dofs(self.space, supports)
+
+
+def _facets_of(mesh, nodes: np.ndarray) -> np.ndarray:
+    """The boundary facets whose nodes are all among ``nodes``."""
+    mark = np.zeros(mesh.p.shape[1], dtype=bool)
+    mark[nodes] = True
+    bf = mesh.boundary_facets()
+    return bf[mark[mesh.facets[:, bf]].all(axis=0)]

@@ -1,0 +1,379 @@
+r"""K_I, K_II, K_III along a 3D front by the domain interaction integral, and a 3D solve.
+
+The 3D twin of :mod:`skxfem.crack.sif` and :mod:`skxfem.crack.solve`.
+
+The integral at a point P of the front
+--------------------------------------
+The domain form of :mod:`skxfem.crack.interaction` over a volume A around the front,
+
+.. math:: \int_A \bigl[\sigma_{ij}\, u^a_{i,1} + \sigma^a_{ij}\, u_{i,1}
+          - \sigma_{ik}\, \varepsilon^a_{ik}\, \delta_{1j}\bigr]\, q_{,j}\, dV
+          = \int_{\text{front}} I(s)\, q(s)\, ds ,
+
+with the weight (the virtual extension of the front along e₁)
+
+.. math:: q = q_r(r)\; \Lambda(s),\qquad
+          \Lambda(s) = \max(0, 1 - |s|/L),\quad s = e_3(P)\cdot(x - P),
+
+q_r the radial cone in the plane normal to the front (1 inside ρR, 0 beyond R:
+:func:`skxfem.crack.interaction.q_function`) and Λ the hat function along the front,
+of half-width L.  The local I(P) is the integral divided by ∫ Λ ds along the front
+(Gauss points on its segments): the **smoothing** is this hat-weighted mean of I(s)
+over |s| < L, exact for an I linear along the front.  Then K_I = E′I_I/2,
+K_II = E′I_II/2, K_III = μ I_III (:func:`skxfem.crack.interaction.sif_from_interaction`,
+E′ = E/(1 - ν²)).
+
+**Coordinates of the auxiliary fields.**  At every quadrature point the Williams fields
+(:mod:`skxfem.crack.williams`, 3D: mode III along e₃) are written in the point's own
+front frame and polar coordinates from the interpolated level sets:
+r = √(φ_h² + ψ_h²), θ = atan2(ψ_h, φ_h) (±π on the faces by the side of the point's
+sub-tetrahedron), e₂ = ∇ψ_h/|∇ψ_h|, e₁ the part of ∇φ_h normal to it, e₃ = e₁ × e₂
+(:func:`skxfem.crack.frame.tip_frame`); x₁-derivatives are along that e₁.  For a straight
+front this is exact; for a curved one it neglects the terms of order r/ρ_f (ρ_f the
+front's radius of curvature) of the curvilinear auxiliary fields, as code_aster's level-set
+frames do.  The integrand holds σ uᵃ,₁ ∼ 1/r near the front, integrated by the
+almost-polar rules of the front cells.  The domain's faces carry no traction (a free
+crack); the free surfaces the front meets add a boundary term when the hat reaches them
+(K is reported there but is only trusted a hat's width inside).
+
+>>> from skfem import MeshTet1
+>>> from skxfem.crack.geometry3d import crack_geometry_3d
+>>> from skxfem.crack.space3d import crack_space_3d
+>>> from skxfem.fem.material import Material
+>>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 8),) * 2, np.linspace(0, 1, 3))
+>>> V = crack_space_3d(m, crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.5))
+>>> K = sif_3d(V, np.zeros(V.N), Material(1.0, 0.3), np.array([[0.5], [0.5], [0.5]]))
+>>> np.round(K, 12).tolist()                        # no field, no K
+[[0.0, 0.0, 0.0]]
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.polynomial.legendre import leggauss
+
+from ..fem.material import Material
+from .frame import TipFrame, tip_frame
+from .geometry3d import barycentric, crack_geometry_3d, front_chains
+from .interaction import sif_from_interaction
+from .space3d import (
+    crack_space_3d,
+    field_at,
+    nodal_scaling,
+    rules,
+    stiffness,
+    supported_dofs,
+    traction_load,
+)
+from .williams import near_tip_local
+
+__all__ = ["DEFAULT_RADIUS", "DEFAULT_LENGTH", "front_points", "front_frame", "front_sizes",
+           "boundary_reach", "sif_3d",
+           "CrackSolution3D", "solve_crack_3d"]
+
+DEFAULT_RADIUS = 3.0
+"""The default radius R of the radial cone, in front-cell sizes across the front
+(:func:`front_sizes`)."""
+
+DEFAULT_LENGTH = 1.5
+"""The default half-width L of the hat along the front, in front-cell sizes along it."""
+
+
+def front_sizes(space) -> tuple[float, float]:
+    """(across, along): the mean size of the front cells across the front (the largest
+    distance √(φ² + ψ²) of their nodes to it) and along it (the extent of their nodes
+    along e₃ of their frame).
+
+    >>> from skfem import MeshTet1
+    >>> from skxfem.crack.geometry3d import crack_geometry_3d
+    >>> from skxfem.crack.space3d import crack_space_3d
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 11),) * 2, np.linspace(0, 1, 3))
+    >>> V = crack_space_3d(m, crack_geometry_3d(m, m.p[1] - 0.55, m.p[0] - 0.55))
+    >>> [round(v, 3) for v in front_sizes(V)]
+    [0.071, 0.5]
+    """
+    mesh, geo = space.mesh, space.geometry
+    nodes = mesh.t[:, geo.front_cells]
+    across = np.hypot(geo.phi[nodes], geo.psi[nodes]).max(axis=0).mean()
+    e3 = front_frame(space, mesh.p[:, nodes].mean(axis=1)).e3          # (3, nf)
+    along = np.ptp(np.einsum("in,ikn->kn", e3, mesh.p[:, nodes]), axis=0).mean()
+    return float(across), float(along)
+
+
+def front_points(space, spacing: float | None = None) -> np.ndarray:
+    """Points (3, m) along the front where K is computed: each chain of
+    :func:`skxfem.crack.geometry3d.front_chains` sampled at equal arc lengths about
+    ``spacing`` apart (default: the mean size of the front cells), the ends of an open
+    chain excluded."""
+    h = front_sizes(space)[1] if spacing is None else float(spacing)
+    out = []
+    for pts, closed in front_chains(space.geometry):
+        if closed:
+            pts = np.hstack([pts, pts[:, :1]])
+        seg = np.linalg.norm(np.diff(pts, axis=1), axis=0)
+        s = np.concatenate([[0.0], np.cumsum(seg)])
+        total = s[-1]
+        m = max(1, int(round(total / h)))
+        at = (np.arange(m) + (0.0 if closed else 0.5)) * total / m
+        out.append(np.stack([np.interp(at, s, pts[k]) for k in range(3)]))
+    return np.hstack(out)
+
+
+def front_frame(space, points: np.ndarray) -> TipFrame:
+    """The frames (vectors (3, m)) at points (3, m) near the front, from ∇φ_h and ∇ψ_h in
+    the front cell of the nearest front segment."""
+    geo, mesh = space.geometry, space.mesh
+    A, B = geo.segments[0], geo.segments[1]
+    d = B - A
+    t = np.clip(((points[:, :, None] - A[:, None]) * d[:, None]).sum(axis=0)
+                / (d * d).sum(axis=0), 0, 1)
+    dist = np.linalg.norm(A[:, None] + t * d[:, None] - points[:, :, None], axis=0)
+    cells = geo.segment_cell[np.argmin(dist, axis=1)]
+    _, dlam = barycentric(mesh, cells, points)
+    gphi = np.einsum("nk,nki->in", geo.phi[mesh.t[:, cells]].T, dlam)
+    gpsi = np.einsum("nk,nki->in", geo.psi[mesh.t[:, cells]].T, dlam)
+    return tip_frame(gphi, gpsi)
+
+
+def boundary_reach(mesh, points: np.ndarray, e3: np.ndarray, length: float) -> np.ndarray:
+    """For each front point P (3, m) with its tangent e₃ (3, m): the distance, in the plane
+    normal to the front, from P to the boundary facets within ``length`` of that plane
+    (sampled at their vertices, edge midpoints and centroids), leaving out the facets
+    nearly normal to e₃ (|n·e₃| > 0.9: the free surfaces the front ends on).  The radial
+    cone is clipped to it, so that q vanishes on the rest of the boundary.
+
+    >>> from skfem import MeshTet1
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 5),) * 3)
+    >>> boundary_reach(m, np.array([[0.5], [0.3], [0.5]]), np.array([[0.0], [0.0], [1.0]]),
+    ...                0.25).round(12).tolist()
+    [0.3]
+    """
+    from .space3d import outward_normals
+    f = mesh.boundary_facets()
+    n = outward_normals(mesh, f)
+    a, b, c = (mesh.p[:, mesh.facets[k, f]] for k in range(3))
+    samples = np.hstack([a, b, c, (a + b) / 2, (b + c) / 2, (a + c) / 2, (a + b + c) / 3])
+    normal = np.tile(n, 7)
+    out = np.empty(points.shape[1])
+    for k in range(points.shape[1]):
+        d = samples - points[:, k, None]
+        along = e3[:, k] @ d
+        radial = np.sqrt(np.maximum((d * d).sum(axis=0) - along ** 2, 0.0))
+        use = (np.abs(along) <= length) & (np.abs(e3[:, k] @ normal) <= 0.9)
+        out[k] = radial[use].min() if use.any() else np.inf
+    return out
+
+
+def _to_global(Rt: np.ndarray, T: np.ndarray) -> np.ndarray:
+    """Rᵀ T R of tensors T (3, 3, n) in per-point frames Rt (n, 3, 3): global components."""
+    out = np.matmul(np.matmul(np.swapaxes(Rt, 1, 2), np.moveaxis(T, 2, 0)), Rt)
+    return np.moveaxis(out, 0, 2)
+
+
+def _nodal_directions(space, cells: np.ndarray) -> np.ndarray:
+    """(nverts, 3) e₁ at the nodes of ``cells``: the mean of the cells' own e₁ (from
+    ∇φ_h, ∇ψ_h) around each node, unit (zero at the other nodes)."""
+    mesh, geo = space.mesh, space.geometry
+    _, dlam = barycentric(mesh, cells, mesh.p[:, mesh.t[0, cells]])
+    gph = np.einsum("nk,nki->in", geo.phi[mesh.t[:, cells]].T, dlam)
+    gps = np.einsum("nk,nki->in", geo.psi[mesh.t[:, cells]].T, dlam)
+    e1 = tip_frame(gph, gps).e1                           # (3, nc)
+    out = np.zeros((mesh.p.shape[1], 3))
+    for k in range(4):                                    # the 4 nodes of a cell
+        np.add.at(out, mesh.t[k, cells], e1.T)
+    size = np.linalg.norm(out, axis=1, keepdims=True)
+    return np.where(size > 0, out / np.where(size > 0, size, 1.0), 0.0)
+
+
+def _hat_integral(geo, P, e3, L):
+    """∫ Λ ds along the front's segments for each point (m,)."""
+    s, w = leggauss(6)
+    s, w = (s + 1) / 2, w / 2
+    A, B = geo.segments[0], geo.segments[1]
+    x = A[:, :, None] + s * (B - A)[:, :, None]           # (3, nseg, 6)
+    length = np.linalg.norm(B - A, axis=0)
+    out = []
+    for k in range(P.shape[1]):
+        sk = np.einsum("i,ijk->jk", e3[:, k], x - P[:, k, None, None])
+        out.append(((np.clip(1 - np.abs(sk) / L, 0, None) * w).sum(axis=1) * length).sum())
+    return np.array(out)
+
+
+def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None = None,
+           radius: float | None = None, length: float | None = None,
+           plateau: float = 0.5) -> np.ndarray:
+    """(m, 3) K_I, K_II, K_III at ``points`` (3, m) of the front (default
+    :func:`front_points`) by the domain interaction integral (module notes).
+
+    ``radius`` R of the radial cone (default :data:`DEFAULT_RADIUS` front-cell sizes),
+    clipped at each point to the distance to the boundary (:func:`boundary_reach`);
+    ``length`` L the hat's half-width (default :data:`DEFAULT_LENGTH` sizes), ``plateau``
+    ρ: q_r = 1 inside ρR.
+    """
+    if not isinstance(material, Material):
+        raise ValueError(f"material must be a skxfem Material, got {type(material).__name__}")
+    U = np.asarray(U, float)
+    if U.shape != (space.N,):
+        raise ValueError(f"U must hold the {space.N} unknowns [a, b, c], got shape {U.shape}")
+    P = front_points(space) if points is None else np.asarray(points, float)
+    if P.ndim != 2 or P.shape[0] != 3:
+        raise ValueError(f"points must have shape (3, m), got {P.shape}")
+    h, h_along = front_sizes(space)
+    R = DEFAULT_RADIUS * h if radius is None else float(radius)
+    L = DEFAULT_LENGTH * h_along if length is None else float(length)
+    for name, v in (("radius", R), ("length", L)):
+        if not (np.isfinite(v) and v > 0):
+            raise ValueError(f"{name} must be a positive number, got {v!r}")
+    if not 0 <= plateau < 1:
+        raise ValueError(f"plateau must be in [0, 1), got {plateau!r}")
+    mesh, geo = space.mesh, space.geometry
+    frames = front_frame(space, P)
+    # the cells of every point's domain
+    reach = np.hypot(R, L) + 2 * h
+    d = np.linalg.norm(mesh.p[:, :, None] - P[:, None], axis=0).min(axis=1)
+    radial = np.hypot(geo.phi, geo.psi)                   # r of the nodes (q_r = 0 beyond R)
+    cells = np.flatnonzero((d[mesh.t] <= reach).any(axis=0)
+                           & (radial[mesh.t] <= R + 2 * h).any(axis=0))
+    lam_, mu = material.lame(3)
+    e1_nodes = _nodal_directions(space, cells)
+    xs, ws, As, Bs, Cs, e1s, rs, grs = [], [], [[], [], []], [[], [], []], [[], [], []], [], \
+        [], []
+    for c, x, w, side in rules(space, cells, plain=3):
+        live = w != 0
+        cc = np.broadcast_to(c[:, None], w.shape)[live]
+        X, W, S = x[live].T, w[live], side[live]
+        _, gu = field_at(space, U, cc, X, S)
+        eps = (gu + np.swapaxes(gu, 0, 1)) / 2
+        sig = 2 * mu * eps + lam_ * np.trace(eps)[None, None] * np.eye(3)[:, :, None]
+        lam, dlam = barycentric(mesh, cc, X)
+        nodes = mesh.t[:, cc].T
+        ph, ps = (lam * geo.phi[nodes]).sum(axis=1), (lam * geo.psi[nodes]).sum(axis=1)
+        gph = np.einsum("nk,nki->in", geo.phi[nodes], dlam)
+        gps = np.einsum("nk,nki->in", geo.psi[nodes], dlam)
+        fr = tip_frame(gph, gps)
+        Rt = np.transpose(fr.R, (2, 0, 1))                # (n, 3, 3), rows e₁, e₂, e₃
+        # the extension direction Q/q = e₁ₕ, the P1 interpolant of nodal e₁, and ∂ⱼe₁ₖ
+        e1 = np.einsum("nk,nki->in", lam, e1_nodes[nodes])
+        G = np.einsum("nkj,nki->jin", dlam, e1_nodes[nodes])          # [j, k, n]
+        r = np.hypot(ph, ps)
+        theta = np.arctan2(ps, ph)
+        theta = np.where((ph < 0) & (np.sign(ps) != S), S * np.pi, theta)
+        r = np.maximum(r, 1e-300)
+        du1 = np.einsum("ijn,jn->in", gu, e1)
+        for mode in range(3):
+            aux = near_tip_local(r, theta, material, np.eye(3)[mode], dim=3)
+            agu, asig = _to_global(Rt, aux.grad_u), _to_global(Rt, aux.sigma)
+            aeps = (agu + np.swapaxes(agu, 0, 1)) / 2
+            dua1 = np.einsum("ijn,jn->in", agu, e1)
+            work = np.einsum("ikn,ikn->n", sig, aeps)
+            As[mode].append(np.einsum("in,ijn->jn", dua1, sig)
+                            + np.einsum("in,ijn->jn", du1, asig))
+            Bs[mode].append(work)
+            Cs[mode].append((np.einsum("ijn,ikn->jkn", sig, agu) * G).sum(axis=(0, 1))
+                            + (np.einsum("ijn,ikn->jkn", asig, gu) * G).sum(axis=(0, 1))
+                            - work * np.einsum("jjn->n", G))
+        xs.append(X)
+        ws.append(W)
+        e1s.append(e1)
+        rs.append(r)
+        grs.append((ph * gph + ps * gps) / r)
+    X, W, e1, r, gr = (np.hstack(xs), np.concatenate(ws), np.hstack(e1s),
+                       np.concatenate(rs), np.hstack(grs))
+    A = [np.hstack(a) for a in As]
+    B = [np.concatenate(b) for b in Bs]
+    C = [np.concatenate(c) for c in Cs]
+    Rk = np.minimum(R, boundary_reach(mesh, P, frames.e3, L))
+    den = _hat_integral(geo, P, frames.e3, L)
+    K = np.zeros((P.shape[1], 3))
+    for k in range(P.shape[1]):
+        R, inner = Rk[k], plateau * Rk[k]
+        qr = np.clip((R - r) / (R - inner), 0.0, 1.0)
+        dqr = np.where((r > inner) & (r < R), -1.0 / (R - inner), 0.0)
+        s = frames.e3[:, k] @ (X - P[:, k, None])
+        hat = np.clip(1 - np.abs(s) / L, 0, None)
+        dhat = np.where(np.abs(s) < L, -np.sign(s) / L, 0.0)
+        gq = hat * dqr * gr + qr * dhat * frames.e3[:, k, None]
+        q1 = (gq * e1).sum(axis=0)
+        q = qr * hat
+        I = np.array([(W * ((A[m] * gq).sum(axis=0) - B[m] * q1 + q * C[m])).sum()
+                      for m in range(3)])
+        K[k] = sif_from_interaction(I / den[k], material, 3)
+    return K
+
+
+@dataclass(frozen=True)
+class CrackSolution3D:
+    """A solved 3D crack problem: ``U`` the unknowns [a, b, c] of ``space``, ``points``
+    (3, m) front points and ``K`` (m, 3) K_I, K_II, K_III there, ``info`` (the solver's
+    figures: unknowns, times)."""
+
+    U: np.ndarray
+    space: object
+    material: Material
+    points: np.ndarray
+    K: np.ndarray
+    info: dict
+
+
+def _solve(Ks, rhs, solver: str, tol: float):
+    from scipy.sparse.linalg import spsolve
+    if solver == "direct":
+        return spsolve(sp.csc_matrix(Ks), rhs), 0
+    from scipy.sparse.linalg import cg
+
+    from ..linalg.amg import pyamg
+    ml = pyamg().smoothed_aggregation_solver(sp.csr_matrix(Ks), max_coarse=500)
+    count = [0]
+
+    def step(_):
+        count[0] += 1
+
+    x, info = cg(Ks, rhs, rtol=tol, atol=0.0, maxiter=2000, M=ml.aspreconditioner(),
+                 callback=step)
+    if info != 0:
+        raise ValueError(f"conjugate gradients did not reach tol = {tol:g} in 2000 "
+                         f"iterations; use solver='direct'")
+    return x, count[0]
+
+
+def solve_crack_3d(mesh, psi, phi, material: Material, supports=(), loads=(),
+                   enrichment: str = "geometric", radius: float | None = None,
+                   points: np.ndarray | None = None, sif_radius: float | None = None,
+                   sif_length: float | None = None, solver: str = "direct",
+                   tol: float = 1e-10) -> CrackSolution3D:
+    """Linear elasticity on a ``MeshTet1`` with a crack {ψ = 0, φ < 0}, law free: geometry,
+    space, stiffness, loads, supports, block scaling, solve, K along the front.
+
+    ``supports``, ``loads``: :class:`~skxfem.crack.space3d.Support3D`,
+    :class:`~skxfem.crack.space3d.Load3D`; ``solver`` ``"direct"`` (SuperLU) or ``"cg"``
+    (conjugate gradients with smoothed-aggregation AMG on the scaled system, to ``tol``).
+    """
+    import time
+    if not isinstance(material, Material):
+        raise ValueError(f"material must be a skxfem Material, got {type(material).__name__}")
+    if solver not in ("direct", "cg"):
+        raise ValueError(f"solver must be 'direct' or 'cg', got {solver!r}")
+    t0 = time.perf_counter()
+    geometry = crack_geometry_3d(mesh, psi, phi)
+    V = crack_space_3d(mesh, geometry, enrichment, radius)
+    K = stiffness(V, material)
+    f = traction_load(V, loads)
+    D, g = supported_dofs(V, supports)
+    S = nodal_scaling(K, V, D)
+    Ks, fs = (S.T @ K @ S).tocsr(), S.T @ f
+    t1 = time.perf_counter()
+    Us = np.zeros(V.N)
+    Us[D] = g / S.diagonal()[D]
+    free = np.setdiff1d(np.arange(V.N), D)
+    rhs = fs[free] - Ks[free][:, D] @ Us[D]
+    Us[free], iterations = _solve(Ks[free][:, free], rhs, solver, tol)
+    U = S @ Us
+    t2 = time.perf_counter()
+    P = front_points(V) if points is None else np.asarray(points, float)
+    Kf = sif_3d(V, U, material, P, sif_radius, sif_length)
+    t3 = time.perf_counter()
+    info = {"unknowns": V.N, "enriched": V.N - V.n_std, "assembly_s": t1 - t0,
+            "solve_s": t2 - t1, "sif_s": t3 - t2, "iterations": iterations}
+    return CrackSolution3D(U, V, material, P, Kf, info)

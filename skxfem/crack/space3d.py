@@ -1,0 +1,657 @@
+r"""The X-FEM space of a 3D crack on tetrahedra, and its stiffness, loads and supports.
+
+The 3D twin of :mod:`skxfem.crack.space` and :mod:`skxfem.crack.assembly`, on a
+:class:`~skxfem.crack.geometry3d.CrackGeometry3D`.  With φᵢ the P1 shape functions,
+H = sign ψ and F_l the four branch functions of (r, θ) around the front
+(:mod:`skxfem.crack.branch`; r = √(φ_h² + ψ_h²), θ = atan2(ψ_h, φ_h): the polar
+coordinates in the plane normal to the front, from the front's frame
+e₁ = ∇φ/|∇φ|, e₂ = ∇ψ/|∇ψ|),
+
+.. math:: u_h = \sum_i a_i \varphi_i + \sum_{j \in J} b_j \varphi_j (H - H_j)
+               + \sum_{k \in K} \sum_{l=1}^4 c_{kl}\, \varphi_k (F_l - F_l(x_k)),
+
+shifted so that aᵢ is the displacement of node i.  K, the **branch** nodes: the nodes
+of the front cells (``"topological"``), or also every node within the radius r_e of
+the front (``"geometric"``); J, the **Heaviside** nodes: the other nodes of split cells
+whose support holds a part of positive volume on the far side of the crack.
+
+Unknowns [a, b, c]: a node by node, component fastest (scikit-fem's ``ElementVector``
+numbering, 3 i + c), then b (3 per Heaviside node), then c (12 per branch node, function
+l then component).  As in 2D every function is φᵢ g for one of six kinds
+g ∈ {1, H, F₁..F₄} less a multiple of φᵢ, so u_h = Σ_g Σ_i ũ_{g,i} φᵢ g with virtual
+coefficients ũ = T U (:attr:`CrackSpace3D.T`).
+
+Integration
+-----------
+Cell by cell, on the 24 virtual functions φ_k g of a cell (4 nodes × 6 kinds) with dense
+arrays: the stiffness of a cell is λ G_c G′_d + μ(δ_cd G·G′ + G_d G′_c) summed over its
+points, G the gradients, then gathered into the virtual space and taken to the unknowns
+by Tᵀ K̃ T.  The rules (:func:`rules`): the front cells' sub-tetrahedra by the almost-polar
+rules of :mod:`skxfem.crack.quadrature3d` (on the front's edge or vertex) or the
+collapsed Gauss rule of :data:`~skxfem.crack.quadrature3d.NEAR_POINTS`; split cells'
+sub-tetrahedra and uncut cells in a branch node's support by the collapsed rule of
+:data:`BRANCH_POINTS` (of :data:`~skxfem.crack.quadrature3d.NEAR_POINTS` around the
+front cells); Heaviside-only sub-tetrahedra by their centroid (P1 gradients are
+constant); the other cells by scikit-fem's exact P1 stiffness.
+
+Conditioning: each branch node's block [a_k, c_k] (3 + 12 = 15 unknowns) is scaled by the
+inverse transpose of the Cholesky factor of its diagonal block (Béchet et al. 2005),
+every other unknown by 1/√K_ii (:func:`nodal_scaling`).
+
+>>> from skfem import MeshTet1
+>>> from skxfem.crack.geometry3d import crack_geometry_3d
+>>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 6),) * 2, np.linspace(0, 1, 3))
+>>> V = crack_space_3d(m, crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.5), "topological")
+>>> V.n_std, V.heaviside.size, V.branch.size, V.N == V.n_std + 3 * 12 + 12 * 12
+(324, 12, 12, True)
+"""
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.polynomial.legendre import leggauss
+from numpy.typing import ArrayLike
+from skfem import Basis, ElementTetP1
+
+from ..fem.material import Material, stiffness_matrix
+from ..fem.quadrature import cell_rule
+from ..fem.simplex import split
+from .branch import branch, branch_local_gradient
+from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
+from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
+
+__all__ = ["BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "functions_at", "evaluation",
+           "field_at", "rules", "stiffness", "Support3D", "Load3D", "outward_normals",
+           "traction_load", "supported_dofs", "nodal_scaling", "front_distance"]
+
+ENRICHMENTS = ("topological", "geometric")
+
+BRANCH_POINTS = 4
+"""Points per direction of the collapsed Gauss rule on the cells and sub-tetrahedra in the
+support of a branch node (64 per tetrahedron: exact to degree 5)."""
+
+CHUNK = 400
+"""Cells per batch of the dense cell arrays (memory: 400 × 72² numbers per batch)."""
+
+
+@dataclass(frozen=True)
+class CrackSpace3D:
+    """The enriched space of a 3D crack (module notes).
+
+    Attributes
+    ----------
+    mesh, geometry : the mesh and its :class:`~skxfem.crack.geometry3d.CrackGeometry3D`.
+    heaviside : (nh,) Heaviside nodes J; ``H_node`` (nh,) H(x_j).
+    branch : (nb,) branch nodes K; ``F_node`` (4, nb) F_l(x_k).
+    enrichment : ``"topological"`` or ``"geometric"``; ``radius`` r_e (geometric).
+    T : (6 n_std, N) the virtual coefficients ũ = T U of the unknowns U = [a, b, c].
+    """
+
+    mesh: object
+    geometry: CrackGeometry3D
+    heaviside: np.ndarray
+    H_node: np.ndarray
+    branch: np.ndarray
+    F_node: np.ndarray
+    enrichment: str
+    radius: float | None
+    T: sp.csr_matrix = field(repr=False, compare=False)
+
+    @property
+    def n_std(self) -> int:
+        return 3 * self.mesh.p.shape[1]
+
+    @property
+    def n_heav(self) -> int:
+        return 3 * self.heaviside.size
+
+    @property
+    def n_branch(self) -> int:
+        return 12 * self.branch.size
+
+    @property
+    def N(self) -> int:
+        return self.n_std + self.n_heav + self.n_branch
+
+    @property
+    def nodal_dofs(self) -> np.ndarray:
+        """(3, nverts) the standard unknowns a of each node and component."""
+        return 3 * np.arange(self.mesh.p.shape[1])[None] + np.arange(3)[:, None]
+
+    def heaviside_dofs(self) -> np.ndarray:
+        """(nh, 3) the unknowns b of each Heaviside node."""
+        return self.n_std + np.arange(self.n_heav).reshape(-1, 3)
+
+    def branch_dofs(self) -> np.ndarray:
+        """(nb, 4, 3) the unknowns c of each branch node, function l, component."""
+        return self.n_std + self.n_heav + np.arange(self.n_branch).reshape(-1, 4, 3)
+
+    def enriched_nodes(self) -> np.ndarray:
+        """The nodes with enriched unknowns, sorted."""
+        return np.union1d(self.heaviside, self.branch)
+
+    def support_cells(self, nodes: np.ndarray) -> np.ndarray:
+        """The cells holding one of ``nodes``."""
+        mark = np.zeros(self.mesh.p.shape[1], dtype=bool)
+        mark[nodes] = True
+        return np.flatnonzero(mark[self.mesh.t].any(axis=0))
+
+
+def front_distance(geometry: CrackGeometry3D, x: np.ndarray) -> np.ndarray:
+    """The distance (n,) from points x (3, n) to the front's segments.
+
+    >>> from skfem import MeshTet1
+    >>> from skxfem.crack.geometry3d import crack_geometry_3d
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 4),) * 2, np.linspace(0, 1, 3))
+    >>> g = crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.5)
+    >>> front_distance(g, np.array([[0.5], [0.8], [0.3]])).round(12).tolist()
+    [0.3]
+    """
+    A, B = geometry.segments[0], geometry.segments[1]         # (3, nseg)
+    d = B - A
+    best = np.full(x.shape[1], np.inf)
+    for k in range(0, A.shape[1], 256):                   # batches of segments
+        a, dd = A[:, None, k:k + 256], d[:, None, k:k + 256]
+        t = np.clip(((x[:, :, None] - a) * dd).sum(axis=0) / (dd * dd).sum(axis=0), 0, 1)
+        dist = np.linalg.norm(a + t * dd - x[:, :, None], axis=0)
+        best = np.minimum(best, dist.min(axis=1))
+    return best
+
+
+def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric",
+                   radius: float | None = None) -> CrackSpace3D:
+    """The :class:`CrackSpace3D` of a 3D crack on ``mesh``.
+
+    Parameters
+    ----------
+    mesh : the ``MeshTet1`` of ``geometry``.
+    geometry : :func:`skxfem.crack.geometry3d.crack_geometry_3d` of the crack.
+    enrichment : ``"topological"`` (the front cells' nodes) or ``"geometric"`` (also the
+        nodes within ``radius`` of the front).
+    radius : r_e > 0 for geometric enrichment; default 0.1 times the mesh's diameter.
+    """
+    check_mesh_3d(mesh)
+    if not isinstance(geometry, CrackGeometry3D):
+        raise ValueError(f"geometry must be a CrackGeometry3D (crack_geometry_3d), got "
+                         f"{type(geometry).__name__}")
+    if geometry.psi.shape != (mesh.p.shape[1],):
+        raise ValueError("geometry belongs to another mesh (its psi has "
+                         f"{geometry.psi.size} values, the mesh {mesh.p.shape[1]} nodes)")
+    if enrichment not in ENRICHMENTS:
+        raise ValueError(f"enrichment must be one of {ENRICHMENTS}, got {enrichment!r}")
+    topo = np.unique(mesh.t[:, geometry.front_cells])
+    if enrichment == "geometric":
+        if radius is None:
+            radius = 0.1 * float(np.linalg.norm(np.ptp(mesh.p, axis=1)))
+        if not (isinstance(radius, (int, float, np.floating)) and np.isfinite(radius)
+                and radius > 0):
+            raise ValueError(f"radius must be a positive number, got {radius!r}")
+        near = np.flatnonzero(front_distance(geometry, mesh.p) <= radius)
+        branch_nodes = np.union1d(topo, near)
+    else:
+        branch_nodes, radius = topo, None
+    heav = np.setdiff1d(np.unique(mesh.t[:, geometry.split_cells]), branch_nodes)
+    H_node = np.sign(geometry.psi[heav])
+    keep = _far_side(mesh, geometry)[heav, (H_node > 0).astype(int)] | (H_node == 0)
+    heav, H_node = heav[keep], H_node[keep]
+    phi, psi = geometry.phi[branch_nodes], geometry.psi[branch_nodes]
+    F_node = branch(np.hypot(phi, psi), np.arctan2(np.where(psi == 0, 0.0, psi), phi))
+    T = _virtual_map(mesh.p.shape[1], heav, H_node, branch_nodes, F_node)
+    return CrackSpace3D(mesh, geometry, heav, H_node, branch_nodes, F_node, enrichment,
+                        radius, T)
+
+
+def _far_side(mesh, geometry: CrackGeometry3D) -> np.ndarray:
+    """(nverts, 2): does the support of each node hold a part of positive volume of Ω⁺
+    (column 0) or of Ω⁻ (column 1)?"""
+    nc = mesh.t.shape[1]
+    has = np.zeros((nc, 2), dtype=bool)
+    whole = geometry.side != 0
+    has[whole, 0], has[whole, 1] = geometry.side[whole] > 0, geometry.side[whole] < 0
+    np.logical_or.at(has[:, 0], geometry.sub_cell[geometry.sub_side > 0], True)
+    np.logical_or.at(has[:, 1], geometry.sub_cell[geometry.sub_side < 0], True)
+    out = np.zeros((mesh.p.shape[1], 2), dtype=bool)
+    for k in range(4):                                    # the 4 nodes of a cell
+        np.logical_or.at(out, mesh.t[k], has)
+    return out
+
+
+def _virtual_map(nverts, heav, H_node, branch_nodes, F_node) -> sp.csr_matrix:
+    """T: (6 n_std, N), ũ_{g, dof} from [a, b, c]."""
+    n = 3 * nverts
+    hd = (3 * heav[:, None] + np.arange(3)).ravel()       # (3 nh,)
+    bd = 3 * branch_nodes[:, None] + np.arange(3)         # (nb, 3)
+    nh, nb = hd.size, bd.shape[0]
+    rows = [np.arange(n), n + hd, hd]
+    cols = [np.arange(n), n + np.arange(nh), n + np.arange(nh)]
+    vals = [np.ones(n), np.ones(nh), -np.repeat(H_node, 3)]
+    c0 = n + nh
+    for l in range(4):                                    # the four branch functions
+        d = bd.ravel()
+        c = c0 + (12 * np.arange(nb)[:, None] + 3 * l + np.arange(3)).ravel()
+        rows += [(2 + l) * n + d, d]
+        cols += [c, c]
+        vals += [np.ones(d.size), -np.repeat(F_node[l], 3)]
+    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                         shape=(6 * n, c0 + 12 * nb))
+
+
+def functions_at(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
+                 side: np.ndarray | None = None):
+    """The 24 virtual functions φ_k g of each point's cell (4 nodes × 6 kinds) at points
+    x (3, n) of ``cells`` (n,): values (n, 24), gradients (n, 24, 3) and their virtual
+    node index g·nverts + node (n, 24).
+
+    ``side`` (n,) the side ±1 of each point (needed in split and front cells; default
+    the cell's side).  Behind the front (φ_h < 0) θ takes the side's sign, so a point
+    counts on its own side of the crack.
+    """
+    mesh, geo = space.mesh, space.geometry
+    cells = np.asarray(cells)
+    if side is None:
+        side = geo.side[cells].astype(float)
+        if np.any(side == 0):
+            raise ValueError("side is needed at points of split and front cells")
+    side = np.asarray(side, float)
+    lam, dlam = barycentric(mesh, cells, x)               # (n, 4), (n, 4, 3)
+    nodes = mesh.t[:, cells].T                            # (n, 4)
+    phi = (lam * geo.phi[nodes]).sum(axis=1)
+    psi = (lam * geo.psi[nodes]).sum(axis=1)
+    gphi = np.einsum("nk,nki->ni", geo.phi[nodes], dlam)
+    gpsi = np.einsum("nk,nki->ni", geo.psi[nodes], dlam)
+    r = np.hypot(phi, psi)
+    theta = np.arctan2(psi, phi)
+    wrong = (phi < 0) & (np.sign(psi) != side) & (side != 0)
+    theta = np.where(wrong, side * np.pi, theta)
+    n = cells.size
+    g = np.zeros((n, 6))
+    dg = np.zeros((n, 6, 3))
+    g[:, 0] = 1.0
+    g[:, 1] = np.where(side == 0, 1.0, side)
+    live = r > 0
+    rr, tt = np.where(live, r, 1.0), np.where(live, theta, 0.0)
+    g[:, 2:] = (branch(rr, tt) * live).T
+    loc = branch_local_gradient(rr, tt) * live            # (4, 2, n)
+    dg[:, 2:] = (loc[:, 0, :, None] * gphi[None] + loc[:, 1, :, None] * gpsi[None]
+                 ).transpose(1, 0, 2)
+    vals = (lam[:, :, None] * g[:, None, :]).reshape(n, 24)      # index 6 k + kind
+    grads = (dlam[:, :, None, :] * g[:, None, :, None]
+             + lam[:, :, None, None] * dg[:, None, :, :]).reshape(n, 24, 3)
+    nv = mesh.p.shape[1]
+    vnode = (np.arange(6)[None, None, :] * nv + nodes[:, :, None]).reshape(n, 24)
+    return vals, grads, vnode
+
+
+def field_at(space: CrackSpace3D, U: np.ndarray, cells, x, side=None):
+    """u (3, n) and ∇u (3, 3, n) (∂u_i/∂x_j) of the unknowns U at points x (3, n)."""
+    vals, grads, vnode = functions_at(space, cells, x, side)
+    ut = (space.T @ U).reshape(6, -1, 3).reshape(-1, 3)   # (6 nverts, 3)
+    coef = ut[vnode]                                      # (n, 24, 3)
+    u = np.einsum("na,nac->cn", vals, coef)
+    gu = np.einsum("naj,nac->cjn", grads, coef)
+    return u, gu
+
+
+def evaluation(space: CrackSpace3D, cells, x, side=None) -> sp.csr_matrix:
+    """The operator U ↦ u at points x (3, n): rows component-major (c n + p).
+
+    >>> from skfem import MeshTet1
+    >>> from skxfem.crack.geometry3d import crack_geometry_3d
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 4),) * 3)
+    >>> V = crack_space_3d(m, crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    >>> U = np.zeros(V.N); U[V.nodal_dofs[2]] = 1.0                    # u = (0, 0, 1)
+    >>> (evaluation(V, np.array([0]), m.p[:, m.t[:, 0]].mean(axis=1)[:, None]) @ U).tolist()
+    [0.0, 0.0, 1.0]
+    """
+    vals, _, vnode = functions_at(space, cells, x, side)
+    n = vals.shape[0]
+    rows = (np.arange(3)[:, None, None] * n + np.arange(n)[None, :, None]
+            + 0 * vnode[None]).ravel()
+    cols = (3 * vnode[None] + np.arange(3)[:, None, None]).ravel()
+    data = np.broadcast_to(vals[None], (3,) + vals.shape).ravel()
+    E = sp.csr_matrix((data, (rows, cols)), shape=(3 * n, space.T.shape[0]))
+    return (E @ space.T).tocsr()
+
+
+def _levels(space: CrackSpace3D) -> np.ndarray:
+    """(ncells,) 0: plain, 1: in a branch node's support, 2: around the front cells."""
+    mesh, geo = space.mesh, space.geometry
+    level = np.zeros(mesh.t.shape[1], dtype=int)
+    level[space.support_cells(space.branch)] = 1
+    level[space.support_cells(np.unique(mesh.t[:, geo.front_cells]))] = 2
+    return level
+
+
+def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS):
+    """The quadrature of ``cells`` (module notes), as batches of cells with as many points
+    each: a list of (cells (nc,), x (nc, nq, 3), w (nc, nq), side (nc, nq)).  ``plain``:
+    the points per direction of the collapsed rule on uncut cells outside the branch
+    nodes' supports."""
+    mesh, geo = space.mesh, space.geometry
+    cells = np.unique(np.asarray(cells, dtype=int))
+    level = _levels(space)
+    batches = []
+    # sub-tetrahedra of split and front cells, by rule
+    pick = np.isin(geo.sub_cell, cells)
+    sc, ss, sf, S = geo.sub_cell[pick], geo.sub_side[pick], geo.sub_front[pick], geo.sub[pick]
+    lv = level[sc]
+    kinds = [(sf == 2, edge_polar), (sf == 1, vertex_polar),
+             ((sf == 0) & np.isin(sc, geo.front_cells), lambda T: collapsed(T, NEAR_POINTS)),
+             ((sf == 0) & ~np.isin(sc, geo.front_cells) & (lv == 2),
+              lambda T: collapsed(T, NEAR_POINTS)),
+             ((sf == 0) & ~np.isin(sc, geo.front_cells) & (lv == 1),
+              lambda T: collapsed(T, BRANCH_POINTS)),
+             ((sf == 0) & (lv == 0), lambda T: collapsed(T, 1))]
+    pieces = []
+    for mask, rule in kinds:
+        if mask.any():
+            x, w = rule(S[mask])
+            pieces.append((sc[mask], x, w, np.broadcast_to(ss[mask, None], w.shape)))
+    batches += _pack(pieces)
+    # uncut cells
+    uncut = np.setdiff1d(cells, geo.cells)
+    for lv_, n in ((2, NEAR_POINTS), (1, BRANCH_POINTS), (0, plain)):
+        here = uncut[level[uncut] == lv_]
+        if here.size:
+            x, w = collapsed(mesh_cells(mesh, here), n)
+            batches.append((here, x, w, np.broadcast_to(
+                geo.side[here, None].astype(float), w.shape)))
+    return batches
+
+
+def _pack(pieces):
+    """Pieces of cells (cell (m,), x (m, nq, 3), w (m, nq), side (m, nq)) of various nq
+    into batches of whole cells, each cell's points padded with zero weights up to the
+    power of 2 of its batch."""
+    if not pieces:
+        return []
+    flat = [(c, x.reshape(-1, 3), w.ravel(), s.ravel(), np.repeat(c, w.shape[1]))
+            for c, x, w, s in pieces]
+    owner = np.concatenate([f[4] for f in flat])
+    X = np.concatenate([f[1] for f in flat])
+    W = np.concatenate([f[2] for f in flat])
+    Sd = np.concatenate([f[3] for f in flat]).astype(float)
+    order = np.argsort(owner, kind="stable")
+    owner, X, W, Sd = owner[order], X[order], W[order], Sd[order]
+    cells, first, counts = np.unique(owner, return_index=True, return_counts=True)
+    slot = np.arange(owner.size) - np.repeat(first, counts)
+    row = np.repeat(np.arange(cells.size), counts)
+    size = 2 ** np.ceil(np.log2(counts)).astype(int)      # batches of like counts
+    out = []
+    for nq in np.unique(size):
+        pick = size == nq
+        here = pick[row]
+        new_row = np.cumsum(pick) - 1
+        x = np.zeros((pick.sum(), nq, 3))
+        w = np.zeros((pick.sum(), nq))
+        s = np.ones((pick.sum(), nq))
+        r, sl = new_row[row[here]], slot[here]
+        x[r, sl], w[r, sl], s[r, sl] = X[here], W[here], Sd[here]
+        # padding at the points' own cell: the first point of the cell
+        pad = np.arange(nq)[None, :] >= counts[pick][:, None]
+        x[pad] = np.broadcast_to(x[:, :1], x.shape)[pad]
+        s[pad] = np.broadcast_to(s[:, :1], s.shape)[pad]
+        out.append((cells[pick], x, w, s))
+    return out
+
+
+def _cell_stiffness(space, cells, x, w, side, lam_, mu):
+    """Dense (nc, 72, 72) stiffness of the virtual functions of cells, and their virtual
+    dofs (nc, 72): index 3 a + c, a the function (6 k + kind), c the component."""
+    nc, nq = w.shape
+    _, G, vnode = functions_at(space, np.repeat(cells, nq), x.reshape(-1, 3).T, side.ravel())
+    G = G.reshape(nc, nq, 24, 3)
+    Gf = G.reshape(nc, nq, 72)
+    A = np.matmul(np.swapaxes(Gf * w[:, :, None], 1, 2), Gf)   # ∫ ∂_i f_a ∂_j f_b
+    A = A.reshape(nc, 24, 3, 24, 3)                       # [n, a, i, b, j]
+    Ke = lam_ * A + mu * A.transpose(0, 1, 4, 3, 2)
+    trace = np.einsum("naibi->nab", A)
+    Ke = Ke + mu * trace[:, :, None, :, None] * np.eye(3)[None, None, :, None, :]
+    vdof = (3 * vnode.reshape(nc, nq, 24)[:, 0, :, None] + np.arange(3)).reshape(nc, 72)
+    return Ke.reshape(nc, 72, 72), vdof
+
+
+def stiffness(space: CrackSpace3D, material: Material) -> sp.csr_matrix:
+    """The stiffness ∫ σ(u):ε(v) on the unknowns [a, b, c] (module notes).
+
+    >>> from skfem import MeshTet1
+    >>> from skxfem.crack.geometry3d import crack_geometry_3d
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 4),) * 3)
+    >>> V = crack_space_3d(m, crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    >>> K = stiffness(V, Material(1.0, 0.3))
+    >>> U = np.zeros(V.N); U[V.nodal_dofs[1]] = 1.0            # a rigid translation
+    >>> bool(abs(K @ U).max() < 1e-12), bool(abs(K - K.T).max() < 1e-12)
+    (True, True)
+    """
+    if not isinstance(material, Material):
+        raise ValueError(f"material must be a skxfem Material, got {type(material).__name__}")
+    mesh = space.mesh
+    lam_, mu = material.lame(3)
+    near = space.support_cells(space.enriched_nodes())
+    rest = np.setdiff1d(np.arange(mesh.t.shape[1]), near)
+    Ks = sp.csr_matrix((space.n_std, space.n_std))
+    if rest.size:
+        Ks = stiffness_matrix(material, Basis(mesh, ElementTetP1(), elements=rest,
+                                              quadrature=cell_rule(mesh)))
+    active = np.diff(space.T.indptr) > 0                  # virtual dofs in use
+    rows, cols, data = [], [], []
+    for cells, x, w, side in rules(space, near):
+        for k in range(0, cells.size, CHUNK):
+            sl = slice(k, k + CHUNK)
+            Ke, vd = _cell_stiffness(space, cells[sl], x[sl], w[sl], side[sl], lam_, mu)
+            on = active[vd]                               # (nc, 72)
+            m = on[:, :, None] & on[:, None, :]
+            rows.append(np.broadcast_to(vd[:, :, None], Ke.shape)[m])
+            cols.append(np.broadcast_to(vd[:, None, :], Ke.shape)[m])
+            data.append(Ke[m])
+    nv = space.T.shape[0]
+    Kv = sp.csr_matrix((np.concatenate(data), (np.concatenate(rows), np.concatenate(cols))),
+                       shape=(nv, nv)) if data else sp.csr_matrix((nv, nv))
+    T = space.T
+    pad = sp.block_diag([Ks, sp.csr_matrix((space.N - space.n_std,) * 2)], format="csr")
+    return (T.T @ Kv @ T + pad).tocsr()
+
+
+@dataclass(frozen=True)
+class Support3D:
+    """Imposed displacements on the nodes of boundary ``facets`` (indices into
+    ``mesh.facets``) and/or ``nodes``: u_c = ``value(x)[c]`` for c in ``components``
+    (``value``: (3, n) points -> (3, n); None: zero)."""
+
+    facets: ArrayLike | None = None
+    nodes: ArrayLike | None = None
+    value: Callable | None = None
+    components: tuple = (0, 1, 2)
+
+
+@dataclass(frozen=True)
+class Load3D:
+    """A traction on boundary ``facets``: ``traction(x)`` (3, n) at points x (3, n), or
+    ``traction(x, n)`` with the facets' outward unit normals n (3, n) if ``normal``."""
+
+    facets: ArrayLike
+    traction: Callable
+    normal: bool | None = None
+
+
+def outward_normals(mesh, facets: np.ndarray) -> np.ndarray:
+    """(3, n) the outward unit normals of boundary facets (triangles) of a tetrahedral
+    mesh.
+
+    >>> from skfem import MeshTet1
+    >>> m = MeshTet1()
+    >>> f = m.facets_satisfying(lambda x: x[2] > 1 - 1e-12)
+    >>> outward_normals(m, f).T.tolist()
+    [[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]]
+    """
+    a, b, c = (mesh.p[:, mesh.facets[k, facets]] for k in range(3))
+    n = np.cross((b - a).T, (c - a).T).T
+    n = n / np.linalg.norm(n, axis=0)
+    centre = mesh.p[:, mesh.t[:, mesh.f2t[0, facets]]].mean(axis=1)
+    flip = ((centre - a) * n).sum(axis=0) > 0
+    return np.where(flip, -n, n) + 0.0
+
+
+def _boundary_facets(mesh, facets, name: str) -> np.ndarray:
+    f = np.asarray(facets)
+    if f.ndim != 1 or (f.size and (f.dtype.kind not in "iu" or f.min() < 0
+                                   or f.max() >= mesh.facets.shape[1])):
+        raise ValueError(f"{name} must be indices into mesh.facets (0 .. "
+                         f"{mesh.facets.shape[1] - 1}), got {f!r:.60}")
+    if f.size and not np.all(mesh.f2t[1, f] == -1):
+        raise ValueError(f"{name} must be boundary facets; {int((mesh.f2t[1, f] >= 0).sum())}"
+                         f" of them lie inside the mesh")
+    return f.astype(int)
+
+
+def mouth_facets(space: CrackSpace3D, facets: np.ndarray) -> np.ndarray:
+    """Whether the crack meets each boundary facet (triangle): ψ_h vanishes on it at a
+    point where φ_h < 0."""
+    geo = space.geometry
+    nodes = space.mesh.facets[:, facets]                  # (3, nf)
+    ps, ph = geo.psi[nodes], geo.phi[nodes]
+    lo = np.where(ps == 0, ph, np.inf).min(axis=0)
+    for a, b in ((0, 1), (1, 2), (0, 2)):
+        strict = ps[a] * ps[b] < 0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = np.where(strict, ps[a] / (ps[a] - ps[b]), 0.0)
+        lo = np.minimum(lo, np.where(strict, ph[a] + t * (ph[b] - ph[a]), np.inf))
+    return lo < 0
+
+
+def supported_dofs(space: CrackSpace3D, supports) -> tuple[np.ndarray, np.ndarray]:
+    """The constrained unknowns and their values: the standard unknowns of the supported
+    nodes (a node on the crack, ψ = 0 and φ < 0, has two values and stays free), and the
+    branch unknowns of supported nodes away from the mouth (the boundary facets the
+    crack meets) set to zero; Heaviside unknowns are never constrained (as in 2D,
+    :mod:`skxfem.crack.assembly`)."""
+    mesh, geo = space.mesh, space.geometry
+    nd = space.nodal_dofs
+    branch_of = np.full(mesh.p.shape[1], -1)
+    branch_of[space.branch] = np.arange(space.branch.size)
+    cd = space.branch_dofs()
+    dofs, vals = [], []
+    for k, s in enumerate(supports):
+        comps = np.asarray(s.components, dtype=int)
+        if comps.size == 0 or not np.all(np.isin(comps, (0, 1, 2))):
+            raise ValueError(f"supports[{k}].components must be among (0, 1, 2), got "
+                             f"{s.components!r}")
+        nodes, clamp = [], []
+        if s.facets is not None:
+            f = _boundary_facets(mesh, s.facets, f"supports[{k}].facets")
+            fn = np.unique(mesh.facets[:, f])
+            at_mouth = np.unique(mesh.facets[:, f[mouth_facets(space, f)]])
+            nodes.append(fn)
+            clamp.append(np.setdiff1d(fn, at_mouth))
+        if s.nodes is not None:
+            nn = np.asarray(s.nodes)
+            if nn.ndim != 1 or nn.dtype.kind not in "iu" or (
+                    nn.size and (nn.min() < 0 or nn.max() >= mesh.p.shape[1])):
+                raise ValueError(f"supports[{k}].nodes must be node indices, got {nn!r:.60}")
+            nodes.append(nn.astype(int))
+        nodes = np.unique(np.concatenate(nodes)) if nodes else np.zeros(0, int)
+        nodes = nodes[(geo.psi[nodes] != 0) | (geo.phi[nodes] >= 0)]
+        x = mesh.p[:, nodes]
+        g = np.zeros_like(x) if s.value is None else np.asarray(s.value(x), float)
+        if g.shape != x.shape or not np.all(np.isfinite(g)):
+            raise ValueError(f"supports[{k}].value must return finite values of shape "
+                             f"{x.shape} (3, n), got {g.shape}")
+        clamp = np.concatenate(clamp) if clamp else np.zeros(0, int)
+        kb = branch_of[clamp]
+        kb = kb[kb >= 0]
+        for c in comps:
+            dofs += [nd[c, nodes], cd[kb][:, :, c].ravel()]
+            vals += [g[c], np.zeros(kb.size * 4)]
+    if not dofs:
+        return np.zeros(0, int), np.zeros(0)
+    D, first = np.unique(np.concatenate(dofs), return_index=True)
+    return D, np.concatenate(vals)[first]
+
+
+def facet_rule(space: CrackSpace3D, facets: np.ndarray, n: int = 4):
+    """Gauss points on boundary facets split by ψ_h where the crack meets them: points
+    (3, m), weights (m,), cells (m,), sides (m,) and the facet of each point (m,)."""
+    mesh, geo = space.mesh, space.geometry
+    tri = np.transpose(mesh.p[:, mesh.facets[:, facets]], (2, 1, 0))   # (nf, 3, 3)
+    ps = geo.psi[mesh.facets[:, facets]].T
+    mouth = mouth_facets(space, facets)
+    sub, parent, side = split(tri[mouth], ps[mouth])
+    pieces = np.concatenate([tri[~mouth], sub])
+    owner = np.concatenate([facets[~mouth], facets[mouth][parent]])
+    sides = np.concatenate([np.where(ps[~mouth].mean(axis=1) < 0, -1.0, 1.0), side])
+    s, w = leggauss(n)
+    s, w = (s + 1) / 2, w / 2
+    U, V = (a.ravel() for a in np.meshgrid(s, s, indexing="ij"))
+    W = np.outer(w, w).ravel() * U
+    A, B, C = pieces[:, 0], pieces[:, 1], pieces[:, 2]
+    x = (A[:, None] + U[None, :, None] * (B - A)[:, None]
+         + (U * V)[None, :, None] * (C - B)[:, None])
+    area2 = np.linalg.norm(np.cross(B - A, C - A), axis=1)
+    wts = area2[:, None] * W[None]
+    cells = np.repeat(mesh.f2t[0, owner], W.size)
+    return (x.reshape(-1, 3).T, wts.ravel(), cells, np.repeat(sides, W.size),
+            np.repeat(owner, W.size))
+
+
+def traction_load(space: CrackSpace3D, loads) -> np.ndarray:
+    """f = Σ ∫ t · v over the loads' facets, on the unknowns [a, b, c].
+
+    >>> from skfem import MeshTet1
+    >>> from skxfem.crack.geometry3d import crack_geometry_3d
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 4),) * 3)
+    >>> V = crack_space_3d(m, crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    >>> top = m.facets_satisfying(lambda x: x[2] > 1 - 1e-12)
+    >>> f = traction_load(V, [Load3D(top, lambda x: np.stack([0 * x[0], 0 * x[0], 1 + 0 * x[0]]))])
+    >>> round(float(f[V.nodal_dofs[2]].sum()), 12)    # the resultant, 1 × area 1
+    1.0
+    """
+    f = np.zeros(space.N)
+    for load in loads:
+        fac = _boundary_facets(space.mesh, load.facets, "a load's facets")
+        x, w, cells, side, owner = facet_rule(space, fac)
+        t = (np.asarray(load.traction(x), float) if load.normal is None else
+             np.asarray(load.traction(x, outward_normals(space.mesh, owner)), float))
+        if t.shape != x.shape or not np.all(np.isfinite(t)):
+            raise ValueError(f"a load's traction must return finite values of shape "
+                             f"{x.shape} (3, n), got {t.shape}")
+        f += evaluation(space, cells, x, side).T @ (t * w).ravel()
+    return f
+
+
+def _branch_blocks(space: CrackSpace3D) -> np.ndarray:
+    """(nb, 15) the unknowns [a_k, c_k] of each branch node."""
+    a = space.nodal_dofs[:, space.branch].T                # (nb, 3)
+    return np.hstack([a, space.branch_dofs().reshape(-1, 12)])
+
+
+def nodal_scaling(K: sp.spmatrix, space: CrackSpace3D, fixed: np.ndarray | None = None
+                  ) -> sp.csr_matrix:
+    """The scaling S, K_s = Sᵀ K S, U = S U_s: each branch node's 15 × 15 block [a_k, c_k]
+    by the inverse transpose of the Cholesky factor of its diagonal block, 1/√K_ii
+    elsewhere (and on any block holding a constrained unknown of ``fixed``)."""
+    N = K.shape[0]
+    K = K.tocsr()
+    d = K.diagonal()
+    if np.any(d <= 0):
+        raise ValueError(f"the stiffness has {int((d <= 0).sum())} non-positive diagonal "
+                         f"entries: an enriched function vanishes on its support")
+    s = 1 / np.sqrt(d)
+    B = _branch_blocks(space)
+    if fixed is not None and len(fixed):
+        B = B[~np.isin(B, fixed).any(axis=1)]
+    if B.shape[0] == 0:
+        return sp.diags(s).tocsr()
+    r = B[:, :, None].repeat(15, 2).ravel()
+    c = B[:, None, :].repeat(15, 1).ravel()
+    blocks = np.asarray(K[r, c]).reshape(-1, 15, 15)
+    L = np.linalg.cholesky(blocks)
+    Sb = np.transpose(np.linalg.inv(L), (0, 2, 1))
+    inb = np.zeros(N, dtype=bool)
+    inb[B.ravel()] = True
+    rest = np.flatnonzero(~inb)
+    return sp.csr_matrix((np.concatenate([s[rest], Sb.ravel()]),
+                          (np.concatenate([rest, r]), np.concatenate([rest, c]))),
+                         shape=(N, N))
