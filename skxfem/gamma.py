@@ -84,8 +84,15 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from .crack.assembly import FACET_POINTS, Load, Support, stiffness, supported_dofs, traction_load
-from .crack.assembly import _facets as check_facets
+from .crack.assembly import (
+    FACET_POINTS,
+    Load,
+    Support,
+    check_facets,
+    stiffness,
+    supported_dofs,
+    traction_load,
+)
 from .crack.assembly import face_rule as face_rule_of
 from .crack.assembly import mass as crack_mass
 from .crack.faces import crack_multipliers, face_functions, face_traction
@@ -99,7 +106,7 @@ from .enrich import XSpace, edge_jumps, jump_matrix, xfem_space
 from .fem.material import Material
 from .levelset import point_normals, unit
 from .multipliers import InterfaceRule, Space, interface_rule
-from .scene.boundary import _values, imposed
+from .scene.boundary import imposed, imposed_values
 from .scene.parts import Interface
 from .stabilised import multiplier_space
 
@@ -377,7 +384,7 @@ class CrackXSpace:
             for c, (value, what) in components.items():
                 def u(x, c=c, value=value, what=what):
                     out = np.zeros_like(x, dtype=float)
-                    out[c] = _values(value, x, what)
+                    out[c] = imposed_values(value, x, what)
                     return out
 
                 supports.append(Support(_facets_of(mesh, nodes), np.asarray(nodes), u, (c,)))

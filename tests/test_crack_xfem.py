@@ -410,7 +410,7 @@ def test_rule_group_points_keep_negative_weights():
     from skxfem.crack.assembly import rule_groups
 
     m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
-    V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5), "topological")
     far = np.flatnonzero(m.p[:, m.t].mean(axis=1)[1] > 0.85)      # uncut, plain cells
     G, = rule_groups(V, far, plain_order=3)
     _, _, _, _, w = G.points()

@@ -67,7 +67,7 @@ from .space import CrackSpace, evaluation
 
 __all__ = ["FACET_POINTS", "RuleGroup", "rule_groups", "stiffness", "mass", "Support",
            "Load", "facet_pieces", "traction_load", "face_rule", "face_load",
-           "supported_dofs", "mouth_facets"]
+           "supported_dofs", "mouth_facets", "check_facets"]
 
 FACET_POINTS = 8
 """Gauss points on each piece of a loaded boundary facet."""
@@ -226,7 +226,9 @@ class Load:
     traction: Callable
 
 
-def _facets(mesh, facets, name: str) -> np.ndarray:
+def check_facets(mesh, facets, name: str) -> np.ndarray:
+    """``facets`` as indices of boundary facets of ``mesh``, else a ValueError naming
+    ``name``."""
     f = np.asarray(facets)
     if f.ndim != 1 or (f.size and (f.dtype.kind not in "iu" or f.min() < 0
                                    or f.max() >= mesh.facets.shape[1])):
@@ -264,7 +266,7 @@ def mouth_facets(space: CrackSpace, facets: ArrayLike) -> np.ndarray:
     >>> m.p[:, m.facets[:, f[mouth_facets(V, f)]].ravel()].T.tolist()
     [[0.0, 0.4], [0.0, 0.6000000000000001]]
     """
-    f = _facets(space.mesh, facets, "facets")
+    f = check_facets(space.mesh, facets, "facets")
     return _crossing(space, f)[1]
 
 
@@ -275,7 +277,7 @@ def facet_pieces(space: CrackSpace, facets: ArrayLike, points: int = FACET_POINT
     Each facet is cut into two pieces at the point where ψ_h vanishes if the crack
     meets it there, else at its midpoint; each piece holds ``points`` Gauss points."""
     mesh = space.mesh
-    f = _facets(mesh, facets, "facets")
+    f = check_facets(mesh, facets, "facets")
     t_cut, meets = _crossing(space, f)
     t_cut = np.where(meets, t_cut, 0.5)
     s, w = leggauss(points)
@@ -416,7 +418,7 @@ def supported_dofs(space: CrackSpace, supports) -> tuple[np.ndarray, np.ndarray]
                              f"{s.components!r}")
         nodes, clamp = [], []
         if s.facets is not None:
-            f = _facets(mesh, s.facets, f"supports[{k}].facets")
+            f = check_facets(mesh, s.facets, f"supports[{k}].facets")
             mouth = _crossing(space, f)[1]
             fn = np.unique(mesh.facets[:, f])
             at_mouth = np.unique(mesh.facets[:, f[mouth]])

@@ -34,7 +34,7 @@ from ..fem.material import Material
 from ..fem.quadrature import cell_rule
 from ..levelset import unit
 from ..multipliers import InterfaceRule
-from ..scene.boundary import _values, imposed
+from ..scene.boundary import imposed, imposed_values
 from .geometry3d import barycentric, crack_geometry_3d
 from .sif3d import front_points, sif_3d
 from .space3d import (
@@ -126,10 +126,14 @@ class Crack3D:
             owner[mesh.t2e[k]] = np.arange(mesh.t.shape[1])
         return (_face_jump(V.space, owner[cut.edge_ids], cut.points) @ U).reshape(3, -1)
 
-    def front(self, V, U: np.ndarray, material) -> dict:
+    def front(self, V, U: np.ndarray, material, traction=None) -> dict:
         """``points`` (m, 3) along the front (:func:`skxfem.crack.sif3d.front_points`) and
         ``K_I``, ``K_II``, ``K_III`` (m,) there (:func:`skxfem.crack.sif3d.sif_3d`, the
-        interface's ``sif_radius`` the radial cone's radius)."""
+        interface's ``sif_radius`` the radial cone's radius).  ``traction``: the faces of
+        a 3D crack are free (law ``free``), so it must be None or zero."""
+        if traction is not None and np.any(traction):
+            raise ValueError("a 3D crack's faces are free (law 'free'): no face traction "
+                             "enters its interaction integral")
         P = front_points(V.space)
         K = sif_3d(V.space, U, material, P, self.interface.sif_radius)
         return {"points": P.T.copy(), "K_I": K[:, 0], "K_II": K[:, 1], "K_III": K[:, 2]}
@@ -219,7 +223,7 @@ class CrackXSpace3D:
             for c, (value, what) in components.items():
                 def u(x, c=c, value=value, what=what):
                     out = np.zeros_like(x, dtype=float)
-                    out[c] = _values(value, x, what)
+                    out[c] = imposed_values(value, x, what)
                     return out
 
                 supports.append(Support3D(_facets_of(mesh, nodes), np.asarray(nodes), u,

@@ -32,7 +32,7 @@ if TYPE_CHECKING:
     from .model import Scene
 
 __all__ = ["FACES", "COMPONENTS", "named_facets", "select_nodes", "select_facets",
-           "imposed", "dirichlet", "load_facets", "traction"]
+           "imposed", "imposed_values", "dirichlet", "load_facets", "traction"]
 
 
 
@@ -105,7 +105,7 @@ def _label(boundary, where=None) -> str:
     return repr(text) if text else getattr(boundary, "__name__", "selection")
 
 
-def _values(value, x: np.ndarray, what: str) -> np.ndarray:
+def imposed_values(value, x: np.ndarray, what: str) -> np.ndarray:
     """A number or ``value(x)`` as a finite array of shape ``x.shape[1:]``."""
     v = np.asarray(value(x) if callable(value) else value, dtype=float)
     try:
@@ -157,7 +157,7 @@ def dirichlet(scene: Scene, mesh: Mesh, basis) -> tuple[np.ndarray, np.ndarray]:
     for nodes, components in imposed(scene, mesh):
         for c, (value, what) in components.items():
             dofs = basis.nodal_dofs[c, nodes]
-            values[dofs] = _values(value, mesh.p[:, nodes], what)
+            values[dofs] = imposed_values(value, mesh.p[:, nodes], what)
             is_imposed[dofs] = True
     dofs = np.flatnonzero(is_imposed)
     return dofs, values[dofs]
@@ -174,8 +174,8 @@ def traction(load: SurfaceLoad, x: np.ndarray, n: np.ndarray) -> np.ndarray:
            [-2.]])
     """
     if load.pressure is not None:
-        return -_values(load.pressure, x, "load pressure") * n
-    return np.array([_values(t, x, f"load traction[{i}]")
+        return -imposed_values(load.pressure, x, "load pressure") * n
+    return np.array([imposed_values(t, x, f"load traction[{i}]")
                      for i, t in enumerate(load.traction)])
 
 
