@@ -69,7 +69,7 @@ from .fem.quadrature import cell_rule, exact_orders
 from .fem.side_bases import Parts, parts, side_bases
 from .scene.boundary import dirichlet, imposed
 
-__all__ = ["XSpace", "XSpaces", "xfem_space", "stiffness", "mass", "enriched_matrix",
+__all__ = ["XSpace", "XSpaces", "xfem_space", "stiffness", "mass",
            "enriched_blocks", "as_spaces", "signed_bases", "far_side_fraction",
            "enriched_load", "body_load",
            "jump_matrix", "split_fields", "from_fields", "region_fields", "constrained_dofs",
@@ -404,31 +404,6 @@ def enriched_blocks(V: XSpace | XSpaces, A, AH) -> sp.csr_matrix:
     for k, (Aab, Abb) in enumerate(parts):
         rows.append([Aab.T] + [Abb if j == k else None for j in range(len(parts))])
     return sp.bmat(rows, format="csr")
-
-
-def enriched_matrix(V: XSpace | XSpaces, form,
-                    orders: tuple[int, int] | None = None) -> sp.csr_matrix:
-    """The X-FEM matrix on [a, b¹, …] of a form that reads the Heaviside value w["H"].
-
-    The form must be linear in H, H·g(u, v) (as the stiffness and the mass
-    are).  With A = the form at H = 1 (standard) and A_H its signed version for
-    each interface, and D = diag(Hⱼ), the blocks follow from H² = 1 (see the module
-    notes); A and A_H come from :func:`skxfem.fem.side_bases.parts`, A assembled
-    once.  ``orders``: see :func:`signed_bases`.
-    """
-    V = as_spaces(V)
-
-    def assembled(basis):
-        return form.assemble(basis, H=np.ones(basis.dx.shape))
-
-    A, AH = None, []
-    for Vk in V.per_interface:
-        cell_q = Vk.rule if orders is None else cell_rule(Vk.mesh, orders[0])
-        side_parts = parts(Vk.mesh, Vk.cut, Vk.basis.elem, cell_q,
-                           None if orders is None else orders[1])
-        A, AHk = side_parts.signed(assembled, A)
-        AH.append(AHk)
-    return enriched_blocks(V, A, AH)
 
 
 def stiffness(V: XSpace | XSpaces, material: Material,

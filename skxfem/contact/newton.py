@@ -210,8 +210,8 @@ class Iterate:
 class Residual:
     """The residuals at an iterate: R_u (free unknowns), R_n (m,), R_t (m, k)
     (tractions), and what the laws saw: g_n (m,), y = r_τ - ρ_τ s on the
-    components not held (m, k), the Coulomb radius R (m,) and its derivatives
-    dR/dλ (m,) and dR/dU = ``dR_dU`` ρ_n B_n/w, the status (m,)."""
+    components not held (m, k), the Coulomb radius R (m,), the status (m,) and
+    dR/dλ (m,)."""
 
     R_u: np.ndarray
     R_n: np.ndarray
@@ -221,7 +221,6 @@ class Residual:
     radius: np.ndarray
     status: np.ndarray
     dR_dlam: np.ndarray = None
-    dR_dU: np.ndarray = None
 
     @property
     def vector(self) -> np.ndarray:
@@ -252,21 +251,12 @@ def jumps(ops, U, U_prev):
     return d, s.reshape(d.size, len(ops.Bt))
 
 
-RADIUS = "pressure"
-
-
 def _radius(laws: PointLaws, lam, g_n):
-    """The radius R of the friction ball, dR/dλ and the coefficient c of dR/dU =
-    c ρ_n B_n/w: μ max(0, -λ) (Coulomb; slope -μ where λ < 0), or the frozen
-    threshold where g_n < 0 (slope 0)."""
-    m = g_n.size
+    """The radius R of the friction ball and dR/dλ: μ max(0, -λ) (Coulomb; slope -μ
+    where λ < 0), or the frozen threshold where g_n < 0 (slope 0)."""
     if laws.threshold is not None:
-        return np.where(g_n < 0, laws.threshold, 0.0), np.zeros(m), np.zeros(m)
-    if RADIUS == "augmented":
-        closed = g_n <= 0
-        return laws.mu * np.maximum(0.0, -g_n), np.where(closed, -laws.mu, 0.0), np.where(
-            closed, laws.mu, 0.0)
-    return laws.mu * np.maximum(0.0, -lam), np.where(lam < 0, -laws.mu, 0.0), np.zeros(m)
+        return np.where(g_n < 0, laws.threshold, 0.0), np.zeros(g_n.size)
+    return laws.mu * np.maximum(0.0, -lam), np.where(lam < 0, -laws.mu, 0.0)
 
 
 def residual(step: StepProblem, it: Iterate, rho_n=None, rho_t=None) -> Residual:
@@ -279,7 +269,7 @@ def residual(step: StepProblem, it: Iterate, rho_n=None, rho_t=None) -> Residual
     chi = np.where(laws.unilateral, g_n < 0, True)
     R_n = it.lam - chi * g_n
     y = np.where(laws.tangent_held, 0.0, it.r - rho_t[:, None] * s)
-    radius, dR_dlam, dR_dU = _radius(laws, it.lam, g_n)
+    radius, dR_dlam = _radius(laws, it.lam, g_n)
     Q = np.zeros_like(y)
     stick, coulomb = laws.tangential == "stick", laws.tangential == "coulomb"
     Q[stick] = chi[stick, None] * y[stick]
@@ -290,7 +280,7 @@ def residual(step: StepProblem, it: Iterate, rho_n=None, rho_t=None) -> Residual
     R_u = (step.K @ it.U - ops.Bn.T @ it.lam
            - sum(ops.Bt[a].T @ tau[:, a] for a in range(laws.k)) - step.F)[step.free]
     point_status = status(g_n, y, radius, laws.name)
-    return Residual(R_u, R_n, R_t, g_n, y, radius, point_status, dR_dlam, dR_dU)
+    return Residual(R_u, R_n, R_t, g_n, y, radius, point_status, dR_dlam)
 
 
 def jacobian(step: StepProblem, it: Iterate, res: Residual, close=None,
@@ -306,18 +296,16 @@ def jacobian(step: StepProblem, it: Iterate, res: Residual, close=None,
     m, k = res.y.shape
     iw = 1.0 / ops.w
     chi, DQ, qR = linear_step.linearised(laws, res, close)
-    dR_dlam, dR_dU = res.dR_dlam, res.dR_dU
     Bn = ops.Bn[:, free]
     Bt = [B[:, free] for B in ops.Bt]
     K = step.K[free][:, free] if K is None else K
     rows_u = [K, -Bn.T] + [-Bt[a].T for a in range(k)]
     rows_n = [sp.diags(chi * laws.rho_n * iw) @ Bn, sp.diags(1.0 - chi)] + [None] * k
-    # dR_t/dU = DQ ρ_t Bt/w - qR dR/dU;  dR_t/dλ = -qR dR/dλ
+    # dR_t/dU = DQ ρ_t Bt/w;  dR_t/dλ = -qR dR/dλ
     rows_t = []
     for a in range(k):
         du = sum(sp.diags(DQ[:, a, b] * laws.rho_t * iw) @ Bt[b] for b in range(k))
-        du = du - sp.diags(qR[:, a] * dR_dU * laws.rho_n * iw) @ Bn
-        rows_t.append([du, sp.diags(-qR[:, a] * dR_dlam)]
+        rows_t.append([du, sp.diags(-qR[:, a] * res.dR_dlam)]
                       + [sp.diags((a == b) - DQ[:, a, b]) for b in range(k)])
     return sp.bmat([rows_u, rows_n] + rows_t, format="csr")
 
