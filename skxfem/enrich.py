@@ -144,9 +144,11 @@ class XSpace:
             lambda basis: _signed_vector_mass.assemble(basis, H=np.ones(basis.dx.shape)), A)
 
     def blocks(self, A: sp.csr_matrix, AH) -> tuple[sp.csr_matrix, sp.csr_matrix]:
-        """(A_ab, A_bb), the enriched blocks of this space from A and its A_H
-        (:func:`enriched_blocks`)."""
-        return _blocks(self, A, AH.tocsr())
+        """(A_ab, A_bb), the enriched blocks of this space from A (CSR) and its A_H
+        (module notes; :func:`enriched_blocks`)."""
+        E, D, AH = self.enr_dofs, sp.diags(self.H_node), AH.tocsr()
+        AEE, AHEE = A[E][:, E], AH[E][:, E]
+        return AH[:, E] - A[:, E] @ D, AEE + D @ AEE @ D - D @ AHEE - AHEE @ D
 
     def load(self, facet_loads, body_force=None, f: np.ndarray | None = None):
         """(f, f_b): the load ∫ t·φ + ∫ b·φ on the standard dofs (``f`` if given: the
@@ -380,24 +382,12 @@ def signed_bases(V: XSpace, orders: tuple[int, int] | None = None):
     return side_bases(V.mesh, V.cut, V.basis.elem, cell_rule(V.mesh, orders[0]), orders[1])
 
 
-def _blocks(V: XSpace, A, AH):
-    """The blocks (A_ab, A_bb) of one enrichment (module notes), A and AH in CSR."""
-    E = V.enr_dofs
-    D = sp.diags(V.H_node)
-    Aab = AH[:, E] - A[:, E] @ D
-    AEE, AHEE = A[E][:, E], AH[E][:, E]
-    Abb = AEE + D @ AEE @ D - D @ AHEE - AHEE @ D
-    return Aab, Abb
-
-
 def enriched_blocks(V: XSpace | XSpaces, A, AH) -> sp.csr_matrix:
     """The X-FEM matrix on [a, b¹, b², …] from A = ∫ g(φᵢ, φⱼ) on the standard dofs
-    and, for each interface k, A_H = ∫ H^k g(φᵢ, φⱼ) (``AH``: one per interface, or
-    the one matrix of an :class:`XSpace`): A, the blocks of each enrichment with A
-    (module notes, H² = 1), and zero between two enrichments.  Only the columns of
-    the enriched dofs of each A_H are read."""
+    and, for each interface k, A_H = ∫ H^k g(φᵢ, φⱼ) (``AH``, one per interface): A,
+    the blocks of each enrichment with A (module notes, H² = 1), and zero between two
+    enrichments.  Only the columns of the enriched dofs of each A_H are read."""
     V = as_spaces(V)
-    AH = AH if isinstance(AH, (list, tuple)) else [AH]
     A = A.tocsr()
     parts = [Vk.blocks(A, AHk) for Vk, AHk in zip(V.per_interface, AH, strict=True)]
     rows = [[A] + [Aab for Aab, _ in parts]]

@@ -64,7 +64,7 @@ import scipy.sparse as sp
 
 from ..linalg.iterative import ConvergenceError
 from . import step as linear_step
-from .laws import KINDS, disk_projection, status
+from .laws import LAWS, disk_projection, status
 
 __all__ = ["Law", "PointLaws", "point_laws", "join_laws", "StepProblem", "Iterate", "Residual",
            "NewtonInfo", "ContactConvergenceError", "jumps", "residual", "jacobian",
@@ -91,7 +91,7 @@ class ContactConvergenceError(RuntimeError):
 
 @dataclass(frozen=True)
 class Law:
-    """A law of :data:`skxfem.contact.laws.KINDS` with its parameters (μ: ``coulomb``).
+    """A law of :data:`skxfem.scene.laws.LAWS` with its parameters (μ: ``coulomb``).
 
     ``rho_n``, ``rho_t``: the augmentations, tractions per length.
     ``threshold`` (m,), if given, freezes the friction threshold: the radius
@@ -107,7 +107,7 @@ class Law:
 
     @property
     def friction(self) -> bool:
-        return KINDS[self.name].tangential != "free"
+        return LAWS[self.name].tangential != "free"
 
 
 @dataclass(frozen=True)
@@ -143,7 +143,7 @@ def point_laws(law: Law, tangent_held: np.ndarray) -> PointLaws:
     (True, 'stick', 3.0)
     """
     m = tangent_held.shape[0]
-    kind = KINDS[law.name]
+    kind = LAWS[law.name]
     full = lambda v: np.full(m, float(v))  # noqa: E731
     return PointLaws(np.full(m, law.name, dtype=object), np.full(m, kind.unilateral),
                      np.full(m, kind.tangential, dtype=object), full(law.mu),
