@@ -179,24 +179,19 @@ class Step:
     F: np.ndarray | None = None
 
 
-def parameters(item: Scene | Interface, h: float, E: float | None = None) -> Law:
-    """The :class:`~skxfem.contact.newton.Law` of an interface with ρ defaults E/h for
-    mesh size h: ``item`` an :class:`~skxfem.scene.Interface` with Young's modulus
-    ``E``, or a scene of one interface (its material's E).
+def parameters(item: Interface, h: float, E: float) -> Law:
+    """The :class:`~skxfem.contact.newton.Law` of an :class:`~skxfem.scene.Interface`
+    with ρ defaults E/h for mesh size h and Young's modulus E.
 
     ``coulomb`` with μ = 0 is ``frictionless``.
 
     >>> from skxfem.scene.benchmarks import strip
     >>> from dataclasses import replace
-    >>> law = parameters(replace(strip(), law="coulomb", friction=0.5), h=0.25)
+    >>> s = replace(strip(), law="coulomb", friction=0.5)
+    >>> law = parameters(s.interfaces[0], h=0.25, E=s.material.E)
     >>> law.name, law.mu, law.rho_n, law.rho_t
     ('coulomb', 0.5, 4.0, 4.0)
     """
-    if isinstance(item, Scene):
-        if len(item.interfaces) != 1:
-            raise ValueError(f"parameters takes a scene of one interface or an Interface "
-                             f"and E; this scene has {len(item.interfaces)}")
-        item, E = item.interfaces[0], item.material.E if E is None else E
     if item.law not in HISTORY_LAWS:
         raise ValueError(f"scene law must be one of {CONTACT_LAWS} for a contact solve, "
                          f"got {item.law!r} (ties are solved by skxfem.solver.solve)")
@@ -609,15 +604,14 @@ def _advance(one, it, F0, g0, F1, g1, max_cuts: int, where: str, law_name: str =
                 hint = (" The adhesive law (no slip wherever closed) may have no solution "
                          "at the edge of a contact zone, where the pressure vanishes: a point "
                          "that stays closed pulls, one that opens penetrates; coulomb with a "
-                         "large friction (1e3) has one." if hasattr(e, "law") and
-                         "adhesive" in e.law.split("+") else "")
+                         "large friction (1e3) has one." if "adhesive" in law_name.split("+")
+                         else "")
                 err = ContactConvergenceError(
                     f"{where}: {e}{cut}. Try more load steps, another rho_n/rho_t, or "
                     f"max_iter.{hint}")
                 err.last, err.statuses = e.last, e.statuses
-                for key in ("thresholds",):
-                    if hasattr(e, key):
-                        setattr(err, key, getattr(e, key))
+                if hasattr(e, "thresholds"):
+                    err.thresholds = e.thresholds
                 raise err from e
             size = part / 2
             retries = getattr(e, "retries", 0)

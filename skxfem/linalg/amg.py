@@ -251,7 +251,7 @@ def refresh(ml, A: sp.spmatrix, change: sp.spmatrix | None = None):
             new.A = level.A + _like(change, level.A)
         levels.append(new)
     coarse = levels[-1].A
-    for name in dict.fromkeys((getattr(ml, "skxfem_coarse", "splu"), "pinv")):
+    for name in dict.fromkeys((ml.skxfem_coarse, "pinv")):
         out = amg_module.multilevel.MultilevelSolver(levels, coarse_solver=name)
         try:  # factorise the coarsest matrix now: a singular one takes the pseudo-inverse
             out.coarse_solver(coarse, np.zeros(coarse.shape[0]))
