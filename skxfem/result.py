@@ -45,9 +45,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .enrich import edge_jumps, region_fields
+from .enrich import region_fields
 
-__all__ = ["Result", "edge_jumps", "result"]
+__all__ = ["Result", "result"]
 
 
 @dataclass(frozen=True)
