@@ -404,10 +404,13 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
     factor = setup  # the last LU or tie set-up, reused while the matrix is unchanged
     merit_rows = None
     inner = []
-    for n in range(1, max_iter + 1):
+    for n in range(1, max_iter + 2):
+        info = NewtonInfo(n - 1, np.array(history), tuple(alphas), inner=tuple(inner))
         if np.all(history[-1] <= tol):
-            return it, res, NewtonInfo(n - 1, np.array(history), tuple(alphas),
-                                       inner=tuple(inner))
+            return it, res, info
+        if n > max_iter:
+            raise _not_converged(f"did not converge in {max_iter} iterations", history,
+                                 statuses, tol, (it, res, info))
         eta = forcing(history[-1], linear_tol)
         try:
             dx, scaled, factor, krylov = _linear_step(
@@ -435,12 +438,6 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
         statuses.append(res.status)
         if monitor is not None:
             monitor(n, history[-1], res.status, krylov)
-    if np.all(history[-1] <= tol):
-        return it, res, NewtonInfo(max_iter, np.array(history), tuple(alphas),
-                                   inner=tuple(inner))
-    info = NewtonInfo(max_iter, np.array(history), tuple(alphas), inner=tuple(inner))
-    raise _not_converged(f"did not converge in {max_iter} iterations", history,
-                         statuses, tol, (it, res, info))
 
 
 ETA = (1e-2, 1.0)
@@ -501,14 +498,12 @@ def _linear_step(step, it, res, close, linear, modes, blocksize, factor, linear_
     K (the same scales, :func:`skxfem.contact.step.scales` reads only K's
     diagonal), J itself only with ``full``."""
     if linear == "iterative":
+        kw = dict(close=close, reuse=factor, tol=linear_tol)
         try:
-            dx, factor, krylov = linear_step.iterative(step, res, modes, blocksize,
-                                                       close=close, reuse=factor,
-                                                       tol=linear_tol)
+            dx, factor, krylov = linear_step.iterative(step, res, modes, blocksize, **kw)
         except ConvergenceError:  # a point a hair past its slip limit: see KINK
-            dx, factor, krylov = linear_step.iterative(step, res, modes, blocksize,
-                                                       close=close, reuse=factor,
-                                                       tol=linear_tol, kink=linear_step.KINK)
+            dx, factor, krylov = linear_step.iterative(step, res, modes, blocksize, **kw,
+                                                       kink=linear_step.KINK)
 
         def scaled(full=False):
             free = step.free
