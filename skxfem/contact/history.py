@@ -473,11 +473,7 @@ def _result(pb: Problem, ops: Operators, law, steps: tuple, linear: str,
     dim = pb.mesh.dim()
     Jn = np.concatenate([((q.J @ last.U[q.columns])
                           .reshape(dim, -1) * q.rule.normals).sum(0) for q in qs])
-    t = pb.timings
-    timings = {"cut": t["cut"] + t["space"], "enrich": t["enrich"],
-               "assemble": sum(t[k] for k in ("stiffness", "load", "constraints", "interface",
-                                              "prolongation")), "solve": seconds}
-    return result(pb, last.U, traction, max(0.0, float(Jn.max())), ops.w.size, timings,
+    return result(pb, last.U, traction, max(0.0, float(Jn.max())), ops.w.size, seconds,
                   linear, {"tol": linear_tol}, steps=steps, status=last.status[owner],
                   ops=ops, law=law)
 
