@@ -71,7 +71,7 @@ from .scene.boundary import dirichlet, imposed
 
 __all__ = ["XSpace", "XSpaces", "xfem_space", "stiffness", "mass",
            "enriched_blocks", "as_spaces", "signed_bases", "far_side_fraction",
-           "enriched_load", "body_load",
+           "body_load",
            "jump_matrix", "split_fields", "from_fields", "region_fields", "constrained_dofs",
            "one_interface",
            "edge_jumps"]
@@ -152,8 +152,8 @@ class XSpace:
 
     def load(self, facet_loads, body_force=None, f: np.ndarray | None = None):
         """(f, f_b): the load ∫ t·φ + ∫ b·φ on the standard dofs (``f`` if given: the
-        first interface's) and on this space's enriched unknowns, f_H[E] - H f[E]
-        (:func:`enriched_load`).  ``facet_loads``: ``(facets, t(x, n))`` pairs
+        first interface's) and on this space's enriched unknowns, f_H[E] - H f[E], from
+        f_H = ∫ H t·φ + ∫ H b·φ.  ``facet_loads``: ``(facets, t(x, n))`` pairs
         (:func:`skxfem.scene.load_facets`); ``body_force``: :func:`body_load`'s."""
         from .fem.loads import boundary_quadrature, surface_load
         own, f_H = np.zeros(self.n_std), np.zeros(self.n_std)
@@ -444,7 +444,7 @@ def mass(V: XSpace | XSpaces) -> sp.csr_matrix:
 def body_load(V: XSpace, force) -> tuple[np.ndarray, np.ndarray]:
     """(f, f_H) of a body force b (a volume force, F/L³, such as gravity ρg) on the
     standard dofs: f = ∫ b·φ and f_H = ∫ H b·φ (exact on the enriched dofs only), for
-    :func:`enriched_load`.  ``force``: dim values, each a number or a callable
+    :meth:`XSpace.load`.  ``force``: dim values, each a number or a callable
     ``x -> array`` (a formula), integrated on the sides of Γ by the rule of the mass
     (:data:`skxfem.fem.quadrature.EXACT_ORDERS`: exact for a constant or linear b on
     affine cells).
@@ -469,15 +469,6 @@ def body_load(V: XSpace, force) -> tuple[np.ndarray, np.ndarray]:
     cell, sub = exact_orders(V.mesh, "mass")
     side_parts = parts(V.mesh, V.cut, V.basis.elem, cell_rule(V.mesh, cell), sub)
     return side_parts.signed(lambda basis: form.assemble(basis, H=np.ones(basis.dx.shape)))
-
-
-def enriched_load(V: XSpace | XSpaces, f: np.ndarray, f_H) -> np.ndarray:
-    """Load on [a, b¹, b², …] from f = ∫ t·φ and, for each interface k, f_H = ∫ H^k t·φ
-    (standard dofs; ``f_H`` one per interface, or the one array of an :class:`XSpace`)."""
-    V = as_spaces(V)
-    f_H = f_H if isinstance(f_H, (list, tuple)) else [f_H]
-    return np.concatenate([f] + [fk[Vk.enr_dofs] - Vk.H_node * f[Vk.enr_dofs]
-                                 for Vk, fk in zip(V.per_interface, f_H, strict=True)])
 
 
 def jump_matrix(V: XSpace, cells: np.ndarray, ref: np.ndarray) -> sp.csr_matrix:
