@@ -111,8 +111,6 @@ def ball_projection(g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return P, DP
 
 
-
-
 def disk_projection(y: np.ndarray, radius: np.ndarray):
     """The projection P_{B(0,R)}(y) on the ball of radius R ≥ 0 and its derivatives.
 
