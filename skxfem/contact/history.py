@@ -502,14 +502,12 @@ def step_results(result: Result) -> list[Result]:
 
 def _rescue(step: StepProblem, start: Iterate, failed: ContactConvergenceError, tol: float,
             max_iter: int, solve_kw: dict, where: str = "a load step"):
-    """A step whose Newton iteration failed (module notes): Newton again from the same
-    start with the default augmentation ρ = E/h where the step's is another (an
-    extreme ρ_τ makes a sticking point look sliding for many iterations), then, for
-    Coulomb, the paper's fixed point, whose passes freeze the radius μp of the
-    friction ball (the hard part near the slip limit of a lightly pressed point);
-    from the first answer found, Newton with the step's own ρ.  Each attempt is
-    said before it runs, by a :class:`StepRetryWarning` that starts with ``where``.
-    Re-raises ``failed`` if none converges (``failed.retries``: how many ran)."""
+    """A step whose Newton iteration failed, solved again from the same start (module
+    notes, which say why): Newton at the default ρ = E/h where the step's is another,
+    then, for Coulomb, the paper's fixed point; from the first answer found, Newton
+    with the step's own ρ.  Each attempt is said before it runs, by a
+    :class:`StepRetryWarning` that starts with ``where``.  Re-raises ``failed`` if none
+    converges (``failed.retries``: how many ran)."""
     laws = step.laws
     attempts = []
     if not (np.allclose(laws.rho_n, step.rho_ref) and np.allclose(laws.rho_t, step.rho_ref)):
