@@ -64,7 +64,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .fem.cells import cell_edges, reference_simplices
+from .fem.cells import cell_edges, on_common_face, reference_simplices
 from .fem.meshes import cell_name
 from .fem.simplex import edge_point, split
 from .levelset import nodal_values
@@ -330,8 +330,8 @@ def cut(mesh, psi, name: str = "") -> Cut:
         enriched = np.union1d(enriched, mesh.facets[:, on_gamma])
 
     slots = np.vstack([point_of_edge[t2e[:, cells]], point_of_vertex[mesh.t[:, cells]]])
-    facets, facet_cell, facet_ref = _interface(mesh, psi, local, slots, cells,
-                                               _slots_on_faces(mesh, local))
+    share_face = on_common_face(mesh, [*local, *np.arange(mesh.t.shape[0])[:, None]])
+    facets, facet_cell, facet_ref = _interface(mesh, psi, local, slots, cells, share_face)
     direction = _plus_direction(mesh, psi, facet_cell)
     if on_gamma.size:
         f, fc, fr, fd = _gamma_facets(mesh, side, on_gamma, point_of_vertex)
@@ -389,15 +389,6 @@ def _gamma_facets(mesh, side, on_gamma, point_of_vertex):
             out_d.append(out_of)
     return (np.hstack(out_f), np.concatenate(out_c), np.concatenate(out_r, axis=2),
             np.hstack(out_d))
-
-
-def _slots_on_faces(mesh, local) -> np.ndarray:
-    """Boolean (nle + nv, nle + nv): do two points of a cell, each on a local edge
-    or at a local vertex, lie on a common face of it?"""
-    faces = [set(f) for f in mesh.elem().refdom.facets]
-    slots = [set(e) for e in local] + [{v} for v in range(mesh.t.shape[0])]
-    on = np.array([[s <= f for f in faces] for s in slots])
-    return (on.astype(int) @ on.T.astype(int)) > 0
 
 
 def _check_crosses(mesh, psi: np.ndarray, near: np.ndarray, name: str) -> None:

@@ -69,9 +69,9 @@ from .fem.quadrature import cell_rule, exact_orders
 from .fem.side_bases import Parts, parts, side_bases
 from .scene.boundary import dirichlet, imposed
 
-__all__ = ["XSpace", "XSpaces", "xfem_space", "stiffness", "mass", "enriched_matrix",
+__all__ = ["XSpace", "XSpaces", "xfem_space", "stiffness", "mass",
            "enriched_blocks", "as_spaces", "signed_bases", "far_side_fraction",
-           "enriched_load", "body_load",
+           "body_load",
            "jump_matrix", "split_fields", "from_fields", "region_fields", "constrained_dofs",
            "one_interface",
            "edge_jumps"]
@@ -144,14 +144,16 @@ class XSpace:
             lambda basis: _signed_vector_mass.assemble(basis, H=np.ones(basis.dx.shape)), A)
 
     def blocks(self, A: sp.csr_matrix, AH) -> tuple[sp.csr_matrix, sp.csr_matrix]:
-        """(A_ab, A_bb), the enriched blocks of this space from A and its A_H
-        (:func:`enriched_blocks`)."""
-        return _blocks(self, A, AH.tocsr())
+        """(A_ab, A_bb), the enriched blocks of this space from A (CSR) and its A_H
+        (module notes; :func:`enriched_blocks`)."""
+        E, D, AH = self.enr_dofs, sp.diags(self.H_node), AH.tocsr()
+        AEE, AHEE = A[E][:, E], AH[E][:, E]
+        return AH[:, E] - A[:, E] @ D, AEE + D @ AEE @ D - D @ AHEE - AHEE @ D
 
     def load(self, facet_loads, body_force=None, f: np.ndarray | None = None):
         """(f, f_b): the load ∫ t·φ + ∫ b·φ on the standard dofs (``f`` if given: the
-        first interface's) and on this space's enriched unknowns, f_H[E] - H f[E]
-        (:func:`enriched_load`).  ``facet_loads``: ``(facets, t(x, n))`` pairs
+        first interface's) and on this space's enriched unknowns, f_H[E] - H f[E], from
+        f_H = ∫ H t·φ + ∫ H b·φ.  ``facet_loads``: ``(facets, t(x, n))`` pairs
         (:func:`skxfem.scene.load_facets`); ``body_force``: :func:`body_load`'s."""
         from .fem.loads import boundary_quadrature, surface_load
         own, f_H = np.zeros(self.n_std), np.zeros(self.n_std)
@@ -380,55 +382,18 @@ def signed_bases(V: XSpace, orders: tuple[int, int] | None = None):
     return side_bases(V.mesh, V.cut, V.basis.elem, cell_rule(V.mesh, orders[0]), orders[1])
 
 
-def _blocks(V: XSpace, A, AH):
-    """The blocks (A_ab, A_bb) of one enrichment (module notes), A and AH in CSR."""
-    E = V.enr_dofs
-    D = sp.diags(V.H_node)
-    Aab = AH[:, E] - A[:, E] @ D
-    AEE, AHEE = A[E][:, E], AH[E][:, E]
-    Abb = AEE + D @ AEE @ D - D @ AHEE - AHEE @ D
-    return Aab, Abb
-
-
 def enriched_blocks(V: XSpace | XSpaces, A, AH) -> sp.csr_matrix:
     """The X-FEM matrix on [a, b¹, b², …] from A = ∫ g(φᵢ, φⱼ) on the standard dofs
-    and, for each interface k, A_H = ∫ H^k g(φᵢ, φⱼ) (``AH``: one per interface, or
-    the one matrix of an :class:`XSpace`): A, the blocks of each enrichment with A
-    (module notes, H² = 1), and zero between two enrichments.  Only the columns of
-    the enriched dofs of each A_H are read."""
+    and, for each interface k, A_H = ∫ H^k g(φᵢ, φⱼ) (``AH``, one per interface): A,
+    the blocks of each enrichment with A (module notes, H² = 1), and zero between two
+    enrichments.  Only the columns of the enriched dofs of each A_H are read."""
     V = as_spaces(V)
-    AH = AH if isinstance(AH, (list, tuple)) else [AH]
     A = A.tocsr()
     parts = [Vk.blocks(A, AHk) for Vk, AHk in zip(V.per_interface, AH, strict=True)]
     rows = [[A] + [Aab for Aab, _ in parts]]
     for k, (Aab, Abb) in enumerate(parts):
         rows.append([Aab.T] + [Abb if j == k else None for j in range(len(parts))])
     return sp.bmat(rows, format="csr")
-
-
-def enriched_matrix(V: XSpace | XSpaces, form,
-                    orders: tuple[int, int] | None = None) -> sp.csr_matrix:
-    """The X-FEM matrix on [a, b¹, …] of a form that reads the Heaviside value w["H"].
-
-    The form must be linear in H, H·g(u, v) (as the stiffness and the mass
-    are).  With A = the form at H = 1 (standard) and A_H its signed version for
-    each interface, and D = diag(Hⱼ), the blocks follow from H² = 1 (see the module
-    notes); A and A_H come from :func:`skxfem.fem.side_bases.parts`, A assembled
-    once.  ``orders``: see :func:`signed_bases`.
-    """
-    V = as_spaces(V)
-
-    def assembled(basis):
-        return form.assemble(basis, H=np.ones(basis.dx.shape))
-
-    A, AH = None, []
-    for Vk in V.per_interface:
-        cell_q = Vk.rule if orders is None else cell_rule(Vk.mesh, orders[0])
-        side_parts = parts(Vk.mesh, Vk.cut, Vk.basis.elem, cell_q,
-                           None if orders is None else orders[1])
-        A, AHk = side_parts.signed(assembled, A)
-        AH.append(AHk)
-    return enriched_blocks(V, A, AH)
 
 
 def stiffness(V: XSpace | XSpaces, material: Material,
@@ -479,7 +444,7 @@ def mass(V: XSpace | XSpaces) -> sp.csr_matrix:
 def body_load(V: XSpace, force) -> tuple[np.ndarray, np.ndarray]:
     """(f, f_H) of a body force b (a volume force, F/L³, such as gravity ρg) on the
     standard dofs: f = ∫ b·φ and f_H = ∫ H b·φ (exact on the enriched dofs only), for
-    :func:`enriched_load`.  ``force``: dim values, each a number or a callable
+    :meth:`XSpace.load`.  ``force``: dim values, each a number or a callable
     ``x -> array`` (a formula), integrated on the sides of Γ by the rule of the mass
     (:data:`skxfem.fem.quadrature.EXACT_ORDERS`: exact for a constant or linear b on
     affine cells).
@@ -504,15 +469,6 @@ def body_load(V: XSpace, force) -> tuple[np.ndarray, np.ndarray]:
     cell, sub = exact_orders(V.mesh, "mass")
     side_parts = parts(V.mesh, V.cut, V.basis.elem, cell_rule(V.mesh, cell), sub)
     return side_parts.signed(lambda basis: form.assemble(basis, H=np.ones(basis.dx.shape)))
-
-
-def enriched_load(V: XSpace | XSpaces, f: np.ndarray, f_H) -> np.ndarray:
-    """Load on [a, b¹, b², …] from f = ∫ t·φ and, for each interface k, f_H = ∫ H^k t·φ
-    (standard dofs; ``f_H`` one per interface, or the one array of an :class:`XSpace`)."""
-    V = as_spaces(V)
-    f_H = f_H if isinstance(f_H, (list, tuple)) else [f_H]
-    return np.concatenate([f] + [fk[Vk.enr_dofs] - Vk.H_node * f[Vk.enr_dofs]
-                                 for Vk, fk in zip(V.per_interface, f_H, strict=True)])
 
 
 def jump_matrix(V: XSpace, cells: np.ndarray, ref: np.ndarray) -> sp.csr_matrix:

@@ -316,12 +316,21 @@ def _part(interface, g: Gamma, mesh, cut, V, D, values, law, lap, columns) -> Pa
     component (with the supports' fixed nodes; a multiplier per edge on the pieces
     of Γ the space leaves loose).  A law without multipliers (``free``) gives P with
     no column (dim rows per cut edge: λ = P μ = 0) and B with no row."""
-    if COUPLING[law] == "none":
-        return _free_part(interface, g, mesh, cut, V, D, values, law, lap, columns)
-    lam_space = g.multipliers(mesh, cut)
+    free = COUPLING[law] == "none"
+    lam_space = None if free else g.multipliers(mesh, cut)
     lap("space")
     rule = g.rule(mesh, cut)
     J = g.jump(V, rule)
+    if free:  # its rule and jump only, for the results
+        lap("interface")
+        ne, dim = cut.edge_ids.size, mesh.dim()
+        q = Part(interface=interface, gamma=g, mesh=mesh, cut=cut, V=V, D=D, g=values,
+                 rule=rule, J=J, multiplier_space=None, law=law, ncomp=dim,
+                 P=sp.csr_matrix((dim * ne, 0)), B=sp.csr_matrix((0, V.N)),
+                 M_edges=sp.csr_matrix((ne, ne)), held_edges=np.zeros((dim, ne), bool),
+                 component_spaces=(), columns=columns)
+        lap("prolongation")
+        return q
     B_edges = coupling(V, rule, COUPLING[law], J=J)
     M_edges = interface_mass(rule)
     lap("interface")
@@ -347,23 +356,6 @@ def _part(interface, g: Gamma, mesh, cut, V, D, values, law, lap, columns) -> Pa
         q = part(g.multipliers(mesh, cut, per_edge=short), short)
     lap("prolongation")
     return q
-
-
-def _free_part(interface, g: Gamma, mesh, cut, V, D, values, law, lap, columns) -> Part:
-    """The :class:`Part` of an interface whose law has no multipliers: its rule and jump
-    (for the results), P (dim·n_edges, 0), B (0, n_k), no multiplier space."""
-    lap("space")
-    rule = g.rule(mesh, cut)
-    J = g.jump(V, rule)
-    lap("interface")
-    ne, dim = cut.edge_ids.size, mesh.dim()
-    part = Part(interface=interface, gamma=g, mesh=mesh, cut=cut, V=V, D=D, g=values,
-                rule=rule, J=J, multiplier_space=None, law=law, ncomp=dim,
-                P=sp.csr_matrix((dim * ne, 0)), B=sp.csr_matrix((0, V.N)),
-                M_edges=sp.csr_matrix((ne, ne)), held_edges=np.zeros((dim, ne), bool),
-                component_spaces=(), columns=columns)
-    lap("prolongation")
-    return part
 
 
 def _component_spaces(g: Gamma, mesh, cut, lam_space, fixed, per_edge=None) -> tuple:

@@ -45,9 +45,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .enrich import edge_jumps, region_fields
+from .enrich import region_fields
 
-__all__ = ["Result", "edge_jumps", "result"]
+__all__ = ["Result", "result"]
 
 
 @dataclass(frozen=True)
@@ -206,10 +206,15 @@ class Result:
 
 
 def result(pb, U: np.ndarray, traction: np.ndarray, max_jump: float, n_multipliers: int,
-           timings: dict, linear: str, linear_info: dict, **contact) -> Result:
-    """The :class:`Result` of the assembled problem ``pb`` solved as U, with the
-    ``traction`` (dim, n) at the cut edges' points (of every interface in turn);
-    ``contact``: the keywords ``steps``, ``status``, ``ops``, ``law``, ``removed``."""
+           seconds: float, linear: str, linear_info: dict, **contact) -> Result:
+    """The :class:`Result` of the assembled problem ``pb`` solved as U in ``seconds``, with
+    the ``traction`` (dim, n) at the cut edges' points (of every interface in turn);
+    ``contact``: the keywords ``steps``, ``status``, ``ops``, ``law``, ``removed``.  Its
+    ``timings``: the stages of ``pb.timings`` (cut, enrich, assemble) and the solve."""
+    t = pb.timings
+    timings = {"cut": t["cut"] + t["space"], "enrich": t["enrich"],
+               "assemble": sum(t[k] for k in ("stiffness", "load", "constraints", "interface",
+                                              "prolongation")), "solve": seconds}
     regions, fields = region_fields(pb.V, U)
     common = dict(scene=pb.scene, mesh=pb.mesh, traction=traction, max_jump=float(max_jump),
                   n_dofs=pb.V.N, n_multipliers=int(n_multipliers), timings=timings, U=U,

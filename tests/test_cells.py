@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from skfem import MeshHex1, MeshQuad1, MeshTet1, MeshTri1, MeshWedge1
 
-from skxfem.fem.cells import cell_edges, faces_of_edges, reference_simplices
+from skxfem.fem.cells import cell_edges, on_common_face, reference_simplices
 
 MESHES = {"tri": MeshTri1, "quad": MeshQuad1, "tet": MeshTet1, "hex": MeshHex1,
           "prism": MeshWedge1}
@@ -32,7 +32,7 @@ def test_cell_edges_and_shared_faces(cell):
     # every local edge maps to a global edge with the same two vertices
     glob = np.sort(edges[:, t2e[:, 0]], axis=0)
     assert np.array_equal(glob, np.sort(mesh.t[local.T, 0], axis=0))
-    share = faces_of_edges(mesh, local)
+    share = on_common_face(mesh, local)
     assert np.array_equal(share, share.T) and share.diagonal().all()
     if mesh.dim() == 2:      # in 2D a facet is an edge: only itself
         assert np.array_equal(share, np.eye(len(local), dtype=bool))

@@ -64,7 +64,7 @@ def _step_problem(s):
 
     pb = assemble(s, law="bilateral")
     ops = operators(pb)
-    law = parameters(s, ops.h)
+    law = parameters(s.interfaces[0], ops.h, s.material.E)
     free = np.setdiff1d(np.arange(pb.V.N), pb.D)
     step = StepProblem(ops, pb.K, pb.F, free, np.zeros(pb.V.N),
                        point_laws(law, ops.tangent_held), law.rho_n)

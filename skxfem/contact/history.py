@@ -179,24 +179,19 @@ class Step:
     F: np.ndarray | None = None
 
 
-def parameters(item: Scene | Interface, h: float, E: float | None = None) -> Law:
-    """The :class:`~skxfem.contact.newton.Law` of an interface with ρ defaults E/h for
-    mesh size h: ``item`` an :class:`~skxfem.scene.Interface` with Young's modulus
-    ``E``, or a scene of one interface (its material's E).
+def parameters(item: Interface, h: float, E: float) -> Law:
+    """The :class:`~skxfem.contact.newton.Law` of an :class:`~skxfem.scene.Interface`
+    with ρ defaults E/h for mesh size h and Young's modulus E.
 
     ``coulomb`` with μ = 0 is ``frictionless``.
 
     >>> from skxfem.scene.benchmarks import strip
     >>> from dataclasses import replace
-    >>> law = parameters(replace(strip(), law="coulomb", friction=0.5), h=0.25)
+    >>> s = replace(strip(), law="coulomb", friction=0.5)
+    >>> law = parameters(s.interfaces[0], h=0.25, E=s.material.E)
     >>> law.name, law.mu, law.rho_n, law.rho_t
     ('coulomb', 0.5, 4.0, 4.0)
     """
-    if isinstance(item, Scene):
-        if len(item.interfaces) != 1:
-            raise ValueError(f"parameters takes a scene of one interface or an Interface "
-                             f"and E; this scene has {len(item.interfaces)}")
-        item, E = item.interfaces[0], item.material.E if E is None else E
     if item.law not in HISTORY_LAWS:
         raise ValueError(f"scene law must be one of {CONTACT_LAWS} for a contact solve, "
                          f"got {item.law!r} (ties are solved by skxfem.solver.solve)")
@@ -478,11 +473,7 @@ def _result(pb: Problem, ops: Operators, law, steps: tuple, linear: str,
     dim = pb.mesh.dim()
     Jn = np.concatenate([((q.J @ last.U[q.columns])
                           .reshape(dim, -1) * q.rule.normals).sum(0) for q in qs])
-    t = pb.timings
-    timings = {"cut": t["cut"] + t["space"], "enrich": t["enrich"],
-               "assemble": sum(t[k] for k in ("stiffness", "load", "constraints", "interface",
-                                              "prolongation")), "solve": seconds}
-    return result(pb, last.U, traction, max(0.0, float(Jn.max())), ops.w.size, timings,
+    return result(pb, last.U, traction, max(0.0, float(Jn.max())), ops.w.size, seconds,
                   linear, {"tol": linear_tol}, steps=steps, status=last.status[owner],
                   ops=ops, law=law)
 
@@ -511,14 +502,12 @@ def step_results(result: Result) -> list[Result]:
 
 def _rescue(step: StepProblem, start: Iterate, failed: ContactConvergenceError, tol: float,
             max_iter: int, solve_kw: dict, where: str = "a load step"):
-    """A step whose Newton iteration failed (module notes): Newton again from the same
-    start with the default augmentation ρ = E/h where the step's is another (an
-    extreme ρ_τ makes a sticking point look sliding for many iterations), then, for
-    Coulomb, the paper's fixed point, whose passes freeze the radius μp of the
-    friction ball (the hard part near the slip limit of a lightly pressed point);
-    from the first answer found, Newton with the step's own ρ.  Each attempt is
-    said before it runs, by a :class:`StepRetryWarning` that starts with ``where``.
-    Re-raises ``failed`` if none converges (``failed.retries``: how many ran)."""
+    """A step whose Newton iteration failed, solved again from the same start (module
+    notes, which say why): Newton at the default ρ = E/h where the step's is another,
+    then, for Coulomb, the paper's fixed point; from the first answer found, Newton
+    with the step's own ρ.  Each attempt is said before it runs, by a
+    :class:`StepRetryWarning` that starts with ``where``.  Re-raises ``failed`` if none
+    converges (``failed.retries``: how many ran)."""
     laws = step.laws
     attempts = []
     if not (np.allclose(laws.rho_n, step.rho_ref) and np.allclose(laws.rho_t, step.rho_ref)):
@@ -609,15 +598,14 @@ def _advance(one, it, F0, g0, F1, g1, max_cuts: int, where: str, law_name: str =
                 hint = (" The adhesive law (no slip wherever closed) may have no solution "
                          "at the edge of a contact zone, where the pressure vanishes: a point "
                          "that stays closed pulls, one that opens penetrates; coulomb with a "
-                         "large friction (1e3) has one." if hasattr(e, "law") and
-                         "adhesive" in e.law.split("+") else "")
+                         "large friction (1e3) has one." if "adhesive" in law_name.split("+")
+                         else "")
                 err = ContactConvergenceError(
                     f"{where}: {e}{cut}. Try more load steps, another rho_n/rho_t, or "
                     f"max_iter.{hint}")
                 err.last, err.statuses = e.last, e.statuses
-                for key in ("thresholds",):
-                    if hasattr(e, key):
-                        setattr(err, key, getattr(e, key))
+                if hasattr(e, "thresholds"):
+                    err.thresholds = e.thresholds
                 raise err from e
             size = part / 2
             retries = getattr(e, "retries", 0)

@@ -139,12 +139,6 @@ def operators(pb) -> Operators:
     return join(pb, [part_operators(q) for q in pb.interfaces])
 
 
-def _edge_lengths(q) -> np.ndarray:
-    """The lengths of the cut edges of a part ``q`` (the mesh size at a vertex on Γ:
-    :func:`skxfem.cut.point_lengths`)."""
-    return point_lengths(q.mesh, q.cut)
-
-
 def part_operators(pb) -> Operators:
     """The :class:`Operators` of one interface's part ``pb`` (a
     :class:`skxfem.problem.Part` assembled bilateral), on its own unknowns [a, b^k]."""
@@ -167,7 +161,7 @@ def part_operators(pb) -> Operators:
     normals = (PNW @ rule.normals.T).T
     normals /= np.linalg.norm(normals, axis=0)
     e = pb.cut.edges
-    h = float(_edge_lengths(pb).mean())
+    h = float(point_lengths(pb.mesh, pb.cut).mean())   # a vertex on Γ: the mesh size
     fixed = fixed_jumps(pb.V, pb.D)
     facet_frames = tangent_frames(pb.cut.normals)  # (k, dim, n_facets)
     fallback = held_tangents(fixed, e, P, normals)
@@ -197,7 +191,7 @@ def join(pb, parts) -> Operators:
     mean length of all cut edges, each interface's own in ``pieces``."""
     k = len(parts[0].Bt)
     sizes = [o.w.size for o in parts]
-    lengths = np.concatenate([_edge_lengths(q) for q in pb.interfaces])
+    lengths = np.concatenate([point_lengths(q.mesh, q.cut) for q in pb.interfaces])
     return Operators(
         sp.vstack([pb.V.lift(j, o.Bn) for j, o in enumerate(parts)], format="csr"),
         tuple(sp.vstack([pb.V.lift(j, o.Bt[a]) for j, o in enumerate(parts)], format="csr")

@@ -48,17 +48,13 @@ import numpy as np
 
 from ..scene.laws import CONTACT_LAWS, LAWS, LawKind
 
-__all__ = ["CONTACT_LAWS", "HISTORY_LAWS", "LawKind", "KINDS", "OPEN", "STICK", "SLIP",
+__all__ = ["CONTACT_LAWS", "HISTORY_LAWS", "LawKind", "LAWS", "OPEN", "STICK", "SLIP",
            "STATUS_NAMES", "indicator", "normal_update", "ball_projection",
            "disk_projection", "status"]
 
-KINDS = LAWS
-"""Every law the contact solver imposes, by name (:data:`skxfem.scene.laws.LAWS`): the
-contact laws and, within a load history, the two ties: a state may switch an
-interface to ``bilateral`` (tension carried, free sliding) or ``bonded`` (no
-further slip), from the jump it has reached."""
-
 HISTORY_LAWS = tuple(name for name, law in LAWS.items() if law.coupling != "none")
+"""The laws of a load state: the contact laws, and the ties ``bilateral`` (tension
+carried, free sliding) and ``bonded`` (no further slip) a state may switch to."""
 
 OPEN, STICK, SLIP = 0, 1, 2
 STATUS_NAMES = ("open", "stick", "slip")
@@ -115,8 +111,6 @@ def ball_projection(g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return P, DP
 
 
-
-
 def disk_projection(y: np.ndarray, radius: np.ndarray):
     """The projection P_{B(0,R)}(y) on the ball of radius R ≥ 0 and its derivatives.
 
@@ -157,7 +151,7 @@ def status(g_n: np.ndarray, y: np.ndarray | None, radius: np.ndarray | None,
            kinds) -> np.ndarray:
     """Status of each law point: :data:`OPEN`, :data:`STICK` or :data:`SLIP`.
 
-    ``kinds``: a law name or (n,) of names (:data:`KINDS`).  A point is open
+    ``kinds``: a law name or (n,) of names (:data:`skxfem.scene.laws.LAWS`).  A point is open
     where its law is unilateral and g_n ≥ 0 (χ(g_n) = 0); a closed point slips
     freely (``free``), never (``stick``) or where |y| > R (``coulomb``; y, R as
     :func:`disk_projection`; a point exactly on the limit sticks).
@@ -168,11 +162,11 @@ def status(g_n: np.ndarray, y: np.ndarray | None, radius: np.ndarray | None,
     """
     g_n = np.asarray(g_n, dtype=float)
     names = np.broadcast_to(np.asarray(kinds, dtype=object), g_n.shape)
-    bad = set(names.tolist()) - set(KINDS)
+    bad = set(names.tolist()) - set(LAWS)
     if bad:
         raise ValueError(f"law must be one of {HISTORY_LAWS}, got {sorted(bad)[0]!r}")
-    uni = np.array([KINDS[k].unilateral for k in names.tolist()], dtype=bool)
-    tang = np.array([KINDS[k].tangential for k in names.tolist()], dtype=object)
+    uni = np.array([LAWS[k].unilateral for k in names.tolist()], dtype=bool)
+    tang = np.array([LAWS[k].tangential for k in names.tolist()], dtype=object)
     closed = ~uni | (indicator(g_n) > 0)
     slip = tang == "free"
     if np.any(tang == "coulomb"):

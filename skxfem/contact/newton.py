@@ -64,7 +64,7 @@ import scipy.sparse as sp
 
 from ..linalg.iterative import ConvergenceError
 from . import step as linear_step
-from .laws import KINDS, disk_projection, status
+from .laws import LAWS, disk_projection, status
 
 __all__ = ["Law", "PointLaws", "point_laws", "join_laws", "StepProblem", "Iterate", "Residual",
            "NewtonInfo", "ContactConvergenceError", "jumps", "residual", "jacobian",
@@ -91,7 +91,7 @@ class ContactConvergenceError(RuntimeError):
 
 @dataclass(frozen=True)
 class Law:
-    """A law of :data:`skxfem.contact.laws.KINDS` with its parameters (μ: ``coulomb``).
+    """A law of :data:`skxfem.scene.laws.LAWS` with its parameters (μ: ``coulomb``).
 
     ``rho_n``, ``rho_t``: the augmentations, tractions per length.
     ``threshold`` (m,), if given, freezes the friction threshold: the radius
@@ -107,7 +107,7 @@ class Law:
 
     @property
     def friction(self) -> bool:
-        return KINDS[self.name].tangential != "free"
+        return LAWS[self.name].tangential != "free"
 
 
 @dataclass(frozen=True)
@@ -143,7 +143,7 @@ def point_laws(law: Law, tangent_held: np.ndarray) -> PointLaws:
     (True, 'stick', 3.0)
     """
     m = tangent_held.shape[0]
-    kind = KINDS[law.name]
+    kind = LAWS[law.name]
     full = lambda v: np.full(m, float(v))  # noqa: E731
     return PointLaws(np.full(m, law.name, dtype=object), np.full(m, kind.unilateral),
                      np.full(m, kind.tangential, dtype=object), full(law.mu),
@@ -210,8 +210,8 @@ class Iterate:
 class Residual:
     """The residuals at an iterate: R_u (free unknowns), R_n (m,), R_t (m, k)
     (tractions), and what the laws saw: g_n (m,), y = r_τ - ρ_τ s on the
-    components not held (m, k), the Coulomb radius R (m,) and its derivatives
-    dR/dλ (m,) and dR/dU = ``dR_dU`` ρ_n B_n/w, the status (m,)."""
+    components not held (m, k), the Coulomb radius R (m,), the status (m,) and
+    dR/dλ (m,)."""
 
     R_u: np.ndarray
     R_n: np.ndarray
@@ -221,7 +221,6 @@ class Residual:
     radius: np.ndarray
     status: np.ndarray
     dR_dlam: np.ndarray = None
-    dR_dU: np.ndarray = None
 
     @property
     def vector(self) -> np.ndarray:
@@ -252,21 +251,12 @@ def jumps(ops, U, U_prev):
     return d, s.reshape(d.size, len(ops.Bt))
 
 
-RADIUS = "pressure"
-
-
 def _radius(laws: PointLaws, lam, g_n):
-    """The radius R of the friction ball, dR/dλ and the coefficient c of dR/dU =
-    c ρ_n B_n/w: μ max(0, -λ) (Coulomb; slope -μ where λ < 0), or the frozen
-    threshold where g_n < 0 (slope 0)."""
-    m = g_n.size
+    """The radius R of the friction ball and dR/dλ: μ max(0, -λ) (Coulomb; slope -μ
+    where λ < 0), or the frozen threshold where g_n < 0 (slope 0)."""
     if laws.threshold is not None:
-        return np.where(g_n < 0, laws.threshold, 0.0), np.zeros(m), np.zeros(m)
-    if RADIUS == "augmented":
-        closed = g_n <= 0
-        return laws.mu * np.maximum(0.0, -g_n), np.where(closed, -laws.mu, 0.0), np.where(
-            closed, laws.mu, 0.0)
-    return laws.mu * np.maximum(0.0, -lam), np.where(lam < 0, -laws.mu, 0.0), np.zeros(m)
+        return np.where(g_n < 0, laws.threshold, 0.0), np.zeros(g_n.size)
+    return laws.mu * np.maximum(0.0, -lam), np.where(lam < 0, -laws.mu, 0.0)
 
 
 def residual(step: StepProblem, it: Iterate, rho_n=None, rho_t=None) -> Residual:
@@ -279,7 +269,7 @@ def residual(step: StepProblem, it: Iterate, rho_n=None, rho_t=None) -> Residual
     chi = np.where(laws.unilateral, g_n < 0, True)
     R_n = it.lam - chi * g_n
     y = np.where(laws.tangent_held, 0.0, it.r - rho_t[:, None] * s)
-    radius, dR_dlam, dR_dU = _radius(laws, it.lam, g_n)
+    radius, dR_dlam = _radius(laws, it.lam, g_n)
     Q = np.zeros_like(y)
     stick, coulomb = laws.tangential == "stick", laws.tangential == "coulomb"
     Q[stick] = chi[stick, None] * y[stick]
@@ -290,7 +280,7 @@ def residual(step: StepProblem, it: Iterate, rho_n=None, rho_t=None) -> Residual
     R_u = (step.K @ it.U - ops.Bn.T @ it.lam
            - sum(ops.Bt[a].T @ tau[:, a] for a in range(laws.k)) - step.F)[step.free]
     point_status = status(g_n, y, radius, laws.name)
-    return Residual(R_u, R_n, R_t, g_n, y, radius, point_status, dR_dlam, dR_dU)
+    return Residual(R_u, R_n, R_t, g_n, y, radius, point_status, dR_dlam)
 
 
 def jacobian(step: StepProblem, it: Iterate, res: Residual, close=None,
@@ -306,18 +296,16 @@ def jacobian(step: StepProblem, it: Iterate, res: Residual, close=None,
     m, k = res.y.shape
     iw = 1.0 / ops.w
     chi, DQ, qR = linear_step.linearised(laws, res, close)
-    dR_dlam, dR_dU = res.dR_dlam, res.dR_dU
     Bn = ops.Bn[:, free]
     Bt = [B[:, free] for B in ops.Bt]
     K = step.K[free][:, free] if K is None else K
     rows_u = [K, -Bn.T] + [-Bt[a].T for a in range(k)]
     rows_n = [sp.diags(chi * laws.rho_n * iw) @ Bn, sp.diags(1.0 - chi)] + [None] * k
-    # dR_t/dU = DQ ρ_t Bt/w - qR dR/dU;  dR_t/dλ = -qR dR/dλ
+    # dR_t/dU = DQ ρ_t Bt/w;  dR_t/dλ = -qR dR/dλ
     rows_t = []
     for a in range(k):
         du = sum(sp.diags(DQ[:, a, b] * laws.rho_t * iw) @ Bt[b] for b in range(k))
-        du = du - sp.diags(qR[:, a] * dR_dU * laws.rho_n * iw) @ Bn
-        rows_t.append([du, sp.diags(-qR[:, a] * dR_dlam)]
+        rows_t.append([du, sp.diags(-qR[:, a] * res.dR_dlam)]
                       + [sp.diags((a == b) - DQ[:, a, b]) for b in range(k)])
     return sp.bmat([rows_u, rows_n] + rows_t, format="csr")
 
@@ -416,10 +404,13 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
     factor = setup  # the last LU or tie set-up, reused while the matrix is unchanged
     merit_rows = None
     inner = []
-    for n in range(1, max_iter + 1):
+    for n in range(1, max_iter + 2):
+        info = NewtonInfo(n - 1, np.array(history), tuple(alphas), inner=tuple(inner))
         if np.all(history[-1] <= tol):
-            return it, res, NewtonInfo(n - 1, np.array(history), tuple(alphas),
-                                       inner=tuple(inner))
+            return it, res, info
+        if n > max_iter:
+            raise _not_converged(f"did not converge in {max_iter} iterations", history,
+                                 statuses, tol, (it, res, info))
         eta = forcing(history[-1], linear_tol)
         try:
             dx, scaled, factor, krylov = _linear_step(
@@ -447,12 +438,6 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
         statuses.append(res.status)
         if monitor is not None:
             monitor(n, history[-1], res.status, krylov)
-    if np.all(history[-1] <= tol):
-        return it, res, NewtonInfo(max_iter, np.array(history), tuple(alphas),
-                                   inner=tuple(inner))
-    info = NewtonInfo(max_iter, np.array(history), tuple(alphas), inner=tuple(inner))
-    raise _not_converged(f"did not converge in {max_iter} iterations", history,
-                         statuses, tol, (it, res, info))
 
 
 ETA = (1e-2, 1.0)
@@ -513,14 +498,12 @@ def _linear_step(step, it, res, close, linear, modes, blocksize, factor, linear_
     K (the same scales, :func:`skxfem.contact.step.scales` reads only K's
     diagonal), J itself only with ``full``."""
     if linear == "iterative":
+        kw = dict(close=close, reuse=factor, tol=linear_tol)
         try:
-            dx, factor, krylov = linear_step.iterative(step, res, modes, blocksize,
-                                                       close=close, reuse=factor,
-                                                       tol=linear_tol)
+            dx, factor, krylov = linear_step.iterative(step, res, modes, blocksize, **kw)
         except ConvergenceError:  # a point a hair past its slip limit: see KINK
-            dx, factor, krylov = linear_step.iterative(step, res, modes, blocksize,
-                                                       close=close, reuse=factor,
-                                                       tol=linear_tol, kink=linear_step.KINK)
+            dx, factor, krylov = linear_step.iterative(step, res, modes, blocksize, **kw,
+                                                       kink=linear_step.KINK)
 
         def scaled(full=False):
             free = step.free

@@ -182,10 +182,10 @@ class TieStep:
               + q_R\,\tfrac{\partial R}{\partial\lambda}\Delta\lambda\big),
               \qquad M = I - DQ,
 
-    k the known part (-R_τ, and the radius' ΔU part, known from the normal
-    row).  At a point linearised at the kink (``kink``, :func:`linearised`) M = ŷŷᵀ
-    is singular across the slip: that row ties the jump across ŷ (one more tie
-    row, whose multiplier is Δr along ŷ⊥) and M's pseudo-inverse gives the rest.
+    k = -R_τ the known part.  At a point linearised at the kink (``kink``,
+    :func:`linearised`) M = ŷŷᵀ is singular across the slip: that row ties the jump
+    across ŷ (one more tie row, whose multiplier is Δr along ŷ⊥) and M's
+    pseudo-inverse gives the rest.
     Its force adds the symmetric stiffness ρ_τ/w B_τᵀ M⁻¹DQ B_τ to K, and, at a
     closed dof, tilts the direction of its pressure: the multiplier of the
     normal row acts along C_n = B_n + e·B_τ, e = M⁻¹ q_R ∂R/∂λ (the friction
@@ -227,7 +227,6 @@ class TieStep:
             self.cross[across] = np.c_[-yh[:, 1], yh[:, 0]]
         self.DQ, self.qR = DQ, qR
         dR_dlam = np.where(solved, res.dR_dlam, 0.0)
-        self.dR_dU = np.where(closed & solved, res.dR_dU, 0.0)
         # e (m, k): how Δr follows Δλ at the dofs solved for Δr
         self.e = np.zeros((m, k))
         self.e[solved] = np.einsum("sab,sb->sa", self.Minv, qR[solved] * dR_dlam[solved, None])
@@ -263,10 +262,8 @@ class TieStep:
         iw = 1.0 / ops.w
         d_lam = np.where(closed, 0.0, -R_n)
         d_r = np.where(self.tied, 0.0, -Rt)
-        # solved: the radius' ΔU part is known from the normal row, ρ_n B_n ΔU/w = -R_n,
-        # and Δλ is known at an open dof
-        known = -Rt[solved] - self.qR[solved] * (self.dR_dU[solved] * R_n[solved])[:, None]
-        d_r[solved] = np.einsum("sab,sb->sa", self.Minv, known) \
+        # solved: Δλ is known at an open dof
+        d_r[solved] = np.einsum("sab,sb->sa", self.Minv, -Rt[solved]) \
             + self.e[solved] * d_lam[solved, None]
         f = np.zeros(self.K.shape[0])
         f[step.free] = -R_u

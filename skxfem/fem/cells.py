@@ -26,7 +26,7 @@ from skfem import MeshHex1, MeshQuad1, MeshTet1, MeshTri1, MeshWedge1
 from .simplex import WEDGE_TO_TETS
 
 __all__ = ["CellType", "CELL_TYPES", "CELLS", "reference_simplices", "cell_edges",
-           "faces_of_edges"]
+           "on_common_face"]
 
 
 @dataclass(frozen=True)
@@ -97,8 +97,9 @@ def cell_edges(mesh):
     return np.array(refdom.edges), mesh.t2e, mesh.edges
 
 
-def faces_of_edges(mesh, local_edges) -> np.ndarray:
-    """Boolean (nle, nle): do two local edges lie on a common face?"""
+def on_common_face(mesh, slots) -> np.ndarray:
+    """Boolean (n, n): do two of the ``slots`` (sets of local vertices: the local
+    edges, single vertices) lie on a common face of the reference cell?"""
     faces = [set(f) for f in mesh.elem().refdom.facets]
-    on = np.array([[set(e) <= f for f in faces] for e in local_edges])
+    on = np.array([[set(s) <= f for f in faces] for s in slots])
     return (on.astype(int) @ on.T.astype(int)) > 0

@@ -197,20 +197,19 @@ def amg(A: sp.spmatrix, modes: np.ndarray | None = None, blocksize: int = 1):
     A = sp.bsr_matrix(A, blocksize=(blocksize, blocksize)) if blocksize > 1 \
         else sp.csr_matrix(A)
     state = np.random.get_state()  # pyamg estimates spectral radii from np.random:
-    np.random.seed(AMG_SEED)       # a fixed start makes every solve reproducible
     try:
-        ml = amg_module.smoothed_aggregation_solver(
-            A, B=modes, coarse_solver="splu", improve_candidates=None,
-            presmoother=SMOOTHER, postsmoother=SMOOTHER)
-        ml.skxfem_coarse = "splu"
-        return ml
-    except RuntimeError:  # a singular coarsest matrix: an aggregate on which the modes
-        np.random.seed(AMG_SEED)  # are dependent (nodes on a line)
-        ml = amg_module.smoothed_aggregation_solver(
-            A, B=modes, coarse_solver="pinv", improve_candidates=None,
-            presmoother=SMOOTHER, postsmoother=SMOOTHER)
-        ml.skxfem_coarse = "pinv"
-        return ml
+        for coarse in ("splu", "pinv"):
+            np.random.seed(AMG_SEED)  # a fixed start makes every solve reproducible
+            try:
+                ml = amg_module.smoothed_aggregation_solver(
+                    A, B=modes, coarse_solver=coarse, improve_candidates=None,
+                    presmoother=SMOOTHER, postsmoother=SMOOTHER)
+            except RuntimeError:  # a singular coarsest matrix: an aggregate on which
+                if coarse == "pinv":  # the modes are dependent (nodes on a line)
+                    raise
+                continue
+            ml.skxfem_coarse = coarse
+            return ml
     finally:
         np.random.set_state(state)  # the caller's random numbers are left as they were
 
@@ -251,7 +250,7 @@ def refresh(ml, A: sp.spmatrix, change: sp.spmatrix | None = None):
             new.A = level.A + _like(change, level.A)
         levels.append(new)
     coarse = levels[-1].A
-    for name in dict.fromkeys((getattr(ml, "skxfem_coarse", "splu"), "pinv")):
+    for name in dict.fromkeys((ml.skxfem_coarse, "pinv")):
         out = amg_module.multilevel.MultilevelSolver(levels, coarse_solver=name)
         try:  # factorise the coarsest matrix now: a singular one takes the pseudo-inverse
             out.coarse_solver(coarse, np.zeros(coarse.shape[0]))

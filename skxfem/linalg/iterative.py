@@ -155,8 +155,7 @@ class Setup:
 
     def serves(self, K, B, fixed, r, bonded, S=None) -> bool:
         """Whether this set-up is that of (K, B, fixed, r, bonded, S)."""
-        return (r == self.r and bonded == self.bonded and np.array_equal(fixed, self.fixed)
-                and K.shape == self.K.shape and B.shape == self.B.shape
+        return (self.carries(K, B, fixed, r, bonded) and B.shape == self.B.shape
                 and _same(K, self.K) and _same(B, self.B) and _same(S, self.S))
 
 
