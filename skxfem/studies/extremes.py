@@ -123,8 +123,8 @@ def attempt(group: str, case: str, measure: str, tolerance: float,
                time.perf_counter() - t0)
 
 
-def patch_scene(mesh: Box, levelset, material: Material = Material(), space: str = "vital",
-                law: str = "bonded", load: float = P) -> Scene:
+def patch_scene(mesh: Box, levelset, material: Material = Material(),
+                space: str = "vital", law: str = "bonded", load: float = P) -> Scene:
     """Uniaxial compression of the box ``mesh`` (the unit box unless its ``size`` says
     otherwise): the patch test of every row.
 
@@ -141,8 +141,8 @@ def patch_scene(mesh: Box, levelset, material: Material = Material(), space: str
     size = (mesh.size or (1.0,))[0]
 
     def at(*c):
-        return lambda x: np.all([np.abs(x[i] - v) <= 1e-9 * size for i, v in enumerate(c)],
-                                axis=0)
+        return lambda x: np.all([np.abs(x[i] - v) <= 1e-9 * size
+                                 for i, v in enumerate(c)], axis=0)
 
     if dim == 2:
         fix = (Displacement(at(0.0, 0.0), {"x": 0.0}),)
