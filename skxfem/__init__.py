@@ -52,15 +52,17 @@ own (import-linter checks it in ``make test``; the contract is in
    ``boundary``, ``settings`` (:class:`Solver`), ``model`` (the :class:`Scene`),
    ``benchmarks`` (``skxfem.scenes``), ``file`` and ``tomlcheck`` (scene files);
 5. ``cut``;  6. ``enrich``;  7. ``multipliers``;  8. ``stabilised``;
-9. ``gamma``;  10. ``problem``;  11. ``result``;
-12. ``contact``: ``laws``, ``interface``, ``step`` (the linear solve of a
+9. ``crack``: the mathematics of a Γ with a front (2D and 3D: its geometry, rules,
+   space, multipliers on its faces, stress intensity factors, the 3D kind);
+10. ``gamma``;  11. ``problem``;  12. ``result``;
+13. ``contact``: ``laws``, ``interface``, ``step`` (the linear solve of a
     Newton step), ``newton``, ``fixed_point``, ``history`` (``solve``);
-13. ``lbb``, ``solver``;
-14. ``studies``: ``convergence``, ``conforming``, ``validation3d``, the
+14. ``lbb``, ``solver``;
+15. ``studies``: ``convergence``, ``conforming``, ``validation3d``, the
     ``extremes`` tables, ``frontier``, ``budget`` and ``counts`` (the size
-    guard), ``progress``;
-15. ``viz``: every module that draws (matplotlib, pyvista; a second contract);
-16. ``app``: ``cli``, ``reproduce``, ``grade`` and ``graded``, ``io`` (the
+    guard), ``progress``, ``cracks`` and ``cracks3d``;
+16. ``viz``: every module that draws (matplotlib, pyvista; a second contract);
+17. ``app``: ``cli``, ``reproduce``, ``grade`` and ``graded``, ``io`` (the
     result files).
 """
 from importlib.metadata import PackageNotFoundError
