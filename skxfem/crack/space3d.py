@@ -59,6 +59,7 @@ from skfem import Basis, ElementTetP1
 from ..fem.material import Material, stiffness_matrix
 from ..fem.quadrature import cell_rule
 from ..fem.simplex import split
+from .assembly import check_facets
 from .branch import branch, branch_local_gradient
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
 from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
@@ -495,18 +496,6 @@ def outward_normals(mesh, facets: np.ndarray) -> np.ndarray:
     return np.where(flip, -n, n) + 0.0
 
 
-def _boundary_facets(mesh, facets, name: str) -> np.ndarray:
-    f = np.asarray(facets)
-    if f.ndim != 1 or (f.size and (f.dtype.kind not in "iu" or f.min() < 0
-                                   or f.max() >= mesh.facets.shape[1])):
-        raise ValueError(f"{name} must be indices into mesh.facets (0 .. "
-                         f"{mesh.facets.shape[1] - 1}), got {f!r:.60}")
-    if f.size and not np.all(mesh.f2t[1, f] == -1):
-        raise ValueError(f"{name} must be boundary facets; {int((mesh.f2t[1, f] >= 0).sum())}"
-                         f" of them lie inside the mesh")
-    return f.astype(int)
-
-
 def mouth_facets(space: CrackSpace3D, facets: np.ndarray) -> np.ndarray:
     """Whether the crack meets each boundary facet (triangle): ψ_h vanishes on it at a
     point where φ_h < 0."""
@@ -541,7 +530,7 @@ def supported_dofs(space: CrackSpace3D, supports) -> tuple[np.ndarray, np.ndarra
                              f"{s.components!r}")
         nodes, clamp = [], []
         if s.facets is not None:
-            f = _boundary_facets(mesh, s.facets, f"supports[{k}].facets")
+            f = check_facets(mesh, s.facets, f"supports[{k}].facets")
             fn = np.unique(mesh.facets[:, f])
             at_mouth = np.unique(mesh.facets[:, f[mouth_facets(space, f)]])
             nodes.append(fn)
@@ -610,7 +599,7 @@ def traction_load(space: CrackSpace3D, loads) -> np.ndarray:
     """
     f = np.zeros(space.N)
     for load in loads:
-        fac = _boundary_facets(space.mesh, load.facets, "a load's facets")
+        fac = check_facets(space.mesh, load.facets, "a load's facets")
         x, w, cells, side, owner = facet_rule(space, fac)
         t = (np.asarray(load.traction(x), float) if load.normal is None else
              np.asarray(load.traction(x, outward_normals(space.mesh, owner)), float))
