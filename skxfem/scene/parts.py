@@ -313,7 +313,8 @@ class Interface:
     ``free``: :func:`check_crack_fields`);
     ``enrichment`` the tip enrichment (``"geometric"``: the nodes within a radius of
     the tip, or ``"topological"``: the tip cells'); ``enrichment_radius`` that radius
-    r_e (None: :data:`skxfem.crack.space.DEFAULT_RADIUS` of the mesh's diameter);
+    r_e (None: in 2D :data:`skxfem.crack.space.DEFAULT_RADIUS` of the mesh's diameter,
+    in 3D 0.1 of it, :func:`skxfem.crack.space3d.crack_space_3d`);
     ``sif_radius`` the interaction integral's radius (None: 0.75 r_e and at least a few
     cells, :func:`skxfem.crack.sif.default_radius`).
 
