@@ -75,7 +75,7 @@ from .space3d import (
 from .williams import near_tip_local
 
 __all__ = ["DEFAULT_RADIUS", "DEFAULT_LENGTH", "front_points", "front_frame", "front_sizes",
-           "boundary_reach", "sif_3d",
+           "boundary_reach", "other_fronts", "sif_3d",
            "CrackSolution3D", "solve_crack_3d"]
 
 DEFAULT_RADIUS = 3.0
@@ -207,8 +207,41 @@ def _radial(r: np.ndarray, R: float, inner: float) -> tuple[np.ndarray, np.ndarr
     return t * t * (3 - 2 * t), -6 * t * (1 - t) / (R - inner)
 
 
-def _hat_integral(geo, P, e3, L):
-    """∫ Λ ds along the front's segments for each point (m,)."""
+def other_fronts(geo, P: np.ndarray) -> np.ndarray:
+    """The distance (m,) from each point P (3, m) of the front to the nearest point of
+    another front (another chain of :func:`skxfem.crack.geometry3d.front_chains`, such
+    as the second front of a centre crack); inf where there is none.
+
+    >>> from skfem import MeshTet1
+    >>> from skxfem.crack.geometry3d import crack_geometry_3d
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 8),) * 2, np.linspace(0, 1, 3))
+    >>> g = crack_geometry_3d(m, m.p[1] - 0.5, np.abs(m.p[0] - 0.5) - 0.2)   # two fronts
+    >>> other_fronts(g, np.array([[0.3], [0.5], [0.5]])).round(12).tolist()
+    [0.4]
+    """
+    chains = [c for c, _ in front_chains(geo)]
+    if len(chains) < 2:
+        return np.full(P.shape[1], np.inf)
+    dist = np.stack([np.linalg.norm(c[:, None] - P[:, :, None], axis=0).min(axis=1)
+                     for c in chains])                  # (nchains, m)
+    own = np.argmin(dist, axis=0)
+    dist[own, np.arange(P.shape[1])] = np.inf
+    return dist.min(axis=0)
+
+
+def _along(x: np.ndarray, P: np.ndarray, e3: np.ndarray, R: float):
+    """s = e₃·(x - P) at points x (3, ...) and whether they lie within 2R of the line
+    through P along e₃ (the part of the front near P: another front, or the far side of
+    a closed one, is left out of P's domain)."""
+    d = x - P.reshape((3,) + (1,) * (x.ndim - 1))
+    s = np.einsum("i,i...->...", e3, d)
+    rho2 = (d * d).sum(axis=0) - s * s
+    return s, rho2 < (2 * R) ** 2
+
+
+def _hat_integral(geo, P, e3, L, Rk):
+    """∫ Λ ds along the front's segments near each point (m,) (:func:`_along` with the
+    point's radius in ``Rk``)."""
     s, w = leggauss(6)
     s, w = (s + 1) / 2, w / 2
     A, B = geo.segments[0], geo.segments[1]
@@ -216,8 +249,8 @@ def _hat_integral(geo, P, e3, L):
     length = np.linalg.norm(B - A, axis=0)
     out = []
     for k in range(P.shape[1]):
-        sk = np.einsum("i,ijk->jk", e3[:, k], x - P[:, k, None, None])
-        out.append(((_bump(sk, L)[0] * w).sum(axis=1) * length).sum())
+        sk, near = _along(x, P[:, k], e3[:, k], Rk[k])
+        out.append(((_bump(sk, L)[0] * near * w).sum(axis=1) * length).sum())
     return np.array(out)
 
 
@@ -228,7 +261,9 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     :func:`front_points`) by the domain interaction integral (module notes).
 
     ``radius`` R of the radial cone (default :data:`DEFAULT_RADIUS` front-cell sizes),
-    clipped at each point to the distance to the boundary (:func:`boundary_reach`);
+    clipped at each point to the distance to the boundary (:func:`boundary_reach`) and
+    to a third of the distance to another front (:func:`other_fronts`: P's domain, the
+    points within 2R of its tangent line, :func:`_along`, then holds no other front);
     ``length`` L the bump's half-width (default :data:`DEFAULT_LENGTH` sizes), ``plateau``
     ρ: q_r = 1 inside ρR.  ``faces``: the traction the crack's faces carry
     (:class:`skxfem.crack.faces3d.FaceTraction3D`, from a contact or a tie), its term
@@ -308,21 +343,24 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     C = [np.concatenate(c) for c in Cs]
     if faces is not None:
         xf, wf, rf, Df = _face_terms(space, faces, material, e1_nodes)
-    Rk = np.minimum(R, boundary_reach(mesh, P, frames.e3, L))
-    den = _hat_integral(geo, P, frames.e3, L)
+    Rk = np.minimum(np.minimum(R, boundary_reach(mesh, P, frames.e3, L)),
+                    other_fronts(geo, P) / 3)
+    den = _hat_integral(geo, P, frames.e3, L, Rk)
     K = np.zeros((P.shape[1], 3))
     for k in range(P.shape[1]):
         R, inner = Rk[k], plateau * Rk[k]
         qr, dqr = _radial(r, R, inner)
-        s = frames.e3[:, k] @ (X - P[:, k, None])
+        s, near = _along(X, P[:, k], frames.e3[:, k], R)
         hat, dhat = _bump(s, L)
+        hat, dhat = hat * near, dhat * near
         gq = hat * dqr * gr + qr * dhat * frames.e3[:, k, None]
         q1 = (gq * e1).sum(axis=0)
         q = qr * hat
         I = np.array([(W * ((A[m] * gq).sum(axis=0) - B[m] * q1 + q * C[m])).sum()
                       for m in range(3)])
         if faces is not None:
-            qf = _radial(rf, R, inner)[0] * _bump(frames.e3[:, k] @ (xf - P[:, k, None]), L)[0]
+            sf, near_f = _along(xf, P[:, k], frames.e3[:, k], R)
+            qf = _radial(rf, R, inner)[0] * _bump(sf, L)[0] * near_f
             I = I - Df @ (wf * qf)
         K[k] = sif_from_interaction(I / den[k], material, 3)
     return K
