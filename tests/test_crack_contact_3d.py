@@ -150,30 +150,14 @@ def test_inf_sup_of_the_3d_crack_spaces_near_the_front():
 
 SLAB_TOML = """
 name = "slab-contact"
-[mesh]
-box = {n = [7, 7, 2], cell = "tet"}
-[levelset]
-expr = "y - 0.5"
-front = "x - 0.5"
-[interface]
-law = "frictionless"
-[material]
-E = 1.0
-nu = 0.3
-[[displacement]]
-boundary = "ymin"
-y = 0.0
-[[displacement]]
-boundary = "xmin"
-x = 0.0
-[[displacement]]
-boundary = "zmin"
-z = 0.0
-[[load]]
-boundary = "ymax"
-traction = [0.0, -1.0, 0.0]
-[solver]
-linear = "direct"
+mesh = {box = {n = [7, 7, 2], cell = "tet"}}
+levelset = {expr = "y - 0.5", front = "x - 0.5"}
+interface = {law = "frictionless"}
+material = {E = 1.0, nu = 0.3}
+displacement = [{boundary = "ymin", y = 0.0}, {boundary = "xmin", x = 0.0},
+                {boundary = "zmin", z = 0.0}]
+load = [{boundary = "ymax", traction = [0.0, -1.0, 0.0]}]
+solver = {linear = "direct"}
 """
 
 
