@@ -183,6 +183,12 @@ class CrackGeometry:
         """Split and tip cells, sorted: the cells integrated on sub-cells."""
         return np.union1d(self.split_cells, self.tip_cells)
 
+    @property
+    def pieces(self) -> np.ndarray:
+        """(nseg, 2, 2) the crack pieces [piece, end, coordinate], physical, in the order of
+        ``facets`` (whose -1 ends they locate: the tip, a node on the crack)."""
+        return np.transpose(self.segments, (2, 0, 1))
+
     def segments_length(self) -> np.ndarray:
         """(nseg,) the lengths of the crack pieces."""
         return np.linalg.norm(self.segments[1] - self.segments[0], axis=0)

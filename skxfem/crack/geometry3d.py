@@ -200,6 +200,12 @@ class CrackGeometry3D:
         """The front cells (the 2D name: :class:`skxfem.crack.geometry.CrackGeometry`)."""
         return self.front_cells
 
+    @property
+    def pieces(self) -> np.ndarray:
+        """(nface, 3, 3) the crack's faces [face, vertex, coordinate] (``faces``), in the
+        order of ``facets`` (whose -1 vertices they locate: on the front, at a node)."""
+        return self.faces
+
     def face_areas(self) -> np.ndarray:
         """(nface,) the areas of the crack's faces."""
         F = self.faces
