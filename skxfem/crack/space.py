@@ -77,8 +77,9 @@ from skfem.assembly import CellBasis
 from ..fem.quadrature import cell_rule
 from .branch import branch, branch_local_gradient
 from .geometry import AREA_TOL, CrackGeometry, check_mesh_2d
+from .radius import default_enrichment_radius
 
-__all__ = ["KINDS", "ENRICHMENTS", "DEFAULT_RADIUS", "RADIUS_CELLS", "CrackSpace",
+__all__ = ["KINDS", "ENRICHMENTS", "CrackSpace",
            "crack_space", "kinds_at", "evaluation", "evaluation_at", "Evaluation",
            "nodal_scaling", "condition_number"]
 
@@ -86,20 +87,6 @@ KINDS = ("1", "H", "F1", "F2", "F3", "F4")
 """The six kinds g of virtual functions φᵢ g (module notes)."""
 
 ENRICHMENTS = ("topological", "geometric")
-
-DEFAULT_RADIUS = 0.2
-"""The default r_e of geometric enrichment, in diameters of the mesh (0.28 on the unit
-square), and at least :data:`RADIUS_CELLS` tip cells.  Fixed whatever h once h is small
-enough, as geometric enrichment must be; large enough that the default interaction
-domain (:func:`skxfem.crack.sif.default_radius`, 0.75 r_e) spans several cells: on
-the Williams square (tip at the centre, triangles) K is within 0.25 % at h = 1/21,
-0.08 % at 1/41 and 0.41 % at 1/11 (0.1 diameters with a 4-cell domain gave +1.0 % at
-h = 1/21, the domain reaching beyond r_e)."""
-
-RADIUS_CELLS = 16 / 3
-"""The smallest default r_e in tip-cell sizes: 0.75 r_e then spans the 4 cells of
-:data:`skxfem.crack.sif.DEFAULT_CELLS`."""
-
 
 @dataclass(frozen=True)
 class CrackSpace:
@@ -178,8 +165,9 @@ def crack_space(mesh, geometry: CrackGeometry, enrichment: str = "geometric",
     geometry : :func:`skxfem.crack.geometry.crack_geometry` of the crack.
     enrichment : ``"topological"`` (the tip cells' nodes) or ``"geometric"`` (the nodes
         within ``radius`` of a tip).
-    radius : r_e > 0 for geometric enrichment; default :data:`DEFAULT_RADIUS` times the
-        mesh's diameter, and at least :data:`RADIUS_CELLS` tip-cell sizes.
+    radius : r_e > 0 for geometric enrichment; default
+        :func:`skxfem.crack.radius.default_enrichment_radius` (0.2 mesh diameters, and at
+        least 16/3 tip-cell sizes: the default interaction domain inside 0.75 r_e).
 
     Examples
     --------
@@ -203,8 +191,7 @@ def crack_space(mesh, geometry: CrackGeometry, enrichment: str = "geometric",
     if enrichment == "geometric":
         if radius is None:
             h = np.ptp(mesh.p[:, mesh.t[:, geometry.tip_cells]], axis=1).max()
-            radius = max(DEFAULT_RADIUS * float(np.linalg.norm(np.ptp(mesh.p, axis=1))),
-                         RADIUS_CELLS * float(h))
+            radius = default_enrichment_radius(mesh, h)
         if not (isinstance(radius, (int, float, np.floating)) and np.isfinite(radius)
                 and radius > 0):
             raise ValueError(f"radius must be a positive number, got {radius!r}")

@@ -63,6 +63,7 @@ from .assembly import check_facets
 from .branch import branch, branch_local_gradient
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
 from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
+from .radius import default_enrichment_radius
 
 __all__ = ["BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "functions_at", "evaluation",
            "field_at", "rules", "stiffness", "Support3D", "Load3D", "outward_normals",
@@ -172,7 +173,10 @@ def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric
     geometry : :func:`skxfem.crack.geometry3d.crack_geometry_3d` of the crack.
     enrichment : ``"topological"`` (the front cells' nodes) or ``"geometric"`` (also the
         nodes within ``radius`` of the front).
-    radius : r_e > 0 for geometric enrichment; default 0.1 times the mesh's diameter.
+    radius : r_e > 0 for geometric enrichment; default
+        :func:`skxfem.crack.radius.default_enrichment_radius` (0.1 mesh diameters, and at
+        least 4 front-cell sizes across the front: the default radial cone of
+        :func:`skxfem.crack.sif3d.sif_3d` inside 0.75 r_e).
     """
     check_mesh_3d(mesh)
     if not isinstance(geometry, CrackGeometry3D):
@@ -186,7 +190,9 @@ def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric
     topo = np.unique(mesh.t[:, geometry.front_cells])
     if enrichment == "geometric":
         if radius is None:
-            radius = 0.1 * float(np.linalg.norm(np.ptp(mesh.p, axis=1)))
+            nodes = mesh.t[:, geometry.front_cells]     # their size across the front
+            h = np.hypot(geometry.phi[nodes], geometry.psi[nodes]).max(axis=0).mean()
+            radius = default_enrichment_radius(mesh, h)
         if not (isinstance(radius, (int, float, np.floating)) and np.isfinite(radius)
                 and radius > 0):
             raise ValueError(f"radius must be a positive number, got {radius!r}")
