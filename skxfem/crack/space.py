@@ -76,6 +76,7 @@ from skfem.assembly import CellBasis
 
 from ..fem.quadrature import cell_rule
 from .branch import branch, branch_local_gradient
+from .dofs import EnrichedUnknowns
 from .geometry import AREA_TOL, CrackGeometry, check_mesh_2d
 from .radius import default_enrichment_radius
 
@@ -88,8 +89,9 @@ KINDS = ("1", "H", "F1", "F2", "F3", "F4")
 
 ENRICHMENTS = ("topological", "geometric")
 
+
 @dataclass(frozen=True)
-class CrackSpace:
+class CrackSpace(EnrichedUnknowns):
     """The enriched space of a crack (module notes).
 
     Attributes
@@ -117,36 +119,6 @@ class CrackSpace:
     @property
     def n_std(self) -> int:
         return int(self.basis.N)
-
-    @property
-    def n_heav(self) -> int:
-        return 2 * self.heaviside.size
-
-    @property
-    def n_branch(self) -> int:
-        return 8 * self.branch.size
-
-    @property
-    def N(self) -> int:
-        return self.n_std + self.n_heav + self.n_branch
-
-    def heaviside_dofs(self) -> np.ndarray:
-        """(nh, 2) the unknowns b of each Heaviside node."""
-        return self.n_std + np.arange(self.n_heav).reshape(-1, 2)
-
-    def branch_dofs(self) -> np.ndarray:
-        """(nb, 4, 2) the unknowns c of each branch node, function l, component."""
-        return self.n_std + self.n_heav + np.arange(self.n_branch).reshape(-1, 4, 2)
-
-    def enriched_nodes(self) -> np.ndarray:
-        """The nodes with enriched unknowns (Heaviside or branch), sorted."""
-        return np.union1d(self.heaviside, self.branch)
-
-    def support_cells(self, nodes: np.ndarray) -> np.ndarray:
-        """The cells holding one of ``nodes``: the union of their supports."""
-        mark = np.zeros(self.mesh.p.shape[1], dtype=bool)
-        mark[nodes] = True
-        return np.flatnonzero(mark[self.mesh.t].any(axis=0))
 
 
 def _polar_nodes(geometry: CrackGeometry, nodes: np.ndarray):

@@ -61,6 +61,7 @@ from ..fem.quadrature import cell_rule
 from ..fem.simplex import split
 from .assembly import check_facets
 from .branch import branch, branch_local_gradient
+from .dofs import EnrichedUnknowns
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
 from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
 from .radius import default_enrichment_radius
@@ -80,7 +81,7 @@ CHUNK = 400
 
 
 @dataclass(frozen=True)
-class CrackSpace3D:
+class CrackSpace3D(EnrichedUnknowns):
     """The enriched space of a 3D crack (module notes).
 
     Attributes
@@ -107,39 +108,9 @@ class CrackSpace3D:
         return 3 * self.mesh.p.shape[1]
 
     @property
-    def n_heav(self) -> int:
-        return 3 * self.heaviside.size
-
-    @property
-    def n_branch(self) -> int:
-        return 12 * self.branch.size
-
-    @property
-    def N(self) -> int:
-        return self.n_std + self.n_heav + self.n_branch
-
-    @property
     def nodal_dofs(self) -> np.ndarray:
         """(3, nverts) the standard unknowns a of each node and component."""
         return 3 * np.arange(self.mesh.p.shape[1])[None] + np.arange(3)[:, None]
-
-    def heaviside_dofs(self) -> np.ndarray:
-        """(nh, 3) the unknowns b of each Heaviside node."""
-        return self.n_std + np.arange(self.n_heav).reshape(-1, 3)
-
-    def branch_dofs(self) -> np.ndarray:
-        """(nb, 4, 3) the unknowns c of each branch node, function l, component."""
-        return self.n_std + self.n_heav + np.arange(self.n_branch).reshape(-1, 4, 3)
-
-    def enriched_nodes(self) -> np.ndarray:
-        """The nodes with enriched unknowns, sorted."""
-        return np.union1d(self.heaviside, self.branch)
-
-    def support_cells(self, nodes: np.ndarray) -> np.ndarray:
-        """The cells holding one of ``nodes``."""
-        mark = np.zeros(self.mesh.p.shape[1], dtype=bool)
-        mark[nodes] = True
-        return np.flatnonzero(mark[self.mesh.t].any(axis=0))
 
 
 def front_distance(geometry: CrackGeometry3D, x: np.ndarray) -> np.ndarray:
