@@ -120,6 +120,11 @@ class CrackSpace(EnrichedUnknowns):
     def n_std(self) -> int:
         return int(self.basis.N)
 
+    @property
+    def nodal_dofs(self) -> np.ndarray:
+        """(2, nverts) the standard unknowns a of each node and component."""
+        return self.basis.nodal_dofs
+
 
 def _polar_nodes(geometry: CrackGeometry, nodes: np.ndarray):
     """(r, θ) at nodes from the level sets; a node on a face counts on Ω⁺ (θ = +π)."""
