@@ -5,7 +5,8 @@ A crack's space (:class:`skxfem.crack.space.CrackSpace` in 2D,
 any dimension d: first the n_std standard unknowns a, then d Heaviside unknowns b per
 Heaviside node, then 4 d branch unknowns c per branch node (function l, then component).
 :class:`EnrichedUnknowns` gives both spaces that numbering from their ``mesh``,
-``heaviside`` and ``branch`` nodes and their own ``n_std``.
+``heaviside`` and ``branch`` nodes and their own ``n_std``, and :func:`virtual_map` the
+map T from [a, b, c] to the coefficients of their virtual functions φᵢ g.
 
 >>> from dataclasses import dataclass
 >>> from skfem import MeshTri1
@@ -22,8 +23,9 @@ Heaviside node, then 4 d branch unknowns c per branch node (function l, then com
 from __future__ import annotations
 
 import numpy as np
+import scipy.sparse as sp
 
-__all__ = ["EnrichedUnknowns"]
+__all__ = ["EnrichedUnknowns", "virtual_map"]
 
 
 class EnrichedUnknowns:
@@ -63,3 +65,35 @@ class EnrichedUnknowns:
         mark = np.zeros(self.mesh.p.shape[1], dtype=bool)
         mark[nodes] = True
         return np.flatnonzero(mark[self.mesh.t].any(axis=0))
+
+
+def virtual_map(nodal_dofs: np.ndarray, heav: np.ndarray, H_node: np.ndarray,
+                branch_nodes: np.ndarray, F_node: np.ndarray) -> sp.csr_matrix:
+    """T: (6 n_std, N), the coefficients ũ_{g, dof} of the virtual functions φᵢ g of the
+    six kinds g = 1, H, F₁ … F₄ from the unknowns [a, b, c] (the shifted enrichment:
+    ũ_1 = a - Σ H(x_j) b - Σ F_l(x_k) c_l, ũ_H = b, ũ_{F_l} = c_l).
+
+    ``nodal_dofs`` (d, nverts) the standard unknowns of each node and component,
+    ``heav`` (nh,) the Heaviside nodes and ``H_node`` their H(x_j), ``branch_nodes``
+    (nb,) and ``F_node`` (4, nb) their F_l(x_k), numbered as :class:`EnrichedUnknowns`.
+
+    >>> T = virtual_map(np.array([[0, 2], [1, 3]]), np.array([1]), np.array([1.0]),
+    ...                 np.array([], int), np.zeros((4, 0)))
+    >>> T.shape, T.toarray()[:4, 4:].tolist()      # a at node 1 less b
+    ((24, 6), [[0.0, 0.0], [0.0, 0.0], [-1.0, 0.0], [0.0, -1.0]])
+    """
+    d, n = nodal_dofs.shape[0], nodal_dofs.size
+    hd, bd = nodal_dofs[:, heav].T.ravel(), nodal_dofs[:, branch_nodes].T   # (d nh,), (nb, d)
+    nh, nb = hd.size, bd.shape[0]
+    rows = [np.arange(n), n + hd, hd]
+    cols = [np.arange(n), n + np.arange(nh), n + np.arange(nh)]
+    vals = [np.ones(n), np.ones(nh), -np.repeat(H_node, d)]
+    c0 = n + nh
+    for l in range(4):                                    # the four branch functions
+        dofs = bd.ravel()
+        c = c0 + (4 * d * np.arange(nb)[:, None] + d * l + np.arange(d)).ravel()
+        rows += [(2 + l) * n + dofs, dofs]
+        cols += [c, c]
+        vals += [np.ones(dofs.size), -np.repeat(F_node[l], d)]
+    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                         shape=(6 * n, c0 + 4 * d * nb))

@@ -76,7 +76,7 @@ from skfem.assembly import CellBasis
 
 from ..fem.quadrature import cell_rule
 from .branch import branch, branch_local_gradient
-from .dofs import EnrichedUnknowns
+from .dofs import EnrichedUnknowns, virtual_map
 from .geometry import AREA_TOL, CrackGeometry, check_mesh_2d
 from .radius import default_enrichment_radius
 
@@ -183,7 +183,7 @@ def crack_space(mesh, geometry: CrackGeometry, enrichment: str = "geometric",
     heav, H_node = heav[keep], H_node[keep]
     F_node = branch(*_polar_nodes(geometry, branch_nodes))
     basis = Basis(mesh, ElementVector(mesh.elem()), quadrature=cell_rule(mesh, 0))
-    T = _virtual_map(basis, heav, H_node, branch_nodes, F_node)
+    T = virtual_map(basis.nodal_dofs, heav, H_node, branch_nodes, F_node)
     return CrackSpace(mesh, geometry, basis, heav, H_node, branch_nodes, F_node,
                       enrichment, radius, T)
 
@@ -206,26 +206,6 @@ def _far_side(mesh, geometry: CrackGeometry) -> np.ndarray:
     for k in range(mesh.t.shape[0]):                      # the 3 or 4 nodes of a cell
         np.logical_or.at(out, mesh.t[k], has)
     return out
-
-
-def _virtual_map(basis, heav, H_node, branch_nodes, F_node) -> sp.csr_matrix:
-    """T: (6 n_std, N), ũ_{g, d} from [a, b, c] (module notes)."""
-    n = basis.N
-    nd = basis.nodal_dofs                                 # (2, nverts)
-    hd, bd = nd[:, heav].T.ravel(), nd[:, branch_nodes].T  # (2 nh,), (nb, 2)
-    nh, nb = hd.size, bd.shape[0]
-    rows = [np.arange(n), n + hd, hd]
-    cols = [np.arange(n), n + np.arange(nh), n + np.arange(nh)]
-    vals = [np.ones(n), np.ones(nh), -np.repeat(H_node, 2)]
-    c0 = n + nh
-    for l in range(4):                                    # the four branch functions
-        d = bd.ravel()
-        c = c0 + (8 * np.arange(nb)[:, None] + 2 * l + np.arange(2)).ravel()
-        rows += [(2 + l) * n + d, d]
-        cols += [c, c]
-        vals += [np.ones(d.size), -np.repeat(F_node[l], 2)]
-    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                         shape=(6 * n, c0 + 8 * nb))
 
 
 def kinds_at(space: CrackSpace, scalar: CellBasis, side: np.ndarray | None = None

@@ -61,7 +61,7 @@ from ..fem.quadrature import cell_rule
 from ..fem.simplex import split
 from .assembly import check_facets
 from .branch import branch, branch_local_gradient
-from .dofs import EnrichedUnknowns
+from .dofs import EnrichedUnknowns, virtual_map
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
 from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
 from .radius import default_enrichment_radius
@@ -177,7 +177,8 @@ def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric
     heav, H_node = heav[keep], H_node[keep]
     phi, psi = geometry.phi[branch_nodes], geometry.psi[branch_nodes]
     F_node = branch(np.hypot(phi, psi), np.arctan2(np.where(psi == 0, 0.0, psi), phi))
-    T = _virtual_map(mesh.p.shape[1], heav, H_node, branch_nodes, F_node)
+    T = virtual_map(3 * np.arange(mesh.p.shape[1])[None] + np.arange(3)[:, None], heav,
+                    H_node, branch_nodes, F_node)
     return CrackSpace3D(mesh, geometry, heav, H_node, branch_nodes, F_node, enrichment,
                         radius, T)
 
@@ -195,26 +196,6 @@ def _far_side(mesh, geometry: CrackGeometry3D) -> np.ndarray:
     for k in range(4):                                    # the 4 nodes of a cell
         np.logical_or.at(out, mesh.t[k], has)
     return out
-
-
-def _virtual_map(nverts, heav, H_node, branch_nodes, F_node) -> sp.csr_matrix:
-    """T: (6 n_std, N), ũ_{g, dof} from [a, b, c]."""
-    n = 3 * nverts
-    hd = (3 * heav[:, None] + np.arange(3)).ravel()       # (3 nh,)
-    bd = 3 * branch_nodes[:, None] + np.arange(3)         # (nb, 3)
-    nh, nb = hd.size, bd.shape[0]
-    rows = [np.arange(n), n + hd, hd]
-    cols = [np.arange(n), n + np.arange(nh), n + np.arange(nh)]
-    vals = [np.ones(n), np.ones(nh), -np.repeat(H_node, 3)]
-    c0 = n + nh
-    for l in range(4):                                    # the four branch functions
-        d = bd.ravel()
-        c = c0 + (12 * np.arange(nb)[:, None] + 3 * l + np.arange(3)).ravel()
-        rows += [(2 + l) * n + d, d]
-        cols += [c, c]
-        vals += [np.ones(d.size), -np.repeat(F_node[l], 3)]
-    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                         shape=(6 * n, c0 + 12 * nb))
 
 
 def functions_at(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
