@@ -64,9 +64,10 @@ from .branch import branch, branch_local_gradient
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
 from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
 
-__all__ = ["BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "functions_at", "evaluation",
-           "field_at", "rules", "stiffness", "Support3D", "Load3D", "outward_normals",
-           "traction_load", "supported_dofs", "nodal_scaling", "front_distance"]
+__all__ = ["BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "PointValues", "point_values",
+           "functions_at", "virtual_field", "evaluation", "field_at", "rules", "stiffness",
+           "Support3D", "Load3D", "outward_normals", "traction_load", "supported_dofs",
+           "nodal_scaling", "front_distance"]
 
 ENRICHMENTS = ("topological", "geometric")
 
@@ -240,11 +241,28 @@ def _virtual_map(nverts, heav, H_node, branch_nodes, F_node) -> sp.csr_matrix:
                          shape=(6 * n, c0 + 12 * nb))
 
 
-def functions_at(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
-                 side: np.ndarray | None = None):
-    """The 24 virtual functions φ_k g of each point's cell (4 nodes × 6 kinds) at points
-    x (3, n) of ``cells`` (n,): values (n, 24), gradients (n, 24, 3) and their virtual
-    node index g·nverts + node (n, 24).
+@dataclass(frozen=True)
+class PointValues:
+    """What the enriched functions need at points x (3, n) of cells (n,): the P1 shape
+    functions ``lam`` (n, 4) and their gradients ``dlam`` (n, 4, 3), the cells' ``nodes``
+    (n, 4), the interpolated level sets ``phi``, ``psi`` (n,) and their gradients
+    ``gphi``, ``gpsi`` (n, 3), and the six kinds g ∈ {1, H, F₁..F₄}: values ``g`` (n, 6),
+    gradients ``dg`` (n, 6, 3) (:func:`point_values`)."""
+
+    lam: np.ndarray
+    dlam: np.ndarray
+    nodes: np.ndarray
+    phi: np.ndarray
+    psi: np.ndarray
+    gphi: np.ndarray
+    gpsi: np.ndarray
+    g: np.ndarray
+    dg: np.ndarray
+
+
+def point_values(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
+                 side: np.ndarray | None = None) -> PointValues:
+    """The :class:`PointValues` at points x (3, n) of ``cells`` (n,).
 
     ``side`` (n,) the side ±1 of each point (needed in split and front cells; default
     the cell's side).  Behind the front (φ_h < 0) θ takes the side's sign, so a point
@@ -278,21 +296,47 @@ def functions_at(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
     loc = branch_local_gradient(rr, tt) * live            # (4, 2, n)
     dg[:, 2:] = (loc[:, 0, :, None] * gphi[None] + loc[:, 1, :, None] * gpsi[None]
                  ).transpose(1, 0, 2)
+    return PointValues(lam, dlam, nodes, phi, psi, gphi, gpsi, g, dg)
+
+
+def functions_at(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
+                 side: np.ndarray | None = None):
+    """The 24 virtual functions φ_k g of each point's cell (4 nodes × 6 kinds) at points
+    x (3, n) of ``cells`` (n,): values (n, 24), gradients (n, 24, 3) and their virtual
+    node index g·nverts + node (n, 24).  ``side``: as :func:`point_values`.
+    """
+    pv = point_values(space, cells, x, side)
+    lam, dlam, g, dg = pv.lam, pv.dlam, pv.g, pv.dg
+    n = lam.shape[0]
     vals = (lam[:, :, None] * g[:, None, :]).reshape(n, 24)      # index 6 k + kind
     grads = (dlam[:, :, None, :] * g[:, None, :, None]
              + lam[:, :, None, None] * dg[:, None, :, :]).reshape(n, 24, 3)
-    nv = mesh.p.shape[1]
-    vnode = (np.arange(6)[None, None, :] * nv + nodes[:, :, None]).reshape(n, 24)
+    nv = space.mesh.p.shape[1]
+    vnode = (np.arange(6)[None, None, :] * nv + pv.nodes[:, :, None]).reshape(n, 24)
     return vals, grads, vnode
 
 
-def field_at(space: CrackSpace3D, U: np.ndarray, cells, x, side=None):
-    """u (3, n) and ∇u (3, 3, n) (∂u_i/∂x_j) of the unknowns U at points x (3, n)."""
-    vals, grads, vnode = functions_at(space, cells, x, side)
-    ut = (space.T @ U).reshape(6, -1, 3).reshape(-1, 3)   # (6 nverts, 3)
-    coef = ut[vnode]                                      # (n, 24, 3)
-    u = np.einsum("na,nac->cn", vals, coef)
-    gu = np.einsum("naj,nac->cjn", grads, coef)
+def virtual_field(space: CrackSpace3D, U: np.ndarray) -> np.ndarray:
+    """(nverts, 6, 3) the virtual coefficients ũ = T U by node, kind and component."""
+    return (space.T @ U).reshape(6, -1, 3).transpose(1, 0, 2)
+
+
+def field_at(space: CrackSpace3D, U: np.ndarray, cells, x, side=None,
+             values: PointValues | None = None, virtual: np.ndarray | None = None):
+    """u (3, n) and ∇u (3, 3, n) (∂u_i/∂x_j) of the unknowns U at points x (3, n).
+
+    ``values``: the :func:`point_values` of these points if already known, ``virtual``:
+    :func:`virtual_field` of U (both computed if None).  With
+    c_k = Σ_g g ũ_{g,k} and v_g = Σ_k λ_k ũ_{g,k}: u = Σ_k λ_k c_k and
+    ∇u = Σ_k c_k ⊗ ∇λ_k + Σ_g v_g ⊗ ∇g.
+    """
+    pv = point_values(space, cells, x, side) if values is None else values
+    ut = virtual_field(space, U) if virtual is None else virtual
+    coef = ut[pv.nodes]                                   # (n, 4, 6, 3)
+    ck = np.einsum("nkgc,ng->nkc", coef, pv.g)            # (n, 4, 3)
+    vg = np.einsum("nkgc,nk->ngc", coef, pv.lam)          # (n, 6, 3)
+    u = np.einsum("nkc,nk->cn", ck, pv.lam)
+    gu = np.einsum("nkc,nkj->cjn", ck, pv.dlam) + np.einsum("ngc,ngj->cjn", vg, pv.dg)
     return u, gu
 
 
