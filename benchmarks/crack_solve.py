@@ -15,11 +15,16 @@ least of ``--repeat`` runs.  Prints the unknowns of each, both times, the crack'
 stages and the ratio crack / tie (issue 29's target: ≤ 3).  The machine is shared:
 compare ratios measured in one run.
 
-Measured on the shared 2-core machine (direct solves): n = 8, 3456 crack unknowns:
-crack 11.3 s, tie 1.3 s, ratio 8.7; n = 12, 9906 unknowns: 39.2 s against 6.2 s, ratio
-6.3.  The target (≤ 3) is not met: most of the crack's time is its K along the front
-(:func:`skxfem.crack.sif3d.sif_3d` on the almost-polar rules of the front cells) and its
-stiffness on those rules; the ratio falls as n grows (the front is a line in a volume).
+Measured on the shared 2-core machine (direct solves, one run each, the machine busy):
+before the vectorised K along the front (:func:`skxfem.crack.sif3d.sif_3d`, same values to
+4e-15) and the symmetric-mode factorisation of the crack's SPD system, n = 8, 3456 crack
+unknowns: crack 1.93 s, tie 0.17 s, ratio 11.5; n = 12, 9906 unknowns: 5.95 s against
+0.92 s, ratio 6.5.  After: n = 8 1.76 s against 0.35 s, ratio 5.0; n = 12 7.14 s against
+1.97 s, ratio 3.6 (K_I at mid-front unchanged, 3.0905 and 3.3767).  The target (≤ 3) is
+not met: the rest is the stiffness on the front cells' almost-polar rules, the K on a
+domain that covers most of the cube at n = 8 (R = 3 front-cell sizes), and the LU of
+the enriched nodes' dense blocks; the ratio falls as n grows (the front is a line in a
+volume).
 
     python benchmarks/crack_solve.py                 # n = 8, 12
     python benchmarks/crack_solve.py --sizes 8 --repeat 3
