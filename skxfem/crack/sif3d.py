@@ -194,6 +194,21 @@ def _nodal_directions(space, cells: np.ndarray) -> np.ndarray:
     return np.where(size > 0, out / np.where(size > 0, size, 1.0), 0.0)
 
 
+def _in_support(space, cells, X, R, P, e3, L) -> np.ndarray:
+    """Which points X (3, n) of ``cells`` can lie in the support of some q of
+    :func:`sif_3d` (r < R and |s| < L for a front point; a relative margin of 1e-9): the
+    others add nothing, and their fields are not computed."""
+    mesh, geo = space.mesh, space.geometry
+    lam, _ = barycentric(mesh, cells, X)
+    nodes = mesh.t[:, cells].T
+    r = np.hypot((lam * geo.phi[nodes]).sum(axis=1), (lam * geo.psi[nodes]).sum(axis=1))
+    on = r < R * (1 + 1e-9)
+    near = np.zeros(on.size, dtype=bool)
+    for k in range(P.shape[1]):                           # the hats along the front
+        near |= np.abs(e3[:, k] @ (X - P[:, k, None])) < L * (1 + 1e-9)
+    return on & near
+
+
 def _hat_integral(geo, P, e3, L):
     """∫ Λ ds along the front's segments for each point (m,)."""
     s, w = leggauss(6)
@@ -253,6 +268,10 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         live = w != 0
         cc = np.broadcast_to(c[:, None], w.shape)[live]
         X, W, S = x[live].T, w[live], side[live]
+        on = _in_support(space, cc, X, R, P, frames.e3, L)
+        if not on.any():
+            continue
+        cc, X, W, S = cc[on], X[:, on], W[on], S[on]
         pv = point_values(space, cc, X, S)
         _, gu = field_at(space, U, cc, X, S, values=pv, virtual=ut)
         ph, ps, gph, gps = pv.phi, pv.psi, pv.gphi.T, pv.gpsi.T
