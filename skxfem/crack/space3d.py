@@ -443,20 +443,28 @@ def _pack(pieces):
     return out
 
 
-def _cell_stiffness(space, cells, x, w, side, lam_, mu):
-    """Dense (nc, 72, 72) stiffness of the virtual functions of cells, and their virtual
-    dofs (nc, 72): index 3 a + c, a the function (6 k + kind), c the component."""
+def _cell_stiffness(space, cells, x, w, side, slots, lam_, mu):
+    """Dense (nc, 3m, 3m) stiffness of m virtual functions of each cell, ``slots`` (nc, m)
+    their indices 6 k + kind (k the cell's node), and their virtual dofs (nc, 3m): index
+    3 a + c, a the function, c the component."""
     nc, nq = w.shape
-    _, G, vnode = functions_at(space, np.repeat(cells, nq), x.reshape(-1, 3).T, side.ravel())
-    G = G.reshape(nc, nq, 24, 3)
-    Gf = G.reshape(nc, nq, 72)
+    m = slots.shape[1]
+    pv = point_values(space, np.repeat(cells, nq), x.reshape(-1, 3).T, side.ravel())
+    k, g = slots[:, None, :] // 6, slots[:, None, :] % 6             # (nc, 1, m)
+    at = np.arange(nc * nq).reshape(nc, nq, 1)            # the points, flat
+    ik, ig = 4 * at + k, 6 * at + g                       # (nc, nq, m)
+    lam, gv = pv.lam.ravel()[ik], pv.g.ravel()[ig]
+    dlam, dg = pv.dlam.reshape(-1, 3)[ik], pv.dg.reshape(-1, 3)[ig]   # (nc, nq, m, 3)
+    Gf = (dlam * gv[..., None] + lam[..., None] * dg).reshape(nc, nq, 3 * m)
     A = np.matmul(np.swapaxes(Gf * w[:, :, None], 1, 2), Gf)   # ∫ ∂_i f_a ∂_j f_b
-    A = A.reshape(nc, 24, 3, 24, 3)                       # [n, a, i, b, j]
+    A = A.reshape(nc, m, 3, m, 3)                         # [n, a, i, b, j]
     Ke = lam_ * A + mu * A.transpose(0, 1, 4, 3, 2)
     trace = np.einsum("naibi->nab", A)
     Ke = Ke + mu * trace[:, :, None, :, None] * np.eye(3)[None, None, :, None, :]
-    vdof = (3 * vnode.reshape(nc, nq, 24)[:, 0, :, None] + np.arange(3)).reshape(nc, 72)
-    return Ke.reshape(nc, 72, 72), vdof
+    node = np.take_along_axis(space.mesh.t[:, cells].T, k[:, 0], axis=1)
+    vnode = g[:, 0] * space.mesh.p.shape[1] + node
+    vdof = (3 * vnode[:, :, None] + np.arange(3)).reshape(nc, 3 * m)
+    return Ke.reshape(nc, 3 * m, 3 * m), vdof
 
 
 def stiffness(space: CrackSpace3D, material: Material) -> sp.csr_matrix:
@@ -482,16 +490,23 @@ def stiffness(space: CrackSpace3D, material: Material) -> sp.csr_matrix:
         Ks = stiffness_matrix(material, Basis(mesh, ElementTetP1(), elements=rest,
                                               quadrature=cell_rule(mesh)))
     active = np.diff(space.T.indptr) > 0                  # virtual dofs in use
+    nverts = mesh.p.shape[1]
     rows, cols, data = [], [], []
     for cells, x, w, side in rules(space, near):
-        for k in range(0, cells.size, CHUNK):
-            sl = slice(k, k + CHUNK)
-            Ke, vd = _cell_stiffness(space, cells[sl], x[sl], w[sl], side[sl], lam_, mu)
-            on = active[vd]                               # (nc, 72)
-            m = on[:, :, None] & on[:, None, :]
-            rows.append(np.broadcast_to(vd[:, :, None], Ke.shape)[m])
-            cols.append(np.broadcast_to(vd[:, None, :], Ke.shape)[m])
-            data.append(Ke[m])
+        # the functions φ_k g in use on each cell (slot 6 k + kind), cells grouped by count
+        vnode = np.arange(6)[None, None, :] * nverts + mesh.t[:, cells].T[:, :, None]
+        used = active[3 * vnode].reshape(cells.size, 24)
+        count = used.sum(axis=1)
+        for m in np.unique(count):
+            pick = np.flatnonzero(count == m)
+            slots = np.nonzero(used[pick])[1].reshape(pick.size, m)
+            for k in range(0, pick.size, CHUNK):
+                sl = pick[k:k + CHUNK]
+                Ke, vd = _cell_stiffness(space, cells[sl], x[sl], w[sl], side[sl],
+                                         slots[k:k + CHUNK], lam_, mu)
+                rows.append(np.repeat(vd, 3 * m, axis=1).ravel())
+                cols.append(np.tile(vd, (1, 3 * m)).ravel())
+                data.append(Ke.ravel())
     nv = space.T.shape[0]
     Kv = sp.csr_matrix((np.concatenate(data), (np.concatenate(rows), np.concatenate(cols))),
                        shape=(nv, nv)) if data else sp.csr_matrix((nv, nv))
