@@ -23,8 +23,9 @@ coefficients ũ = T U (:attr:`CrackSpace3D.T`).
 
 Integration
 -----------
-Cell by cell, on the 24 virtual functions φ_k g of a cell (4 nodes × 6 kinds) with dense
-arrays: the stiffness of a cell is λ G_c G′_d + μ(δ_cd G·G′ + G_d G′_c) summed over its
+Cell by cell, on the virtual functions φ_k g of a cell in use (of its 4 nodes × 6 kinds:
+a node is standard, Heaviside or branch, so at most 20; cells batched by their count),
+with dense arrays: the stiffness of a cell is λ G_c G′_d + μ(δ_cd G·G′ + G_d G′_c) summed over its
 points, G the gradients, then gathered into the virtual space and taken to the unknowns
 by Tᵀ K̃ T.  The rules (:func:`rules`): the front cells' sub-tetrahedra by the almost-polar
 rules of :mod:`skxfem.crack.quadrature3d` (on the front's edge or vertex) or the
@@ -76,7 +77,7 @@ BRANCH_POINTS = 4
 support of a branch node (64 per tetrahedron: exact to degree 5)."""
 
 CHUNK = 400
-"""Cells per batch of the dense cell arrays (memory: 400 × 72² numbers per batch)."""
+"""Cells per batch of the dense cell arrays (memory: at most 400 × 60² numbers per batch)."""
 
 
 @dataclass(frozen=True)
