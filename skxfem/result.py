@@ -255,25 +255,24 @@ def _fronts(pb, U: np.ndarray, traction: np.ndarray, steps=()) -> tuple:
 
 def _body_force(pb, steps) -> object:
     """The body force of the state U solves: the scene's, times the last step's load
-    factor, or that of the last load state (a scene of ``pb.scene.steps`` by its name);
-    None: none."""
+    factor, or that of the last load state (the scene of ``pb.scene.steps`` of its name;
+    a scene file's states all keep the scene's; states given to
+    :func:`skxfem.contact.solve` apart from the scene: the scene's); None: none."""
     force = pb.scene.body_force
     last = steps[-1].load if steps else 1.0
     if isinstance(last, float):
         if force is None or last == 1.0:
             return force
-
         b = force_field(force, pb.mesh.dim())
         return lambda x: last * b(x)
-    states = [s for s in (pb.scene.steps or ()) if getattr(s, "name", None) == last
-              and hasattr(s, "body_force")]
-    if len(states) == 1:
-        return states[0].body_force
-    if force is None and all(getattr(s, "body_force", None) is None
-                             for s in (pb.scene.steps or ())):
-        return None
+    states = [s for s in (pb.scene.steps or ()) if hasattr(s, "body_force")]
+    named = [s for s in states if s.name == last]
+    if len(named) == 1:
+        return named[0].body_force
+    if all(s.body_force is force or s.body_force == force for s in states):
+        return force
     raise ValueError(f"the stress intensity factors of load state {last!r} need its body "
-                     f"force: give the state a name of its own among the scene's steps")
+                     f"force: give each state of the scene's steps a name of its own")
 
 
 def on_edges(P: sp.spmatrix, values: np.ndarray) -> np.ndarray:

@@ -286,3 +286,35 @@ load = [{boundary = "zmax", traction = [0.0, 0.0, 1.0]}]
     mid = np.argmin(np.abs(np.array(front["points"])[:, 1] - 0.5))
     print(f"K_I at the middle {front['K_I'][mid]}, without the weight {free.K[mid, 0]}")
     assert 0 < front["K_I"][mid] < free.K[mid, 0] - 0.1
+
+
+def test_a_load_factor_scales_the_body_force_of_K(tmp_path):
+    """A contact law on the open crack (linear while it stays open) over load factors
+    0.5, 1: each step's K is its factor times the last's, so the interaction integral
+    took each step's scaled body force (the scene's alone would miss K_II of the half
+    step by about 0.06)."""
+    from skxfem.contact.history import step_results
+    from skxfem.scene.file import load_scene
+    from skxfem.solver import solve
+
+    path = tmp_path / "steps.toml"
+    path.write_text("steps = [0.5, 1.0]\n" + _scene_toml(21).replace(
+        'law = "free"', 'law = "frictionless"'))
+    half, last = (r.front[0] for r in step_results(solve(load_scene(path))))
+    assert abs(last["K_I"][0] - 1) < 0.003 and abs(last["K_II"][0]) < 0.003
+    for key in ("K_I", "K_II"):
+        assert abs(half[key][0] - 0.5 * last[key][0]) < 1e-6, (key, half, last)
+
+
+def test_load_states_keep_the_body_force_of_K(tmp_path):
+    """[[step]] load states (which keep the scene's body force): the last state's K is
+    the Williams K, the body force's term in it."""
+    from skxfem.scene.file import load_scene
+    from skxfem.solver import solve
+
+    path = tmp_path / "states.toml"
+    path.write_text(_scene_toml(21).replace('law = "free"', 'law = "frictionless"')
+                    + '[[step]]\nname = "first"\n[[step]]\nname = "again"\n')
+    r = solve(load_scene(path))
+    assert [s.load for s in r.steps] == ["first", "again"]
+    assert abs(r.front[0]["K_I"][0] - 1) < 0.003 and abs(r.front[0]["K_II"][0]) < 0.003
