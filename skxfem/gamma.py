@@ -282,8 +282,9 @@ class CrackXSpace:
       (:func:`skxfem.crack.assembly.stiffness`, its tip cells on the almost-polar
       rule), given as its standard block and its enriched blocks; ``signed_mass(A)``
       the same for its mass (:func:`skxfem.crack.assembly.mass`, :mod:`skxfem.lbb`);
-    * ``load(facet_loads, body_force, f)``: the scene's surface loads on [a, b, c]
-      (:func:`skxfem.crack.assembly.traction_load`);
+    * ``load(facet_loads, body_force, f)``: the scene's surface loads and body force on
+      [a, b, c] (:func:`skxfem.crack.assembly.traction_load`,
+      :func:`~skxfem.crack.assembly.body_load`);
     * ``constraints(scene, mesh)``: the scene's displacements on [a, b, c]
       (:func:`skxfem.crack.assembly.supported_dofs`: a mouth is never clamped shut);
     * ``splits = False``: a crack ends inside the body and splits no region.
