@@ -196,8 +196,8 @@ def _body(body_force, q, x):
 def interaction_integrals(x: ArrayLike, w: ArrayLike, grad_u: ArrayLike,
                           sigma: ArrayLike, grad_q: ArrayLike, origin: ArrayLike,
                           frame: TipFrame, material: Material, faces=(),
-                          body_force: ArrayLike | None = None, q: ArrayLike | None = None
-                          ) -> np.ndarray:
+                          body_force: ArrayLike | None = None,
+                          q: ArrayLike | None = None) -> np.ndarray:
     """I for the auxiliary Williams fields of unit K_I, K_II (and K_III in 3D).
 
     Parameters
