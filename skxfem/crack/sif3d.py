@@ -55,10 +55,12 @@ import scipy.sparse as sp
 from numpy.polynomial.legendre import leggauss
 
 from ..fem.material import Material
+from .assembly import force_field
 from .frame import TipFrame, tip_frame
 from .geometry3d import barycentric, crack_geometry_3d, front_chains
 from .interaction import sif_from_interaction
 from .space3d import (
+    body_load,
     crack_space_3d,
     field_at,
     nodal_scaling,
@@ -225,14 +227,16 @@ def _hat_integral(geo, P, e3, L):
 
 def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None = None,
            radius: float | None = None, length: float | None = None,
-           plateau: float = 0.5) -> np.ndarray:
+           plateau: float = 0.5, body_force=None) -> np.ndarray:
     """(m, 3) K_I, K_II, K_III at ``points`` (3, m) of the front (default
     :func:`front_points`) by the domain interaction integral (module notes).
 
     ``radius`` R of the radial cone (default :data:`DEFAULT_RADIUS` front-cell sizes),
     clipped at each point to the distance to the boundary (:func:`boundary_reach`);
     ``length`` L the hat's half-width (default :data:`DEFAULT_LENGTH` sizes), ``plateau``
-    ρ: q_r = 1 inside ρR.
+    ρ: q_r = 1 inside ρR.  ``body_force``: the body force b the solution carries
+    (:func:`skxfem.crack.assembly.force_field`, in 3D), whose term -∫ b·uᵃ,₁ q dV
+    (:mod:`skxfem.crack.interaction`) joins the integrand's part in q; None: none.
     """
     if not isinstance(material, Material):
         raise ValueError(f"material must be a skxfem Material, got {type(material).__name__}")
@@ -264,6 +268,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     eye = np.eye(3)[:, :, None]
     xs, ws, e1s, rs, grs = [], [], [], [], []
     As, Bs, Cs = [[], [], []], [[], [], []], [[], [], []]
+    b = None if body_force is None else force_field(body_force, 3)
     for c, x, w, side in rules(space, cells, plain=3):
         live = w != 0
         cc = np.broadcast_to(c[:, None], w.shape)[live]
@@ -276,6 +281,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         _, gu = field_at(space, U, cc, X, S, values=pv, virtual=ut)
         ph, ps, gph, gps = pv.phi, pv.psi, pv.gphi.T, pv.gpsi.T
         Rf = tip_frame(gph, gps).R                        # (3, 3, n), rows e₁, e₂, e₃
+        bx = 0.0 if b is None else np.einsum("ain,in->an", Rf, b(X))   # in the frames
         # the extension direction Q/q = e₁ₕ, the P1 interpolant of nodal e₁, and ∂ⱼe₁ₖ
         e1n = e1_nodes[pv.nodes]                          # (n, 4, 3)
         e1 = np.einsum("nk,nki->in", pv.lam, e1n)
@@ -301,7 +307,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
             As[mode].append(np.einsum("ain,an->in", Rf, A_l))        # global components
             Bs[mode].append(work)
             Cs[mode].append(_contract(sig, agu, G_l) + _contract(asig, gu_l, G_l)
-                            - work * trace_G)
+                            - work * trace_G - (bx * dua1).sum(axis=0))   # the body force's
         xs.append(X)
         ws.append(W)
         e1s.append(e1)
@@ -370,13 +376,14 @@ def solve_crack_3d(mesh, psi, phi, material: Material, supports=(), loads=(),
                    enrichment: str = "geometric", radius: float | None = None,
                    points: np.ndarray | None = None, sif_radius: float | None = None,
                    sif_length: float | None = None, solver: str = "direct",
-                   tol: float = 1e-10) -> CrackSolution3D:
+                   tol: float = 1e-10, body_force=None) -> CrackSolution3D:
     """Linear elasticity on a ``MeshTet1`` with a crack {ψ = 0, φ < 0}, law free: geometry,
     space, stiffness, loads, supports, block scaling, solve, K along the front.
 
     ``supports``, ``loads``: :class:`~skxfem.crack.space3d.Support3D`,
     :class:`~skxfem.crack.space3d.Load3D`; ``solver`` ``"direct"`` (SuperLU) or ``"cg"``
-    (conjugate gradients with smoothed-aggregation AMG on the scaled system, to ``tol``).
+    (conjugate gradients with smoothed-aggregation AMG on the scaled system, to ``tol``);
+    ``body_force`` b (:func:`skxfem.crack.space3d.body_load`, and its term in K).
     """
     import time
     if not isinstance(material, Material):
@@ -388,6 +395,8 @@ def solve_crack_3d(mesh, psi, phi, material: Material, supports=(), loads=(),
     V = crack_space_3d(mesh, geometry, enrichment, radius)
     K = stiffness(V, material)
     f = traction_load(V, loads)
+    if body_force is not None:
+        f = f + body_load(V, body_force)
     D, g = supported_dofs(V, supports)
     S = nodal_scaling(K, V, D)
     Ks, fs = (S.T @ K @ S).tocsr(), S.T @ f
@@ -400,7 +409,7 @@ def solve_crack_3d(mesh, psi, phi, material: Material, supports=(), loads=(),
     U = S @ Us
     t2 = time.perf_counter()
     P = front_points(V) if points is None else np.asarray(points, float)
-    Kf = sif_3d(V, U, material, P, sif_radius, sif_length)
+    Kf = sif_3d(V, U, material, P, sif_radius, sif_length, body_force=body_force)
     t3 = time.perf_counter()
     info = {"unknowns": V.N, "enriched": V.N - V.n_std, "assembly_s": t1 - t0,
             "solve_s": t2 - t1, "sif_s": t3 - t2, "iterations": iterations}

@@ -60,15 +60,15 @@ from skfem import Basis, ElementTetP1
 from ..fem.material import Material, stiffness_matrix
 from ..fem.quadrature import cell_rule
 from ..fem.simplex import split
-from .assembly import check_facets
+from .assembly import check_facets, force_field
 from .branch import branch, branch_local_gradient
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
 from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
 
 __all__ = ["BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "PointValues", "point_values",
            "functions_at", "virtual_field", "evaluation", "field_at", "rules", "stiffness",
-           "Support3D", "Load3D", "outward_normals", "traction_load", "supported_dofs",
-           "nodal_scaling", "front_distance"]
+           "Support3D", "Load3D", "outward_normals", "traction_load", "body_load",
+           "supported_dofs", "nodal_scaling", "front_distance"]
 
 ENRICHMENTS = ("topological", "geometric")
 
@@ -667,6 +667,29 @@ def traction_load(space: CrackSpace3D, loads) -> np.ndarray:
             raise ValueError(f"a load's traction must return finite values of shape "
                              f"{x.shape} (3, n), got {t.shape}")
         f += evaluation(space, cells, x, side).T @ (t * w).ravel()
+    return f
+
+
+def body_load(space: CrackSpace3D, force, plain: int = 2) -> np.ndarray:
+    """f = ∫ b · v over the body, on the unknowns [a, b, c]: every cell on the rules of
+    :func:`rules` (the front cells' sub-tetrahedra on their almost-polar rules), the
+    plain uncut cells with ``plain`` points per direction (2: exact for a linear b).
+    ``force``: :func:`skxfem.crack.assembly.force_field`'s, in 3D.
+
+    >>> from skfem import MeshTet1
+    >>> from skxfem.crack.geometry3d import crack_geometry_3d
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 4),) * 3)
+    >>> V = crack_space_3d(m, crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    >>> f = body_load(V, (0.0, 0.0, -2.0))
+    >>> round(float(f[V.nodal_dofs[2]].sum()), 12)    # the weight, -2 × volume 1
+    -2.0
+    """
+    b = force_field(force, 3)
+    f = np.zeros(space.N)
+    for c, x, w, side in rules(space, np.arange(space.mesh.t.shape[1]), plain):
+        X = x.reshape(-1, 3).T
+        f += evaluation(space, np.repeat(c, w.shape[1]), X, side.ravel()).T @ (
+            b(X) * w.ravel()).ravel()
     return f
 
 
