@@ -329,15 +329,15 @@ def field_at(space: CrackSpace3D, U: np.ndarray, cells, x, side=None,
     ``values``: the :func:`point_values` of these points if already known, ``virtual``:
     :func:`virtual_field` of U (both computed if None).  With
     c_k = Σ_g g ũ_{g,k} and v_g = Σ_k λ_k ũ_{g,k}: u = Σ_k λ_k c_k and
-    ∇u = Σ_k c_k ⊗ ∇λ_k + Σ_g v_g ⊗ ∇g.
+    ∇u = Σ_k c_k ⊗ ∇λ_k + Σ_g v_g ⊗ ∇g (the branch kinds g only: 1 and H are constant).
     """
     pv = point_values(space, cells, x, side) if values is None else values
     ut = virtual_field(space, U) if virtual is None else virtual
     coef = ut[pv.nodes]                                   # (n, 4, 6, 3)
     ck = np.einsum("nkgc,ng->nkc", coef, pv.g)            # (n, 4, 3)
-    vg = np.einsum("nkgc,nk->ngc", coef, pv.lam)          # (n, 6, 3)
+    vg = np.einsum("nkgc,nk->ngc", coef[:, :, 2:], pv.lam)   # the branch kinds: ∇1 = ∇H = 0
     u = np.einsum("nkc,nk->cn", ck, pv.lam)
-    gu = np.einsum("nkc,nkj->cjn", ck, pv.dlam) + np.einsum("ngc,ngj->cjn", vg, pv.dg)
+    gu = np.einsum("nkc,nkj->cjn", ck, pv.dlam) + np.einsum("ngc,ngj->cjn", vg, pv.dg[:, 2:])
     return u, gu
 
 
