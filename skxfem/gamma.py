@@ -40,10 +40,11 @@ else changes.  Each method must meet:
 6. ``rule(mesh, cut) -> InterfaceRule`` and ``jump(V, rule)``: the quadrature on Γ_h
    and the operator U ↦ [[u_h]] at its points (component-major rows).
 7. ``point_jumps(V, U) -> (dim, n)``: [[u]] = u⁻ - u⁺ at the cut points (the
-   results' ``jump``); ``front(V, U, material, traction=None) -> dict | None``: the
-   stress intensity factors along Γ's front, ``points`` (m, dim), ``K_I``, ``K_II``
-   (m,), ``traction`` (dim, n) the interface traction at the cut points that loaded
-   faces carry (the crack-face term); None for a Γ without a front.
+   results' ``jump``); ``front(V, U, material, traction=None, body_force=None) -> dict |
+   None``: the stress intensity factors along Γ's front, ``points`` (m, dim), ``K_I``,
+   ``K_II`` (m,), ``traction`` (dim, n) the interface traction at the cut points that
+   loaded faces carry (the crack-face term), ``body_force`` the body force (its term);
+   None for a Γ without a front.
 8. ``splits``: whether Γ splits the body into regions (the files' pieces read the ψ
    of those that do; its space's ``splits`` says the same to :mod:`skxfem.enrich`).
 
@@ -67,7 +68,8 @@ the crack pieces with the multiplier functions there, its front the K of
 (``Result.front``, ``result.json``'s ``front``).  A 3D front (a ``MeshTet1``) is the
 kind :class:`skxfem.crack.kind3d.Crack3D` (any law: its multipliers on the crossed
 edges up to the front, :mod:`skxfem.crack.faces3d`), its front K_I, K_II, K_III along
-it.  Not yet: a body force with a crack.
+it.  A body force loads the enriched unknowns too and enters the interaction integral
+(its term -∫ b·u^aux_{,1} q).
 
 >>> from skfem import MeshTri1
 >>> from skxfem.levelset import plane
@@ -89,6 +91,7 @@ from .crack.assembly import (
     FACET_POINTS,
     Load,
     Support,
+    body_load,
     check_facets,
     stiffness,
     supported_dofs,
@@ -101,13 +104,12 @@ from .crack.geometry import crack_geometry
 from .crack.kind3d import Crack3D
 from .crack.sif import sif
 from .crack.space import CrackSpace, crack_space, evaluation
+from .crack.xspace import CrackXSpaceBase
 from .cut import Cut
 from .cut import cut as cut_mesh
 from .enrich import XSpace, edge_jumps, jump_matrix, xfem_space
-from .fem.material import Material
 from .levelset import point_normals, unit
 from .multipliers import InterfaceRule, Space, interface_rule
-from .scene.boundary import imposed, imposed_values
 from .scene.parts import Interface
 from .stabilised import multiplier_space
 
@@ -169,7 +171,8 @@ class Gamma:
         (:func:`skxfem.enrich.edge_jumps`)."""
         return edge_jumps(V, U)
 
-    def front(self, V, U: np.ndarray, material, traction=None) -> dict | None:
+    def front(self, V, U: np.ndarray, material, traction=None, body_force=None
+              ) -> dict | None:
         """The stress intensity factors along Γ's front: None, Γ has none."""
         return None
 
@@ -240,7 +243,7 @@ class Crack(Gamma):
         ref = mesh.mapping().invF(cut.points[:, :, None], tind=cells)[:, :, 0]
         return (_face_jump(V, cells, ref) @ U).reshape(mesh.dim(), -1)
 
-    def front(self, V, U: np.ndarray, material, traction=None) -> dict:
+    def front(self, V, U: np.ndarray, material, traction=None, body_force=None) -> dict:
         """``points`` (m, dim) the front's points (the tips) and ``K_I``, ``K_II`` (m,) there
         (:func:`skxfem.crack.sif.sif` with the interface's ``sif_radius``).
 
@@ -249,14 +252,16 @@ class Crack(Gamma):
         face) and t⁺ = -r (Ω⁺'s), interpolated by the multiplier functions up to the
         front (:func:`skxfem.crack.faces.face_traction`), and the interaction integral
         takes them in its face term: a crack pressed shut gives K = 0.  None or all
-        zero: free faces."""
+        zero: free faces.  ``body_force``: the body force of the solved state (a scene's
+        ``body_force`` values or ``x -> (dim, n)``), the interaction integral's body-force
+        term (:mod:`skxfem.crack.interaction`); None: none."""
         tips = V.cut.tips
         faces = None
         if traction is not None and np.any(traction):
             faces = face_traction(V.cut, np.asarray(traction, float),
                                   face_rule_of(V.space)[0])
         K = np.array([sif(V.space, U, material, self.interface.sif_radius, tip=k,
-                          face_traction=faces)
+                          face_traction=faces, body_force=body_force)
                       for k in range(tips.shape[1])]).reshape(-1, 2)
         return {"points": tips.T.copy(), "K_I": K[:, 0], "K_II": K[:, 1]}
 
@@ -266,7 +271,7 @@ class Crack(Gamma):
 
 
 @dataclass(frozen=True)
-class CrackXSpace:
+class CrackXSpace(CrackXSpaceBase):
     r"""The X-FEM space of the crack kind of Γ: ``space`` its
     :class:`~skxfem.crack.space.CrackSpace` (the unknowns [a, b, c]: standard,
     Heaviside, branch), with the methods that :func:`skxfem.enrich.stiffness`,
@@ -277,8 +282,9 @@ class CrackXSpace:
       (:func:`skxfem.crack.assembly.stiffness`, its tip cells on the almost-polar
       rule), given as its standard block and its enriched blocks; ``signed_mass(A)``
       the same for its mass (:func:`skxfem.crack.assembly.mass`, :mod:`skxfem.lbb`);
-    * ``load(facet_loads, body_force, f)``: the scene's surface loads on [a, b, c]
-      (:func:`skxfem.crack.assembly.traction_load`);
+    * ``load(facet_loads, body_force, f)``: the scene's surface loads and body force on
+      [a, b, c] (:func:`skxfem.crack.assembly.traction_load`,
+      :func:`~skxfem.crack.assembly.body_load`);
     * ``constraints(scene, mesh)``: the scene's displacements on [a, b, c]
       (:func:`skxfem.crack.assembly.supported_dofs`: a mouth is never clamped shut);
     * ``splits = False``: a crack ends inside the body and splits no region.
@@ -296,54 +302,13 @@ class CrackXSpace:
     """
 
     space: CrackSpace
-    splits = False
-
-    @property
-    def mesh(self):
-        return self.space.mesh
-
-    @property
-    def cut(self):
-        """The crack's geometry (the fields of a :class:`skxfem.cut.Cut`)."""
-        return self.space.geometry
+    _stiffness = staticmethod(stiffness)
+    _support = Support
+    _supported_dofs = staticmethod(supported_dofs)
 
     @property
     def basis(self):
         return self.space.basis
-
-    @property
-    def n_std(self) -> int:
-        return self.space.n_std
-
-    @property
-    def n_enr(self) -> int:
-        return self.space.N - self.space.n_std
-
-    @property
-    def N(self) -> int:
-        return self.space.N
-
-    @property
-    def enr_dofs(self) -> np.ndarray:
-        """(n_enr,) the standard dof of each enriched unknown [b, c] (its node and
-        component)."""
-        V, nd = self.space, self.space.basis.nodal_dofs
-        heav = nd[:, V.heaviside].T                        # (nh, 2)
-        branch = np.repeat(nd[:, V.branch].T[:, None, :], 4, axis=1)   # (nb, 4, 2)
-        return np.concatenate([heav.ravel(), branch.ravel()]).astype(np.int64)
-
-    @property
-    def H_node(self) -> np.ndarray:
-        """(n_enr,) H(x_j) of each Heaviside unknown's node, 0 for a branch unknown."""
-        V = self.space
-        return np.concatenate([np.repeat(V.H_node, 2), np.zeros(V.n_branch)])
-
-    def signed_stiffness(self, material: Material, A=None):
-        """(A, K): the standard block of the crack's stiffness K (``A`` if given) and K
-        itself, whose enriched blocks :meth:`blocks` reads."""
-        K = stiffness(self.space, material).tocsr()
-        n = self.n_std
-        return (K[:n, :n] if A is None else A), K
 
     def signed_mass(self, A=None):
         """(A, M): the standard block of the crack's mass M (``A`` if given) and M itself
@@ -352,17 +317,11 @@ class CrackXSpace:
         n = self.n_std
         return (M[:n, :n] if A is None else A), M
 
-    def blocks(self, A, K) -> tuple[sp.csr_matrix, sp.csr_matrix]:
-        """(K_ab, K_bb): the crack stiffness' blocks of its enriched unknowns."""
-        n = self.n_std
-        return K[:n, n:].tocsr(), K[n:, n:].tocsr()
-
     def load(self, facet_loads, body_force=None, f: np.ndarray | None = None):
-        """(f, f_b): the surface loads on the standard dofs (``f`` if given) and on the
-        enriched unknowns [b, c] (:func:`skxfem.crack.assembly.traction_load`, each
-        facet's outward normal given to the traction ``t(x, n)``)."""
-        if body_force is not None:
-            raise ValueError("a body force on a scene with a crack is not supported yet")
+        """(f, f_b): the surface loads and body force on the standard dofs (``f`` if given)
+        and on the enriched unknowns [b, c] (:func:`skxfem.crack.assembly.traction_load`,
+        each facet's outward normal given to the traction ``t(x, n)``;
+        :func:`skxfem.crack.assembly.body_load` on the crack's own rules)."""
         mesh = self.mesh
         loads = []
         for facets, traction in facet_loads:
@@ -375,21 +334,9 @@ class CrackXSpace:
 
             loads.append(Load(fac, t))
         F = traction_load(self.space, loads)
+        if body_force is not None:
+            F = F + body_load(self.space, body_force)
         return (F[:self.n_std] if f is None else f), F[self.n_std:]
-
-    def constraints(self, scene, mesh) -> tuple[np.ndarray, np.ndarray]:
-        """The scene's displacements as the crack's supports on [a, b, c]
-        (:func:`skxfem.crack.assembly.supported_dofs`)."""
-        supports = []
-        for nodes, components in imposed(scene, mesh):
-            for c, (value, what) in components.items():
-                def u(x, c=c, value=value, what=what):
-                    out = np.zeros_like(x, dtype=float)
-                    out[c] = imposed_values(value, x, what)
-                    return out
-
-                supports.append(Support(_facets_of(mesh, nodes), np.asarray(nodes), u, (c,)))
-        return supported_dofs(self.space, supports)
 
 
 def _outward_normals(mesh, facets: np.ndarray) -> np.ndarray:
@@ -400,15 +347,6 @@ def _outward_normals(mesh, facets: np.ndarray) -> np.ndarray:
     centre = mesh.p[:, mesh.t[:, mesh.f2t[0, facets]]].mean(axis=1)
     flip = ((centre - a) * n).sum(axis=0) > 0
     return np.where(flip, -n, n)
-
-
-def _facets_of(mesh, nodes: np.ndarray) -> np.ndarray:
-    """The boundary facets whose nodes are all among ``nodes`` (a support's facets: where
-    :func:`skxfem.crack.assembly.supported_dofs` decides what a mouth keeps free)."""
-    mark = np.zeros(mesh.p.shape[1], dtype=bool)
-    mark[nodes] = True
-    bf = mesh.boundary_facets()
-    return bf[mark[mesh.facets[:, bf]].all(axis=0)]
 
 
 def _face_jump(V, cells: np.ndarray, ref: np.ndarray) -> sp.csr_matrix:

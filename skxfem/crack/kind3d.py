@@ -9,9 +9,10 @@ They wrap the modules of the 3D crack (:mod:`~skxfem.crack.geometry3d`,
 wraps the 2D ones.  Any law: ``free`` faces carry no multiplier, the others (a tie,
 contact with or without friction, adhesion) multipliers on the crossed edges up to
 the front (:mod:`~skxfem.crack.faces3d`: the stable spaces on the faces' graph, λ_h
-extended harmonically to the front); no body force; the front's ``K_I``, ``K_II``,
-``K_III`` at :func:`~skxfem.crack.sif3d.front_points` (``result.json``'s ``front``), with
-the faces' traction from the multipliers in the interaction integral's face term.
+extended harmonically to the front); a body force loads every unknown and enters K;
+the front's ``K_I``, ``K_II``, ``K_III`` at :func:`~skxfem.crack.sif3d.front_points`
+(``result.json``'s ``front``), with the faces' traction from the multipliers in the
+interaction integral's face term.
 
 >>> from skfem import MeshTet1
 >>> from skxfem.levelset import plane
@@ -33,11 +34,9 @@ import numpy as np
 import scipy.sparse as sp
 from skfem import Basis, ElementTetP1, ElementVector
 
-from ..fem.material import Material
 from ..fem.quadrature import cell_rule
 from ..levelset import unit
 from ..multipliers import InterfaceRule
-from ..scene.boundary import imposed, imposed_values
 from .faces import crack_multipliers
 from .faces3d import face_functions_3d, face_rule, face_traction_3d
 from .geometry3d import barycentric, crack_geometry_3d
@@ -46,6 +45,7 @@ from .space3d import (
     CrackSpace3D,
     Load3D,
     Support3D,
+    body_load,
     crack_space_3d,
     evaluation,
     mass,
@@ -53,6 +53,7 @@ from .space3d import (
     supported_dofs,
     traction_load,
 )
+from .xspace import CrackXSpaceBase
 
 __all__ = ["Crack3D", "CrackXSpace3D"]
 
@@ -128,10 +129,11 @@ class Crack3D:
             owner[mesh.t2e[k]] = np.arange(mesh.t.shape[1])
         return (_face_jump(V.space, owner[cut.edge_ids], cut.points) @ U).reshape(3, -1)
 
-    def front(self, V, U: np.ndarray, material, traction=None) -> dict:
+    def front(self, V, U: np.ndarray, material, traction=None, body_force=None) -> dict:
         """``points`` (m, 3) along the front (:func:`skxfem.crack.sif3d.front_points`) and
         ``K_I``, ``K_II``, ``K_III`` (m,) there (:func:`skxfem.crack.sif3d.sif_3d`, the
-        interface's ``sif_radius`` the radial cone's radius).
+        interface's ``sif_radius`` the radial cone's radius; ``body_force`` the body
+        force of the solved state, its term in the interaction integral).
 
         ``traction`` (3, ne): the interface traction r = σ·n at the cut points (the
         multipliers of a tie or a contact); the faces then carry t⁻ = r and t⁺ = -r,
@@ -142,7 +144,8 @@ class Crack3D:
         if traction is not None and np.any(traction):
             faces = face_traction_3d(V.mesh, V.cut, np.asarray(traction, float))
         P = front_points(V.space)
-        K = sif_3d(V.space, U, material, P, self.interface.sif_radius, faces=faces)
+        K = sif_3d(V.space, U, material, P, self.interface.sif_radius,
+                   body_force=body_force, faces=faces)
         return {"points": P.T.copy(), "K_I": K[:, 0], "K_II": K[:, 1], "K_III": K[:, 2]}
 
 
@@ -153,59 +156,21 @@ def _face_jump(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray) -> sp.csr_
 
 
 @dataclass(frozen=True)
-class CrackXSpace3D:
+class CrackXSpace3D(CrackXSpaceBase):
     """The X-FEM space of the 3D crack kind: ``space`` its
     :class:`~skxfem.crack.space3d.CrackSpace3D`, with the methods every space is asked
     (as :class:`skxfem.gamma.CrackXSpace` in 2D)."""
 
     space: CrackSpace3D
-    splits = False
-
-    @property
-    def mesh(self):
-        return self.space.mesh
-
-    @property
-    def cut(self):
-        return self.space.geometry
+    _stiffness = staticmethod(stiffness)
+    _support = Support3D
+    _supported_dofs = staticmethod(supported_dofs)
 
     @property
     def basis(self):
         """The standard vector basis (it numbers the standard dofs as the space does)."""
         m = self.space.mesh
         return Basis(m, ElementVector(ElementTetP1()), quadrature=cell_rule(m, 0))
-
-    @property
-    def n_std(self) -> int:
-        return self.space.n_std
-
-    @property
-    def n_enr(self) -> int:
-        return self.space.N - self.space.n_std
-
-    @property
-    def N(self) -> int:
-        return self.space.N
-
-    @property
-    def enr_dofs(self) -> np.ndarray:
-        """(n_enr,) the standard dof of each enriched unknown [b, c]."""
-        V, nd = self.space, self.space.nodal_dofs
-        heav = nd[:, V.heaviside].T
-        branch = np.repeat(nd[:, V.branch].T[:, None, :], 4, axis=1)
-        return np.concatenate([heav.ravel(), branch.ravel()]).astype(np.int64)
-
-    @property
-    def H_node(self) -> np.ndarray:
-        """(n_enr,) H(x_j) of each Heaviside unknown's node, 0 for a branch unknown."""
-        V = self.space
-        return np.concatenate([np.repeat(V.H_node, 3), np.zeros(V.n_branch)])
-
-    def signed_stiffness(self, material: Material, A=None):
-        """(A, K): the standard block of the crack's stiffness K (``A`` if given), K."""
-        K = stiffness(self.space, material).tocsr()
-        n = self.n_std
-        return (K[:n, :n] if A is None else A), K
 
     def signed_mass(self, A=None):
         """(A, M): the standard block of the crack's mass M (``A`` if given) and M itself
@@ -214,40 +179,13 @@ class CrackXSpace3D:
         n = self.n_std
         return (M[:n, :n] if A is None else A), M
 
-    def blocks(self, A, K) -> tuple[sp.csr_matrix, sp.csr_matrix]:
-        """(K_ab, K_bb): the crack stiffness' blocks of its enriched unknowns."""
-        n = self.n_std
-        return K[:n, n:].tocsr(), K[n:, n:].tocsr()
-
     def load(self, facet_loads, body_force=None, f: np.ndarray | None = None):
-        """(f, f_b): the surface loads on the standard dofs (``f`` if given) and on the
-        enriched unknowns (:func:`skxfem.crack.space3d.traction_load`)."""
-        if body_force is not None:
-            raise ValueError("a body force on a scene with a crack is not supported yet")
+        """(f, f_b): the surface loads and body force on the standard dofs (``f`` if
+        given) and on the enriched unknowns (:func:`skxfem.crack.space3d.traction_load`,
+        :func:`skxfem.crack.space3d.body_load`)."""
         loads = [Load3D(facets, lambda x, n, t=t: t(x, n), normal=True)
                  for facets, t in facet_loads]
         F = traction_load(self.space, loads)
+        if body_force is not None:
+            F = F + body_load(self.space, body_force)
         return (F[:self.n_std] if f is None else f), F[self.n_std:]
-
-    def constraints(self, scene, mesh) -> tuple[np.ndarray, np.ndarray]:
-        """The scene's displacements as the crack's supports
-        (:func:`skxfem.crack.space3d.supported_dofs`: a mouth is never clamped shut)."""
-        supports = []
-        for nodes, components in imposed(scene, mesh):
-            for c, (value, what) in components.items():
-                def u(x, c=c, value=value, what=what):
-                    out = np.zeros_like(x, dtype=float)
-                    out[c] = imposed_values(value, x, what)
-                    return out
-
-                supports.append(Support3D(_facets_of(mesh, nodes), np.asarray(nodes), u,
-                                          (c,)))
-        return supported_dofs(self.space, supports)
-
-
-def _facets_of(mesh, nodes: np.ndarray) -> np.ndarray:
-    """The boundary facets whose nodes are all among ``nodes``."""
-    mark = np.zeros(mesh.p.shape[1], dtype=bool)
-    mark[nodes] = True
-    bf = mesh.boundary_facets()
-    return bf[mark[mesh.facets[:, bf]].all(axis=0)]

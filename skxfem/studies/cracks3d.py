@@ -207,17 +207,19 @@ def inclined_slab(n: int, nz: int, friction: float, beta_deg: float = 30.0,
 
 
 def crack_inf_sup_3d(ns=(7, 11, 15, 21), spaces=("naive", "winner", "vital"),
-                     offset: float = 0.5, law: str = "bilateral") -> tuple:
+                     offset: float = 0.5, law: str = "bilateral",
+                     radius_cells: float = 4.0) -> tuple:
     """β_h of each space on a through-thickness edge crack y = 1/2 from x = 0 to the front
     x = (⌊n/2⌋ + ``offset``)/n (``offset`` cells past a node) in the slab [0, 1]² × [0, 3/n]
     of n × n × 3 cells of tetrahedra (cells of one size h = 1/n), the bottom y = 0
-    clamped, the normal tie (``law="bilateral"``) or a sticking contact (``"stick"``,
-    the tangents' multipliers too) on the faces up to the front:
+    clamped, geometric enrichment within ``radius_cells`` h of the front (the same zone
+    in cells at every n), the normal tie (``law="bilateral"``) or a sticking contact
+    (``"stick"``, the tangents' multipliers too) on the faces up to the front:
     :func:`skxfem.lbb.inf_sup` with the crack's mass; rows
     :class:`skxfem.studies.cracks.InfSupRow` (cell ``"tet"``).
 
     >>> [(r.space, r.size, round(r.beta, 2)) for r in crack_inf_sup_3d([7], ("vital",))]
-    [('vital', 16, 0.43)]
+    [('vital', 16, 0.52)]
     """
     from skfem import MeshTet1
 
@@ -234,7 +236,7 @@ def crack_inf_sup_3d(ns=(7, 11, 15, 21), spaces=("naive", "winner", "vital"),
                                      np.linspace(0, 3 / n, 4))
             crack = Interface(LevelSet(lambda x: x[1] - 0.5, 3, "y - 0.5"),
                               law="bilateral" if law == "bilateral" else "frictionless",
-                              space=name,
+                              space=name, enrichment_radius=radius_cells / n,
                               front=LevelSet(lambda x, xf=xf: x[0] - xf, 3, f"x - {xf}"))
             scene = Scene(m, material=MATERIAL,
                           displacements=(Displacement("ymin", {"x": 0.0, "y": 0.0,
