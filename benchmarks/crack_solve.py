@@ -15,11 +15,18 @@ least of ``--repeat`` runs.  Prints the unknowns of each, both times, the crack'
 stages and the ratio crack / tie (issue 29's target: ≤ 3).  The machine is shared:
 compare ratios measured in one run.
 
-Measured on the shared 2-core machine (direct solves): n = 8, 3456 crack unknowns:
-crack 11.3 s, tie 1.3 s, ratio 8.7; n = 12, 9906 unknowns: 39.2 s against 6.2 s, ratio
-6.3.  The target (≤ 3) is not met: most of the crack's time is its K along the front
-(:func:`skxfem.crack.sif3d.sif_3d` on the almost-polar rules of the front cells) and its
-stiffness on those rules; the ratio falls as n grows (the front is a line in a volume).
+Measured on the shared 2-core machine (direct solves; the machine busy, so compare the
+ratios of one run).  Before the vectorised K along the front (:func:`skxfem.crack.sif3d.sif_3d`,
+same values to 4e-15), the stiffness on the functions in use and the symmetric-mode LU of
+the crack's SPD system, one run: n = 8, 3456 crack unknowns, crack 1.93 s, tie 0.17 s,
+ratio 11.5; n = 12, 9906 unknowns, 5.95 s against 0.92 s, ratio 6.5.  After, one run:
+n = 8 1.76 s against 0.35 s, ratio 5.0; n = 12 7.14 s against 1.97 s, ratio 3.6.  With
+``--repeat 3`` under a heavier load, before: ratios 10.4 and 4.8, after: 5.4 and 4.0.
+K_I at mid-front is unchanged (3.0905, 3.3767).  The target (≤ 3) is not met: what is
+left is the LU of the enriched nodes' dense blocks (at n = 12 more than the whole tie),
+the K on a domain that covers most of the cube at n = 8 (R = 3 front-cell sizes), and the
+stiffness on the front cells' almost-polar rules; the ratio falls as n grows (the front
+is a line in a volume).
 
     python benchmarks/crack_solve.py                 # n = 8, 12
     python benchmarks/crack_solve.py --sizes 8 --repeat 3
@@ -69,8 +76,8 @@ def main(argv=None) -> int:
     ap.add_argument("--sizes", type=int, nargs="+", default=[8, 12])
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--linear", default="direct", help="the linear solve of both (default "
-                    "direct: the scene's iterative solve does not scale a crack's enriched "
-                    "blocks and stalls from n = 12 on)")
+                    "direct; iterative: AMG + CG, a crack's enriched nodes block-scaled, "
+                    "skxfem.linalg.blocks)")
     args = ap.parse_args(argv)
     print(f"{'n':>4} {'crack dofs':>10} {'tie dofs':>9} {'crack s':>8} {'tie s':>7} "
           f"{'ratio':>6}  crack K_I (mid)  crack stages")

@@ -40,10 +40,11 @@ else changes.  Each method must meet:
 6. ``rule(mesh, cut) -> InterfaceRule`` and ``jump(V, rule)``: the quadrature on Γ_h
    and the operator U ↦ [[u_h]] at its points (component-major rows).
 7. ``point_jumps(V, U) -> (dim, n)``: [[u]] = u⁻ - u⁺ at the cut points (the
-   results' ``jump``); ``front(V, U, material, traction=None) -> dict | None``: the
-   stress intensity factors along Γ's front, ``points`` (m, dim), ``K_I``, ``K_II``
-   (m,), ``traction`` (dim, n) the interface traction at the cut points that loaded
-   faces carry (the crack-face term); None for a Γ without a front.
+   results' ``jump``); ``front(V, U, material, traction=None, body_force=None) -> dict |
+   None``: the stress intensity factors along Γ's front, ``points`` (m, dim), ``K_I``,
+   ``K_II`` (m,), ``traction`` (dim, n) the interface traction at the cut points that
+   loaded faces carry (the crack-face term), ``body_force`` the body force (its term);
+   None for a Γ without a front.
 8. ``splits``: whether Γ splits the body into regions (the files' pieces read the ψ
    of those that do; its space's ``splits`` says the same to :mod:`skxfem.enrich`).
 
@@ -66,7 +67,8 @@ the crack pieces with the multiplier functions there, its front the K of
 :func:`skxfem.crack.sif.sif` with the faces' traction from the multipliers
 (``Result.front``, ``result.json``'s ``front``).  A 3D front (a ``MeshTet1``) is the
 kind :class:`skxfem.crack.kind3d.Crack3D` (law ``free``), its front K_I, K_II, K_III
-along it.  Not yet: a body force with a crack, contact on a 3D crack's faces.
+along it.  A body force loads the enriched unknowns too and enters the interaction
+integral (its term -∫ b·u^aux_{,1} q).  Not yet: contact on a 3D crack's faces.
 
 >>> from skfem import MeshTri1
 >>> from skxfem.levelset import plane
@@ -88,6 +90,7 @@ from .crack.assembly import (
     FACET_POINTS,
     Load,
     Support,
+    body_load,
     check_facets,
     stiffness,
     supported_dofs,
@@ -168,7 +171,8 @@ class Gamma:
         (:func:`skxfem.enrich.edge_jumps`)."""
         return edge_jumps(V, U)
 
-    def front(self, V, U: np.ndarray, material, traction=None) -> dict | None:
+    def front(self, V, U: np.ndarray, material, traction=None, body_force=None
+              ) -> dict | None:
         """The stress intensity factors along Γ's front: None, Γ has none."""
         return None
 
@@ -239,7 +243,7 @@ class Crack(Gamma):
         ref = mesh.mapping().invF(cut.points[:, :, None], tind=cells)[:, :, 0]
         return (_face_jump(V, cells, ref) @ U).reshape(mesh.dim(), -1)
 
-    def front(self, V, U: np.ndarray, material, traction=None) -> dict:
+    def front(self, V, U: np.ndarray, material, traction=None, body_force=None) -> dict:
         """``points`` (m, dim) the front's points (the tips) and ``K_I``, ``K_II`` (m,) there
         (:func:`skxfem.crack.sif.sif` with the interface's ``sif_radius``).
 
@@ -248,14 +252,16 @@ class Crack(Gamma):
         face) and t⁺ = -r (Ω⁺'s), interpolated by the multiplier functions up to the
         front (:func:`skxfem.crack.faces.face_traction`), and the interaction integral
         takes them in its face term: a crack pressed shut gives K = 0.  None or all
-        zero: free faces."""
+        zero: free faces.  ``body_force``: the body force of the solved state (a scene's
+        ``body_force`` values or ``x -> (dim, n)``), the interaction integral's body-force
+        term (:mod:`skxfem.crack.interaction`); None: none."""
         tips = V.cut.tips
         faces = None
         if traction is not None and np.any(traction):
             faces = face_traction(V.cut, np.asarray(traction, float),
                                   face_rule_of(V.space)[0])
         K = np.array([sif(V.space, U, material, self.interface.sif_radius, tip=k,
-                          face_traction=faces)
+                          face_traction=faces, body_force=body_force)
                       for k in range(tips.shape[1])]).reshape(-1, 2)
         return {"points": tips.T.copy(), "K_I": K[:, 0], "K_II": K[:, 1]}
 
@@ -276,8 +282,9 @@ class CrackXSpace:
       (:func:`skxfem.crack.assembly.stiffness`, its tip cells on the almost-polar
       rule), given as its standard block and its enriched blocks; ``signed_mass(A)``
       the same for its mass (:func:`skxfem.crack.assembly.mass`, :mod:`skxfem.lbb`);
-    * ``load(facet_loads, body_force, f)``: the scene's surface loads on [a, b, c]
-      (:func:`skxfem.crack.assembly.traction_load`);
+    * ``load(facet_loads, body_force, f)``: the scene's surface loads and body force on
+      [a, b, c] (:func:`skxfem.crack.assembly.traction_load`,
+      :func:`~skxfem.crack.assembly.body_load`);
     * ``constraints(scene, mesh)``: the scene's displacements on [a, b, c]
       (:func:`skxfem.crack.assembly.supported_dofs`: a mouth is never clamped shut);
     * ``splits = False``: a crack ends inside the body and splits no region.
@@ -357,11 +364,10 @@ class CrackXSpace:
         return K[:n, n:].tocsr(), K[n:, n:].tocsr()
 
     def load(self, facet_loads, body_force=None, f: np.ndarray | None = None):
-        """(f, f_b): the surface loads on the standard dofs (``f`` if given) and on the
-        enriched unknowns [b, c] (:func:`skxfem.crack.assembly.traction_load`, each
-        facet's outward normal given to the traction ``t(x, n)``)."""
-        if body_force is not None:
-            raise ValueError("a body force on a scene with a crack is not supported yet")
+        """(f, f_b): the surface loads and body force on the standard dofs (``f`` if given)
+        and on the enriched unknowns [b, c] (:func:`skxfem.crack.assembly.traction_load`,
+        each facet's outward normal given to the traction ``t(x, n)``;
+        :func:`skxfem.crack.assembly.body_load` on the crack's own rules)."""
         mesh = self.mesh
         loads = []
         for facets, traction in facet_loads:
@@ -374,6 +380,8 @@ class CrackXSpace:
 
             loads.append(Load(fac, t))
         F = traction_load(self.space, loads)
+        if body_force is not None:
+            F = F + body_load(self.space, body_force)
         return (F[:self.n_std] if f is None else f), F[self.n_std:]
 
     def constraints(self, scene, mesh) -> tuple[np.ndarray, np.ndarray]:

@@ -45,6 +45,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
+from .crack.assembly import force_field
 from .enrich import region_fields
 
 __all__ = ["Result", "result"]
@@ -228,7 +229,8 @@ def result(pb, U: np.ndarray, traction: np.ndarray, max_jump: float, n_multiplie
         normals=np.hstack([q.normals() for q in qs]),
         jump=np.hstack([q.gamma.point_jumps(q.V, U[q.columns]) for q in qs]),
         facets=np.hstack([_joined(q.cut.facets) + o for q, o in zip(qs, offsets)]),
-        interface=np.repeat(np.arange(len(qs)), sizes), front=_fronts(pb, U, traction), **common)
+        interface=np.repeat(np.arange(len(qs)), sizes),
+        front=_fronts(pb, U, traction, contact.get("steps", ())), **common)
 
 
 def _joined(facets: np.ndarray) -> np.ndarray:
@@ -237,15 +239,40 @@ def _joined(facets: np.ndarray) -> np.ndarray:
     return facets[:, (facets >= 0).all(axis=0)]
 
 
-def _fronts(pb, U: np.ndarray, traction: np.ndarray) -> tuple:
+def _fronts(pb, U: np.ndarray, traction: np.ndarray, steps=()) -> tuple:
     """The stress intensity factors of each interface with a front (its kind's
     :meth:`skxfem.gamma.Gamma.front`, given the interface's ``traction`` at its cut
-    points, which loaded faces carry; None for one that has none), each with the index
-    of its ``interface`` in the scene."""
+    points, which loaded faces carry, and the body force of the solved state, whose
+    term the interaction integral holds; None for one that has none), each with the
+    index of its ``interface`` in the scene."""
     ends = np.cumsum([0] + [q.cut.edge_ids.size for q in pb.interfaces])
-    fronts = (q.gamma.front(q.V, U[q.columns], pb.scene.material, traction[:, a:b])
+    force = _body_force(pb, steps)
+    fronts = (q.gamma.front(q.V, U[q.columns], pb.scene.material, traction[:, a:b],
+                            body_force=force)
               for q, a, b in zip(pb.interfaces, ends[:-1], ends[1:]))
     return tuple(dict(f, interface=k) for k, f in enumerate(fronts) if f is not None)
+
+
+def _body_force(pb, steps) -> object:
+    """The body force of the state U solves: the scene's, times the last step's load
+    factor, or that of the last load state (the scene of ``pb.scene.steps`` of its name;
+    a scene file's states all keep the scene's; states given to
+    :func:`skxfem.contact.solve` apart from the scene: the scene's); None: none."""
+    force = pb.scene.body_force
+    last = steps[-1].load if steps else 1.0
+    if isinstance(last, float):
+        if force is None or last == 1.0:
+            return force
+        b = force_field(force, pb.mesh.dim())
+        return lambda x: last * b(x)
+    states = [s for s in (pb.scene.steps or ()) if hasattr(s, "body_force")]
+    named = [s for s in states if s.name == last]
+    if len(named) == 1:
+        return named[0].body_force
+    if all(s.body_force is force or s.body_force == force for s in states):
+        return force
+    raise ValueError(f"the stress intensity factors of load state {last!r} need its body "
+                     f"force: give each state of the scene's steps a name of its own")
 
 
 def on_edges(P: sp.spmatrix, values: np.ndarray) -> np.ndarray:

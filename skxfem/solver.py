@@ -32,6 +32,7 @@ from .contact import history as contact
 from .contact.laws import CONTACT_LAWS
 from .linalg import iterative, saddle
 from .linalg.amg import rigid_modes
+from .linalg.blocks import enriched_scaling
 from .linalg.choice import AUTO_ITERATIVE, LINEAR, choose_linear
 from .linalg.dependent import dependencies
 from .linalg.rigid import check_held
@@ -161,9 +162,14 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
     G = sp.block_diag([_differences(q.cut, q.ncomp) @ q.P for q in p.interfaces],
                       format="csr")
     if linear == "iterative":  # the motions of every region for the AMG
-        U, mu, info = iterative.solve(p.K, B, p.F, D, p.g, G=G, modes=rigid_modes(V),
+        K, F, Bs, modes, S = p.K, p.F, B, rigid_modes(V), None
+        if "free" in p.laws:  # a crack: its nodes' blocks scaled (skxfem.linalg.blocks)
+            S, Sinv = enriched_scaling(K, V.enr_dofs, V.n_std, mesh.dim(), D)
+            K, F, Bs, modes = (S.T @ K @ S).tocsr(), S.T @ F, B @ S, Sinv @ modes
+        U, mu, info = iterative.solve(K, Bs, F, D, p.g, G=G, modes=modes,
                                       blocksize=mesh.dim(), bonded=p.law == "bonded",
                                       tol=linear_tol)
+        U = U if S is None else S @ U
     else:
         try:
             U, mu, info = saddle.solve(p.K, B, p.F, D, p.g, G=G)

@@ -21,6 +21,16 @@ because σᵢⱼ uᵢ,₁ⱼ = σᵢⱼ εᵢⱼ,₁ = W,₁.  What remains is
 .. math:: J = \int_A (\sigma_{ij} u_{i,1} - W\delta_{1j})\, q_{,j}\, dA
               - \int_{C^+\cup C^-} t_i\, u_{i,1}\, q\, ds .
 
+**With a body force** b (σᵢⱼ,ⱼ + bᵢ = 0) the part of the divergence multiplying q no
+longer vanishes: (W δ₁ⱼ - σᵢⱼ uᵢ,₁),ⱼ = W,₁ - σᵢⱼ,ⱼ uᵢ,₁ - σᵢⱼ uᵢ,₁ⱼ = bᵢ uᵢ,₁, and
+
+.. math:: J = \int_A (\sigma_{ij} u_{i,1} - W\delta_{1j})\, q_{,j}\, dA
+              - \int_A b_i\, u_{i,1}\, q\, dA
+              - \int_{C^+\cup C^-} t_i\, u_{i,1}\, q\, ds ,
+
+an integral over the whole of A where q ≠ 0 (the tip included: u,₁ ∼ r^{-1/2} is
+integrable), not only over the ring where ∇q ≠ 0.
+
 The interaction integral
 ------------------------
 For the sum of the solution (σ, u) and an auxiliary field (σᵃ, uᵃ) the J of
@@ -32,7 +42,17 @@ the sum is J + Jᵃ + I, with the interaction integral
 
 where σᵃ:ε = σ:εᵃ, and the auxiliary field, a Williams field
 (:mod:`skxfem.crack.williams`), has traction-free faces (tᵃ = 0) so that only
-the solution's face traction t appears.  Without the face term the domain
+the solution's face traction t appears.  It is in equilibrium without a body force
+(σᵃᵢⱼ,ⱼ = 0), so the sum carries the solution's b only, and a body force adds
+
+.. math:: -\int_A b_i\, u^a_{i,1}\, q\, dA
+
+to I: the divergence of the interaction integrand is σᵢⱼ,ⱼ uᵃᵢ,₁ + σᵢⱼ εᵃᵢⱼ,₁ +
+σᵃᵢⱼ εᵢⱼ,₁ - (σᵢₖ εᵃᵢₖ),₁ = -bᵢ uᵃᵢ,₁ (σᵃ:ε,₁ = σ,₁:εᵃ by the symmetry of Hooke's
+law, a homogeneous material).  It holds the x₁-derivative of the auxiliary field, not
+of the solution's (b·u,₁ q belongs to J, not to I).  Without it a loaded body (gravity, a
+spinning disc) gives a K that changes with the domain (tests/test_crack_body_force.py:
+a Williams field plus a smooth field of body force b).  Without the face term the domain
 integral depends on A as soon as the faces are loaded (a closed crack in
 contact, a pressurised crack).  With J = (K_I² + K_II²)/E′ + K_III²/(2μ),
 
@@ -161,9 +181,23 @@ def _check(w, grad_u, sigma, grad_q, x):
             as_real("sigma", sigma, (dim, dim) + pts), as_real("grad_q", grad_q, (dim,) + pts))
 
 
+def _body(body_force, q, x):
+    """(b, q) checked against the points x (None, None without a body force)."""
+    if body_force is None:
+        if q is not None:
+            raise ValueError("q is only used with a body_force; give both or neither")
+        return None, None
+    if q is None:
+        raise ValueError("a body_force needs q at the points (the weight of its term "
+                         "-∫ b·u^a_{,1} q dA)")
+    return as_real("body_force", body_force, x.shape), as_real("q", q, x.shape[1:])
+
+
 def interaction_integrals(x: ArrayLike, w: ArrayLike, grad_u: ArrayLike,
                           sigma: ArrayLike, grad_q: ArrayLike, origin: ArrayLike,
-                          frame: TipFrame, material: Material, faces=()) -> np.ndarray:
+                          frame: TipFrame, material: Material, faces=(),
+                          body_force: ArrayLike | None = None,
+                          q: ArrayLike | None = None) -> np.ndarray:
     """I for the auxiliary Williams fields of unit K_I, K_II (and K_III in 3D).
 
     Parameters
@@ -176,6 +210,9 @@ def interaction_integrals(x: ArrayLike, w: ArrayLike, grad_u: ArrayLike,
     origin, frame : the tip and its frame (one frame, vectors of shape (dim,)).
     material : the :class:`skxfem.fem.material.Material` of the auxiliary fields.
     faces : :class:`CrackFace` rules of the loaded crack faces (none: free faces).
+    body_force : (dim, ...) the body force b at the points (None: none); the points
+        must then cover all of A where q ≠ 0, the tip's cells included (module notes).
+    q : (...) q at the points; required with ``body_force``.
 
     Returns
     -------
@@ -193,6 +230,7 @@ def interaction_integrals(x: ArrayLike, w: ArrayLike, grad_u: ArrayLike,
     """
     x, w, grad_u, sigma, grad_q = _check(w, grad_u, sigma, grad_q, x)
     dim = x.shape[0]
+    b, q = _body(body_force, q, x)
     e1 = frame.e1.reshape((dim,) + (1,) * (x.ndim - 1))
     du1 = np.einsum("ij...,j...->i...", grad_u, e1)           # ∂u/∂x₁ along e₁
     q1 = (grad_q * e1).sum(axis=0)                             # q,₁
@@ -204,6 +242,8 @@ def interaction_integrals(x: ArrayLike, w: ArrayLike, grad_u: ArrayLike,
         integrand = (np.einsum("i...,ij...,j...->...", dua1, sigma, grad_q)
                      + np.einsum("i...,ij...,j...->...", du1, aux.sigma, grad_q)
                      - np.einsum("ik...,ik...->...", sigma, aux.strain) * q1)
+        if b is not None:
+            integrand = integrand - q * (b * dua1).sum(axis=0)
         total = (w * integrand).sum()
         for face in faces:
             af = near_tip(face.x, origin, frame, material, K, side=face.side)
@@ -243,9 +283,11 @@ def sif_from_interaction(I: ArrayLike, material: Material, dim: int = 2) -> np.n
 
 def stress_intensity(x: ArrayLike, w: ArrayLike, grad_u: ArrayLike, sigma: ArrayLike,
                      grad_q: ArrayLike, origin: ArrayLike, frame: TipFrame,
-                     material: Material, faces=()) -> np.ndarray:
+                     material: Material, faces=(), body_force: ArrayLike | None = None,
+                     q: ArrayLike | None = None) -> np.ndarray:
     """(K_I, K_II) in 2D, (K_I, K_II, K_III) in 3D: :func:`interaction_integrals` turned
     into K by :func:`sif_from_interaction`; same arguments."""
     x = as_real("x", x)
-    I = interaction_integrals(x, w, grad_u, sigma, grad_q, origin, frame, material, faces)
+    I = interaction_integrals(x, w, grad_u, sigma, grad_q, origin, frame, material, faces,
+                              body_force, q)
     return sif_from_interaction(I, material, x.shape[0])

@@ -6,8 +6,9 @@ The objects :func:`skxfem.gamma.gamma` returns for an interface with a 3D ``fron
 :func:`skxfem.problem.assemble` and :meth:`skxfem.enrich.XSpaces.regions` ask every space.
 They wrap the modules of the 3D crack (:mod:`~skxfem.crack.geometry3d`,
 :mod:`~skxfem.crack.space3d`, :mod:`~skxfem.crack.sif3d`) as :class:`skxfem.gamma.Crack`
-wraps the 2D ones.  Law ``free`` only; no body force; the front's ``K_I``, ``K_II``,
-``K_III`` at :func:`~skxfem.crack.sif3d.front_points` (``result.json``'s ``front``).
+wraps the 2D ones.  Law ``free`` only; a body force loads every unknown and enters K;
+the front's ``K_I``, ``K_II``, ``K_III`` at :func:`~skxfem.crack.sif3d.front_points`
+(``result.json``'s ``front``).
 
 >>> from skfem import MeshTet1
 >>> from skxfem.levelset import plane
@@ -41,6 +42,7 @@ from .space3d import (
     CrackSpace3D,
     Load3D,
     Support3D,
+    body_load,
     crack_space_3d,
     evaluation,
     stiffness,
@@ -126,16 +128,18 @@ class Crack3D:
             owner[mesh.t2e[k]] = np.arange(mesh.t.shape[1])
         return (_face_jump(V.space, owner[cut.edge_ids], cut.points) @ U).reshape(3, -1)
 
-    def front(self, V, U: np.ndarray, material, traction=None) -> dict:
+    def front(self, V, U: np.ndarray, material, traction=None, body_force=None) -> dict:
         """``points`` (m, 3) along the front (:func:`skxfem.crack.sif3d.front_points`) and
         ``K_I``, ``K_II``, ``K_III`` (m,) there (:func:`skxfem.crack.sif3d.sif_3d`, the
         interface's ``sif_radius`` the radial cone's radius).  ``traction``: the faces of
-        a 3D crack are free (law ``free``), so it must be None or zero."""
+        a 3D crack are free (law ``free``), so it must be None or zero; ``body_force``
+        the body force of the solved state (its term in the interaction integral)."""
         if traction is not None and np.any(traction):
             raise ValueError("a 3D crack's faces are free (law 'free'): no face traction "
                              "enters its interaction integral")
         P = front_points(V.space)
-        K = sif_3d(V.space, U, material, P, self.interface.sif_radius)
+        K = sif_3d(V.space, U, material, P, self.interface.sif_radius,
+                   body_force=body_force)
         return {"points": P.T.copy(), "K_I": K[:, 0], "K_II": K[:, 1], "K_III": K[:, 2]}
 
 
@@ -206,13 +210,14 @@ class CrackXSpace3D:
         return K[:n, n:].tocsr(), K[n:, n:].tocsr()
 
     def load(self, facet_loads, body_force=None, f: np.ndarray | None = None):
-        """(f, f_b): the surface loads on the standard dofs (``f`` if given) and on the
-        enriched unknowns (:func:`skxfem.crack.space3d.traction_load`)."""
-        if body_force is not None:
-            raise ValueError("a body force on a scene with a crack is not supported yet")
+        """(f, f_b): the surface loads and body force on the standard dofs (``f`` if
+        given) and on the enriched unknowns (:func:`skxfem.crack.space3d.traction_load`,
+        :func:`skxfem.crack.space3d.body_load`)."""
         loads = [Load3D(facets, lambda x, n, t=t: t(x, n), normal=True)
                  for facets, t in facet_loads]
         F = traction_load(self.space, loads)
+        if body_force is not None:
+            F = F + body_load(self.space, body_force)
         return (F[:self.n_std] if f is None else f), F[self.n_std:]
 
     def constraints(self, scene, mesh) -> tuple[np.ndarray, np.ndarray]:

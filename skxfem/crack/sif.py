@@ -19,7 +19,10 @@ points; this module makes them from a solution U on the crack's space:
    Hooke's law, ∇q;
 5. **the faces**: if the faces carry a traction, its term −∫ t·u^aux_{,1} q ds on each
    face (Gauss points on the crack segments, q interpolated there); a free crack has
-   none.
+   none;
+6. **a body force** b: its term −∫ b·u^aux_{,1} q dA over every cell where q ≠ 0 (the
+   tip cells on their almost-polar rule), q interpolated at the points
+   (:mod:`skxfem.crack.interaction`); without one the domain is the ring of step 2.
 
 >>> from skfem import MeshTri1
 >>> from skxfem.crack.geometry import crack_geometry
@@ -38,7 +41,7 @@ import numpy as np
 from skfem import Basis
 
 from ..fem.material import Material
-from .assembly import face_rule, rule_groups
+from .assembly import face_rule, force_field, rule_groups
 from .frame import TipFrame, tip_frame
 from .interaction import CrackFace, q_function, stress_intensity
 from .space import CrackSpace, evaluation
@@ -143,8 +146,8 @@ def _faces(space, q_nodes, face_traction):
 
 
 def sif(space: CrackSpace, U: np.ndarray, material: Material, r_d: float | None = None,
-        plateau: float = 0.5, tip: int = 0, face_traction: Callable | None = None
-        ) -> np.ndarray:
+        plateau: float = 0.5, tip: int = 0, face_traction: Callable | None = None,
+        body_force=None) -> np.ndarray:
     """(K_I, K_II) at a tip of the solution U by the domain interaction integral.
 
     Parameters
@@ -157,6 +160,9 @@ def sif(space: CrackSpace, U: np.ndarray, material: Material, r_d: float | None 
     tip : which tip of the geometry.
     face_traction : ``(x, side) -> (2, n)`` the traction σ·m* the face of ``side``
         (+1: Ω⁺, -1: Ω⁻) carries at points x; None for a free crack.
+    body_force : the body force b the solution carries
+        (:func:`skxfem.crack.assembly.force_field`: ``x -> (2, n)`` or two values);
+        None: none.
     """
     U = np.asarray(U, float)
     if U.shape != (space.N,):
@@ -166,8 +172,12 @@ def sif(space: CrackSpace, U: np.ndarray, material: Material, r_d: float | None 
     boundary = min(boundary_distance(space.mesh, origin), other_tips_distance(space, tip))
     q_nodes = nodal_q(space, origin, r_d, plateau, boundary)
     qt = q_nodes[space.mesh.t]
-    domain = np.flatnonzero(qt.max(axis=0) > qt.min(axis=0))
-    xs, ws, gus, sigs, gqs = [], [], [], [], []
+    if body_force is None:
+        domain = np.flatnonzero(qt.max(axis=0) > qt.min(axis=0))
+    else:                                         # b's term: wherever q ≠ 0
+        b = force_field(body_force, 2)
+        domain = np.flatnonzero(qt.max(axis=0) > 0)
+    xs, ws, gus, sigs, gqs, qs = [], [], [], [], [], []
     lam, mu = material.lame(2)
     for G in rule_groups(space, domain, plain_order=4):
         cells, ref, side, x, w = G.points()
@@ -179,8 +189,12 @@ def sif(space: CrackSpace, U: np.ndarray, material: Material, r_d: float | None 
         ws.append(w)
         gus.append(gu)
         sigs.append(sig)
-        gqs.append(np.asarray(G.scalar.interpolate(q_nodes).grad)[:, live])
+        qh = G.scalar.interpolate(q_nodes)
+        gqs.append(np.asarray(qh.grad)[:, live])
+        qs.append(np.asarray(qh)[live])
     faces = () if face_traction is None else _faces(space, q_nodes, face_traction)
-    return stress_intensity(np.hstack(xs), np.concatenate(ws), np.concatenate(gus, axis=2),
+    x = np.hstack(xs)
+    body = {} if body_force is None else {"body_force": b(x), "q": np.concatenate(qs)}
+    return stress_intensity(x, np.concatenate(ws), np.concatenate(gus, axis=2),
                             np.concatenate(sigs, axis=2), np.hstack(gqs), origin, frame,
-                            material, faces)
+                            material, faces, **body)

@@ -75,18 +75,22 @@ import scipy.sparse as sp
 from numpy.polynomial.legendre import leggauss
 
 from ..fem.material import Material
+from .assembly import force_field
 from .frame import TipFrame, tip_frame
 from .geometry3d import barycentric, crack_geometry_3d, front_chains, front_fit
 from .interaction import sif_from_interaction
 from .sif import DOMAIN_FRACTION
 from .space3d import (
+    body_load,
     crack_space_3d,
     field_at,
     nodal_scaling,
+    point_values,
     rules,
     stiffness,
     supported_dofs,
     traction_load,
+    virtual_field,
 )
 from .williams import near_tip_local
 
@@ -196,10 +200,15 @@ def boundary_reach(mesh, points: np.ndarray, e3: np.ndarray, length: float) -> n
     return out
 
 
-def _to_global(Rt: np.ndarray, T: np.ndarray) -> np.ndarray:
-    """Rᵀ T R of tensors T (3, 3, n) in per-point frames Rt (n, 3, 3): global components."""
-    out = np.matmul(np.matmul(np.swapaxes(Rt, 1, 2), np.moveaxis(T, 2, 0)), Rt)
-    return np.moveaxis(out, 0, 2)
+def _rotate(R: np.ndarray, T: np.ndarray) -> np.ndarray:
+    """R T Rᵀ of tensors T (3, 3, n) in per-point frames R (3, 3, n) (rows e₁, e₂, e₃):
+    their components in the frames."""
+    return np.einsum("ain,ibn->abn", R, np.einsum("ijn,bjn->ibn", T, R))
+
+
+def _contract(S: np.ndarray, T: np.ndarray, G: np.ndarray) -> np.ndarray:
+    """Σ_ijk S_ij T_ik G_jk of tensors (3, 3, n)."""
+    return np.einsum("ijn,ikn,jkn->n", S, T, G)
 
 
 def fitted_frame(space, points: np.ndarray, spacing: float) -> tuple[TipFrame, np.ndarray]:
@@ -239,6 +248,21 @@ def _nodal_directions(space, cells: np.ndarray, spacing: float) -> np.ndarray:
     out = np.zeros((mesh.p.shape[1], 3))
     out[nodes] = d.T
     return out
+
+
+def _in_support(space, cells, X, R, P, e3, L) -> np.ndarray:
+    """Which points X (3, n) of ``cells`` can lie in the support of some q of
+    :func:`sif_3d` (r < R and |s| < L for a front point; a relative margin of 1e-9): the
+    others add nothing, and their fields are not computed."""
+    mesh, geo = space.mesh, space.geometry
+    lam, _ = barycentric(mesh, cells, X)
+    nodes = mesh.t[:, cells].T
+    r = np.hypot((lam * geo.phi[nodes]).sum(axis=1), (lam * geo.psi[nodes]).sum(axis=1))
+    on = r < R * (1 + 1e-9)
+    near = np.zeros(on.size, dtype=bool)
+    for k in range(P.shape[1]):                           # the hats along the front
+        near |= np.abs(e3[:, k] @ (X - P[:, k, None])) < L * (1 + 1e-9)
+    return on & near
 
 
 def _hat_integral(geo, P, e3, L):
@@ -288,14 +312,16 @@ def _curvature_integrand(sl, gl, aux) -> np.ndarray:
 
 def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None = None,
            radius: float | None = None, length: float | None = None,
-           plateau: float = 0.5) -> np.ndarray:
+           plateau: float = 0.5, body_force=None) -> np.ndarray:
     """(m, 3) K_I, K_II, K_III at ``points`` (3, m) of the front (default
     :func:`front_points`) by the domain interaction integral (module notes).
 
     ``radius`` R of the radial cone (default :func:`default_radius_3d`),
     clipped at each point to the distance to the boundary (:func:`boundary_reach`);
     ``length`` L the hat's half-width (default :data:`DEFAULT_LENGTH` sizes), ``plateau``
-    ρ: q_r = 1 inside ρR.
+    ρ: q_r = 1 inside ρR.  ``body_force``: the body force b the solution carries
+    (:func:`skxfem.crack.assembly.force_field`, in 3D), whose term -∫ b·uᵃ,₁ q dV
+    (:mod:`skxfem.crack.interaction`) joins the integrand's part in q; None: none.
     """
     if not isinstance(material, Material):
         raise ValueError(f"material must be a skxfem Material, got {type(material).__name__}")
@@ -324,45 +350,51 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
                            & (radial[mesh.t] <= R + 2 * h).any(axis=0))
     lam_, mu = material.lame(3)
     e1_nodes = _nodal_directions(space, cells, spacing)
-    xs, ws, As, Bs, Cs, Ds, e1s, rs, grs, x1s = ([], [], [[], [], []], [[], [], []],
-                                                  [[], [], []], [[], [], []], [], [], [], [])
+    ut = virtual_field(space, U)
+    eye = np.eye(3)[:, :, None]
+    xs, ws, e1s, rs, grs, x1s = [], [], [], [], [], []
+    As, Bs, Cs, Ds = [[], [], []], [[], [], []], [[], [], []], [[], [], []]
+    b = None if body_force is None else force_field(body_force, 3)
     for c, x, w, side in rules(space, cells, plain=3):
         live = w != 0
         cc = np.broadcast_to(c[:, None], w.shape)[live]
         X, W, S = x[live].T, w[live], side[live]
-        _, gu = field_at(space, U, cc, X, S)
-        eps = (gu + np.swapaxes(gu, 0, 1)) / 2
-        sig = 2 * mu * eps + lam_ * np.trace(eps)[None, None] * np.eye(3)[:, :, None]
-        lam, dlam = barycentric(mesh, cc, X)
-        nodes = mesh.t[:, cc].T
-        ph, ps = (lam * geo.phi[nodes]).sum(axis=1), (lam * geo.psi[nodes]).sum(axis=1)
-        gph = np.einsum("nk,nki->in", geo.phi[nodes], dlam)
-        gps = np.einsum("nk,nki->in", geo.psi[nodes], dlam)
+        on = _in_support(space, cc, X, R, P, frames.e3, L)
+        if not on.any():
+            continue
+        cc, X, W, S = cc[on], X[:, on], W[on], S[on]
+        pv = point_values(space, cc, X, S)
+        _, gu = field_at(space, U, cc, X, S, values=pv, virtual=ut)
+        ph, ps, gph, gps = pv.phi, pv.psi, pv.gphi.T, pv.gpsi.T
         # the extension direction Q/q = e₁ₕ, the P1 interpolant of nodal e₁, and ∂ⱼe₁ₖ
-        e1 = np.einsum("nk,nki->in", lam, e1_nodes[nodes])
-        fr = tip_frame(e1, gps)                           # continuous across the cells
-        Rt = np.transpose(fr.R, (2, 0, 1))                # (n, 3, 3), rows e₁, e₂, e₃
-        G = np.einsum("nkj,nki->jin", dlam, e1_nodes[nodes])          # [j, k, n]
+        e1n = e1_nodes[pv.nodes]                          # (n, 4, 3)
+        e1 = np.einsum("nk,nki->in", pv.lam, e1n)
+        G = np.einsum("nkj,nki->jin", pv.dlam, e1n)                   # [j, k, n]
+        Rf = tip_frame(e1, gps).R                         # (3, 3, n), continuous e₁
+        bx = 0.0 if b is None else np.einsum("ain,in->an", Rf, b(X))   # in the frames
         r = np.hypot(ph, ps)
         theta = np.arctan2(ps, ph)
         theta = np.where((ph < 0) & (np.sign(ps) != S), S * np.pi, theta)
         r = np.maximum(r, 1e-300)
-        du1 = np.einsum("ijn,jn->in", gu, e1)
-        sl = np.einsum("nai,ijn,nbj->abn", Rt, sig, Rt)             # σ in the frame
-        gl = np.einsum("nai,ijn,nj->an", Rt, gu, Rt[:, 0])          # u_a,1 in the frame
+        # the field in each point's frame, where the auxiliary fields are given
+        gu_l, G_l = _rotate(Rf, gu), _rotate(Rf, G)
+        eps = (gu_l + np.swapaxes(gu_l, 0, 1)) / 2
+        sig = 2 * mu * eps + lam_ * np.trace(eps)[None, None] * eye
+        e1_l = np.einsum("ain,in->an", Rf, e1)
+        du1 = np.einsum("ijn,jn->in", gu_l, e1_l)
+        trace_G = np.trace(G)
         for mode in range(3):
             aux = near_tip_local(r, theta, material, np.eye(3)[mode], dim=3)
-            agu, asig = _to_global(Rt, aux.grad_u), _to_global(Rt, aux.sigma)
+            agu, asig = aux.grad_u, aux.sigma
             aeps = (agu + np.swapaxes(agu, 0, 1)) / 2
-            dua1 = np.einsum("ijn,jn->in", agu, e1)
-            work = np.einsum("ikn,ikn->n", sig, aeps)
-            As[mode].append(np.einsum("in,ijn->jn", dua1, sig)
-                            + np.einsum("in,ijn->jn", du1, asig))
+            dua1 = np.einsum("ijn,jn->in", agu, e1_l)
+            work = np.einsum("ijn,ijn->n", sig, aeps)
+            A_l = np.einsum("in,ijn->jn", dua1, sig) + np.einsum("in,ijn->jn", du1, asig)
+            As[mode].append(np.einsum("ain,an->in", Rf, A_l))        # global components
             Bs[mode].append(work)
-            Cs[mode].append((np.einsum("ijn,ikn->jkn", sig, agu) * G).sum(axis=(0, 1))
-                            + (np.einsum("ijn,ikn->jkn", asig, gu) * G).sum(axis=(0, 1))
-                            - work * np.einsum("jjn->n", G))
-            Ds[mode].append(_curvature_integrand(sl, gl, aux))
+            Cs[mode].append(_contract(sig, agu, G_l) + _contract(asig, gu_l, G_l)
+                            - work * trace_G - (bx * dua1).sum(axis=0))   # the body force's
+            Ds[mode].append(_curvature_integrand(sig, gu_l[:, 0], aux))
         xs.append(X)
         ws.append(W)
         e1s.append(e1)
@@ -371,27 +403,27 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         x1s.append(ph)
     X, W, e1, r, gr, x1 = (np.hstack(xs), np.concatenate(ws), np.hstack(e1s),
                            np.concatenate(rs), np.hstack(grs), np.concatenate(x1s))
-    A = [np.hstack(a) for a in As]
-    B = [np.concatenate(b) for b in Bs]
-    C = [np.concatenate(c) for c in Cs]
-    D = [np.concatenate(d) for d in Ds]
+    A = np.stack([np.hstack(a) for a in As])              # (3 modes, 3, n)
+    B = np.stack([np.concatenate(b) for b in Bs])
+    C = np.stack([np.concatenate(c) for c in Cs])
+    D = np.stack([np.concatenate(d) for d in Ds])
     Rk = np.minimum(R, boundary_reach(mesh, P, frames.e3, L))
     den = _hat_integral(geo, P, frames.e3, L)
     K = np.zeros((P.shape[1], 3))
     for k in range(P.shape[1]):
         R, inner = Rk[k], plateau * Rk[k]
-        qr = np.clip((R - r) / (R - inner), 0.0, 1.0)
-        dqr = np.where((r > inner) & (r < R), -1.0 / (R - inner), 0.0)
         s = frames.e3[:, k] @ (X - P[:, k, None])
-        hat = np.clip(1 - np.abs(s) / L, 0, None)
-        dhat = np.where(np.abs(s) < L, -np.sign(s) / L, 0.0)
-        gq = hat * dqr * gr + qr * dhat * frames.e3[:, k, None]
-        q1 = (gq * e1).sum(axis=0)
-        q = qr * hat
+        on = np.flatnonzero((np.abs(s) < L) & (r < R))  # the support of q
+        s, rk = s[on], r[on]
+        qr = np.clip((R - rk) / (R - inner), 0.0, 1.0)
+        dqr = np.where(rk > inner, -1.0 / (R - inner), 0.0)
+        hat = 1 - np.abs(s) / L
+        gq = hat * dqr * gr[:, on] - qr * np.sign(s) / L * frames.e3[:, k, None]
+        q1 = (gq * e1[:, on]).sum(axis=0)
         # κ/h₃ at each quadrature point, h₃ = 1 + κ x₁ the stretch along the front
-        k3 = kappa[k] / np.maximum(1 + kappa[k] * x1, 0.5)
-        I = np.array([(W * ((A[m] * gq).sum(axis=0) - B[m] * q1
-                            + q * (C[m] + k3 * D[m]))).sum() for m in range(3)])
+        k3 = kappa[k] / np.maximum(1 + kappa[k] * x1[on], 0.5)
+        I = (np.einsum("min,in->mn", A[:, :, on], gq) - B[:, on] * q1
+             + qr * hat * (C[:, on] + k3 * D[:, on])) @ W[on]
         K[k] = sif_from_interaction(I / den[k], material, 3)
     return K
 
@@ -435,13 +467,14 @@ def solve_crack_3d(mesh, psi, phi, material: Material, supports=(), loads=(),
                    enrichment: str = "geometric", radius: float | None = None,
                    points: np.ndarray | None = None, sif_radius: float | None = None,
                    sif_length: float | None = None, solver: str = "direct",
-                   tol: float = 1e-10) -> CrackSolution3D:
+                   tol: float = 1e-10, body_force=None) -> CrackSolution3D:
     """Linear elasticity on a ``MeshTet1`` with a crack {ψ = 0, φ < 0}, law free: geometry,
     space, stiffness, loads, supports, block scaling, solve, K along the front.
 
     ``supports``, ``loads``: :class:`~skxfem.crack.space3d.Support3D`,
     :class:`~skxfem.crack.space3d.Load3D`; ``solver`` ``"direct"`` (SuperLU) or ``"cg"``
-    (conjugate gradients with smoothed-aggregation AMG on the scaled system, to ``tol``).
+    (conjugate gradients with smoothed-aggregation AMG on the scaled system, to ``tol``);
+    ``body_force`` b (:func:`skxfem.crack.space3d.body_load`, and its term in K).
     """
     import time
     if not isinstance(material, Material):
@@ -453,6 +486,8 @@ def solve_crack_3d(mesh, psi, phi, material: Material, supports=(), loads=(),
     V = crack_space_3d(mesh, geometry, enrichment, radius)
     K = stiffness(V, material)
     f = traction_load(V, loads)
+    if body_force is not None:
+        f = f + body_load(V, body_force)
     D, g = supported_dofs(V, supports)
     S = nodal_scaling(K, V, D)
     Ks, fs = (S.T @ K @ S).tocsr(), S.T @ f
@@ -465,7 +500,7 @@ def solve_crack_3d(mesh, psi, phi, material: Material, supports=(), loads=(),
     U = S @ Us
     t2 = time.perf_counter()
     P = front_points(V) if points is None else np.asarray(points, float)
-    Kf = sif_3d(V, U, material, P, sif_radius, sif_length)
+    Kf = sif_3d(V, U, material, P, sif_radius, sif_length, body_force=body_force)
     t3 = time.perf_counter()
     info = {"unknowns": V.N, "enriched": V.N - V.n_std, "assembly_s": t1 - t0,
             "solve_s": t2 - t1, "sif_s": t3 - t2, "iterations": iterations}

@@ -5,14 +5,15 @@ r"""One plain 2D crack problem, solved: geometry, space, assembly, solve, K.
 1. :func:`skxfem.crack.geometry.crack_geometry`: tips, tip and split cells, sub-cells;
 2. :func:`skxfem.crack.space.crack_space`: the unknowns [a, b, c];
 3. :func:`skxfem.crack.assembly.stiffness`, :func:`~skxfem.crack.assembly.traction_load`
-   (and :func:`~skxfem.crack.assembly.face_load` for loaded faces),
+   (and :func:`~skxfem.crack.assembly.face_load` for loaded faces,
+   :func:`~skxfem.crack.assembly.body_load` for a body force),
    :func:`~skxfem.crack.assembly.supported_dofs`;
 4. the scaling of :func:`skxfem.crack.space.nodal_scaling`, K_s = Sᵀ K S, and a direct
    solve of the supported system for U = S U_s;
 5. :func:`skxfem.crack.sif.sif` at every tip.
 
 It is the harness of the tests and of a later crack kind of interface; it has no
-contact and no body force.
+contact.
 
 >>> from skfem import MeshTri1
 >>> from skxfem.fem.material import Material
@@ -38,6 +39,7 @@ from ..fem.material import Material
 from .assembly import (
     Load,
     Support,
+    body_load,
     face_load,
     rule_groups,
     stiffness,
@@ -107,8 +109,8 @@ class CrackSolution:
 def solve_crack(mesh, psi, phi, material: Material, supports=(), loads=(),
                 enrichment: str = "geometric", radius: float | None = None,
                 scaling: str | None = "block", sif_radius: float | None = None,
-                face_traction: Callable | None = None, condition: bool = False
-                ) -> CrackSolution:
+                face_traction: Callable | None = None, condition: bool = False,
+                body_force=None) -> CrackSolution:
     """Solve linear elasticity on a 2D mesh with a crack {ψ = 0, φ < 0} (module notes).
 
     Parameters
@@ -125,6 +127,8 @@ def solve_crack(mesh, psi, phi, material: Material, supports=(), loads=(),
         ``side`` (:func:`skxfem.crack.assembly.face_load`): loaded in the solve and in the
         SIF's face term; None: free faces.
     condition : also measure the condition number of the scaled, supported stiffness.
+    body_force : a body force b (:func:`skxfem.crack.assembly.force_field`): loaded in the
+        solve and in the SIF's body-force term; None: none.
     """
     if not isinstance(material, Material):
         raise ValueError(f"material must be a skxfem Material, got {type(material).__name__}")
@@ -134,6 +138,8 @@ def solve_crack(mesh, psi, phi, material: Material, supports=(), loads=(),
     f = traction_load(V, loads)
     if face_traction is not None:
         f = f + face_load(V, face_traction)
+    if body_force is not None:
+        f = f + body_load(V, body_force)
     D, g = supported_dofs(V, supports)
     S = nodal_scaling(K, V, scaling, D)
     Ks, fs = (S.T @ K @ S).tocsr(), S.T @ f
@@ -143,7 +149,7 @@ def solve_crack(mesh, psi, phi, material: Material, supports=(), loads=(),
     rhs = fs[free] - Ks[free][:, D] @ Us[D]
     Us[free] = spsolve(sp.csc_matrix(Ks[free][:, free]), rhs)
     U = S @ Us
-    K_tips = np.array([sif(V, U, material, sif_radius, tip=k, face_traction=face_traction)
-                        for k in range(geometry.tips.shape[1])])
+    K_tips = np.array([sif(V, U, material, sif_radius, tip=k, face_traction=face_traction,
+                           body_force=body_force) for k in range(geometry.tips.shape[1])])
     cond = condition_number(Ks, free) if condition else None
     return CrackSolution(U, V, material, K_tips, cond)

@@ -23,8 +23,9 @@ coefficients ũ = T U (:attr:`CrackSpace3D.T`).
 
 Integration
 -----------
-Cell by cell, on the 24 virtual functions φ_k g of a cell (4 nodes × 6 kinds) with dense
-arrays: the stiffness of a cell is λ G_c G′_d + μ(δ_cd G·G′ + G_d G′_c) summed over its
+Cell by cell, on the virtual functions φ_k g of a cell in use (of its 4 nodes × 6 kinds:
+a node is standard, Heaviside or branch, so at most 20; cells batched by their count),
+with dense arrays: the stiffness of a cell is λ G_c G′_d + μ(δ_cd G·G′ + G_d G′_c) summed over its
 points, G the gradients, then gathered into the virtual space and taken to the unknowns
 by Tᵀ K̃ T.  The rules (:func:`rules`): the front cells' sub-tetrahedra by the almost-polar
 rules of :mod:`skxfem.crack.quadrature3d` (on the front's edge or vertex) or the
@@ -59,14 +60,15 @@ from skfem import Basis, ElementTetP1
 from ..fem.material import Material, stiffness_matrix
 from ..fem.quadrature import cell_rule
 from ..fem.simplex import split
-from .assembly import check_facets
+from .assembly import check_facets, force_field
 from .branch import branch, branch_local_gradient
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
 from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
 
-__all__ = ["BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "functions_at", "evaluation",
-           "field_at", "rules", "stiffness", "Support3D", "Load3D", "outward_normals",
-           "traction_load", "supported_dofs", "nodal_scaling", "front_distance"]
+__all__ = ["BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "PointValues", "point_values",
+           "functions_at", "virtual_field", "evaluation", "field_at", "rules", "stiffness",
+           "Support3D", "Load3D", "outward_normals", "traction_load", "body_load",
+           "supported_dofs", "nodal_scaling", "front_distance"]
 
 ENRICHMENTS = ("topological", "geometric")
 
@@ -75,7 +77,7 @@ BRANCH_POINTS = 4
 support of a branch node (64 per tetrahedron: exact to degree 5)."""
 
 CHUNK = 400
-"""Cells per batch of the dense cell arrays (memory: 400 × 72² numbers per batch)."""
+"""Cells per batch of the dense cell arrays (memory: at most 400 × 60² numbers per batch)."""
 
 
 @dataclass(frozen=True)
@@ -240,11 +242,28 @@ def _virtual_map(nverts, heav, H_node, branch_nodes, F_node) -> sp.csr_matrix:
                          shape=(6 * n, c0 + 12 * nb))
 
 
-def functions_at(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
-                 side: np.ndarray | None = None):
-    """The 24 virtual functions φ_k g of each point's cell (4 nodes × 6 kinds) at points
-    x (3, n) of ``cells`` (n,): values (n, 24), gradients (n, 24, 3) and their virtual
-    node index g·nverts + node (n, 24).
+@dataclass(frozen=True)
+class PointValues:
+    """What the enriched functions need at points x (3, n) of cells (n,): the P1 shape
+    functions ``lam`` (n, 4) and their gradients ``dlam`` (n, 4, 3), the cells' ``nodes``
+    (n, 4), the interpolated level sets ``phi``, ``psi`` (n,) and their gradients
+    ``gphi``, ``gpsi`` (n, 3), and the six kinds g ∈ {1, H, F₁..F₄}: values ``g`` (n, 6),
+    gradients ``dg`` (n, 6, 3) (:func:`point_values`)."""
+
+    lam: np.ndarray
+    dlam: np.ndarray
+    nodes: np.ndarray
+    phi: np.ndarray
+    psi: np.ndarray
+    gphi: np.ndarray
+    gpsi: np.ndarray
+    g: np.ndarray
+    dg: np.ndarray
+
+
+def point_values(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
+                 side: np.ndarray | None = None) -> PointValues:
+    """The :class:`PointValues` at points x (3, n) of ``cells`` (n,).
 
     ``side`` (n,) the side ±1 of each point (needed in split and front cells; default
     the cell's side).  Behind the front (φ_h < 0) θ takes the side's sign, so a point
@@ -278,21 +297,47 @@ def functions_at(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
     loc = branch_local_gradient(rr, tt) * live            # (4, 2, n)
     dg[:, 2:] = (loc[:, 0, :, None] * gphi[None] + loc[:, 1, :, None] * gpsi[None]
                  ).transpose(1, 0, 2)
+    return PointValues(lam, dlam, nodes, phi, psi, gphi, gpsi, g, dg)
+
+
+def functions_at(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
+                 side: np.ndarray | None = None):
+    """The 24 virtual functions φ_k g of each point's cell (4 nodes × 6 kinds) at points
+    x (3, n) of ``cells`` (n,): values (n, 24), gradients (n, 24, 3) and their virtual
+    node index g·nverts + node (n, 24).  ``side``: as :func:`point_values`.
+    """
+    pv = point_values(space, cells, x, side)
+    lam, dlam, g, dg = pv.lam, pv.dlam, pv.g, pv.dg
+    n = lam.shape[0]
     vals = (lam[:, :, None] * g[:, None, :]).reshape(n, 24)      # index 6 k + kind
     grads = (dlam[:, :, None, :] * g[:, None, :, None]
              + lam[:, :, None, None] * dg[:, None, :, :]).reshape(n, 24, 3)
-    nv = mesh.p.shape[1]
-    vnode = (np.arange(6)[None, None, :] * nv + nodes[:, :, None]).reshape(n, 24)
+    nv = space.mesh.p.shape[1]
+    vnode = (np.arange(6)[None, None, :] * nv + pv.nodes[:, :, None]).reshape(n, 24)
     return vals, grads, vnode
 
 
-def field_at(space: CrackSpace3D, U: np.ndarray, cells, x, side=None):
-    """u (3, n) and ∇u (3, 3, n) (∂u_i/∂x_j) of the unknowns U at points x (3, n)."""
-    vals, grads, vnode = functions_at(space, cells, x, side)
-    ut = (space.T @ U).reshape(6, -1, 3).reshape(-1, 3)   # (6 nverts, 3)
-    coef = ut[vnode]                                      # (n, 24, 3)
-    u = np.einsum("na,nac->cn", vals, coef)
-    gu = np.einsum("naj,nac->cjn", grads, coef)
+def virtual_field(space: CrackSpace3D, U: np.ndarray) -> np.ndarray:
+    """(nverts, 6, 3) the virtual coefficients ũ = T U by node, kind and component."""
+    return (space.T @ U).reshape(6, -1, 3).transpose(1, 0, 2)
+
+
+def field_at(space: CrackSpace3D, U: np.ndarray, cells, x, side=None,
+             values: PointValues | None = None, virtual: np.ndarray | None = None):
+    """u (3, n) and ∇u (3, 3, n) (∂u_i/∂x_j) of the unknowns U at points x (3, n).
+
+    ``values``: the :func:`point_values` of these points if already known, ``virtual``:
+    :func:`virtual_field` of U (both computed if None).  With
+    c_k = Σ_g g ũ_{g,k} and v_g = Σ_k λ_k ũ_{g,k}: u = Σ_k λ_k c_k and
+    ∇u = Σ_k c_k ⊗ ∇λ_k + Σ_g v_g ⊗ ∇g (the branch kinds g only: 1 and H are constant).
+    """
+    pv = point_values(space, cells, x, side) if values is None else values
+    ut = virtual_field(space, U) if virtual is None else virtual
+    coef = ut[pv.nodes]                                   # (n, 4, 6, 3)
+    ck = np.einsum("nkgc,ng->nkc", coef, pv.g)            # (n, 4, 3)
+    vg = np.einsum("nkgc,nk->ngc", coef[:, :, 2:], pv.lam)   # the branch kinds: ∇1 = ∇H = 0
+    u = np.einsum("nkc,nk->cn", ck, pv.lam)
+    gu = np.einsum("nkc,nkj->cjn", ck, pv.dlam) + np.einsum("ngc,ngj->cjn", vg, pv.dg[:, 2:])
     return u, gu
 
 
@@ -399,20 +444,28 @@ def _pack(pieces):
     return out
 
 
-def _cell_stiffness(space, cells, x, w, side, lam_, mu):
-    """Dense (nc, 72, 72) stiffness of the virtual functions of cells, and their virtual
-    dofs (nc, 72): index 3 a + c, a the function (6 k + kind), c the component."""
+def _cell_stiffness(space, cells, x, w, side, slots, lam_, mu):
+    """Dense (nc, 3m, 3m) stiffness of m virtual functions of each cell, ``slots`` (nc, m)
+    their indices 6 k + kind (k the cell's node), and their virtual dofs (nc, 3m): index
+    3 a + c, a the function, c the component."""
     nc, nq = w.shape
-    _, G, vnode = functions_at(space, np.repeat(cells, nq), x.reshape(-1, 3).T, side.ravel())
-    G = G.reshape(nc, nq, 24, 3)
-    Gf = G.reshape(nc, nq, 72)
+    m = slots.shape[1]
+    pv = point_values(space, np.repeat(cells, nq), x.reshape(-1, 3).T, side.ravel())
+    k, g = slots[:, None, :] // 6, slots[:, None, :] % 6             # (nc, 1, m)
+    at = np.arange(nc * nq).reshape(nc, nq, 1)            # the points, flat
+    ik, ig = 4 * at + k, 6 * at + g                       # (nc, nq, m)
+    lam, gv = pv.lam.ravel()[ik], pv.g.ravel()[ig]
+    dlam, dg = pv.dlam.reshape(-1, 3)[ik], pv.dg.reshape(-1, 3)[ig]   # (nc, nq, m, 3)
+    Gf = (dlam * gv[..., None] + lam[..., None] * dg).reshape(nc, nq, 3 * m)
     A = np.matmul(np.swapaxes(Gf * w[:, :, None], 1, 2), Gf)   # ∫ ∂_i f_a ∂_j f_b
-    A = A.reshape(nc, 24, 3, 24, 3)                       # [n, a, i, b, j]
+    A = A.reshape(nc, m, 3, m, 3)                         # [n, a, i, b, j]
     Ke = lam_ * A + mu * A.transpose(0, 1, 4, 3, 2)
     trace = np.einsum("naibi->nab", A)
     Ke = Ke + mu * trace[:, :, None, :, None] * np.eye(3)[None, None, :, None, :]
-    vdof = (3 * vnode.reshape(nc, nq, 24)[:, 0, :, None] + np.arange(3)).reshape(nc, 72)
-    return Ke.reshape(nc, 72, 72), vdof
+    node = np.take_along_axis(space.mesh.t[:, cells].T, k[:, 0], axis=1)
+    vnode = g[:, 0] * space.mesh.p.shape[1] + node
+    vdof = (3 * vnode[:, :, None] + np.arange(3)).reshape(nc, 3 * m)
+    return Ke.reshape(nc, 3 * m, 3 * m), vdof
 
 
 def stiffness(space: CrackSpace3D, material: Material) -> sp.csr_matrix:
@@ -438,16 +491,23 @@ def stiffness(space: CrackSpace3D, material: Material) -> sp.csr_matrix:
         Ks = stiffness_matrix(material, Basis(mesh, ElementTetP1(), elements=rest,
                                               quadrature=cell_rule(mesh)))
     active = np.diff(space.T.indptr) > 0                  # virtual dofs in use
+    nverts = mesh.p.shape[1]
     rows, cols, data = [], [], []
     for cells, x, w, side in rules(space, near):
-        for k in range(0, cells.size, CHUNK):
-            sl = slice(k, k + CHUNK)
-            Ke, vd = _cell_stiffness(space, cells[sl], x[sl], w[sl], side[sl], lam_, mu)
-            on = active[vd]                               # (nc, 72)
-            m = on[:, :, None] & on[:, None, :]
-            rows.append(np.broadcast_to(vd[:, :, None], Ke.shape)[m])
-            cols.append(np.broadcast_to(vd[:, None, :], Ke.shape)[m])
-            data.append(Ke[m])
+        # the functions φ_k g in use on each cell (slot 6 k + kind), cells grouped by count
+        vnode = np.arange(6)[None, None, :] * nverts + mesh.t[:, cells].T[:, :, None]
+        used = active[3 * vnode].reshape(cells.size, 24)
+        count = used.sum(axis=1)
+        for m in np.unique(count):
+            pick = np.flatnonzero(count == m)
+            slots = np.nonzero(used[pick])[1].reshape(pick.size, m)
+            for k in range(0, pick.size, CHUNK):
+                sl = pick[k:k + CHUNK]
+                Ke, vd = _cell_stiffness(space, cells[sl], x[sl], w[sl], side[sl],
+                                         slots[k:k + CHUNK], lam_, mu)
+                rows.append(np.repeat(vd, 3 * m, axis=1).ravel())
+                cols.append(np.tile(vd, (1, 3 * m)).ravel())
+                data.append(Ke.ravel())
     nv = space.T.shape[0]
     Kv = sp.csr_matrix((np.concatenate(data), (np.concatenate(rows), np.concatenate(cols))),
                        shape=(nv, nv)) if data else sp.csr_matrix((nv, nv))
@@ -607,6 +667,29 @@ def traction_load(space: CrackSpace3D, loads) -> np.ndarray:
             raise ValueError(f"a load's traction must return finite values of shape "
                              f"{x.shape} (3, n), got {t.shape}")
         f += evaluation(space, cells, x, side).T @ (t * w).ravel()
+    return f
+
+
+def body_load(space: CrackSpace3D, force, plain: int = 2) -> np.ndarray:
+    """f = ∫ b · v over the body, on the unknowns [a, b, c]: every cell on the rules of
+    :func:`rules` (the front cells' sub-tetrahedra on their almost-polar rules), the
+    plain uncut cells with ``plain`` points per direction (2: exact for a linear b).
+    ``force``: :func:`skxfem.crack.assembly.force_field`'s, in 3D.
+
+    >>> from skfem import MeshTet1
+    >>> from skxfem.crack.geometry3d import crack_geometry_3d
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 4),) * 3)
+    >>> V = crack_space_3d(m, crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    >>> f = body_load(V, (0.0, 0.0, -2.0))
+    >>> round(float(f[V.nodal_dofs[2]].sum()), 12)    # the weight, -2 × volume 1
+    -2.0
+    """
+    b = force_field(force, 3)
+    f = np.zeros(space.N)
+    for c, x, w, side in rules(space, np.arange(space.mesh.t.shape[1]), plain):
+        X = x.reshape(-1, 3).T
+        f += evaluation(space, np.repeat(c, w.shape[1]), X, side.ravel()).T @ (
+            b(X) * w.ravel()).ravel()
     return f
 
 

@@ -186,20 +186,27 @@ def floating(detail: str, system: str = "the saddle-point system",
 _floating = floating
 
 
-def factorise(A: sp.spmatrix, pivot_tol: float = 1e-11, floating=_floating):
+def factorise(A: sp.spmatrix, pivot_tol: float = 1e-11, floating=_floating,
+              symmetric: bool = False):
     """SuperLU of the (scaled) sparse matrix ``A``, refused as singular if SuperLU
     finds an exactly zero pivot or a pivot below ``pivot_tol`` times the largest.
 
     ``floating(detail)`` makes the error raised (default: a
     :class:`SingularSystemError` saying a part of the body can move freely);
-    the contact Newton step gives its own.
+    the contact Newton step gives its own.  ``symmetric``: A is symmetric positive
+    definite (no multiplier), factorised in SuperLU's symmetric mode (minimum degree
+    on A + Aᵀ, diagonal pivots): less fill (the 3D crack of
+    ``benchmarks/crack_solve.py``, n = 12: 13.6 against 14.9 million entries, 1.15
+    against 1.50 s, one run).
 
     >>> lu = factorise(sp.csc_matrix([[2.0, 1.0], [1.0, 0.0]]))
     >>> lu.solve(np.array([1.0, 1.0])).tolist()
     [1.0, -1.0]
     """
     try:
-        lu = spla.splu(sp.csc_matrix(A), permc_spec="COLAMD")  # least fill here
+        lu = (spla.splu(sp.csc_matrix(A), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                        options={"SymmetricMode": True}) if symmetric
+              else spla.splu(sp.csc_matrix(A), permc_spec="COLAMD"))  # least fill here
     except RuntimeError as e:  # SuperLU: "Factor is exactly singular"
         raise floating(str(e)) from e
     pivots = np.abs(lu.U.diagonal())
@@ -319,7 +326,8 @@ def solve(K, B, F, D=None, g=None, G=None, tol: float = 1e-8, pivot_tol: float =
     U = np.zeros(N)
     U[D] = g
     red = reduce(K, B, F, U, free)                               # 1. independent rows
-    x, residual = refined_solve(factorise(red.A, pivot_tol), red.A, red.rhs, tol)  # 2.
+    lu = factorise(red.A, pivot_tol, symmetric=red.keep.size == 0)
+    x, residual = refined_solve(lu, red.A, red.rhs, tol)                          # 2.
     U[free] = red.s * x[:free.size]
     mu = np.zeros(m)
     mu[red.keep] = -red.r * x[free.size:]
