@@ -420,7 +420,8 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         hat = 1 - np.abs(s) / L
         gq = hat * dqr * gr[:, on] - qr * np.sign(s) / L * frames.e3[:, k, None]
         q1 = (gq * e1[:, on]).sum(axis=0)
-        # κ/h₃ at each quadrature point, h₃ = 1 + κ x₁ the stretch along the front
+        # κ/h₃ at each quadrature point, h₃ = 1 + κ x₁ the stretch along the front (at
+        # least ½: a domain reaching half-way to the centre of curvature is too wide)
         k3 = kappa[k] / np.maximum(1 + kappa[k] * x1[on], 0.5)
         I = (np.einsum("min,in->mn", A[:, :, on], gq) - B[:, on] * q1
              + qr * hat * (C[:, on] + k3 * D[:, on])) @ W[on]
