@@ -103,13 +103,12 @@ from .crack.geometry import crack_geometry
 from .crack.kind3d import Crack3D
 from .crack.sif import sif
 from .crack.space import CrackSpace, crack_space, evaluation
+from .crack.xspace import CrackXSpaceBase
 from .cut import Cut
 from .cut import cut as cut_mesh
 from .enrich import XSpace, edge_jumps, jump_matrix, xfem_space
-from .fem.material import Material
 from .levelset import point_normals, unit
 from .multipliers import InterfaceRule, Space, interface_rule
-from .scene.boundary import imposed, imposed_values
 from .scene.parts import Interface
 from .stabilised import multiplier_space
 
@@ -271,7 +270,7 @@ class Crack(Gamma):
 
 
 @dataclass(frozen=True)
-class CrackXSpace:
+class CrackXSpace(CrackXSpaceBase):
     r"""The X-FEM space of the crack kind of Γ: ``space`` its
     :class:`~skxfem.crack.space.CrackSpace` (the unknowns [a, b, c]: standard,
     Heaviside, branch), with the methods that :func:`skxfem.enrich.stiffness`,
@@ -302,54 +301,13 @@ class CrackXSpace:
     """
 
     space: CrackSpace
-    splits = False
-
-    @property
-    def mesh(self):
-        return self.space.mesh
-
-    @property
-    def cut(self):
-        """The crack's geometry (the fields of a :class:`skxfem.cut.Cut`)."""
-        return self.space.geometry
+    _stiffness = staticmethod(stiffness)
+    _support = Support
+    _supported_dofs = staticmethod(supported_dofs)
 
     @property
     def basis(self):
         return self.space.basis
-
-    @property
-    def n_std(self) -> int:
-        return self.space.n_std
-
-    @property
-    def n_enr(self) -> int:
-        return self.space.N - self.space.n_std
-
-    @property
-    def N(self) -> int:
-        return self.space.N
-
-    @property
-    def enr_dofs(self) -> np.ndarray:
-        """(n_enr,) the standard dof of each enriched unknown [b, c] (its node and
-        component)."""
-        V, nd = self.space, self.space.basis.nodal_dofs
-        heav = nd[:, V.heaviside].T                        # (nh, 2)
-        branch = np.repeat(nd[:, V.branch].T[:, None, :], 4, axis=1)   # (nb, 4, 2)
-        return np.concatenate([heav.ravel(), branch.ravel()]).astype(np.int64)
-
-    @property
-    def H_node(self) -> np.ndarray:
-        """(n_enr,) H(x_j) of each Heaviside unknown's node, 0 for a branch unknown."""
-        V = self.space
-        return np.concatenate([np.repeat(V.H_node, 2), np.zeros(V.n_branch)])
-
-    def signed_stiffness(self, material: Material, A=None):
-        """(A, K): the standard block of the crack's stiffness K (``A`` if given) and K
-        itself, whose enriched blocks :meth:`blocks` reads."""
-        K = stiffness(self.space, material).tocsr()
-        n = self.n_std
-        return (K[:n, :n] if A is None else A), K
 
     def signed_mass(self, A=None):
         """(A, M): the standard block of the crack's mass M (``A`` if given) and M itself
@@ -357,11 +315,6 @@ class CrackXSpace:
         M = crack_mass(self.space)
         n = self.n_std
         return (M[:n, :n] if A is None else A), M
-
-    def blocks(self, A, K) -> tuple[sp.csr_matrix, sp.csr_matrix]:
-        """(K_ab, K_bb): the crack stiffness' blocks of its enriched unknowns."""
-        n = self.n_std
-        return K[:n, n:].tocsr(), K[n:, n:].tocsr()
 
     def load(self, facet_loads, body_force=None, f: np.ndarray | None = None):
         """(f, f_b): the surface loads and body force on the standard dofs (``f`` if given)
@@ -384,20 +337,6 @@ class CrackXSpace:
             F = F + body_load(self.space, body_force)
         return (F[:self.n_std] if f is None else f), F[self.n_std:]
 
-    def constraints(self, scene, mesh) -> tuple[np.ndarray, np.ndarray]:
-        """The scene's displacements as the crack's supports on [a, b, c]
-        (:func:`skxfem.crack.assembly.supported_dofs`)."""
-        supports = []
-        for nodes, components in imposed(scene, mesh):
-            for c, (value, what) in components.items():
-                def u(x, c=c, value=value, what=what):
-                    out = np.zeros_like(x, dtype=float)
-                    out[c] = imposed_values(value, x, what)
-                    return out
-
-                supports.append(Support(_facets_of(mesh, nodes), np.asarray(nodes), u, (c,)))
-        return supported_dofs(self.space, supports)
-
 
 def _outward_normals(mesh, facets: np.ndarray) -> np.ndarray:
     """(2, nf) the outward unit normals of boundary facets of a 2D mesh."""
@@ -407,15 +346,6 @@ def _outward_normals(mesh, facets: np.ndarray) -> np.ndarray:
     centre = mesh.p[:, mesh.t[:, mesh.f2t[0, facets]]].mean(axis=1)
     flip = ((centre - a) * n).sum(axis=0) > 0
     return np.where(flip, -n, n)
-
-
-def _facets_of(mesh, nodes: np.ndarray) -> np.ndarray:
-    """The boundary facets whose nodes are all among ``nodes`` (a support's facets: where
-    :func:`skxfem.crack.assembly.supported_dofs` decides what a mouth keeps free)."""
-    mark = np.zeros(mesh.p.shape[1], dtype=bool)
-    mark[nodes] = True
-    bf = mesh.boundary_facets()
-    return bf[mark[mesh.facets[:, bf]].all(axis=0)]
 
 
 def _face_jump(V, cells: np.ndarray, ref: np.ndarray) -> sp.csr_matrix:

@@ -39,9 +39,15 @@
 * ``interface.vtu``: the interface facets (``line`` cells in 2D, ``triangle``
   cells in 3D) on the multiplier points, with point data ``pressure``,
   ``traction``, ``tangential_traction``, ``normal``, ``jump``, ``gap`` and
-  ``interface`` (the interface of each point).  With a crack, its front points follow
-  as ``vertex`` cells carrying the point data ``K_I``, ``K_II`` (``K_III``), NaN at
-  the cut points; the cut points' fields are NaN there (``status`` -1).
+  ``interface`` (the interface of each point).  A crack is written whole, up to its
+  front: its pieces (segments, triangles) with an end that is no cut point (on the
+  front, at a node on the crack) come after the others, on points of their own
+  (:func:`_crack_pieces`: ``jump``, ``normal``, ``gap`` evaluated there, the
+  traction fields 0 on free faces, NaN on others; ``status`` -1), so that the
+  cells' length (2D) or area (3D) is the crack's {ψ_h = 0, φ_h < 0}.  Its front
+  points follow as ``vertex`` cells carrying the point data ``K_I``, ``K_II``
+  (``K_III``), NaN at the other points; the other fields are NaN at them (``status``
+  -1).
 
 **A contact result** (content from :func:`contact_summary`) goes into the
 same three files with the same fields, those of the last load step, and a
@@ -89,6 +95,7 @@ from pathlib import Path
 
 import meshio
 import numpy as np
+import scipy.sparse as sp
 
 from ..contact.interface import tangent_frames
 from ..contact.laws import STATUS_NAMES
@@ -102,6 +109,7 @@ from ..fem.vtu import (
     vectors3,
     vtk_cells,
 )
+from ..multipliers import InterfaceRule
 
 __all__ = ["write_result", "result_summary", "NotFiniteError", "reaction_summary", "tensors9",
            "von_mises", "vtk_cells", "check_output", "region_pieces", "default_folder",
@@ -386,14 +394,86 @@ def _write_interface(result, path: Path):
     data["interface"] = np.asarray(result.interface, dtype=np.int64)
     if result.is_contact:
         data["status"] = np.asarray(result.status, dtype=np.int64)
-    cells = [(kind, facets.T.reshape(-1, points.shape[0]))]
+    cells = facets.T.reshape(-1, points.shape[0])
     points = vectors3(points)
+    pieces = _crack_pieces(result)
+    if pieces is not None:                 # a crack's pieces up to its front
+        more, x, at = pieces
+        cells, points = np.vstack([cells, more]), np.vstack([points, x])
+        data = {name: np.concatenate([a, at.get(name, np.full((len(x),) + a.shape[1:], -1))])
+                for name, a in data.items()}
+    cells = [(kind, cells)]
     fronts = getattr(result, "front", ())   # a result-like object may have none
     if fronts:
         points, cells, data = _with_fronts(fronts, points, cells, data)
         cells = [c for c in cells if len(c[1])]   # a crack along mesh faces: no cut point
     with quiet():
         meshio.write(path, meshio.Mesh(points, cells, point_data=data), file_format="vtu")
+
+
+def _crack_pieces(result) -> tuple[np.ndarray, np.ndarray, dict] | None:
+    """The pieces of each crack that ``result.facets`` leaves out, those with an end that
+    is no cut point (-1 in its cut's ``facets``: on the front, at a node on the crack,
+    inside a cell's face), so that interface.vtu shows the crack up to its front.
+
+    Returns (cells (np, dim), points (k, 3), point data) or None (no such piece, or a
+    result without its problem): ``cells`` index the cut points, then the k new points,
+    the pieces' ends that are no cut point (one per place); at those ``jump`` is
+    u⁻ - u⁺ evaluated there (the kind's ``jump``; 0 at the front), ``normal`` ∇ψ/|∇ψ|,
+    ``gap``, ``interface``, and the traction fields 0 on free faces (law ``free``: no
+    multiplier), NaN on others (their multipliers live at the cut points); ``status``
+    is -1 (left to the caller)."""
+    pb, U = getattr(result, "problem", None), getattr(result, "U", None)
+    if pb is None or U is None:
+        return None
+    cells, points, fields = [], [], []
+    offset = 0
+    new = np.shape(result.points)[1]
+    for k, q in enumerate(pb.interfaces):
+        f = np.asarray(q.cut.facets)
+        stop = (f < 0).any(axis=0)
+        if stop.any():
+            idx, x, at = _stopped_pieces(q, U, stop, offset, new, k)
+            cells.append(idx.T)
+            points.append(x)
+            fields.append(at)
+            new += x.shape[1]
+        offset += q.cut.edge_ids.size
+    if not cells:
+        return None
+    data = {name: np.concatenate([d[name] for d in fields]) for name in fields[0]}
+    return np.vstack(cells), vectors3(np.hstack(points)), data
+
+
+def _stopped_pieces(q, U: np.ndarray, stop: np.ndarray, offset: int, first: int, k: int):
+    """(cells (dim, np), points (dim, m), point data) of the pieces ``stop`` of the
+    interface part ``q`` (:func:`_crack_pieces`): a -1 end becomes one of the m new
+    points, numbered from ``first``, its vertices at one place merged, and a piece
+    listed twice (a 2D crack along a mesh edge, once per cell beside it) written once."""
+    mesh, cut = q.mesh, q.cut
+    f = np.asarray(cut.facets)[:, stop]
+    idx = f + offset
+    miss = f < 0
+    ends = np.transpose(cut.pieces[stop], (1, 0, 2))[miss]          # (m', dim)
+    owner = np.broadcast_to(cut.facet_cell[stop], miss.shape)[miss]
+    scale = 1e-9 * np.ptp(mesh.p, axis=1).max()
+    _, one, inv = np.unique(np.round(ends / scale), axis=0, return_index=True,
+                            return_inverse=True)
+    idx[miss] = first + inv.ravel()
+    _, once = np.unique(np.sort(idx, axis=0).T, axis=0, return_index=True)
+    idx = idx[:, np.sort(once)]         # a 2D crack along a mesh edge: once, not per cell
+    x, cells = ends[one].T, owner[one]
+    m, dim = x.shape[1], x.shape[0]
+    normals = q.gamma.normals_at(x)
+    ref = mesh.mapping().invF(x[:, :, None], tind=cells)[:, :, 0]
+    rule = InterfaceRule(points=x, normals=normals, weights=np.zeros(m), cells=cells,
+                         ref=ref, N=sp.csr_matrix((m, 0)))
+    jump = np.asarray(q.gamma.jump(q.V, rule) @ U[q.columns]).reshape(dim, m)
+    r = np.full((dim, m), 0.0 if q.multiplier_space is None else np.nan)
+    return idx, x, {"pressure": r[0], "traction": vectors3(r),
+                    "tangential_traction": vectors3(r), "normal": vectors3(normals),
+                    "jump": vectors3(jump), "gap": (jump * normals).sum(0),
+                    "interface": np.full(m, k, dtype=np.int64)}
 
 
 def _with_fronts(fronts, points: np.ndarray, cells: list, data: dict):

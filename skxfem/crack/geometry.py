@@ -53,7 +53,8 @@ from ..fem.cells import reference_simplices
 from ..fem.simplex import split
 from ..levelset import nodal_values
 
-__all__ = ["CrackGeometry", "crack_geometry", "check_mesh_2d", "level_set_values", "ZERO",
+__all__ = ["CrackGeometry", "crack_geometry", "check_mesh_2d", "check_mesh_type",
+           "level_set_values", "ZERO",
            "AREA_TOL"]
 
 ZERO = 1e-9
@@ -72,17 +73,27 @@ def check_mesh_2d(mesh, name: str = "mesh"):
     >>> check_mesh_2d(MeshTri1()).nelements
     2
     """
-    if not isinstance(mesh, (MeshTri1, MeshQuad1)):
+    return check_mesh_type(mesh, (MeshTri1, MeshQuad1), name,
+                           "a 2D MeshTri1 or MeshQuad1 (the crack modules are 2D, linear "
+                           "elements)")
+
+
+def check_mesh_type(mesh, types: tuple, name: str, what: str):
+    """``mesh`` if it is one of ``types``, else a ValueError: ``name`` must be ``what``
+    (the mesh check of :func:`check_mesh_2d` and
+    :func:`skxfem.crack.geometry3d.check_mesh_3d`)."""
+    if not isinstance(mesh, types):
         dim = getattr(mesh, "dim", lambda: "?")()
-        raise ValueError(f"{name} must be a 2D MeshTri1 or MeshQuad1 (the crack modules are "
-                         f"2D, linear elements), got a {dim}D {type(mesh).__name__}")
+        raise ValueError(f"{name} must be {what}, got a {dim}D {type(mesh).__name__}")
     return mesh
 
 
-def level_set_values(name: str, value, mesh) -> np.ndarray:
+def level_set_values(name: str, value, mesh, edges: np.ndarray | None = None) -> np.ndarray:
     """Nodal values of a level set ``value`` (a callable or one value per node), checked:
     a ValueError naming ``name`` for NaN, inf or a wrong shape.  Values within
-    :data:`ZERO` edge lengths of zero are set to zero (module notes).
+    :data:`ZERO` edge lengths of zero are set to zero (module notes), along ``edges``
+    (2, n), the mesh's edges (default ``mesh.facets``, the edges of a 2D mesh; a 3D
+    crack gives ``mesh.edges``).
 
     >>> level_set_values("psi", lambda x: x[1] - 0.5, MeshTri1()).tolist()
     [-0.5, -0.5, 0.5, 0.5]
@@ -101,7 +112,7 @@ def level_set_values(name: str, value, mesh) -> np.ndarray:
     if not np.all(np.isfinite(v)):
         raise ValueError(f"{name} holds {int((~np.isfinite(v)).sum())} NaN or infinite "
                          f"nodal value(s); it must be finite at every node")
-    a, b = mesh.facets
+    a, b = mesh.facets if edges is None else edges
     length = np.linalg.norm(mesh.p[:, a] - mesh.p[:, b], axis=0)
     slope = np.abs(v[a] - v[b]) / length
     g, h = np.zeros(v.size), np.full(v.size, np.inf)
@@ -182,6 +193,12 @@ class CrackGeometry:
     def cells(self) -> np.ndarray:
         """Split and tip cells, sorted: the cells integrated on sub-cells."""
         return np.union1d(self.split_cells, self.tip_cells)
+
+    @property
+    def pieces(self) -> np.ndarray:
+        """(nseg, 2, 2) the crack pieces [piece, end, coordinate], physical, in the order of
+        ``facets`` (whose -1 ends they locate: the tip, a node on the crack)."""
+        return np.transpose(self.segments, (2, 0, 1))
 
     def segments_length(self) -> np.ndarray:
         """(nseg,) the lengths of the crack pieces."""

@@ -46,8 +46,7 @@ import numpy as np
 from skfem import MeshTet1
 
 from ..fem.simplex import split
-from ..levelset import nodal_values
-from .geometry import ZERO
+from .geometry import check_mesh_type, level_set_values
 
 __all__ = ["CrackGeometry3D", "crack_geometry_3d", "check_mesh_3d", "front_chains",
            "front_fit",
@@ -66,44 +65,20 @@ def check_mesh_3d(mesh, name: str = "mesh"):
     >>> check_mesh_3d(MeshTet1()).nelements
     5
     """
-    if not isinstance(mesh, MeshTet1):
-        dim = getattr(mesh, "dim", lambda: "?")()
-        raise ValueError(f"{name} must be a MeshTet1 (3D cracks take linear tetrahedra), "
-                         f"got a {dim}D {type(mesh).__name__}")
-    return mesh
+    return check_mesh_type(mesh, (MeshTet1,), name,
+                           "a MeshTet1 (3D cracks take linear tetrahedra)")
 
 
 def nodal_level_set(name: str, value, mesh) -> np.ndarray:
     """Nodal values of a level set ``value`` (callable or one value per node), checked,
     with values within :data:`~skxfem.crack.geometry.ZERO` edge lengths of zero set to
-    zero.
+    zero (:func:`skxfem.crack.geometry.level_set_values` along the tetrahedra's edges).
 
     >>> m = MeshTet1()
     >>> bool(np.allclose(nodal_level_set("psi", lambda x: x[2] - 0.5, m), m.p[2] - 0.5))
     True
     """
-    if callable(value):
-        try:
-            v = nodal_values(value, mesh)
-        except ValueError as err:
-            raise ValueError(f"{name}: {err}") from None
-    else:
-        v = np.asarray(value)
-        if v.dtype.kind not in "iuf" or v.shape != (mesh.p.shape[1],):
-            raise ValueError(f"{name} must be a callable or one real value per mesh node, "
-                             f"shape ({mesh.p.shape[1]},); got {v.dtype} of shape {v.shape}")
-        v = v.astype(float)
-    if not np.all(np.isfinite(v)):
-        raise ValueError(f"{name} holds {int((~np.isfinite(v)).sum())} NaN or infinite "
-                         f"nodal value(s); it must be finite at every node")
-    a, b = mesh.edges
-    length = np.linalg.norm(mesh.p[:, a] - mesh.p[:, b], axis=0)
-    slope = np.abs(v[a] - v[b]) / length
-    g, h = np.zeros(v.size), np.full(v.size, np.inf)
-    for end in (a, b):
-        np.maximum.at(g, end, slope)
-        np.minimum.at(h, end, length)
-    return np.where(np.abs(v) <= ZERO * h * g, 0.0, v)
+    return level_set_values(name, value, mesh, mesh.edges)
 
 
 def barycentric(mesh, cells: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -200,6 +175,12 @@ class CrackGeometry3D:
     def tip_cells(self) -> np.ndarray:
         """The front cells (the 2D name: :class:`skxfem.crack.geometry.CrackGeometry`)."""
         return self.front_cells
+
+    @property
+    def pieces(self) -> np.ndarray:
+        """(nface, 3, 3) the crack's faces [face, vertex, coordinate] (``faces``), in the
+        order of ``facets`` (whose -1 vertices they locate: on the front, at a node)."""
+        return self.faces
 
     def face_areas(self) -> np.ndarray:
         """(nface,) the areas of the crack's faces."""

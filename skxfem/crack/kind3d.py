@@ -31,11 +31,9 @@ import scipy.sparse as sp
 from numpy.polynomial.legendre import leggauss
 from skfem import Basis, ElementTetP1, ElementVector
 
-from ..fem.material import Material
 from ..fem.quadrature import cell_rule
 from ..levelset import unit
 from ..multipliers import InterfaceRule
-from ..scene.boundary import imposed, imposed_values
 from .geometry3d import barycentric, crack_geometry_3d
 from .sif3d import front_points, sif_3d
 from .space3d import (
@@ -49,6 +47,7 @@ from .space3d import (
     supported_dofs,
     traction_load,
 )
+from .xspace import CrackXSpaceBase
 
 __all__ = ["Crack3D", "CrackXSpace3D"]
 
@@ -150,64 +149,21 @@ def _face_jump(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray) -> sp.csr_
 
 
 @dataclass(frozen=True)
-class CrackXSpace3D:
+class CrackXSpace3D(CrackXSpaceBase):
     """The X-FEM space of the 3D crack kind: ``space`` its
     :class:`~skxfem.crack.space3d.CrackSpace3D`, with the methods every space is asked
     (as :class:`skxfem.gamma.CrackXSpace` in 2D)."""
 
     space: CrackSpace3D
-    splits = False
-
-    @property
-    def mesh(self):
-        return self.space.mesh
-
-    @property
-    def cut(self):
-        return self.space.geometry
+    _stiffness = staticmethod(stiffness)
+    _support = Support3D
+    _supported_dofs = staticmethod(supported_dofs)
 
     @property
     def basis(self):
         """The standard vector basis (it numbers the standard dofs as the space does)."""
         m = self.space.mesh
         return Basis(m, ElementVector(ElementTetP1()), quadrature=cell_rule(m, 0))
-
-    @property
-    def n_std(self) -> int:
-        return self.space.n_std
-
-    @property
-    def n_enr(self) -> int:
-        return self.space.N - self.space.n_std
-
-    @property
-    def N(self) -> int:
-        return self.space.N
-
-    @property
-    def enr_dofs(self) -> np.ndarray:
-        """(n_enr,) the standard dof of each enriched unknown [b, c]."""
-        V, nd = self.space, self.space.nodal_dofs
-        heav = nd[:, V.heaviside].T
-        branch = np.repeat(nd[:, V.branch].T[:, None, :], 4, axis=1)
-        return np.concatenate([heav.ravel(), branch.ravel()]).astype(np.int64)
-
-    @property
-    def H_node(self) -> np.ndarray:
-        """(n_enr,) H(x_j) of each Heaviside unknown's node, 0 for a branch unknown."""
-        V = self.space
-        return np.concatenate([np.repeat(V.H_node, 3), np.zeros(V.n_branch)])
-
-    def signed_stiffness(self, material: Material, A=None):
-        """(A, K): the standard block of the crack's stiffness K (``A`` if given), K."""
-        K = stiffness(self.space, material).tocsr()
-        n = self.n_std
-        return (K[:n, :n] if A is None else A), K
-
-    def blocks(self, A, K) -> tuple[sp.csr_matrix, sp.csr_matrix]:
-        """(K_ab, K_bb): the crack stiffness' blocks of its enriched unknowns."""
-        n = self.n_std
-        return K[:n, n:].tocsr(), K[n:, n:].tocsr()
 
     def load(self, facet_loads, body_force=None, f: np.ndarray | None = None):
         """(f, f_b): the surface loads and body force on the standard dofs (``f`` if
@@ -219,26 +175,3 @@ class CrackXSpace3D:
         if body_force is not None:
             F = F + body_load(self.space, body_force)
         return (F[:self.n_std] if f is None else f), F[self.n_std:]
-
-    def constraints(self, scene, mesh) -> tuple[np.ndarray, np.ndarray]:
-        """The scene's displacements as the crack's supports
-        (:func:`skxfem.crack.space3d.supported_dofs`: a mouth is never clamped shut)."""
-        supports = []
-        for nodes, components in imposed(scene, mesh):
-            for c, (value, what) in components.items():
-                def u(x, c=c, value=value, what=what):
-                    out = np.zeros_like(x, dtype=float)
-                    out[c] = imposed_values(value, x, what)
-                    return out
-
-                supports.append(Support3D(_facets_of(mesh, nodes), np.asarray(nodes), u,
-                                          (c,)))
-        return supported_dofs(self.space, supports)
-
-
-def _facets_of(mesh, nodes: np.ndarray) -> np.ndarray:
-    """The boundary facets whose nodes are all among ``nodes``."""
-    mark = np.zeros(mesh.p.shape[1], dtype=bool)
-    mark[nodes] = True
-    bf = mesh.boundary_facets()
-    return bf[mark[mesh.facets[:, bf]].all(axis=0)]

@@ -44,19 +44,15 @@ from ..fem.material import Material
 from .assembly import face_rule, force_field, rule_groups
 from .frame import TipFrame, tip_frame
 from .interaction import CrackFace, q_function, stress_intensity
+from .radius import DOMAIN_CELLS, DOMAIN_FRACTION
 from .space import CrackSpace, evaluation
 
 __all__ = ["DEFAULT_CELLS", "DOMAIN_FRACTION", "default_radius", "other_tips_distance",
            "tip_and_frame", "boundary_distance", "nodal_q", "sif"]
 
-DEFAULT_CELLS = 4.0
-"""The smallest default domain radius r_d, in sizes of the tip cell."""
-
-DOMAIN_FRACTION = 0.75
-"""With geometric enrichment, the default r_d is this fraction of the enrichment radius
-r_e: the domain lies inside the enriched zone, where u_h holds the branch functions.
-Measured on the Williams square at h = 1/21 (triangles, mode I): r_e = 0.141 with a
-4-cell domain (r_d = 0.19 > r_e) gave K +1.0 %; r_e = 0.283, r_d = 0.75 r_e +0.24 %."""
+DEFAULT_CELLS = DOMAIN_CELLS[2]
+"""The smallest default domain radius r_d, in sizes of the tip cell (4; the default r_e
+is at least DEFAULT_CELLS / DOMAIN_FRACTION of them: :mod:`skxfem.crack.radius`)."""
 
 
 def default_radius(space: CrackSpace, h: float) -> float:

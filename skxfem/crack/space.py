@@ -76,9 +76,11 @@ from skfem.assembly import CellBasis
 
 from ..fem.quadrature import cell_rule
 from .branch import branch, branch_local_gradient
+from .dofs import EnrichedUnknowns, virtual_map
 from .geometry import AREA_TOL, CrackGeometry, check_mesh_2d
+from .radius import default_enrichment_radius
 
-__all__ = ["KINDS", "ENRICHMENTS", "DEFAULT_RADIUS", "RADIUS_CELLS", "CrackSpace",
+__all__ = ["KINDS", "ENRICHMENTS", "CrackSpace",
            "crack_space", "kinds_at", "evaluation", "evaluation_at", "Evaluation",
            "nodal_scaling", "condition_number"]
 
@@ -87,22 +89,9 @@ KINDS = ("1", "H", "F1", "F2", "F3", "F4")
 
 ENRICHMENTS = ("topological", "geometric")
 
-DEFAULT_RADIUS = 0.2
-"""The default r_e of geometric enrichment, in diameters of the mesh (0.28 on the unit
-square), and at least :data:`RADIUS_CELLS` tip cells.  Fixed whatever h once h is small
-enough, as geometric enrichment must be; large enough that the default interaction
-domain (:func:`skxfem.crack.sif.default_radius`, 0.75 r_e) spans several cells: on
-the Williams square (tip at the centre, triangles) K is within 0.25 % at h = 1/21,
-0.08 % at 1/41 and 0.41 % at 1/11 (0.1 diameters with a 4-cell domain gave +1.0 % at
-h = 1/21, the domain reaching beyond r_e)."""
-
-RADIUS_CELLS = 16 / 3
-"""The smallest default r_e in tip-cell sizes: 0.75 r_e then spans the 4 cells of
-:data:`skxfem.crack.sif.DEFAULT_CELLS`."""
-
 
 @dataclass(frozen=True)
-class CrackSpace:
+class CrackSpace(EnrichedUnknowns):
     """The enriched space of a crack (module notes).
 
     Attributes
@@ -132,34 +121,9 @@ class CrackSpace:
         return int(self.basis.N)
 
     @property
-    def n_heav(self) -> int:
-        return 2 * self.heaviside.size
-
-    @property
-    def n_branch(self) -> int:
-        return 8 * self.branch.size
-
-    @property
-    def N(self) -> int:
-        return self.n_std + self.n_heav + self.n_branch
-
-    def heaviside_dofs(self) -> np.ndarray:
-        """(nh, 2) the unknowns b of each Heaviside node."""
-        return self.n_std + np.arange(self.n_heav).reshape(-1, 2)
-
-    def branch_dofs(self) -> np.ndarray:
-        """(nb, 4, 2) the unknowns c of each branch node, function l, component."""
-        return self.n_std + self.n_heav + np.arange(self.n_branch).reshape(-1, 4, 2)
-
-    def enriched_nodes(self) -> np.ndarray:
-        """The nodes with enriched unknowns (Heaviside or branch), sorted."""
-        return np.union1d(self.heaviside, self.branch)
-
-    def support_cells(self, nodes: np.ndarray) -> np.ndarray:
-        """The cells holding one of ``nodes``: the union of their supports."""
-        mark = np.zeros(self.mesh.p.shape[1], dtype=bool)
-        mark[nodes] = True
-        return np.flatnonzero(mark[self.mesh.t].any(axis=0))
+    def nodal_dofs(self) -> np.ndarray:
+        """(2, nverts) the standard unknowns a of each node and component."""
+        return self.basis.nodal_dofs
 
 
 def _polar_nodes(geometry: CrackGeometry, nodes: np.ndarray):
@@ -178,8 +142,9 @@ def crack_space(mesh, geometry: CrackGeometry, enrichment: str = "geometric",
     geometry : :func:`skxfem.crack.geometry.crack_geometry` of the crack.
     enrichment : ``"topological"`` (the tip cells' nodes) or ``"geometric"`` (the nodes
         within ``radius`` of a tip).
-    radius : r_e > 0 for geometric enrichment; default :data:`DEFAULT_RADIUS` times the
-        mesh's diameter, and at least :data:`RADIUS_CELLS` tip-cell sizes.
+    radius : r_e > 0 for geometric enrichment; default
+        :func:`skxfem.crack.radius.default_enrichment_radius` (0.2 mesh diameters, and at
+        least 16/3 tip-cell sizes: the default interaction domain inside 0.75 r_e).
 
     Examples
     --------
@@ -203,8 +168,7 @@ def crack_space(mesh, geometry: CrackGeometry, enrichment: str = "geometric",
     if enrichment == "geometric":
         if radius is None:
             h = np.ptp(mesh.p[:, mesh.t[:, geometry.tip_cells]], axis=1).max()
-            radius = max(DEFAULT_RADIUS * float(np.linalg.norm(np.ptp(mesh.p, axis=1))),
-                         RADIUS_CELLS * float(h))
+            radius = default_enrichment_radius(mesh, h)
         if not (isinstance(radius, (int, float, np.floating)) and np.isfinite(radius)
                 and radius > 0):
             raise ValueError(f"radius must be a positive number, got {radius!r}")
@@ -219,7 +183,7 @@ def crack_space(mesh, geometry: CrackGeometry, enrichment: str = "geometric",
     heav, H_node = heav[keep], H_node[keep]
     F_node = branch(*_polar_nodes(geometry, branch_nodes))
     basis = Basis(mesh, ElementVector(mesh.elem()), quadrature=cell_rule(mesh, 0))
-    T = _virtual_map(basis, heav, H_node, branch_nodes, F_node)
+    T = virtual_map(basis.nodal_dofs, heav, H_node, branch_nodes, F_node)
     return CrackSpace(mesh, geometry, basis, heav, H_node, branch_nodes, F_node,
                       enrichment, radius, T)
 
@@ -242,26 +206,6 @@ def _far_side(mesh, geometry: CrackGeometry) -> np.ndarray:
     for k in range(mesh.t.shape[0]):                      # the 3 or 4 nodes of a cell
         np.logical_or.at(out, mesh.t[k], has)
     return out
-
-
-def _virtual_map(basis, heav, H_node, branch_nodes, F_node) -> sp.csr_matrix:
-    """T: (6 n_std, N), ũ_{g, d} from [a, b, c] (module notes)."""
-    n = basis.N
-    nd = basis.nodal_dofs                                 # (2, nverts)
-    hd, bd = nd[:, heav].T.ravel(), nd[:, branch_nodes].T  # (2 nh,), (nb, 2)
-    nh, nb = hd.size, bd.shape[0]
-    rows = [np.arange(n), n + hd, hd]
-    cols = [np.arange(n), n + np.arange(nh), n + np.arange(nh)]
-    vals = [np.ones(n), np.ones(nh), -np.repeat(H_node, 2)]
-    c0 = n + nh
-    for l in range(4):                                    # the four branch functions
-        d = bd.ravel()
-        c = c0 + (8 * np.arange(nb)[:, None] + 2 * l + np.arange(2)).ravel()
-        rows += [(2 + l) * n + d, d]
-        cols += [c, c]
-        vals += [np.ones(d.size), -np.repeat(F_node[l], 2)]
-    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                         shape=(6 * n, c0 + 8 * nb))
 
 
 def kinds_at(space: CrackSpace, scalar: CellBasis, side: np.ndarray | None = None

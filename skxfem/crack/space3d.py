@@ -62,8 +62,10 @@ from ..fem.quadrature import cell_rule
 from ..fem.simplex import split
 from .assembly import check_facets, force_field
 from .branch import branch, branch_local_gradient
+from .dofs import EnrichedUnknowns, virtual_map
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
 from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
+from .radius import default_enrichment_radius
 
 __all__ = ["BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "PointValues", "point_values",
            "functions_at", "virtual_field", "evaluation", "field_at", "rules", "stiffness",
@@ -81,7 +83,7 @@ CHUNK = 400
 
 
 @dataclass(frozen=True)
-class CrackSpace3D:
+class CrackSpace3D(EnrichedUnknowns):
     """The enriched space of a 3D crack (module notes).
 
     Attributes
@@ -108,39 +110,9 @@ class CrackSpace3D:
         return 3 * self.mesh.p.shape[1]
 
     @property
-    def n_heav(self) -> int:
-        return 3 * self.heaviside.size
-
-    @property
-    def n_branch(self) -> int:
-        return 12 * self.branch.size
-
-    @property
-    def N(self) -> int:
-        return self.n_std + self.n_heav + self.n_branch
-
-    @property
     def nodal_dofs(self) -> np.ndarray:
         """(3, nverts) the standard unknowns a of each node and component."""
         return 3 * np.arange(self.mesh.p.shape[1])[None] + np.arange(3)[:, None]
-
-    def heaviside_dofs(self) -> np.ndarray:
-        """(nh, 3) the unknowns b of each Heaviside node."""
-        return self.n_std + np.arange(self.n_heav).reshape(-1, 3)
-
-    def branch_dofs(self) -> np.ndarray:
-        """(nb, 4, 3) the unknowns c of each branch node, function l, component."""
-        return self.n_std + self.n_heav + np.arange(self.n_branch).reshape(-1, 4, 3)
-
-    def enriched_nodes(self) -> np.ndarray:
-        """The nodes with enriched unknowns, sorted."""
-        return np.union1d(self.heaviside, self.branch)
-
-    def support_cells(self, nodes: np.ndarray) -> np.ndarray:
-        """The cells holding one of ``nodes``."""
-        mark = np.zeros(self.mesh.p.shape[1], dtype=bool)
-        mark[nodes] = True
-        return np.flatnonzero(mark[self.mesh.t].any(axis=0))
 
 
 def front_distance(geometry: CrackGeometry3D, x: np.ndarray) -> np.ndarray:
@@ -174,7 +146,10 @@ def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric
     geometry : :func:`skxfem.crack.geometry3d.crack_geometry_3d` of the crack.
     enrichment : ``"topological"`` (the front cells' nodes) or ``"geometric"`` (also the
         nodes within ``radius`` of the front).
-    radius : r_e > 0 for geometric enrichment; default 0.1 times the mesh's diameter.
+    radius : r_e > 0 for geometric enrichment; default
+        :func:`skxfem.crack.radius.default_enrichment_radius` (0.1 mesh diameters, and at
+        least 4 front-cell sizes across the front: the default radial cone of
+        :func:`skxfem.crack.sif3d.sif_3d` inside 0.75 r_e).
     """
     check_mesh_3d(mesh)
     if not isinstance(geometry, CrackGeometry3D):
@@ -188,7 +163,9 @@ def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric
     topo = np.unique(mesh.t[:, geometry.front_cells])
     if enrichment == "geometric":
         if radius is None:
-            radius = 0.1 * float(np.linalg.norm(np.ptp(mesh.p, axis=1)))
+            nodes = mesh.t[:, geometry.front_cells]     # their size across the front
+            h = np.hypot(geometry.phi[nodes], geometry.psi[nodes]).max(axis=0).mean()
+            radius = default_enrichment_radius(mesh, h)
         if not (isinstance(radius, (int, float, np.floating)) and np.isfinite(radius)
                 and radius > 0):
             raise ValueError(f"radius must be a positive number, got {radius!r}")
@@ -202,7 +179,8 @@ def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric
     heav, H_node = heav[keep], H_node[keep]
     phi, psi = geometry.phi[branch_nodes], geometry.psi[branch_nodes]
     F_node = branch(np.hypot(phi, psi), np.arctan2(np.where(psi == 0, 0.0, psi), phi))
-    T = _virtual_map(mesh.p.shape[1], heav, H_node, branch_nodes, F_node)
+    T = virtual_map(3 * np.arange(mesh.p.shape[1])[None] + np.arange(3)[:, None], heav,
+                    H_node, branch_nodes, F_node)
     return CrackSpace3D(mesh, geometry, heav, H_node, branch_nodes, F_node, enrichment,
                         radius, T)
 
@@ -220,26 +198,6 @@ def _far_side(mesh, geometry: CrackGeometry3D) -> np.ndarray:
     for k in range(4):                                    # the 4 nodes of a cell
         np.logical_or.at(out, mesh.t[k], has)
     return out
-
-
-def _virtual_map(nverts, heav, H_node, branch_nodes, F_node) -> sp.csr_matrix:
-    """T: (6 n_std, N), ũ_{g, dof} from [a, b, c]."""
-    n = 3 * nverts
-    hd = (3 * heav[:, None] + np.arange(3)).ravel()       # (3 nh,)
-    bd = 3 * branch_nodes[:, None] + np.arange(3)         # (nb, 3)
-    nh, nb = hd.size, bd.shape[0]
-    rows = [np.arange(n), n + hd, hd]
-    cols = [np.arange(n), n + np.arange(nh), n + np.arange(nh)]
-    vals = [np.ones(n), np.ones(nh), -np.repeat(H_node, 3)]
-    c0 = n + nh
-    for l in range(4):                                    # the four branch functions
-        d = bd.ravel()
-        c = c0 + (12 * np.arange(nb)[:, None] + 3 * l + np.arange(3)).ravel()
-        rows += [(2 + l) * n + d, d]
-        cols += [c, c]
-        vals += [np.ones(d.size), -np.repeat(F_node[l], 3)]
-    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                         shape=(6 * n, c0 + 12 * nb))
 
 
 @dataclass(frozen=True)

@@ -313,8 +313,9 @@ class Interface:
     ``free``: :func:`check_crack_fields`);
     ``enrichment`` the tip enrichment (``"geometric"``: the nodes within a radius of
     the tip, or ``"topological"``: the tip cells'); ``enrichment_radius`` that radius
-    r_e (None: in 2D :data:`skxfem.crack.space.DEFAULT_RADIUS` of the mesh's diameter,
-    in 3D 0.1 of it, :func:`skxfem.crack.space3d.crack_space_3d`);
+    r_e (None: one rule in 2D and 3D, :func:`skxfem.crack.radius.default_enrichment_radius`:
+    0.2 of the mesh's diameter in 2D, 0.1 in 3D, and at least 4/3 of the default
+    interaction domain, 16/3 tip cells in 2D, 4 front cells in 3D);
     ``sif_radius`` the interaction integral's radius (None: 0.75 r_e and at least a few
     cells, :func:`skxfem.crack.sif.default_radius`).
 

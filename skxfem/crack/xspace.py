@@ -1,0 +1,105 @@
+r"""What the 2D and 3D crack kinds' X-FEM spaces share: the methods every space is asked.
+
+:class:`skxfem.gamma.CrackXSpace` (2D) and :class:`skxfem.crack.kind3d.CrackXSpace3D`
+(3D) wrap a crack's space ``space`` (:class:`~skxfem.crack.space.CrackSpace`,
+:class:`~skxfem.crack.space3d.CrackSpace3D`) with the methods that
+:func:`skxfem.enrich.stiffness`, :func:`skxfem.problem.assemble` and
+:meth:`skxfem.enrich.XSpaces.regions` ask every space (the contract in
+:mod:`skxfem.gamma`).  :class:`CrackXSpaceBase` holds those that read only the
+numbering of [a, b, c] (:mod:`skxfem.crack.dofs`) and the crack's own stiffness and
+supports, given by each kind as two class attributes:
+
+* ``_stiffness(space, material)``: the crack's stiffness on [a, b, c];
+* ``_support`` and ``_supported_dofs``: a support of the crack's harness and the
+  function that turns a list of them into the constrained unknowns and their values
+  (a mouth is never clamped shut).
+"""
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..fem.material import Material
+from ..scene.boundary import imposed, imposed_values
+
+__all__ = ["CrackXSpaceBase", "facets_of"]
+
+
+class CrackXSpaceBase:
+    """The methods of a crack's X-FEM space shared in 2D and 3D (module notes), on its
+    ``space``."""
+
+    splits = False
+    """A crack ends inside the body: it splits no region."""
+
+    @property
+    def mesh(self):
+        return self.space.mesh
+
+    @property
+    def cut(self):
+        """The crack's geometry (the fields of a :class:`skxfem.cut.Cut`)."""
+        return self.space.geometry
+
+    @property
+    def n_std(self) -> int:
+        return self.space.n_std
+
+    @property
+    def n_enr(self) -> int:
+        return self.space.N - self.space.n_std
+
+    @property
+    def N(self) -> int:
+        return self.space.N
+
+    @property
+    def enr_dofs(self) -> np.ndarray:
+        """(n_enr,) the standard dof of each enriched unknown [b, c] (its node and
+        component)."""
+        V, nd = self.space, self.space.nodal_dofs
+        heav = nd[:, V.heaviside].T                        # (nh, d)
+        branch = np.repeat(nd[:, V.branch].T[:, None, :], 4, axis=1)   # (nb, 4, d)
+        return np.concatenate([heav.ravel(), branch.ravel()]).astype(np.int64)
+
+    @property
+    def H_node(self) -> np.ndarray:
+        """(n_enr,) H(x_j) of each Heaviside unknown's node, 0 for a branch unknown."""
+        V = self.space
+        return np.concatenate([np.repeat(V.H_node, V.mesh.dim()), np.zeros(V.n_branch)])
+
+    def signed_stiffness(self, material: Material, A=None):
+        """(A, K): the standard block of the crack's stiffness K (``A`` if given) and K
+        itself, whose enriched blocks :meth:`blocks` reads."""
+        K = self._stiffness(self.space, material).tocsr()
+        n = self.n_std
+        return (K[:n, :n] if A is None else A), K
+
+    def blocks(self, A, K) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+        """(K_ab, K_bb): the crack stiffness' blocks of its enriched unknowns."""
+        n = self.n_std
+        return K[:n, n:].tocsr(), K[n:, n:].tocsr()
+
+    def constraints(self, scene, mesh) -> tuple[np.ndarray, np.ndarray]:
+        """The scene's displacements as the crack's supports on [a, b, c] (the kind's
+        ``_supported_dofs``: a mouth is never clamped shut)."""
+        supports = []
+        for nodes, components in imposed(scene, mesh):
+            for c, (value, what) in components.items():
+                def u(x, c=c, value=value, what=what):
+                    out = np.zeros_like(x, dtype=float)
+                    out[c] = imposed_values(value, x, what)
+                    return out
+
+                supports.append(self._support(facets_of(mesh, nodes),
+                                              np.asarray(nodes), u, (c,)))
+        return self._supported_dofs(self.space, supports)
+
+
+def facets_of(mesh, nodes: np.ndarray) -> np.ndarray:
+    """The boundary facets whose nodes are all among ``nodes`` (a support's facets: where
+    the crack's supported dofs decide what a mouth keeps free)."""
+    mark = np.zeros(mesh.p.shape[1], dtype=bool)
+    mark[nodes] = True
+    bf = mesh.boundary_facets()
+    return bf[mark[mesh.facets[:, bf]].all(axis=0)]
