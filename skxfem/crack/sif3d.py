@@ -79,7 +79,7 @@ from .assembly import force_field
 from .frame import TipFrame, tip_frame
 from .geometry3d import barycentric, crack_geometry_3d, front_chains, front_fit
 from .interaction import sif_from_interaction
-from .sif import DOMAIN_FRACTION
+from .radius import DOMAIN_FRACTION
 from .space3d import (
     body_load,
     crack_space_3d,
@@ -105,7 +105,7 @@ sizes across the front (:func:`front_sizes`)."""
 
 MIN_RADIUS = 1.5
 """With geometric enrichment the default R is
-:data:`~skxfem.crack.sif.DOMAIN_FRACTION` r_e (the domain inside the enriched zone, as
+:data:`~skxfem.crack.radius.DOMAIN_FRACTION` r_e (the domain inside the enriched zone, as
 in 2D), and at least MIN_RADIUS front-cell sizes.  Measured on the penny
 (:mod:`skxfem.studies.cracks3d`, h = a/5, r_e = 0.5 a): R = 1.65 h (0.75 r_e) K_I/K
 1.000 to 1.019; R = 3 h (beyond r_e) 0.982 to 1.035, 4 h 0.957 to 1.050; r_e = 0.3 a:
@@ -281,7 +281,7 @@ def _hat_integral(geo, P, e3, L):
 
 def default_radius_3d(space, h: float) -> float:
     """The default radius R of the radial cone: :data:`MIN_RADIUS` h at least, and
-    :data:`~skxfem.crack.sif.DOMAIN_FRACTION` r_e with geometric enrichment,
+    :data:`~skxfem.crack.radius.DOMAIN_FRACTION` r_e with geometric enrichment,
     :data:`DEFAULT_RADIUS` h with topological (``h`` the front cells' size across the
     front, :func:`front_sizes`).
 
