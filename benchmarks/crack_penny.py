@@ -33,7 +33,8 @@ def main(argv=None) -> int:
     ap.add_argument("--sizes", type=float, nargs="+", default=[0.2, 0.1])
     ap.add_argument("--solver", choices=("direct", "cg", "auto"), default="auto",
                     help="auto: direct below 15 000 unknowns' meshes (h ≥ 0.2), else cg")
-    ap.add_argument("--width", type=float, default=4.0)
+    ap.add_argument("--width", type=float, default=8.0,
+                    help="the block [0, W]² × [-W, W], in crack radii (W = 4: K +0.9 %%)")
     args = ap.parse_args(argv)
     for h in args.sizes:
         solver = args.solver if args.solver != "auto" else ("direct" if h >= 0.2 else "cg")

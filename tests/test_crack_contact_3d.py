@@ -85,10 +85,9 @@ def test_a_through_crack_pressed_shut_gives_K_zero_with_the_face_term(law):
 
 def test_a_penny_pressed_shut():
     """The penny a = 0.55 in [-1, 1]³ at n = 10 (h = 0.2: under three cells per radius),
-    sif_radius 0.25: measured |K_I| ≤ 0.022, |K_II| ≤ 1.7e-3 p√(πa) (the face term
-    removes K_I ≈ -0.53: the straight auxiliary fields of a curved front leave an error
-    of order R/a), the pressure 0.9998 p on average, within 1.6 % at every crossing, the
-    jump 5e-4."""
+    sif_radius 0.25: measured |K_I| ≤ 0.017, |K_II| ≤ 1.8e-3 p√(πa) (the face term
+    removes K_I ≈ -0.53; 0.022 without sif_3d's curvature terms), the pressure 0.9998 p
+    on average, within 1.6 % at every crossing, the jump 5e-4."""
     r = solve(pressed_penny(10))
     (front,) = r.front
     scale = np.sqrt(np.pi * 0.55)

@@ -49,6 +49,7 @@ from ..fem.simplex import split
 from .geometry import check_mesh_type, level_set_values
 
 __all__ = ["CrackGeometry3D", "crack_geometry_3d", "check_mesh_3d", "front_chains",
+           "front_fit",
            "barycentric", "VOLUME_TOL"]
 
 VOLUME_TOL = 1e-12
@@ -444,3 +445,61 @@ def front_chains(geometry: CrackGeometry3D) -> list[tuple[np.ndarray, bool]]:
         closed = len(chain) > 2 and s in where[cur] and len(where[s]) == 2
         chains.append((coords[chain].T.copy(), closed))
     return chains
+
+
+def front_fit(geometry: CrackGeometry3D, points: np.ndarray,
+              spacing: float) -> tuple[np.ndarray, np.ndarray]:
+    """The unit tangents t (3, m) and the curvature vectors d²x/ds² (3, m) of the front
+    at the places nearest to ``points`` (3, m): the front polyline sampled at 17 equal
+    arcs over [s - d, s + d] (s the point's nearest place on its chain, d = ``spacing``;
+    an open chain's ends clip them) and fitted by a parabola in s, least squares.  The
+    fit smooths the kinks of the polyline (the chords of the P1 front cross the cells
+    at any angle): t is its slope, in the direction of the chain's points; the curvature
+    vector its second derivative normal to t, of size 1/ρ (ρ the radius of curvature)
+    towards the centre, zero on a straight stretch.
+
+    >>> from skfem import MeshTet1
+    >>> m = MeshTet1.init_tensor(*(np.linspace(-1, 1, 13),) * 3)
+    >>> g = crack_geometry_3d(m, lambda x: x[2] - 0.01,
+    ...                       lambda x: np.sqrt(x[0] ** 2 + x[1] ** 2) - 0.6)
+    >>> t, k = front_fit(g, np.array([[0.7], [0.0], [0.0]]), 0.3)
+    >>> bool(abs(abs(t[1, 0]) - 1) < 0.01 and abs(k[0, 0] + 1 / 0.6) < 0.1)
+    True
+    """
+    points = np.asarray(points, float)
+    d = float(spacing)
+    if not (np.isfinite(d) and d > 0):
+        raise ValueError(f"spacing must be a positive number, got {spacing!r}")
+    tangent, curvature = np.zeros(points.shape), np.zeros(points.shape)
+    best = np.full(points.shape[1], np.inf)
+    sigma = np.linspace(-1.0, 1.0, 17)
+    for pts, closed in front_chains(geometry):
+        if closed:
+            pts = np.hstack([pts, pts[:, :1]])
+        seg = np.diff(pts, axis=1)
+        s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(seg, axis=0))])
+        total = s[-1]
+        # the nearest place on the chain of each point: its segment and arc length
+        t = np.clip(np.einsum("ik,ikm->km", seg, points[:, None] - pts[:, :-1, None])
+                    / np.maximum((seg * seg).sum(axis=0), 1e-300)[:, None], 0, 1)
+        dist = np.linalg.norm(pts[:, :-1, None] + t * seg[:, :, None] - points[:, None],
+                              axis=0)
+        j = np.argmin(dist, axis=0)
+        cols = np.arange(points.shape[1])
+        at = s[j] + t[j, cols] * (s[j + 1] - s[j])
+        arcs = at[:, None] + min(d, total / 4) * sigma            # (m, 17)
+        arcs = np.mod(arcs, total) if closed else np.clip(arcs, 0, total)
+        x = np.stack([np.interp(arcs, s, pts[k]) for k in range(3)])   # (3, m, 17)
+        z = (arcs - at[:, None] + total / 2) % total - total / 2 if closed else \
+            arcs - at[:, None]
+        V = np.stack([np.ones_like(z), z, z * z], axis=2)        # (m, 17, 3)
+        c = np.linalg.solve(np.einsum("mqa,mqb->mab", V, V),
+                            np.einsum("mqa,imq->mai", V, x))      # (m, 3 terms, 3)
+        slope, second = c[:, 1].T, 2 * c[:, 2].T
+        tt = (slope * slope).sum(axis=0)
+        kvec = (second - (second * slope).sum(axis=0) / tt * slope) / tt
+        near = dist[j, cols] < best
+        tangent[:, near] = (slope / np.sqrt(tt))[:, near]
+        curvature[:, near] = kvec[:, near]
+        best = np.minimum(best, dist[j, cols])
+    return tangent, curvature

@@ -30,11 +30,31 @@ Then K_I = E′I_I/2, K_II = E′I_II/2, K_III = μ I_III
 (:mod:`skxfem.crack.williams`, 3D: mode III along e₃) are written in the point's own
 front frame and polar coordinates from the interpolated level sets:
 r = √(φ_h² + ψ_h²), θ = atan2(ψ_h, φ_h) (±π on the faces by the side of the point's
-sub-tetrahedron), e₂ = ∇ψ_h/|∇ψ_h|, e₁ the part of ∇φ_h normal to it, e₃ = e₁ × e₂
-(:func:`skxfem.crack.frame.tip_frame`); x₁-derivatives are along that e₁.  For a straight
-front this is exact; for a curved one it neglects the terms of order r/ρ_f (ρ_f the
-front's radius of curvature) of the curvilinear auxiliary fields, as code_aster's level-set
-frames do.  The integrand holds σ uᵃ,₁ ∼ 1/r near the front, integrated by the
+sub-tetrahedron), e₂ = ∇ψ_h/|∇ψ_h|, e₁ the P1 interpolant of nodal directions made
+normal to e₂, e₃ = e₁ × e₂.  The nodal e₁ is e₂ × t, t the tangent of the front at the
+node's nearest place, fitted over a few cells (:func:`fitted_frame`,
+:func:`skxfem.crack.geometry3d.front_fit`): a smooth field, whose lines are the normal
+lines of the front (the gradient of the P1 φ_h turns from cell to cell by up to h/ρ_f,
+ρ_f the front's radius of curvature).  The same e₁ is the extension direction.
+
+**Curvature terms.**  In these curvilinear coordinates (x₁ = φ along e₁, x₂ = ψ,
+x₃ along the front, its metric h₃ = 1 + κx₁ with κ = 1/ρ_f the front's curvature in the
+crack's plane, > 0 when it bends away from e₁) the plane Williams fields are neither in
+equilibrium nor compatible: div σᵃ = (κ/h₃)(σᵃ₁₁ - σᵃ₃₃, σᵃ₁₂, 2σᵃ₁₃) and the true
+gradient of uᵃ has the extra components (κ/h₃)(-uᵃ₃ e₁⊗e₃ + uᵃ₁ e₃⊗e₃), while εᵃ
+= C⁻¹σᵃ stays the plane one.  The divergence of the integrand then leaves, per unit q
+along e₁ (Gosz & Moran 2002, for a planar crack),
+
+.. math:: \frac{\kappa}{h_3}\bigl[\sigma_{33}\, u^a_{1,1} - \sigma_{13}\, u^a_{3,1}
+          + (\sigma^a_{11} - \sigma^a_{33})\, u_{1,1} + \sigma^a_{12}\, u_{2,1}
+          + 2\sigma^a_{13}\, u_{3,1}\bigr]
+
+(:func:`_curvature_integrand`; the κ² terms of the true gradient cancel against those of
+∂ⱼe₁ along the front), added with weight q.  They are of order κR against the integral
+(6 % on a penny at R = 0.68 a); the terms of a varying κ along the front and of a curved
+crack surface (∇e₂ ≠ 0) are left out.  κ at each front point is the fitted one.
+
+The integrand holds σ uᵃ,₁ ∼ 1/r near the front, integrated by the
 almost-polar rules of the front cells.  Faces that carry a traction (a contact or a tie
 on them, :mod:`skxfem.crack.faces3d`) add the face term -∫ tᵢ uᵃᵢ,₁ q dS on both faces
 (:mod:`skxfem.crack.interaction`), on the faces' rule graded at the front; free faces
@@ -62,8 +82,9 @@ from numpy.polynomial.legendre import leggauss
 from ..fem.material import Material
 from .assembly import force_field
 from .frame import TipFrame, tip_frame
-from .geometry3d import barycentric, crack_geometry_3d, front_chains
+from .geometry3d import barycentric, crack_geometry_3d, front_chains, front_fit
 from .interaction import sif_from_interaction
+from .radius import DOMAIN_FRACTION
 from .space3d import (
     body_load,
     crack_space_3d,
@@ -78,13 +99,22 @@ from .space3d import (
 )
 from .williams import near_tip_local
 
-__all__ = ["DEFAULT_RADIUS", "DEFAULT_LENGTH", "front_points", "front_frame", "front_sizes",
-           "boundary_reach", "other_fronts", "sif_3d",
+__all__ = ["DEFAULT_RADIUS", "MIN_RADIUS", "DEFAULT_LENGTH", "default_radius_3d",
+           "front_points", "front_frame", "fitted_frame", "front_sizes", "boundary_reach",
+           "other_fronts", "sif_3d",
            "CrackSolution3D", "solve_crack_3d"]
 
 DEFAULT_RADIUS = 3.0
-"""The default radius R of the radial cone, in front-cell sizes across the front
-(:func:`front_sizes`)."""
+"""The default radius R of the radial cone with topological enrichment, in front-cell
+sizes across the front (:func:`front_sizes`)."""
+
+MIN_RADIUS = 1.5
+"""With geometric enrichment the default R is
+:data:`~skxfem.crack.radius.DOMAIN_FRACTION` r_e (the domain inside the enriched zone, as
+in 2D), and at least MIN_RADIUS front-cell sizes.  Measured on the penny
+(:mod:`skxfem.studies.cracks3d`, h = a/5, r_e = 0.5 a): R = 1.65 h (0.75 r_e) K_I/K
+1.000 to 1.019; R = 3 h (beyond r_e) 0.982 to 1.035, 4 h 0.957 to 1.050; r_e = 0.3 a:
+R = 1.5 h 0.985 to 1.025, 3 h 0.947 to 1.047, 1 h 1.04 to 1.06 (too few cells)."""
 
 DEFAULT_LENGTH = 1.5
 """The default half-width L of the bump along the front, in front-cell sizes along it."""
@@ -186,19 +216,43 @@ def _contract(S: np.ndarray, T: np.ndarray, G: np.ndarray) -> np.ndarray:
     return np.einsum("ijn,ikn,jkn->n", S, T, G)
 
 
-def _nodal_directions(space, cells: np.ndarray) -> np.ndarray:
-    """(nverts, 3) e₁ at the nodes of ``cells``: the mean of the cells' own e₁ (from
-    ∇φ_h, ∇ψ_h) around each node, unit (zero at the other nodes)."""
+def fitted_frame(space, points: np.ndarray, spacing: float) -> tuple[TipFrame, np.ndarray]:
+    """The frames at ``points`` (3, m) near the front with e₃ along the front's fitted
+    tangent (:func:`skxfem.crack.geometry3d.front_fit` over ± ``spacing``), e₂ = n of
+    :func:`front_frame` and e₁ = e₂ × e₃, and the front's curvature κ (m,) in the plane
+    normal to e₂, positive when it bends away from e₁ (a penny's front: 1/a).  The
+    tangent of the nearest front cell's level sets (:func:`front_frame`) turns with the
+    P1 chords of a curved front, by up to h/ρ; the fit does not."""
+    cell = front_frame(space, points)
+    t, kvec = front_fit(space.geometry, points, spacing)
+    e3 = t * np.where((t * cell.e3).sum(axis=0) < 0, -1.0, 1.0)
+    e1 = np.cross(cell.e2, e3, axis=0)
+    e1 /= np.linalg.norm(e1, axis=0)
+    frame = TipFrame(e1, cell.e2, np.cross(e1, cell.e2, axis=0))
+    return frame, -(kvec * e1).sum(axis=0)
+
+
+def _nodal_directions(space, cells: np.ndarray, spacing: float) -> np.ndarray:
+    """(nverts, 3) e₁ at the nodes of ``cells`` (zero at the other nodes): e₂ × e₃ with
+    e₂ the mean of the cells' n around each node and e₃ the front's fitted tangent at
+    its nearest place (:func:`fitted_frame`), so that the direction field is smooth
+    and the normal lines of a curved front are straight lines along it."""
     mesh, geo = space.mesh, space.geometry
     _, dlam = barycentric(mesh, cells, mesh.p[:, mesh.t[0, cells]])
     gph = np.einsum("nk,nki->in", geo.phi[mesh.t[:, cells]].T, dlam)
     gps = np.einsum("nk,nki->in", geo.psi[mesh.t[:, cells]].T, dlam)
-    e1 = tip_frame(gph, gps).e1                           # (3, nc)
-    out = np.zeros((mesh.p.shape[1], 3))
+    fr = tip_frame(gph, gps)                              # (3, nc)
+    e1, e2 = np.zeros((mesh.p.shape[1], 3)), np.zeros((mesh.p.shape[1], 3))
     for k in range(4):                                    # the 4 nodes of a cell
-        np.add.at(out, mesh.t[k, cells], e1.T)
-    size = np.linalg.norm(out, axis=1, keepdims=True)
-    return np.where(size > 0, out / np.where(size > 0, size, 1.0), 0.0)
+        np.add.at(e1, mesh.t[k, cells], fr.e1.T)
+        np.add.at(e2, mesh.t[k, cells], fr.e2.T)
+    nodes = np.unique(mesh.t[:, cells])
+    t, _ = front_fit(geo, mesh.p[:, nodes], spacing)
+    d = np.cross(e2[nodes].T, t, axis=0)
+    d *= np.where((d * e1[nodes].T).sum(axis=0) < 0, -1.0, 1.0) / np.linalg.norm(d, axis=0)
+    out = np.zeros((mesh.p.shape[1], 3))
+    out[nodes] = d.T
+    return out
 
 
 def _bump(s: np.ndarray, L: float) -> tuple[np.ndarray, np.ndarray]:
@@ -278,13 +332,44 @@ def _hat_integral(geo, P, e3, L, Rk):
     return np.array(out)
 
 
+def default_radius_3d(space, h: float) -> float:
+    """The default radius R of the radial cone: :data:`MIN_RADIUS` h at least, and
+    :data:`~skxfem.crack.radius.DOMAIN_FRACTION` r_e with geometric enrichment,
+    :data:`DEFAULT_RADIUS` h with topological (``h`` the front cells' size across the
+    front, :func:`front_sizes`).
+
+    >>> from skfem import MeshTet1
+    >>> from skxfem.crack.geometry3d import crack_geometry_3d
+    >>> from skxfem.crack.space3d import crack_space_3d
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 11),) * 2, np.linspace(0, 1, 3))
+    >>> g = crack_geometry_3d(m, m.p[1] - 0.55, m.p[0] - 0.55)
+    >>> default_radius_3d(crack_space_3d(m, g, "geometric", 0.4), 0.1)
+    0.30000000000000004
+    >>> default_radius_3d(crack_space_3d(m, g, "topological"), 0.1)
+    0.30000000000000004
+    """
+    if space.enrichment == "geometric":
+        return max(DOMAIN_FRACTION * space.radius, MIN_RADIUS * h)
+    return DEFAULT_RADIUS * h
+
+
+def _curvature_integrand(sl, gl, aux) -> np.ndarray:
+    """(n,) the terms of the divergence of the integrand, per unit κ/h₃, that the
+    auxiliary fields leave in the curvilinear frame of a curved front (module notes):
+    σ₃₃ uᵃ₁,₁ - σ₁₃ uᵃ₃,₁ + (σᵃ₁₁ - σᵃ₃₃) u₁,₁ + σᵃ₁₂ u₂,₁ + 2 σᵃ₁₃ u₃,₁, from σ (3, 3, n)
+    and uₐ,₁ (3, n) of the solution in the frame, ``aux`` the Williams field there."""
+    ag, asg = aux.grad_u, aux.sigma
+    return (sl[2, 2] * ag[0, 0] - sl[0, 2] * ag[2, 0]
+            + (asg[0, 0] - asg[2, 2]) * gl[0] + asg[0, 1] * gl[1] + 2 * asg[0, 2] * gl[2])
+
+
 def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None = None,
            radius: float | None = None, length: float | None = None,
            plateau: float = 0.5, body_force=None, faces=None) -> np.ndarray:
     """(m, 3) K_I, K_II, K_III at ``points`` (3, m) of the front (default
     :func:`front_points`) by the domain interaction integral (module notes).
 
-    ``radius`` R of the radial cone (default :data:`DEFAULT_RADIUS` front-cell sizes),
+    ``radius`` R of the radial cone (default :func:`default_radius_3d`),
     clipped at each point to the distance to the boundary (:func:`boundary_reach`) and
     to a third of the distance to another front (:func:`other_fronts`: P's domain, the
     points within 2R of its tangent line, :func:`_along`, then holds no other front);
@@ -305,7 +390,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     if P.ndim != 2 or P.shape[0] != 3:
         raise ValueError(f"points must have shape (3, m), got {P.shape}")
     h, h_along = front_sizes(space)
-    R = DEFAULT_RADIUS * h if radius is None else float(radius)
+    R = default_radius_3d(space, h) if radius is None else float(radius)
     L = DEFAULT_LENGTH * h_along if length is None else float(length)
     for name, v in (("radius", R), ("length", L)):
         if not (np.isfinite(v) and v > 0):
@@ -313,7 +398,8 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     if not 0 <= plateau < 1:
         raise ValueError(f"plateau must be in [0, 1), got {plateau!r}")
     mesh, geo = space.mesh, space.geometry
-    frames = front_frame(space, P)
+    spacing = max(L, 2 * h_along)
+    frames, kappa = fitted_frame(space, P, spacing)
     # the cells of every point's domain
     reach = np.hypot(R, L) + 2 * h
     d = np.linalg.norm(mesh.p[:, :, None] - P[:, None], axis=0).min(axis=1)
@@ -321,11 +407,11 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     cells = np.flatnonzero((d[mesh.t] <= reach).any(axis=0)
                            & (radial[mesh.t] <= R + 2 * h).any(axis=0))
     lam_, mu = material.lame(3)
-    e1_nodes = _nodal_directions(space, cells)
+    e1_nodes = _nodal_directions(space, cells, spacing)
     ut = virtual_field(space, U)
     eye = np.eye(3)[:, :, None]
-    xs, ws, e1s, rs, grs = [], [], [], [], []
-    As, Bs, Cs = [[], [], []], [[], [], []], [[], [], []]
+    xs, ws, e1s, rs, grs, x1s = [], [], [], [], [], []
+    As, Bs, Cs, Ds = [[], [], []], [[], [], []], [[], [], []], [[], [], []]
     b = None if body_force is None else force_field(body_force, 3)
     # plain=4: the smooth Williams fields on the ring of uncut cells (3 left |K_I| ≈
     # 1.5e-3 σ√(πa) on a crack pressed shut with its front 0.3 h past a node, 4: 1e-3)
@@ -340,12 +426,12 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         pv = point_values(space, cc, X, S)
         _, gu = field_at(space, U, cc, X, S, values=pv, virtual=ut)
         ph, ps, gph, gps = pv.phi, pv.psi, pv.gphi.T, pv.gpsi.T
-        Rf = tip_frame(gph, gps).R                        # (3, 3, n), rows e₁, e₂, e₃
-        bx = 0.0 if b is None else np.einsum("ain,in->an", Rf, b(X))   # in the frames
         # the extension direction Q/q = e₁ₕ, the P1 interpolant of nodal e₁, and ∂ⱼe₁ₖ
         e1n = e1_nodes[pv.nodes]                          # (n, 4, 3)
         e1 = np.einsum("nk,nki->in", pv.lam, e1n)
         G = np.einsum("nkj,nki->jin", pv.dlam, e1n)                   # [j, k, n]
+        Rf = tip_frame(e1, gps).R                         # (3, 3, n), continuous e₁
+        bx = 0.0 if b is None else np.einsum("ain,in->an", Rf, b(X))   # in the frames
         r = np.hypot(ph, ps)
         theta = np.arctan2(ps, ph)
         theta = np.where((ph < 0) & (np.sign(ps) != S), S * np.pi, theta)
@@ -368,18 +454,21 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
             Bs[mode].append(work)
             Cs[mode].append(_contract(sig, agu, G_l) + _contract(asig, gu_l, G_l)
                             - work * trace_G - (bx * dua1).sum(axis=0))   # the body force's
+            Ds[mode].append(_curvature_integrand(sig, gu_l[:, 0], aux))
         xs.append(X)
         ws.append(W)
         e1s.append(e1)
         rs.append(r)
         grs.append((ph * gph + ps * gps) / r)
-    X, W, e1, r, gr = (np.hstack(xs), np.concatenate(ws), np.hstack(e1s),
-                       np.concatenate(rs), np.hstack(grs))
+        x1s.append(ph)
+    X, W, e1, r, gr, x1 = (np.hstack(xs), np.concatenate(ws), np.hstack(e1s),
+                           np.concatenate(rs), np.hstack(grs), np.concatenate(x1s))
     A = np.stack([np.hstack(a) for a in As])              # (3 modes, 3, n)
     B = np.stack([np.concatenate(b) for b in Bs])
     C = np.stack([np.concatenate(c) for c in Cs])
+    D = np.stack([np.concatenate(d) for d in Ds])
     if faces is not None:
-        xf, wf, rf, Df = _face_terms(space, faces, material, e1_nodes)
+        xf, wf, rf, Df = _face_terms(space, faces, material, e1_nodes, cells)
     Rk = np.minimum(np.minimum(R, boundary_reach(mesh, P, frames.e3, L)),
                     other_fronts(geo, P) / 3)
     den = _hat_integral(geo, P, frames.e3, L, Rk)
@@ -393,8 +482,11 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         hat, dhat = _bump(s, L)
         gq = hat * dqr * gr[:, on] + qr * dhat * frames.e3[:, k, None]
         q1 = (gq * e1[:, on]).sum(axis=0)
+        # κ/h₃ at each quadrature point, h₃ = 1 + κ x₁ the stretch along the front (at
+        # least ½: a domain reaching half-way to the centre of curvature is too wide)
+        k3 = kappa[k] / np.maximum(1 + kappa[k] * x1[on], 0.5)
         I = (np.einsum("min,in->mn", A[:, :, on], gq) - B[:, on] * q1
-             + qr * hat * C[:, on]) @ W[on]
+             + qr * hat * (C[:, on] + k3 * D[:, on])) @ W[on]
         if faces is not None:
             sf, near_f = _along(xf, P[:, k], frames.e3[:, k], R)
             qf = _radial(rf, R, inner)[0] * _bump(sf, L)[0] * near_f
@@ -403,11 +495,12 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     return K
 
 
-def _face_terms(space, faces, material: Material, e1_nodes: np.ndarray):
-    """The faces' points x (3, n), weights (n,), distances r to the front (n,) and
-    D (3, n): Σ over both faces of t·∂uᵃ/∂x₁ for the auxiliary modes I, II, III (the
-    face of Ω⁻ at θ = -π carries t⁻ = r, that of Ω⁺ at θ = +π t⁺ = -r), in each
-    point's frame."""
+def _face_terms(space, faces, material: Material, e1_nodes: np.ndarray,
+                cells_in: np.ndarray):
+    """The faces' points x (3, n) in the domain's cells ``cells_in``, their weights (n,),
+    distances r to the front (n,) and D (3, n): Σ over both faces of t·∂uᵃ/∂x₁ for the
+    auxiliary modes I, II, III (the face of Ω⁻ at θ = -π carries t⁻ = r, that of Ω⁺ at
+    θ = +π t⁺ = -r), in each point's frame."""
     mesh, geo = space.mesh, space.geometry
     x, w, cells = (np.asarray(a) for a in (faces.x, faces.weights, faces.cells))
     t = np.asarray(faces.traction, float)
@@ -415,13 +508,15 @@ def _face_terms(space, faces, material: Material, e1_nodes: np.ndarray):
             or cells.shape != w.shape or not np.all(np.isfinite(t)):
         raise ValueError("faces must hold points x (3, n), weights (n,), cells (n,) and a "
                          "finite traction (3, n) (skxfem.crack.faces3d.face_traction_3d)")
+    keep = np.isin(cells, cells_in)                       # q = 0 elsewhere
+    x, w, cells, t = x[:, keep], w[keep], cells[keep], t[:, keep]
     lam, dlam = barycentric(mesh, cells, x)
     nodes = mesh.t[:, cells].T
     ph = (lam * geo.phi[nodes]).sum(axis=1)
-    gph = np.einsum("nk,nki->in", geo.phi[nodes], dlam)
     gps = np.einsum("nk,nki->in", geo.psi[nodes], dlam)
-    Rf = tip_frame(gph, gps).R                            # (3, 3, n), rows e₁, e₂, e₃
-    e1_l = np.einsum("ain,in->an", Rf, np.einsum("nk,nki->in", lam, e1_nodes[nodes]))
+    e1 = np.einsum("nk,nki->in", lam, e1_nodes[nodes])
+    Rf = tip_frame(e1, gps).R                             # as the domain's points
+    e1_l = np.einsum("ain,in->an", Rf, e1)
     t_l = np.einsum("ain,in->an", Rf, t)
     r = np.maximum(np.abs(ph), 1e-300)                    # on the faces ψ_h = 0
     D = np.zeros((3, r.size))
