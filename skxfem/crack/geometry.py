@@ -326,7 +326,7 @@ def crack_geometry(mesh, psi, phi) -> CrackGeometry:
     if np.any(flat):
         raise ValueError(f"phi vanishes along psi = 0 in {int(flat.sum())} cell(s): the "
                          f"level sets must cross (∇φ not parallel to ∇ψ) at the front")
-    split_tri = mask.copy()                              # the cells the crack touches
+    split_tri = mask.copy()              # every triangle holding a piece, before one owner
     mask &= _owns_edge_piece(mesh, nodes, ps, has)
     F = mesh.mapping().F
     seg = np.stack([F(piece[mask][:, k].T[:, :, None], tind=cell_of[mask])[:, :, 0]
