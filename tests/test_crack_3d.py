@@ -51,6 +51,32 @@ def test_geometry_of_an_edge_crack():
     assert np.isclose(np.linalg.norm(g.segments[1] - g.segments[0], axis=0).sum(), 1.0)
 
 
+@pytest.mark.parametrize("psi, phi, a", [
+    (0.5, 0.5, 0.5),        # along mesh faces, the front along mesh edges
+    (0.5, 0.625, 0.625),    # along mesh faces, the front mid-cell
+    (0.4, 0.5, 0.5),        # mid-cell, the front on a node plane
+    (0.4, 0.6, 0.6),        # mid-cell, the front mid-cell
+])
+def test_a_crack_along_mesh_faces_is_counted_once(psi, phi, a):
+    """The crack {y = psi, x < phi} of area a: its faces and the rule on them (the crack
+    kind's) sum to a to round-off, each face once: along a plane of mesh faces, only the
+    cell on the Ω⁻ side holds it, with its normal +e_y into Ω⁺."""
+    from skxfem.crack.kind3d import Crack3D
+
+    m = slab(4, 2)
+    g = crack_geometry_3d(m, lambda x: x[1] - psi, lambda x: x[0] - phi)
+    rule = Crack3D(None).rule(m, g)
+    assert abs(g.face_areas().sum() - a) < 1e-14 and abs(rule.weights.sum() - a) < 1e-13
+    F = np.round(g.faces, 12)                                       # the vertices, sorted
+    order = np.lexsort((F[:, :, 2], F[:, :, 1], F[:, :, 0]), axis=-1)
+    key = np.take_along_axis(F, order[:, :, None], axis=1).reshape(-1, 9)
+    assert np.unique(key, axis=0).shape[0] == key.shape[0], "no face twice"
+    assert np.allclose(g.face_normal, [[0.0], [1.0], [0.0]], atol=1e-14)
+    assert np.allclose(g.faces[:, :, 1], psi) and np.all(g.faces[:, :, 0] <= phi + 1e-12)
+    if psi == 0.5:
+        assert np.all(m.p[1, m.t[:, g.face_cell]].mean(axis=0) < 0.5), "the Ω⁻ side's cell"
+
+
 def test_penny_front_is_one_closed_loop():
     m = MeshTet1.init_tensor(*(np.linspace(-1, 1, 11),) * 3)
     g = crack_geometry_3d(m, lambda x: x[2] - 0.05,
