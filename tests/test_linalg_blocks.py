@@ -73,14 +73,17 @@ def test_scaled_blocks_are_the_identity_and_fixed_blocks_are_left():
 
 
 def test_block_scaling_is_what_makes_cg_converge_on_a_3d_crack():
-    """Jacobi alone needs about 4 times the iterations (123 against 33 measured)."""
+    """Jacobi alone needs several times the iterations (123 against 33 measured with
+    an enriched zone of 0.1 diameters; with the default's floor of 4 front cells plain CG
+    does not reach 1e-10 in 500 iterations)."""
     p = assemble(crack_3d())
     modes = rigid_modes(p.V)
-    _, _, plain = iterative.solve(p.K, p.B, p.F, p.D, p.g, modes=modes, blocksize=3)
     S, Sinv = enriched_scaling(p.K, p.V.enr_dofs, p.V.n_std, 3, p.D)
     _, _, scaled = iterative.solve((S.T @ p.K @ S).tocsr(), p.B @ S, S.T @ p.F, p.D, p.g,
                                    modes=Sinv @ modes, blocksize=3)
-    assert scaled.iterations < plain.iterations / 2
+    budget = 2 * scaled.iterations
+    with pytest.raises(iterative.ConvergenceError):
+        iterative.solve(p.K, p.B, p.F, p.D, p.g, modes=modes, blocksize=3, maxiter=budget)
 
 
 @pytest.mark.parametrize("scene", [crack_3d, crack_2d])
