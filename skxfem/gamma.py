@@ -66,9 +66,10 @@ to the front (:func:`skxfem.crack.faces.crack_multipliers`), its rule Gauss poin
 the crack pieces with the multiplier functions there, its front the K of
 :func:`skxfem.crack.sif.sif` with the faces' traction from the multipliers
 (``Result.front``, ``result.json``'s ``front``).  A 3D front (a ``MeshTet1``) is the
-kind :class:`skxfem.crack.kind3d.Crack3D` (law ``free``), its front K_I, K_II, K_III
-along it.  A body force loads the enriched unknowns too and enters the interaction
-integral (its term -∫ b·u^aux_{,1} q).  Not yet: contact on a 3D crack's faces.
+kind :class:`skxfem.crack.kind3d.Crack3D` (any law: its multipliers on the crossed
+edges up to the front, :mod:`skxfem.crack.faces3d`), its front K_I, K_II, K_III along
+it.  A body force loads the enriched unknowns too and enters the interaction integral
+(its term -∫ b·u^aux_{,1} q).
 
 >>> from skfem import MeshTri1
 >>> from skxfem.levelset import plane

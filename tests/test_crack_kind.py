@@ -177,7 +177,7 @@ def test_bad_crack_inputs_are_refused_naming_the_argument(kwargs, words):
 
 
 def test_a_3d_crack_is_the_3d_kind_and_takes_tetrahedra_only():
-    from skfem import MeshHex1
+    from skfem import MeshHex1, MeshTet1
 
     from skxfem.crack.kind3d import Crack3D
 
@@ -186,9 +186,13 @@ def test_a_3d_crack_is_the_3d_kind_and_takes_tetrahedra_only():
     assert type(g) is Crack3D and not g.splits
     with pytest.raises(ValueError, match="MeshTet1"):
         g.cut(MeshHex1().refined(1), "interfaces[0]")
-    with pytest.raises(ValueError, match="a 3D crack takes law 'free', got 'frictionless'"):
-        Interface(plane((0, 0, 0.5), (0, 0, 1)), law="frictionless",
-                  front=plane((0.5, 0, 0), (1, 0, 0)))
+    # contact on its faces (tests/test_crack_contact_3d.py) needs crossed edges: a crack
+    # along mesh planes has none, and its multipliers are refused by name
+    g = gamma(Interface(plane((0, 0, 0.5), (0, 0, 1)), law="frictionless",
+                        front=plane((0.5, 0, 0), (1, 0, 0))))
+    m = MeshTet1.init_tensor(*(np.linspace(0, 1, 5),) * 3)            # z = 0.5: a plane
+    with pytest.raises(ValueError, match="crosses no mesh edge strictly"):
+        g.multipliers(m, g.cut(m))
 
 
 @pytest.mark.parametrize("edit, words", [

@@ -107,6 +107,19 @@ def test_interface_weights_sum_to_the_measure_of_gamma(cell):
         "the normals of a plane Γ must all be its unit normal, pointing into Ω⁺"
 
 
+def test_interface_weights_count_gamma_once_along_mesh_facets(cell):
+    """Γ along a row of mesh facets (z = 1/2, the facets of the cells on both sides) and
+    through the diagonals (x + z = 1): the weights sum to |Γ| once, 1 and √2."""
+    mesh = box(4, cell)
+    dim = mesh.dim()
+    up = np.eye(dim)[-1]
+    diagonal = np.r_[1.0, np.zeros(dim - 2), 1.0] / np.sqrt(2)
+    for normal, area in ((up, 1.0), (diagonal, np.sqrt(2))):
+        rule = interface_rule(mesh, cut(mesh, plane(np.full(dim, 0.5), normal)))
+        assert abs(rule.weights.sum() - area) < 1e-12, (normal, rule.weights.sum())
+        assert np.abs(rule.normals - normal[:, None]).max() < 1e-13
+
+
 def test_interface_rule_integrates_polynomials_exactly(cell):
     mesh, _, _, area, c = setup(cell)
     dim = mesh.dim()

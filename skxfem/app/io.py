@@ -448,8 +448,8 @@ def _crack_pieces(result) -> tuple[np.ndarray, np.ndarray, dict] | None:
 def _stopped_pieces(q, U: np.ndarray, stop: np.ndarray, offset: int, first: int, k: int):
     """(cells (dim, np), points (dim, m), point data) of the pieces ``stop`` of the
     interface part ``q`` (:func:`_crack_pieces`): a -1 end becomes one of the m new
-    points, numbered from ``first``, its vertices at one place merged, and a piece
-    listed twice (a 2D crack along a mesh edge, once per cell beside it) written once."""
+    points, numbered from ``first``, its vertices at one place merged (a piece along a
+    mesh edge is listed once by the crack's geometry, in the cell on its Ω⁻ side)."""
     mesh, cut = q.mesh, q.cut
     f = np.asarray(cut.facets)[:, stop]
     idx = f + offset
@@ -460,8 +460,6 @@ def _stopped_pieces(q, U: np.ndarray, stop: np.ndarray, offset: int, first: int,
     _, one, inv = np.unique(np.round(ends / scale), axis=0, return_index=True,
                             return_inverse=True)
     idx[miss] = first + inv.ravel()
-    _, once = np.unique(np.sort(idx, axis=0).T, axis=0, return_index=True)
-    idx = idx[:, np.sort(once)]         # a 2D crack along a mesh edge: once, not per cell
     x, cells = ends[one].T, owner[one]
     m, dim = x.shape[1], x.shape[0]
     normals = q.gamma.normals_at(x)

@@ -43,13 +43,15 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
+from scipy.sparse.linalg import splu
 from scipy.spatial import cKDTree
 
 from ..multipliers import Space
 from ..stabilised import multiplier_space
 
-__all__ = ["EdgeGraph", "edge_graph", "end_values", "face_functions", "crack_multipliers",
-           "face_traction"]
+__all__ = ["EdgeGraph", "edge_graph", "check_crossed", "end_values", "harmonic_extension",
+           "face_functions",
+           "crack_multipliers", "face_traction"]
 
 
 @dataclass(frozen=True)
@@ -70,7 +72,9 @@ class EdgeGraph:
 
 
 def edge_graph(geo) -> EdgeGraph:
-    """The :class:`EdgeGraph` of a :class:`~skxfem.crack.geometry.CrackGeometry`.
+    """The :class:`EdgeGraph` of a :class:`~skxfem.crack.geometry.CrackGeometry` or, in
+    3D, of a :class:`~skxfem.crack.geometry3d.CrackGeometry3D` (its faces; a vertex that
+    is no crossing takes one of its face that is, a face with none is left out).
 
     >>> from skfem import MeshTri1
     >>> from skxfem.crack.geometry import crack_geometry
@@ -79,18 +83,21 @@ def edge_graph(geo) -> EdgeGraph:
     True
     """
     f = geo.facets
-    f = np.where(f < 0, f[::-1], f)                      # a lone crossing: both ends
+    f = np.where(f >= 0, f, f.max(axis=0))               # a lone crossing: all ends
     keep = (f >= 0).all(axis=0)
     return EdgeGraph(geo.edge_ids, geo.edges, geo.psi, geo.points, f[:, keep],
-                     geo.segment_cell[keep])
+                     geo.facet_cell[keep])
 
 
-def _check_crossed(geo) -> None:
+def check_crossed(geo) -> None:
+    """Refuse a crack (2D or 3D geometry) that crosses no mesh edge strictly: it has no
+    point to carry a multiplier."""
     if geo.edge_ids.size == 0:
         raise ValueError("the crack crosses no mesh edge strictly (it runs along mesh edges "
-                         "or through nodes only), so it has no point to carry multipliers: "
-                         "contact on its faces needs a crack that crosses cells (move it off "
-                         "the mesh lines, e.g. an odd number of cells) or law 'free'")
+                         "or faces, or through nodes only), so it has no point to carry "
+                         "multipliers: contact on its faces needs a crack that crosses cells "
+                         "(move it off the mesh lines or planes, e.g. an odd number of "
+                         "cells) or law 'free'")
 
 
 def end_values(geo) -> sp.csr_matrix:
@@ -107,37 +114,54 @@ def end_values(geo) -> sp.csr_matrix:
     ValueError
         If the crack crosses no edge strictly (no multiplier at all).
     """
-    _check_crossed(geo)
-    ne, nseg = geo.edge_ids.size, geo.segment_cell.size
-    ends = geo.facets.ravel()                            # end-major (2 nseg,)
-    x = np.transpose(geo.segments, (0, 2, 1)).reshape(-1, 2)
-    length = geo.segments_length()
-    other = np.flatnonzero(ends < 0)
-    vertex = ends.copy()
+    check_crossed(geo)
+    nseg = geo.segment_cell.size
+    x = np.transpose(geo.segments, (0, 2, 1)).reshape(-1, 2)    # end-major, as facets
+    sides = np.stack([np.arange(nseg), nseg + np.arange(nseg)])
+    return harmonic_extension(geo.facets.ravel(), x, sides, geo.edge_ids.size,
+                              1e-9 * float(geo.segments_length().max()))
+
+
+def harmonic_extension(ends: np.ndarray, x: np.ndarray, sides: np.ndarray, ne: int,
+                       tol: float) -> sp.csr_matrix:
+    """(n, ne) λ_h at n points of a graph from the ``ne`` edge multipliers: a point
+    with ``ends`` ≥ 0 is that crossing (its λ), the others (``ends`` = -1, merged where
+    their ``x`` (n, dim) lie within ``tol``) take the harmonic extension over the
+    graph's ``sides`` (2, m), pairs of points, each weighted by 1/length, the crossings
+    held.  Points of a part of the graph that reaches no crossing get 0.  Every row
+    reached sums to one (a constant is kept).
+
+    >>> x = np.array([[0.0], [1.0], [3.0]])             # crossings 0, 1 and a tip
+    >>> harmonic_extension(np.array([0, 1, -1]), x, np.array([[0, 1], [1, 2]]), 2,
+    ...                    1e-9).toarray().tolist()     # constant from 1 to the tip
+    [[1.0, 0.0], [0.0, 1.0], [0.0, 1.0]]
+    """
+    vertex = np.asarray(ends).copy()
+    other = np.flatnonzero(vertex < 0)
     if other.size:                                       # merge equal points
-        tol = 1e-9 * float(length.max())
         pairs = cKDTree(x[other]).query_pairs(tol, output_type="ndarray")
         link = sp.csr_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])),
                              shape=(other.size,) * 2)
         _, comp = connected_components(link, directed=False)
         vertex[other] = ne + comp
-    nv = int(vertex.max()) + 1
-    v0, v1 = vertex[:nseg], vertex[nseg:]
-    w = 1.0 / length
-    adj = sp.csr_matrix((np.r_[w, w], (np.r_[v0, v1], np.r_[v1, v0])), shape=(nv, nv))
+    nv = max(int(vertex.max()) + 1, ne)
+    a, b = vertex[sides[0]], vertex[sides[1]]
+    length = np.linalg.norm(x[sides[0]] - x[sides[1]], axis=1)
+    ok = (a != b) & (length > 0)
+    w = 1.0 / length[ok]
+    adj = sp.csr_matrix((np.r_[w, w], (np.r_[a[ok], b[ok]], np.r_[b[ok], a[ok]])),
+                        shape=(nv, nv))
     lap = (sp.diags(np.asarray(adj.sum(axis=1)).ravel()) - adj).tocsr()
-    free = np.arange(ne, nv)
     values = sp.lil_matrix((nv, ne))
     values[np.arange(ne), np.arange(ne)] = 1.0
+    free = np.arange(ne, nv)
     if free.size:
         _, piece = connected_components(adj, directed=False)
-        reached = np.isin(piece[free], piece[:ne])
-        f = free[reached]
+        f = free[np.isin(piece[free], piece[:ne])]
         if f.size:
-            rhs = -(lap[f][:, :ne]).toarray()
-            X = np.linalg.solve(lap[f][:, f].toarray(), rhs)   # a few ends per crack
-            X[np.abs(X) < 1e-14] = 0.0
-            values[f] = X
+            Y = splu(sp.csc_matrix(lap[f][:, f])).solve(-(lap[f][:, :ne]).toarray())
+            Y[np.abs(Y) < 1e-14] = 0.0
+            values[f] = Y
     return sp.csr_matrix(values)[vertex]
 
 
@@ -155,15 +179,15 @@ def face_functions(geo, x: np.ndarray, piece: np.ndarray) -> sp.csr_matrix:
 def crack_multipliers(name: str, mesh, geo, fixed=None, per_edge=None) -> Space:
     """The multiplier space ``name`` ("naive", "winner", "vital") on the crack's
     crossed edges (:func:`skxfem.stabilised.multiplier_space` on its
-    :class:`EdgeGraph`; module notes for the front).  ``fixed``, ``per_edge``: as
-    there.
+    :class:`EdgeGraph`; module notes for the front; a 3D crack's:
+    :mod:`skxfem.crack.faces3d`).  ``fixed``, ``per_edge``: as there.
 
     Raises
     ------
     ValueError
         If the crack crosses no edge strictly, or ``name`` is not a space.
     """
-    _check_crossed(geo)
+    check_crossed(geo)
     return multiplier_space(name, mesh, edge_graph(geo), fixed=fixed, per_edge=per_edge)
 
 

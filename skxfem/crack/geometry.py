@@ -23,8 +23,13 @@ In the mesh
 -----------
 * **tip cells**: the cells whose closure holds a tip (one cell for a tip inside
   a cell, two on an edge, every cell around a node);
-* **split cells**: the other cells holding a crack piece of positive length:
-  the crack crosses them completely;
+* **split cells**: the other cells whose closure holds a crack piece of positive
+  length: the crack crosses them completely, or runs along one of their edges;
+* **one owner per piece**: a crack along a mesh edge (or a quadrilateral's
+  diagonal) is the zero set of ψ_h in both triangles beside it; it is listed once,
+  in the triangle on the Ω⁻ side (ψ_h < 0 at its third vertex; on the mesh boundary,
+  the only one), so that ``segments``, ``facets``, the face rule and all that is
+  integrated on the crack faces count it once; the cells on both sides are split cells;
 * **sub-cells**: each split cell's reference triangles are split by ψ_h into
   sub-triangles of one side each (:func:`skxfem.fem.simplex.split`); in a tip
   cell, each reference triangle holding the tip is fanned from the tip T to its
@@ -132,12 +137,13 @@ class CrackGeometry:
     tips : (2, ntips) the tip points.
     tip_cells : (nt,) the cells whose closure holds a tip; ``tip_of_cell`` (nt,) which
         tip; ``tip_ref`` (2, nt) the tip in that cell's reference coordinates.
-    split_cells : (ns,) the cells the crack crosses completely.
+    split_cells : (ns,) the cells the crack crosses completely or runs along an edge of.
     side : (ncells,) -1 / +1 for cells on one side (the sign of the mean nodal ψ; a
         cell ψ = 0 crosses ahead of a tip has no crack and takes it too), 0 for split
         and tip cells.
-    segments : (2, 2, nseg) the crack pieces [end, coordinate, piece], physical;
-        ``segment_cell`` (nseg,) their cells.
+    segments : (2, 2, nseg) the crack pieces [end, coordinate, piece], physical, each
+        once (a piece on a mesh edge in the cell on its Ω⁻ side); ``segment_cell``
+        (nseg,) their cells.
     sub_ref : (nsub, 3, 2) sub-triangles of the split and tip cells in reference
         coordinates; ``sub_cell`` (nsub,), ``sub_side`` (nsub,) ±1; ``sub_fan``
         (nsub,) True for a tip cell's fan triangle, whose vertex 0 is the tip.
@@ -320,6 +326,8 @@ def crack_geometry(mesh, psi, phi) -> CrackGeometry:
     if np.any(flat):
         raise ValueError(f"phi vanishes along psi = 0 in {int(flat.sum())} cell(s): the "
                          f"level sets must cross (∇φ not parallel to ∇ψ) at the front")
+    split_tri = mask.copy()              # every triangle holding a piece, before one owner
+    mask &= _owns_edge_piece(mesh, nodes, ps, has)
     F = mesh.mapping().F
     seg = np.stack([F(piece[mask][:, k].T[:, :, None], tind=cell_of[mask])[:, :, 0]
                     for k in (0, 1)])                    # (2, 2, nseg)
@@ -355,7 +363,8 @@ def crack_geometry(mesh, psi, phi) -> CrackGeometry:
     order = np.argsort(tip_cells)
     tip_cells, tip_of_cell = tip_cells[order], tip_of_cell[order]
     tip_ref = mesh.mapping().invF(tips[:, tip_of_cell][:, :, None], tind=tip_cells)[:, :, 0]
-    split_cells = np.setdiff1d(np.unique(seg_cell), tip_cells)
+    split_cells = np.setdiff1d(np.unique(cell_of[split_tri & ~_zero_length(
+        mesh, piece, cell_of, h)]), tip_cells)
 
     side = np.where(psi[mesh.t].mean(axis=0) < 0, -1, 1)
     side[split_cells] = 0
@@ -390,6 +399,37 @@ def crack_geometry(mesh, psi, phi) -> CrackGeometry:
                          sub_fan[keep], edge_ids, mesh.facets[:, edge_ids], points,
                          np.unique(mesh.t[:, np.union1d(split_cells, tip_cells)]), facets,
                          np.transpose(seg_ref, (1, 2, 0)), normals)
+
+
+def _zero_length(mesh, piece, cell_of, h):
+    """(n,) True where a reference triangle's crack piece ``piece`` (n, 2, 2) is shorter
+    than :data:`AREA_TOL` times its cell's size ``h`` (physical)."""
+    F = mesh.mapping().F
+    ends = [F(piece[:, k].T[:, :, None], tind=cell_of)[:, :, 0] for k in (0, 1)]
+    return np.linalg.norm(ends[1] - ends[0], axis=0) <= AREA_TOL * h[cell_of]
+
+
+def _owns_edge_piece(mesh, nodes, ps, has):
+    """(n,) False for a reference triangle whose piece of {ψ_h = 0} is one of its edges
+    (ψ_h = 0 at two vertices) that the triangle beside it owns.
+
+    A crack along a mesh edge, or along a quadrilateral's diagonal 0-2, is the zero set of
+    ψ_h in the two triangles beside that edge; it belongs to the one on the Ω⁻ side
+    (ψ_h < 0 at its third vertex, :mod:`skxfem.levelset`'s sign convention), so that each
+    piece of Γ is listed, and integrated over, once.  On the mesh boundary the edge has a
+    single triangle, which owns it whatever its side.  ``nodes`` (n, 3) the triangles' mesh
+    nodes, ``ps`` (n, 3) the nodal ψ, ``has`` (n,) from :func:`_zero_segments`."""
+    zero = ps == 0
+    on_edge = has & (zero.sum(axis=1) == 2)
+    third = np.where(on_edge, np.argmin(zero, axis=1), 0)
+    minus = np.take_along_axis(ps, third[:, None], axis=1)[:, 0] < 0
+    # the edge's two nodes, sorted, against the boundary edges of the mesh
+    pair = np.sort(np.stack([nodes[np.arange(nodes.shape[0]), (third + 1) % 3],
+                             nodes[np.arange(nodes.shape[0]), (third + 2) % 3]]), axis=0)
+    bnd = np.sort(mesh.facets[:, mesh.boundary_facets()], axis=0)
+    key = pair[0] * mesh.p.shape[1] + pair[1]
+    on_boundary = np.isin(key, bnd[0] * mesh.p.shape[1] + bnd[1])
+    return ~on_edge | minus | on_boundary
 
 
 def _cut_edges(mesh, psi, phi, seg, seg_cell, h):

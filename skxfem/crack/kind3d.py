@@ -6,9 +6,13 @@ The objects :func:`skxfem.gamma.gamma` returns for an interface with a 3D ``fron
 :func:`skxfem.problem.assemble` and :meth:`skxfem.enrich.XSpaces.regions` ask every space.
 They wrap the modules of the 3D crack (:mod:`~skxfem.crack.geometry3d`,
 :mod:`~skxfem.crack.space3d`, :mod:`~skxfem.crack.sif3d`) as :class:`skxfem.gamma.Crack`
-wraps the 2D ones.  Law ``free`` only; a body force loads every unknown and enters K;
+wraps the 2D ones.  Any law: ``free`` faces carry no multiplier, the others (a tie,
+contact with or without friction, adhesion) multipliers on the crossed edges up to
+the front (:mod:`~skxfem.crack.faces3d`: the stable spaces on the faces' graph, λ_h
+extended harmonically to the front); a body force loads every unknown and enters K;
 the front's ``K_I``, ``K_II``, ``K_III`` at :func:`~skxfem.crack.sif3d.front_points`
-(``result.json``'s ``front``).
+(``result.json``'s ``front``), with the faces' traction from the multipliers in the
+interaction integral's face term.
 
 >>> from skfem import MeshTet1
 >>> from skxfem.levelset import plane
@@ -28,12 +32,13 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from numpy.polynomial.legendre import leggauss
 from skfem import Basis, ElementTetP1, ElementVector
 
 from ..fem.quadrature import cell_rule
 from ..levelset import unit
 from ..multipliers import InterfaceRule
+from .faces import crack_multipliers
+from .faces3d import face_functions_3d, face_rule, face_traction_3d
 from .geometry3d import barycentric, crack_geometry_3d
 from .sif3d import front_points, sif_3d
 from .space3d import (
@@ -43,6 +48,7 @@ from .space3d import (
     body_load,
     crack_space_3d,
     evaluation,
+    mass,
     stiffness,
     supported_dofs,
     traction_load,
@@ -80,9 +86,11 @@ class Crack3D:
         return CrackXSpace3D(crack_space_3d(mesh, cut, i.enrichment, radius))
 
     def multipliers(self, mesh, cut, fixed=None, per_edge=None):
-        """None: a crack's faces are free (law ``free``) and carry no multiplier."""
-        raise ValueError("a crack's faces take law 'free': contact on crack faces is not "
-                         "supported yet, so it has no multiplier space")
+        """The interface's multiplier space on the crack's crossed edges, up to the front
+        (:func:`skxfem.crack.faces.crack_multipliers` on its faces' graph,
+        :mod:`skxfem.crack.faces3d`)."""
+        return crack_multipliers(self.interface.space, mesh, cut, fixed=fixed,
+                                 per_edge=per_edge)
 
     def normals_at(self, points: np.ndarray) -> np.ndarray:
         """∇ψ/|∇ψ| (3, n) at ``points`` on Γ."""
@@ -98,22 +106,16 @@ class Crack3D:
         return cut.psi
 
     def rule(self, mesh, cut) -> InterfaceRule:
-        """Gauss points (16 per face) on the crack's faces, their normals; no multiplier
-        functions."""
-        s, w = leggauss(4)
-        s, w = (s + 1) / 2, w / 2
-        U, V = (a.ravel() for a in np.meshgrid(s, s, indexing="ij"))
-        W = np.outer(w, w).ravel() * U
-        F = cut.faces
-        A, B, C = F[:, 0], F[:, 1], F[:, 2]
-        x = (A[:, None] + U[None, :, None] * (B - A)[:, None]
-             + (U * V)[None, :, None] * (C - B)[:, None]).reshape(-1, 3).T
-        weights = (2 * cut.face_areas()[:, None] * W[None]).ravel()
-        cells = np.repeat(cut.face_cell, W.size)
-        lam, _ = barycentric(mesh, cells, x)
-        return InterfaceRule(points=x, normals=np.repeat(cut.face_normal, W.size, axis=1),
-                             weights=weights, cells=cells, ref=lam[:, 1:].T.copy(),
-                             N=sp.csr_matrix((x.shape[1], cut.edge_ids.size)))
+        """Gauss points on the crack's faces, graded at the front
+        (:func:`skxfem.crack.faces3d.face_rule`), their normals and the multiplier
+        functions there (:func:`skxfem.crack.faces3d.face_functions_3d`; none if the
+        crack crosses no edge strictly)."""
+        R = face_rule(mesh, cut)
+        lam, _ = barycentric(mesh, R.cells, R.points)
+        N = (face_functions_3d(cut, R) if cut.edge_ids.size else
+             sp.csr_matrix((R.weights.size, 0)))
+        return InterfaceRule(points=R.points, normals=cut.face_normal[:, R.face],
+                             weights=R.weights, cells=R.cells, ref=lam[:, 1:].T.copy(), N=N)
 
     def jump(self, V, rule: InterfaceRule) -> sp.csr_matrix:
         """U ↦ [[u_h]] = u⁻ - u⁺ at the rule's points, component-major."""
@@ -130,15 +132,20 @@ class Crack3D:
     def front(self, V, U: np.ndarray, material, traction=None, body_force=None) -> dict:
         """``points`` (m, 3) along the front (:func:`skxfem.crack.sif3d.front_points`) and
         ``K_I``, ``K_II``, ``K_III`` (m,) there (:func:`skxfem.crack.sif3d.sif_3d`, the
-        interface's ``sif_radius`` the radial cone's radius).  ``traction``: the faces of
-        a 3D crack are free (law ``free``), so it must be None or zero; ``body_force``
-        the body force of the solved state (its term in the interaction integral)."""
+        interface's ``sif_radius`` the radial cone's radius; ``body_force`` the body
+        force of the solved state, its term in the interaction integral).
+
+        ``traction`` (3, ne): the interface traction r = σ·n at the cut points (the
+        multipliers of a tie or a contact); the faces then carry t⁻ = r and t⁺ = -r,
+        interpolated by the multiplier functions up to the front
+        (:func:`skxfem.crack.faces3d.face_traction_3d`), in the interaction integral's
+        face term: a crack pressed shut gives K = 0.  None or all zero: free faces."""
+        faces = None
         if traction is not None and np.any(traction):
-            raise ValueError("a 3D crack's faces are free (law 'free'): no face traction "
-                             "enters its interaction integral")
+            faces = face_traction_3d(V.mesh, V.cut, np.asarray(traction, float))
         P = front_points(V.space)
         K = sif_3d(V.space, U, material, P, self.interface.sif_radius,
-                   body_force=body_force)
+                   body_force=body_force, faces=faces)
         return {"points": P.T.copy(), "K_I": K[:, 0], "K_II": K[:, 1], "K_III": K[:, 2]}
 
 
@@ -164,6 +171,13 @@ class CrackXSpace3D(CrackXSpaceBase):
         """The standard vector basis (it numbers the standard dofs as the space does)."""
         m = self.space.mesh
         return Basis(m, ElementVector(ElementTetP1()), quadrature=cell_rule(m, 0))
+
+    def signed_mass(self, A=None):
+        """(A, M): the standard block of the crack's mass M (``A`` if given) and M itself
+        (:func:`skxfem.crack.space3d.mass`, :mod:`skxfem.lbb`)."""
+        M = mass(self.space)
+        n = self.n_std
+        return (M[:n, :n] if A is None else A), M
 
     def load(self, facet_loads, body_force=None, f: np.ndarray | None = None):
         """(f, f_b): the surface loads and body force on the standard dofs (``f`` if

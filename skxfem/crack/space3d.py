@@ -32,8 +32,10 @@ rules of :mod:`skxfem.crack.quadrature3d` (on the front's edge or vertex) or the
 collapsed Gauss rule of :data:`~skxfem.crack.quadrature3d.NEAR_POINTS`; split cells'
 sub-tetrahedra and uncut cells in a branch node's support by the collapsed rule of
 :data:`BRANCH_POINTS` (of :data:`~skxfem.crack.quadrature3d.NEAR_POINTS` around the
-front cells); Heaviside-only sub-tetrahedra by their centroid (P1 gradients are
-constant); the other cells by scikit-fem's exact P1 stiffness.
+front cells); the sub-tetrahedra and cells outside the branch nodes' supports by the rule
+``plain`` of :func:`rules` (the stiffness: their centroid, P1 and Heaviside gradients
+are constant there; the interaction integral: 27 points for its smooth Williams
+fields); the other cells by scikit-fem's exact P1 stiffness.
 
 Conditioning: each branch node's block [a_k, c_k] (3 + 12 = 15 unknowns) is scaled by the
 inverse transpose of the Cholesky factor of its diagonal block (Béchet et al. 2005),
@@ -69,7 +71,7 @@ from .radius import default_enrichment_radius
 
 __all__ = ["BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "PointValues", "point_values",
            "functions_at", "virtual_field", "evaluation", "field_at", "rules", "stiffness",
-           "Support3D", "Load3D", "outward_normals", "traction_load", "body_load",
+           "mass", "Support3D", "Load3D", "outward_normals", "traction_load", "body_load",
            "supported_dofs", "nodal_scaling", "front_distance"]
 
 ENRICHMENTS = ("topological", "geometric")
@@ -332,8 +334,8 @@ def _levels(space: CrackSpace3D) -> np.ndarray:
 def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS):
     """The quadrature of ``cells`` (module notes), as batches of cells with as many points
     each: a list of (cells (nc,), x (nc, nq, 3), w (nc, nq), side (nc, nq)).  ``plain``:
-    the points per direction of the collapsed rule on uncut cells outside the branch
-    nodes' supports."""
+    the points per direction of the collapsed rule on the cells and sub-tetrahedra
+    outside the branch nodes' supports (1: their centroid, :func:`_plain_rule`)."""
     mesh, geo = space.mesh, space.geometry
     cells = np.unique(np.asarray(cells, dtype=int))
     level = _levels(space)
@@ -348,7 +350,7 @@ def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS):
               lambda T: collapsed(T, NEAR_POINTS)),
              ((sf == 0) & ~np.isin(sc, geo.front_cells) & (lv == 1),
               lambda T: collapsed(T, BRANCH_POINTS)),
-             ((sf == 0) & (lv == 0), lambda T: collapsed(T, 1))]
+             ((sf == 0) & (lv == 0), lambda T: _plain_rule(T, plain))]
     pieces = []
     for mask, rule in kinds:
         if mask.any():
@@ -360,10 +362,20 @@ def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS):
     for lv_, n in ((2, NEAR_POINTS), (1, BRANCH_POINTS), (0, plain)):
         here = uncut[level[uncut] == lv_]
         if here.size:
-            x, w = collapsed(mesh_cells(mesh, here), n)
+            x, w = _plain_rule(mesh_cells(mesh, here), n)
             batches.append((here, x, w, np.broadcast_to(
                 geo.side[here, None].astype(float), w.shape)))
     return batches
+
+
+def _plain_rule(T: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The rule of tetrahedra T (m, 4, 3) outside the branch nodes' supports: the
+    collapsed Gauss rule of n³ points, or for n = 1 the centroid with the volume (exact
+    for linear functions; the collapsed rule of one point is not: its weight is 3/4 of
+    the volume)."""
+    if n > 1:
+        return collapsed(T, n)
+    return T.mean(axis=1)[:, None], (np.abs(np.linalg.det(T[:, 1:] - T[:, :1])) / 6)[:, None]
 
 
 def _pack(pieces):
@@ -471,7 +483,7 @@ def stiffness(space: CrackSpace3D, material: Material) -> sp.csr_matrix:
     active = np.diff(space.T.indptr) > 0                  # virtual dofs in use
     nverts = mesh.p.shape[1]
     rows, cols, data = [], [], []
-    for cells, x, w, side in rules(space, near):
+    for cells, x, w, side in rules(space, near, plain=1):
         # the functions φ_k g in use on each cell (slot 6 k + kind), cells grouped by count
         vnode = np.arange(6)[None, None, :] * nverts + mesh.t[:, cells].T[:, :, None]
         used = active[3 * vnode].reshape(cells.size, 24)
@@ -494,6 +506,47 @@ def stiffness(space: CrackSpace3D, material: Material) -> sp.csr_matrix:
     T = space.T
     pad = sp.block_diag([Ks, sp.csr_matrix((space.N - space.n_std,) * 2)], format="csr")
     return (T.T @ Kv.tocsr() @ T + pad).tocsr()
+
+
+def mass(space: CrackSpace3D) -> sp.csr_matrix:
+    """The mass ∫ u·v on the unknowns [a, b, c] (the inf-sup test's displacement norm,
+    :mod:`skxfem.lbb`): the cells in an enriched node's support on the rules of
+    :func:`rules` (the almost-polar rules of the front cells are not exact for
+    polynomials: a relative 2e-6 below), the other cells by scikit-fem's P1 mass at
+    order 2 (exact).
+
+    >>> from skfem import MeshTet1
+    >>> from skxfem.crack.geometry3d import crack_geometry_3d
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 4),) * 3)
+    >>> V = crack_space_3d(m, crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    >>> U = np.zeros(V.N); U[V.nodal_dofs[1]] = m.p[0]           # u = (0, x, 0)
+    >>> round(float(U @ mass(V) @ U), 5)                         # ∫ x² = 1/3
+    0.33333
+    """
+    from skfem.models import mass as p1_mass
+    mesh = space.mesh
+    near = space.support_cells(space.enriched_nodes())
+    rest = np.setdiff1d(np.arange(mesh.t.shape[1]), near)
+    Ms = sp.csr_matrix((space.n_std, space.n_std))
+    if rest.size:
+        basis = Basis(mesh, ElementTetP1(), elements=rest, quadrature=cell_rule(mesh, 2))
+        Ms = sp.kron(p1_mass.assemble(basis), sp.identity(3), format="csr")
+    nv = space.T.shape[0]
+    Mv = sp.csr_matrix((nv, nv))
+    for cells, x, w, side in rules(space, near, plain=3):
+        nc, nq = w.shape
+        vals, _, vnode = functions_at(space, np.repeat(cells, nq), x.reshape(-1, 3).T,
+                                      side.ravel())
+        vals, vnode = vals.reshape(nc, nq, 24), vnode.reshape(nc, nq, 24)[:, 0]
+        Me = np.einsum("nqa,nq,nqb->nab", vals, w, vals)          # (nc, 24, 24)
+        for c in range(3):
+            vd = 3 * vnode + c
+            Mv = Mv + sp.csr_matrix((Me.ravel(), (np.repeat(vd, 24, axis=1).ravel(),
+                                                  np.tile(vd, (1, 24)).ravel())),
+                                    shape=(nv, nv))
+    T = space.T
+    pad = sp.block_diag([Ms, sp.csr_matrix((space.N - space.n_std,) * 2)], format="csr")
+    return (T.T @ Mv @ T + pad).tocsr()
 
 
 @dataclass(frozen=True)

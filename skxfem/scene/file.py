@@ -215,8 +215,8 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             {"center": [0.5, 0.5, 0.5], "radius": 0.3}),
         Key("expr", "formula [L]", "ψ itself, best a signed distance", "y - 0.5"),
         Key("front", "formula [L]", "a crack: φ, Γ is then {ψ = 0, φ < 0}, ending inside "
-            "the body at the front {ψ = φ = 0} (2D, any law: free faces, or a tie or "
-            "contact on the faces up to the front; 3D on tet meshes, law free)", "x - 0.5"),
+            "the body at the front {ψ = φ = 0} (2D, or 3D on tet meshes; any law: free "
+            "faces, or a tie or contact on the faces up to the front)", "x - 0.5"),
     ), (("plane", "circle", "sphere", "expr"),)),
     Table("[levelset] plane", "", (
         Key("point", "dim numbers [L]", "a point of the plane (required)", [0.0, 0.5]),

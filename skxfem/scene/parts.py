@@ -357,13 +357,12 @@ def check_crack_fields(interface: Interface) -> None:
     """Refuse a crack's ``front``, ``enrichment``, ``enrichment_radius`` or ``sif_radius``
     that no solve takes.
 
-    A front φ is a :class:`~skxfem.levelset.LevelSet` of ψ's dimension: 2D, with any law
-    (``free`` faces, or a tie or contact on the faces up to the front,
-    :mod:`skxfem.crack.faces`), or 3D on a tetrahedral mesh with law ``free``
-    (:mod:`skxfem.crack.kind3d`); ``enrichment`` is ``"geometric"`` or
-    ``"topological"`` (:mod:`skxfem.crack.space`); ``enrichment_radius`` (geometric
-    only) and ``sif_radius`` positive numbers or None, and all of them only with a
-    front.
+    A front φ is a :class:`~skxfem.levelset.LevelSet` of ψ's dimension, with any law
+    (``free`` faces, or a tie or contact on the faces up to the front): 2D
+    (:mod:`skxfem.crack.faces`), or 3D on a tetrahedral mesh (:mod:`skxfem.crack.kind3d`,
+    :mod:`skxfem.crack.faces3d`); ``enrichment`` is ``"geometric"`` or ``"topological"``
+    (:mod:`skxfem.crack.space`); ``enrichment_radius`` (geometric only) and
+    ``sif_radius`` positive numbers or None, and all of them only with a front.
 
     >>> from skxfem.levelset import plane
     >>> Interface(plane((0, 0.5), (0, 1)), law="coulomb", friction=0.3,
@@ -398,7 +397,3 @@ def check_crack_fields(interface: Interface) -> None:
     if front.dim != interface.levelset.dim:
         raise ValueError(f"Interface front must have the dimension of the level set "
                          f"({interface.levelset.dim}), got {front.dim}")
-    if front.dim == 3 and interface.law != "free":
-        raise ValueError(f"Interface front: contact on the faces of a 3D crack is not "
-                         f"supported yet; a 3D crack takes law 'free', got "
-                         f"{interface.law!r}")
