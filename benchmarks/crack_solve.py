@@ -28,6 +28,19 @@ the K on a domain that covers most of the cube at n = 8 (R = 3 front-cell sizes)
 stiffness on the front cells' almost-polar rules; the ratio falls as n grows (the front
 is a line in a volume).
 
+Since the default enrichment radius has the floor r_e ≥ 4 front-cell sizes
+(:mod:`skxfem.crack.radius`), the branch functions fill most of the cube: 9990 and 17550
+crack unknowns at n = 8 and 12 (three times the tie's), ratios 29.6 and 8.3 (direct, one
+run).  Summing the cells' stiffness node pair by node pair (3 × 3 blocks,
+:func:`skxfem.crack.space3d.summed_blocks`, same K to 6e-16) halves the assembly: one
+run, direct, 29.6 -> 26.6 (n = 8) and 8.3 -> 7.9 (n = 12), assembly 2.6 -> 1.1 s and
+4.7 -> 1.9 s; with ``--linear auto`` (each scene's own path: the crack is iterative from
+5000 unknowns, faster than its LU, 2.2 s against 3.7 s in the solve stage at n = 8, 2.4
+against 7.4 s at n = 12; the tie is direct at n = 8 and iterative at n = 12) 24.9 -> 20.6
+and 22.5 -> 17.8.  What is left at n = 8 (``--linear auto``, profiled): the block-scaled
+CG (74 iterations, 2.1 s; the branch functions' translations as more near-null vectors
+cut it to 55 but not its time), K along the front (1.1 s), the cells' stiffness (0.7 s).
+
     python benchmarks/crack_solve.py                 # n = 8, 12
     python benchmarks/crack_solve.py --sizes 8 --repeat 3
 """

@@ -438,6 +438,26 @@ def _cell_stiffness(space, cells, x, w, side, slots, lam_, mu):
     return Ke.reshape(nc, 3 * m, 3 * m), vdof
 
 
+def summed_blocks(rows: np.ndarray, cols: np.ndarray, blocks: np.ndarray,
+                  n: int) -> sp.bsr_matrix:
+    """The (3n, 3n) sum of the 3 × 3 ``blocks`` (k, 3, 3) at the block rows and columns
+    ``rows``, ``cols`` (k,): the cells' stiffness summed node pair by node pair, nine
+    times fewer entries to sort than their scalar (row, column, value) triples.
+
+    >>> b = np.arange(27.0).reshape(3, 3, 3)
+    >>> K = summed_blocks(np.array([0, 1, 0]), np.array([1, 0, 1]), b, 2)
+    >>> K.toarray()[:3, 3:].tolist()[0], K.toarray()[3:, :3].tolist()[0]
+    ([18.0, 20.0, 22.0], [9.0, 10.0, 11.0])
+    """
+    key = rows.astype(np.int64) * n + cols
+    pairs, at = np.unique(key, return_inverse=True)
+    summed = np.stack([np.bincount(at, weights=blocks[:, i // 3, i % 3],
+                                   minlength=pairs.size) for i in range(9)], axis=1)
+    indptr = np.searchsorted(pairs // n, np.arange(n + 1))
+    return sp.bsr_matrix((summed.reshape(-1, 3, 3), (pairs % n).astype(np.int32),
+                          indptr.astype(np.int32)), shape=(3 * n, 3 * n))
+
+
 def stiffness(space: CrackSpace3D, material: Material) -> sp.csr_matrix:
     """The stiffness ∫ σ(u):ε(v) on the unknowns [a, b, c] (module notes).
 
@@ -475,15 +495,17 @@ def stiffness(space: CrackSpace3D, material: Material) -> sp.csr_matrix:
                 sl = pick[k:k + CHUNK]
                 Ke, vd = _cell_stiffness(space, cells[sl], x[sl], w[sl], side[sl],
                                          slots[k:k + CHUNK], lam_, mu)
-                rows.append(np.repeat(vd, 3 * m, axis=1).ravel())
-                cols.append(np.tile(vd, (1, 3 * m)).ravel())
-                data.append(Ke.ravel())
+                vn = vd[:, ::3] // 3                      # (nc, m) the virtual nodes
+                rows.append(np.repeat(vn, m, axis=1).ravel())
+                cols.append(np.tile(vn, (1, m)).ravel())
+                data.append(Ke.reshape(-1, m, 3, m, 3).transpose(0, 1, 3, 2, 4)
+                            .reshape(-1, 3, 3))
     nv = space.T.shape[0]
-    Kv = sp.csr_matrix((np.concatenate(data), (np.concatenate(rows), np.concatenate(cols))),
-                       shape=(nv, nv)) if data else sp.csr_matrix((nv, nv))
+    Kv = summed_blocks(np.concatenate(rows), np.concatenate(cols), np.concatenate(data),
+                       nv // 3) if data else sp.csr_matrix((nv, nv))
     T = space.T
     pad = sp.block_diag([Ks, sp.csr_matrix((space.N - space.n_std,) * 2)], format="csr")
-    return (T.T @ Kv @ T + pad).tocsr()
+    return (T.T @ Kv.tocsr() @ T + pad).tocsr()
 
 
 def mass(space: CrackSpace3D) -> sp.csr_matrix:
