@@ -1,7 +1,8 @@
 # skxfem: the whole set-up on a fresh machine is `make figures` and `make test`.
 #
 #   make figures   create .venv, install skxfem, reproduce the paper's figures in out/
-#   make test      create .venv, install skxfem, lint (ruff, import floors), run pytest,
+#   make test      create .venv, install skxfem, lint (ruff, import floors), run pytest
+#                  (in two processes: pytest-xdist),
 #                  then build and check the students' and the instructors' books (a
 #                  hand-out, without exercises/solutions/, the students' book only)
 #   make book      build the students' book (executes every chapter) into
