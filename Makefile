@@ -1,7 +1,8 @@
 # skxfem: the whole set-up on a fresh machine is `make figures` and `make test`.
 #
 #   make figures   create .venv, install skxfem, reproduce the paper's figures in out/
-#   make test      create .venv, install skxfem, lint (ruff, import floors), run pytest,
+#   make test      create .venv, install skxfem, lint (ruff, import floors), run pytest
+#                  (in two processes: pytest-xdist),
 #                  then build and check the students' and the instructors' books (a
 #                  hand-out, without exercises/solutions/, the students' book only)
 #   make book      build the students' book (executes every chapter) into
@@ -40,6 +41,9 @@ export OPENBLAS_NUM_THREADS := 1
 export PATH := $(abspath $(BIN)):$(PATH)
 
 INSTRUCTOR_BUILD := book/_build/instructor
+# Where each build finds its executed chapters (scripts/execute_book.py fills them).
+STUDENTS_CACHE := book/_build/.jupyter_cache
+INSTRUCTOR_CACHE := $(INSTRUCTOR_BUILD)/_build/.jupyter_cache
 HANDOUT ?= out/handout
 # A hand-out (make handout) has no solutions: it builds the students' book only.
 SOLUTIONS := $(wildcard exercises/solutions)
@@ -68,24 +72,33 @@ figures: $(STAMP)
 test: $(STAMP)
 	$(BIN)/ruff check skxfem tests exercises
 	$(BIN)/lint-imports
-	$(BIN)/pytest -q
-	$(MAKE) --no-print-directory book $(if $(SOLUTIONS),book-instructor)
+	$(BIN)/pytest -q -n 2
+	$(MAKE) --no-print-directory book \
+	    $(if $(SOLUTIONS),book-instructor REUSE=$(STUDENTS_CACHE))
 
 $(MATHJAX):
 	bash scripts/fetch_mathjax.sh book/_mathjax
 
-# --all: re-read every page, so every chapter is executed against the current
-# library; a cell that raises or any Sphinx warning fails the build.  Then the
-# checks of the built pages: no page shows the code of a graded exercise's
-# solution (skxfem.app.graded), every chapter offers its notebook for download.
+# Every chapter is executed against the current library, two at a time, into a
+# new cache (scripts/execute_book.py), where the build takes its outputs from;
+# --all: re-read every page; a cell that raises or any Sphinx warning fails the
+# build.  Then the checks of the built pages: no page shows the code of a graded
+# exercise's solution (skxfem.app.graded), every chapter offers its notebook for
+# download.
 book: $(STAMP) $(MATHJAX)
+	$(BIN)/python scripts/execute_book.py $(STUDENTS_CACHE)
 	$(BIN)/jupyter-book build book/ --all --warningiserror --keep-going
 	$(BIN)/python -m skxfem.app.graded book/_build/html
 	$(BIN)/python scripts/notebooks.py --check book/_build/html
 
 # The same book with SKXFEM_SOLUTIONS set: the chapters print the graded
 # functions' code and the reference solutions, and the check wants them all.
+# REUSE=STUDENTS_CACHE (make test, right after make book): the chapters that
+# cannot show a solution (no skxfem.app, no environment, no process: see
+# scripts/execute_book.py) keep the students' build's outputs; the others run again.
 book-instructor: needs-solutions $(STAMP) $(MATHJAX)
+	SKXFEM_SOLUTIONS=1 $(BIN)/python scripts/execute_book.py $(INSTRUCTOR_CACHE) \
+	    $(if $(REUSE),--reuse $(REUSE))
 	SKXFEM_SOLUTIONS=1 $(BIN)/jupyter-book build book/ --all --warningiserror --keep-going \
 	    --path-output $(INSTRUCTOR_BUILD)
 	$(BIN)/python -m skxfem.app.graded --instructor $(INSTRUCTOR_BUILD)/_build/html
