@@ -224,12 +224,13 @@ class PointValues:
 
 
 def point_values(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
-                 side: np.ndarray | None = None) -> PointValues:
+                 side: np.ndarray | None = None, barycentric_=None) -> PointValues:
     """The :class:`PointValues` at points x (3, n) of ``cells`` (n,).
 
     ``side`` (n,) the side ±1 of each point (needed in split and front cells; default
     the cell's side).  Behind the front (φ_h < 0) θ takes the side's sign, so a point
-    counts on its own side of the crack.
+    counts on its own side of the crack.  ``barycentric_``: the points'
+    (:func:`~skxfem.crack.geometry3d.barycentric`) (λ, ∇λ) if already known.
     """
     mesh, geo = space.mesh, space.geometry
     cells = np.asarray(cells)
@@ -238,7 +239,8 @@ def point_values(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
         if np.any(side == 0):
             raise ValueError("side is needed at points of split and front cells")
     side = np.asarray(side, float)
-    lam, dlam = barycentric(mesh, cells, x)               # (n, 4), (n, 4, 3)
+    lam, dlam = (barycentric(mesh, cells, x) if barycentric_ is None
+                 else barycentric_)                       # (n, 4), (n, 4, 3)
     nodes = mesh.t[:, cells].T                            # (n, 4)
     phi = (lam * geo.phi[nodes]).sum(axis=1)
     psi = (lam * geo.psi[nodes]).sum(axis=1)
