@@ -495,19 +495,25 @@ def stiffness(space: CrackSpace3D, material: Material) -> sp.csr_matrix:
             slots = np.flatnonzero(slot)
             m = slots.size
             step = max(1, CHUNK // w.shape[1])
+            a, b = np.triu_indices(m)                     # the pairs a ≤ b: K is symmetric
+            half = np.where(a == b, 0.5, 1.0)[:, None, None]
             for k in range(0, pick.size, step):
                 sl = pick[k:k + step]
                 Ke, vn = _cell_stiffness(space, cells[sl], x[sl], w[sl], side[sl], slots,
                                          lam_, mu)
-                rows.append(np.repeat(vn, m, axis=1).ravel())
-                cols.append(np.tile(vn, (1, m)).ravel())
-                data.append(Ke.reshape(-1, 3, 3))
+                rows.append(vn[:, a].ravel())
+                cols.append(vn[:, b].ravel())
+                data.append((Ke[:, a, b] * half).reshape(-1, 3, 3))
     nv = space.T.shape[0]
-    Kv = summed_blocks(np.concatenate(rows), np.concatenate(cols), np.concatenate(data),
-                       nv // 3) if data else sp.csr_matrix((nv, nv))
+    if data:  # the upper half (diagonal blocks halved) and its transpose
+        Ku = summed_blocks(np.concatenate(rows), np.concatenate(cols), np.concatenate(data),
+                           nv // 3)
+        Kv = (Ku + Ku.T).tocsr()
+    else:
+        Kv = sp.csr_matrix((nv, nv))
     T = space.T
     pad = sp.block_diag([Ks, sp.csr_matrix((space.N - space.n_std,) * 2)], format="csr")
-    return (T.T @ Kv.tocsr() @ T + pad).tocsr()
+    return (T.T @ Kv @ T + pad).tocsr()
 
 
 def mass(space: CrackSpace3D) -> sp.csr_matrix:
