@@ -41,6 +41,18 @@ and 22.5 -> 17.8.  What is left at n = 8 (``--linear auto``, profiled): the bloc
 CG (74 iterations, 2.1 s; the branch functions' translations as more near-null vectors
 cut it to 55 but not its time), K along the front (1.1 s), the cells' stiffness (0.7 s).
 
+With ``--linear auto`` at n = 16, 24, 32 (one run, main then after: the cells' stiffness
+grouped by the functions in use, batched by quadrature points and summed on its upper
+half; K along the front on chunks of points, same K bit for bit): crack 7.25 -> 6.05 s,
+12.51 -> 11.44 s, 31.88 -> 27.49 s against the tie's 0.51 / 0.55, 1.81 / 1.88, 4.19 /
+4.04 s, ratios 14.2 -> 10.9, 6.9 -> 6.1, 7.6 -> 6.8 (assembly 2.53 -> 1.62, 3.55 -> 2.89,
+8.09 -> 6.43 s; K along the front alone at n = 24 3.40 -> 2.60 s).  K_I at mid-front
+3.6472, 3.7027, 3.7361 in both.  What is left: the solve (block-scaled CG, 14 s at n = 32,
+three times the whole tie); a forward then a backward block Gauss-Seidel sweep (instead
+of two symmetric ones, :data:`skxfem.linalg.amg.SMOOTHER`) cut it 5.2 -> 4.2 s at n = 24
+(K_I the same to 1e-13), but the tie's solve as well (1.6 -> 1.3 s): the ratio barely
+moves.
+
     python benchmarks/crack_solve.py                 # n = 8, 12
     python benchmarks/crack_solve.py --sizes 8 --repeat 3
 """

@@ -89,8 +89,12 @@ def barycentric(mesh, cells: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.
     >>> bool(np.isclose(lam.sum(), 1.0)), bool(np.allclose(dlam.sum(axis=1), 0.0))
     (True, True)
     """
-    cells = np.asarray(cells)
-    uc, inv = np.unique(cells, return_inverse=True)      # one inverse per cell
+    cells = np.asarray(cells).ravel()
+    if cells.size and np.all(cells[1:] >= cells[:-1]):   # sorted (quadrature batches):
+        start = np.concatenate([[True], cells[1:] != cells[:-1]])   # no sort needed
+        uc, inv = cells[start], np.cumsum(start) - 1
+    else:
+        uc, inv = np.unique(cells, return_inverse=True)  # one inverse per cell
     P = mesh.p[:, mesh.t[:, uc]]                         # (3, 4, nc)
     A = np.transpose(P[:, 1:] - P[:, :1], (2, 0, 1))     # (nc, 3, 3) columns V_i - V_0
     Ainv = np.linalg.inv(A)[inv.ravel()]                  # rows: ∇λ₁..₃
