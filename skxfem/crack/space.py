@@ -78,7 +78,7 @@ from ..fem.quadrature import cell_rule
 from .branch import branch, branch_local_gradient
 from .dofs import EnrichedUnknowns, virtual_map
 from .geometry import AREA_TOL, CrackGeometry, check_mesh_2d
-from .radius import default_enrichment_radius
+from .radius import ENRICHMENTS, enrichment_radius
 
 __all__ = ["KINDS", "ENRICHMENTS", "CrackSpace",
            "crack_space", "kinds_at", "evaluation", "evaluation_at", "Evaluation",
@@ -86,8 +86,6 @@ __all__ = ["KINDS", "ENRICHMENTS", "CrackSpace",
 
 KINDS = ("1", "H", "F1", "F2", "F3", "F4")
 """The six kinds g of virtual functions φᵢ g (module notes)."""
-
-ENRICHMENTS = ("topological", "geometric")
 
 
 @dataclass(frozen=True)
@@ -162,21 +160,14 @@ def crack_space(mesh, geometry: CrackGeometry, enrichment: str = "geometric",
     if geometry.psi.shape != (mesh.p.shape[1],):
         raise ValueError("geometry belongs to another mesh (its psi has "
                          f"{geometry.psi.size} values, the mesh {mesh.p.shape[1]} nodes)")
-    if enrichment not in ENRICHMENTS:
-        raise ValueError(f"enrichment must be one of {ENRICHMENTS}, got {enrichment!r}")
-    topo = np.unique(mesh.t[:, geometry.tip_cells])
-    if enrichment == "geometric":
-        if radius is None:
-            h = np.ptp(mesh.p[:, mesh.t[:, geometry.tip_cells]], axis=1).max()
-            radius = default_enrichment_radius(mesh, h)
-        if not (isinstance(radius, (int, float, np.floating)) and np.isfinite(radius)
-                and radius > 0):
-            raise ValueError(f"radius must be a positive number, got {radius!r}")
+    radius = enrichment_radius(            # the tip cells' largest extent: h
+        mesh, enrichment, radius,
+        lambda: np.ptp(mesh.p[:, mesh.t[:, geometry.tip_cells]], axis=1).max())
+    branch_nodes = np.unique(mesh.t[:, geometry.tip_cells])
+    if radius is not None:
         d = np.min(np.linalg.norm(mesh.p[:, :, None] - geometry.tips[:, None], axis=0),
                    axis=1)
-        branch_nodes = np.union1d(topo, np.flatnonzero(d <= radius))
-    else:
-        branch_nodes, radius = topo, None
+        branch_nodes = np.union1d(branch_nodes, np.flatnonzero(d <= radius))
     heav = np.setdiff1d(np.unique(mesh.t[:, geometry.split_cells]), branch_nodes)
     H_node = np.sign(geometry.psi[heav])
     keep = _far_side(mesh, geometry)[heav, (H_node > 0).astype(int)] | (H_node == 0)

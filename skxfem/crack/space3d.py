@@ -67,14 +67,12 @@ from .branch import branch, branch_local_gradient
 from .dofs import EnrichedUnknowns, virtual_map
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
 from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
-from .radius import default_enrichment_radius
+from .radius import enrichment_radius
 
 __all__ = ["BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "PointValues", "point_values",
            "functions_at", "virtual_field", "evaluation", "field_at", "rules", "stiffness",
            "mass", "Support3D", "Load3D", "outward_normals", "traction_load", "body_load",
            "supported_dofs", "nodal_scaling", "front_distance"]
-
-ENRICHMENTS = ("topological", "geometric")
 
 BRANCH_POINTS = 4
 """Points per direction of the collapsed Gauss rule on the cells and sub-tetrahedra in the
@@ -162,21 +160,14 @@ def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric
     if geometry.psi.shape != (mesh.p.shape[1],):
         raise ValueError("geometry belongs to another mesh (its psi has "
                          f"{geometry.psi.size} values, the mesh {mesh.p.shape[1]} nodes)")
-    if enrichment not in ENRICHMENTS:
-        raise ValueError(f"enrichment must be one of {ENRICHMENTS}, got {enrichment!r}")
-    topo = np.unique(mesh.t[:, geometry.front_cells])
-    if enrichment == "geometric":
-        if radius is None:
-            nodes = mesh.t[:, geometry.front_cells]     # their size across the front
-            h = np.hypot(geometry.phi[nodes], geometry.psi[nodes]).max(axis=0).mean()
-            radius = default_enrichment_radius(mesh, h)
-        if not (isinstance(radius, (int, float, np.floating)) and np.isfinite(radius)
-                and radius > 0):
-            raise ValueError(f"radius must be a positive number, got {radius!r}")
+    nodes = mesh.t[:, geometry.front_cells]
+    radius = enrichment_radius(            # the front cells' mean size across the front
+        mesh, enrichment, radius,
+        lambda: np.hypot(geometry.phi[nodes], geometry.psi[nodes]).max(axis=0).mean())
+    branch_nodes = np.unique(nodes)
+    if radius is not None:
         near = np.flatnonzero(front_distance(geometry, mesh.p) <= radius)
-        branch_nodes = np.union1d(topo, near)
-    else:
-        branch_nodes, radius = topo, None
+        branch_nodes = np.union1d(branch_nodes, near)
     heav = np.setdiff1d(np.unique(mesh.t[:, geometry.split_cells]), branch_nodes)
     H_node = np.sign(geometry.psi[heav])
     keep = _far_side(mesh, geometry)[heav, (H_node > 0).astype(int)] | (H_node == 0)
