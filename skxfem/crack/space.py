@@ -77,7 +77,7 @@ from skfem.assembly import CellBasis
 from ..fem.quadrature import cell_rule
 from .branch import branch, branch_local_gradient
 from .dofs import EnrichedUnknowns, virtual_map
-from .geometry import AREA_TOL, CrackGeometry, check_mesh_2d
+from .geometry import AREA_TOL, CrackGeometry, check_geometry, check_mesh_2d
 from .radius import ENRICHMENTS, enrichment_radius
 
 __all__ = ["KINDS", "ENRICHMENTS", "CrackSpace",
@@ -153,13 +153,7 @@ def crack_space(mesh, geometry: CrackGeometry, enrichment: str = "geometric",
     >>> [crack_space(m, g, k, 0.3).branch.size for k in ENRICHMENTS]
     [4, 32]
     """
-    check_mesh_2d(mesh)
-    if not isinstance(geometry, CrackGeometry):
-        raise ValueError(f"geometry must be a CrackGeometry (crack_geometry), got "
-                         f"{type(geometry).__name__}")
-    if geometry.psi.shape != (mesh.p.shape[1],):
-        raise ValueError("geometry belongs to another mesh (its psi has "
-                         f"{geometry.psi.size} values, the mesh {mesh.p.shape[1]} nodes)")
+    check_geometry(geometry, check_mesh_2d(mesh), CrackGeometry, "crack_geometry")
     radius = enrichment_radius(            # the tip cells' largest extent: h
         mesh, enrichment, radius,
         lambda: np.ptp(mesh.p[:, mesh.t[:, geometry.tip_cells]], axis=1).max())

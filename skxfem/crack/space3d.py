@@ -65,6 +65,7 @@ from ..fem.simplex import split
 from .assembly import check_facets, force_field
 from .branch import branch, branch_local_gradient
 from .dofs import EnrichedUnknowns, virtual_map
+from .geometry import check_geometry
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
 from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
 from .radius import enrichment_radius
@@ -153,13 +154,7 @@ def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric
         least 4 front-cell sizes across the front: the default radial cone of
         :func:`skxfem.crack.sif3d.sif_3d` inside 0.75 r_e).
     """
-    check_mesh_3d(mesh)
-    if not isinstance(geometry, CrackGeometry3D):
-        raise ValueError(f"geometry must be a CrackGeometry3D (crack_geometry_3d), got "
-                         f"{type(geometry).__name__}")
-    if geometry.psi.shape != (mesh.p.shape[1],):
-        raise ValueError("geometry belongs to another mesh (its psi has "
-                         f"{geometry.psi.size} values, the mesh {mesh.p.shape[1]} nodes)")
+    check_geometry(geometry, check_mesh_3d(mesh), CrackGeometry3D, "crack_geometry_3d")
     nodes = mesh.t[:, geometry.front_cells]
     radius = enrichment_radius(            # the front cells' mean size across the front
         mesh, enrichment, radius,
