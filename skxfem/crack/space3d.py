@@ -62,7 +62,7 @@ from skfem import Basis, ElementTetP1
 from ..fem.material import Material, stiffness_matrix
 from ..fem.quadrature import cell_rule
 from ..fem.simplex import split
-from .assembly import check_facets, force_field
+from .assembly import check_facets, force_field, support_dofs
 from .branch import branch, branch_local_gradient
 from .dofs import EnrichedUnknowns, virtual_map
 from .geometry import check_geometry
@@ -604,47 +604,7 @@ def supported_dofs(space: CrackSpace3D, supports) -> tuple[np.ndarray, np.ndarra
     branch unknowns of supported nodes away from the mouth (the boundary facets the
     crack meets) set to zero; Heaviside unknowns are never constrained (as in 2D,
     :mod:`skxfem.crack.assembly`)."""
-    mesh, geo = space.mesh, space.geometry
-    nd = space.nodal_dofs
-    branch_of = np.full(mesh.p.shape[1], -1)
-    branch_of[space.branch] = np.arange(space.branch.size)
-    cd = space.branch_dofs()
-    dofs, vals = [], []
-    for k, s in enumerate(supports):
-        comps = np.asarray(s.components, dtype=int)
-        if comps.size == 0 or not np.all(np.isin(comps, (0, 1, 2))):
-            raise ValueError(f"supports[{k}].components must be among (0, 1, 2), got "
-                             f"{s.components!r}")
-        nodes, clamp = [], []
-        if s.facets is not None:
-            f = check_facets(mesh, s.facets, f"supports[{k}].facets")
-            fn = np.unique(mesh.facets[:, f])
-            at_mouth = np.unique(mesh.facets[:, f[mouth_facets(space, f)]])
-            nodes.append(fn)
-            clamp.append(np.setdiff1d(fn, at_mouth))
-        if s.nodes is not None:
-            nn = np.asarray(s.nodes)
-            if nn.ndim != 1 or nn.dtype.kind not in "iu" or (
-                    nn.size and (nn.min() < 0 or nn.max() >= mesh.p.shape[1])):
-                raise ValueError(f"supports[{k}].nodes must be node indices, got {nn!r:.60}")
-            nodes.append(nn.astype(int))
-        nodes = np.unique(np.concatenate(nodes)) if nodes else np.zeros(0, int)
-        nodes = nodes[(geo.psi[nodes] != 0) | (geo.phi[nodes] >= 0)]
-        x = mesh.p[:, nodes]
-        g = np.zeros_like(x) if s.value is None else np.asarray(s.value(x), float)
-        if g.shape != x.shape or not np.all(np.isfinite(g)):
-            raise ValueError(f"supports[{k}].value must return finite values of shape "
-                             f"{x.shape} (3, n), got {g.shape}")
-        clamp = np.concatenate(clamp) if clamp else np.zeros(0, int)
-        kb = branch_of[clamp]
-        kb = kb[kb >= 0]
-        for c in comps:
-            dofs += [nd[c, nodes], cd[kb][:, :, c].ravel()]
-            vals += [g[c], np.zeros(kb.size * 4)]
-    if not dofs:
-        return np.zeros(0, int), np.zeros(0)
-    D, first = np.unique(np.concatenate(dofs), return_index=True)
-    return D, np.concatenate(vals)[first]
+    return support_dofs(space, supports, lambda f: mouth_facets(space, f))
 
 
 def facet_rule(space: CrackSpace3D, facets: np.ndarray, n: int = 4):
