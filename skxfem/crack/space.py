@@ -330,15 +330,10 @@ def evaluation_at(space: CrackSpace, cells: np.ndarray, x: np.ndarray,
     return evaluation(space, cells, ref, side)
 
 
-def _branch_blocks(space: CrackSpace) -> np.ndarray:
-    """(nb, 10) the unknowns [a_k, c_k] of each branch node."""
-    a = space.basis.nodal_dofs[:, space.branch].T          # (nb, 2)
-    return np.hstack([a, space.branch_dofs().reshape(-1, 8)])
-
-
-def nodal_scaling(K: sp.spmatrix, space: CrackSpace, kind: str | None = "block",
+def nodal_scaling(K: sp.spmatrix, space: EnrichedUnknowns, kind: str | None = "block",
                   fixed: np.ndarray | None = None) -> sp.csr_matrix:
-    """The scaling S of the unknowns, K_s = Sᵀ K S, U = S U_s (module notes).
+    """The scaling S of the unknowns, K_s = Sᵀ K S, U = S U_s (module notes), of a
+    :class:`CrackSpace` or a :class:`skxfem.crack.space3d.CrackSpace3D`.
 
     ``kind``: ``"block"`` (Béchet: each branch node's block [a_k, c_k] by the inverse
     transpose of the Cholesky factor of its diagonal block, 1/√K_ii elsewhere),
@@ -354,7 +349,7 @@ def nodal_scaling(K: sp.spmatrix, space: CrackSpace, kind: str | None = "block",
     >>> V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5))
     >>> K = stiffness(V, Material(1.0, 0.3))
     >>> S = nodal_scaling(K, V)
-    >>> blk = _branch_blocks(V)[0]
+    >>> blk = V.branch_blocks()[0]
     >>> bool(np.allclose((S.T @ K @ S)[blk][:, blk].toarray(), np.eye(10)))
     True
     """
@@ -371,20 +366,21 @@ def nodal_scaling(K: sp.spmatrix, space: CrackSpace, kind: str | None = "block",
     s = 1 / np.sqrt(d)
     if kind == "jacobi" or space.branch.size == 0:
         return sp.diags(s).tocsr()
-    B = _branch_blocks(space)                              # (nb, 10)
+    B = space.branch_blocks()                              # (nb, 5 d)
     if fixed is not None and len(fixed):
         B = B[~np.isin(B, fixed).any(axis=1)]
         if B.shape[0] == 0:
             return sp.diags(s).tocsr()
-    blocks = np.asarray(K[B[:, :, None].repeat(10, 2).ravel(),
-                          B[:, None, :].repeat(10, 1).ravel()]).reshape(-1, 10, 10)
+    k = B.shape[1]
+    blocks = np.asarray(K[B[:, :, None].repeat(k, 2).ravel(),
+                          B[:, None, :].repeat(k, 1).ravel()]).reshape(-1, k, k)
     L = np.linalg.cholesky(blocks)
     Sb = np.transpose(np.linalg.inv(L), (0, 2, 1))        # L⁻ᵀ: Sbᵀ K_b Sb = I
     inb = np.zeros(N, dtype=bool)
     inb[B.ravel()] = True
     rest = np.flatnonzero(~inb)
-    rows = np.concatenate([rest, B[:, :, None].repeat(10, 2).ravel()])
-    cols = np.concatenate([rest, B[:, None, :].repeat(10, 1).ravel()])
+    rows = np.concatenate([rest, B[:, :, None].repeat(k, 2).ravel()])
+    cols = np.concatenate([rest, B[:, None, :].repeat(k, 1).ravel()])
     return sp.csr_matrix((np.concatenate([s[rest], Sb.ravel()]), (rows, cols)), shape=(N, N))
 
 

@@ -69,6 +69,7 @@ from .geometry import check_geometry
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
 from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
 from .radius import enrichment_radius
+from .space import nodal_scaling as block_scaling
 
 __all__ = ["BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "PointValues", "point_values",
            "functions_at", "virtual_field", "evaluation", "field_at", "rules", "stiffness",
@@ -680,37 +681,10 @@ def body_load(space: CrackSpace3D, force, plain: int = 2) -> np.ndarray:
     return f
 
 
-def _branch_blocks(space: CrackSpace3D) -> np.ndarray:
-    """(nb, 15) the unknowns [a_k, c_k] of each branch node."""
-    a = space.nodal_dofs[:, space.branch].T                # (nb, 3)
-    return np.hstack([a, space.branch_dofs().reshape(-1, 12)])
-
-
 def nodal_scaling(K: sp.spmatrix, space: CrackSpace3D, fixed: np.ndarray | None = None
                   ) -> sp.csr_matrix:
     """The scaling S, K_s = Sᵀ K S, U = S U_s: each branch node's 15 × 15 block [a_k, c_k]
     by the inverse transpose of the Cholesky factor of its diagonal block, 1/√K_ii
-    elsewhere (and on any block holding a constrained unknown of ``fixed``)."""
-    N = K.shape[0]
-    K = K.tocsr()
-    d = K.diagonal()
-    if np.any(d <= 0):
-        raise ValueError(f"the stiffness has {int((d <= 0).sum())} non-positive diagonal "
-                         f"entries: an enriched function vanishes on its support")
-    s = 1 / np.sqrt(d)
-    B = _branch_blocks(space)
-    if fixed is not None and len(fixed):
-        B = B[~np.isin(B, fixed).any(axis=1)]
-    if B.shape[0] == 0:
-        return sp.diags(s).tocsr()
-    r = B[:, :, None].repeat(15, 2).ravel()
-    c = B[:, None, :].repeat(15, 1).ravel()
-    blocks = np.asarray(K[r, c]).reshape(-1, 15, 15)
-    L = np.linalg.cholesky(blocks)
-    Sb = np.transpose(np.linalg.inv(L), (0, 2, 1))
-    inb = np.zeros(N, dtype=bool)
-    inb[B.ravel()] = True
-    rest = np.flatnonzero(~inb)
-    return sp.csr_matrix((np.concatenate([s[rest], Sb.ravel()]),
-                          (np.concatenate([rest, r]), np.concatenate([rest, c]))),
-                         shape=(N, N))
+    elsewhere (and on any block holding a constrained unknown of ``fixed``): the
+    ``"block"`` scaling of :func:`skxfem.crack.space.nodal_scaling`."""
+    return block_scaling(K, space, "block", fixed)
