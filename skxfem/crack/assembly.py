@@ -67,7 +67,8 @@ from .space import CrackSpace, evaluation
 
 __all__ = ["FACET_POINTS", "RuleGroup", "rule_groups", "stiffness", "mass", "Support",
            "Load", "facet_pieces", "traction_load", "face_rule", "face_load",
-           "force_field", "body_load", "supported_dofs", "mouth_facets", "check_facets"]
+           "force_field", "body_load", "supported_dofs", "support_dofs", "mouth_facets",
+           "check_facets"]
 
 FACET_POINTS = 8
 """Gauss points on each piece of a loaded boundary facet."""
@@ -456,23 +457,36 @@ def supported_dofs(space: CrackSpace, supports) -> tuple[np.ndarray, np.ndarray]
     >>> D.size, bool(np.isin(V.heaviside_dofs(), D).any())      # mouth left free
     (12, False)
     """
-    mesh = space.mesh
-    nd = space.basis.nodal_dofs
-    dofs, vals = [], []
+    return support_dofs(space, supports, lambda f: _crossing(space, f)[1])
+
+
+def support_dofs(space, supports, mouth: Callable[[np.ndarray], np.ndarray]
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """The constrained unknowns and their values of ``supports`` on a crack's ``space``
+    in 2D or 3D (:func:`supported_dofs`,
+    :func:`skxfem.crack.space3d.supported_dofs`): the standard unknowns of the
+    supported nodes (a node on the crack, ψ = 0 and φ < 0, has two values and stays
+    free), and the branch unknowns of supported nodes away from the mouth set to zero;
+    Heaviside unknowns are never constrained.  ``mouth(facets)``: whether the crack
+    meets each of the checked boundary ``facets``.
+    """
+    mesh, geo = space.mesh, space.geometry
+    d = mesh.dim()
+    nd = space.nodal_dofs
     branch_of = np.full(mesh.p.shape[1], -1)
     branch_of[space.branch] = np.arange(space.branch.size)
     cd = space.branch_dofs()
+    dofs, vals = [], []
     for k, s in enumerate(supports):
         comps = np.asarray(s.components, dtype=int)
-        if comps.size == 0 or not np.all(np.isin(comps, (0, 1))):
-            raise ValueError(f"supports[{k}].components must be among (0, 1), got "
-                             f"{s.components!r}")
+        if comps.size == 0 or not np.all(np.isin(comps, tuple(range(d)))):
+            raise ValueError(f"supports[{k}].components must be among {tuple(range(d))}, "
+                             f"got {s.components!r}")
         nodes, clamp = [], []
         if s.facets is not None:
             f = check_facets(mesh, s.facets, f"supports[{k}].facets")
-            mouth = _crossing(space, f)[1]
             fn = np.unique(mesh.facets[:, f])
-            at_mouth = np.unique(mesh.facets[:, f[mouth]])
+            at_mouth = np.unique(mesh.facets[:, f[mouth(f)]])
             nodes.append(fn)
             clamp.append(np.setdiff1d(fn, at_mouth))
         if s.nodes is not None:
@@ -482,23 +496,18 @@ def supported_dofs(space: CrackSpace, supports) -> tuple[np.ndarray, np.ndarray]
                 raise ValueError(f"supports[{k}].nodes must be node indices, got {nn!r:.60}")
             nodes.append(nn.astype(int))
         nodes = np.unique(np.concatenate(nodes)) if nodes else np.zeros(0, int)
-        geo = space.geometry
         nodes = nodes[(geo.psi[nodes] != 0) | (geo.phi[nodes] >= 0)]   # not on the crack
         x = mesh.p[:, nodes]
         g = np.zeros_like(x) if s.value is None else np.asarray(s.value(x), float)
         if g.shape != x.shape or not np.all(np.isfinite(g)):
             raise ValueError(f"supports[{k}].value must return finite values of shape "
-                             f"{x.shape} (2, n), got {g.shape}")
-        for c in comps:
-            dofs.append(nd[c, nodes])
-            vals.append(g[c])
+                             f"{x.shape} ({d}, n), got {g.shape}")
         clamp = np.concatenate(clamp) if clamp else np.zeros(0, int)
         kb = branch_of[clamp]
         kb = kb[kb >= 0]
         for c in comps:
-            d = cd[kb][:, :, c].ravel()
-            dofs.append(d)
-            vals.append(np.zeros(d.size))
+            dofs += [nd[c, nodes], cd[kb][:, :, c].ravel()]
+            vals += [g[c], np.zeros(kb.size * 4)]
     if not dofs:
         return np.zeros(0, int), np.zeros(0)
     D, first = np.unique(np.concatenate(dofs), return_index=True)

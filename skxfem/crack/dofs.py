@@ -30,7 +30,8 @@ __all__ = ["EnrichedUnknowns", "virtual_map"]
 
 class EnrichedUnknowns:
     """The numbering of [a, b, c] (module notes), for a space with the attributes
-    ``mesh``, ``heaviside`` (nh,) and ``branch`` (nb,) nodes and ``n_std``."""
+    ``mesh``, ``heaviside`` (nh,) and ``branch`` (nb,) nodes and ``n_std`` (and
+    ``nodal_dofs``, the standard unknowns (d, nverts), for :meth:`branch_blocks`)."""
 
     @property
     def n_heav(self) -> int:
@@ -55,6 +56,12 @@ class EnrichedUnknowns:
         """(nb, 4, d) the unknowns c of each branch node, function l, component."""
         return (self.n_std + self.n_heav
                 + np.arange(self.n_branch).reshape(-1, 4, self.mesh.dim()))
+
+    def branch_blocks(self) -> np.ndarray:
+        """(nb, 5 d) the unknowns [a_k, c_k] of each branch node (the space's
+        ``nodal_dofs`` (d, nverts), then its :meth:`branch_dofs`)."""
+        a = self.nodal_dofs[:, self.branch].T              # (nb, d)
+        return np.hstack([a, self.branch_dofs().reshape(-1, 4 * self.mesh.dim())])
 
     def enriched_nodes(self) -> np.ndarray:
         """The nodes with enriched unknowns (Heaviside or branch), sorted."""

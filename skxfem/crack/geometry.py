@@ -59,6 +59,7 @@ from ..fem.simplex import split
 from ..levelset import nodal_values
 
 __all__ = ["CrackGeometry", "crack_geometry", "check_mesh_2d", "check_mesh_type",
+           "check_geometry",
            "level_set_values", "ZERO",
            "AREA_TOL"]
 
@@ -91,6 +92,28 @@ def check_mesh_type(mesh, types: tuple, name: str, what: str):
         dim = getattr(mesh, "dim", lambda: "?")()
         raise ValueError(f"{name} must be {what}, got a {dim}D {type(mesh).__name__}")
     return mesh
+
+
+def check_geometry(geometry, mesh, kind: type, maker: str):
+    """``geometry`` if it is a ``kind`` (made by ``maker``) of ``mesh``, else a ValueError
+    (the check of :func:`skxfem.crack.space.crack_space` and
+    :func:`skxfem.crack.space3d.crack_space_3d`).
+
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+    >>> g = crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5)
+    >>> check_geometry(g, m, CrackGeometry, "crack_geometry") is g
+    True
+    >>> check_geometry(g, MeshTri1(), CrackGeometry, "crack_geometry")
+    Traceback (most recent call last):
+    ValueError: geometry belongs to another mesh (its psi has 36 values, the mesh 4 nodes)
+    """
+    if not isinstance(geometry, kind):
+        raise ValueError(f"geometry must be a {kind.__name__} ({maker}), got "
+                         f"{type(geometry).__name__}")
+    if geometry.psi.shape != (mesh.p.shape[1],):
+        raise ValueError("geometry belongs to another mesh (its psi has "
+                         f"{geometry.psi.size} values, the mesh {mesh.p.shape[1]} nodes)")
+    return geometry
 
 
 def level_set_values(name: str, value, mesh, edges: np.ndarray | None = None) -> np.ndarray:

@@ -1,8 +1,10 @@
-r"""The default radius r_e of geometric enrichment: one rule for 2D and 3D cracks.
+r"""The enrichment of a crack's space and the radius r_e: one rule for 2D and 3D cracks.
 
-Geometric enrichment gives the branch functions to every node within r_e of the front
-(:mod:`skxfem.crack.space`, :mod:`skxfem.crack.space3d`).  Without a radius given, both
-take
+A crack's space (:mod:`skxfem.crack.space`, :mod:`skxfem.crack.space3d`) gives the
+branch functions to the nodes of the front's cells (``"topological"``, the
+:data:`ENRICHMENTS`) or also to every node within r_e of the front (``"geometric"``);
+:func:`enrichment_radius` checks that choice and r_e for both.  Without a radius given,
+both take
 
 .. math::
 
@@ -37,10 +39,15 @@ a straight 3D front at h = 1/11).  The dimension enters through two numbers only
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
-__all__ = ["DIAMETER_FRACTION", "DOMAIN_CELLS", "DOMAIN_FRACTION",
-           "default_enrichment_radius"]
+__all__ = ["ENRICHMENTS", "DIAMETER_FRACTION", "DOMAIN_CELLS", "DOMAIN_FRACTION",
+           "default_enrichment_radius", "enrichment_radius"]
+
+ENRICHMENTS = ("topological", "geometric")
+"""The enrichments of a crack's space: the front cells' nodes, or also those within r_e."""
 
 DIAMETER_FRACTION = {2: 0.2, 3: 0.1}
 """f_d: the fixed part of the default r_e, in diameters of the mesh (module notes)."""
@@ -67,3 +74,32 @@ def default_enrichment_radius(mesh, h: float) -> float:
         raise ValueError(f"h must be a positive cell size, got {h!r}")
     D = float(np.linalg.norm(np.ptp(mesh.p, axis=1)))
     return max(DIAMETER_FRACTION[dim] * D, DOMAIN_CELLS[dim] * float(h) / DOMAIN_FRACTION)
+
+
+def enrichment_radius(mesh, enrichment: str, radius: float | None,
+                      front_size: Callable[[], float]) -> float | None:
+    """r_e of a crack's space on ``mesh``: ``None`` for ``"topological"`` enrichment,
+    ``radius`` (checked: a positive number) or, if ``None``,
+    :func:`default_enrichment_radius` of ``front_size()`` for ``"geometric"``.
+
+    ``front_size`` is called only for that default: the front cells' size h.
+
+    >>> from skfem import MeshTri1
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 22), np.linspace(0, 1, 22))
+    >>> enrichment_radius(m, "topological", 0.3, lambda: 1 / 21) is None
+    True
+    >>> enrichment_radius(m, "geometric", 0.3, lambda: 1 / 21)
+    0.3
+    >>> round(enrichment_radius(m, "geometric", None, lambda: 0.1), 4)
+    0.5333
+    """
+    if enrichment not in ENRICHMENTS:
+        raise ValueError(f"enrichment must be one of {ENRICHMENTS}, got {enrichment!r}")
+    if enrichment == "topological":
+        return None
+    if radius is None:
+        radius = default_enrichment_radius(mesh, front_size())
+    if not (isinstance(radius, (int, float, np.floating)) and np.isfinite(radius)
+            and radius > 0):
+        raise ValueError(f"radius must be a positive number, got {radius!r}")
+    return radius

@@ -77,8 +77,8 @@ from skfem.assembly import CellBasis
 from ..fem.quadrature import cell_rule
 from .branch import branch, branch_local_gradient
 from .dofs import EnrichedUnknowns, virtual_map
-from .geometry import AREA_TOL, CrackGeometry, check_mesh_2d
-from .radius import default_enrichment_radius
+from .geometry import AREA_TOL, CrackGeometry, check_geometry, check_mesh_2d
+from .radius import ENRICHMENTS, enrichment_radius
 
 __all__ = ["KINDS", "ENRICHMENTS", "CrackSpace",
            "crack_space", "kinds_at", "evaluation", "evaluation_at", "Evaluation",
@@ -86,8 +86,6 @@ __all__ = ["KINDS", "ENRICHMENTS", "CrackSpace",
 
 KINDS = ("1", "H", "F1", "F2", "F3", "F4")
 """The six kinds g of virtual functions φᵢ g (module notes)."""
-
-ENRICHMENTS = ("topological", "geometric")
 
 
 @dataclass(frozen=True)
@@ -155,28 +153,15 @@ def crack_space(mesh, geometry: CrackGeometry, enrichment: str = "geometric",
     >>> [crack_space(m, g, k, 0.3).branch.size for k in ENRICHMENTS]
     [4, 32]
     """
-    check_mesh_2d(mesh)
-    if not isinstance(geometry, CrackGeometry):
-        raise ValueError(f"geometry must be a CrackGeometry (crack_geometry), got "
-                         f"{type(geometry).__name__}")
-    if geometry.psi.shape != (mesh.p.shape[1],):
-        raise ValueError("geometry belongs to another mesh (its psi has "
-                         f"{geometry.psi.size} values, the mesh {mesh.p.shape[1]} nodes)")
-    if enrichment not in ENRICHMENTS:
-        raise ValueError(f"enrichment must be one of {ENRICHMENTS}, got {enrichment!r}")
-    topo = np.unique(mesh.t[:, geometry.tip_cells])
-    if enrichment == "geometric":
-        if radius is None:
-            h = np.ptp(mesh.p[:, mesh.t[:, geometry.tip_cells]], axis=1).max()
-            radius = default_enrichment_radius(mesh, h)
-        if not (isinstance(radius, (int, float, np.floating)) and np.isfinite(radius)
-                and radius > 0):
-            raise ValueError(f"radius must be a positive number, got {radius!r}")
+    check_geometry(geometry, check_mesh_2d(mesh), CrackGeometry, "crack_geometry")
+    radius = enrichment_radius(            # the tip cells' largest extent: h
+        mesh, enrichment, radius,
+        lambda: np.ptp(mesh.p[:, mesh.t[:, geometry.tip_cells]], axis=1).max())
+    branch_nodes = np.unique(mesh.t[:, geometry.tip_cells])
+    if radius is not None:
         d = np.min(np.linalg.norm(mesh.p[:, :, None] - geometry.tips[:, None], axis=0),
                    axis=1)
-        branch_nodes = np.union1d(topo, np.flatnonzero(d <= radius))
-    else:
-        branch_nodes, radius = topo, None
+        branch_nodes = np.union1d(branch_nodes, np.flatnonzero(d <= radius))
     heav = np.setdiff1d(np.unique(mesh.t[:, geometry.split_cells]), branch_nodes)
     H_node = np.sign(geometry.psi[heav])
     keep = _far_side(mesh, geometry)[heav, (H_node > 0).astype(int)] | (H_node == 0)
@@ -345,15 +330,10 @@ def evaluation_at(space: CrackSpace, cells: np.ndarray, x: np.ndarray,
     return evaluation(space, cells, ref, side)
 
 
-def _branch_blocks(space: CrackSpace) -> np.ndarray:
-    """(nb, 10) the unknowns [a_k, c_k] of each branch node."""
-    a = space.basis.nodal_dofs[:, space.branch].T          # (nb, 2)
-    return np.hstack([a, space.branch_dofs().reshape(-1, 8)])
-
-
-def nodal_scaling(K: sp.spmatrix, space: CrackSpace, kind: str | None = "block",
+def nodal_scaling(K: sp.spmatrix, space: EnrichedUnknowns, kind: str | None = "block",
                   fixed: np.ndarray | None = None) -> sp.csr_matrix:
-    """The scaling S of the unknowns, K_s = Sᵀ K S, U = S U_s (module notes).
+    """The scaling S of the unknowns, K_s = Sᵀ K S, U = S U_s (module notes), of a
+    :class:`CrackSpace` or a :class:`skxfem.crack.space3d.CrackSpace3D`.
 
     ``kind``: ``"block"`` (Béchet: each branch node's block [a_k, c_k] by the inverse
     transpose of the Cholesky factor of its diagonal block, 1/√K_ii elsewhere),
@@ -369,7 +349,7 @@ def nodal_scaling(K: sp.spmatrix, space: CrackSpace, kind: str | None = "block",
     >>> V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5))
     >>> K = stiffness(V, Material(1.0, 0.3))
     >>> S = nodal_scaling(K, V)
-    >>> blk = _branch_blocks(V)[0]
+    >>> blk = V.branch_blocks()[0]
     >>> bool(np.allclose((S.T @ K @ S)[blk][:, blk].toarray(), np.eye(10)))
     True
     """
@@ -386,20 +366,21 @@ def nodal_scaling(K: sp.spmatrix, space: CrackSpace, kind: str | None = "block",
     s = 1 / np.sqrt(d)
     if kind == "jacobi" or space.branch.size == 0:
         return sp.diags(s).tocsr()
-    B = _branch_blocks(space)                              # (nb, 10)
+    B = space.branch_blocks()                              # (nb, 5 d)
     if fixed is not None and len(fixed):
         B = B[~np.isin(B, fixed).any(axis=1)]
         if B.shape[0] == 0:
             return sp.diags(s).tocsr()
-    blocks = np.asarray(K[B[:, :, None].repeat(10, 2).ravel(),
-                          B[:, None, :].repeat(10, 1).ravel()]).reshape(-1, 10, 10)
+    k = B.shape[1]
+    blocks = np.asarray(K[B[:, :, None].repeat(k, 2).ravel(),
+                          B[:, None, :].repeat(k, 1).ravel()]).reshape(-1, k, k)
     L = np.linalg.cholesky(blocks)
     Sb = np.transpose(np.linalg.inv(L), (0, 2, 1))        # L⁻ᵀ: Sbᵀ K_b Sb = I
     inb = np.zeros(N, dtype=bool)
     inb[B.ravel()] = True
     rest = np.flatnonzero(~inb)
-    rows = np.concatenate([rest, B[:, :, None].repeat(10, 2).ravel()])
-    cols = np.concatenate([rest, B[:, None, :].repeat(10, 1).ravel()])
+    rows = np.concatenate([rest, B[:, :, None].repeat(k, 2).ravel()])
+    cols = np.concatenate([rest, B[:, None, :].repeat(k, 1).ravel()])
     return sp.csr_matrix((np.concatenate([s[rest], Sb.ravel()]), (rows, cols)), shape=(N, N))
 
 

@@ -62,19 +62,19 @@ from skfem import Basis, ElementTetP1
 from ..fem.material import Material, stiffness_matrix
 from ..fem.quadrature import cell_rule
 from ..fem.simplex import split
-from .assembly import check_facets, force_field
+from .assembly import check_facets, force_field, support_dofs
 from .branch import branch, branch_local_gradient
 from .dofs import EnrichedUnknowns, virtual_map
+from .geometry import check_geometry
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
 from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
-from .radius import default_enrichment_radius
+from .radius import enrichment_radius
+from .space import nodal_scaling as block_scaling
 
 __all__ = ["BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "PointValues", "point_values",
            "functions_at", "virtual_field", "evaluation", "field_at", "rules", "stiffness",
            "mass", "Support3D", "Load3D", "outward_normals", "traction_load", "body_load",
            "supported_dofs", "nodal_scaling", "front_distance"]
-
-ENRICHMENTS = ("topological", "geometric")
 
 BRANCH_POINTS = 4
 """Points per direction of the collapsed Gauss rule on the cells and sub-tetrahedra in the
@@ -155,28 +155,15 @@ def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric
         least 4 front-cell sizes across the front: the default radial cone of
         :func:`skxfem.crack.sif3d.sif_3d` inside 0.75 r_e).
     """
-    check_mesh_3d(mesh)
-    if not isinstance(geometry, CrackGeometry3D):
-        raise ValueError(f"geometry must be a CrackGeometry3D (crack_geometry_3d), got "
-                         f"{type(geometry).__name__}")
-    if geometry.psi.shape != (mesh.p.shape[1],):
-        raise ValueError("geometry belongs to another mesh (its psi has "
-                         f"{geometry.psi.size} values, the mesh {mesh.p.shape[1]} nodes)")
-    if enrichment not in ENRICHMENTS:
-        raise ValueError(f"enrichment must be one of {ENRICHMENTS}, got {enrichment!r}")
-    topo = np.unique(mesh.t[:, geometry.front_cells])
-    if enrichment == "geometric":
-        if radius is None:
-            nodes = mesh.t[:, geometry.front_cells]     # their size across the front
-            h = np.hypot(geometry.phi[nodes], geometry.psi[nodes]).max(axis=0).mean()
-            radius = default_enrichment_radius(mesh, h)
-        if not (isinstance(radius, (int, float, np.floating)) and np.isfinite(radius)
-                and radius > 0):
-            raise ValueError(f"radius must be a positive number, got {radius!r}")
+    check_geometry(geometry, check_mesh_3d(mesh), CrackGeometry3D, "crack_geometry_3d")
+    nodes = mesh.t[:, geometry.front_cells]
+    radius = enrichment_radius(            # the front cells' mean size across the front
+        mesh, enrichment, radius,
+        lambda: np.hypot(geometry.phi[nodes], geometry.psi[nodes]).max(axis=0).mean())
+    branch_nodes = np.unique(nodes)
+    if radius is not None:
         near = np.flatnonzero(front_distance(geometry, mesh.p) <= radius)
-        branch_nodes = np.union1d(topo, near)
-    else:
-        branch_nodes, radius = topo, None
+        branch_nodes = np.union1d(branch_nodes, near)
     heav = np.setdiff1d(np.unique(mesh.t[:, geometry.split_cells]), branch_nodes)
     H_node = np.sign(geometry.psi[heav])
     keep = _far_side(mesh, geometry)[heav, (H_node > 0).astype(int)] | (H_node == 0)
@@ -618,47 +605,7 @@ def supported_dofs(space: CrackSpace3D, supports) -> tuple[np.ndarray, np.ndarra
     branch unknowns of supported nodes away from the mouth (the boundary facets the
     crack meets) set to zero; Heaviside unknowns are never constrained (as in 2D,
     :mod:`skxfem.crack.assembly`)."""
-    mesh, geo = space.mesh, space.geometry
-    nd = space.nodal_dofs
-    branch_of = np.full(mesh.p.shape[1], -1)
-    branch_of[space.branch] = np.arange(space.branch.size)
-    cd = space.branch_dofs()
-    dofs, vals = [], []
-    for k, s in enumerate(supports):
-        comps = np.asarray(s.components, dtype=int)
-        if comps.size == 0 or not np.all(np.isin(comps, (0, 1, 2))):
-            raise ValueError(f"supports[{k}].components must be among (0, 1, 2), got "
-                             f"{s.components!r}")
-        nodes, clamp = [], []
-        if s.facets is not None:
-            f = check_facets(mesh, s.facets, f"supports[{k}].facets")
-            fn = np.unique(mesh.facets[:, f])
-            at_mouth = np.unique(mesh.facets[:, f[mouth_facets(space, f)]])
-            nodes.append(fn)
-            clamp.append(np.setdiff1d(fn, at_mouth))
-        if s.nodes is not None:
-            nn = np.asarray(s.nodes)
-            if nn.ndim != 1 or nn.dtype.kind not in "iu" or (
-                    nn.size and (nn.min() < 0 or nn.max() >= mesh.p.shape[1])):
-                raise ValueError(f"supports[{k}].nodes must be node indices, got {nn!r:.60}")
-            nodes.append(nn.astype(int))
-        nodes = np.unique(np.concatenate(nodes)) if nodes else np.zeros(0, int)
-        nodes = nodes[(geo.psi[nodes] != 0) | (geo.phi[nodes] >= 0)]
-        x = mesh.p[:, nodes]
-        g = np.zeros_like(x) if s.value is None else np.asarray(s.value(x), float)
-        if g.shape != x.shape or not np.all(np.isfinite(g)):
-            raise ValueError(f"supports[{k}].value must return finite values of shape "
-                             f"{x.shape} (3, n), got {g.shape}")
-        clamp = np.concatenate(clamp) if clamp else np.zeros(0, int)
-        kb = branch_of[clamp]
-        kb = kb[kb >= 0]
-        for c in comps:
-            dofs += [nd[c, nodes], cd[kb][:, :, c].ravel()]
-            vals += [g[c], np.zeros(kb.size * 4)]
-    if not dofs:
-        return np.zeros(0, int), np.zeros(0)
-    D, first = np.unique(np.concatenate(dofs), return_index=True)
-    return D, np.concatenate(vals)[first]
+    return support_dofs(space, supports, lambda f: mouth_facets(space, f))
 
 
 def facet_rule(space: CrackSpace3D, facets: np.ndarray, n: int = 4):
@@ -734,37 +681,10 @@ def body_load(space: CrackSpace3D, force, plain: int = 2) -> np.ndarray:
     return f
 
 
-def _branch_blocks(space: CrackSpace3D) -> np.ndarray:
-    """(nb, 15) the unknowns [a_k, c_k] of each branch node."""
-    a = space.nodal_dofs[:, space.branch].T                # (nb, 3)
-    return np.hstack([a, space.branch_dofs().reshape(-1, 12)])
-
-
 def nodal_scaling(K: sp.spmatrix, space: CrackSpace3D, fixed: np.ndarray | None = None
                   ) -> sp.csr_matrix:
     """The scaling S, K_s = Sᵀ K S, U = S U_s: each branch node's 15 × 15 block [a_k, c_k]
     by the inverse transpose of the Cholesky factor of its diagonal block, 1/√K_ii
-    elsewhere (and on any block holding a constrained unknown of ``fixed``)."""
-    N = K.shape[0]
-    K = K.tocsr()
-    d = K.diagonal()
-    if np.any(d <= 0):
-        raise ValueError(f"the stiffness has {int((d <= 0).sum())} non-positive diagonal "
-                         f"entries: an enriched function vanishes on its support")
-    s = 1 / np.sqrt(d)
-    B = _branch_blocks(space)
-    if fixed is not None and len(fixed):
-        B = B[~np.isin(B, fixed).any(axis=1)]
-    if B.shape[0] == 0:
-        return sp.diags(s).tocsr()
-    r = B[:, :, None].repeat(15, 2).ravel()
-    c = B[:, None, :].repeat(15, 1).ravel()
-    blocks = np.asarray(K[r, c]).reshape(-1, 15, 15)
-    L = np.linalg.cholesky(blocks)
-    Sb = np.transpose(np.linalg.inv(L), (0, 2, 1))
-    inb = np.zeros(N, dtype=bool)
-    inb[B.ravel()] = True
-    rest = np.flatnonzero(~inb)
-    return sp.csr_matrix((np.concatenate([s[rest], Sb.ravel()]),
-                          (np.concatenate([rest, r]), np.concatenate([rest, c]))),
-                         shape=(N, N))
+    elsewhere (and on any block holding a constrained unknown of ``fixed``): the
+    ``"block"`` scaling of :func:`skxfem.crack.space.nodal_scaling`."""
+    return block_scaling(K, space, "block", fixed)
