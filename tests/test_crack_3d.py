@@ -239,9 +239,9 @@ linear = "direct"
 """
 
 
-def _slab_harness():
+def _slab_harness(enrichment="topological", **kwargs):
     """The slab of SLAB_TOML by the 3D harness: an edge crack z = 0.5, x < 0.5 in the unit
-    cube, clamped at z = 0 and pulled at z = 1."""
+    cube, clamped at z = 0 and pulled at z = 1 (``kwargs`` to solve_crack_3d)."""
     from skxfem.crack.space3d import Load3D
     m = MeshTet1.init_tensor(np.linspace(0, 1, 8), np.linspace(0, 1, 8), np.linspace(0, 1, 4))
     bottom = m.facets_satisfying(lambda x: x[2] < 1e-12)
@@ -249,7 +249,20 @@ def _slab_harness():
     return solve_crack_3d(m, lambda x: x[2] - 0.5, lambda x: x[0] - 0.5, MAT,
                           [Support3D(bottom)],
                           [Load3D(top, lambda x: np.stack([0 * x[0], 0 * x[0], 1 + 0 * x[0]]))],
-                          enrichment="topological")
+                          enrichment=enrichment, **kwargs)
+
+
+def test_the_cg_solve_reaches_the_direct_answer():
+    """solver="cg" (AMG + CG, every enriched node's block scaled) against SuperLU on the
+    slab with geometric enrichment, Heaviside and branch nodes both: measured 48
+    iterations to 1e-12, U within 2e-13 and K within 1e-14 of the direct ones."""
+    pytest.importorskip("pyamg")
+    direct = _slab_harness("geometric", radius=0.3)
+    it = _slab_harness("geometric", radius=0.3, solver="cg", tol=1e-12)
+    assert it.space.heaviside.size and it.space.branch.size
+    assert direct.info["iterations"] == 0 and it.info["iterations"] > 0
+    assert np.abs(it.U - direct.U).max() < 1e-8 * np.abs(direct.U).max()
+    assert np.abs(it.K - direct.K).max() < 1e-8 * np.abs(direct.K).max()
 
 
 def test_a_3d_crack_scene_file_runs_through_skxfem_run_and_writes_K_III(tmp_path):
