@@ -37,8 +37,13 @@ side of the face, but also just past one (a crossing close to the front, a face 
 next cell), where a rule graded only at vertices on the front is not.  Measured on the
 penny pressed shut (:func:`skxfem.studies.cracks3d.pressed_penny`, h = 0.2): the rule
 graded at vertices on the front left |K_I| ≤ 0.0165 p√(πa), falling as 1/n with n × n
-points per face (0.0097, 0.0059, 0.0043 at n = 8, 16, 32); this one 3.7e-3 at n = 4,
-3.6e-3 at n = 8.
+points per face (0.0097, 0.0059, 0.0043 at n = 8, 16, 32; 1/√r across a face whose
+vertex lies just behind the front); this one 3.7e-3 at n = 4, 3.6e-3 at n = 8, and
+1.6e-3, 4.7e-3 at h = 0.125, 0.1 (before: 9.4e-3, 1.3e-2).  What is left at h = 0.1
+is the multipliers' pressure at the crossings on the front (where the front runs
+through the tetrahedra's diagonal faces, 0.96 and 1.03 p): with the exact pressure on
+the faces |K_I| ≤ 3.6e-3, the same at sif_radius 0.15 to 0.35; a through crack with its
+front on the diagonal faces (21 × 21 × 2, front x = 0.5) the same, 3.2e-3 and 0.4e-3.
 
 >>> from skfem import MeshTet1
 >>> from skxfem.crack.geometry3d import crack_geometry_3d
@@ -167,9 +172,10 @@ def face_rule(mesh, geo, n: int = FACE_POINTS) -> FaceRule:
     x = np.concatenate(xs, axis=1)                        # (nf, 2 nq, 3)
     weights = np.concatenate(ws, axis=1)
     bary = np.concatenate(bs, axis=1)                     # (nf, 2 nq, 3)
-    nq = weights.shape[1]
-    return FaceRule(x.reshape(-1, 3).T.copy(), weights.ravel(), np.repeat(geo.face_cell, nq),
-                    np.repeat(np.arange(nf), nq), bary.reshape(-1, 3).T.copy())
+    face = np.repeat(np.arange(nf), weights.shape[1])
+    keep = weights.ravel() > 0                            # not on a triangle of no area
+    return FaceRule(x.reshape(-1, 3)[keep].T.copy(), weights.ravel()[keep],
+                    geo.face_cell[face[keep]], face[keep], bary.reshape(-1, 3)[keep].T.copy())
 
 
 def face_functions_3d(geo, rule: FaceRule) -> sp.csr_matrix:
