@@ -41,9 +41,11 @@ points per face (0.0097, 0.0059, 0.0043 at n = 8, 16, 32; 1/√r across a face w
 vertex lies just behind the front); this one 3.6e-3 (the same with 8 × 8), and 1.6e-3,
 3.6e-3 at h = 0.125, 0.1 (before: 9.4e-3, 1.3e-2; sif_radius 0.25).  What is left
 there is neither this rule nor the traction it carries: the exact pressure on the faces
-gives the same 3.6e-3 at h = 0.1, at sif_radius 0.15 to 0.35 alike, so it is in the
-domain term, the discrete field near a curved front (whose pressure is within 1.6 to
-1.9 %, against 2.4e-4 on a straight one).  A through crack with its front on the
+gives the same 3.6e-3 at h = 0.1, at sif_radius 0.15 to 0.35 alike, and so does the
+exact state (the uniform field and pressure): 2.6e-3 at h = 0.2, 3.7e-3 at h = 0.1.  It
+is the interaction integral's own error on the curved front (its domain term against
+this face term), not the contact's pressure (within 1.6 to 1.9 % there, against 2.4e-4
+on a straight front).  A through crack with its front on the
 tetrahedra's diagonal faces (21 × 21 × 2, front x = 1/2): 3.2e-3 with the multipliers
 (0.97 p one cell behind the front), 0.4e-3 with the exact pressure.
 
