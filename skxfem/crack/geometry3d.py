@@ -320,7 +320,10 @@ def _cut_edges(mesh, psi, phi, faces, face_cell, h):
     strict = psi[a] * psi[b] < 0
     with np.errstate(divide="ignore", invalid="ignore"):
         t = np.where(strict, psi[a] / (psi[a] - psi[b]), 0.0)
-    ids = np.flatnonzero(strict & (phi[a] + t * (phi[b] - phi[a]) < 0))
+    # φ < 0 at the crossing beyond rounding: a crossing on the front (φ_h = -4e-17 where
+    # the front runs through it) is a front point of its faces, not a multiplier's
+    ids = np.flatnonzero(strict & (phi[a] + t * (phi[b] - phi[a])
+                                   < -1e-9 * np.abs(phi[b] - phi[a])))
     points = mesh.p[:, a[ids]] + t[ids] * (mesh.p[:, b[ids]] - mesh.p[:, a[ids]])
     index = np.full(mesh.edges.shape[1], -1)
     index[ids] = np.arange(ids.size)
