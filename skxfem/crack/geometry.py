@@ -352,13 +352,12 @@ def crack_geometry(mesh, psi, phi) -> CrackGeometry:
     split_tri = mask.copy()              # every triangle holding a piece, before one owner
     mask &= _owns_edge_piece(mesh, nodes, ps, has)
     F = mesh.mapping().F
-    seg = np.stack([F(piece[mask][:, k].T[:, :, None], tind=cell_of[mask])[:, :, 0]
-                    for k in (0, 1)])                    # (2, 2, nseg)
-    length = np.linalg.norm(seg[1] - seg[0], axis=0)
     h = np.ptp(mesh.p[:, mesh.t], axis=1).max(axis=0)
-    keep = length > AREA_TOL * h[cell_of[mask]]
-    seg, seg_cell = seg[:, :, keep], cell_of[mask][keep]
-    seg_ref, seg_tri = piece[mask][keep], np.flatnonzero(mask)[keep]
+    long = ~_zero_length(mesh, piece, cell_of, h)       # pieces of positive length
+    own = mask & long
+    seg = np.stack([F(piece[own][:, k].T[:, :, None], tind=cell_of[own])[:, :, 0]
+                    for k in (0, 1)])                    # (2, 2, nseg)
+    seg_cell, seg_ref, seg_tri = cell_of[own], piece[own], np.flatnonzero(own)
     if seg_cell.size == 0:
         raise ValueError(f"the crack {{psi = 0, phi < 0}} meets no cell of the mesh (psi in "
                          f"[{psi.min():.3g}, {psi.max():.3g}], phi in [{phi.min():.3g}, "
@@ -386,8 +385,7 @@ def crack_geometry(mesh, psi, phi) -> CrackGeometry:
     order = np.argsort(tip_cells)
     tip_cells, tip_of_cell = tip_cells[order], tip_of_cell[order]
     tip_ref = mesh.mapping().invF(tips[:, tip_of_cell][:, :, None], tind=tip_cells)[:, :, 0]
-    split_cells = np.setdiff1d(np.unique(cell_of[split_tri & ~_zero_length(
-        mesh, piece, cell_of, h)]), tip_cells)
+    split_cells = np.setdiff1d(np.unique(cell_of[split_tri & long]), tip_cells)
 
     side = np.where(psi[mesh.t].mean(axis=0) < 0, -1, 1)
     side[split_cells] = 0
