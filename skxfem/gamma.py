@@ -303,19 +303,13 @@ class CrackXSpace(CrackXSpaceBase):
 
     space: CrackSpace
     _stiffness = staticmethod(stiffness)
+    _mass = staticmethod(crack_mass)
     _support = Support
     _supported_dofs = staticmethod(supported_dofs)
 
     @property
     def basis(self):
         return self.space.basis
-
-    def signed_mass(self, A=None):
-        """(A, M): the standard block of the crack's mass M (``A`` if given) and M itself
-        (:func:`skxfem.crack.assembly.mass`), whose enriched blocks :meth:`blocks` reads."""
-        M = crack_mass(self.space)
-        n = self.n_std
-        return (M[:n, :n] if A is None else A), M
 
     def load(self, facet_loads, body_force=None, f: np.ndarray | None = None):
         """(f, f_b): the surface loads and body force on the standard dofs (``f`` if given)

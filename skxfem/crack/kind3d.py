@@ -163,6 +163,7 @@ class CrackXSpace3D(CrackXSpaceBase):
 
     space: CrackSpace3D
     _stiffness = staticmethod(stiffness)
+    _mass = staticmethod(mass)
     _support = Support3D
     _supported_dofs = staticmethod(supported_dofs)
 
@@ -171,13 +172,6 @@ class CrackXSpace3D(CrackXSpaceBase):
         """The standard vector basis (it numbers the standard dofs as the space does)."""
         m = self.space.mesh
         return Basis(m, ElementVector(ElementTetP1()), quadrature=cell_rule(m, 0))
-
-    def signed_mass(self, A=None):
-        """(A, M): the standard block of the crack's mass M (``A`` if given) and M itself
-        (:func:`skxfem.crack.space3d.mass`, :mod:`skxfem.lbb`)."""
-        M = mass(self.space)
-        n = self.n_std
-        return (M[:n, :n] if A is None else A), M
 
     def load(self, facet_loads, body_force=None, f: np.ndarray | None = None):
         """(f, f_b): the surface loads and body force on the standard dofs (``f`` if

@@ -6,10 +6,11 @@ r"""What the 2D and 3D crack kinds' X-FEM spaces share: the methods every space 
 :func:`skxfem.enrich.stiffness`, :func:`skxfem.problem.assemble` and
 :meth:`skxfem.enrich.XSpaces.regions` ask every space (the contract in
 :mod:`skxfem.gamma`).  :class:`CrackXSpaceBase` holds those that read only the
-numbering of [a, b, c] (:mod:`skxfem.crack.dofs`) and the crack's own stiffness and
-supports, given by each kind as two class attributes:
+numbering of [a, b, c] (:mod:`skxfem.crack.dofs`) and the crack's own stiffness, mass
+and supports, given by each kind as class attributes:
 
-* ``_stiffness(space, material)``: the crack's stiffness on [a, b, c];
+* ``_stiffness(space, material)`` and ``_mass(space)``: the crack's stiffness and mass
+  on [a, b, c];
 * ``_support`` and ``_supported_dofs``: a support of the crack's harness and the
   function that turns a list of them into the constrained unknowns and their values
   (a mouth is never clamped shut).
@@ -74,6 +75,13 @@ class CrackXSpaceBase:
         K = self._stiffness(self.space, material).tocsr()
         n = self.n_std
         return (K[:n, :n] if A is None else A), K
+
+    def signed_mass(self, A=None):
+        """(A, M): the standard block of the crack's mass M (``A`` if given) and M itself
+        (:mod:`skxfem.lbb`), whose enriched blocks :meth:`blocks` reads."""
+        M = self._mass(self.space)
+        n = self.n_std
+        return (M[:n, :n] if A is None else A), M
 
     def blocks(self, A, K) -> tuple[sp.csr_matrix, sp.csr_matrix]:
         """(K_ab, K_bb): the crack stiffness' blocks of its enriched unknowns."""
