@@ -254,25 +254,20 @@ def _fronts(pb, U: np.ndarray, traction: np.ndarray, steps=()) -> tuple:
 
 
 def _body_force(pb, steps) -> object:
-    """The body force of the state U solves: the scene's, times the last step's load
-    factor, or that of the last load state (the scene of ``pb.scene.steps`` of its name;
-    a scene file's states all keep the scene's; states given to
-    :func:`skxfem.contact.solve` apart from the scene: the scene's); None: none."""
-    force = pb.scene.body_force
-    last = steps[-1].load if steps else 1.0
-    if isinstance(last, float):
-        if force is None or last == 1.0:
-            return force
-        b = force_field(force, pb.mesh.dim())
-        return lambda x: last * b(x)
-    states = [s for s in (pb.scene.steps or ()) if hasattr(s, "body_force")]
-    named = [s for s in states if s.name == last]
-    if len(named) == 1:
-        return named[0].body_force
-    if all(s.body_force is force or s.body_force == force for s in states):
+    """The body force of the state U solves: the last step's (its load factor times the
+    scene's, or its load state's, :class:`skxfem.contact.history.Step`), the scene's
+    without steps; None: none."""
+    return steps[-1].body_force if steps else pb.scene.body_force
+
+
+def scaled_force(force, factor: float, dim: int) -> object:
+    """A body force ``force`` (a scene's: numbers or formulas per component, or None)
+    times a load ``factor``: ``force`` itself at 1 or None, else a callable x ↦ factor
+    b(x) (:func:`skxfem.crack.assembly.force_field`)."""
+    if force is None or factor == 1.0:
         return force
-    raise ValueError(f"the stress intensity factors of load state {last!r} need its body "
-                     f"force: give each state of the scene's steps a name of its own")
+    b = force_field(force, dim)
+    return lambda x: factor * b(x)
 
 
 def on_edges(P: sp.spmatrix, values: np.ndarray) -> np.ndarray:

@@ -318,3 +318,21 @@ def test_load_states_keep_the_body_force_of_K(tmp_path):
     r = solve(load_scene(path))
     assert [s.load for s in r.steps] == ["first", "again"]
     assert abs(r.front[0]["K_I"][0] - 1) < 0.003 and abs(r.front[0]["K_II"][0]) < 0.003
+
+
+def test_load_states_given_apart_from_the_scene_keep_their_own_body_force(tmp_path):
+    """States given to contact.solve (not in the scene's steps): K takes the last state's
+    body force, not the scene's (without it, K_II of the Williams field is off by ~0.12)."""
+    from dataclasses import replace
+
+    from skxfem.contact import solve as contact_solve
+    from skxfem.scene.file import load_scene
+
+    path = tmp_path / "state.toml"
+    path.write_text(_scene_toml(21).replace('law = "free"', 'law = "frictionless"'))
+    loaded = load_scene(path)
+    assert loaded.body_force is not None
+    weightless = replace(loaded, body_force=None, name="weightless")
+    r = contact_solve(weightless, history=[weightless, replace(loaded, name="loaded")])
+    assert [s.load for s in r.steps] == ["weightless", "loaded"]
+    assert abs(r.front[0]["K_I"][0] - 1) < 0.003 and abs(r.front[0]["K_II"][0]) < 0.003

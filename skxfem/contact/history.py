@@ -98,7 +98,7 @@ from ..linalg.rigid import check_held
 from ..linalg.saddle import SingularSystemError
 from ..linalg.threads import limited
 from ..problem import Problem, assemble, state_loads
-from ..result import Result, on_edges, result
+from ..result import Result, on_edges, result, scaled_force
 from ..scene.laws import in_words
 from ..scene.model import Interface, Scene, check_steps, resolve
 from ..scene.settings import MAX_ITER
@@ -162,7 +162,9 @@ class Step:
     (``coulomb``, where p > 0; 0 elsewhere); ``law`` the law of the step, the
     name of each interface's (a tuple);
     ``increments`` how many increments the step took (1 unless cut); ``F`` the load
-    vector of the step (on the unknowns: its support reactions are K U - F).
+    vector of the step (on the unknowns: its support reactions are K U - F);
+    ``body_force`` the step's body force (the scene's times its load factor, or its load
+    state's; None: none), whose term the stress intensity factors hold.
     """
 
     load: object
@@ -177,6 +179,7 @@ class Step:
     law: tuple = ()
     increments: int = 1
     F: np.ndarray | None = None
+    body_force: object = None
 
 
 def parameters(item: Interface, h: float, E: float) -> Law:
@@ -214,13 +217,14 @@ def parameters(item: Interface, h: float, E: float) -> Law:
 
 @dataclass(frozen=True)
 class _State:
-    """One entry of a load history: its label, load, imposed values and the law of
-    each interface."""
+    """One entry of a load history: its label, load, imposed values, the law of each
+    interface and its body force (None: none)."""
 
     label: object
     F: np.ndarray
     g: np.ndarray
     laws: tuple[Law, ...]
+    body_force: object = None
 
 
 def _spaces(scene: Scene) -> list[str]:
@@ -279,10 +283,12 @@ def _states(scene: Scene, pb: Problem, history, hs) -> list[_State]:
                 if j.law not in HISTORY_LAWS:
                     raise ValueError(f"history[{i}]: the law of a load state must be one "
                                      f"of {HISTORY_LAWS}, got {j.law!r}")
-            out.append(_State(item.name, *_state(item, scene, pb, i), _laws(item, hs)))
+            out.append(_State(item.name, *_state(item, scene, pb, i), _laws(item, hs),
+                              item.body_force))
         elif isinstance(item, (int, float, np.integer, np.floating)) and \
                 not isinstance(item, bool) and np.isfinite(item):
-            out.append(_State(float(item), item * pb.F, item * pb.g, laws))
+            out.append(_State(float(item), item * pb.F, item * pb.g, laws,
+                              scaled_force(scene.body_force, float(item), pb.mesh.dim())))
         else:
             raise ValueError(f"history[{i}] must be a finite load factor or a Scene, "
                              f"got {item!r}")
@@ -664,7 +670,7 @@ def _step(state: _State, ops: Operators, it: Iterate, res, info, pieces,
     names = tuple(law.name for law in state.laws)
     return Step(state.label, it.U.copy(), -it.lam, it.r.copy(), ops.Bn @ it.U / ops.w, slip,
                 res.status, Lam, info, names, pieces,
-                np.asarray(state.F))
+                np.asarray(state.F), state.body_force)
 
 
 def semi_multiplier(r: np.ndarray, mu: np.ndarray, p: np.ndarray) -> np.ndarray:
