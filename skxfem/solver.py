@@ -142,13 +142,8 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
     settings = p.scene.solver.override(linear, linear_tol)
-    linear = choose_linear(settings.linear, p.mesh.dim(), p.V.N)
-    if settings.linear == "auto" and any(not q.V.splits and q.P.shape[1]
-                                         for q in p.interfaces):
-        # a tie on a crack's faces: projected CG stalls even with the crack's block
-        # scaling (5.5e-7 on skxfem.studies.cracks3d.pressed_slab(21, 3, "bonded")),
-        # so auto takes the direct solve
-        linear = "direct"
+    linear = choose_linear(settings.linear, p.mesh.dim(), p.V.N,
+                           any(not q.V.splits and q.P.shape[1] for q in p.interfaces))
     linear_tol = settings.linear_tol
     mesh, V, B, D = p.mesh, p.V, p.B, p.D
     t0 = time.perf_counter()

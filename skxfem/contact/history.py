@@ -375,12 +375,8 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     ops = operators(pb)
     hs = tuple(o.h for o in ops.pieces)
     states = _states(scene, pb, scene.steps if history is None else history, hs)
-    linear = choose_linear(settings.linear, pb.mesh.dim(), pb.V.N)
-    if settings.linear == "auto" and any(not q.V.splits for q in pb.interfaces):
-        # a crack: the tie's iterative step has no block scaling of its enriched nodes
-        # (skxfem.linalg.blocks), and projected CG stalls (at 5e-3 on the inclined crack
-        # of skxfem.studies.cracks3d, 8 592 unknowns): auto takes the direct solve
-        linear = "direct"
+    linear = choose_linear(settings.linear, pb.mesh.dim(), pb.V.N,
+                           any(not q.V.splits for q in pb.interfaces))
     linear_tol = settings.linear_tol
     modes = rigid_modes(pb.V)
     t0 = time.perf_counter()

@@ -32,10 +32,14 @@ Measured (one run): a bonded block in uniform compression, 5 × 20 × 20
 hexahedra, λ exact to 3.7e-10 at 1e-10 (36 CG iterations, 4.1 s), 1.8e-12 at
 1e-12 (43, 4.6 s), 2.9e-13 at 1e-13 (46, 5.0 s); the direct solve 3.5e-14."""
 
-def choose_linear(method: str, dim: int, n_unknowns: int) -> str:
+def choose_linear(method: str, dim: int, n_unknowns: int, crack_multipliers: bool = False) -> str:
     """The linear solve ``method`` resolves to for ``n_unknowns`` in ``dim`` D:
     ``auto`` is ``iterative`` from :data:`AUTO_ITERATIVE` unknowns if pyamg is
-    there.
+    there, and ``direct`` whatever the size where multipliers (contact, a tie) live on
+    a crack's faces (``crack_multipliers``): projected CG stalls there even with the
+    crack's block scaling (:mod:`skxfem.linalg.blocks`; at 5e-3 on the inclined crack
+    of :mod:`skxfem.studies.cracks3d`, 8 592 unknowns, and 5.5e-7 on
+    ``pressed_slab(21, 3, "bonded")``).
 
     Raises
     ------
@@ -46,7 +50,7 @@ def choose_linear(method: str, dim: int, n_unknowns: int) -> str:
         raise ValueError(f"linear must be one of {LINEAR}, got {method!r}")
     if method != "auto":
         return method
-    big = n_unknowns >= AUTO_ITERATIVE[dim]
+    big = n_unknowns >= AUTO_ITERATIVE[dim] and not crack_multipliers
     return "iterative" if big and importlib.util.find_spec("pyamg") else "direct"
 
 
