@@ -75,6 +75,7 @@ from skfem import Basis, ElementVector
 from skfem.assembly import CellBasis
 
 from ..fem.quadrature import cell_rule
+from ..linalg.blocks import block_scaling
 from .branch import branch, branch_local_gradient
 from .dofs import EnrichedUnknowns, virtual_map
 from .geometry import AREA_TOL, CrackGeometry, check_geometry, check_mesh_2d
@@ -369,19 +370,7 @@ def nodal_scaling(K: sp.spmatrix, space: EnrichedUnknowns, kind: str | None = "b
     B = space.branch_blocks()                              # (nb, 5 d)
     if fixed is not None and len(fixed):
         B = B[~np.isin(B, fixed).any(axis=1)]
-        if B.shape[0] == 0:
-            return sp.diags(s).tocsr()
-    k = B.shape[1]
-    blocks = np.asarray(K[B[:, :, None].repeat(k, 2).ravel(),
-                          B[:, None, :].repeat(k, 1).ravel()]).reshape(-1, k, k)
-    L = np.linalg.cholesky(blocks)
-    Sb = np.transpose(np.linalg.inv(L), (0, 2, 1))        # L⁻ᵀ: Sbᵀ K_b Sb = I
-    inb = np.zeros(N, dtype=bool)
-    inb[B.ravel()] = True
-    rest = np.flatnonzero(~inb)
-    rows = np.concatenate([rest, B[:, :, None].repeat(k, 2).ravel()])
-    cols = np.concatenate([rest, B[:, None, :].repeat(k, 1).ravel()])
-    return sp.csr_matrix((np.concatenate([s[rest], Sb.ravel()]), (rows, cols)), shape=(N, N))
+    return block_scaling(K, [B], s)[0]
 
 
 def condition_number(K: sp.spmatrix, free: np.ndarray) -> float:

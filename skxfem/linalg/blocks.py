@@ -26,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["node_blocks", "enriched_scaling"]
+__all__ = ["node_blocks", "enriched_scaling", "block_scaling"]
 
 
 def node_blocks(enr_dofs: np.ndarray, n_std: int, dim: int) -> list[np.ndarray]:
@@ -61,21 +61,35 @@ def enriched_scaling(K: sp.spmatrix, enr_dofs: np.ndarray, n_std: int, dim: int,
                      fixed: np.ndarray | None = None) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """(S, S⁻¹): the block scaling of the module notes (identity off the enriched
     nodes' blocks and on the blocks holding an unknown of ``fixed``, indices)."""
+    blocks = node_blocks(enr_dofs, n_std, dim)
+    if fixed is not None and len(fixed):
+        blocks = [B[~np.isin(B, fixed).any(axis=1)] for B in blocks]
+    return block_scaling(K, blocks, np.ones(K.shape[0]))
+
+
+def block_scaling(K: sp.spmatrix, blocks, diagonal: np.ndarray
+                  ) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """(S, S⁻¹): S = L⁻ᵀ on each block of unknowns (rows of the arrays ``blocks``, each
+    (nb, k)), L the Cholesky factor of K's diagonal block there (Sᵀ K S = I on it), and
+    ``diagonal`` (N,) on the unknowns in no block.
+
+    >>> S, Sinv = block_scaling(sp.diags([4.0, 9.0, 16.0]), [np.array([[0, 1]])],
+    ...                         np.full(3, 0.25))
+    >>> S.diagonal().round(4).tolist(), bool(np.allclose((S @ Sinv).toarray(), np.eye(3)))
+    ([0.5, 0.3333, 0.25], True)
+    """
     K = sp.csr_matrix(K)
     N = K.shape[0]
     rows, cols, vals, inv = [], [], [], []
     done = np.zeros(N, dtype=bool)
-    for B in node_blocks(enr_dofs, n_std, dim):
-        if fixed is not None and len(fixed):
-            B = B[~np.isin(B, fixed).any(axis=1)]
+    for B in blocks:
         if not B.shape[0]:
             continue
         k = B.shape[1]
         r = np.repeat(B, k, axis=1).ravel()
         c = np.tile(B, (1, k)).ravel()
-        blocks = np.asarray(K[r, c]).reshape(-1, k, k)
         try:
-            L = np.linalg.cholesky(blocks)
+            L = np.linalg.cholesky(np.asarray(K[r, c]).reshape(-1, k, k))
         except np.linalg.LinAlgError:
             raise ValueError("an enriched node's block of the stiffness is not positive "
                              "definite: an enriched function vanishes on its support, or "
@@ -88,7 +102,6 @@ def enriched_scaling(K: sp.spmatrix, enr_dofs: np.ndarray, n_std: int, dim: int,
     rest = np.flatnonzero(~done)
     r = np.concatenate([rest, *rows])
     c = np.concatenate([rest, *cols])
-    one = np.ones(rest.size)
-    S = sp.csr_matrix((np.concatenate([one, *vals]), (r, c)), shape=(N, N))
-    Sinv = sp.csr_matrix((np.concatenate([one, *inv]), (r, c)), shape=(N, N))
+    S = sp.csr_matrix((np.concatenate([diagonal[rest], *vals]), (r, c)), shape=(N, N))
+    Sinv = sp.csr_matrix((np.concatenate([1 / diagonal[rest], *inv]), (r, c)), shape=(N, N))
     return S, Sinv
