@@ -147,8 +147,8 @@ def main(argv: list[str] | None = None) -> int:
     shutil.rmtree(args.cache, ignore_errors=True)
     cache = get_cache(str(args.cache))
 
-    todo, start = [], time.perf_counter()
-    for page in chapters(book):
+    todo, start, pages = [], time.perf_counter(), chapters(book)
+    for page in pages:
         nb = read(page, book)
         if students is not None and not reads_solutions(nb):
             try:
@@ -181,7 +181,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"execute_book: executing {failure}", file=sys.stderr)
     print(f"execute_book: {len(todo) - len(failed)} of {len(todo)} chapters executed "
           f"({args.jobs} at a time) in {time.perf_counter() - start:.0f} s" +
-          (f", the {len(chapters(book)) - len(todo)} others reused" if students else "") +
+          (f", the {len(pages) - len(todo)} others reused" if students else "") +
           f", into {args.cache}")
     return 1 if failed else 0
 
