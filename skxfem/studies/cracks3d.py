@@ -234,9 +234,9 @@ def crack_inf_sup_3d(ns=(7, 11, 15, 21), spaces=("naive", "winner", "vital"),
     rows = []
     for n in ns:
         xf = (n // 2 + offset) / n
+        m = MeshTet1.init_tensor(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1),
+                                 np.linspace(0, 3 / n, 4))
         for name in spaces:
-            m = MeshTet1.init_tensor(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1),
-                                     np.linspace(0, 3 / n, 4))
             crack = Interface(LevelSet(lambda x: x[1] - 0.5, 3, "y - 0.5"),
                               law="bilateral" if law == "bilateral" else "frictionless",
                               space=name, enrichment_radius=radius_cells / n,
