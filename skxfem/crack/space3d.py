@@ -526,19 +526,18 @@ def mass(space: CrackSpace3D) -> sp.csr_matrix:
     if rest.size:
         basis = Basis(mesh, ElementTetP1(), elements=rest, quadrature=cell_rule(mesh, 2))
         Ms = sp.kron(p1_mass.assemble(basis), sp.identity(3), format="csr")
-    nv = space.T.shape[0]
-    Mv = sp.csr_matrix((nv, nv))
+    nv = space.T.shape[0] // 3                      # virtual nodes
+    Mn = sp.csr_matrix((nv, nv))                    # the scalar mass on them
     for cells, x, w, side in rules(space, near, plain=3):
         nc, nq = w.shape
         vals, _, vnode = functions_at(space, np.repeat(cells, nq), x.reshape(-1, 3).T,
                                       side.ravel())
         vals, vnode = vals.reshape(nc, nq, 24), vnode.reshape(nc, nq, 24)[:, 0]
         Me = np.einsum("nqa,nq,nqb->nab", vals, w, vals)          # (nc, 24, 24)
-        for c in range(3):
-            vd = 3 * vnode + c
-            Mv = Mv + sp.csr_matrix((Me.ravel(), (np.repeat(vd, 24, axis=1).ravel(),
-                                                  np.tile(vd, (1, 24)).ravel())),
-                                    shape=(nv, nv))
+        Mn = Mn + sp.csr_matrix((Me.ravel(), (np.repeat(vnode, 24, axis=1).ravel(),
+                                              np.tile(vnode, (1, 24)).ravel())),
+                                shape=(nv, nv))
+    Mv = sp.kron(Mn, sp.identity(3), format="csr")  # virtual dof 3 j + c
     T = space.T
     pad = sp.block_diag([Ms, sp.csr_matrix((space.N - space.n_std,) * 2)], format="csr")
     return (T.T @ Mv @ T + pad).tocsr()
