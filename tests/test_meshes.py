@@ -246,3 +246,16 @@ def test_read_refuses_cells_past_the_last_vertex(tmp_path):
     assert "out of bounds" not in message, message
     for words in ("broken.vtu", "1 quad cell(s)", "cell 1 uses vertex 999", "12 vertices"):
         assert words in message, message
+
+
+def test_what_meshio_says_of_an_unreadable_file_keeps_a_long_path_whole(tmp_path, capfd):
+    """meshio prints with rich, wrapped at 80 columns when the output is no terminal: a
+    path longer than that, cut by a line break, would show with a space inside it."""
+    folder = tmp_path / ("a_long_folder_name_" * 6)
+    folder.mkdir()
+    path = folder / "junk.vtu"
+    path.write_text("<VTKFile")
+    with pytest.raises(ValueError, match="could not be read by meshio") as info:
+        read(path)
+    assert f"Couldn't read file {path} as vtu" in str(info.value)
+    assert capfd.readouterr() == ("", "")

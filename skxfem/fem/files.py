@@ -133,7 +133,10 @@ def read_bytes(path, what: str, max_bytes: int) -> bytes:
 
 @contextlib.contextmanager
 def quiet() -> Iterator[io.StringIO]:
-    """Capture what is printed on stdout and stderr inside the block.
+    """Capture what is printed on stdout and stderr inside the block, unwrapped: a
+    library that formats for a terminal (meshio prints with rich, 80 columns when the
+    output is no terminal) sees one of :data:`UNWRAPPED` columns, so a long path in its
+    message stays whole.
 
     >>> with quiet() as said:
     ...     print("Error: cannot read")
@@ -141,8 +144,20 @@ def quiet() -> Iterator[io.StringIO]:
     'Error: cannot read\\n'
     """
     said = io.StringIO()
-    with contextlib.redirect_stdout(said), contextlib.redirect_stderr(said):
-        yield said
+    columns = os.environ.get("COLUMNS")
+    os.environ["COLUMNS"] = str(UNWRAPPED)
+    try:
+        with contextlib.redirect_stdout(said), contextlib.redirect_stderr(said):
+            yield said
+    finally:
+        if columns is None:
+            del os.environ["COLUMNS"]
+        else:
+            os.environ["COLUMNS"] = columns
+
+
+UNWRAPPED = 100_000
+"""The terminal width :func:`quiet` announces (``COLUMNS``) while it captures."""
 
 
 def _ours(name: str, names) -> bool:
