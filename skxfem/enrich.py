@@ -64,6 +64,7 @@ from skfem.helpers import dot
 
 from .cut import Cut
 from .fem.evaluate import evaluation_matrix
+from .fem.loads import force_field
 from .fem.material import Material, stiffness_matrix
 from .fem.quadrature import cell_rule, exact_orders
 from .fem.side_bases import Parts, parts, side_bases
@@ -444,8 +445,9 @@ def mass(V: XSpace | XSpaces) -> sp.csr_matrix:
 def body_load(V: XSpace, force) -> tuple[np.ndarray, np.ndarray]:
     """(f, f_H) of a body force b (a volume force, F/L³, such as gravity ρg) on the
     standard dofs: f = ∫ b·φ and f_H = ∫ H b·φ (exact on the enriched dofs only), for
-    :meth:`XSpace.load`.  ``force``: dim values, each a number or a callable
-    ``x -> array`` (a formula), integrated on the sides of Γ by the rule of the mass
+    :meth:`XSpace.load`.  ``force``: :func:`skxfem.fem.loads.force_field`'s (dim values,
+    each a number or a callable ``x -> array`` such as a formula), integrated on the
+    sides of Γ by the rule of the mass
     (:data:`skxfem.fem.quadrature.EXACT_ORDERS`: exact for a constant or linear b on
     affine cells).
 
@@ -458,9 +460,7 @@ def body_load(V: XSpace, force) -> tuple[np.ndarray, np.ndarray]:
     >>> float(f[V.basis.nodal_dofs[1]].sum()), float(f[V.basis.nodal_dofs[0]].sum())
     (-2.0, 0.0)
     """
-    def values(x):
-        return np.stack([np.broadcast_to(np.asarray(b(x) if callable(b) else b, dtype=float),
-                                         x.shape[1:]) for b in force])
+    values = force_field(force, V.mesh.dim())
 
     @LinearForm
     def form(v, w):

@@ -45,8 +45,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .crack.assembly import force_field
 from .enrich import region_fields
+from .fem.loads import force_field
 
 __all__ = ["Result", "result"]
 
@@ -263,7 +263,7 @@ def _body_force(pb, steps) -> object:
 def scaled_force(force, factor: float, dim: int) -> object:
     """A body force ``force`` (a scene's: numbers or formulas per component, or None)
     times a load ``factor``: ``force`` itself at 1 or None, else a callable x ↦ factor
-    b(x) (:func:`skxfem.crack.assembly.force_field`)."""
+    b(x) (:func:`skxfem.fem.loads.force_field`)."""
     if force is None or factor == 1.0:
         return force
     b = force_field(force, dim)

@@ -14,7 +14,7 @@ import pytest
 from skfem import MeshTet1
 
 from skxfem.app.cli import main
-from skxfem.crack.assembly import Load, Support, body_load, force_field
+from skxfem.crack.assembly import Load, Support, body_load
 from skxfem.crack.frame import straight_frame
 from skxfem.crack.geometry import crack_geometry
 from skxfem.crack.interaction import interaction_integrals
@@ -155,13 +155,6 @@ def test_interaction_integrals_take_b_and_q_together():
     I = interaction_integrals(x, [0.5], z, z, gq, [0, 0], f, mat, body_force=b, q=[0.8])
     aux = [near_tip(x, np.zeros(2), f, mat, k).grad_u[:, 0, 0] for k in ((1, 0), (0, 1))]
     assert np.allclose(I, [-0.5 * 0.8 * 2.0 * a[1] for a in aux], rtol=1e-14)
-
-
-def test_force_field_refuses_bad_forces():
-    with pytest.raises(ValueError, match="body force must be a callable"):
-        force_field((1.0,), 2)
-    with pytest.raises(ValueError, match="finite values of shape"):
-        force_field(lambda x: x[:1], 2)(np.zeros((2, 3)))
 
 
 # ---------------------------------------------------------------- 3D: a straight front

@@ -458,3 +458,20 @@ def test_gamma_through_nodes_splits_the_space_exactly(cell, normal):
     jump = (jump_matrix(V, cells, ref) @ U).reshape(dim, -1)
     assert np.abs(jump - (rm(x) - rp(x))).max() < 1e-12
     assert np.abs(edge_jumps(V, U) - (rm(c.points) - rp(c.points))).max() < 1e-12
+
+
+def test_body_load_refuses_a_force_of_the_wrong_length():
+    """A force with fewer components than the mesh's dimension is refused (it loaded
+    only its first components, silently)."""
+    from skfem import MeshQuad1
+
+    from skxfem.cut import cut
+    from skxfem.enrich import body_load, xfem_space
+    from skxfem.levelset import plane
+
+    m = MeshQuad1().refined(1)
+    V = xfem_space(m, cut(m, plane((0, 0.3), (0, 1))))
+    with pytest.raises(ValueError, match="body force must be a callable"):
+        body_load(V, (-2.0,))
+    f, f_H = body_load(V, (0.0, lambda x: -2.0 * np.ones_like(x[0])))
+    assert np.isclose(f[V.basis.nodal_dofs[1]].sum(), -2.0)

@@ -18,7 +18,13 @@ from skfem import (
 )
 from skfem.helpers import dot
 
-from skxfem.fem.loads import BoundaryQuadrature, boundary_quadrature, pressure, surface_load
+from skxfem.fem.loads import (
+    BoundaryQuadrature,
+    boundary_quadrature,
+    force_field,
+    pressure,
+    surface_load,
+)
 from skxfem.fem.material import Material, stiffness_form
 from skxfem.fem.meshes import box
 from skxfem.fem.quadrature import cell_rule
@@ -263,3 +269,27 @@ def test_prism_cantilever_matches_hexahedra():
     # measured: prism -0.034885, hex -0.035188 (Timoshenko beam: -0.0382)
     assert w_prism < 0 and w_hex < 0
     assert abs(w_prism / w_hex - 1) < 0.03, (w_prism, w_hex)
+
+
+# ---------------------------------------------------------------- body force fields
+
+
+def test_force_field_takes_numbers_callables_and_a_whole_field():
+    x = np.array([[0.0, 1.0, 2.0], [3.0, 4.0, 5.0]])
+    assert force_field((0.0, -9.81), 2)(x).tolist() == [[0.0] * 3, [-9.81] * 3]
+    assert force_field((lambda y: y[1], 1.0), 2)(x).tolist() == [[3.0, 4.0, 5.0], [1.0] * 3]
+    assert np.array_equal(force_field(lambda y: 2 * y, 2)(x), 2 * x)
+    # points of a basis, (dim, cells, quadrature points), keep their shape
+    xq = np.arange(12.0).reshape(2, 2, 3)
+    assert force_field((1.0, lambda y: y[0]), 2)(xq).shape == (2, 2, 3)
+
+
+def test_force_field_refuses_bad_forces():
+    with pytest.raises(ValueError, match="body force must be a callable"):
+        force_field((1.0,), 2)
+    with pytest.raises(ValueError, match="body force must be a callable"):
+        force_field((1.0, 2.0), 3)
+    with pytest.raises(ValueError, match="finite values of shape"):
+        force_field(lambda x: x[:1], 2)(np.zeros((2, 3)))
+    with pytest.raises(ValueError, match="finite values of shape"):
+        force_field((0.0, np.nan), 2)(np.zeros((2, 3)))

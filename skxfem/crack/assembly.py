@@ -60,6 +60,7 @@ from numpy.polynomial.legendre import leggauss
 from numpy.typing import ArrayLike
 from skfem import Basis
 
+from ..fem.loads import force_field
 from ..fem.material import Material, stiffness_matrix
 from ..fem.quadrature import cell_rule, exact_orders
 from .quadrature import BRANCH_ORDER, NEAR_ORDER, split_rule, tip_rule
@@ -67,7 +68,7 @@ from .space import CrackSpace, evaluation
 
 __all__ = ["FACET_POINTS", "RuleGroup", "rule_groups", "stiffness", "mass", "Support",
            "Load", "facet_pieces", "traction_load", "face_rule", "face_load",
-           "force_field", "body_load", "supported_dofs", "support_dofs", "mouth_facets",
+           "body_load", "supported_dofs", "support_dofs", "mouth_facets",
            "check_facets"]
 
 FACET_POINTS = 8
@@ -207,38 +208,12 @@ def mass(space: CrackSpace) -> sp.csr_matrix:
     return M.tocsr()
 
 
-def force_field(force, dim: int) -> Callable:
-    """A body force as ``b(x) -> (dim, n)`` at points x (dim, n): ``force`` a callable
-    of that kind, or ``dim`` values each a number or a callable ``x -> (n,)`` (a
-    scene's ``body_force``: numbers and formulas).
-
-    >>> b = force_field((0.0, lambda x: -x[0]), 2)
-    >>> b(np.array([[1.0, 2.0], [0.0, 0.0]])).tolist()
-    [[0.0, 0.0], [-1.0, -2.0]]
-    """
-    if not callable(force) and (not isinstance(force, (tuple, list, np.ndarray))
-                                or len(force) != dim):
-        raise ValueError(f"body force must be a callable x -> ({dim}, n) or {dim} values "
-                         f"(numbers or callables x -> (n,)), got {force!r:.80}")
-
-    def b(x):
-        if callable(force):
-            v = np.asarray(force(x), float)
-        else:
-            v = np.stack([np.broadcast_to(np.asarray(c(x) if callable(c) else c, float),
-                                          x.shape[1:]) for c in force])
-        if v.shape != x.shape or not np.all(np.isfinite(v)):
-            raise ValueError(f"the body force must give finite values of shape {x.shape} "
-                             f"(dim, n), got {v.shape}")
-        return v
-    return b
-
-
 def body_load(space: CrackSpace, force, order: int = 4) -> np.ndarray:
     """f = ∫ b · v over the body, on the unknowns [a, b, c]: every cell on the rules of
     :func:`rule_groups` (the tip cells on the almost-polar rule, the split cells on
     their sub-triangles, each with its side's H and θ), the plain cells at ``order``
-    (4: exact for a linear b on P1 and Q1 cells).  ``force``: :func:`force_field`'s.
+    (4: exact for a linear b on P1 and Q1 cells).  ``force``:
+    :func:`skxfem.fem.loads.force_field`'s.
 
     >>> from skfem import MeshTri1
     >>> from skxfem.crack.geometry import crack_geometry

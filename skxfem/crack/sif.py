@@ -40,8 +40,9 @@ from collections.abc import Callable
 import numpy as np
 from skfem import Basis
 
+from ..fem.loads import force_field
 from ..fem.material import Material
-from .assembly import face_rule, force_field, rule_groups
+from .assembly import face_rule, rule_groups
 from .frame import TipFrame, tip_frame
 from .interaction import CrackFace, q_function, stress_intensity
 from .radius import DOMAIN_CELLS, DOMAIN_FRACTION
@@ -157,7 +158,7 @@ def sif(space: CrackSpace, U: np.ndarray, material: Material, r_d: float | None 
     face_traction : ``(x, side) -> (2, n)`` the traction σ·m* the face of ``side``
         (+1: Ω⁺, -1: Ω⁻) carries at points x; None for a free crack.
     body_force : the body force b the solution carries
-        (:func:`skxfem.crack.assembly.force_field`: ``x -> (2, n)`` or two values);
+        (:func:`skxfem.fem.loads.force_field`: ``x -> (2, n)`` or two values);
         None: none.
     """
     U = np.asarray(U, float)

@@ -79,8 +79,8 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.polynomial.legendre import leggauss
 
+from ..fem.loads import force_field
 from ..fem.material import Material
-from .assembly import force_field
 from .frame import TipFrame, tip_frame
 from .geometry3d import barycentric, crack_geometry_3d, front_chains, front_fit
 from .interaction import sif_from_interaction
@@ -395,7 +395,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     points within 2R of its tangent line, :func:`_along`, then holds no other front);
     ``length`` L the bump's half-width (default :data:`DEFAULT_LENGTH` sizes), ``plateau``
     ρ: q_r = 1 inside ρR.  ``body_force``: the body force b the solution carries
-    (:func:`skxfem.crack.assembly.force_field`, in 3D), whose term -∫ b·uᵃ,₁ q dV
+    (:func:`skxfem.fem.loads.force_field`, in 3D), whose term -∫ b·uᵃ,₁ q dV
     (:mod:`skxfem.crack.interaction`) joins the integrand's part in q; None: none.
     ``faces``: the traction the crack's faces carry
     (:class:`skxfem.crack.faces3d.FaceTraction3D`, from a contact or a tie), its term

@@ -127,7 +127,7 @@ def solve_crack(mesh, psi, phi, material: Material, supports=(), loads=(),
         ``side`` (:func:`skxfem.crack.assembly.face_load`): loaded in the solve and in the
         SIF's face term; None: free faces.
     condition : also measure the condition number of the scaled, supported stiffness.
-    body_force : a body force b (:func:`skxfem.crack.assembly.force_field`): loaded in the
+    body_force : a body force b (:func:`skxfem.fem.loads.force_field`): loaded in the
         solve and in the SIF's body-force term; None: none.
     """
     if not isinstance(material, Material):

@@ -59,10 +59,11 @@ from numpy.polynomial.legendre import leggauss
 from numpy.typing import ArrayLike
 from skfem import Basis, ElementTetP1
 
+from ..fem.loads import force_field
 from ..fem.material import Material, stiffness_matrix
 from ..fem.quadrature import cell_rule
 from ..fem.simplex import split
-from .assembly import check_facets, force_field, support_dofs
+from .assembly import check_facets, support_dofs
 from .branch import branch, branch_local_gradient
 from .dofs import EnrichedUnknowns, virtual_map
 from .geometry import check_geometry
@@ -661,7 +662,7 @@ def body_load(space: CrackSpace3D, force, plain: int = 2) -> np.ndarray:
     """f = ∫ b · v over the body, on the unknowns [a, b, c]: every cell on the rules of
     :func:`rules` (the front cells' sub-tetrahedra on their almost-polar rules), the
     plain uncut cells with ``plain`` points per direction (2: exact for a linear b).
-    ``force``: :func:`skxfem.crack.assembly.force_field`'s, in 3D.
+    ``force``: :func:`skxfem.fem.loads.force_field`'s, in 3D.
 
     >>> from skfem import MeshTet1
     >>> from skxfem.crack.geometry3d import crack_geometry_3d

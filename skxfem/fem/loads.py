@@ -1,4 +1,5 @@
-r"""Surface loads ∫ t·v and ∫ H t·v on the boundary, for all five cell types.
+r"""Loads: surface loads ∫ t·v and ∫ H t·v on the boundary, for all five cell types, and
+a body force given as numbers or formulas made a field b(x) (:func:`force_field`).
 
 scikit-fem's ``FacetBasis`` does not support prisms, so boundary integrals
 are done here with scikit-fem's own pieces: the reference cell
@@ -40,7 +41,8 @@ from .evaluate import evaluation_matrix
 from .meshes import cell_name
 from .simplex import split
 
-__all__ = ["BoundaryQuadrature", "boundary_quadrature", "pressure", "surface_load"]
+__all__ = ["BoundaryQuadrature", "boundary_quadrature", "pressure", "surface_load",
+           "force_field"]
 
 
 @dataclass(frozen=True)
@@ -234,3 +236,30 @@ def surface_load(basis, quad: BoundaryQuadrature,
     Phi = evaluation_matrix(basis, quad.cells, quad.ref)
     wt = (t * quad.weights).ravel()
     return Phi.T @ wt, Phi.T @ (wt * np.tile(quad.side, dim))
+
+
+def force_field(force, dim: int) -> Callable:
+    """A body force as ``b(x) -> (dim, n)`` at points x (dim, n): ``force`` a callable
+    of that kind, or ``dim`` values each a number or a callable ``x -> (n,)`` (a
+    scene's ``body_force``: numbers and formulas).
+
+    >>> b = force_field((0.0, lambda x: -x[0]), 2)
+    >>> b(np.array([[1.0, 2.0], [0.0, 0.0]])).tolist()
+    [[0.0, 0.0], [-1.0, -2.0]]
+    """
+    if not callable(force) and (not isinstance(force, (tuple, list, np.ndarray))
+                                or len(force) != dim):
+        raise ValueError(f"body force must be a callable x -> ({dim}, n) or {dim} values "
+                         f"(numbers or callables x -> (n,)), got {force!r:.80}")
+
+    def b(x):
+        if callable(force):
+            v = np.asarray(force(x), float)
+        else:
+            v = np.stack([np.broadcast_to(np.asarray(c(x) if callable(c) else c, float),
+                                          x.shape[1:]) for c in force])
+        if v.shape != x.shape or not np.all(np.isfinite(v)):
+            raise ValueError(f"the body force must give finite values of shape {x.shape} "
+                             f"(dim, n), got {v.shape}")
+        return v
+    return b
