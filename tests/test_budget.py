@@ -222,3 +222,47 @@ def test_14_a_size_below_one_byte_is_refused_in_the_users_terms():
                                              r"without a unit is in bytes"):
             parse_bytes(text)
     assert parse_bytes("1") == 1 and parse_bytes("0.5K") == 512
+
+
+@pytest.mark.parametrize("enrichment", ["geometric", "topological"])
+@pytest.mark.parametrize("law", ["free", "frictionless"])
+def test_a_crack_counts_its_branch_unknowns(enrichment, law):
+    """A crack's branch functions (4 × dim unknowns per node near the front) are in the
+    bound; ``free`` has no multipliers (before: no branch unknown counted, 2 × 61
+    multipliers for ``free``)."""
+    from skxfem.fem.material import Material
+    from skxfem.scene import Interface, SurfaceLoad
+
+    crack = Interface(plane((0, 0.5), (0, 1)), law=law, front=plane((0.5, 0), (1, 0)),
+                      enrichment=enrichment)
+    s = Scene(Box((20, 21), "tri"), interfaces=(crack,), material=Material(1.0, 0.3),
+              displacements=(clamped("ymin"),),
+              loads=(SurfaceLoad("ymax", traction=(0.0, 1.0 if law == "free" else -1.0)),))
+    from_box = estimate(s)
+    from_mesh = estimate(dataclasses.replace(s, mesh=resolve_mesh(s)))
+    r = solve(s)
+    for e in (from_box, from_mesh):
+        assert r.n_dofs <= e.n_dofs <= 2 * r.n_dofs
+        assert r.n_multipliers + r.removed <= e.n_multipliers
+        assert (e.n_multipliers == 0) == (law == "free")
+
+
+def test_a_3d_crack_counts_its_tube_and_auto_resolves_as_the_solve():
+    """The edge crack of benchmarks/crack_solve.py at n = 8 (9 990 unknowns, the branch
+    functions within r_e = 4 front cells): bounded within 1.5 times; with contact on its
+    faces ``auto`` is the direct solve, as :func:`skxfem.solve` takes it."""
+    from skxfem.fem.material import Material
+    from skxfem.scene import Displacement, Interface, SurfaceLoad
+
+    def scene(law):
+        crack = Interface(plane((0.5, 0.5, 0.5), (0, 0, 1)), law=law,
+                          front=plane((0.5, 0, 0), (1, 0, 0)))
+        return Scene(Box((8, 8, 9), "tet"), interfaces=(crack,), material=Material(1.0, 0.3),
+                     displacements=(Displacement("zmin", {"x": 0.0, "y": 0.0, "z": 0.0}),),
+                     loads=(SurfaceLoad("zmax", traction=(0.0, 0.0, 1.0)),))
+
+    e = estimate(scene("free"), "auto")
+    assert e.linear == "iterative" and e.n_multipliers == 0
+    r = solve(scene("free"), linear="auto")
+    assert r.n_dofs == 9990 and r.n_dofs <= e.n_dofs <= 1.5 * r.n_dofs
+    assert estimate(scene("frictionless"), "auto").linear == "direct"

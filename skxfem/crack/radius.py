@@ -44,7 +44,7 @@ from collections.abc import Callable
 import numpy as np
 
 __all__ = ["ENRICHMENTS", "DIAMETER_FRACTION", "DOMAIN_CELLS", "DOMAIN_FRACTION",
-           "default_enrichment_radius", "enrichment_radius"]
+           "default_radius", "default_enrichment_radius", "enrichment_radius"]
 
 ENRICHMENTS = ("topological", "geometric")
 """The enrichments of a crack's space: the front cells' nodes, or also those within r_e."""
@@ -63,17 +63,26 @@ h = 1/21 (triangles, mode I): r_e = 0.141 with a 4-cell domain (r_d = 0.19 > r_e
 +1.0 %; r_e = 0.283, r_d = 0.75 r_e +0.24 %."""
 
 
-def default_enrichment_radius(mesh, h: float) -> float:
-    """The default r_e = max(f_d D, n_d h / 0.75) on ``mesh`` (module notes), ``h`` the
-    size of the front's cells: in 2D the largest extent of a tip cell, in 3D their mean
-    size across the front (:func:`skxfem.crack.sif3d.front_sizes`)."""
-    dim = mesh.dim()
+def default_radius(dim: int, diameter: float, h: float) -> float:
+    """The default r_e = max(f_d D, n_d h / 0.75) in ``dim`` D (module notes), D the
+    mesh's ``diameter`` and ``h`` the size of the front's cells.
+
+    >>> round(default_radius(3, 3 ** 0.5, 1 / 16), 4)
+    0.25
+    """
     if dim not in DIAMETER_FRACTION:
         raise ValueError(f"mesh must be 2D or 3D, got {dim}D")
     if not (np.isfinite(h) and h > 0):
         raise ValueError(f"h must be a positive cell size, got {h!r}")
-    D = float(np.linalg.norm(np.ptp(mesh.p, axis=1)))
-    return max(DIAMETER_FRACTION[dim] * D, DOMAIN_CELLS[dim] * float(h) / DOMAIN_FRACTION)
+    return max(DIAMETER_FRACTION[dim] * diameter,
+               DOMAIN_CELLS[dim] * float(h) / DOMAIN_FRACTION)
+
+
+def default_enrichment_radius(mesh, h: float) -> float:
+    """:func:`default_radius` on ``mesh``, ``h`` the size of the front's cells: in 2D the
+    largest extent of a tip cell, in 3D their mean size across the front
+    (:func:`skxfem.crack.sif3d.front_sizes`)."""
+    return default_radius(mesh.dim(), float(np.linalg.norm(np.ptp(mesh.p, axis=1))), h)
 
 
 def enrichment_radius(mesh, enrichment: str, radius: float | None,

@@ -23,6 +23,19 @@ The counts are upper bounds:
 With several interfaces (``Scene(interfaces=...)``) each is counted so, its
 enriched nodes and its multipliers (with its own law) added to the others'.
 
+A crack (an interface with a ``front``) counts as the whole surface ψ = 0 (its
+Heaviside nodes and crossed edges are a part of those), no multiplier for the law
+``free``, and 4 × dim branch unknowns on each node within r_e plus a cell's diameter of
+the front (:func:`~skxfem.studies.counts.box_front_nodes`; r_e the interface's
+``enrichment_radius`` or the default rule :func:`skxfem.crack.radius.default_radius`
+with h a cell's diameter, 0 for topological enrichment).  ``auto`` then resolves as
+the solve does: direct wherever multipliers live on a crack's faces
+(:func:`skxfem.linalg.choice.choose_linear`).  On the cube of
+``benchmarks/crack_solve.py`` (tetrahedra, law ``free``) the unknowns' bound is 1.26
+and 2.04 times the solve's at n = 8 and 12 (12 636 against 9 990, 35 880 against
+17 550); before, it counted no branch unknown (2 916 and 8 112: below the solve's,
+so no bound) but 867 and 1 875 multipliers, and chose the direct solve at n = 8.
+
 ψ is evaluated at the nodes in slabs of about 10⁶ points, so the guard itself
 stays small.  The memory depends on the linear solver that will run
 (:func:`skxfem.linalg.choice.choose_linear`, for ties and contact alike).
@@ -59,11 +72,19 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..contact.laws import CONTACT_LAWS
+from ..crack.radius import default_radius
 from ..fem.meshes import CELLS, cell_name
 from ..fem.quadrature import cell_rule
 from ..linalg.choice import choose_linear
 from ..scene.model import Box, Resolved, Scene, check_scene, resolve
-from .counts import NVERTS, box_counts, box_size, mesh_counts
+from .counts import (
+    NVERTS,
+    box_counts,
+    box_front_nodes,
+    box_size,
+    mesh_counts,
+    mesh_front_nodes,
+)
 
 __all__ = ["DEFAULT_MAX_BYTES", "Estimate", "TooLargeError", "check", "estimate",
            "parse_bytes", "format_bytes", "format_count"]
@@ -219,28 +240,56 @@ def estimate(scene: Scene, linear: str | None = None) -> Estimate:
     items = check_scene(scene).interfaces
     linear = scene.solver.linear if linear is None else linear
     if mesh is None and isinstance(scene.mesh, Box):
-        counts, cell = [box_counts(scene.mesh, i.levelset) for i in items], scene.mesh.cell
+        box = scene.mesh
+        size = box.size or (1.0,) * box.dim
+        D, hd = np.linalg.norm(size), np.linalg.norm(np.divide(size, box.n))
+        counts, cell = [box_counts(box, i.levelset) for i in items], box.cell
+        branch = [0 if i.front is None else box_front_nodes(
+            box, i.levelset, i.front, _branch_radius(i, box.dim, D, hd)) for i in items]
     else:
         mesh = resolve(scene).mesh if mesh is None else mesh
         counts, cell = [mesh_counts(mesh, i.levelset) for i in items], cell_name(mesh)
+        D = np.linalg.norm(np.ptp(mesh.p, axis=1))
+        hd = _longest_edge(mesh)
+        branch = [0 if i.front is None else mesh_front_nodes(
+            mesh, i.levelset, i.front, _branch_radius(i, mesh.dim(), D, hd)) for i in items]
     return _estimate(scene, linear, *counts[0][:2], [c[2] for c in counts],
-                     [c[3] for c in counts], cell)
+                     [c[3] for c in counts], cell, branch)
 
 
-def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell) -> Estimate:
-    """The :class:`Estimate` of ``scene`` from its counts (enriched nodes and cut
-    edges: one count per interface)."""
+def _longest_edge(mesh) -> float:
+    """The longest edge of ``mesh``'s cells (a bound of a cell's size)."""
+    edges = mesh.facets if mesh.dim() == 2 else mesh.edges
+    return float(np.max(np.linalg.norm(np.diff(mesh.p[:, edges], axis=1)[:, 0], axis=0)))
+
+
+def _branch_radius(interface, dim: int, D: float, hd: float) -> float:
+    """Up to which distance from a crack's front its nodes get branch functions: r_e
+    (the interface's or :func:`skxfem.crack.radius.default_radius`, 0 when topological)
+    plus a cell's diameter ``hd`` (the nodes of the cells the front or r_e reaches)."""
+    if interface.enrichment == "topological":
+        return hd
+    r = interface.enrichment_radius
+    return (default_radius(dim, float(D), float(hd)) if r is None else r) + hd
+
+
+def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell,
+              n_branch=None) -> Estimate:
+    """The :class:`Estimate` of ``scene`` from its counts (enriched nodes, cut edges
+    and a crack's branch nodes: one count per interface)."""
     dim = scene.dim
     items = scene.interfaces
-    n_enr = dim * sum(n_enr_nodes)
+    n_branch = [0] * len(items) if n_branch is None else n_branch
+    n_enr = dim * sum(n_enr_nodes) + 4 * dim * sum(n_branch)
     n_dofs = dim * n_nodes + n_enr
-    m = sum((1 if i.law == "bilateral" else dim) * e  # contact: λ_n and friction
-            for i, e in zip(items, n_edges, strict=True))
+    m = sum((0 if i.law == "free" else 1 if i.law == "bilateral" else dim) * e
+            for i, e in zip(items, n_edges, strict=True))   # contact: λ_n and friction
     laws = ["frictionless" if i.law == "coulomb" and i.friction == 0 else i.law
             for i in items]
     law = ("coulomb" if "coulomb" in laws else
            next((x for x in laws if x in CONTACT_LAWS), laws[0]))
-    chosen = choose_linear(linear, dim, n_dofs)
+    on_crack = any(i.front is not None and i.law != "free" for i in items)
+    chosen = choose_linear(linear, dim, n_dofs, on_crack)
     if chosen == "iterative":
         per = (CONTACT_ITERATIVE_BYTES if law in CONTACT_LAWS else ITERATIVE_BYTES)[dim]
         per += KRYLOV_BYTES if law == "coulomb" else 0

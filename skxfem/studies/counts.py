@@ -8,6 +8,15 @@ slabs of about 10⁶ points; a mesh is counted from its arrays.
 >>> from skxfem.levelset import plane
 >>> box_counts(Box(2, "quad"), plane((0, 0.4), (0, 1)))   # nodes, cells, enriched, cut edges
 (9, 4, 6, 3)
+
+A crack's branch functions go to the nodes near its front {ψ = 0, φ = 0}
+(:mod:`skxfem.crack.radius`); :func:`box_front_nodes` and :func:`mesh_front_nodes` count
+the nodes where √(ψ² + φ²) ≤ r, the distance to the front when ψ and φ measure the
+distances to two crossing surfaces (as :mod:`skxfem.levelset`'s planes, spheres and
+cylinders do; a level set that grows faster than the distance gives fewer nodes).
+
+>>> box_front_nodes(Box(4, "tri"), plane((0, 0.5), (0, 1)), plane((0.5, 0), (1, 0)), 0.3)
+5
 """
 from __future__ import annotations
 
@@ -20,7 +29,8 @@ from ..fem.cells import CELL_TYPES
 from ..levelset import nodal_values
 from ..scene.model import Box
 
-__all__ = ["box_counts", "box_size", "mesh_counts", "NVERTS", "PER_CUBE"]
+__all__ = ["box_counts", "box_size", "mesh_counts", "box_front_nodes", "mesh_front_nodes",
+           "NVERTS", "PER_CUBE"]
 
 # vertices per cell, cells per hypercube of a Box, edge directions of a Box
 NVERTS = {name: c.nverts for name, c in CELL_TYPES.items()}
@@ -45,21 +55,32 @@ def box_size(box: Box) -> tuple[int, int]:
     return (math.prod(k + 1 for k in box.n), PER_CUBE[box.cell] * math.prod(box.n))
 
 
-def box_counts(box: Box, levelset) -> tuple[int, int, int, int]:
-    """Nodes, cells, enriched-node bound and cut-edge bound of a Box, slab by slab."""
+def _slabs(box: Box):
+    """The Box's nodes in slabs of about 10⁶: (a, b, x), x (dim, b - a + 1, ...) the
+    nodes a..b along the first axis (those of the cell layers a..b - 1)."""
     n = box.n
     size = box.size or (1.0,) * box.dim
     grid = [np.linspace(0.0, L, k + 1) for k, L in zip(n, size)]
+    step = max(1, _CHUNK // (box_size(box)[0] // (n[0] + 1)))
+    for a in range(0, n[0], step):
+        b = min(a + step, n[0])
+        yield a, b, np.stack(np.meshgrid(grid[0][a:b + 1], *grid[1:], indexing="ij"))
+
+
+def _on(levelset, x: np.ndarray) -> np.ndarray:
+    """A level set at the points x (dim, ...), in x's shape without its first axis."""
+    return np.asarray(levelset(x.reshape(x.shape[0], -1)), dtype=float).reshape(x.shape[1:])
+
+
+def box_counts(box: Box, levelset) -> tuple[int, int, int, int]:
+    """Nodes, cells, enriched-node bound and cut-edge bound of a Box, slab by slab."""
+    n = box.n
     n_nodes, n_cells = box_size(box)
-    layer = n_nodes // (n[0] + 1)
-    step = max(1, _CHUNK // layer)
     carry = np.zeros([k + 1 for k in n[1:]], dtype=bool)
     enriched = edges = 0
     corners = list(itertools.product((0, 1), repeat=box.dim))
-    for a in range(0, n[0], step):
-        b = min(a + step, n[0])                           # cells a..b-1, nodes a..b
-        x = np.stack(np.meshgrid(grid[0][a:b + 1], *grid[1:], indexing="ij"))
-        psi = np.asarray(levelset(x.reshape(box.dim, -1)), dtype=float).reshape(x.shape[1:])
+    for a, b, x in _slabs(box):                           # cells a..b-1, nodes a..b
+        psi = _on(levelset, x)
         s = np.sign(psi)
         cube = [s[tuple(slice(o, o + k) for o, k in zip(c, (b - a,) + n[1:]))]
                 for c in corners]
@@ -91,3 +112,26 @@ def mesh_counts(mesh, levelset) -> tuple[int, int, int, int]:
     n_cut_edges = int(np.sum(s[edges[0]] * s[edges[1]] <= 0))
     return int(mesh.nvertices), int(mesh.nelements), int(np.unique(mesh.t[:, cut]).size), \
         n_cut_edges
+
+
+def box_front_nodes(box: Box, levelset, front, radius: float) -> int:
+    """The nodes of a Box within ``radius`` of the front {ψ = 0, φ = 0} (√(ψ² + φ²) ≤
+    ``radius``, module notes), slab by slab."""
+    count = 0
+    for a, b, x in _slabs(box):
+        x = x if b == box.n[0] else x[:, :-1]             # each node once
+        count += int(np.sum(np.hypot(_on(levelset, x), _on(front, x)) <= radius))
+    return count
+
+
+def mesh_front_nodes(mesh, levelset, front, radius: float) -> int:
+    """The nodes of a built mesh within ``radius`` of the front (module notes).
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.levelset import plane
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 5), np.linspace(0, 1, 5))
+    >>> mesh_front_nodes(m, plane((0, 0.5), (0, 1)), plane((0.5, 0), (1, 0)), 0.3)
+    5
+    """
+    d = np.hypot(nodal_values(levelset, mesh), nodal_values(front, mesh))
+    return int(np.sum(d <= radius))
