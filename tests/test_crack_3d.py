@@ -110,6 +110,26 @@ def test_front_fit_gives_the_tangent_and_curvature_of_a_circle_and_a_line():
         front_fit(g, P, 0.0)
 
 
+def test_front_offset_is_the_distance_to_the_p1_front_and_its_direction():
+    """On a penny's P1 front: the distance of front_offset equals that to the nearest of
+    all the segments (brute force, :func:`skxfem.crack.space3d.front_distance`) to
+    rounding, and the foot x - d n lies on the front (its own distance zero).  sif_3d's
+    x₁ (sif3d.front_coordinate) is this distance, not φ_h (P1 of ρ - a, whose rate
+    changes from cell to cell)."""
+    from skxfem.crack.geometry3d import front_offset
+    from skxfem.crack.space3d import front_distance
+    m = MeshTet1.init_tensor(*(np.linspace(-1, 1, 11),) * 3)
+    g = crack_geometry_3d(m, lambda x: x[2] - 0.05,
+                          lambda x: np.sqrt(x[0] ** 2 + x[1] ** 2) - 0.55)
+    x = np.random.default_rng(3).uniform(-0.9, 0.9, (3, 4000))
+    d, n = front_offset(g, x)
+    assert np.allclose(d, front_distance(g, x), rtol=0, atol=1e-12)
+    assert np.allclose(np.linalg.norm(n, axis=0), 1.0)
+    assert np.abs(front_offset(g, x - d * n)[0]).max() < 1e-12
+    with pytest.raises(ValueError, match="shape"):
+        front_offset(g, x[:2])
+
+
 def test_bad_input():
     with pytest.raises(ValueError, match="MeshTet1"):
         crack_geometry_3d(MeshTri1(), [0.0] * 4, [0.0] * 4)

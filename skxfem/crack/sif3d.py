@@ -28,16 +28,36 @@ Then K_I = E′I_I/2, K_II = E′I_II/2, K_III = μ I_III
 
 **Coordinates of the auxiliary fields.**  At every quadrature point the Williams fields
 (:mod:`skxfem.crack.williams`, 3D: mode III along e₃) are written in the point's own
-front frame and polar coordinates from the interpolated level sets:
-r = √(φ_h² + ψ_h²), θ = atan2(ψ_h, φ_h) (±π on the faces by the side of the point's
-sub-tetrahedron), e₂ = ∇ψ_h/|∇ψ_h|, e₁ the P1 interpolant of nodal directions made
-normal to e₂, e₃ = e₁ × e₂.  The nodal e₁ is e₂ × t, t the tangent of the front at the
-node's nearest place, fitted over a few cells (:func:`fitted_frame`,
-:func:`skxfem.crack.geometry3d.front_fit`): a smooth field, whose lines are the normal
-lines of the front (the gradient of the P1 φ_h turns from cell to cell by up to h/ρ_f,
-ρ_f the front's radius of curvature).  The same e₁ is the extension direction.
+front frame and polar coordinates r = √(x₁² + ψ_h²), θ = atan2(ψ_h, x₁) (±π on the faces
+by the side of the point's sub-tetrahedron), x₁ the signed distance to the front in the
+crack's plane (:func:`front_coordinate`: the distance of the point's projection on
+{ψ_h = 0} to the P1 front's segments, the sign of φ_h), e₂ = ∇ψ_h/|∇ψ_h|, e₁ the P1
+interpolant of nodal directions made normal to e₂, e₃ = e₁ × e₂.  The nodal e₁ is
+e₂ × t, t the tangent of the front at the node's nearest place, fitted over a few cells
+(:func:`fitted_frame`, :func:`skxfem.crack.geometry3d.front_fit`): a smooth field, whose
+lines are the normal lines of the front (the gradient of the P1 φ_h turns from cell to
+cell by up to h/ρ_f, ρ_f the front's radius of curvature).  The same e₁ is the extension
+direction, and q_r is a function of this r.
 
-**Curvature terms.**  In these curvilinear coordinates (x₁ = φ along e₁, x₂ = ψ,
+**Why x₁ and not φ_h.**  The interaction integral of a uniform state (σ constant, the
+faces carrying its traction) vanishes exactly in the curvilinear coordinates below, with
+the curvature terms (checked by an independent quadrature of the same integrand on the
+exact penny: 1e-5 of its domain and face terms, each about 0.53 σ√(πa)).  With x₁ = φ_h,
+the P1 interpolant of φ = ρ - a, it did not: on the penny pressed shut
+(:func:`skxfem.studies.cracks3d.pressed_penny`, a = 0.55, sif_radius 0.25) the exact
+state (u = (νx, νy, -z)σ/E, the faces carrying σ) left |K_I| = 2.6e-3, 1.3e-3, 3.6e-3
+σ√(πa) at h = 0.2, 0.125, 0.1, not falling with h.  ∇φ_h·e₁ ranges over 0.72 to 1.15
+from cell to cell there (0.97 to 0.98 on average, by domain or by face): the Williams
+fields' planar derivatives are then not those of the field they define, by an amount
+that the domain and the face terms do not share (each off the exact-geometry value by
+0.1 to 0.6 %, their sum by 0.2 to 0.7 %; more quadrature points changed it by 0.3e-3).
+With the distance x₁ the same exact state gives 3.5e-3, 0.7e-3, 1.0e-3: at h = 0.2
+(under three cells across a) what is left is quadrature (with 6³ and 8³ points instead
+of 5³ and 4³ on the pieces near the front, 2.0e-3 and 1.6e-3; at h = 0.1 0.4e-3 and
+0.6e-3), not a bias.  The open penny (:mod:`skxfem.studies.cracks3d`) stays within
+0.1 % of before.
+
+**Curvature terms.**  In these curvilinear coordinates (x₁ along e₁, x₂ = ψ,
 x₃ along the front, its metric h₃ = 1 + κx₁ with κ = 1/ρ_f the front's curvature in the
 crack's plane, > 0 when it bends away from e₁) the plane Williams fields are neither in
 equilibrium nor compatible: div σᵃ = (κ/h₃)(σᵃ₁₁ - σᵃ₃₃, σᵃ₁₂, 2σᵃ₁₃) and the true
@@ -82,7 +102,7 @@ from numpy.polynomial.legendre import leggauss
 from ..fem.loads import force_field
 from ..fem.material import Material
 from .frame import TipFrame, tip_frame
-from .geometry3d import barycentric, crack_geometry_3d, front_chains, front_fit
+from .geometry3d import barycentric, crack_geometry_3d, front_chains, front_fit, front_offset
 from .interaction import sif_from_interaction
 from .radius import DOMAIN_FRACTION
 from .space3d import (
@@ -100,8 +120,8 @@ from .space3d import (
 from .williams import near_tip_local
 
 __all__ = ["DEFAULT_RADIUS", "MIN_RADIUS", "DEFAULT_LENGTH", "default_radius_3d",
-           "front_points", "front_frame", "fitted_frame", "front_sizes", "boundary_reach",
-           "other_fronts", "sif_3d",
+           "front_points", "front_frame", "fitted_frame", "front_coordinate", "front_sizes",
+           "boundary_reach", "other_fronts", "sif_3d",
            "CrackSolution3D", "solve_crack_3d"]
 
 DEFAULT_RADIUS = 3.0
@@ -323,18 +343,24 @@ def _in_support(space, cells, X, R, P, e3, L):
     """Which points X (3, n) of ``cells`` can lie in the support of some q of
     :func:`sif_3d` (r < R and |s| < L for a front point; a relative margin of 1e-9): the
     others add nothing, and their fields are not computed.  Also their barycentric λ and
-    ∇λ (:func:`skxfem.crack.geometry3d.barycentric`), for :func:`point_values`."""
+    ∇λ (:func:`skxfem.crack.geometry3d.barycentric`), for :func:`point_values`, and
+    x₁ and ∇x₁ (:func:`front_coordinate`) at the points kept."""
     mesh, geo = space.mesh, space.geometry
     lam, dlam = barycentric(mesh, cells, X)
     nodes = mesh.t[:, cells].T
-    r = np.hypot((lam * geo.phi[nodes]).sum(axis=1), (lam * geo.psi[nodes]).sum(axis=1))
-    on = np.flatnonzero(r < R * (1 + 1e-9))
+    ph, ps = (lam * geo.phi[nodes]).sum(axis=1), (lam * geo.psi[nodes]).sum(axis=1)
+    # |φ_h| ≤ 1.15 x₁ measured on the penny at h = 0.2 (P1 on a curved front): 1.5 is safe
+    on = np.flatnonzero(np.hypot(ph, ps) < 1.5 * R)
     near = np.zeros(on.size, dtype=bool)
     for k in range(P.shape[1]):                           # the hats along the front
         near |= np.abs(e3[:, k] @ (X[:, on] - P[:, k, None])) < L * (1 + 1e-9)
-    keep = np.zeros(r.size, dtype=bool)
-    keep[on[near]] = True
-    return keep, lam, dlam
+    on = on[near]
+    gps = np.einsum("nk,nki->in", geo.psi[nodes[on]], dlam[on])
+    x1, gx1 = front_coordinate(geo, X[:, on], ph[on], ps[on], gps)
+    inside = np.hypot(x1, ps[on]) < R * (1 + 1e-9)
+    keep = np.zeros(ph.size, dtype=bool)
+    keep[on[inside]] = True
+    return keep, lam, dlam, x1[inside], gx1[:, inside]
 
 
 def _hat_integral(geo, P, e3, L, Rk):
@@ -371,6 +397,29 @@ def default_radius_3d(space, h: float) -> float:
     if space.enrichment == "geometric":
         return max(DOMAIN_FRACTION * space.radius, MIN_RADIUS * h)
     return DEFAULT_RADIUS * h
+
+
+def front_coordinate(geo, x: np.ndarray, phi: np.ndarray, psi: np.ndarray,
+                     grad_psi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """x₁ (n,) at points x (3, n), the signed distance to the front in the crack's
+    plane (module notes), and its gradient (3, n): the distance
+    (:func:`skxfem.crack.geometry3d.front_offset`) of the point's projection on
+    {ψ_h = 0} (along ∇ψ_h, by ψ_h/|∇ψ_h|) to the front, with the sign of φ_h (its
+    value ``phi``, ψ_h ``psi`` and ∇ψ_h ``grad_psi`` (3, n) at the points).
+
+    >>> from skfem import MeshTet1
+    >>> from skxfem.crack.geometry3d import crack_geometry_3d
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 4),) * 2, np.linspace(0, 1, 3))
+    >>> g = crack_geometry_3d(m, lambda x: x[1] - 0.5, lambda x: x[0] - 0.5)
+    >>> x1, grad = front_coordinate(g, np.array([[0.2], [0.6], [0.3]]), np.array([-0.3]),
+    ...                             np.array([0.1]), np.array([[0.0], [1.0], [0.0]]))
+    >>> x1.round(12).tolist(), (grad[:, 0] + 0.0).round(12).tolist()
+    ([-0.3], [1.0, 0.0, 0.0])
+    """
+    g2 = (grad_psi * grad_psi).sum(axis=0)
+    dist, unit = front_offset(geo, x - psi / g2 * grad_psi)
+    sign = np.where(phi < 0, -1.0, 1.0)
+    return sign * dist, sign * unit
 
 
 def _curvature_integrand(sl, gl, aux) -> np.ndarray:
@@ -436,13 +485,13 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     # plain=4: the smooth Williams fields on the ring of uncut cells (3 left |K_I| ≈
     # 1.5e-3 σ√(πa) on a crack pressed shut with its front 0.3 h past a node, 4: 1e-3)
     for cc, X, W, S in _point_chunks(rules(space, cells, plain=4)):
-        on, lam, dlam = _in_support(space, cc, X, R, P, frames.e3, L)
+        on, lam, dlam, ph, gph = _in_support(space, cc, X, R, P, frames.e3, L)
         if not on.any():
             continue
         cc, X, W, S = cc[on], X[:, on], W[on], S[on]
         pv = point_values(space, cc, X, S, barycentric_=(lam[on], dlam[on]))
         _, gu = field_at(space, U, cc, X, S, values=pv, virtual=ut)
-        ph, ps, gph, gps = pv.phi, pv.psi, pv.gphi.T, pv.gpsi.T
+        ps, gps = pv.psi, pv.gpsi.T                       # x₁ = ph, ∇x₁ = gph
         # the extension direction Q/q = e₁ₕ, the P1 interpolant of nodal e₁, and ∂ⱼe₁ₖ
         e1n = e1_nodes[pv.nodes]                          # (n, 4, 3)
         e1 = np.einsum("nk,nki->in", pv.lam, e1n)
@@ -529,8 +578,9 @@ def _face_terms(space, faces, material: Material, e1_nodes: np.ndarray,
     x, w, cells, t = x[:, keep], w[keep], cells[keep], t[:, keep]
     lam, dlam = barycentric(mesh, cells, x)
     nodes = mesh.t[:, cells].T
-    ph = (lam * geo.phi[nodes]).sum(axis=1)
     gps = np.einsum("nk,nki->in", geo.psi[nodes], dlam)
+    ph = front_coordinate(geo, x, (lam * geo.phi[nodes]).sum(axis=1),
+                          (lam * geo.psi[nodes]).sum(axis=1), gps)[0]
     e1 = np.einsum("nk,nki->in", lam, e1_nodes[nodes])
     Rf = tip_frame(e1, gps).R                             # as the domain's points
     e1_l = np.einsum("ain,in->an", Rf, e1)
