@@ -130,6 +130,24 @@ def test_front_offset_is_the_distance_to_the_p1_front_and_its_direction():
         front_offset(g, x[:2])
 
 
+def test_a_front_along_the_cells_faces_makes_every_cell_it_touches_a_front_cell():
+    """The front x = y = 1/2 at n = 21 lies on the tetrahedra's diagonal faces: the 12
+    cells whose closure meets it are front cells (φ_h on their crack polygons is 0 or
+    ±1e-17: the 6 cells ahead were left out, on the plain rule), its segments count
+    once."""
+    from skxfem.crack.geometry3d import barycentric
+    m = slab(21, 2)
+    g = crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.5)
+    z = np.linspace(0, 1, 201)[1:-1]
+    line = np.stack([0.5 + 0 * z, 0.5 + 0 * z, z])        # points of the front
+    cells = np.repeat(np.arange(m.t.shape[1]), z.size)
+    lam, _ = barycentric(m, cells, np.tile(line, m.t.shape[1]))
+    touch = np.unique(cells[(lam >= -1e-12).all(axis=1)])   # closures holding one
+    assert touch.size == 12 and set(touch) == set(g.front_cells)
+    ((pts, closed),) = front_chains(g)
+    assert not closed and np.isclose(np.linalg.norm(np.diff(pts, axis=1), axis=0).sum(), 1.0)
+
+
 def test_bad_input():
     with pytest.raises(ValueError, match="MeshTet1"):
         crack_geometry_3d(MeshTri1(), [0.0] * 4, [0.0] * 4)

@@ -97,6 +97,22 @@ def test_a_through_crack_pressed_shut_gives_K_zero_with_the_face_term(law):
         "the face term makes K vanish"
 
 
+def test_a_through_crack_pressed_shut_with_its_front_on_the_cells_faces():
+    """n = 21, front x = 1/2: the front runs along the tetrahedra's diagonal faces, and
+    the cells ahead of it share those faces.  Measured |K_I| ≤ 0.17e-3, |K_II| ≤ 0.18e-3
+    p√(πa), the last crossings' pressure 1.0003 p.  When round-off (φ_h = +1e-17 on
+    their side of the face) left those cells out of the front cells, their plain rule
+    integrated the branch functions' 1/√r gradients on their face: 0.971 p at the last
+    crossings and |K_I| = 3.2e-3 (0.4e-3 with the exact pressure)."""
+    r = solve(pressed_slab(21, 2, front=0.5))
+    (front,) = r.front
+    scale = np.sqrt(np.pi * 0.5)
+    for key in ("K_I", "K_II", "K_III"):
+        assert np.abs(front[key]).max() < 0.5e-3 * scale, key
+    p = -r.normal_traction
+    assert np.abs(p - 1).max() < 1e-3
+
+
 def test_a_penny_pressed_shut():
     """The penny a = 0.55 in [-1, 1]³ at n = 10 (h = 0.2: under three cells per radius),
     sif_radius 0.25: measured |K_I| ≤ 3.1e-3, |K_II| ≤ 1.7e-3, |K_III| ≤ 0.8e-3 p√(πa)

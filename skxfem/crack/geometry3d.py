@@ -9,8 +9,10 @@ of a ``MeshTet1`` and are linear in each tetrahedron, so that in a cell
   sign (nodal values within :data:`~skxfem.crack.geometry.ZERO` edge lengths of zero
   are set to zero);
 * φ_h is linear on that polygon: the cell is a **front cell** if φ_h takes both signs
-  (or vanishes) on it, the front crossing it along the segment {ψ_h = φ_h = 0}; a
-  **split cell** if φ_h < 0 on the whole polygon (the crack crosses it completely, or
+  (or vanishes, within 1e-9 h|∇φ_h|: a front along a face shared by two cells makes
+  both front cells, whatever the round-off of φ_h interpolated along their edges) on
+  it, the front crossing it along the segment {ψ_h = φ_h = 0}; a **split cell** if
+  φ_h < 0 on the whole polygon (the crack crosses it completely, or
   runs along one of its faces: ψ_h = 0 at three nodes); else the crack does not reach
   it (ψ_h changes sign ahead of the front).
 
@@ -259,7 +261,13 @@ def crack_geometry_3d(mesh, psi, phi) -> CrackGeometry3D:
     # ψ_h = 0 on a part of positive area of the cell's closure: it changes sign in the
     # cell, or vanishes on a whole face (a crack along mesh faces)
     crossed = ((ps < 0).any(axis=1) & (ps > 0).any(axis=1)) | ((ps == 0).sum(axis=1) == 3)
-    front = has & (lo <= 0) & (hi >= 0)
+    # φ_h at the polygon's vertices is interpolated along edges: a front along a face
+    # shared by two cells gives 0 on one side and ±1e-17 on the other.  Within the
+    # tolerance of a vertex on the front (1e-9 h |∇φ_h|, below) both are front cells,
+    # whose pieces then get the rules graded at the front
+    near = 1e-9 * np.ptp(mesh.p[:, t], axis=1).max(axis=0) \
+        * np.linalg.norm(_gradients(mesh, phi), axis=0)
+    front = has & (lo <= near) & (hi >= -near)
     split_ = crossed & (hi < 0) & ~front
     if not np.any(crossed & (lo < 0)):
         raise ValueError(f"the crack {{psi = 0, phi < 0}} crosses no cell of the mesh (psi in "
