@@ -462,8 +462,8 @@ def front_chains(geometry: CrackGeometry3D) -> list[tuple[np.ndarray, bool]]:
     return chains
 
 
-def front_fit(geometry: CrackGeometry3D, points: np.ndarray,
-              spacing: float) -> tuple[np.ndarray, np.ndarray]:
+def front_fit(geometry: CrackGeometry3D, points: np.ndarray, spacing: float,
+              chains: list | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The unit tangents t (3, m) and the curvature vectors d²x/ds² (3, m) of the front
     at the places nearest to ``points`` (3, m): the front polyline sampled at 17 equal
     arcs over [s - d, s + d] (s the point's nearest place on its chain, d = ``spacing``;
@@ -471,7 +471,8 @@ def front_fit(geometry: CrackGeometry3D, points: np.ndarray,
     fit smooths the kinks of the polyline (the chords of the P1 front cross the cells
     at any angle): t is its slope, in the direction of the chain's points; the curvature
     vector its second derivative normal to t, of size 1/ρ (ρ the radius of curvature)
-    towards the centre, zero on a straight stretch.
+    towards the centre, zero on a straight stretch.  ``chains``: the front's
+    :func:`front_chains`, if they are at hand (default: built here).
 
     >>> from skfem import MeshTet1
     >>> m = MeshTet1.init_tensor(*(np.linspace(-1, 1, 13),) * 3)
@@ -488,7 +489,7 @@ def front_fit(geometry: CrackGeometry3D, points: np.ndarray,
     tangent, curvature = np.zeros(points.shape), np.zeros(points.shape)
     best = np.full(points.shape[1], np.inf)
     sigma = np.linspace(-1.0, 1.0, 17)
-    for pts, closed in front_chains(geometry):
+    for pts, closed in front_chains(geometry) if chains is None else chains:
         if closed:
             pts = np.hstack([pts, pts[:, :1]])
         seg = np.diff(pts, axis=1)

@@ -164,14 +164,15 @@ def front_sizes(space) -> tuple[float, float]:
     return float(across), float(along)
 
 
-def front_points(space, spacing: float | None = None) -> np.ndarray:
+def front_points(space, spacing: float | None = None, chains: list | None = None
+                 ) -> np.ndarray:
     """Points (3, m) along the front where K is computed: each chain of
-    :func:`skxfem.crack.geometry3d.front_chains` sampled at equal arc lengths about
-    ``spacing`` apart (default: the mean size of the front cells), the ends of an open
-    chain excluded."""
+    :func:`skxfem.crack.geometry3d.front_chains` (``chains``, default: built here) sampled
+    at equal arc lengths about ``spacing`` apart (default: the mean size of the front
+    cells), the ends of an open chain excluded."""
     h = front_sizes(space)[1] if spacing is None else float(spacing)
     out = []
-    for pts, closed in front_chains(space.geometry):
+    for pts, closed in front_chains(space.geometry) if chains is None else chains:
         if closed:
             pts = np.hstack([pts, pts[:, :1]])
         seg = np.linalg.norm(np.diff(pts, axis=1), axis=0)
@@ -239,15 +240,17 @@ def _contract(S: np.ndarray, T: np.ndarray, G: np.ndarray) -> np.ndarray:
     return np.einsum("ijn,ikn,jkn->n", S, T, G)
 
 
-def fitted_frame(space, points: np.ndarray, spacing: float) -> tuple[TipFrame, np.ndarray]:
+def fitted_frame(space, points: np.ndarray, spacing: float,
+                 chains: list | None = None) -> tuple[TipFrame, np.ndarray]:
     """The frames at ``points`` (3, m) near the front with e₃ along the front's fitted
     tangent (:func:`skxfem.crack.geometry3d.front_fit` over ± ``spacing``), e₂ = n of
     :func:`front_frame` and e₁ = e₂ × e₃, and the front's curvature κ (m,) in the plane
     normal to e₂, positive when it bends away from e₁ (a penny's front: 1/a).  The
     tangent of the nearest front cell's level sets (:func:`front_frame`) turns with the
-    P1 chords of a curved front, by up to h/ρ; the fit does not."""
+    P1 chords of a curved front, by up to h/ρ; the fit does not.  ``chains``: the
+    front's :func:`~skxfem.crack.geometry3d.front_chains` if at hand."""
     cell = front_frame(space, points)
-    t, kvec = front_fit(space.geometry, points, spacing)
+    t, kvec = front_fit(space.geometry, points, spacing, chains)
     e3 = t * np.where((t * cell.e3).sum(axis=0) < 0, -1.0, 1.0)
     e1 = np.cross(cell.e2, e3, axis=0)
     e1 /= np.linalg.norm(e1, axis=0)
@@ -255,7 +258,7 @@ def fitted_frame(space, points: np.ndarray, spacing: float) -> tuple[TipFrame, n
     return frame, -(kvec * e1).sum(axis=0)
 
 
-def _nodal_directions(space, cells: np.ndarray, spacing: float) -> np.ndarray:
+def _nodal_directions(space, cells: np.ndarray, spacing: float, chains=None) -> np.ndarray:
     """(nverts, 3) e₁ at the nodes of ``cells`` (zero at the other nodes): e₂ × e₃ with
     e₂ the mean of the cells' n around each node and e₃ the front's fitted tangent at
     its nearest place (:func:`fitted_frame`), so that the direction field is smooth
@@ -270,7 +273,7 @@ def _nodal_directions(space, cells: np.ndarray, spacing: float) -> np.ndarray:
         np.add.at(e1, mesh.t[k, cells], fr.e1.T)
         np.add.at(e2, mesh.t[k, cells], fr.e2.T)
     nodes = np.unique(mesh.t[:, cells])
-    t, _ = front_fit(geo, mesh.p[:, nodes], spacing)
+    t, _ = front_fit(geo, mesh.p[:, nodes], spacing, chains)
     d = np.cross(e2[nodes].T, t, axis=0)
     d *= np.where((d * e1[nodes].T).sum(axis=0) < 0, -1.0, 1.0) / np.linalg.norm(d, axis=0)
     out = np.zeros((mesh.p.shape[1], 3))
@@ -293,10 +296,11 @@ def _radial(r: np.ndarray, R: float, inner: float) -> tuple[np.ndarray, np.ndarr
     return t * t * (3 - 2 * t), -6 * t * (1 - t) / (R - inner)
 
 
-def other_fronts(geo, P: np.ndarray) -> np.ndarray:
+def other_fronts(geo, P: np.ndarray, chains: list | None = None) -> np.ndarray:
     """The distance (m,) from each point P (3, m) of the front to the nearest point of
     another front (another chain of :func:`skxfem.crack.geometry3d.front_chains`, such
-    as the second front of a centre crack); inf where there is none.
+    as the second front of a centre crack); inf where there is none.  ``chains``: the
+    front's chains if at hand (default: built here).
 
     >>> from skfem import MeshTet1
     >>> from skxfem.crack.geometry3d import crack_geometry_3d
@@ -305,7 +309,7 @@ def other_fronts(geo, P: np.ndarray) -> np.ndarray:
     >>> other_fronts(g, np.array([[0.3], [0.5], [0.5]])).round(12).tolist()
     [0.4]
     """
-    chains = [c for c, _ in front_chains(geo)]
+    chains = [c for c, _ in (front_chains(geo) if chains is None else chains)]
     if len(chains) < 2:
         return np.full(P.shape[1], np.inf)
     dist = np.stack([np.linalg.norm(c[:, None] - P[:, :, None], axis=0).min(axis=1)
@@ -455,7 +459,8 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     U = np.asarray(U, float)
     if U.shape != (space.N,):
         raise ValueError(f"U must hold the {space.N} unknowns [a, b, c], got shape {U.shape}")
-    P = front_points(space) if points is None else np.asarray(points, float)
+    chains = front_chains(space.geometry)                # once: fits, points, fronts
+    P = front_points(space, chains=chains) if points is None else np.asarray(points, float)
     if P.ndim != 2 or P.shape[0] != 3:
         raise ValueError(f"points must have shape (3, m), got {P.shape}")
     h, h_along = front_sizes(space)
@@ -468,7 +473,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         raise ValueError(f"plateau must be in [0, 1), got {plateau!r}")
     mesh, geo = space.mesh, space.geometry
     spacing = max(L, 2 * h_along)
-    frames, kappa = fitted_frame(space, P, spacing)
+    frames, kappa = fitted_frame(space, P, spacing, chains)
     # the cells of every point's domain
     reach = np.hypot(R, L) + 2 * h
     d = np.linalg.norm(mesh.p[:, :, None] - P[:, None], axis=0).min(axis=1)
@@ -476,7 +481,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     cells = np.flatnonzero((d[mesh.t] <= reach).any(axis=0)
                            & (radial[mesh.t] <= R + 2 * h).any(axis=0))
     lam_, mu = material.lame(3)
-    e1_nodes = _nodal_directions(space, cells, spacing)
+    e1_nodes = _nodal_directions(space, cells, spacing, chains)
     ut = virtual_field(space, U)
     eye = np.eye(3)[:, :, None]
     xs, ws, e1s, rs, grs, x1s = [], [], [], [], [], []
@@ -492,11 +497,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         pv = point_values(space, cc, X, S, barycentric_=(lam[on], dlam[on]))
         _, gu = field_at(space, U, cc, X, S, values=pv, virtual=ut)
         ps, gps = pv.psi, pv.gpsi.T                       # x₁ = ph, ∇x₁ = gph
-        # the extension direction Q/q = e₁ₕ, the P1 interpolant of nodal e₁, and ∂ⱼe₁ₖ
-        e1n = e1_nodes[pv.nodes]                          # (n, 4, 3)
-        e1 = np.einsum("nk,nki->in", pv.lam, e1n)
-        G = np.einsum("nkj,nki->jin", pv.dlam, e1n)                   # [j, k, n]
-        Rf = tip_frame(e1, gps).R                         # (3, 3, n), continuous e₁
+        e1, G, Rf = _point_frames(e1_nodes, pv.nodes, pv.lam, pv.dlam, gps)
         bx = 0.0 if b is None else np.einsum("ain,in->an", Rf, b(X))   # in the frames
         r = np.hypot(ph, ps)
         theta = np.arctan2(ps, ph)
@@ -536,7 +537,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     if faces is not None:
         xf, wf, rf, Df = _face_terms(space, faces, material, e1_nodes, cells)
     Rk = np.minimum(np.minimum(R, boundary_reach(mesh, P, frames.e3, L)),
-                    other_fronts(geo, P) / 3)
+                    other_fronts(geo, P, chains) / 3)
     den = _hat_integral(geo, P, frames.e3, L, Rk)
     K = np.zeros((P.shape[1], 3))
     for k in range(P.shape[1]):
@@ -561,6 +562,20 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     return K
 
 
+def _point_frames(e1_nodes: np.ndarray, nodes: np.ndarray, lam: np.ndarray,
+                  dlam: np.ndarray, grad_psi: np.ndarray):
+    """The frames of points of cells with nodes ``nodes`` (n, 4), barycentric λ (n, 4)
+    and ∇λ (n, 4, 3), ∇ψ_h ``grad_psi`` (3, n), for the domain's points and the faces'
+    alike: e₁ₕ (3, n), the P1 interpolant of the nodal ``e1_nodes``
+    (:func:`_nodal_directions`; the extension direction Q/q), its gradient ∂ⱼe₁ₖ
+    [j, k, n], and R (3, 3, n), rows e₁, e₂ = ∇ψ_h/|∇ψ_h| and e₃ (e₁ₕ made normal to
+    e₂, unit)."""
+    e1n = e1_nodes[nodes]                                 # (n, 4, 3)
+    e1 = np.einsum("nk,nki->in", lam, e1n)
+    G = np.einsum("nkj,nki->jin", dlam, e1n)
+    return e1, G, tip_frame(e1, grad_psi).R
+
+
 def _face_terms(space, faces, material: Material, e1_nodes: np.ndarray,
                 cells_in: np.ndarray):
     """The faces' points x (3, n) in the domain's cells ``cells_in``, their weights (n,),
@@ -581,8 +596,7 @@ def _face_terms(space, faces, material: Material, e1_nodes: np.ndarray,
     gps = np.einsum("nk,nki->in", geo.psi[nodes], dlam)
     ph = front_coordinate(geo, x, (lam * geo.phi[nodes]).sum(axis=1),
                           (lam * geo.psi[nodes]).sum(axis=1), gps)[0]
-    e1 = np.einsum("nk,nki->in", lam, e1_nodes[nodes])
-    Rf = tip_frame(e1, gps).R                             # as the domain's points
+    e1, _, Rf = _point_frames(e1_nodes, nodes, lam, dlam, gps)   # as the domain's
     e1_l = np.einsum("ain,in->an", Rf, e1)
     t_l = np.einsum("ain,in->an", Rf, t)
     r = np.maximum(np.abs(ph), 1e-300)                    # on the faces ψ_h = 0
