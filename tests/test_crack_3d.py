@@ -148,6 +148,21 @@ def test_a_front_along_the_cells_faces_makes_every_cell_it_touches_a_front_cell(
     assert not closed and np.isclose(np.linalg.norm(np.diff(pts, axis=1), axis=0).sum(), 1.0)
 
 
+def test_front_coordinate_takes_the_side_of_the_projection_on_the_crack():
+    """φ = x - 1/2 + (y - 1/2): the surface {φ = 0} leans over the crack y = 1/2.  Above
+    the crack at (0.45, 0.6) φ = +0.05 (ahead by its sign), but the point's projection
+    (0.45, 0.5) lies 0.05 behind the front: x₁ = -0.05, ∇x₁ = e_x; ahead at (0.55, 0.4)
+    x₁ = +0.05 though φ = -0.05."""
+    from skxfem.crack.sif3d import front_coordinate
+    m = slab(10, 2)
+    g = crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.5 + (m.p[1] - 0.5))
+    x = np.array([[0.45, 0.55], [0.6, 0.4], [0.5, 0.5]])
+    x1, grad = front_coordinate(g, x, x[1] - 0.5, np.array([[1.0, 1.0], [1.0, 1.0],
+                                                             [0.0, 0.0]]),
+                                np.array([[0.0, 0.0], [1.0, 1.0], [0.0, 0.0]]))
+    assert np.allclose(x1, [-0.05, 0.05]) and np.allclose(grad, [[1, 1], [0, 0], [0, 0]])
+
+
 def test_bad_input():
     with pytest.raises(ValueError, match="MeshTet1"):
         crack_geometry_3d(MeshTri1(), [0.0] * 4, [0.0] * 4)

@@ -31,7 +31,7 @@ Then K_I = E′I_I/2, K_II = E′I_II/2, K_III = μ I_III
 front frame and polar coordinates r = √(x₁² + ψ_h²), θ = atan2(ψ_h, x₁) (±π on the faces
 by the side of the point's sub-tetrahedron), x₁ the signed distance to the front in the
 crack's plane (:func:`front_coordinate`: the distance of the point's projection on
-{ψ_h = 0} to the P1 front's segments, the sign of φ_h), e₂ = ∇ψ_h/|∇ψ_h|, e₁ the P1
+{ψ_h = 0} to the P1 front's segments, negative behind it), e₂ = ∇ψ_h/|∇ψ_h|, e₁ the P1
 interpolant of nodal directions made normal to e₂, e₃ = e₁ × e₂.  The nodal e₁ is
 e₂ × t, t the tangent of the front at the node's nearest place, fitted over a few cells
 (:func:`fitted_frame`, :func:`skxfem.crack.geometry3d.front_fit`): a smooth field, whose
@@ -359,8 +359,8 @@ def _in_support(space, cells, X, R, P, e3, L):
     for k in range(P.shape[1]):                           # the hats along the front
         near |= np.abs(e3[:, k] @ (X[:, on] - P[:, k, None])) < L * (1 + 1e-9)
     on = on[near]
-    gps = np.einsum("nk,nki->in", geo.psi[nodes[on]], dlam[on])
-    x1, gx1 = front_coordinate(geo, X[:, on], ph[on], ps[on], gps)
+    gph, gps = (np.einsum("nk,nki->in", f[nodes[on]], dlam[on]) for f in (geo.phi, geo.psi))
+    x1, gx1 = front_coordinate(geo, X[:, on], ps[on], gph, gps)
     inside = np.hypot(x1, ps[on]) < R * (1 + 1e-9)
     keep = np.zeros(ph.size, dtype=bool)
     keep[on[inside]] = True
@@ -403,26 +403,30 @@ def default_radius_3d(space, h: float) -> float:
     return DEFAULT_RADIUS * h
 
 
-def front_coordinate(geo, x: np.ndarray, phi: np.ndarray, psi: np.ndarray,
+def front_coordinate(geo, x: np.ndarray, psi: np.ndarray, grad_phi: np.ndarray,
                      grad_psi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """x₁ (n,) at points x (3, n), the signed distance to the front in the crack's
     plane (module notes), and its gradient (3, n): the distance
     (:func:`skxfem.crack.geometry3d.front_offset`) of the point's projection on
-    {ψ_h = 0} (along ∇ψ_h, by ψ_h/|∇ψ_h|) to the front, with the sign of φ_h (its
-    value ``phi``, ψ_h ``psi`` and ∇ψ_h ``grad_psi`` (3, n) at the points).
+    {ψ_h = 0} (along ∇ψ_h, by ψ_h/|∇ψ_h|) to the front, negative where the direction from
+    the front to the projection is against ∇φ_h (behind the front; ψ_h ``psi``, ∇φ_h
+    ``grad_phi`` and ∇ψ_h ``grad_psi`` (3, n) at the points).  The side is that of the
+    projection, not the sign of φ_h at the point: they differ where the surface
+    {φ_h = 0} leans on the crack's plane, and θ = atan2(ψ_h, x₁) would jump there.
 
     >>> from skfem import MeshTet1
     >>> from skxfem.crack.geometry3d import crack_geometry_3d
     >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 4),) * 2, np.linspace(0, 1, 3))
     >>> g = crack_geometry_3d(m, lambda x: x[1] - 0.5, lambda x: x[0] - 0.5)
-    >>> x1, grad = front_coordinate(g, np.array([[0.2], [0.6], [0.3]]), np.array([-0.3]),
-    ...                             np.array([0.1]), np.array([[0.0], [1.0], [0.0]]))
+    >>> x1, grad = front_coordinate(g, np.array([[0.2], [0.6], [0.3]]), np.array([0.1]),
+    ...                             np.array([[1.0], [0.0], [0.0]]),
+    ...                             np.array([[0.0], [1.0], [0.0]]))
     >>> x1.round(12).tolist(), (grad[:, 0] + 0.0).round(12).tolist()
     ([-0.3], [1.0, 0.0, 0.0])
     """
     g2 = (grad_psi * grad_psi).sum(axis=0)
     dist, unit = front_offset(geo, x - psi / g2 * grad_psi)
-    sign = np.where(phi < 0, -1.0, 1.0)
+    sign = np.where((unit * grad_phi).sum(axis=0) < 0, -1.0, 1.0)
     return sign * dist, sign * unit
 
 
@@ -593,9 +597,8 @@ def _face_terms(space, faces, material: Material, e1_nodes: np.ndarray,
     x, w, cells, t = x[:, keep], w[keep], cells[keep], t[:, keep]
     lam, dlam = barycentric(mesh, cells, x)
     nodes = mesh.t[:, cells].T
-    gps = np.einsum("nk,nki->in", geo.psi[nodes], dlam)
-    ph = front_coordinate(geo, x, (lam * geo.phi[nodes]).sum(axis=1),
-                          (lam * geo.psi[nodes]).sum(axis=1), gps)[0]
+    gph, gps = (np.einsum("nk,nki->in", f[nodes], dlam) for f in (geo.phi, geo.psi))
+    ph = front_coordinate(geo, x, (lam * geo.psi[nodes]).sum(axis=1), gph, gps)[0]
     e1, _, Rf = _point_frames(e1_nodes, nodes, lam, dlam, gps)   # as the domain's
     e1_l = np.einsum("ain,in->an", Rf, e1)
     t_l = np.einsum("ain,in->an", Rf, t)
