@@ -32,7 +32,7 @@ from .contact import history as contact
 from .contact.laws import CONTACT_LAWS
 from .linalg import iterative, saddle
 from .linalg.amg import CRACK_SMOOTHER, SMOOTHER, rigid_modes
-from .linalg.blocks import enriched_scaling
+from .linalg.blocks import congruence, enriched_scaling
 from .linalg.choice import AUTO_ITERATIVE, LINEAR, choose_linear
 from .linalg.dependent import dependencies
 from .linalg.rigid import check_held
@@ -171,7 +171,7 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
         if any(cracks):  # a crack, whatever its law: its
             # nodes' blocks scaled (skxfem.linalg.blocks), its AMG smoothed by Chebyshev
             S, Sinv = enriched_scaling(K, V.enr_dofs, V.n_std, mesh.dim(), D)
-            K, F, Bs, modes = (S.T @ K @ S).tocsr(), S.T @ F, B @ S, Sinv @ modes
+            K, F, Bs, modes = congruence(K, S, mesh.dim()), S.T @ F, B @ S, Sinv @ modes
             smoother = CRACK_SMOOTHER
         U, mu, info = iterative.solve(K, Bs, F, D, p.g, G=G, modes=modes,
                                       blocksize=mesh.dim(), bonded=p.law == "bonded",

@@ -401,9 +401,10 @@ def scaled_rows(B, s, fixed):
 
 
 def augmented(K, B, fixed, r: float):
-    """:func:`scaled_tie` and the augmented K_r = K_s + r B_nᵀB_n: s, B_n, the row scales, K_r."""
+    """:func:`scaled_tie` and the augmented K_r = K_s + r B_nᵀB_n: s, B_n, the row scales, K_r
+    (K_s itself without rows, a crack with free faces: no copy of it)."""
     s, Ks, Bn, rows = scaled_tie(K, B, fixed)
-    return s, Bn, rows, (Ks + r * (Bn.T @ Bn)).tocsr()
+    return s, Bn, rows, Ks if Bn.shape[0] == 0 else (Ks + r * (Bn.T @ Bn)).tocsr()
 
 
 def check_tie_held(K, B, fixed, modes, r: float = 3.0, rigid_tol: float = 1e-11,
