@@ -108,10 +108,11 @@ def block_scaling(K: sp.spmatrix, blocks, diagonal: np.ndarray
 
 
 def congruence(K: sp.spmatrix, S: sp.spmatrix, blocksize: int = 1) -> sp.csr_matrix:
-    """Sᵀ K S in CSR (its exact zeros dropped), by products of ``blocksize`` ×
-    ``blocksize`` blocks (the unknowns of a node, interleaved): on a 3D crack's K (6.7 M
-    nonzeros, ``benchmarks/crack_solve.py`` at n = 24) the products of 3 × 3 blocks take
-    0.29 s against 0.68 s entry by entry (one run), the same matrix to the last bit there.
+    """Sᵀ K S in canonical CSR (exact zeros dropped, rows sorted: pyamg's aggregates follow
+    the order of a row), by products of ``blocksize`` × ``blocksize`` blocks (the unknowns
+    of a node, interleaved): on a 3D crack's K (6.7 M nonzeros, ``benchmarks/crack_solve.py``
+    at n = 24) the products of 3 × 3 blocks take 0.29 s against 0.68 s entry by entry (one
+    run), the same matrix to the last bit there.
 
     >>> K = sp.csr_matrix(np.array([[4.0, 2, 0, 0], [2, 2, 0, 0], [0, 0, 9, 1], [0, 0, 1, 1]]))
     >>> S, _ = enriched_scaling(K, np.array([0, 1]), 2, 2)
@@ -128,4 +129,5 @@ def congruence(K: sp.spmatrix, S: sp.spmatrix, blocksize: int = 1) -> sp.csr_mat
         out = (sp.csr_matrix(S.T).tobsr(blocksize=b) @ sp.csr_matrix(K).tobsr(blocksize=b)
                @ sp.csr_matrix(S).tobsr(blocksize=b)).tocsr()
     out.eliminate_zeros()
+    out.sort_indices()
     return out
