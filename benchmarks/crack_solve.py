@@ -114,6 +114,9 @@ def main(argv=None) -> int:
         mid = np.argmin(np.abs(front["points"][:, 1] - 0.5))
         stages = " ".join(f"{k} {v:.2f}" for k, v in rc.timings.items()
                           if isinstance(v, float))
+        its = [r.linear_info.get("iterations") for r in (rc, rt)]
+        if any(its):                                 # CG iterations, crack / tie
+            stages += f" its {its[0]}/{its[1]}"
         print(f"{n:>4} {rc.n_dofs:>10} {rt.n_dofs + rt.n_multipliers:>9} {tc:>8.2f} "
               f"{tt:>7.2f} {tc / tt:>6.2f}  {front['K_I'][mid]:.4f}  {stages}", flush=True)
     return 0

@@ -95,21 +95,21 @@ def rigid_modes(V, sides: bool = True, centre=None, length: float = 1.0) -> np.n
                     np.array([-x[1], x[0], np.zeros_like(x[0])])]
     node_of = np.zeros(V.n_std, dtype=np.int64)
     node_of[nd.ravel()] = np.tile(np.arange(x.shape[1]), dim)
-    Z, R = _region_modes(V, motions, node_of)
+    Z, R = _region_modes(V, motions, node_of, nd)
     return Z if sides else sum(Z[:, r::R] for r in range(R))
 
 
-def _region_modes(V, motions, node_of) -> tuple[np.ndarray, int]:
+def _region_modes(V, motions, node_of, nd) -> tuple[np.ndarray, int]:
     """The motions of each region of ``V`` (:func:`rigid_modes`) and the number of
     regions R (:meth:`skxfem.enrich.XSpaces.regions`; an XSpace is the space of one
-    interface, whose regions are Ω⁻ and Ω⁺)."""
+    interface, whose regions are Ω⁻ and Ω⁺); ``nd`` the standard dofs of each node
+    (``V.basis.nodal_dofs``, which a crack's space builds anew at each call)."""
     spaces = getattr(V, "per_interface", (V,))
     patterns, node_region = V.regions()
     R = patterns.shape[0]
     # a region's signs as the bits of one number
     codes = ((patterns > 0).astype(np.int64) << np.arange(len(spaces))).sum(axis=1)
     order = np.argsort(codes)
-    nd = V.basis.nodal_dofs
     region_of = node_region[node_of]  # the region of each standard dof's node
     starts = np.cumsum([V.n_std] + [Vk.n_enr for Vk in spaces])
     far = []   # the region on the far side of interface k of each of its enriched dofs
