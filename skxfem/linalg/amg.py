@@ -208,13 +208,16 @@ def amg(A: sp.spmatrix, modes: np.ndarray | None = None, blocksize: int = 1,
     nodes lie on a line, where a rotation vanishes).  The modes are used as
     they are (pyamg's smoothing of candidates is off: rigid modes are exact).
     ``smoother``: pyamg's (name, options) of the pre- and post-smoother, the
-    same on every level (:data:`SMOOTHER`, :data:`CRACK_SMOOTHER`).
+    same on every level (:data:`SMOOTHER`, :data:`CRACK_SMOOTHER`); a Chebyshev
+    smoother only multiplies by each level's matrix, and the finest level then keeps
+    ``A`` in CSR (a V-cycle of a 3D crack's, 6.7 M nonzeros, 14.6 ms against 15.8 ms
+    with its 3 × 3 blocks, one run).
     Returns the pyamg ``MultilevelSolver``, the same for the same ``A`` at every
     run (:data:`AMG_SEED`); the global ``np.random`` state is left unchanged.
     """
     amg_module = pyamg()
-    A = sp.bsr_matrix(A, blocksize=(blocksize, blocksize)) if blocksize > 1 \
-        else sp.csr_matrix(A)
+    given = sp.csr_matrix(A)
+    A = sp.bsr_matrix(given, blocksize=(blocksize, blocksize)) if blocksize > 1 else given
     state = np.random.get_state()  # pyamg estimates spectral radii from np.random:
     try:
         for coarse in ("splu", "pinv"):
@@ -228,6 +231,8 @@ def amg(A: sp.spmatrix, modes: np.ndarray | None = None, blocksize: int = 1,
                     raise
                 continue
             ml.skxfem_coarse, ml.skxfem_smoother = coarse, smoother
+            if smoother[0] == "chebyshev":
+                ml.levels[0].A = given
             return ml
     finally:
         np.random.set_state(state)  # the caller's random numbers are left as they were
