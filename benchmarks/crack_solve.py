@@ -84,7 +84,12 @@ has 21 M nonzeros at n = 16 (2.9 s to factorise, 21 ms a solve; the branch tube 
 r_e = max(4h, 0.1 D) across, not a few cells), and the block preconditioner still needs
 47 iterations (an AMG of K_ee instead: 53, no faster than the one AMG of K).  The branch
 functions' translations as more near-null vectors: 62 iterations against 64 (n = 24),
-a coarse level 3 times larger, slower.  The enriched unknowns' small couplings dropped
+a coarse level 3 times larger, slower.  The rigid motions of the side above the crack
+(a = R at its nodes, b = R/2 on the Heaviside unknowns: what the tie's sides get) as
+more near-null vectors: all six cut the iterations to 46 (n = 24) and 57 (n = 32), but
+double the coarse level, no faster; its three translations alone to 47 and 59, in
+process time 1.74, 2.14 -> 1.75, 2.28 s (n = 24, two runs each) and 5.25, 5.55 -> 4.98,
+4.55 s (n = 32): 10 % at n = 32 at most, not kept.  The enriched unknowns' small couplings dropped
 from the smoothed matrix (below 0.01 of its unit diagonal, added to the diagonal): 125
 iterations.  Strength thresholds 0.02 to 0.25, local or block Jacobi weights of the
 prolongation, its degree-2 or energy smoothing, W-cycles, a single-precision hierarchy,
