@@ -572,7 +572,7 @@ def stiffness(space: CrackSpace3D, material: Material) -> sp.csr_matrix:
         Kv = sp.csr_matrix((nv, nv))
     T = space.T
     pad = sp.block_diag([Ks, sp.csr_matrix((space.N - space.n_std,) * 2)], format="csr")
-    return (T.T @ Kv @ T + pad).tocsr()
+    return (T.T.tocsr() @ (Kv @ T) + pad).tocsr()    # Tᵀ in CSR: no conversion per product
 
 
 def mass(space: CrackSpace3D) -> sp.csr_matrix:
