@@ -388,7 +388,8 @@ def _levels(space: CrackSpace3D) -> np.ndarray:
     return level
 
 
-def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = 1, symmetric: bool = False):
+def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS,
+          symmetric: bool = False):
     """The quadrature of ``cells`` (module notes), as batches of cells with as many points
     each: a list of (cells (nc,), x (nc, nq, 3), w (nc, nq), side (nc, nq)).  ``plain``:
     the points per direction of the collapsed rule on the cells and sub-tetrahedra
@@ -477,11 +478,12 @@ def _pack(pieces):
 
 
 def _cell_stiffness(space, cells, x, w, side, slots, pairs, lam_, mu):
-    """The 3 × 3 blocks (nc, k, 3, 3) of the stiffness of the same m virtual functions
+    """The 3 × 3 blocks (nc, np, 3, 3) of the stiffness of the same m virtual functions
     on each cell, ``slots`` (m,) their indices 6 k + kind (k the cell's node), for the
-    k pairs of functions ``pairs`` = (a (k,), b (k,)), and the virtual nodes (nc, m) of
+    np pairs of functions ``pairs`` = (a (np,), b (np,)), and the virtual nodes (nc, m) of
     the functions: block [n, p, i, j] couples component i of function a_p with component
-    j of function b_p."""
+    j of function b_p.  The cells' values by :func:`_cell_values`, ∫ ∂_i f_a ∂_j f_b by
+    one product of the (points × 3m) gradients per cell."""
     nc, nq = w.shape
     m = slots.size
     lam, dlam, g, dg = _cell_values(space, cells, x, side)
@@ -490,7 +492,7 @@ def _cell_stiffness(space, cells, x, w, side, slots, pairs, lam_, mu):
           + lam[:, :, k, None] * dg[:, :, kind]).reshape(nc, nq, 3 * m)
     A = np.matmul(np.swapaxes(Gf * w[:, :, None], 1, 2), Gf)   # ∫ ∂_i f_a ∂_j f_b
     a, b = pairs
-    A = A.reshape(nc, m, 3, m, 3)[:, a, :, b]             # (k, nc, 3, 3) [p, n, i, j]
+    A = A.reshape(nc, m, 3, m, 3)[:, a, :, b]             # (np, nc, 3, 3) [p, n, i, j]
     trace = A[..., 0, 0] + A[..., 1, 1] + A[..., 2, 2]
     Ke = lam_ * A + mu * np.swapaxes(A, 2, 3)
     for i in range(3):
