@@ -18,6 +18,7 @@ from skxfem.crack.space3d import (
     _kinds,
     _pack,
     crack_space_3d,
+    evaluation,
     field_at,
     functions_at,
     point_values,
@@ -133,8 +134,9 @@ def test_stiffness_is_the_point_by_point_sum(front, enrichment):
 
 
 def test_field_at_is_the_sum_of_the_functions():
-    """u_h and ∇u_h of field_at against the 24 functions φ_k g of functions_at with the
-    virtual coefficients ũ = T U (random U, points on both sides of the faces)."""
+    """u_h and ∇u_h of field_at (and u_h of evaluation's operator) against the 24
+    functions φ_k g of functions_at with the virtual coefficients ũ = T U (random U,
+    points on both sides of the faces)."""
     m = cube(6, 3)
     V = crack_space_3d(m, edge_crack(m, 0.53), "geometric", 0.3)
     U = np.random.default_rng(1).standard_normal(V.N)
@@ -147,6 +149,7 @@ def test_field_at_is_the_sum_of_the_functions():
         coef = ut[vnode % m.p.shape[1], vnode // m.p.shape[1]]      # by node and kind
         assert close(u.T, np.einsum("na,nac->nc", vals, coef), 1e-13)
         assert close(gu.transpose(2, 0, 1), np.einsum("naj,nac->ncj", grads, coef), 1e-13)
+        assert close((evaluation(V, c, X, S) @ U).reshape(3, -1).T, u.T, 1e-13)
 
 
 def test_smooth_rule_is_exact_to_degree_6_with_positive_weights():

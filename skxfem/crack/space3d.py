@@ -369,14 +369,14 @@ def evaluation(space: CrackSpace3D, cells, x, side=None) -> sp.csr_matrix:
     >>> (evaluation(V, np.array([0]), m.p[:, m.t[:, 0]].mean(axis=1)[:, None]) @ U).tolist()
     [0.0, 0.0, 1.0]
     """
-    vals, _, vnode = functions_at(space, cells, x, side)
-    n = vals.shape[0]
-    rows = (np.arange(3)[:, None, None] * n + np.arange(n)[None, :, None]
-            + 0 * vnode[None]).ravel()
-    cols = (3 * vnode[None] + np.arange(3)[:, None, None]).ravel()
-    data = np.broadcast_to(vals[None], (3,) + vals.shape).ravel()
-    E = sp.csr_matrix((data, (rows, cols)), shape=(3 * n, space.T.shape[0]))
-    return (E @ space.T).tocsr()
+    pv = point_values(space, cells, x, side)
+    n, nv = pv.lam.shape[0], space.mesh.p.shape[1]
+    vals = (pv.lam[:, :, None] * pv.g[:, None, :]).reshape(n, 24)      # φ_k g, 6 k + kind
+    vnode = (np.arange(6)[None, None, :] * nv + pv.nodes[:, :, None]).reshape(n, 24)
+    E = sp.csr_matrix((vals.ravel(), vnode.ravel(), np.arange(0, 24 * n + 1, 24)),
+                      shape=(n, 6 * nv))                  # the scalar values, 24 a row
+    T = space.T                                           # virtual dof 3 vnode + c
+    return sp.vstack([E @ T[c::3] for c in range(3)], format="csr")
 
 
 def _levels(space: CrackSpace3D) -> np.ndarray:
