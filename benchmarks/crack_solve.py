@@ -109,7 +109,8 @@ front cells on the symmetric rule of order 6 (24 points, not 64;
 branch functions' trigonometry once per point, the blocks on the upper half only.
 Assembly stage 1.48 -> 0.79 s (n = 16), 2.79 -> 1.67 s (n = 24); crack 4.22 -> 3.32 s,
 7.92 -> 6.43 s against the tie's 0.44 / 0.42 and 1.52 / 1.50 s: ratios 9.6 -> 7.9 and
-5.2 -> 4.3.  A second pair under a heavier load (the tie's time moved by up to 25 %
+5.2 -> 4.3 (a later pair, the load lower: 9.5 -> 7.9 and 4.75 -> 3.99, assembly 1.53 ->
+0.82 and 2.68 -> 1.71 s).  A second pair under a heavier load (the tie's time moved by up to 25 %
 between the runs, so the ratios less sure): assembly 1.95 -> 0.77, 4.01 -> 2.28, 8.47 ->
 5.79 s at n = 16, 24, 32, ratios 8.2 -> 5.8, 5.4 -> 3.9, 5.9 -> 3.9.  K_I at mid-front
 3.6472, 3.7028 (3.7027 before: the stiffness's quadrature), 3.7361.  K along the front
