@@ -101,6 +101,24 @@ energy is 8e-14 of the solution's after 40 of the 64 iterations.  The target (â‰
 not met: the crack's solve is now about the tie's whole time; what is left is its
 assembly and K along the front.
 
+The crack's assembly (``--linear auto``; main, then the branch, one run each, the
+machine busy): the stiffness takes the cells of the branch nodes' supports away from the
+front cells on the symmetric rule of order 6 (24 points, not 64;
+:data:`skxfem.crack.space3d.SMOOTH_ORDER`: its energy error there 1.7e-6 against
+-2.4e-5), the vertex pieces on (4, 5) points, the cells' values once per cell, the
+branch functions' trigonometry once per point, the blocks on the upper half only.
+Assembly stage 1.48 -> 0.79 s (n = 16), 2.79 -> 1.67 s (n = 24); crack 4.22 -> 3.32 s,
+7.92 -> 6.43 s against the tie's 0.44 / 0.42 and 1.52 / 1.50 s: ratios 9.6 -> 7.9 and
+5.2 -> 4.3 (a later pair, the load lower: 9.5 -> 7.9 and 4.75 -> 3.99, assembly 1.53 ->
+0.82 and 2.68 -> 1.71 s).  A second pair under a heavier load (the tie's time moved by up to 25 %
+between the runs, so the ratios less sure): assembly 1.95 -> 0.77, 4.01 -> 2.28, 8.47 ->
+5.79 s at n = 16, 24, 32, ratios 8.2 -> 5.8, 5.4 -> 3.9, 5.9 -> 3.9.  K_I at mid-front
+3.6472, 3.7028 (3.7027 before: the stiffness's quadrature), 3.7361.  K along the front
+keeps its rules (on the symmetric rule its quadrature error reached 1.1e-3 at n = 24,
+against 4.8e-4); at n = 24, profiled, it takes 2.2 s of 6.0, mostly the interaction
+integral's own integrand (the Williams fields, the frames), the solve 1.9 s, the
+stiffness 1.1 s.
+
     python benchmarks/crack_solve.py                 # n = 8, 12
     python benchmarks/crack_solve.py --sizes 8 --repeat 3
 """
