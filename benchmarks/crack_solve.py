@@ -53,6 +53,72 @@ of two symmetric ones, :data:`skxfem.linalg.amg.SMOOTHER`) cut it 5.2 -> 4.2 s a
 (K_I the same to 1e-13), but the tie's solve as well (1.6 -> 1.3 s): the ratio barely
 moves.
 
+The crack's linear solve, one run each, main then after (``--linear auto``, the machine
+shared with two other heavy jobs: the times swing by up to 1.5x from run to run, compare
+within a run).  The crack's K holds 15 unknowns at each branch node: 6.7 M nonzeros at
+n = 24, 3.4 times the tie's, and pyamg's symmetric block Gauss-Seidel smoother swept it
+several times slower than a product with it.  Now the crack's hierarchy is smoothed by a
+Chebyshev polynomial of degree 2 (:data:`skxfem.linalg.amg.CRACK_SMOOTHER`; the tie keeps
+its smoother), CG applies the V-cycle without pyamg's two residual norms on the finest
+level (:func:`skxfem.linalg.amg.vcycle`, the same numbers to the bit, for the tie too),
+and the block scaling Sᵀ K S is a product of 3 × 3 blocks
+(:func:`skxfem.linalg.blocks.congruence`).  Solve stage 3.63 -> 1.69 s (n = 16), 7.22 ->
+2.25 s (24), 18.97 -> 9.71 s (32); whole crack 8.80 -> 5.41, 15.19 -> 9.76, 36.74 ->
+28.41 s against the tie's 0.65 / 0.50, 2.70 / 2.52, 4.49 / 5.51 s: ratios 13.6 -> 10.9,
+5.6 -> 3.9, 8.2 -> 5.2.  Another pair of runs (with the finest level in CSR): solve
+stage 2.95 -> 2.01, 5.81 -> 3.01, 20.81 -> 6.41 s, ratios 13.6 -> 11.4, 5.1 -> 5.6 (the
+tie's 2.52 s in main's run, 1.89 s in this one: the same tie), 6.4 -> 4.9; an earlier
+one: 11.5 -> 8.9 and 6.0 -> 5.9 at n = 16 and 24, solve stage 2.43 -> 1.82 and 4.89 ->
+2.47 s.  The solve stage is the steady measure here: 2-3 times shorter at every n.
+CG iterations, crack / tie: 56 / 32, 64 / 40, 84 / 42 (the crack's 49, 57 with the
+Gauss-Seidel smoother).  K along the whole front is main's to 3e-14 (relative, n = 16
+and 24), U to 1e-12; K_I at mid-front 3.6472, 3.7027, 3.7361; against the direct solve
+at n = 8 and 12, K to 4e-14 and 6e-14, U to 8e-11 and 3e-11.
+
+Measured on the crack's scaled system alone, one run, and left out: the tie gains from
+Chebyshev smoothing too (solve stage 1.37 -> 0.80 s at n = 24, 4.4 -> 2.5 s at n = 32;
+46 and 49 iterations against 40 and 42), so that with one smoother for both the ratio
+would give back most of what it gained.  An exact solve of the enriched block K_ee
+inside a symmetric block Gauss-Seidel with an AMG of the standard block K_ss: K_ee's LU
+has 21 M nonzeros at n = 16 (2.9 s to factorise, 21 ms a solve; the branch tube is
+r_e = max(4h, 0.1 D) across, not a few cells), and the block preconditioner still needs
+47 iterations (an AMG of K_ee instead: 53, no faster than the one AMG of K).  The branch
+functions' translations as more near-null vectors: 62 iterations against 64 (n = 24),
+a coarse level 3 times larger, slower.  The rigid motions of the side above the crack
+(a = R at its nodes, b = R/2 on the Heaviside unknowns: what the tie's sides get) as
+more near-null vectors: all six cut the iterations to 46 (n = 24) and 57 (n = 32), but
+double the coarse level, no faster; its three translations alone to 47 and 59, in
+process time 1.74, 2.14 -> 1.75, 2.28 s (n = 24, two runs each) and 5.25, 5.55 -> 4.98,
+4.55 s (n = 32): 10 % at n = 32 at most, not kept.  The enriched unknowns' small couplings dropped
+from the smoothed matrix (below 0.01 of its unit diagonal, added to the diagonal): 125
+iterations.  Strength thresholds 0.02 to 0.25, local or block Jacobi weights of the
+prolongation, its degree-2 or energy smoothing, W-cycles, a single-precision hierarchy,
+Chebyshev degree 1, 3, 4 (94, 45, 38 iterations at n = 16): none is faster.  The
+tolerance: at n = 12, ``linear_tol = 1e-8`` gives K within 6e-11 of the direct solve and
+U within 5.5e-9 in 38 iterations against 51 at the default 1e-12, which stays (one
+setting for every scene); the residual is the strict measure: at n = 24 the error's
+energy is 8e-14 of the solution's after 40 of the 64 iterations.  The target (≤ 3) is
+not met: the crack's solve is now about the tie's whole time; what is left is its
+assembly and K along the front.
+
+The crack's assembly (``--linear auto``; main, then the branch, one run each, the
+machine busy): the stiffness takes the cells of the branch nodes' supports away from the
+front cells on the symmetric rule of order 6 (24 points, not 64;
+:data:`skxfem.crack.space3d.SMOOTH_ORDER`: its energy error there 1.7e-6 against
+-2.4e-5), the vertex pieces on (4, 5) points, the cells' values once per cell, the
+branch functions' trigonometry once per point, the blocks on the upper half only.
+Assembly stage 1.48 -> 0.79 s (n = 16), 2.79 -> 1.67 s (n = 24); crack 4.22 -> 3.32 s,
+7.92 -> 6.43 s against the tie's 0.44 / 0.42 and 1.52 / 1.50 s: ratios 9.6 -> 7.9 and
+5.2 -> 4.3 (a later pair, the load lower: 9.5 -> 7.9 and 4.75 -> 3.99, assembly 1.53 ->
+0.82 and 2.68 -> 1.71 s).  A second pair under a heavier load (the tie's time moved by up to 25 %
+between the runs, so the ratios less sure): assembly 1.95 -> 0.77, 4.01 -> 2.28, 8.47 ->
+5.79 s at n = 16, 24, 32, ratios 8.2 -> 5.8, 5.4 -> 3.9, 5.9 -> 3.9.  K_I at mid-front
+3.6472, 3.7028 (3.7027 before: the stiffness's quadrature), 3.7361.  K along the front
+keeps its rules (on the symmetric rule its quadrature error reached 1.1e-3 at n = 24,
+against 4.8e-4); at n = 24, profiled, it takes 2.2 s of 6.0, mostly the interaction
+integral's own integrand (the Williams fields, the frames), the solve 1.9 s, the
+stiffness 1.1 s.
+
     python benchmarks/crack_solve.py                 # n = 8, 12
     python benchmarks/crack_solve.py --sizes 8 --repeat 3
 """
@@ -114,6 +180,9 @@ def main(argv=None) -> int:
         mid = np.argmin(np.abs(front["points"][:, 1] - 0.5))
         stages = " ".join(f"{k} {v:.2f}" for k, v in rc.timings.items()
                           if isinstance(v, float))
+        its = [r.linear_info.get("iterations") for r in (rc, rt)]
+        if any(its):                                 # CG iterations, crack / tie
+            stages += f" its {its[0]}/{its[1]}"
         print(f"{n:>4} {rc.n_dofs:>10} {rt.n_dofs + rt.n_multipliers:>9} {tc:>8.2f} "
               f"{tt:>7.2f} {tc / tt:>6.2f}  {front['K_I'][mid]:.4f}  {stages}", flush=True)
     return 0

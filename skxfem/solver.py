@@ -31,8 +31,8 @@ import scipy.sparse as sp
 from .contact import history as contact
 from .contact.laws import CONTACT_LAWS
 from .linalg import iterative, saddle
-from .linalg.amg import rigid_modes
-from .linalg.blocks import enriched_scaling
+from .linalg.amg import CRACK_SMOOTHER, SMOOTHER, rigid_modes
+from .linalg.blocks import congruence, enriched_scaling
 from .linalg.choice import AUTO_ITERATIVE, LINEAR, choose_linear
 from .linalg.dependent import dependencies
 from .linalg.rigid import check_held
@@ -86,8 +86,9 @@ def solve(scene: Scene | Resolved, dependent: str = "remove", linear: str | None
         The linear solve of the tie (or of each contact Newton step), one of
         :data:`LINEAR`: ``"direct"``, ``"iterative"`` (AMG + projected CG,
         pyamg), or ``"auto"``: the iterative one from :data:`AUTO_ITERATIVE`
-        unknowns if pyamg is there.  ``None``: ``scene.solver.linear``
-        (default ``"auto"``).
+        unknowns if pyamg is there (the direct one for a crack in 2D or with
+        multipliers on its faces: :func:`skxfem.linalg.choice.choose_linear`).
+        ``None``: ``scene.solver.linear`` (default ``"auto"``).
     linear_tol
         The relative residual of the iterative solve, recorded in
         ``linear_info``; ``None``: ``scene.solver.linear_tol`` (default
@@ -142,8 +143,10 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
     if dependent not in ("remove", "raise"):
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
     settings = p.scene.solver.override(linear, linear_tol)
+    cracks = [not q.V.splits for q in p.interfaces]
     linear = choose_linear(settings.linear, p.mesh.dim(), p.V.N,
-                           any(not q.V.splits and q.P.shape[1] for q in p.interfaces))
+                           any(c and q.P.shape[1] for c, q in zip(cracks, p.interfaces)),
+                           any(cracks))
     linear_tol = settings.linear_tol
     mesh, V, B, D = p.mesh, p.V, p.B, p.D
     t0 = time.perf_counter()
@@ -164,13 +167,15 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
                       format="csr")
     if linear == "iterative":  # the motions of every region for the AMG
         K, F, Bs, modes, S = p.K, p.F, B, rigid_modes(V), None
-        if any(not q.V.splits for q in p.interfaces):  # a crack, whatever its law: its
-            # nodes' blocks scaled (skxfem.linalg.blocks)
+        smoother = SMOOTHER
+        if any(cracks):  # a crack, whatever its law: its
+            # nodes' blocks scaled (skxfem.linalg.blocks), its AMG smoothed by Chebyshev
             S, Sinv = enriched_scaling(K, V.enr_dofs, V.n_std, mesh.dim(), D)
-            K, F, Bs, modes = (S.T @ K @ S).tocsr(), S.T @ F, B @ S, Sinv @ modes
+            K, F, Bs, modes = congruence(K, S, mesh.dim()), S.T @ F, B @ S, Sinv @ modes
+            smoother = CRACK_SMOOTHER
         U, mu, info = iterative.solve(K, Bs, F, D, p.g, G=G, modes=modes,
                                       blocksize=mesh.dim(), bonded=p.law == "bonded",
-                                      tol=linear_tol)
+                                      tol=linear_tol, smoother=smoother)
         U = U if S is None else S @ U
     else:
         try:

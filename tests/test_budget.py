@@ -266,3 +266,17 @@ def test_a_3d_crack_counts_its_tube_and_auto_resolves_as_the_solve():
     r = solve(scene("free"), linear="auto")
     assert r.n_dofs == 9990 and r.n_dofs <= e.n_dofs <= 1.5 * r.n_dofs
     assert estimate(scene("frictionless"), "auto").linear == "direct"
+
+
+def test_a_2d_crack_is_estimated_for_the_direct_solve_that_auto_takes():
+    """auto solves a 2D crack directly at any size (skxfem.linalg.choice): the estimate
+    prices that LU, not the iterative solve of a plain interface that size."""
+    from skxfem.scene import Interface
+
+    def scene(front):
+        return Scene(Box((400, 401), "tri"), displacements=(clamped("ymin"),),
+                     interfaces=(Interface(plane((0, 0.5), (0, 1)), law="free" if front
+                                           else "bonded", front=front),))
+
+    crack, tie = estimate(scene(plane((0.5, 0), (1, 0))), "auto"), estimate(scene(None), "auto")
+    assert crack.n_dofs > 10**5 and (crack.linear, tie.linear) == ("direct", "iterative")

@@ -10,7 +10,7 @@ from skxfem.fem.material import Material
 from skxfem.levelset import LevelSet, plane
 from skxfem.linalg import iterative
 from skxfem.linalg.amg import rigid_modes
-from skxfem.linalg.blocks import enriched_scaling, node_blocks
+from skxfem.linalg.blocks import congruence, enriched_scaling, node_blocks
 from skxfem.problem import assemble
 from skxfem.scene import Displacement, Interface, Scene, SurfaceLoad
 from skxfem.solver import solve
@@ -94,3 +94,15 @@ def test_the_iterative_solve_of_a_crack_reaches_the_direct_answer(scene):
     assert np.abs(it.U - direct.U).max() < 1e-8 * np.abs(direct.U).max()
     for a, b in zip(it.front, direct.front):
         assert np.allclose(a["K_I"], b["K_I"], rtol=1e-7)
+
+
+@pytest.mark.parametrize("blocksize", [1, 2, 3])
+def test_congruence_is_st_k_s_by_blocks(blocksize):
+    p = assemble(crack_3d(4))
+    S, _ = enriched_scaling(p.K, p.V.enr_dofs, p.V.n_std, 3, p.D)
+    want = (S.T @ p.K @ S).tocsr()
+    got = congruence(p.K, S, blocksize)
+    assert got.format == "csr" and got.has_sorted_indices and got.nnz == want.nnz
+    assert abs(got - want).max() <= 1e-14 * abs(want).max()
+    with pytest.raises(ValueError, match="blocksize"):
+        congruence(p.K, S, p.K.shape[0] + 1)

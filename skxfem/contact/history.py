@@ -375,8 +375,8 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     ops = operators(pb)
     hs = tuple(o.h for o in ops.pieces)
     states = _states(scene, pb, scene.steps if history is None else history, hs)
-    linear = choose_linear(settings.linear, pb.mesh.dim(), pb.V.N,
-                           any(not q.V.splits for q in pb.interfaces))
+    cracks = any(not q.V.splits for q in pb.interfaces)  # contact: multipliers on them
+    linear = choose_linear(settings.linear, pb.mesh.dim(), pb.V.N, cracks, cracks)
     linear_tol = settings.linear_tol
     modes = rigid_modes(pb.V)
     t0 = time.perf_counter()

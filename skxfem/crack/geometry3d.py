@@ -99,10 +99,13 @@ def barycentric(mesh, cells: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.
         uc, inv = np.unique(cells, return_inverse=True)  # one inverse per cell
     P = mesh.p[:, mesh.t[:, uc]]                         # (3, 4, nc)
     A = np.transpose(P[:, 1:] - P[:, :1], (2, 0, 1))     # (nc, 3, 3) columns V_i - V_0
-    Ainv = np.linalg.inv(A)[inv.ravel()]                  # rows: ∇λ₁..₃
-    l123 = np.einsum("nij,nj->ni", Ainv, (x - P[:, 0][:, inv.ravel()]).T)
-    lam = np.column_stack([1 - l123.sum(axis=1), l123])
-    dlam = np.concatenate([-Ainv.sum(axis=1, keepdims=True), Ainv], axis=1)
+    Ainv = np.linalg.inv(A)                               # rows: ∇λ₁..₃
+    inv = inv.ravel()
+    dlam = np.concatenate([-Ainv.sum(axis=1, keepdims=True), Ainv], axis=1)[inv]
+    d = x - P[:, 0][:, inv]                               # (3, n) from V_0
+    lam = np.empty((cells.size, 4))
+    lam[:, 1:] = sum(dlam[:, 1:, j] * d[j][:, None] for j in range(3))
+    lam[:, 0] = 1 - lam[:, 1:].sum(axis=1)
     return lam, dlam
 
 

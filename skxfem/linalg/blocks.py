@@ -26,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["node_blocks", "enriched_scaling", "block_scaling"]
+__all__ = ["node_blocks", "enriched_scaling", "block_scaling", "congruence"]
 
 
 def node_blocks(enr_dofs: np.ndarray, n_std: int, dim: int) -> list[np.ndarray]:
@@ -105,3 +105,29 @@ def block_scaling(K: sp.spmatrix, blocks, diagonal: np.ndarray
     S = sp.csr_matrix((np.concatenate([diagonal[rest], *vals]), (r, c)), shape=(N, N))
     Sinv = sp.csr_matrix((np.concatenate([1 / diagonal[rest], *inv]), (r, c)), shape=(N, N))
     return S, Sinv
+
+
+def congruence(K: sp.spmatrix, S: sp.spmatrix, blocksize: int = 1) -> sp.csr_matrix:
+    """Sᵀ K S in canonical CSR (exact zeros dropped, rows sorted: pyamg's aggregates follow
+    the order of a row), by products of ``blocksize`` × ``blocksize`` blocks (the unknowns
+    of a node, interleaved): on a 3D crack's K (6.7 M nonzeros, ``benchmarks/crack_solve.py``
+    at n = 24) the products of 3 × 3 blocks take 0.29 s against 0.68 s entry by entry (one
+    run), the same matrix to the last bit there.
+
+    >>> K = sp.csr_matrix(np.array([[4.0, 2, 0, 0], [2, 2, 0, 0], [0, 0, 9, 1], [0, 0, 1, 1]]))
+    >>> S, _ = enriched_scaling(K, np.array([0, 1]), 2, 2)
+    >>> congruence(K, S, 2).toarray().round(12)[:2].tolist()
+    [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]]
+    """
+    N = K.shape[0]
+    if blocksize < 1 or N % blocksize:
+        raise ValueError(f"blocksize must divide the {N} unknowns, got {blocksize!r}")
+    if blocksize == 1:
+        out = (S.T @ K @ S).tocsr()
+    else:
+        b = (blocksize, blocksize)
+        out = (sp.csr_matrix(S.T).tobsr(blocksize=b) @ sp.csr_matrix(K).tobsr(blocksize=b)
+               @ sp.csr_matrix(S).tobsr(blocksize=b)).tocsr()
+    out.eliminate_zeros()
+    out.sort_indices()
+    return out

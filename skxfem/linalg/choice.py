@@ -32,14 +32,24 @@ Measured (one run): a bonded block in uniform compression, 5 × 20 × 20
 hexahedra, λ exact to 3.7e-10 at 1e-10 (36 CG iterations, 4.1 s), 1.8e-12 at
 1e-12 (43, 4.6 s), 2.9e-13 at 1e-13 (46, 5.0 s); the direct solve 3.5e-14."""
 
-def choose_linear(method: str, dim: int, n_unknowns: int, crack_multipliers: bool = False) -> str:
+def choose_linear(method: str, dim: int, n_unknowns: int, crack_multipliers: bool = False,
+                  crack: bool = False) -> str:
     """The linear solve ``method`` resolves to for ``n_unknowns`` in ``dim`` D:
     ``auto`` is ``iterative`` from :data:`AUTO_ITERATIVE` unknowns if pyamg is
     there, and ``direct`` whatever the size where multipliers (contact, a tie) live on
     a crack's faces (``crack_multipliers``): projected CG stalls there even with the
     crack's block scaling (:mod:`skxfem.linalg.blocks`; at 5e-3 on the inclined crack
     of :mod:`skxfem.studies.cracks3d`, 8 592 unknowns, and 5.5e-7 on
-    ``pressed_slab(21, 3, "bonded")``).
+    ``pressed_slab(21, 3, "bonded")``).  ``direct`` too for a crack in 2D (``crack``):
+    its branch zone (0.2 diameters, :mod:`skxfem.crack.radius`) is thousands of cells
+    across at the sizes where ``auto`` would iterate, and CG stalls above the default
+    tolerance (the edge crack of ``tests/test_linalg_blocks.py`` on 200 × 200 cells,
+    161 274 unknowns: 6.9e-12 after 3000 iterations, one run; its LU 17 s), whereas a 3D
+    crack's zone stays a tube a few cells across and CG reaches 1e-12 in about 60
+    iterations (``benchmarks/crack_solve.py``).
+
+    >>> choose_linear("auto", 2, 10**6, crack=True), choose_linear("iterative", 2, 10, crack=True)
+    ('direct', 'iterative')
 
     Raises
     ------
@@ -50,7 +60,8 @@ def choose_linear(method: str, dim: int, n_unknowns: int, crack_multipliers: boo
         raise ValueError(f"linear must be one of {LINEAR}, got {method!r}")
     if method != "auto":
         return method
-    big = n_unknowns >= AUTO_ITERATIVE[dim] and not crack_multipliers
+    big = n_unknowns >= AUTO_ITERATIVE[dim] and not crack_multipliers \
+        and not (crack and dim == 2)
     return "iterative" if big and importlib.util.find_spec("pyamg") else "direct"
 
 

@@ -54,6 +54,9 @@ sides together, and the rigid motions of the body suffice (``bonded=True``:
 half the coarse unknowns).  The same modes tell a singular system — a side
 that neither the supports nor the tie hold, where CG would return an
 arbitrary U — apart: :func:`solve` refuses it (:func:`skxfem.linalg.amg.check_held`).
+Its smoother is pyamg's symmetric block Gauss-Seidel, a crack's a Chebyshev polynomial
+(``smoother``, :data:`skxfem.linalg.amg.CRACK_SMOOTHER`: its K has several times the
+nonzeros of a tie's); CG applies one V-cycle (:func:`skxfem.linalg.amg.vcycle`).
 
 Dependent multipliers (the naive spaces) leave ker B and U unique; the
 multipliers, not unique then, are chosen by :func:`skxfem.linalg.dependent.smoothest`
@@ -74,7 +77,17 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .amg import amg, augmented, check_held, pyamg, refresh, scaled_rows, scaled_tie
+from .amg import (
+    SMOOTHER,
+    amg,
+    augmented,
+    check_held,
+    pyamg,
+    refresh,
+    scaled_rows,
+    scaled_tie,
+    vcycle,
+)
 from .dependent import dependencies, smoothest
 from .pcg import interface_solve, oblique_solve, projected_cg, projected_gmres
 from .saddle import SingularSystemError
@@ -172,7 +185,8 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
           bonded: bool = False, tol: float = 1e-10, maxiter: int = 500, r: float = 3.0,
           delta: float = 1e-12, refine: int = 2,
           dependent_tol: float = 1e-8, rigid_tol: float = 1e-11, reuse: Setup | None = None,
-          C=None, update: bool = False, independent: bool = False, S=None):
+          C=None, update: bool = False, independent: bool = False, S=None,
+          smoother=SMOOTHER):
     """Solve the tied saddle-point system by projected AMG-preconditioned CG; see the module notes.
 
     Parameters
@@ -236,6 +250,11 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
         symmetric on ker B: projected GMRES (:func:`skxfem.linalg.pcg.projected_gmres`)
         instead of CG, the multipliers from the interface matrix B Cᵀ, which
         must be invertible (no dependent multipliers).
+    smoother
+        pyamg's (name, options) of the AMG's smoother (:func:`skxfem.linalg.amg.amg`):
+        :data:`skxfem.linalg.amg.SMOOTHER`, or :data:`skxfem.linalg.amg.CRACK_SMOOTHER`
+        for a crack's block-scaled K.  A set-up taken again or carried over keeps its
+        own.
 
     Returns
     -------
@@ -269,7 +288,7 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
         setup = _carried(reuse, K, B, S, modes, delta, refine, rigid_tol)
     else:
         setup = _setup(K if S is None else (K + S).tocsr(), B, fixed, modes, blocksize,
-                       bonded, r, delta, refine, rigid_tol)
+                       bonded, r, delta, refine, rigid_tol, smoother)
         if S is not None:
             setup.K, setup.S = K, S
     if independent and setup.dependent is None:
@@ -307,7 +326,7 @@ def _krylov(setup: Setup, F, c, U0, tol: float, maxiter: int, oblique=None):
     With ``oblique`` = (C_n, (B_n C_nᵀ)⁻¹) (:func:`_oblique`): K_s x + C_nᵀ y = b,
     by projected GMRES."""
     fixed, s, Bn, Kr, interface = setup.fixed, setup.s, setup.Bn, setup.Kr, setup.interface
-    M = setup.ml.aspreconditioner(cycle="V")
+    M = vcycle(setup.ml)
 
     def project(v):  # Π v = v - B_nᵀ (B_n B_nᵀ)⁻¹ B_n v, onto ker B
         return v - Bn.T @ interface(Bn @ v)
@@ -400,7 +419,8 @@ def _carried(old: Setup, K, B, S, modes, delta, refine, rigid_tol) -> Setup:
                  base=base, S=S)
 
 
-def _setup(K, B, fixed, modes, blocksize, bonded, r, delta, refine, rigid_tol) -> Setup:
+def _setup(K, B, fixed, modes, blocksize, bonded, r, delta, refine, rigid_tol,
+           smoother=SMOOTHER) -> Setup:
     """Scale, augment, check the rigid modes, build the AMG and the interface solve."""
     s, Bn, rows, Kr = augmented(K, B, fixed, r)
     Zs = None if modes is None else modes / s[:, None]
@@ -410,7 +430,7 @@ def _setup(K, B, fixed, modes, blocksize, bonded, r, delta, refine, rigid_tol) -
             k = {2: 3, 3: 6}.get(blocksize)
             R = Zs.shape[1] // k if k else 2
             Zs = sum(Zs[:, r::R] for r in range(R))
-    return Setup(K, B, fixed, r, bonded, s, Bn, rows, Kr, amg(Kr, Zs, blocksize),
+    return Setup(K, B, fixed, r, bonded, s, Bn, rows, Kr, amg(Kr, Zs, blocksize, smoother),
                  interface_solve(Bn, delta, refine))
 
 

@@ -29,8 +29,8 @@ Heaviside nodes and crossed edges are a part of those), no multiplier for the la
 the front (:func:`~skxfem.studies.counts.box_front_nodes`; r_e the interface's
 ``enrichment_radius`` or the default rule :func:`skxfem.crack.radius.default_radius`
 with h a cell's diameter, 0 for topological enrichment).  ``auto`` then resolves as
-the solve does: direct wherever multipliers live on a crack's faces
-(:func:`skxfem.linalg.choice.choose_linear`).  On the cube of
+the solve does: direct wherever multipliers live on a crack's faces, and for any
+crack in 2D (:func:`skxfem.linalg.choice.choose_linear`).  On the cube of
 ``benchmarks/crack_solve.py`` (tetrahedra, law ``free``) the unknowns' bound is 1.26
 and 2.04 times the solve's at n = 8 and 12 (12 636 against 9 990, 35 880 against
 17 550); before, it counted no branch unknown (2 916 and 8 112: below the solve's,
@@ -289,7 +289,7 @@ def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell,
     law = ("coulomb" if "coulomb" in laws else
            next((x for x in laws if x in CONTACT_LAWS), laws[0]))
     on_crack = any(i.front is not None and i.law != "free" for i in items)
-    chosen = choose_linear(linear, dim, n_dofs, on_crack)
+    chosen = choose_linear(linear, dim, n_dofs, on_crack, any(i.front is not None for i in items))
     if chosen == "iterative":
         per = (CONTACT_ITERATIVE_BYTES if law in CONTACT_LAWS else ITERATIVE_BYTES)[dim]
         per += KRYLOV_BYTES if law == "coulomb" else 0

@@ -1,0 +1,36 @@
+"""Which linear solve ``auto`` takes (skxfem.linalg.choice): iterative from a size, direct
+where projected CG stalls (multipliers on a crack's faces, a crack in 2D)."""
+import pytest
+
+import skxfem.linalg.choice
+from skxfem.linalg.choice import AUTO_ITERATIVE, choose_linear
+from skxfem.solver import solve
+from tests.test_linalg_blocks import crack_2d, crack_3d
+
+pytest.importorskip("pyamg")
+
+
+@pytest.mark.parametrize("dim, kwargs, want", [
+    (3, {}, "iterative"),
+    (2, {}, "iterative"),
+    (3, {"crack": True}, "iterative"),
+    (2, {"crack": True}, "direct"),
+    (3, {"crack_multipliers": True, "crack": True}, "direct"),
+])
+def test_auto_on_a_large_system(dim, kwargs, want):
+    assert choose_linear("auto", dim, 10 * AUTO_ITERATIVE[dim], **kwargs) == want
+    assert choose_linear("auto", dim, AUTO_ITERATIVE[dim] - 1, **kwargs) == "direct"
+
+
+def test_a_method_named_is_taken_whatever_the_scene():
+    assert choose_linear("iterative", 2, 10, crack=True) == "iterative"
+    assert choose_linear("direct", 3, 10**7) == "direct"
+    with pytest.raises(ValueError, match="linear must be one of"):
+        choose_linear("cholesky", 3, 10)
+
+
+def test_the_solver_asks_for_a_crack_s_choice(monkeypatch):
+    monkeypatch.setitem(skxfem.linalg.choice.AUTO_ITERATIVE, 2, 10)
+    monkeypatch.setitem(skxfem.linalg.choice.AUTO_ITERATIVE, 3, 10)
+    assert solve(crack_2d(6), linear="auto").linear == "direct"
+    assert solve(crack_3d(4), linear="auto").linear == "iterative"
