@@ -97,19 +97,36 @@ def test_a_through_crack_pressed_shut_gives_K_zero_with_the_face_term(law):
         "the face term makes K vanish"
 
 
+def test_a_through_crack_pressed_shut_with_its_front_on_the_cells_faces():
+    """n = 21, front x = 1/2: the front runs along the tetrahedra's diagonal faces, and
+    the cells ahead of it share those faces.  Measured |K_I| ≤ 0.21e-3, |K_II| ≤ 0.18e-3
+    p√(πa), the last crossings' pressure within 1e-4 of p.  When round-off (φ_h = +1e-17 on
+    their side of the face) left those cells out of the front cells, their plain rule
+    integrated the branch functions' 1/√r gradients on their face: 0.971 p at the last
+    crossings and |K_I| = 3.2e-3 (0.4e-3 with the exact pressure)."""
+    r = solve(pressed_slab(21, 2, front=0.5))
+    (front,) = r.front
+    scale = np.sqrt(np.pi * 0.5)
+    for key in ("K_I", "K_II", "K_III"):
+        assert np.abs(front[key]).max() < 0.5e-3 * scale, key
+    p = -r.normal_traction
+    assert np.abs(p - 1).max() < 1e-3
+
+
 def test_a_penny_pressed_shut():
     """The penny a = 0.55 in [-1, 1]³ at n = 10 (h = 0.2: under three cells per radius),
-    sif_radius 0.25: measured |K_I| ≤ 3.6e-3, |K_II| ≤ 1.8e-3, |K_III| ≤ 0.8e-3 p√(πa)
+    sif_radius 0.25: measured |K_I| ≤ 3.2e-3, |K_II| ≤ 1.7e-3, |K_III| ≤ 0.8e-3 p√(πa)
     (the face term removes K_I ≈ -0.53; 0.0165 with the faces' rule graded only at
     vertices on the front), the pressure 0.9999 p on average, within 1.6 % at every
-    crossing, the jump 5e-4.  h = 0.125, 0.1: |K_I| ≤ 1.6e-3, 3.6e-3 (skxfem.crack.faces3d)."""
+    crossing, the jump 5e-4.  h = 0.125, 0.1: |K_I| ≤ 1.5e-3, 2.6e-3 (with x₁ = φ_h in
+    the auxiliary fields, skxfem.crack.sif3d, 3.6e-3, 1.6e-3, 3.6e-3)."""
     r = solve(pressed_penny(10))
     (front,) = r.front
     scale = np.sqrt(np.pi * 0.55)
     assert len(front["K_I"]) > 12, "points all along the closed front"
-    assert np.abs(front["K_I"]).max() < 6e-3 * scale
-    assert np.abs(front["K_II"]).max() < 3e-3 * scale
-    assert np.abs(front["K_III"]).max() < 1.5e-3 * scale
+    assert np.abs(front["K_I"]).max() < 4e-3 * scale
+    assert np.abs(front["K_II"]).max() < 2.2e-3 * scale
+    assert np.abs(front["K_III"]).max() < 1.1e-3 * scale
     p = -r.normal_traction
     assert abs(p.mean() - 1) < 1e-3 and np.abs(p - 1).max() < 0.03
     assert np.abs(r.jump).max() < 1e-3
@@ -118,28 +135,32 @@ def test_a_penny_pressed_shut():
     assert np.all(free["K_I"] < -0.3 * scale), "the face term makes K vanish"
 
 
-def test_the_pressed_pennys_exact_state_gives_the_integrals_own_floor():
+@pytest.mark.parametrize("n, floor", [(10, 4e-3), (20, 1.5e-3)])
+def test_the_pressed_pennys_exact_state_gives_the_integrals_own_floor(n, floor):
     """The exact state of the penny pressed shut (u = (νx, νy, -z)/E on the standard dofs,
-    the enriched ones 0, the faces carrying the exact p) through sif_3d at n = 10,
-    sif_radius 0.25: measured |K_I| ≤ 2.6e-3, |K_II| ≤ 1.7e-3 p√(πa) (h = 0.1: 3.7e-3,
-    at sif_radius 0.15 to 0.35 alike): the interaction integral's own error on the
-    curved front, about what the solved penny gives (3.6e-3), so that what is left
-    there is not the contact's pressure."""
+    the enriched ones 0, the faces carrying the exact p) through sif_3d, sif_radius 0.25:
+    measured |K_I| ≤ 3.5e-3, 0.7e-3, 1.0e-3 and |K_II| ≤ 1.7e-3, 0.4e-3, 0.7e-3 p√(πa)
+    at n = 10, 16, 20 (h = 0.2, 0.125, 0.1), the interaction integral's own error on the
+    curved front.  With x₁ = φ_h instead of the distance to the front
+    (skxfem.crack.sif3d.front_coordinate) 2.6e-3, 1.3e-3, 3.6e-3: not falling with h."""
     from skxfem.crack.faces3d import face_traction_3d
     from skxfem.crack.sif3d import sif_3d
+    from skxfem.crack.space3d import crack_space_3d
 
-    q = assemble(resolve(pressed_penny(10)), "bilateral").interfaces[0]
-    U = np.zeros(q.V.space.N)
-    x = q.V.mesh.p
-    for c, u in enumerate((0.3 * x[0], 0.3 * x[1], -x[2])):   # E = 1, ν = 0.3
-        U[q.V.basis.nodal_dofs[c]] = u
-    t = np.zeros((3, q.cut.edge_ids.size))
+    m = MeshTet1.init_tensor(*(np.linspace(-1, 1, n + 1),) * 3)
+    g = crack_geometry_3d(m, m.p[2] - 0.05, np.hypot(m.p[0], m.p[1]) - 0.55)
+    V = crack_space_3d(m, g)
+    U = np.zeros(V.N)
+    for c, u in enumerate((0.3 * m.p[0], 0.3 * m.p[1], -m.p[2])):   # E = 1, ν = 0.3
+        U[V.nodal_dofs[c]] = u
+    t = np.zeros((3, g.edge_ids.size))
     t[2] = -1.0
-    K = sif_3d(q.V.space, U, MATERIAL, radius=0.25,
-               faces=face_traction_3d(q.V.mesh, q.cut, t)) / np.sqrt(np.pi * 0.55)
-    assert np.abs(K[:, 0]).max() < 4e-3 and np.abs(K[:, 1:]).max() < 3e-3
-    free = sif_3d(q.V.space, U, MATERIAL, radius=0.25) / np.sqrt(np.pi * 0.55)
-    assert np.all(free[:, 0] < -0.3), "the face term makes K vanish"
+    K = sif_3d(V, U, MATERIAL, radius=0.25, faces=face_traction_3d(m, g, t)) / np.sqrt(
+        np.pi * 0.55)
+    assert np.abs(K[:, 0]).max() < floor and np.abs(K[:, 1:]).max() < floor
+    if n == 10:
+        free = sif_3d(V, U, MATERIAL, radius=0.25) / np.sqrt(np.pi * 0.55)
+        assert np.all(free[:, 0] < -0.3), "the face term makes K vanish"
 
 
 @pytest.mark.parametrize("friction", [0.3, 0.8])

@@ -28,16 +28,36 @@ Then K_I = E′I_I/2, K_II = E′I_II/2, K_III = μ I_III
 
 **Coordinates of the auxiliary fields.**  At every quadrature point the Williams fields
 (:mod:`skxfem.crack.williams`, 3D: mode III along e₃) are written in the point's own
-front frame and polar coordinates from the interpolated level sets:
-r = √(φ_h² + ψ_h²), θ = atan2(ψ_h, φ_h) (±π on the faces by the side of the point's
-sub-tetrahedron), e₂ = ∇ψ_h/|∇ψ_h|, e₁ the P1 interpolant of nodal directions made
-normal to e₂, e₃ = e₁ × e₂.  The nodal e₁ is e₂ × t, t the tangent of the front at the
-node's nearest place, fitted over a few cells (:func:`fitted_frame`,
-:func:`skxfem.crack.geometry3d.front_fit`): a smooth field, whose lines are the normal
-lines of the front (the gradient of the P1 φ_h turns from cell to cell by up to h/ρ_f,
-ρ_f the front's radius of curvature).  The same e₁ is the extension direction.
+front frame and polar coordinates r = √(x₁² + ψ_h²), θ = atan2(ψ_h, x₁) (±π on the faces
+by the side of the point's sub-tetrahedron), x₁ the signed distance to the front in the
+crack's plane (:func:`front_coordinate`: the distance of the point's projection on
+{ψ_h = 0} to the P1 front's segments, negative behind it), e₂ = ∇ψ_h/|∇ψ_h|, e₁ the P1
+interpolant of nodal directions made normal to e₂, e₃ = e₁ × e₂.  The nodal e₁ is
+e₂ × t, t the tangent of the front at the node's nearest place, fitted over a few cells
+(:func:`fitted_frame`, :func:`skxfem.crack.geometry3d.front_fit`): a smooth field, whose
+lines are the normal lines of the front (the gradient of the P1 φ_h turns from cell to
+cell by up to h/ρ_f, ρ_f the front's radius of curvature).  The same e₁ is the extension
+direction, and q_r is a function of this r.
 
-**Curvature terms.**  In these curvilinear coordinates (x₁ = φ along e₁, x₂ = ψ,
+**Why x₁ and not φ_h.**  The interaction integral of a uniform state (σ constant, the
+faces carrying its traction) vanishes exactly in the curvilinear coordinates below, with
+the curvature terms (checked by an independent quadrature of the same integrand on the
+exact penny: 1e-5 of its domain and face terms, each about 0.53 σ√(πa)).  With x₁ = φ_h,
+the P1 interpolant of φ = ρ - a, it did not: on the penny pressed shut
+(:func:`skxfem.studies.cracks3d.pressed_penny`, a = 0.55, sif_radius 0.25) the exact
+state (u = (νx, νy, -z)σ/E, the faces carrying σ) left |K_I| = 2.6e-3, 1.3e-3, 3.6e-3
+σ√(πa) at h = 0.2, 0.125, 0.1, not falling with h.  ∇φ_h·e₁ ranges over 0.72 to 1.15
+from cell to cell there (0.97 to 0.98 on average, by domain or by face): the Williams
+fields' planar derivatives are then not those of the field they define, by an amount
+that the domain and the face terms do not share (each off the exact-geometry value by
+0.1 to 0.6 %, their sum by 0.2 to 0.7 %; more quadrature points changed it by 0.3e-3).
+With the distance x₁ the same exact state gives 3.5e-3, 0.7e-3, 1.0e-3: at h = 0.2
+(under three cells across a) what is left is quadrature (with 6³ and 8³ points instead
+of 5³ and 4³ on the pieces near the front, 2.0e-3 and 1.6e-3; at h = 0.1 0.4e-3 and
+0.6e-3), not a bias.  The open penny (:mod:`skxfem.studies.cracks3d`) stays within
+0.1 % of before.
+
+**Curvature terms.**  In these curvilinear coordinates (x₁ along e₁, x₂ = ψ,
 x₃ along the front, its metric h₃ = 1 + κx₁ with κ = 1/ρ_f the front's curvature in the
 crack's plane, > 0 when it bends away from e₁) the plane Williams fields are neither in
 equilibrium nor compatible: div σᵃ = (κ/h₃)(σᵃ₁₁ - σᵃ₃₃, σᵃ₁₂, 2σᵃ₁₃) and the true
@@ -82,7 +102,7 @@ from numpy.polynomial.legendre import leggauss
 from ..fem.loads import force_field
 from ..fem.material import Material
 from .frame import TipFrame, tip_frame
-from .geometry3d import barycentric, crack_geometry_3d, front_chains, front_fit
+from .geometry3d import barycentric, crack_geometry_3d, front_chains, front_fit, front_offset
 from .interaction import sif_from_interaction
 from .radius import DOMAIN_FRACTION
 from .space3d import (
@@ -100,8 +120,8 @@ from .space3d import (
 from .williams import near_tip_local
 
 __all__ = ["DEFAULT_RADIUS", "MIN_RADIUS", "DEFAULT_LENGTH", "default_radius_3d",
-           "front_points", "front_frame", "fitted_frame", "front_sizes", "boundary_reach",
-           "other_fronts", "sif_3d",
+           "front_points", "front_frame", "fitted_frame", "front_coordinate", "front_sizes",
+           "boundary_reach", "other_fronts", "sif_3d",
            "CrackSolution3D", "solve_crack_3d"]
 
 DEFAULT_RADIUS = 3.0
@@ -144,14 +164,15 @@ def front_sizes(space) -> tuple[float, float]:
     return float(across), float(along)
 
 
-def front_points(space, spacing: float | None = None) -> np.ndarray:
+def front_points(space, spacing: float | None = None, chains: list | None = None
+                 ) -> np.ndarray:
     """Points (3, m) along the front where K is computed: each chain of
-    :func:`skxfem.crack.geometry3d.front_chains` sampled at equal arc lengths about
-    ``spacing`` apart (default: the mean size of the front cells), the ends of an open
-    chain excluded."""
+    :func:`skxfem.crack.geometry3d.front_chains` (``chains``, default: built here) sampled
+    at equal arc lengths about ``spacing`` apart (default: the mean size of the front
+    cells), the ends of an open chain excluded."""
     h = front_sizes(space)[1] if spacing is None else float(spacing)
     out = []
-    for pts, closed in front_chains(space.geometry):
+    for pts, closed in front_chains(space.geometry) if chains is None else chains:
         if closed:
             pts = np.hstack([pts, pts[:, :1]])
         seg = np.linalg.norm(np.diff(pts, axis=1), axis=0)
@@ -219,15 +240,17 @@ def _contract(S: np.ndarray, T: np.ndarray, G: np.ndarray) -> np.ndarray:
     return np.einsum("ijn,ikn,jkn->n", S, T, G)
 
 
-def fitted_frame(space, points: np.ndarray, spacing: float) -> tuple[TipFrame, np.ndarray]:
+def fitted_frame(space, points: np.ndarray, spacing: float,
+                 chains: list | None = None) -> tuple[TipFrame, np.ndarray]:
     """The frames at ``points`` (3, m) near the front with e₃ along the front's fitted
     tangent (:func:`skxfem.crack.geometry3d.front_fit` over ± ``spacing``), e₂ = n of
     :func:`front_frame` and e₁ = e₂ × e₃, and the front's curvature κ (m,) in the plane
     normal to e₂, positive when it bends away from e₁ (a penny's front: 1/a).  The
     tangent of the nearest front cell's level sets (:func:`front_frame`) turns with the
-    P1 chords of a curved front, by up to h/ρ; the fit does not."""
+    P1 chords of a curved front, by up to h/ρ; the fit does not.  ``chains``: the
+    front's :func:`~skxfem.crack.geometry3d.front_chains` if at hand."""
     cell = front_frame(space, points)
-    t, kvec = front_fit(space.geometry, points, spacing)
+    t, kvec = front_fit(space.geometry, points, spacing, chains)
     e3 = t * np.where((t * cell.e3).sum(axis=0) < 0, -1.0, 1.0)
     e1 = np.cross(cell.e2, e3, axis=0)
     e1 /= np.linalg.norm(e1, axis=0)
@@ -235,7 +258,7 @@ def fitted_frame(space, points: np.ndarray, spacing: float) -> tuple[TipFrame, n
     return frame, -(kvec * e1).sum(axis=0)
 
 
-def _nodal_directions(space, cells: np.ndarray, spacing: float) -> np.ndarray:
+def _nodal_directions(space, cells: np.ndarray, spacing: float, chains=None) -> np.ndarray:
     """(nverts, 3) e₁ at the nodes of ``cells`` (zero at the other nodes): e₂ × e₃ with
     e₂ the mean of the cells' n around each node and e₃ the front's fitted tangent at
     its nearest place (:func:`fitted_frame`), so that the direction field is smooth
@@ -250,7 +273,7 @@ def _nodal_directions(space, cells: np.ndarray, spacing: float) -> np.ndarray:
         np.add.at(e1, mesh.t[k, cells], fr.e1.T)
         np.add.at(e2, mesh.t[k, cells], fr.e2.T)
     nodes = np.unique(mesh.t[:, cells])
-    t, _ = front_fit(geo, mesh.p[:, nodes], spacing)
+    t, _ = front_fit(geo, mesh.p[:, nodes], spacing, chains)
     d = np.cross(e2[nodes].T, t, axis=0)
     d *= np.where((d * e1[nodes].T).sum(axis=0) < 0, -1.0, 1.0) / np.linalg.norm(d, axis=0)
     out = np.zeros((mesh.p.shape[1], 3))
@@ -273,10 +296,11 @@ def _radial(r: np.ndarray, R: float, inner: float) -> tuple[np.ndarray, np.ndarr
     return t * t * (3 - 2 * t), -6 * t * (1 - t) / (R - inner)
 
 
-def other_fronts(geo, P: np.ndarray) -> np.ndarray:
+def other_fronts(geo, P: np.ndarray, chains: list | None = None) -> np.ndarray:
     """The distance (m,) from each point P (3, m) of the front to the nearest point of
     another front (another chain of :func:`skxfem.crack.geometry3d.front_chains`, such
-    as the second front of a centre crack); inf where there is none.
+    as the second front of a centre crack); inf where there is none.  ``chains``: the
+    front's chains if at hand (default: built here).
 
     >>> from skfem import MeshTet1
     >>> from skxfem.crack.geometry3d import crack_geometry_3d
@@ -285,7 +309,7 @@ def other_fronts(geo, P: np.ndarray) -> np.ndarray:
     >>> other_fronts(g, np.array([[0.3], [0.5], [0.5]])).round(12).tolist()
     [0.4]
     """
-    chains = [c for c, _ in front_chains(geo)]
+    chains = [c for c, _ in (front_chains(geo) if chains is None else chains)]
     if len(chains) < 2:
         return np.full(P.shape[1], np.inf)
     dist = np.stack([np.linalg.norm(c[:, None] - P[:, :, None], axis=0).min(axis=1)
@@ -323,18 +347,24 @@ def _in_support(space, cells, X, R, P, e3, L):
     """Which points X (3, n) of ``cells`` can lie in the support of some q of
     :func:`sif_3d` (r < R and |s| < L for a front point; a relative margin of 1e-9): the
     others add nothing, and their fields are not computed.  Also their barycentric λ and
-    ∇λ (:func:`skxfem.crack.geometry3d.barycentric`), for :func:`point_values`."""
+    ∇λ (:func:`skxfem.crack.geometry3d.barycentric`), for :func:`point_values`, and
+    x₁ and ∇x₁ (:func:`front_coordinate`) at the points kept."""
     mesh, geo = space.mesh, space.geometry
     lam, dlam = barycentric(mesh, cells, X)
     nodes = mesh.t[:, cells].T
-    r = np.hypot((lam * geo.phi[nodes]).sum(axis=1), (lam * geo.psi[nodes]).sum(axis=1))
-    on = np.flatnonzero(r < R * (1 + 1e-9))
+    ph, ps = (lam * geo.phi[nodes]).sum(axis=1), (lam * geo.psi[nodes]).sum(axis=1)
+    # |φ_h| ≤ 1.15 x₁ measured on the penny at h = 0.2 (P1 on a curved front): 1.5 is safe
+    on = np.flatnonzero(np.hypot(ph, ps) < 1.5 * R)
     near = np.zeros(on.size, dtype=bool)
     for k in range(P.shape[1]):                           # the hats along the front
         near |= np.abs(e3[:, k] @ (X[:, on] - P[:, k, None])) < L * (1 + 1e-9)
-    keep = np.zeros(r.size, dtype=bool)
-    keep[on[near]] = True
-    return keep, lam, dlam
+    on = on[near]
+    gph, gps = (np.einsum("nk,nki->in", f[nodes[on]], dlam[on]) for f in (geo.phi, geo.psi))
+    x1, gx1 = front_coordinate(geo, X[:, on], ps[on], gph, gps)
+    inside = np.hypot(x1, ps[on]) < R * (1 + 1e-9)
+    keep = np.zeros(ph.size, dtype=bool)
+    keep[on[inside]] = True
+    return keep, lam, dlam, x1[inside], gx1[:, inside]
 
 
 def _hat_integral(geo, P, e3, L, Rk):
@@ -373,6 +403,33 @@ def default_radius_3d(space, h: float) -> float:
     return DEFAULT_RADIUS * h
 
 
+def front_coordinate(geo, x: np.ndarray, psi: np.ndarray, grad_phi: np.ndarray,
+                     grad_psi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """x₁ (n,) at points x (3, n), the signed distance to the front in the crack's
+    plane (module notes), and its gradient (3, n): the distance
+    (:func:`skxfem.crack.geometry3d.front_offset`) of the point's projection on
+    {ψ_h = 0} (along ∇ψ_h, by ψ_h/|∇ψ_h|) to the front, negative where the direction from
+    the front to the projection is against ∇φ_h (behind the front; ψ_h ``psi``, ∇φ_h
+    ``grad_phi`` and ∇ψ_h ``grad_psi`` (3, n) at the points).  The side is that of the
+    projection, not the sign of φ_h at the point: they differ where the surface
+    {φ_h = 0} leans on the crack's plane, and θ = atan2(ψ_h, x₁) would jump there.
+
+    >>> from skfem import MeshTet1
+    >>> from skxfem.crack.geometry3d import crack_geometry_3d
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 4),) * 2, np.linspace(0, 1, 3))
+    >>> g = crack_geometry_3d(m, lambda x: x[1] - 0.5, lambda x: x[0] - 0.5)
+    >>> x1, grad = front_coordinate(g, np.array([[0.2], [0.6], [0.3]]), np.array([0.1]),
+    ...                             np.array([[1.0], [0.0], [0.0]]),
+    ...                             np.array([[0.0], [1.0], [0.0]]))
+    >>> x1.round(12).tolist(), (grad[:, 0] + 0.0).round(12).tolist()
+    ([-0.3], [1.0, 0.0, 0.0])
+    """
+    g2 = (grad_psi * grad_psi).sum(axis=0)
+    dist, unit = front_offset(geo, x - psi / g2 * grad_psi)
+    sign = np.where((unit * grad_phi).sum(axis=0) < 0, -1.0, 1.0)
+    return sign * dist, sign * unit
+
+
 def _curvature_integrand(sl, gl, aux) -> np.ndarray:
     """(n,) the terms of the divergence of the integrand, per unit κ/h₃, that the
     auxiliary fields leave in the curvilinear frame of a curved front (module notes):
@@ -406,7 +463,8 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     U = np.asarray(U, float)
     if U.shape != (space.N,):
         raise ValueError(f"U must hold the {space.N} unknowns [a, b, c], got shape {U.shape}")
-    P = front_points(space) if points is None else np.asarray(points, float)
+    chains = front_chains(space.geometry)                # once: fits, points, fronts
+    P = front_points(space, chains=chains) if points is None else np.asarray(points, float)
     if P.ndim != 2 or P.shape[0] != 3:
         raise ValueError(f"points must have shape (3, m), got {P.shape}")
     h, h_along = front_sizes(space)
@@ -419,7 +477,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         raise ValueError(f"plateau must be in [0, 1), got {plateau!r}")
     mesh, geo = space.mesh, space.geometry
     spacing = max(L, 2 * h_along)
-    frames, kappa = fitted_frame(space, P, spacing)
+    frames, kappa = fitted_frame(space, P, spacing, chains)
     # the cells of every point's domain
     reach = np.hypot(R, L) + 2 * h
     d = np.linalg.norm(mesh.p[:, :, None] - P[:, None], axis=0).min(axis=1)
@@ -427,7 +485,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     cells = np.flatnonzero((d[mesh.t] <= reach).any(axis=0)
                            & (radial[mesh.t] <= R + 2 * h).any(axis=0))
     lam_, mu = material.lame(3)
-    e1_nodes = _nodal_directions(space, cells, spacing)
+    e1_nodes = _nodal_directions(space, cells, spacing, chains)
     ut = virtual_field(space, U)
     eye = np.eye(3)[:, :, None]
     xs, ws, e1s, rs, grs, x1s = [], [], [], [], [], []
@@ -436,18 +494,14 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     # plain=4: the smooth Williams fields on the ring of uncut cells (3 left |K_I| ≈
     # 1.5e-3 σ√(πa) on a crack pressed shut with its front 0.3 h past a node, 4: 1e-3)
     for cc, X, W, S in _point_chunks(rules(space, cells, plain=4)):
-        on, lam, dlam = _in_support(space, cc, X, R, P, frames.e3, L)
+        on, lam, dlam, ph, gph = _in_support(space, cc, X, R, P, frames.e3, L)
         if not on.any():
             continue
         cc, X, W, S = cc[on], X[:, on], W[on], S[on]
         pv = point_values(space, cc, X, S, barycentric_=(lam[on], dlam[on]))
         _, gu = field_at(space, U, cc, X, S, values=pv, virtual=ut)
-        ph, ps, gph, gps = pv.phi, pv.psi, pv.gphi.T, pv.gpsi.T
-        # the extension direction Q/q = e₁ₕ, the P1 interpolant of nodal e₁, and ∂ⱼe₁ₖ
-        e1n = e1_nodes[pv.nodes]                          # (n, 4, 3)
-        e1 = np.einsum("nk,nki->in", pv.lam, e1n)
-        G = np.einsum("nkj,nki->jin", pv.dlam, e1n)                   # [j, k, n]
-        Rf = tip_frame(e1, gps).R                         # (3, 3, n), continuous e₁
+        ps, gps = pv.psi, pv.gpsi.T                       # x₁ = ph, ∇x₁ = gph
+        e1, G, Rf = _point_frames(e1_nodes, pv.nodes, pv.lam, pv.dlam, gps)
         bx = 0.0 if b is None else np.einsum("ain,in->an", Rf, b(X))   # in the frames
         r = np.hypot(ph, ps)
         theta = np.arctan2(ps, ph)
@@ -487,7 +541,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     if faces is not None:
         xf, wf, rf, Df = _face_terms(space, faces, material, e1_nodes, cells)
     Rk = np.minimum(np.minimum(R, boundary_reach(mesh, P, frames.e3, L)),
-                    other_fronts(geo, P) / 3)
+                    other_fronts(geo, P, chains) / 3)
     den = _hat_integral(geo, P, frames.e3, L, Rk)
     K = np.zeros((P.shape[1], 3))
     for k in range(P.shape[1]):
@@ -512,6 +566,20 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     return K
 
 
+def _point_frames(e1_nodes: np.ndarray, nodes: np.ndarray, lam: np.ndarray,
+                  dlam: np.ndarray, grad_psi: np.ndarray):
+    """The frames of points of cells with nodes ``nodes`` (n, 4), barycentric λ (n, 4)
+    and ∇λ (n, 4, 3), ∇ψ_h ``grad_psi`` (3, n), for the domain's points and the faces'
+    alike: e₁ₕ (3, n), the P1 interpolant of the nodal ``e1_nodes``
+    (:func:`_nodal_directions`; the extension direction Q/q), its gradient ∂ⱼe₁ₖ
+    [j, k, n], and R (3, 3, n), rows e₁, e₂ = ∇ψ_h/|∇ψ_h| and e₃ (e₁ₕ made normal to
+    e₂, unit)."""
+    e1n = e1_nodes[nodes]                                 # (n, 4, 3)
+    e1 = np.einsum("nk,nki->in", lam, e1n)
+    G = np.einsum("nkj,nki->jin", dlam, e1n)
+    return e1, G, tip_frame(e1, grad_psi).R
+
+
 def _face_terms(space, faces, material: Material, e1_nodes: np.ndarray,
                 cells_in: np.ndarray):
     """The faces' points x (3, n) in the domain's cells ``cells_in``, their weights (n,),
@@ -529,10 +597,9 @@ def _face_terms(space, faces, material: Material, e1_nodes: np.ndarray,
     x, w, cells, t = x[:, keep], w[keep], cells[keep], t[:, keep]
     lam, dlam = barycentric(mesh, cells, x)
     nodes = mesh.t[:, cells].T
-    ph = (lam * geo.phi[nodes]).sum(axis=1)
-    gps = np.einsum("nk,nki->in", geo.psi[nodes], dlam)
-    e1 = np.einsum("nk,nki->in", lam, e1_nodes[nodes])
-    Rf = tip_frame(e1, gps).R                             # as the domain's points
+    gph, gps = (np.einsum("nk,nki->in", f[nodes], dlam) for f in (geo.phi, geo.psi))
+    ph = front_coordinate(geo, x, (lam * geo.psi[nodes]).sum(axis=1), gph, gps)[0]
+    e1, _, Rf = _point_frames(e1_nodes, nodes, lam, dlam, gps)   # as the domain's
     e1_l = np.einsum("ain,in->an", Rf, e1)
     t_l = np.einsum("ain,in->an", Rf, t)
     r = np.maximum(np.abs(ph), 1e-300)                    # on the faces ψ_h = 0

@@ -19,15 +19,17 @@ planes included; ``python benchmarks/crack_penny.py --sizes 0.2 0.125 0.1 0.08``
 =====  ========  ==========  ======  =====  =========================
 h      unknowns  median K    worst   COD    notes
 =====  ========  ==========  ======  =====  =========================
-0.2    14 574    1.001       1.026   0.907  direct solve
+0.2    14 574    1.001       1.025   0.907  direct solve
 0.125  34 668    0.993       0.991   0.948  CG + AMG, 471 iterations
 0.1    50 910    0.991       0.988   0.959  CG + AMG, 816 iterations
-0.08   87 198    0.995       0.993   0.970  CG + AMG, 1590 iterations
+0.08   87 198    0.995       0.994   0.970  CG + AMG, 1591 iterations
 =====  ========  ==========  ======  =====  =========================
 
-(Measured on 29 November with the C¹ weights of :func:`skxfem.crack.sif3d.sif_3d`, one
-run; "worst" is the front point farthest from 1.  COD: the opening at ρ = 0.3 a over
-the exact one; h = 0.08 took 61 s, 55 s of them in CG, on the 2-core machine.)
+(Measured on 29 November with the C¹ weights of :func:`skxfem.crack.sif3d.sif_3d` and
+its x₁ the distance to the front (before, with φ_h: worst 1.026 at h = 0.2, the rest
+within 0.001), one run; "worst" is the front point farthest from 1.  COD: the opening
+at ρ = 0.3 a over the exact one; h = 0.08 took 61 s, 54 s of them in CG, on the
+2-core machine.)
 Issue 29's targets, median within 2 % and worst point within 5 %, are met from h = a/5
 on.  Before the curvature terms of the
 interaction integral (:mod:`skxfem.crack.sif3d`) and the fitted front frames, at
@@ -142,8 +144,11 @@ def pressed_penny(n: int, law: str = "frictionless", a: float = 0.55, p: float =
     tetrahedra, pressed shut by p on z = 1, on rollers at x = -1, y = -1 and z = -1: the
     uniform field σ_zz = -p solves it, the faces carry p, and K = 0 all along the front.
     ``sif_radius``: the interaction integral's radius (the default, three front cells,
-    is more than a on a coarse mesh; the curved front's straight auxiliary fields leave
-    an error of order R/a in the balance of the domain and face terms).
+    is more than a on a coarse mesh; at R = 0.45 the domain reaches the cube's sides).
+    The exact state (u = (νx, νy, -z)p/E, the faces carrying p) through
+    :func:`skxfem.crack.sif3d.sif_3d` at n = 20 gives |K_I| = 2.4e-3, 1.0e-3, 0.6e-3
+    p√(πa) at R = 0.15, 0.25, 0.35 (1.5 to 3.5 cells: quadrature, not the curvature);
+    with φ_h for the auxiliary fields' x₁, 3.6e-3 and 3.4e-3 at R = 0.25, 0.35.
 
     >>> pressed_penny(4).interfaces[0].front.name
     'rho - 0.55'
