@@ -343,28 +343,39 @@ def _point_chunks(batches):
             yield cc[sl], X[:, sl], W[sl], S[sl]
 
 
+def _hat_candidates(X: np.ndarray, P: np.ndarray, e3: np.ndarray, L: float) -> np.ndarray:
+    """(m, n) whether the points X (3, n) can lie within the bump of each front point P
+    (3, m) with its tangent e₃ (3, m): |s| < L by s = e₃·x - e₃·P, one product for all
+    (not :func:`_along`'s e₃·(x - P)), so with a margin of 1e-9 of L and of the
+    coordinates' size, above the difference of the two roundings."""
+    s = e3.T @ X - (e3 * P).sum(axis=0)[:, None]
+    margin = 1e-9 * (L + np.abs(X).max(initial=0.0) + np.abs(P).max(initial=0.0))
+    return np.abs(s) < L + margin
+
+
 def _in_support(space, cells, X, R, P, e3, L):
     """Which points X (3, n) of ``cells`` can lie in the support of some q of
     :func:`sif_3d` (r < R and |s| < L for a front point; a relative margin of 1e-9): the
-    others add nothing, and their fields are not computed.  Also their barycentric λ and
-    ∇λ (:func:`skxfem.crack.geometry3d.barycentric`), for :func:`point_values`, and
-    x₁ and ∇x₁ (:func:`front_coordinate`) at the points kept."""
+    others add nothing, and their fields are not computed.  Also, at the points kept
+    only, their barycentric λ and ∇λ (:func:`skxfem.crack.geometry3d.barycentric`), for
+    :func:`point_values`, and x₁ and ∇x₁ (:func:`front_coordinate`).  The bump's test
+    comes first (:func:`_hat_candidates`): it needs only the points, the others their
+    cells' values and the distance to the front."""
     mesh, geo = space.mesh, space.geometry
-    lam, dlam = barycentric(mesh, cells, X)
-    nodes = mesh.t[:, cells].T
+    on = np.flatnonzero(_hat_candidates(X, P, e3, L).any(axis=0))
+    lam, dlam = barycentric(mesh, cells[on], X[:, on])
+    nodes = mesh.t[:, cells[on]].T
     ph, ps = (lam * geo.phi[nodes]).sum(axis=1), (lam * geo.psi[nodes]).sum(axis=1)
     # |φ_h| ≤ 1.15 x₁ measured on the penny at h = 0.2 (P1 on a curved front): 1.5 is safe
-    on = np.flatnonzero(np.hypot(ph, ps) < 1.5 * R)
-    near = np.zeros(on.size, dtype=bool)
-    for k in range(P.shape[1]):                           # the hats along the front
-        near |= np.abs(e3[:, k] @ (X[:, on] - P[:, k, None])) < L * (1 + 1e-9)
-    on = on[near]
-    gph, gps = (np.einsum("nk,nki->in", f[nodes[on]], dlam[on]) for f in (geo.phi, geo.psi))
-    x1, gx1 = front_coordinate(geo, X[:, on], ps[on], gph, gps)
-    inside = np.hypot(x1, ps[on]) < R * (1 + 1e-9)
-    keep = np.zeros(ph.size, dtype=bool)
-    keep[on[inside]] = True
-    return keep, lam, dlam, x1[inside], gx1[:, inside]
+    near = np.flatnonzero(np.hypot(ph, ps) < 1.5 * R)
+    gph, gps = (np.einsum("nk,nki->in", f[nodes[near]], dlam[near])
+                for f in (geo.phi, geo.psi))
+    x1, gx1 = front_coordinate(geo, X[:, on[near]], ps[near], gph, gps)
+    inside = np.hypot(x1, ps[near]) < R * (1 + 1e-9)
+    keep = np.zeros(X.shape[1], dtype=bool)
+    keep[on[near[inside]]] = True
+    kept = near[inside]
+    return keep, lam[kept], dlam[kept], x1[inside], gx1[:, inside]
 
 
 def _hat_integral(geo, P, e3, L, Rk):
@@ -498,7 +509,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         if not on.any():
             continue
         cc, X, W, S = cc[on], X[:, on], W[on], S[on]
-        pv = point_values(space, cc, X, S, barycentric_=(lam[on], dlam[on]))
+        pv = point_values(space, cc, X, S, barycentric_=(lam, dlam))
         _, gu = field_at(space, U, cc, X, S, values=pv, virtual=ut)
         ps, gps = pv.psi, pv.gpsi.T                       # x₁ = ph, ∇x₁ = gph
         e1, G, Rf = _point_frames(e1_nodes, pv.nodes, pv.lam, pv.dlam, gps)
@@ -546,9 +557,12 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     K = np.zeros((P.shape[1], 3))
     for k in range(P.shape[1]):
         R, inner = Rk[k], plateau * Rk[k]
-        s, near = _along(X, P[:, k], frames.e3[:, k], R)
-        on = np.flatnonzero((np.abs(s) < L) & (r < R) & near)  # the support of q
-        s, rk = s[on], r[on]
+        cand = np.flatnonzero(_hat_candidates(X, P[:, k, None], frames.e3[:, k, None],
+                                              L)[0])
+        s, near = _along(X[:, cand], P[:, k], frames.e3[:, k], R)
+        inq = (np.abs(s) < L) & (r[cand] < R) & near
+        on = cand[inq]                                    # the support of q
+        s, rk = s[inq], r[on]
         qr, dqr = _radial(rk, R, inner)
         hat, dhat = _bump(s, L)
         gq = hat * dqr * gr[:, on] + qr * dhat * frames.e3[:, k, None]
