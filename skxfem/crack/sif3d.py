@@ -117,7 +117,7 @@ from .space3d import (
     traction_load,
     virtual_field,
 )
-from .williams import near_tip_local
+from .williams import near_tip_modes
 
 __all__ = ["DEFAULT_RADIUS", "MIN_RADIUS", "DEFAULT_LENGTH", "default_radius_3d",
            "front_points", "front_frame", "fitted_frame", "front_coordinate", "front_sizes",
@@ -525,8 +525,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         e1_l = np.einsum("ain,in->an", Rf, e1)
         du1 = np.einsum("ijn,jn->in", gu_l, e1_l)
         trace_G = np.trace(G)
-        for mode in range(3):
-            aux = near_tip_local(r, theta, material, np.eye(3)[mode], dim=3)
+        for mode, aux in enumerate(near_tip_modes(r, theta, material, dim=3)):
             agu, asig = aux.grad_u, aux.sigma
             aeps = (agu + np.swapaxes(agu, 0, 1)) / 2
             dua1 = np.einsum("ijn,jn->in", agu, e1_l)
@@ -619,9 +618,8 @@ def _face_terms(space, faces, material: Material, e1_nodes: np.ndarray,
     r = np.maximum(np.abs(ph), 1e-300)                    # on the faces ψ_h = 0
     D = np.zeros((3, r.size))
     for side in (1.0, -1.0):
-        for mode in range(3):
-            aux = near_tip_local(r, np.full(r.size, side * np.pi), material,
-                                 np.eye(3)[mode], dim=3)
+        for mode, aux in enumerate(near_tip_modes(r, np.full(r.size, side * np.pi),
+                                                  material, dim=3)):
             dua1 = np.einsum("ijn,jn->in", aux.grad_u, e1_l)
             D[mode] += (-side * t_l * dua1).sum(axis=0)
     return x, w, r, D
