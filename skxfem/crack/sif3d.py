@@ -231,7 +231,9 @@ def boundary_reach(mesh, points: np.ndarray, e3: np.ndarray, length: float) -> n
 
 def _rotate(R: np.ndarray, T: np.ndarray) -> np.ndarray:
     """R T Rᵀ of tensors T (3, 3, n) in per-point frames R (3, 3, n) (rows e₁, e₂, e₃):
-    their components in the frames."""
+    their components in the frames.  T is made contiguous first: the gradients come
+    point by point ((n, 3, 3) in memory), on which einsum is ten times slower."""
+    T = np.ascontiguousarray(T)
     return np.einsum("ain,ibn->abn", R, np.einsum("ijn,bjn->ibn", T, R))
 
 
