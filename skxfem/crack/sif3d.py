@@ -345,13 +345,16 @@ def _point_chunks(batches):
             yield cc[sl], X[:, sl], W[sl], S[sl]
 
 
-def _hat_candidates(X: np.ndarray, P: np.ndarray, e3: np.ndarray, L: float) -> np.ndarray:
+def _hat_candidates(X: np.ndarray, P: np.ndarray, e3: np.ndarray, L: float,
+                    size: float | None = None) -> np.ndarray:
     """(m, n) whether the points X (3, n) can lie within the bump of each front point P
     (3, m) with its tangent e₃ (3, m): |s| < L by s = e₃·x - e₃·P, one product for all
     (not :func:`_along`'s e₃·(x - P)), so with a margin of 1e-9 of L and of the
-    coordinates' size, above the difference of the two roundings."""
+    coordinates' size (``size``: max |X| if at hand), above the difference of the two
+    roundings."""
     s = e3.T @ X - (e3 * P).sum(axis=0)[:, None]
-    margin = 1e-9 * (L + np.abs(X).max(initial=0.0) + np.abs(P).max(initial=0.0))
+    size = np.abs(X).max(initial=0.0) if size is None else size
+    margin = 1e-9 * (L + size + np.abs(P).max(initial=0.0))
     return np.abs(s) < L + margin
 
 
@@ -502,7 +505,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     ut = virtual_field(space, U)
     eye = np.eye(3)[:, :, None]
     xs, ws, e1s, rs, grs, x1s = [], [], [], [], [], []
-    As, Bs, Cs, Ds = [[], [], []], [[], [], []], [[], [], []], [[], [], []]
+    As, Bs, Cs, Ds = [], [], [], []                       # per chunk, all modes
     b = None if body_force is None else force_field(body_force, 3)
     # plain=4: the smooth Williams fields on the ring of uncut cells (3 left |K_I| ≈
     # 1.5e-3 σ√(πa) on a crack pressed shut with its front 0.3 h past a node, 4: 1e-3)
@@ -527,17 +530,21 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         e1_l = np.einsum("ain,in->an", Rf, e1)
         du1 = np.einsum("ijn,jn->in", gu_l, e1_l)
         trace_G = np.trace(G)
+        A, B, C, D = np.empty((3, 3, r.size)), np.empty((3, r.size)), \
+            np.empty((3, r.size)), np.empty((3, r.size))
         for mode, aux in enumerate(near_tip_modes(r, theta, material, dim=3)):
             agu, asig = aux.grad_u, aux.sigma
             aeps = (agu + np.swapaxes(agu, 0, 1)) / 2
             dua1 = np.einsum("ijn,jn->in", agu, e1_l)
             work = np.einsum("ijn,ijn->n", sig, aeps)
             A_l = np.einsum("in,ijn->jn", dua1, sig) + np.einsum("in,ijn->jn", du1, asig)
-            As[mode].append(np.einsum("ain,an->in", Rf, A_l))        # global components
-            Bs[mode].append(work)
-            Cs[mode].append(_contract(sig, agu, G_l) + _contract(asig, gu_l, G_l)
-                            - work * trace_G - (bx * dua1).sum(axis=0))   # the body force's
-            Ds[mode].append(_curvature_integrand(sig, gu_l[:, 0], aux))
+            A[mode] = np.einsum("ain,an->in", Rf, A_l)            # global components
+            B[mode] = work
+            C[mode] = (_contract(sig, agu, G_l) + _contract(asig, gu_l, G_l)
+                       - work * trace_G - (bx * dua1).sum(axis=0))   # the body force's
+            D[mode] = _curvature_integrand(sig, gu_l[:, 0], aux)
+        for out, a in ((As, A), (Bs, B), (Cs, C), (Ds, D)):
+            out.append(a)
         xs.append(X)
         ws.append(W)
         e1s.append(e1)
@@ -546,20 +553,19 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         x1s.append(ph)
     X, W, e1, r, gr, x1 = (np.hstack(xs), np.concatenate(ws), np.hstack(e1s),
                            np.concatenate(rs), np.hstack(grs), np.concatenate(x1s))
-    A = np.stack([np.hstack(a) for a in As])              # (3 modes, 3, n)
-    B = np.stack([np.concatenate(b) for b in Bs])
-    C = np.stack([np.concatenate(c) for c in Cs])
-    D = np.stack([np.concatenate(d) for d in Ds])
+    A = np.concatenate(As, axis=2)                        # (3 modes, 3, n)
+    B, C, D = (np.concatenate(a, axis=1) for a in (Bs, Cs, Ds))   # (3 modes, n)
     if faces is not None:
         xf, wf, rf, Df = _face_terms(space, faces, material, e1_nodes, cells)
     Rk = np.minimum(np.minimum(R, boundary_reach(mesh, P, frames.e3, L)),
                     other_fronts(geo, P, chains) / 3)
     den = _hat_integral(geo, P, frames.e3, L, Rk)
     K = np.zeros((P.shape[1], 3))
+    size = np.abs(X).max(initial=0.0)
     for k in range(P.shape[1]):
         R, inner = Rk[k], plateau * Rk[k]
         cand = np.flatnonzero(_hat_candidates(X, P[:, k, None], frames.e3[:, k, None],
-                                              L)[0])
+                                              L, size)[0])
         s, near = _along(X[:, cand], P[:, k], frames.e3[:, k], R)
         inq = (np.abs(s) < L) & (r[cand] < R) & near
         on = cand[inq]                                    # the support of q
