@@ -109,6 +109,7 @@ from .space3d import (
     body_load,
     crack_space_3d,
     field_at,
+    front_distance,
     nodal_scaling,
     point_values,
     rules,
@@ -375,12 +376,35 @@ def _in_support(space, cells, X, R, P, e3, L):
     near = np.flatnonzero(np.hypot(ph, ps) < 1.5 * R)
     gph, gps = (np.einsum("nk,nki->in", f[nodes[near]], dlam[near])
                 for f in (geo.phi, geo.psi))
+    maybe = _x1_bound(space, cells[on[near]], X[:, on[near]], ps[near], gps) < R * (1 + 1e-9)
+    near, gph, gps = near[maybe], gph[:, maybe], gps[:, maybe]
     x1, gx1 = front_coordinate(geo, X[:, on[near]], ps[near], gph, gps)
     inside = np.hypot(x1, ps[near]) < R * (1 + 1e-9)
     keep = np.zeros(X.shape[1], dtype=bool)
     keep[on[near[inside]]] = True
     kept = near[inside]
     return keep, lam[kept], dlam[kept], x1[inside], gx1[:, inside]
+
+
+def _x1_bound(space, cells, X, psi, grad_psi) -> np.ndarray:
+    """A lower bound (n,) of r = √(x₁² + ψ_h²) at points X (3, n) of ``cells`` with ψ_h
+    ``psi`` and ∇ψ_h ``grad_psi`` (3, n) (:func:`front_coordinate`), made smaller by
+    1e-9 of its size against rounding: x₁ ≥ d(c) - |y - c|, y the point's projection on
+    {ψ_h = 0}, c that of its cell's centroid (the projection is affine in a cell), d the
+    distance to the front (:func:`skxfem.crack.space3d.front_distance`, once per run of
+    points of one cell).  The points it puts beyond R need no x₁."""
+    mesh, geo = space.mesh, space.geometry
+    if cells.size == 0:
+        return np.zeros(0)
+    first = np.flatnonzero(np.concatenate([[True], cells[1:] != cells[:-1]]))
+    inv = np.cumsum(np.concatenate([[False], cells[1:] != cells[:-1]]))
+    g2 = (grad_psi * grad_psi).sum(axis=0)
+    y = X - psi / g2 * grad_psi
+    uc = cells[first]
+    c = (mesh.p[:, mesh.t[:, uc]].mean(axis=1)
+         - geo.psi[mesh.t[:, uc]].mean(axis=0) / g2[first] * grad_psi[:, first])
+    x1 = np.maximum(front_distance(geo, c)[inv] - np.linalg.norm(y - c[:, inv], axis=0), 0)
+    return np.hypot(x1, psi) * (1 - 1e-9)
 
 
 def _hat_integral(geo, P, e3, L, Rk):
