@@ -119,8 +119,9 @@ stiffness 1.1 s.
 One smoother for the crack and the tie: every tie's hierarchy is now smoothed by the
 crack's Chebyshev polynomial too (:data:`skxfem.linalg.amg.SMOOTHER`, whose notes give
 the ties measured: every cell type, 2D, bilateral, two interfaces, slivers, a stiffer
-side; the solve stage 1.2-2.6 times shorter, and no failure where Gauss-Seidel
-succeeded; a contact solve's carried hierarchy keeps Gauss-Seidel,
+side; the solve stage 1.2-2.6 times shorter from 50 000 unknowns, between 1.2 times
+longer and 1.7 times shorter on the small badly conditioned ones, and no failure where
+Gauss-Seidel succeeded; a contact solve's carried hierarchy keeps Gauss-Seidel,
 :data:`skxfem.linalg.amg.CARRIED_SMOOTHER`).  The tie gains, the ratio gets worse:
 ``--linear auto --sizes 16 24 32``, one run each, main then after, the tie 0.44 -> 0.32,
 1.62 -> 1.07, 4.16 -> 2.37 s (CG iterations 32, 40, 42 -> 41, 46, 49), the crack (the
