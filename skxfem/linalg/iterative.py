@@ -54,9 +54,10 @@ sides together, and the rigid motions of the body suffice (``bonded=True``:
 half the coarse unknowns).  The same modes tell a singular system — a side
 that neither the supports nor the tie hold, where CG would return an
 arbitrary U — apart: :func:`solve` refuses it (:func:`skxfem.linalg.amg.check_held`).
-Its smoother is pyamg's symmetric block Gauss-Seidel, a crack's a Chebyshev polynomial
-(``smoother``, :data:`skxfem.linalg.amg.CRACK_SMOOTHER`: its K has several times the
-nonzeros of a tie's); CG applies one V-cycle (:func:`skxfem.linalg.amg.vcycle`).
+Its smoother is a Chebyshev polynomial of degree 2 (:data:`skxfem.linalg.amg.SMOOTHER`),
+that of the one hierarchy a contact solve carries over its steps (:func:`stiffness_setup`)
+pyamg's symmetric block Gauss-Seidel (:data:`skxfem.linalg.amg.CARRIED_SMOOTHER`).  CG
+applies one V-cycle (:func:`skxfem.linalg.amg.vcycle`).
 
 Dependent multipliers (the naive spaces) leave ker B and U unique; the
 multipliers, not unique then, are chosen by :func:`skxfem.linalg.dependent.smoothest`
@@ -78,7 +79,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .amg import (
-    SMOOTHER,
+    CARRIED_SMOOTHER,
     amg,
     augmented,
     check_held,
@@ -185,8 +186,7 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
           bonded: bool = False, tol: float = 1e-10, maxiter: int = 500, r: float = 3.0,
           delta: float = 1e-12, refine: int = 2,
           dependent_tol: float = 1e-8, rigid_tol: float = 1e-11, reuse: Setup | None = None,
-          C=None, update: bool = False, independent: bool = False, S=None,
-          smoother=SMOOTHER):
+          C=None, update: bool = False, independent: bool = False, S=None):
     """Solve the tied saddle-point system by projected AMG-preconditioned CG; see the module notes.
 
     Parameters
@@ -250,11 +250,6 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
         symmetric on ker B: projected GMRES (:func:`skxfem.linalg.pcg.projected_gmres`)
         instead of CG, the multipliers from the interface matrix B Cᵀ, which
         must be invertible (no dependent multipliers).
-    smoother
-        pyamg's (name, options) of the AMG's smoother (:func:`skxfem.linalg.amg.amg`):
-        :data:`skxfem.linalg.amg.SMOOTHER`, or :data:`skxfem.linalg.amg.CRACK_SMOOTHER`
-        for a crack's block-scaled K.  A set-up taken again or carried over keeps its
-        own.
 
     Returns
     -------
@@ -288,7 +283,7 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
         setup = _carried(reuse, K, B, S, modes, delta, refine, rigid_tol)
     else:
         setup = _setup(K if S is None else (K + S).tocsr(), B, fixed, modes, blocksize,
-                       bonded, r, delta, refine, rigid_tol, smoother)
+                       bonded, r, delta, refine, rigid_tol)
         if S is not None:
             setup.K, setup.S = K, S
     if independent and setup.dependent is None:
@@ -419,8 +414,7 @@ def _carried(old: Setup, K, B, S, modes, delta, refine, rigid_tol) -> Setup:
                  base=base, S=S)
 
 
-def _setup(K, B, fixed, modes, blocksize, bonded, r, delta, refine, rigid_tol,
-           smoother=SMOOTHER) -> Setup:
+def _setup(K, B, fixed, modes, blocksize, bonded, r, delta, refine, rigid_tol) -> Setup:
     """Scale, augment, check the rigid modes, build the AMG and the interface solve."""
     s, Bn, rows, Kr = augmented(K, B, fixed, r)
     Zs = None if modes is None else modes / s[:, None]
@@ -430,7 +424,7 @@ def _setup(K, B, fixed, modes, blocksize, bonded, r, delta, refine, rigid_tol,
             k = {2: 3, 3: 6}.get(blocksize)
             R = Zs.shape[1] // k if k else 2
             Zs = sum(Zs[:, r::R] for r in range(R))
-    return Setup(K, B, fixed, r, bonded, s, Bn, rows, Kr, amg(Kr, Zs, blocksize, smoother),
+    return Setup(K, B, fixed, r, bonded, s, Bn, rows, Kr, amg(Kr, Zs, blocksize),
                  interface_solve(Bn, delta, refine))
 
 
@@ -461,6 +455,6 @@ def stiffness_setup(K, D=None, modes=None, blocksize: int = 1, r: float = 3.0,
     B = sp.csr_matrix((0, N))
     s, Ks, Bn, rows = scaled_tie(K, B, fixed)
     Zs = None if modes is None else modes / s[:, None]
-    ml = amg(Ks, Zs, blocksize)  # K_s as its finest level holds it: nodal blocks
+    ml = amg(Ks, Zs, blocksize, CARRIED_SMOOTHER)  # K_s as its finest level holds it
     return Setup(K, B, fixed, r, False, s, Bn, rows, ml.levels[0].A, ml,
                  interface_solve(Bn, delta, refine))
