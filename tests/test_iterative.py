@@ -231,3 +231,32 @@ def test_an_iterative_solve_is_reproducible_to_the_last_bit():
     np.random.seed(123)
     iterative.solve(K, B, F, p.D, p.g, tol=1e-12)
     assert np.random.rand() == expected_next
+
+
+def _laplace_1d(N=4000):
+    """A tie of the two ends of a 1D Laplacian (κ ~ N²) loaded by K x, x a sine."""
+    K = sp.diags([-np.ones(N - 1), 2 * np.ones(N), -np.ones(N - 1)], [-1, 0, 1]).tocsr() * N
+    x = np.sin(np.pi * np.arange(1, N + 1) / (N + 1))
+    B = sp.csr_matrix(np.r_[1.0, np.zeros(N - 2), -1.0][None, :])
+    return K, B, x
+
+
+@pytest.mark.parametrize("tol", [1e-12, 1e-15])
+def test_rounding_floor_is_accepted_by_its_backward_error(tol):
+    """κ ~ 10⁷: rounding holds the relative residual near 2.6e-10 whatever the
+    iterations; the answer is exact to rounding (its backward error below tol), so it
+    is taken after the restarts stall (it raised after 500 iterations before)."""
+    from skxfem.linalg.iterative import backward_error
+
+    K, B, x = _laplace_1d()
+    U, mu, info = iterative.solve(K, B, K @ x, tol=tol)
+    assert info.residual > 1e-11 and info.iterations < 100
+    assert np.abs(U - x).max() < 1e-12
+    assert backward_error(K, U, np.linalg.norm(K @ U - K @ x), np.linalg.norm(K @ x)) < 1e-14
+
+
+def test_an_unconverged_solve_still_raises():
+    """The backward error does not excuse a solve cut short by maxiter."""
+    K, B, x = _laplace_1d()
+    with pytest.raises(iterative.ConvergenceError, match="within 5 iterations"):
+        iterative.solve(K, B, K @ x, maxiter=5)
