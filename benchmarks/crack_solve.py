@@ -49,7 +49,7 @@ half; K along the front on chunks of points, same K bit for bit): crack 7.25 -> 
 8.09 -> 6.43 s; K along the front alone at n = 24 3.40 -> 2.60 s).  K_I at mid-front
 3.6472, 3.7027, 3.7361 in both.  What is left: the solve (block-scaled CG, 14 s at n = 32,
 three times the whole tie); a forward then a backward block Gauss-Seidel sweep (instead
-of two symmetric ones, :data:`skxfem.linalg.amg.SMOOTHER`) cut it 5.2 -> 4.2 s at n = 24
+of two symmetric ones, pyamg's default then) cut it 5.2 -> 4.2 s at n = 24
 (K_I the same to 1e-13), but the tie's solve as well (1.6 -> 1.3 s): the ratio barely
 moves.
 
@@ -58,10 +58,10 @@ shared with two other heavy jobs: the times swing by up to 1.5x from run to run,
 within a run).  The crack's K holds 15 unknowns at each branch node: 6.7 M nonzeros at
 n = 24, 3.4 times the tie's, and pyamg's symmetric block Gauss-Seidel smoother swept it
 several times slower than a product with it.  Now the crack's hierarchy is smoothed by a
-Chebyshev polynomial of degree 2 (:data:`skxfem.linalg.amg.CRACK_SMOOTHER`; the tie keeps
-its smoother), CG applies the V-cycle without pyamg's two residual norms on the finest
-level (:func:`skxfem.linalg.amg.vcycle`, the same numbers to the bit, for the tie too),
-and the block scaling Sᵀ K S is a product of 3 × 3 blocks
+Chebyshev polynomial of degree 2 (:data:`skxfem.linalg.amg.SMOOTHER`; the tie then
+kept Gauss-Seidel, see below), CG applies the V-cycle without pyamg's two residual norms
+on the finest level (:func:`skxfem.linalg.amg.vcycle`, the same numbers to the bit, for
+the tie too), and the block scaling Sᵀ K S is a product of 3 × 3 blocks
 (:func:`skxfem.linalg.blocks.congruence`).  Solve stage 3.63 -> 1.69 s (n = 16), 7.22 ->
 2.25 s (24), 18.97 -> 9.71 s (32); whole crack 8.80 -> 5.41, 15.19 -> 9.76, 36.74 ->
 28.41 s against the tie's 0.65 / 0.50, 2.70 / 2.52, 4.49 / 5.51 s: ratios 13.6 -> 10.9,
@@ -75,31 +75,28 @@ Gauss-Seidel smoother).  K along the whole front is main's to 3e-14 (relative, n
 and 24), U to 1e-12; K_I at mid-front 3.6472, 3.7027, 3.7361; against the direct solve
 at n = 8 and 12, K to 4e-14 and 6e-14, U to 8e-11 and 3e-11.
 
-Measured on the crack's scaled system alone, one run, and left out: the tie gains from
-Chebyshev smoothing too (solve stage 1.37 -> 0.80 s at n = 24, 4.4 -> 2.5 s at n = 32;
-46 and 49 iterations against 40 and 42), so that with one smoother for both the ratio
-would give back most of what it gained.  An exact solve of the enriched block K_ee
-inside a symmetric block Gauss-Seidel with an AMG of the standard block K_ss: K_ee's LU
-has 21 M nonzeros at n = 16 (2.9 s to factorise, 21 ms a solve; the branch tube is
-r_e = max(4h, 0.1 D) across, not a few cells), and the block preconditioner still needs
-47 iterations (an AMG of K_ee instead: 53, no faster than the one AMG of K).  The branch
-functions' translations as more near-null vectors: 62 iterations against 64 (n = 24),
-a coarse level 3 times larger, slower.  The rigid motions of the side above the crack
-(a = R at its nodes, b = R/2 on the Heaviside unknowns: what the tie's sides get) as
-more near-null vectors: all six cut the iterations to 46 (n = 24) and 57 (n = 32), but
-double the coarse level, no faster; its three translations alone to 47 and 59, in
-process time 1.74, 2.14 -> 1.75, 2.28 s (n = 24, two runs each) and 5.25, 5.55 -> 4.98,
-4.55 s (n = 32): 10 % at n = 32 at most, not kept.  The enriched unknowns' small couplings dropped
-from the smoothed matrix (below 0.01 of its unit diagonal, added to the diagonal): 125
-iterations.  Strength thresholds 0.02 to 0.25, local or block Jacobi weights of the
-prolongation, its degree-2 or energy smoothing, W-cycles, a single-precision hierarchy,
-Chebyshev degree 1, 3, 4 (94, 45, 38 iterations at n = 16): none is faster.  The
-tolerance: at n = 12, ``linear_tol = 1e-8`` gives K within 6e-11 of the direct solve and
-U within 5.5e-9 in 38 iterations against 51 at the default 1e-12, which stays (one
-setting for every scene); the residual is the strict measure: at n = 24 the error's
-energy is 8e-14 of the solution's after 40 of the 64 iterations.  The target (≤ 3) is
-not met: the crack's solve is now about the tie's whole time; what is left is its
-assembly and K along the front.
+Measured on the crack's scaled system alone, one run, and left out: an exact solve of the
+enriched block K_ee inside a symmetric block Gauss-Seidel with an AMG of the standard
+block K_ss: K_ee's LU has 21 M nonzeros at n = 16 (2.9 s to factorise, 21 ms a solve; the
+branch tube is r_e = max(4h, 0.1 D) across, not a few cells), and the block
+preconditioner still needs 47 iterations (an AMG of K_ee instead: 53, no faster than the
+one AMG of K).  The branch functions' translations as more near-null vectors: 62
+iterations against 64 (n = 24), a coarse level 3 times larger, slower.  The rigid motions
+of the side above the crack (a = R at its nodes, b = R/2 on the Heaviside unknowns: what
+the tie's sides get) as more near-null vectors: all six cut the iterations to 46 (n = 24)
+and 57 (n = 32), but double the coarse level, no faster; its three translations alone to
+47 and 59, in process time 1.74, 2.14 -> 1.75, 2.28 s (n = 24, two runs each) and 5.25,
+5.55 -> 4.98, 4.55 s (n = 32): 10 % at n = 32 at most, not kept.  The enriched unknowns'
+small couplings dropped from the smoothed matrix (below 0.01 of its unit diagonal, added
+to the diagonal): 125 iterations.  Strength thresholds 0.02 to 0.25, local or block
+Jacobi weights of the prolongation, its degree-2 or energy smoothing, W-cycles, a
+single-precision hierarchy, Chebyshev degree 1, 3, 4 (94, 45, 38 iterations at n = 16):
+none is faster.  The tolerance: at n = 12, ``linear_tol = 1e-8`` gives K within 6e-11 of
+the direct solve and U within 5.5e-9 in 38 iterations against 51 at the default 1e-12,
+which stays (one setting for every scene); the residual is the strict measure: at n = 24
+the error's energy is 8e-14 of the solution's after 40 of the 64 iterations.  The target
+(≤ 3) is not met: the crack's solve is now about the tie's whole time; what is left is
+its assembly and K along the front.
 
 The crack's assembly (``--linear auto``; main, then the branch, one run each, the
 machine busy): the stiffness takes the cells of the branch nodes' supports away from the
@@ -118,6 +115,19 @@ keeps its rules (on the symmetric rule its quadrature error reached 1.1e-3 at n 
 against 4.8e-4); at n = 24, profiled, it takes 2.2 s of 6.0, mostly the interaction
 integral's own integrand (the Williams fields, the frames), the solve 1.9 s, the
 stiffness 1.1 s.
+
+One smoother for the crack and the tie: every tie's hierarchy is now smoothed by the
+crack's Chebyshev polynomial too (:data:`skxfem.linalg.amg.SMOOTHER`, whose notes give
+the ties measured: every cell type, 2D, bilateral, two interfaces, slivers, a stiffer
+side; the solve stage 1.2-2.6 times shorter from 50 000 unknowns, between 1.2 times
+longer and 1.7 times shorter on the small badly conditioned ones, and no failure where
+Gauss-Seidel succeeded; a contact solve's carried hierarchy keeps Gauss-Seidel,
+:data:`skxfem.linalg.amg.CARRIED_SMOOTHER`).  The tie gains, the ratio gets worse:
+``--linear auto --sizes 16 24 32``, one run each, main then after, the tie 0.44 -> 0.32,
+1.62 -> 1.07, 4.16 -> 2.37 s (CG iterations 32, 40, 42 -> 41, 46, 49), the crack (the
+same solve) 3.38 / 3.72, 6.22 / 6.98, 15.84 / 16.05 s, solve stage 1.04 / 1.09, 2.07 /
+2.53, 6.20 / 5.84 s: ratios 7.6 -> 11.5, 3.8 -> 6.5, 3.8 -> 6.8.  K_I at mid-front
+3.6472, 3.7028, 3.7361 in both.
 
     python benchmarks/crack_solve.py                 # n = 8, 12
     python benchmarks/crack_solve.py --sizes 8 --repeat 3

