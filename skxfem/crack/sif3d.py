@@ -407,6 +407,32 @@ def _x1_bound(space, cells, X, psi, grad_psi) -> np.ndarray:
     return np.hypot(x1, psi) * (1 - 1e-9)
 
 
+def _cell_r_bound(space, cells: np.ndarray) -> np.ndarray:
+    """A lower bound (nc,) of r = √(x₁² + ψ_h²) over each of ``cells`` (as
+    :func:`_x1_bound`, made smaller by 1e-9 of its size): x₁ ≥ d(c) - ρ, c the
+    projection on {ψ_h = 0} of the cell's centroid, ρ the largest distance from c to the
+    projections of its vertices (the projection is affine in a cell: the cell's image is
+    their hull), |ψ_h| ≥ its least nodal |ψ| if they share a sign.  0 for a cell where
+    ∇ψ_h = 0 (no projection).  The cells it puts beyond R hold no point of the domain."""
+    mesh, geo = space.mesh, space.geometry
+    out = np.zeros(cells.size)
+    for k in range(0, cells.size, 4096):                  # blocks: nc × nseg distances
+        cc = cells[k:k + 4096]
+        psi, V = geo.psi[mesh.t[:, cc]], mesh.p[:, mesh.t[:, cc]]      # (4, nc), (3, 4, nc)
+        _, dlam = barycentric(mesh, cc, V[:, 0])
+        g = np.einsum("kn,nki->in", psi, dlam)
+        g2 = (g * g).sum(axis=0)
+        ok = g2 > 0
+        Y = V - psi / np.where(ok, g2, 1.0) * g[:, None]  # the vertices' projections
+        c = Y.mean(axis=1)
+        rho = np.linalg.norm(Y - c[:, None], axis=0).max(axis=0)
+        x1 = np.maximum(front_distance(geo, c) - rho, 0.0)
+        least = np.where(psi.min(axis=0) > 0, psi.min(axis=0),
+                         np.where(psi.max(axis=0) < 0, -psi.max(axis=0), 0.0))
+        out[k:k + 4096] = np.where(ok, np.hypot(x1, least) * (1 - 1e-9), 0.0)
+    return out
+
+
 def _hat_integral(geo, P, e3, L, Rk):
     """∫ Λ ds along the front's segments near each point (m,) (:func:`_along` with the
     point's radius in ``Rk``)."""
@@ -533,7 +559,10 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     b = None if body_force is None else force_field(body_force, 3)
     # plain=4: the smooth Williams fields on the ring of uncut cells (3 left |K_I| ≈
     # 1.5e-3 σ√(πa) on a crack pressed shut with its front 0.3 h past a node, 4: 1e-3)
-    for cc, X, W, S in _point_chunks(rules(space, cells, plain=4)):
+    # the cells that can hold points of a domain (r < R): the nodal directions
+    # above use all of them
+    inner = cells[_cell_r_bound(space, cells) < R * (1 + 1e-9)]
+    for cc, X, W, S in _point_chunks(rules(space, inner, plain=4)):
         on, lam, dlam, ph, gph = _in_support(space, cc, X, R, P, frames.e3, L)
         if not on.any():
             continue
