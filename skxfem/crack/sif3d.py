@@ -557,12 +557,12 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     xs, ws, e1s, rs, grs, x1s = [], [], [], [], [], []
     As, Bs, Cs, Ds = [], [], [], []                       # per chunk, all modes
     b = None if body_force is None else force_field(body_force, 3)
-    # plain=4: the smooth Williams fields on the ring of uncut cells (3 left |K_I| ≈
-    # 1.5e-3 σ√(πa) on a crack pressed shut with its front 0.3 h past a node, 4: 1e-3)
-    # the cells that can hold points of a domain (r < R): the nodal directions
-    # above use all of them
-    inner = cells[_cell_r_bound(space, cells) < R * (1 + 1e-9)]
-    for cc, X, W, S in _point_chunks(rules(space, inner, plain=4)):
+    # the cells that can hold points of a domain (r < R; the nodal directions above
+    # use all of them).  plain=4: the smooth Williams fields on the ring of uncut cells
+    # (3 left |K_I| ≈ 1.5e-3 σ√(πa) on a crack pressed shut with its front 0.3 h past a
+    # node, 4: 1e-3)
+    within = cells[_cell_r_bound(space, cells) < R * (1 + 1e-9)]
+    for cc, X, W, S in _point_chunks(rules(space, within, plain=4)):
         on, lam, dlam, ph, gph = _in_support(space, cc, X, R, P, frames.e3, L)
         if not on.any():
             continue
