@@ -650,7 +650,11 @@ def _point_frames(e1_nodes: np.ndarray, nodes: np.ndarray, lam: np.ndarray,
     e₂, unit)."""
     e1n = e1_nodes[nodes]                                 # (n, 4, 3)
     e1 = np.einsum("nk,nki->in", lam, e1n)
-    G = np.einsum("nkj,nki->jin", dlam, e1n)
+    # G is constant in a cell: once per run of points of one cell
+    new = np.ones(len(nodes), dtype=bool)
+    new[1:] = (nodes[1:] != nodes[:-1]).any(axis=1)
+    first, run = np.flatnonzero(new), np.cumsum(new) - 1
+    G = np.einsum("nkj,nki->jin", dlam[first], e1n[first])[:, :, run]
     return e1, G, tip_frame(e1, grad_psi).R
 
 
