@@ -554,18 +554,25 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     e1_nodes = _nodal_directions(space, cells, spacing, chains)
     ut = virtual_field(space, U)
     eye = np.eye(3)[:, :, None]
-    xs, ws, e1s, rs, grs, x1s = [], [], [], [], [], []
-    As, Bs, Cs, Ds = [], [], [], []                       # per chunk, all modes
     b = None if body_force is None else force_field(body_force, 3)
     # the cells that can hold points of a domain (r < R; the nodal directions above
     # use all of them).  plain=4: the smooth Williams fields on the ring of uncut cells
     # (3 left |K_I| ≈ 1.5e-3 σ√(πa) on a crack pressed shut with its front 0.3 h past a
     # node, 4: 1e-3)
     within = cells[_cell_r_bound(space, cells) < R * (1 + 1e-9)]
-    for cc, X, W, S in _point_chunks(rules(space, within, plain=4)):
+    batches = rules(space, within, plain=4)
+    # the points' terms, filled chunk by chunk (at most every point of the rules)
+    total = sum(int(np.count_nonzero(w)) for _, _, w, _ in batches)
+    X_, e1_, gr_, B_, C_, D_ = (np.empty((3, total)) for _ in range(6))
+    W_, r_, x1_ = (np.empty(total) for _ in range(3))
+    A_ = np.empty((3, 3, total))                          # (3 modes, 3, n)
+    n = 0
+    for cc, X, W, S in _point_chunks(batches):
         on, lam, dlam, ph, gph = _in_support(space, cc, X, R, P, frames.e3, L)
         if not on.any():
             continue
+        sl = slice(n, n + int(on.sum()))
+        n = sl.stop
         cc, X, W, S = cc[on], X[:, on], W[on], S[on]
         pv = point_values(space, cc, X, S, barycentric_=(lam, dlam))
         _, gu = field_at(space, U, cc, X, S, values=pv, virtual=ut)
@@ -583,31 +590,21 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         e1_l = np.einsum("ain,in->an", Rf, e1)
         du1 = np.einsum("ijn,jn->in", gu_l, e1_l)
         trace_G = np.trace(G)
-        A, B, C, D = np.empty((3, 3, r.size)), np.empty((3, r.size)), \
-            np.empty((3, r.size)), np.empty((3, r.size))
         for mode, aux in enumerate(near_tip_modes(r, theta, material, dim=3)):
             agu, asig = aux.grad_u, aux.sigma
             aeps = (agu + np.swapaxes(agu, 0, 1)) / 2
             dua1 = np.einsum("ijn,jn->in", agu, e1_l)
             work = np.einsum("ijn,ijn->n", sig, aeps)
             A_l = np.einsum("in,ijn->jn", dua1, sig) + np.einsum("in,ijn->jn", du1, asig)
-            A[mode] = np.einsum("ain,an->in", Rf, A_l)            # global components
-            B[mode] = work
-            C[mode] = (_contract(sig, agu, G_l) + _contract(asig, gu_l, G_l)
-                       - work * trace_G - (bx * dua1).sum(axis=0))   # the body force's
-            D[mode] = _curvature_integrand(sig, gu_l[:, 0], aux)
-        for out, a in ((As, A), (Bs, B), (Cs, C), (Ds, D)):
-            out.append(a)
-        xs.append(X)
-        ws.append(W)
-        e1s.append(e1)
-        rs.append(r)
-        grs.append((ph * gph + ps * gps) / r)
-        x1s.append(ph)
-    X, W, e1, r, gr, x1 = (np.hstack(xs), np.concatenate(ws), np.hstack(e1s),
-                           np.concatenate(rs), np.hstack(grs), np.concatenate(x1s))
-    A = np.concatenate(As, axis=2)                        # (3 modes, 3, n)
-    B, C, D = (np.concatenate(a, axis=1) for a in (Bs, Cs, Ds))   # (3 modes, n)
+            A_[mode, :, sl] = np.einsum("ain,an->in", Rf, A_l)   # global components
+            B_[mode, sl] = work
+            C_[mode, sl] = (_contract(sig, agu, G_l) + _contract(asig, gu_l, G_l)
+                            - work * trace_G - (bx * dua1).sum(axis=0))   # the body force's
+            D_[mode, sl] = _curvature_integrand(sig, gu_l[:, 0], aux)
+        X_[:, sl], W_[sl], e1_[:, sl], r_[sl], x1_[sl] = X, W, e1, r, ph
+        gr_[:, sl] = (ph * gph + ps * gps) / r
+    X, W, e1, r, gr, x1 = X_[:, :n], W_[:n], e1_[:, :n], r_[:n], gr_[:, :n], x1_[:n]
+    A, B, C, D = A_[:, :, :n], B_[:, :n], C_[:, :n], D_[:, :n]
     if faces is not None:
         xf, wf, rf, Df = _face_terms(space, faces, material, e1_nodes, cells)
     Rk = np.minimum(np.minimum(R, boundary_reach(mesh, P, frames.e3, L)),
