@@ -141,15 +141,17 @@ values, a lower bound per point spares x₁ (``front_offset``) to those beyond R
 points instead of 1.05M; 591k kept), each candidate segment measured once per point,
 the Williams fields of the three unit modes with their angular functions once
 (:func:`skxfem.crack.williams.near_tip_modes`), the gradients made contiguous before
-their rotation (einsum 10x faster), the terms per chunk in one array.  sif_3d alone
-(``time.perf_counter``, best of 2, one run each, main then the branch): n = 16 1.97 ->
-1.25 s, n = 24 3.17 -> 1.97 s, penny 0.56 -> 0.44 s, pressed penny 1.12 -> 0.87 s.  The
-benchmark (``--linear auto``, one run each): crack 4.16 -> 3.39 s, 7.61 -> 6.25 s
-against the tie's 0.32 / 0.33, 1.03 / 1.04 s, ratios 13.1 -> 10.2 (n = 16), 7.4 -> 6.0
-(n = 24).  What is left in K at n = 24 (1.9 s, profiled): the quadrature's rules and the
-fields of u_h at the 591k points (space3d's ``rules``, ``field_at``, ``point_values``,
-0.7 s), x₁'s nearest-sample search (a KD-tree query, 0.27 s), the frames and Williams
-fields (0.4 s), the loop over the front points (0.35 s).
+their rotation (einsum 10x faster), ∂e₁ once per cell, the terms written in place.
+sif_3d alone (``time.perf_counter``, best of 2, main then the branch, one run each):
+n = 16 1.94 -> 1.25 s, n = 24 3.23 -> 1.92 s, penny 0.58 -> 0.42 s, pressed penny 1.15 ->
+0.86 s.  The benchmark (``--linear auto``, two pairs of runs, main then the branch):
+crack 4.16 -> 3.39 s and 4.56 -> 3.41 s (n = 16), 7.61 -> 6.25 s and 7.89 -> 6.52 s
+(n = 24) against the tie's 0.32-0.34 and 1.03-1.09 s: ratios 13.1 -> 10.2 and 13.9 ->
+10.1 (n = 16), 7.4 -> 6.0 and 7.3 -> 6.3 (n = 24).  What is left in K at n = 24 (1.8 s,
+profiled): the x₁ of 650k points (0.65 s with their cells' values; its nearest-sample
+KD-tree query alone 0.25 s), u_h's gradient and the cells' values at the 591k points
+(space3d's ``field_at``, ``point_values``, 0.4 s), the frames and Williams fields and the
+integrand's terms (0.5 s), the loop over the front points (0.33 s).
 
     python benchmarks/crack_solve.py                 # n = 8, 12
     python benchmarks/crack_solve.py --sizes 8 --repeat 3
