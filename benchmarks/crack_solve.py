@@ -129,6 +129,30 @@ same solve) 3.38 / 3.72, 6.22 / 6.98, 15.84 / 16.05 s, solve stage 1.04 / 1.09, 
 2.53, 6.20 / 5.84 s: ratios 7.6 -> 11.5, 3.8 -> 6.5, 3.8 -> 6.8.  K_I at mid-front
 3.6472, 3.7028, 3.7361 in both.
 
+K along the front (:func:`skxfem.crack.sif3d.sif_3d`) made cheaper with the same K bit for
+bit (whole K arrays compared: the benchmark's n = 16 and 24 from full solves, and sif_3d
+replayed on the inputs of main's solves of the cube at n = 16, 24, the penny of
+:mod:`skxfem.studies.cracks3d` at h = 0.2, the pressed penny at n = 10 and the pressed
+through cracks of ``tests/test_crack_contact_3d.py``): the cells whose lower bound of
+r = √(x₁² + ψ_h²) (the distance of the cell's projected centroid to the front less the
+spread of its projected vertices) is beyond R get no quadrature (756k points instead of
+1.49M at n = 24), the bump's test for all front points in one product before the cells'
+values, a lower bound per point spares x₁ (``front_offset``) to those beyond R (650k
+points instead of 1.05M; 591k kept), each candidate segment measured once per point,
+the Williams fields of the three unit modes with their angular functions once
+(:func:`skxfem.crack.williams.near_tip_modes`), the gradients made contiguous before
+their rotation (einsum 10x faster), ∂e₁ once per cell, the terms written in place.
+sif_3d alone (``time.perf_counter``, best of 2, main then the branch, one run each):
+n = 16 1.94 -> 1.25 s, n = 24 3.23 -> 1.92 s, penny 0.58 -> 0.42 s, pressed penny 1.15 ->
+0.86 s.  The benchmark (``--linear auto``, two pairs of runs, main then the branch):
+crack 4.16 -> 3.39 s and 4.56 -> 3.41 s (n = 16), 7.61 -> 6.25 s and 7.89 -> 6.52 s
+(n = 24) against the tie's 0.32-0.34 and 1.03-1.09 s: ratios 13.1 -> 10.2 and 13.9 ->
+10.1 (n = 16), 7.4 -> 6.0 and 7.3 -> 6.3 (n = 24).  What is left in K at n = 24 (1.8 s,
+profiled): the x₁ of 650k points (0.65 s with their cells' values; its nearest-sample
+KD-tree query alone 0.25 s), u_h's gradient and the cells' values at the 591k points
+(space3d's ``field_at``, ``point_values``, 0.4 s), the frames and Williams fields and the
+integrand's terms (0.5 s), the loop over the front points (0.33 s).
+
     python benchmarks/crack_solve.py                 # n = 8, 12
     python benchmarks/crack_solve.py --sizes 8 --repeat 3
 """

@@ -130,6 +130,33 @@ def test_front_offset_is_the_distance_to_the_p1_front_and_its_direction():
         front_offset(g, x[:2])
 
 
+def test_the_bounds_that_spare_points_their_x1_are_below_r_everywhere():
+    """sif3d._x1_bound (the points it puts beyond R get no x₁) and _cell_r_bound (the
+    cells it puts beyond R get no points): at points of cells of a penny's mesh, below
+    r = √(x₁² + ψ_h²) with x₁ of front_coordinate, and mostly near it (within the cells'
+    size)."""
+    from skxfem.crack.geometry3d import barycentric
+    from skxfem.crack.sif3d import _cell_r_bound, _x1_bound, front_coordinate
+    m = MeshTet1.init_tensor(*(np.linspace(-1, 1, 11),) * 3)
+    g = crack_geometry_3d(m, lambda x: x[2] - 0.05,
+                          lambda x: np.sqrt(x[0] ** 2 + x[1] ** 2) - 0.55)
+    rng = np.random.default_rng(29)
+    cells = np.sort(rng.integers(0, m.t.shape[1], 3000))
+    X = np.einsum("nk,ikn->in", rng.dirichlet(np.ones(4), cells.size), m.p[:, m.t[:, cells]])
+    lam, dlam = barycentric(m, cells, X)
+    nodes = m.t[:, cells].T
+    psi = (lam * g.psi[nodes]).sum(axis=1)
+    gph, gps = (np.einsum("nk,nki->in", f[nodes], dlam) for f in (g.phi, g.psi))
+    r = np.hypot(front_coordinate(g, X, psi, gph, gps)[0], psi)
+    V = crack_space_3d(m, g)
+    bound = _x1_bound(V, cells, X, psi, gps)
+    assert np.all(bound <= r)
+    assert np.median(r - bound) < 0.05 and np.all(r - bound < 0.5)
+    per_cell = _cell_r_bound(V, cells)
+    assert np.all(per_cell <= bound)
+    assert np.median(r - per_cell) < 0.2 and np.mean(per_cell > 0) > 0.5
+
+
 def test_a_front_along_the_cells_faces_makes_every_cell_it_touches_a_front_cell():
     """The front x = y = 1/2 at n = 21 lies on the tetrahedra's diagonal faces: the 12
     cells whose closure meets it are front cells (φ_h on their crack polygons is 0 or

@@ -4,7 +4,13 @@ import numpy as np
 import pytest
 
 from skxfem.crack.frame import straight_frame
-from skxfem.crack.williams import kolosov, near_tip, near_tip_local, shear_modulus
+from skxfem.crack.williams import (
+    kolosov,
+    near_tip,
+    near_tip_local,
+    near_tip_modes,
+    shear_modulus,
+)
 from skxfem.fem.material import Material
 
 RNG = np.random.default_rng(2929)
@@ -117,6 +123,24 @@ def test_kolosov_and_mu():
     assert shear_modulus(Material(2.6, 0.3)) == pytest.approx(1.0)
 
 
+@pytest.mark.parametrize("mat,dim,K", CASES, ids=IDS)
+def test_the_unit_modes_at_once_are_near_tip_local_of_each_and_sum_to_a_mix(mat, dim, K):
+    """near_tip_modes: the same numbers as one near_tip_local per unit mode, and the
+    fields of a mix of modes are their combination."""
+    r, theta = RNG.uniform(0.01, 2.0, 30), RNG.uniform(-np.pi, np.pi, 30)
+    theta[:2] = -np.pi, np.pi                            # the faces
+    modes = near_tip_modes(r, theta, mat, dim)
+    assert len(modes) == dim
+    for m, one in enumerate(modes):
+        ref = near_tip_local(r, theta, mat, np.eye(dim)[m], dim)
+        for name in ("u", "grad_u", "sigma"):
+            assert np.array_equal(getattr(one, name), getattr(ref, name)), (m, name)
+    mix = near_tip_local(r, theta, mat, K, dim)
+    for name in ("u", "grad_u", "sigma"):
+        combined = sum(k * getattr(one, name) for k, one in zip(K, modes))
+        assert np.allclose(getattr(mix, name), combined, rtol=1e-13, atol=1e-13)
+
+
 def test_bad_arguments():
     m = Material()
     with pytest.raises(ValueError, match="K_III needs dim = 3"):
@@ -129,3 +153,7 @@ def test_bad_arguments():
         near_tip_local(1.0, np.nan, m)
     with pytest.raises(TypeError, match="material must be"):
         near_tip_local(1.0, 0.0, {"E": 1})
+    with pytest.raises(ValueError, match="r must be positive"):
+        near_tip_modes(np.array([-1.0]), np.array([0.0]), m)
+    with pytest.raises(ValueError, match="dim must be 2 or 3"):
+        near_tip_modes(1.0, 0.0, m, dim=4)

@@ -571,10 +571,15 @@ def front_offset(geometry: CrackGeometry3D,
     t = (np.arange(seg.size) - np.repeat(np.cumsum(m) - m, m)) / np.repeat(m - 1, m)
     samples = A[:, seg] + t * (B - A)[:, seg]
     k = min(4, seg.size)
-    near = cKDTree(samples.T).query(x.T, k=k)[1].reshape(x.shape[1], k)
-    c, dist = _segment_points(A, B, x, seg[near])
-    j = np.argmin(dist, axis=1)
-    rows = np.arange(x.shape[1])
-    best = dist[rows, j]
-    v = x - c[:, rows, j]
+    cand = seg[cKDTree(samples.T).query(x.T, k=k)[1].reshape(x.shape[1], k)]
+    # the nearest samples mostly lie on one or two segments: each segment of a row is
+    # measured once, the first nearest kept (a repeat is never strictly nearer)
+    best, c = np.full(x.shape[1], np.inf), np.full_like(x, np.nan)
+    for j in range(k):
+        rows = np.flatnonzero((cand[:, j, None] != cand[:, :j]).all(axis=1))
+        cj, dj = _segment_points(A, B, x[:, rows], cand[rows, j, None])
+        nearer = dj[:, 0] < best[rows]
+        rows = rows[nearer]
+        best[rows], c[:, rows] = dj[nearer, 0], cj[:, nearer, 0]
+    v = x - c
     return best, v / np.where(best > 0, best, 1.0)

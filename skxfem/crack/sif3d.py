@@ -109,6 +109,7 @@ from .space3d import (
     body_load,
     crack_space_3d,
     field_at,
+    front_distance,
     nodal_scaling,
     point_values,
     rules,
@@ -117,7 +118,7 @@ from .space3d import (
     traction_load,
     virtual_field,
 )
-from .williams import near_tip_local
+from .williams import near_tip_modes
 
 __all__ = ["DEFAULT_RADIUS", "MIN_RADIUS", "DEFAULT_LENGTH", "default_radius_3d",
            "front_points", "front_frame", "fitted_frame", "front_coordinate", "front_sizes",
@@ -231,7 +232,9 @@ def boundary_reach(mesh, points: np.ndarray, e3: np.ndarray, length: float) -> n
 
 def _rotate(R: np.ndarray, T: np.ndarray) -> np.ndarray:
     """R T Rᵀ of tensors T (3, 3, n) in per-point frames R (3, 3, n) (rows e₁, e₂, e₃):
-    their components in the frames."""
+    their components in the frames.  T is made contiguous first: the gradients come
+    point by point ((n, 3, 3) in memory), on which einsum is ten times slower."""
+    T = np.ascontiguousarray(T)
     return np.einsum("ain,ibn->abn", R, np.einsum("ijn,bjn->ibn", T, R))
 
 
@@ -343,28 +346,91 @@ def _point_chunks(batches):
             yield cc[sl], X[:, sl], W[sl], S[sl]
 
 
+def _hat_candidates(X: np.ndarray, P: np.ndarray, e3: np.ndarray, L: float,
+                    size: float | None = None) -> np.ndarray:
+    """(m, n) whether the points X (3, n) can lie within the bump of each front point P
+    (3, m) with its tangent e₃ (3, m): |s| < L by s = e₃·x - e₃·P, one product for all
+    (not :func:`_along`'s e₃·(x - P)), so with a margin of 1e-9 of L and of the
+    coordinates' size (``size``: max |X| if at hand), above the difference of the two
+    roundings."""
+    s = e3.T @ X - (e3 * P).sum(axis=0)[:, None]
+    size = np.abs(X).max(initial=0.0) if size is None else size
+    margin = 1e-9 * (L + size + np.abs(P).max(initial=0.0))
+    return np.abs(s) < L + margin
+
+
 def _in_support(space, cells, X, R, P, e3, L):
     """Which points X (3, n) of ``cells`` can lie in the support of some q of
     :func:`sif_3d` (r < R and |s| < L for a front point; a relative margin of 1e-9): the
-    others add nothing, and their fields are not computed.  Also their barycentric λ and
-    ∇λ (:func:`skxfem.crack.geometry3d.barycentric`), for :func:`point_values`, and
-    x₁ and ∇x₁ (:func:`front_coordinate`) at the points kept."""
+    others add nothing, and their fields are not computed.  Also, at the points kept
+    only, their barycentric λ and ∇λ (:func:`skxfem.crack.geometry3d.barycentric`), for
+    :func:`point_values`, and x₁ and ∇x₁ (:func:`front_coordinate`).  The bump's test
+    comes first (:func:`_hat_candidates`): it needs only the points, the others their
+    cells' values and the distance to the front."""
     mesh, geo = space.mesh, space.geometry
-    lam, dlam = barycentric(mesh, cells, X)
-    nodes = mesh.t[:, cells].T
+    on = np.flatnonzero(_hat_candidates(X, P, e3, L).any(axis=0))
+    lam, dlam = barycentric(mesh, cells[on], X[:, on])
+    nodes = mesh.t[:, cells[on]].T
     ph, ps = (lam * geo.phi[nodes]).sum(axis=1), (lam * geo.psi[nodes]).sum(axis=1)
     # |φ_h| ≤ 1.15 x₁ measured on the penny at h = 0.2 (P1 on a curved front): 1.5 is safe
-    on = np.flatnonzero(np.hypot(ph, ps) < 1.5 * R)
-    near = np.zeros(on.size, dtype=bool)
-    for k in range(P.shape[1]):                           # the hats along the front
-        near |= np.abs(e3[:, k] @ (X[:, on] - P[:, k, None])) < L * (1 + 1e-9)
-    on = on[near]
-    gph, gps = (np.einsum("nk,nki->in", f[nodes[on]], dlam[on]) for f in (geo.phi, geo.psi))
-    x1, gx1 = front_coordinate(geo, X[:, on], ps[on], gph, gps)
-    inside = np.hypot(x1, ps[on]) < R * (1 + 1e-9)
-    keep = np.zeros(ph.size, dtype=bool)
-    keep[on[inside]] = True
-    return keep, lam, dlam, x1[inside], gx1[:, inside]
+    near = np.flatnonzero(np.hypot(ph, ps) < 1.5 * R)
+    gph, gps = (np.einsum("nk,nki->in", f[nodes[near]], dlam[near])
+                for f in (geo.phi, geo.psi))
+    maybe = _x1_bound(space, cells[on[near]], X[:, on[near]], ps[near], gps) < R * (1 + 1e-9)
+    near, gph, gps = near[maybe], gph[:, maybe], gps[:, maybe]
+    x1, gx1 = front_coordinate(geo, X[:, on[near]], ps[near], gph, gps)
+    inside = np.hypot(x1, ps[near]) < R * (1 + 1e-9)
+    keep = np.zeros(X.shape[1], dtype=bool)
+    keep[on[near[inside]]] = True
+    kept = near[inside]
+    return keep, lam[kept], dlam[kept], x1[inside], gx1[:, inside]
+
+
+def _x1_bound(space, cells, X, psi, grad_psi) -> np.ndarray:
+    """A lower bound (n,) of r = √(x₁² + ψ_h²) at points X (3, n) of ``cells`` with ψ_h
+    ``psi`` and ∇ψ_h ``grad_psi`` (3, n) (:func:`front_coordinate`), made smaller by
+    1e-9 of its size against rounding: x₁ ≥ d(c) - |y - c|, y the point's projection on
+    {ψ_h = 0}, c that of its cell's centroid (the projection is affine in a cell), d the
+    distance to the front (:func:`skxfem.crack.space3d.front_distance`, once per run of
+    points of one cell).  The points it puts beyond R need no x₁."""
+    mesh, geo = space.mesh, space.geometry
+    if cells.size == 0:
+        return np.zeros(0)
+    first = np.flatnonzero(np.concatenate([[True], cells[1:] != cells[:-1]]))
+    inv = np.cumsum(np.concatenate([[False], cells[1:] != cells[:-1]]))
+    g2 = (grad_psi * grad_psi).sum(axis=0)
+    y = X - psi / g2 * grad_psi
+    uc = cells[first]
+    c = (mesh.p[:, mesh.t[:, uc]].mean(axis=1)
+         - geo.psi[mesh.t[:, uc]].mean(axis=0) / g2[first] * grad_psi[:, first])
+    x1 = np.maximum(front_distance(geo, c)[inv] - np.linalg.norm(y - c[:, inv], axis=0), 0)
+    return np.hypot(x1, psi) * (1 - 1e-9)
+
+
+def _cell_r_bound(space, cells: np.ndarray) -> np.ndarray:
+    """A lower bound (nc,) of r = √(x₁² + ψ_h²) over each of ``cells`` (as
+    :func:`_x1_bound`, made smaller by 1e-9 of its size): x₁ ≥ d(c) - ρ, c the
+    projection on {ψ_h = 0} of the cell's centroid, ρ the largest distance from c to the
+    projections of its vertices (the projection is affine in a cell: the cell's image is
+    their hull), |ψ_h| ≥ its least nodal |ψ| if they share a sign.  0 for a cell where
+    ∇ψ_h = 0 (no projection).  The cells it puts beyond R hold no point of the domain."""
+    mesh, geo = space.mesh, space.geometry
+    out = np.zeros(cells.size)
+    for k in range(0, cells.size, 4096):                  # blocks: nc × nseg distances
+        cc = cells[k:k + 4096]
+        psi, V = geo.psi[mesh.t[:, cc]], mesh.p[:, mesh.t[:, cc]]      # (4, nc), (3, 4, nc)
+        _, dlam = barycentric(mesh, cc, V[:, 0])
+        g = np.einsum("kn,nki->in", psi, dlam)
+        g2 = (g * g).sum(axis=0)
+        ok = g2 > 0
+        Y = V - psi / np.where(ok, g2, 1.0) * g[:, None]  # the vertices' projections
+        c = Y.mean(axis=1)
+        rho = np.linalg.norm(Y - c[:, None], axis=0).max(axis=0)
+        x1 = np.maximum(front_distance(geo, c) - rho, 0.0)
+        least = np.where(psi.min(axis=0) > 0, psi.min(axis=0),
+                         np.where(psi.max(axis=0) < 0, -psi.max(axis=0), 0.0))
+        out[k:k + 4096] = np.where(ok, np.hypot(x1, least) * (1 - 1e-9), 0.0)
+    return out
 
 
 def _hat_integral(geo, P, e3, L, Rk):
@@ -488,17 +554,27 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     e1_nodes = _nodal_directions(space, cells, spacing, chains)
     ut = virtual_field(space, U)
     eye = np.eye(3)[:, :, None]
-    xs, ws, e1s, rs, grs, x1s = [], [], [], [], [], []
-    As, Bs, Cs, Ds = [[], [], []], [[], [], []], [[], [], []], [[], [], []]
     b = None if body_force is None else force_field(body_force, 3)
-    # plain=4: the smooth Williams fields on the ring of uncut cells (3 left |K_I| ≈
-    # 1.5e-3 σ√(πa) on a crack pressed shut with its front 0.3 h past a node, 4: 1e-3)
-    for cc, X, W, S in _point_chunks(rules(space, cells, plain=4)):
+    # the cells that can hold points of a domain (r < R; the nodal directions above
+    # use all of them).  plain=4: the smooth Williams fields on the ring of uncut cells
+    # (3 left |K_I| ≈ 1.5e-3 σ√(πa) on a crack pressed shut with its front 0.3 h past a
+    # node, 4: 1e-3)
+    within = cells[_cell_r_bound(space, cells) < R * (1 + 1e-9)]
+    batches = rules(space, within, plain=4)
+    # the points' terms, filled chunk by chunk (at most every point of the rules)
+    total = sum(int(np.count_nonzero(w)) for _, _, w, _ in batches)
+    X_, e1_, gr_, B_, C_, D_ = (np.empty((3, total)) for _ in range(6))
+    W_, r_, x1_ = (np.empty(total) for _ in range(3))
+    A_ = np.empty((3, 3, total))                          # (3 modes, 3, n)
+    n = 0
+    for cc, X, W, S in _point_chunks(batches):
         on, lam, dlam, ph, gph = _in_support(space, cc, X, R, P, frames.e3, L)
         if not on.any():
             continue
+        sl = slice(n, n + int(on.sum()))
+        n = sl.stop
         cc, X, W, S = cc[on], X[:, on], W[on], S[on]
-        pv = point_values(space, cc, X, S, barycentric_=(lam[on], dlam[on]))
+        pv = point_values(space, cc, X, S, barycentric_=(lam, dlam))
         _, gu = field_at(space, U, cc, X, S, values=pv, virtual=ut)
         ps, gps = pv.psi, pv.gpsi.T                       # x₁ = ph, ∇x₁ = gph
         e1, G, Rf = _point_frames(e1_nodes, pv.nodes, pv.lam, pv.dlam, gps)
@@ -514,41 +590,36 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         e1_l = np.einsum("ain,in->an", Rf, e1)
         du1 = np.einsum("ijn,jn->in", gu_l, e1_l)
         trace_G = np.trace(G)
-        for mode in range(3):
-            aux = near_tip_local(r, theta, material, np.eye(3)[mode], dim=3)
+        for mode, aux in enumerate(near_tip_modes(r, theta, material, dim=3)):
             agu, asig = aux.grad_u, aux.sigma
             aeps = (agu + np.swapaxes(agu, 0, 1)) / 2
             dua1 = np.einsum("ijn,jn->in", agu, e1_l)
             work = np.einsum("ijn,ijn->n", sig, aeps)
             A_l = np.einsum("in,ijn->jn", dua1, sig) + np.einsum("in,ijn->jn", du1, asig)
-            As[mode].append(np.einsum("ain,an->in", Rf, A_l))        # global components
-            Bs[mode].append(work)
-            Cs[mode].append(_contract(sig, agu, G_l) + _contract(asig, gu_l, G_l)
+            A_[mode, :, sl] = np.einsum("ain,an->in", Rf, A_l)   # global components
+            B_[mode, sl] = work
+            C_[mode, sl] = (_contract(sig, agu, G_l) + _contract(asig, gu_l, G_l)
                             - work * trace_G - (bx * dua1).sum(axis=0))   # the body force's
-            Ds[mode].append(_curvature_integrand(sig, gu_l[:, 0], aux))
-        xs.append(X)
-        ws.append(W)
-        e1s.append(e1)
-        rs.append(r)
-        grs.append((ph * gph + ps * gps) / r)
-        x1s.append(ph)
-    X, W, e1, r, gr, x1 = (np.hstack(xs), np.concatenate(ws), np.hstack(e1s),
-                           np.concatenate(rs), np.hstack(grs), np.concatenate(x1s))
-    A = np.stack([np.hstack(a) for a in As])              # (3 modes, 3, n)
-    B = np.stack([np.concatenate(b) for b in Bs])
-    C = np.stack([np.concatenate(c) for c in Cs])
-    D = np.stack([np.concatenate(d) for d in Ds])
+            D_[mode, sl] = _curvature_integrand(sig, gu_l[:, 0], aux)
+        X_[:, sl], W_[sl], e1_[:, sl], r_[sl], x1_[sl] = X, W, e1, r, ph
+        gr_[:, sl] = (ph * gph + ps * gps) / r
+    X, W, e1, r, gr, x1 = X_[:, :n], W_[:n], e1_[:, :n], r_[:n], gr_[:, :n], x1_[:n]
+    A, B, C, D = A_[:, :, :n], B_[:, :n], C_[:, :n], D_[:, :n]
     if faces is not None:
         xf, wf, rf, Df = _face_terms(space, faces, material, e1_nodes, cells)
     Rk = np.minimum(np.minimum(R, boundary_reach(mesh, P, frames.e3, L)),
                     other_fronts(geo, P, chains) / 3)
     den = _hat_integral(geo, P, frames.e3, L, Rk)
     K = np.zeros((P.shape[1], 3))
+    size = np.abs(X).max(initial=0.0)
     for k in range(P.shape[1]):
         R, inner = Rk[k], plateau * Rk[k]
-        s, near = _along(X, P[:, k], frames.e3[:, k], R)
-        on = np.flatnonzero((np.abs(s) < L) & (r < R) & near)  # the support of q
-        s, rk = s[on], r[on]
+        cand = np.flatnonzero(_hat_candidates(X, P[:, k, None], frames.e3[:, k, None],
+                                              L, size)[0])
+        s, near = _along(X[:, cand], P[:, k], frames.e3[:, k], R)
+        inq = (np.abs(s) < L) & (r[cand] < R) & near
+        on = cand[inq]                                    # the support of q
+        s, rk = s[inq], r[on]
         qr, dqr = _radial(rk, R, inner)
         hat, dhat = _bump(s, L)
         gq = hat * dqr * gr[:, on] + qr * dhat * frames.e3[:, k, None]
@@ -576,7 +647,11 @@ def _point_frames(e1_nodes: np.ndarray, nodes: np.ndarray, lam: np.ndarray,
     e₂, unit)."""
     e1n = e1_nodes[nodes]                                 # (n, 4, 3)
     e1 = np.einsum("nk,nki->in", lam, e1n)
-    G = np.einsum("nkj,nki->jin", dlam, e1n)
+    # G is constant in a cell: once per run of points of one cell
+    new = np.ones(len(nodes), dtype=bool)
+    new[1:] = (nodes[1:] != nodes[:-1]).any(axis=1)
+    first, run = np.flatnonzero(new), np.cumsum(new) - 1
+    G = np.einsum("nkj,nki->jin", dlam[first], e1n[first])[:, :, run]
     return e1, G, tip_frame(e1, grad_psi).R
 
 
@@ -605,9 +680,8 @@ def _face_terms(space, faces, material: Material, e1_nodes: np.ndarray,
     r = np.maximum(np.abs(ph), 1e-300)                    # on the faces ψ_h = 0
     D = np.zeros((3, r.size))
     for side in (1.0, -1.0):
-        for mode in range(3):
-            aux = near_tip_local(r, np.full(r.size, side * np.pi), material,
-                                 np.eye(3)[mode], dim=3)
+        for mode, aux in enumerate(near_tip_modes(r, np.full(r.size, side * np.pi),
+                                                  material, dim=3)):
             dua1 = np.einsum("ijn,jn->in", aux.grad_u, e1_l)
             D[mode] += (-side * t_l * dua1).sum(axis=0)
     return x, w, r, D

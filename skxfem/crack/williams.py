@@ -57,7 +57,7 @@ from numpy.typing import ArrayLike
 from ..fem.material import Material
 from .frame import TipFrame, as_real, face_tolerance, local_coordinates, polar
 
-__all__ = ["NearTip", "kolosov", "shear_modulus", "near_tip_local", "near_tip"]
+__all__ = ["NearTip", "kolosov", "shear_modulus", "near_tip_local", "near_tip_modes", "near_tip"]
 
 
 @dataclass(frozen=True)
@@ -164,6 +164,29 @@ def near_tip_local(r: ArrayLike, theta: ArrayLike, material: Material,
     if dim == 2 and k.size == 3 and k[2] != 0:
         raise ValueError("K_III needs dim = 3: mode III is antiplane (along e₃)")
     k = np.append(k, 0.0) if k.size == 2 else k
+    return _fields(*_polar_arguments(r, theta), material, (k,), dim)[0]
+
+
+def near_tip_modes(r: ArrayLike, theta: ArrayLike, material: Material,
+                   dim: int = 3) -> tuple[NearTip, ...]:
+    """The Williams fields of the unit modes, I and II (and III in 3D): each the numbers
+    of :func:`near_tip_local` with K = (1, 0, 0), (0, 1, 0), (0, 0, 1), the angular
+    functions computed once for all.
+
+    >>> m = Material(2.6, 0.3)
+    >>> r, theta = np.array([0.5, 1.0]), np.array([1.0, -np.pi])
+    >>> III = near_tip_modes(r, theta, m)[2]
+    >>> bool(np.array_equal(III.grad_u, near_tip_local(r, theta, m, (0, 0, 1), 3).grad_u))
+    True
+    """
+    material = _material(material)
+    if dim not in (2, 3):
+        raise ValueError(f"dim must be 2 or 3, got {dim!r}")
+    return _fields(*_polar_arguments(r, theta), material, tuple(np.eye(3)[:dim]), dim)
+
+
+def _polar_arguments(r: ArrayLike, theta: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """r and θ as arrays of one shape, r > 0 and |θ| ≤ π, or a ValueError."""
     r, theta = as_real("r", r), as_real("theta", theta)
     if r.shape != theta.shape:
         raise ValueError(f"r and theta must have the same shape, got {r.shape} and "
@@ -172,33 +195,46 @@ def near_tip_local(r: ArrayLike, theta: ArrayLike, material: Material,
         raise ValueError("r must be positive: the stress is singular on the front (r = 0)")
     if np.any(np.abs(theta) > np.pi):
         raise ValueError("theta must lie in [-pi, pi] (±pi on the crack faces)")
+    return r, theta
+
+
+def _fields(r: np.ndarray, theta: np.ndarray, material: Material, Ks, dim: int
+            ) -> list[NearTip]:
+    """The fields of each mode mix K (3,) of ``Ks`` at (r, θ), the angular functions
+    computed once; the modes of a zero K are left out (they add nothing)."""
     mu, kappa, nu = shear_modulus(material), kolosov(material, dim), material.nu
     sr, ct, st = np.sqrt(r), np.cos(theta), np.sin(theta)
     g, dg = _angular(theta, kappa)
     sig = _stress(theta)
     C, S = 1 / (2 * mu * np.sqrt(2 * np.pi)), 1 / np.sqrt(2 * np.pi * r)
-    u, gu, sigma = (np.zeros(shape + r.shape) for shape in ((dim,), (dim, dim), (dim, dim)))
-    modes = (("I", k[0], C), ("II", k[1], C)) + ((("III", k[2], 4 * C),) if dim == 3 else ())
-    for mode, Km, Cm in modes:                          # two or three modes, not points
-        comps = (0, 1) if mode != "III" else (2,)
-        for a, ga, dga in zip(comps, g[mode], dg[mode]):
-            u[a] += Km * Cm * sr * ga
-            gu[a, 0] += Km * Cm * (ct * ga / 2 - st * dga) / sr
-            gu[a, 1] += Km * Cm * (st * ga / 2 + ct * dga) / sr
-        if mode == "III":
-            s13, s23 = sig[mode]
-            sigma[0, 2] += Km * S * s13
-            sigma[1, 2] += Km * S * s23
-        else:
-            s11, s22, s12 = sig[mode]
-            sigma[0, 0] += Km * S * s11
-            sigma[1, 1] += Km * S * s22
-            sigma[0, 1] += Km * S * s12
-    sigma[1, 0] = sigma[0, 1]
-    if dim == 3:
-        sigma[2, 0], sigma[2, 1] = sigma[0, 2], sigma[1, 2]
-        sigma[2, 2] = nu * (sigma[0, 0] + sigma[1, 1])
-    return NearTip(u, gu, sigma)
+    out = []
+    for k in Ks:
+        u, gu, sigma = (np.zeros(shape + r.shape) for shape in ((dim,), (dim, dim), (dim, dim)))
+        modes = (("I", k[0], C), ("II", k[1], C)) + ((("III", k[2], 4 * C),) if dim == 3
+                                                     else ())
+        for mode, Km, Cm in modes:                      # two or three modes, not points
+            if Km == 0:
+                continue
+            comps = (0, 1) if mode != "III" else (2,)
+            for a, ga, dga in zip(comps, g[mode], dg[mode]):
+                u[a] += Km * Cm * sr * ga
+                gu[a, 0] += Km * Cm * (ct * ga / 2 - st * dga) / sr
+                gu[a, 1] += Km * Cm * (st * ga / 2 + ct * dga) / sr
+            if mode == "III":
+                s13, s23 = sig[mode]
+                sigma[0, 2] += Km * S * s13
+                sigma[1, 2] += Km * S * s23
+            else:
+                s11, s22, s12 = sig[mode]
+                sigma[0, 0] += Km * S * s11
+                sigma[1, 1] += Km * S * s22
+                sigma[0, 1] += Km * S * s12
+        sigma[1, 0] = sigma[0, 1]
+        if dim == 3:
+            sigma[2, 0], sigma[2, 1] = sigma[0, 2], sigma[1, 2]
+            sigma[2, 2] = nu * (sigma[0, 0] + sigma[1, 1])
+        out.append(NearTip(u, gu, sigma))
+    return out
 
 
 def near_tip(x: ArrayLike, origin: ArrayLike, frame: TipFrame, material: Material,
