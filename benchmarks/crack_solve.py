@@ -153,6 +153,14 @@ KD-tree query alone 0.25 s), u_h's gradient and the cells' values at the 591k po
 (space3d's ``field_at``, ``point_values``, 0.4 s), the frames and Williams fields and the
 integrand's terms (0.5 s), the loop over the front points (0.33 s).
 
+Where it stands with all of the above (main, 29 November 2026, 10:08 UTC, nothing else
+running, ``--linear auto --sizes 16 24 32``, one run): crack 3.44, 6.07, 14.14 s against
+the tie's 0.31, 1.01, 2.20 s, ratios 11.1, 6.0, 6.4 (CG iterations 56/41, 64/46, 84/49;
+assembly 1.04, 1.69, 3.66 s; solve 1.05, 2.09, 5.46 s; K_I at mid-front 3.6472, 3.7028,
+3.7361).  At the start of the day the crack took 5.77 and 10.51 s at n = 16 and 24
+(27.5 s at n = 32) against the tie's 0.48, 1.77 (4.0) s: the crack's time halved, the
+tie's too.  The target (≤ 3) is not met.
+
     python benchmarks/crack_solve.py                 # n = 8, 12
     python benchmarks/crack_solve.py --sizes 8 --repeat 3
 """
