@@ -65,7 +65,9 @@ rounding can hold the true residual just above it, whatever the iterations (a 2D
 either smoother); once restarts no longer lower it
 (:data:`skxfem.linalg.pcg.STALLED_RESTARTS`), x is taken if its normwise backward
 error ‖r‖/(‖K_r‖ ‖x‖ + ‖b‖) (:func:`backward_error`) is below ``tol``: x then solves
-exactly a system within ``tol`` of the given one.  ``info.residual`` keeps the
+exactly a system within ``tol`` of the given one (the paper's plate with Ω⁺ 1000 times
+stiffer, tetrahedra n = 16: 1.65e-11 after 475 iterations, U within 1.4e-12 of the
+direct solve's, whose own residual is 7.7e-12; one run).  ``info.residual`` keeps the
 residual reached; anything else is a :class:`ConvergenceError`.
 
 Dependent multipliers (the naive spaces) leave ker B and U unique; the
