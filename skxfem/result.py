@@ -63,7 +63,9 @@ class Result:
     ``linear`` says which linear solve ran (``"direct"`` or ``"iterative"``)
     and ``linear_info`` how it went: the relative ``residual`` of the saddle
     system reached, the ``balance`` of the multipliers, its ``tol`` and, for
-    the iterative solve, its CG ``iterations`` and ``residuals``.
+    the iterative solve, its CG ``iterations`` and ``residuals`` and the
+    ``backward_error`` that accepted a residual rounding held above ``tol``
+    (None otherwise; :mod:`skxfem.linalg.iterative`).
     Contact adds ``steps`` (:class:`skxfem.contact.Step`), ``status`` (n,)
     (0 open, 1 stick, 2 slip), the interface operators ``ops`` and the
     ``law`` (a tuple of :class:`skxfem.contact.newton.Law`, one per interface);

@@ -189,6 +189,7 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
     seconds = time.perf_counter() - t0
     its = getattr(info, "iterations", None)
     linear_info = {"residual": float(info.residual), "balance": float(info.balance),
+                   "backward_error": getattr(info, "backward_error", None),
                    "tol": linear_tol, "iterations": its, "residuals": None if its is None
                    else [float(r) for r in info.residuals]}
     tractions, jumps = [], []

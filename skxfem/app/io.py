@@ -6,7 +6,9 @@
   ``n_dofs``, ``n_multipliers``, the ``timings`` in seconds per stage and
   ``linear_solve``: the solve taken (``linear``) and how it went
   (:attr:`skxfem.result.Result.linear_info`: for a tie its ``tol``, residual,
-  balance, and the iterations and residuals of an iterative solve; for contact
+  balance, and the iterations and residuals of an iterative solve, with the
+  ``backward_error`` that accepted it where rounding held the residual above ``tol``
+  (null otherwise, :mod:`skxfem.linalg.iterative`); for contact
   only its ``tol``, each Newton step's Krylov iterations being in ``steps``).
   NaN or inf is never written: :func:`write_result` refuses such a result
   (:class:`NotFiniteError`) before writing.

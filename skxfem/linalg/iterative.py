@@ -130,7 +130,9 @@ class IterativeInfo:
     ``levels`` and operator ``complexity``, the penalty ``r``, the relative
     ``residuals``, one per iteration, and ``timings``: seconds of the
     ``setup`` (scaling, AMG, interface factorisation), the ``krylov``
-    iterations and the choice of ``multipliers``."""
+    iterations and the choice of ``multipliers``; ``backward_error``: where rounding held
+    the residual above the tolerance, the normwise backward error that accepted the
+    answer instead (module notes), else None."""
 
     iterations: int
     residual: float
@@ -142,6 +144,7 @@ class IterativeInfo:
     residuals: tuple = ()
     timings: dict = field(default_factory=dict)
     setup: object = field(default=None, repr=False, compare=False)
+    backward_error: float | None = None
 
 
 @dataclass(eq=False)
@@ -303,7 +306,7 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
         setup.dependent = np.zeros((B.shape[0], 0))
     oblique = None if C is None else _oblique(setup, sp.csr_matrix(C))
     t1 = time.perf_counter()
-    x, history, scale, residual = _krylov(setup, F, c, U0, tol, maxiter, oblique)
+    x, history, scale, residual, accepted = _krylov(setup, F, c, U0, tol, maxiter, oblique)
     t2 = time.perf_counter()
     U = U0 + setup.s * np.where(fixed, 0.0, x)
     mu, balance = _multipliers(setup, B, F, U, G, dependent_tol, tol, len(history) - 1,
@@ -311,7 +314,8 @@ def solve(K, B, F, D=None, g=None, G=None, c=None, modes=None, blocksize: int = 
     timings = {"setup": t1 - t0, "krylov": t2 - t1, "multipliers": time.perf_counter() - t2}
     return U, mu, IterativeInfo(len(history) - 1, residual, balance, setup.dependent.shape[1],
                                 len(setup.ml.levels), float(setup.ml.operator_complexity()),
-                                float(r), tuple(np.asarray(history) / scale), timings, setup)
+                                float(r), tuple(np.asarray(history) / scale), timings, setup,
+                                backward_error=accepted)
 
 
 def _oblique(setup: Setup, C):
@@ -330,7 +334,8 @@ def _oblique(setup: Setup, C):
 def _krylov(setup: Setup, F, c, U0, tol: float, maxiter: int, oblique=None):
     """The scaled system K_s x + B_nᵀ y = b, B_n x = c by projected CG from the
     particular x_p = B_nᵀ(B_n B_nᵀ)⁻¹c (B_n x_p = c): x, the residual history,
-    its scale ‖(b, c)‖ and the relative residual reached (else ConvergenceError).
+    its scale ‖(b, c)‖, the relative residual reached and the backward error that
+    accepted it above ``tol`` (None if it did not need to; else ConvergenceError).
     With ``oblique`` = (C_n, (B_n C_nᵀ)⁻¹) (:func:`_oblique`): K_s x + C_nᵀ y = b,
     by projected GMRES."""
     fixed, s, Bn, Kr, interface = setup.fixed, setup.s, setup.Bn, setup.Kr, setup.interface
@@ -357,9 +362,10 @@ def _krylov(setup: Setup, F, c, U0, tol: float, maxiter: int, oblique=None):
     iterations = len(history) - 1
     residual = float(np.hypot(np.linalg.norm(balanced(b - Kr @ x)),
                               np.linalg.norm(Bn @ x - c)) / scale)
-    if np.isfinite(residual) and residual > tol and iterations < maxiter \
-            and backward_error(Kr, x, residual * scale, scale) <= tol:
-        return x, history, scale, residual        # rounding's floor, module notes
+    if np.isfinite(residual) and residual > tol and iterations < maxiter:
+        eta = backward_error(Kr, x, residual * scale, scale)
+        if eta <= tol:
+            return x, history, scale, residual, eta   # rounding's floor, module notes
     if not np.isfinite(residual) or residual > tol:
         raise ConvergenceError(
             f"projected CG did not reach the relative residual {tol:.0e} " + (
@@ -369,7 +375,7 @@ def _krylov(setup: Setup, F, c, U0, tol: float, maxiter: int, oblique=None):
                 f"energy: the system is singular or nearly so, a part of the body free "
                 f"to move?): use the direct solve, which tells the cause"),
             iterations, residual)
-    return x, history, scale, residual
+    return x, history, scale, residual, None
 
 
 def backward_error(A, x: np.ndarray, r: float, b: float, steps: int = 20) -> float:
