@@ -418,7 +418,7 @@ def test_the_cg_solve_refuses_a_body_that_no_support_holds():
     from skxfem.crack.space3d import Load3D
     m = MeshTet1.init_tensor(np.linspace(0, 1, 8), np.linspace(0, 1, 8), np.linspace(0, 1, 4))
     top = m.facets_satisfying(lambda x: x[2] > 1 - 1e-12)
-    with pytest.raises(ValueError, match="singular"):
+    with pytest.raises(ValueError, match="singular .*the whole body can"):
         solve_crack_3d(m, lambda x: x[2] - 0.5, lambda x: x[0] - 0.5, MAT, [],
                        [Load3D(top, lambda x: np.stack([0 * x[0], 0 * x[0], 1 + 0 * x[0]]))],
                        enrichment="geometric", radius=0.3, solver="cg")

@@ -383,13 +383,13 @@ def _like(A, template):
     return sp.csr_matrix(A)
 
 
-def check_held(Kr, Z, rigid_tol: float = 1e-11):
+def check_held(Kr, Z, rigid_tol: float = 1e-11, dim: int | None = None):
     """Refuse a rigid motion of a side that ``Kr`` leaves free.
 
     The smallest Rayleigh quotient of ``Kr`` (scaled to unit diagonal) over
     the span of the modes ``Z`` (orthonormalised) must reach ``rigid_tol``;
     otherwise a :class:`skxfem.linalg.saddle.SingularSystemError` naming the motion
-    (:func:`free_motion_name`; ``Z`` as :func:`rigid_modes` orders them).
+    (:func:`free_motion_name` in ``dim`` D; ``Z`` as :func:`rigid_modes` orders them).
     """
     Q, R = np.linalg.qr(Z)
     d = np.abs(np.diag(R))
@@ -399,20 +399,28 @@ def check_held(Kr, Z, rigid_tol: float = 1e-11):
     energies, vectors = np.linalg.eigh(Q.T @ (Kr @ Q))
     if energies[0] < rigid_tol:
         c = np.linalg.lstsq(Z, Q @ vectors[:, 0], rcond=None)[0]
-        raise floating(f"{free_motion_name(c)}: a rigid motion of energy {energies[0]:.1e}",
+        raise floating(f"{free_motion_name(c, dim)}: a rigid motion of energy "
+                       f"{energies[0]:.1e}",
                        "the tied system")
 
 
-def free_motion_name(c) -> str:
+def free_motion_name(c, dim: int | None = None) -> str:
     """Who moves how, for coefficients ``c`` on the 2k columns of :func:`rigid_modes`
-    (the whole body, Ω⁻ or Ω⁺ alone, or the two apart).
+    (the whole body, Ω⁻ or Ω⁺ alone, or the two apart), or on the k motions of the whole
+    body (``sides=False``; told apart by ``dim``: without it 6 columns are read as 2D's
+    two sides).
 
     >>> free_motion_name([0.0, 1.0, 0.0, 0.0, 0.0, 0.0])   # Ω⁺ along x
     'Ω⁺ can translate along x'
+    >>> free_motion_name([0.0, 1.0, 0.0, 0.0, 0.0, 0.0], dim=3)   # the body, along y
+    'the whole body can translate along y'
     """
     c = np.asarray(c, float)
-    if c.size not in (6, 12):                                # not the layout of rigid_modes
-        return "a combination of the modes"
+    k = {2: 3, 3: 6}.get(dim)
+    if k is not None and c.size == k:                        # the motions of the body
+        return f"the whole body can {motion_name(c, dim)}"
+    if c.size not in (6, 12) or (k is not None and c.size != 2 * k):
+        return "a combination of the modes"                  # not the layout of rigid_modes
     minus, plus = c[0::2], c[1::2]
     dim = 2 if minus.size == 3 else 3
     size = max(np.abs(c).max(), 1e-300)

@@ -463,7 +463,7 @@ def _setup(K, B, fixed, modes, blocksize, bonded, r, delta, refine, rigid_tol) -
     s, Bn, rows, Kr = augmented(K, B, fixed, r)
     Zs = None if modes is None else modes / s[:, None]
     if Zs is not None:
-        check_held(Kr, Zs, rigid_tol)
+        check_held(Kr, Zs, rigid_tol, blocksize if blocksize in (2, 3) else None)
         if bonded:  # the motions of the whole body: the sum of the R regions' own
             k = {2: 3, 3: 6}.get(blocksize)
             R = Zs.shape[1] // k if k else 2
