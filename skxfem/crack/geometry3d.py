@@ -268,8 +268,9 @@ def crack_geometry_3d(mesh, psi, phi) -> CrackGeometry3D:
     # shared by two cells gives 0 on one side and ±1e-17 on the other.  Within the
     # tolerance of a vertex on the front (1e-9 h |∇φ_h|, below) both are front cells,
     # whose pieces then get the rules graded at the front
-    near = 1e-9 * np.ptp(mesh.p[:, t], axis=1).max(axis=0) \
-        * np.linalg.norm(_gradients(mesh, phi), axis=0)
+    h = np.ptp(mesh.p[:, t], axis=1).max(axis=0)          # (nc,) cell sizes
+    gphi = _gradients(mesh, phi)
+    near = 1e-9 * h * np.linalg.norm(gphi, axis=0)
     front = has & (lo <= near) & (hi >= -near)
     split_ = crossed & (hi < 0) & ~front
     if not np.any(crossed & (lo < 0)):
@@ -302,9 +303,8 @@ def crack_geometry_3d(mesh, psi, phi) -> CrackGeometry3D:
     sub_cell = np.concatenate([sub_cell[~in_front], c2[keep2]])
 
     # the vertices on the front first, counted
-    h = np.ptp(mesh.p[:, t], axis=1).max(axis=0)          # (nc,) cell sizes
     pv, fv = _values_at(mesh, sub_cell, sub, psi), _values_at(mesh, sub_cell, sub, phi)
-    gpsi, gphi = _gradients(mesh, psi), _gradients(mesh, phi)
+    gpsi = _gradients(mesh, psi)
     tol = 1e-9 * h[sub_cell][:, None]
     on_psi = np.abs(pv) <= tol * np.linalg.norm(gpsi[:, sub_cell], axis=0)[:, None]
     on_phi = np.abs(fv) <= tol * np.linalg.norm(gphi[:, sub_cell], axis=0)[:, None]
