@@ -26,9 +26,9 @@ import scipy.sparse as sp
 from .dependent import unit_rows
 from .saddle import SingularSystemError, floating
 
-__all__ = ["rigid_modes", "axis_name", "motion_name", "free_motion_name", "amg", "refresh",
-           "vcycle", "SMOOTHER", "CARRIED_SMOOTHER", "check_held", "scaled_tie", "scaled_rows",
-           "augmented", "check_tie_held"]
+__all__ = ["MOTIONS", "body_motions", "rigid_modes", "axis_name", "motion_name",
+           "free_motion_name", "amg", "refresh", "vcycle", "SMOOTHER", "CARRIED_SMOOTHER",
+           "check_held", "scaled_tie", "scaled_rows", "augmented", "check_tie_held"]
 
 
 def pyamg():
@@ -38,6 +38,26 @@ def pyamg():
     except ImportError as e:
         raise ImportError("the iterative solver needs pyamg: pip install pyamg "
                           "(or pip install skxfem[amg])") from e
+
+
+MOTIONS = {2: 3, 3: 6}
+"""The rigid motions of a body in 2D and 3D: translations, then rotations."""
+
+
+def body_motions(x: np.ndarray) -> list[np.ndarray]:
+    """The rigid motions at the points x (dim, n), each (dim, n): the translations along
+    x, y (, z), then the rotations about the origin (about z in 2D; x, y, z in 3D).
+
+    >>> [m[:, 0].tolist() for m in body_motions(np.array([[1.0], [2.0]]))]
+    [[1.0, 0.0], [0.0, 1.0], [-2.0, 1.0]]
+    """
+    dim = x.shape[0]
+    motions = [np.eye(dim)[:, [c]] * np.ones(x.shape[1]) for c in range(dim)]
+    if dim == 2:
+        return motions + [np.array([-x[1], x[0]])]
+    z = np.zeros_like(x[0])
+    return motions + [np.array([z, -x[2], x[1]]), np.array([x[2], z, -x[0]]),
+                      np.array([-x[1], x[0], z])]
 
 
 def rigid_modes(V, sides: bool = True, centre=None, length: float = 1.0) -> np.ndarray:
@@ -85,14 +105,7 @@ def rigid_modes(V, sides: bool = True, centre=None, length: float = 1.0) -> np.n
                     else np.asarray(centre, float).reshape(dim, 1))
     x = x / length
     nd = V.basis.nodal_dofs  # (dim, nverts)
-    if dim == 2:
-        motions = [np.eye(2)[:, [c]] * np.ones(x.shape[1]) for c in range(2)]
-        motions.append(np.array([-x[1], x[0]]))
-    else:
-        motions = [np.eye(3)[:, [c]] * np.ones(x.shape[1]) for c in range(3)]
-        motions += [np.array([np.zeros_like(x[0]), -x[2], x[1]]),
-                    np.array([x[2], np.zeros_like(x[0]), -x[0]]),
-                    np.array([-x[1], x[0], np.zeros_like(x[0])])]
+    motions = body_motions(x)
     node_of = np.zeros(V.n_std, dtype=np.int64)
     node_of[nd.ravel()] = np.tile(np.arange(x.shape[1]), dim)
     Z, R = _region_modes(V, motions, node_of, nd)
@@ -199,10 +212,12 @@ n ≤ 16, the strip n = 256), as close as with Gauss-Seidel:
   0.77 (52) -> 0.90 (111) (another run: 1.39 -> 1.18); 200 times, n = 12: 0.51 (76) ->
   0.29 (115).  300 or 1000 times at n = 12, 100 times at n = 24: neither smoother
   reaches the default 1e-12 in 500 iterations (both stall at 1e-12 to 5e-12, the floor of
-  such a system): the direct solve;
+  such a system; the solve now takes such an answer by its backward error,
+  :mod:`skxfem.linalg.iterative`);
 * 2D, the strip (``strip``): tri n = 256, 133 640 unknowns, 2.41 (61) -> 1.26 (59) (1.81
   (56)); quad n = 400, 324 008 unknowns, 4.55 (28) -> 1.73 (33) (1.85 (29)); tri n = 512
-  (526 k): none reaches 1e-12 in 500 iterations (1.6e-12 to 1.7e-12);
+  (529 416 unknowns): none reaches 1e-12 in 500 iterations (1.6e-12 to 1.7e-12; taken
+  now by its backward error);
 * a crack (``benchmarks/crack_solve.py``'s, n = 24): 4.77 (57) -> 2.19 (64), Chebyshev
   on the finest level and Gauss-Seidel below 2.48 (63); on its scaled system alone,
   n = 16 1.71 (49) -> 0.79 (56), degree 1 94 iterations.
@@ -322,7 +337,7 @@ def refresh(ml, A: sp.spmatrix, change: sp.spmatrix | None = None):
             break
         except RuntimeError:
             continue
-    smoother = getattr(ml, "skxfem_smoother", SMOOTHER)
+    smoother = ml.skxfem_smoother               # set by amg(): the hierarchy's own
     out.skxfem_coarse, out.skxfem_smoother = name, smoother
     state = np.random.get_state()
     np.random.seed(AMG_SEED)
@@ -416,7 +431,7 @@ def free_motion_name(c, dim: int | None = None) -> str:
     'the whole body can translate along y'
     """
     c = np.asarray(c, float)
-    k = {2: 3, 3: 6}.get(dim)
+    k = MOTIONS.get(dim)
     if k is not None and c.size == k:                        # the motions of the body
         return f"the whole body can {motion_name(c, dim)}"
     if c.size not in (6, 12) or (k is not None and c.size != 2 * k):
