@@ -530,10 +530,11 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     if U.shape != (space.N,):
         raise ValueError(f"U must hold the {space.N} unknowns [a, b, c], got shape {U.shape}")
     chains = front_chains(space.geometry)                # once: fits, points, fronts
-    P = front_points(space, chains=chains) if points is None else np.asarray(points, float)
+    h, h_along = front_sizes(space)
+    P = (front_points(space, h_along, chains) if points is None
+         else np.asarray(points, float))
     if P.ndim != 2 or P.shape[0] != 3:
         raise ValueError(f"points must have shape (3, m), got {P.shape}")
-    h, h_along = front_sizes(space)
     R = default_radius_3d(space, h) if radius is None else float(radius)
     L = DEFAULT_LENGTH * h_along if length is None else float(length)
     for name, v in (("radius", R), ("length", L)):
@@ -701,7 +702,7 @@ class CrackSolution3D:
     info: dict
 
 
-def _solve(V, Ks, fs, S, D, gs, solver: str, tol: float):
+def _solve(V, Ks, fs, Sinv, D, gs, solver: str, tol: float):
     """U_s of the scaled system K_s U_s = f_s with U_s[D] = g_s, and the iterations (0
     for the direct solve).
 
@@ -731,19 +732,15 @@ def _solve(V, Ks, fs, S, D, gs, solver: str, tol: float):
         rhs = fs[free] - Ks[free][:, D] @ Us[D]
         Us[free] = spsolve(sp.csc_matrix(Ks[free][:, free]), rhs)
         return Us, 0
-    from scipy.sparse.linalg import splu
-
+    from ..linalg.amg import body_motions
     from ..linalg.iterative import solve
     x = V.mesh.p - V.mesh.p.mean(axis=1, keepdims=True)
     x = x / max(np.abs(x).max(), 1e-300)           # rotations of the size of translations
-    o, z = np.ones_like(x[0]), np.zeros_like(x[0])
-    motions = np.array([[o, z, z], [z, o, z], [z, z, o], [z, -x[2], x[1]],
-                        [x[2], z, -x[0]], [-x[1], x[0], z]])           # (6, 3, nverts)
+    motions = np.array(body_motions(x))                                 # (6, 3, nverts)
     Z = np.zeros((V.N, 6))
     Z[:V.n_std] = motions.transpose(2, 1, 0).reshape(V.n_std, 6)      # a: 3 i + component
-    Zs = splu(sp.csc_matrix(S)).solve(Z)
-    Us, _, info = solve(Ks, sp.csr_matrix((0, V.N)), fs, D, gs, modes=Zs, blocksize=3,
-                        tol=tol, maxiter=2000)
+    Us, _, info = solve(Ks, sp.csr_matrix((0, V.N)), fs, D, gs, modes=Sinv @ Z,
+                        blocksize=3, tol=tol, maxiter=2000)
     return Us, info.iterations
 
 
@@ -773,10 +770,10 @@ def solve_crack_3d(mesh, psi, phi, material: Material, supports=(), loads=(),
     if body_force is not None:
         f = f + body_load(V, body_force)
     D, g = supported_dofs(V, supports)
-    S = nodal_scaling(K, V, D)
+    S, Sinv = nodal_scaling(K, V, D, inverse=True)
     Ks, fs = (S.T @ K @ S).tocsr(), S.T @ f
     t1 = time.perf_counter()
-    Us, iterations = _solve(V, Ks, fs, S, D, g / S.diagonal()[D], solver, tol)
+    Us, iterations = _solve(V, Ks, fs, Sinv, D, g / S.diagonal()[D], solver, tol)
     U = S @ Us
     t2 = time.perf_counter()
     P = front_points(V) if points is None else np.asarray(points, float)

@@ -332,7 +332,7 @@ def evaluation_at(space: CrackSpace, cells: np.ndarray, x: np.ndarray,
 
 
 def nodal_scaling(K: sp.spmatrix, space: EnrichedUnknowns, kind: str | None = "block",
-                  fixed: np.ndarray | None = None) -> sp.csr_matrix:
+                  fixed: np.ndarray | None = None, inverse: bool = False):
     """The scaling S of the unknowns, K_s = Sᵀ K S, U = S U_s (module notes), of a
     :class:`CrackSpace` or a :class:`skxfem.crack.space3d.CrackSpace3D`.
 
@@ -340,7 +340,8 @@ def nodal_scaling(K: sp.spmatrix, space: EnrichedUnknowns, kind: str | None = "b
     transpose of the Cholesky factor of its diagonal block, 1/√K_ii elsewhere),
     ``"jacobi"`` (1/√K_ii everywhere) or None (the identity).  ``fixed``: the
     constrained unknowns; a branch node with one among its block is scaled by
-    1/√K_ii, so that S is diagonal on every constrained unknown.
+    1/√K_ii, so that S is diagonal on every constrained unknown.  ``inverse``: return
+    (S, S⁻¹).
 
     >>> from skfem import MeshTri1
     >>> from skxfem.crack.geometry import crack_geometry
@@ -356,7 +357,8 @@ def nodal_scaling(K: sp.spmatrix, space: EnrichedUnknowns, kind: str | None = "b
     """
     N = K.shape[0]
     if kind is None:
-        return sp.identity(N, format="csr")
+        I = sp.identity(N, format="csr")
+        return (I, I) if inverse else I
     if kind not in ("block", "jacobi"):
         raise ValueError(f"kind must be 'block', 'jacobi' or None, got {kind!r}")
     K = K.tocsr()
@@ -366,11 +368,13 @@ def nodal_scaling(K: sp.spmatrix, space: EnrichedUnknowns, kind: str | None = "b
                          f"entries: an enriched function vanishes on its support")
     s = 1 / np.sqrt(d)
     if kind == "jacobi" or space.branch.size == 0:
-        return sp.diags(s).tocsr()
+        S = sp.diags(s).tocsr()
+        return (S, sp.diags(1 / s).tocsr()) if inverse else S
     B = space.branch_blocks()                              # (nb, 5 d)
     if fixed is not None and len(fixed):
         B = B[~np.isin(B, fixed).any(axis=1)]
-    return block_scaling(K, [B], s)[0]
+    S, Sinv = block_scaling(K, [B], s)
+    return (S, Sinv) if inverse else S
 
 
 def condition_number(K: sp.spmatrix, free: np.ndarray) -> float:

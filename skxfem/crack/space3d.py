@@ -72,7 +72,7 @@ from .geometry import check_geometry
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
 from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
 from .radius import enrichment_radius
-from .space import nodal_scaling as block_scaling
+from .space import nodal_scaling as _nodal_scaling
 
 __all__ = ["SMOOTH_ORDER", "BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "PointValues",
            "point_values", "functions_at", "virtual_field", "evaluation", "field_at", "rules",
@@ -754,10 +754,10 @@ def body_load(space: CrackSpace3D, force, plain: int = 2) -> np.ndarray:
     return f
 
 
-def nodal_scaling(K: sp.spmatrix, space: CrackSpace3D, fixed: np.ndarray | None = None
-                  ) -> sp.csr_matrix:
+def nodal_scaling(K: sp.spmatrix, space: CrackSpace3D, fixed: np.ndarray | None = None,
+                  inverse: bool = False):
     """The scaling S, K_s = Sᵀ K S, U = S U_s: each branch node's 15 × 15 block [a_k, c_k]
     by the inverse transpose of the Cholesky factor of its diagonal block, 1/√K_ii
     elsewhere (and on any block holding a constrained unknown of ``fixed``): the
-    ``"block"`` scaling of :func:`skxfem.crack.space.nodal_scaling`."""
-    return block_scaling(K, space, "block", fixed)
+    ``"block"`` scaling of :func:`skxfem.crack.space.nodal_scaling` (``inverse``: (S, S⁻¹))."""
+    return _nodal_scaling(K, space, "block", fixed, inverse)
