@@ -250,17 +250,18 @@ def estimate(scene: Scene, linear: str | None = None) -> Estimate:
         mesh = resolve(scene).mesh if mesh is None else mesh
         counts, cell = [mesh_counts(mesh, i.levelset) for i in items], cell_name(mesh)
         D = np.linalg.norm(np.ptp(mesh.p, axis=1))
-        hd = _longest_edge(mesh)
+        hd = _cell_diameter(mesh)
         branch = [0 if i.front is None else mesh_front_nodes(
             mesh, i.levelset, i.front, _branch_radius(i, mesh.dim(), D, hd)) for i in items]
     return _estimate(scene, linear, *counts[0][:2], [c[2] for c in counts],
                      [c[3] for c in counts], cell, branch)
 
 
-def _longest_edge(mesh) -> float:
-    """The longest edge of ``mesh``'s cells (a bound of a cell's size)."""
-    edges = mesh.facets if mesh.dim() == 2 else mesh.edges
-    return float(np.max(np.linalg.norm(np.diff(mesh.p[:, edges], axis=1)[:, 0], axis=0)))
+def _cell_diameter(mesh) -> float:
+    """The largest diagonal of ``mesh``'s cells' bounding boxes: a bound of a cell's
+    diameter on every cell type, as a Box's cell diagonal is (the longest edge, used
+    before, falls short of it on quadrilaterals, hexahedra and prisms)."""
+    return float(np.linalg.norm(np.ptp(mesh.p[:, mesh.t], axis=1), axis=0).max())
 
 
 def _branch_radius(interface, dim: int, D: float, hd: float) -> float:
