@@ -46,7 +46,6 @@ import numpy as np
 import scipy.sparse as sp
 
 from .enrich import region_fields
-from .fem.loads import force_field
 
 __all__ = ["Result", "result"]
 
@@ -260,16 +259,6 @@ def _body_force(pb, steps) -> object:
     scene's, or its load state's, :class:`skxfem.contact.history.Step`), the scene's
     without steps; None: none."""
     return steps[-1].body_force if steps else pb.scene.body_force
-
-
-def scaled_force(force, factor: float, dim: int) -> object:
-    """A body force ``force`` (a scene's: numbers or formulas per component, or None)
-    times a load ``factor``: ``force`` itself at 1 or None, else a callable x ↦ factor
-    b(x) (:func:`skxfem.fem.loads.force_field`)."""
-    if force is None or factor == 1.0:
-        return force
-    b = force_field(force, dim)
-    return lambda x: factor * b(x)
 
 
 def on_edges(P: sp.spmatrix, values: np.ndarray) -> np.ndarray:

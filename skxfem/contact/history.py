@@ -89,6 +89,7 @@ import numpy as np
 import scipy.sparse as sp
 from skfem import Mesh
 
+from ..fem.loads import scaled_force
 from ..gamma import gamma
 from ..linalg.amg import check_tie_held, rigid_modes, scaled_tie
 from ..linalg.choice import choose_linear
@@ -98,7 +99,7 @@ from ..linalg.rigid import check_held
 from ..linalg.saddle import SingularSystemError
 from ..linalg.threads import limited
 from ..problem import Problem, assemble, state_loads
-from ..result import Result, on_edges, result, scaled_force
+from ..result import Result, on_edges, result
 from ..scene.laws import in_words
 from ..scene.model import Interface, Scene, check_steps, resolve
 from ..scene.settings import MAX_ITER

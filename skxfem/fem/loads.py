@@ -263,3 +263,19 @@ def force_field(force, dim: int) -> Callable:
                              f"(dim, n), got {v.shape}")
         return v
     return b
+
+
+def scaled_force(force, factor: float, dim: int) -> object:
+    """A body force ``force`` (a scene's: numbers or formulas per component, or None)
+    times a load ``factor``: ``force`` itself at 1 or None, else a callable x ↦ factor
+    b(x) (:func:`force_field`).
+
+    >>> scaled_force((0.0, -1.0), 2.0, 2)(np.array([[0.0], [1.0]])).tolist()
+    [[0.0], [-2.0]]
+    >>> scaled_force(None, 2.0, 2) is None
+    True
+    """
+    if force is None or factor == 1.0:
+        return force
+    b = force_field(force, dim)
+    return lambda x: factor * b(x)
