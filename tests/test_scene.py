@@ -612,3 +612,11 @@ def test_26g_a_body_force_is_a_vector_of_the_scene_dimension():
     from skxfem import solve
     with pytest.raises(ValueError, match=r"body_force\[1\]: 1e\+200 is a force per volume"):
         solve(Scene(QUAD, LINE, displacements=(clamped("ymin"),), body_force=(0, 1e200)))
+
+
+def test_a_scenes_crack_enrichments_are_the_spaces_own():
+    """scene.parts (a floor below the crack's space) names the enrichments a scene may ask
+    for; they must be the ones crack.radius builds, or a valid scene would fail later."""
+    from skxfem.crack.radius import ENRICHMENTS
+    from skxfem.scene.parts import CRACK_ENRICHMENTS
+    assert sorted(CRACK_ENRICHMENTS) == sorted(ENRICHMENTS)

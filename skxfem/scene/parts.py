@@ -32,7 +32,9 @@ from .laws import CONTACT_LAWS, FRICTION_LAWS, SPACES
 from .laws import TIE_LAWS as LAWS
 
 CRACK_ENRICHMENTS = ("geometric", "topological")
-"""The enrichments of a crack's tip (:data:`skxfem.crack.space.ENRICHMENTS`)."""
+"""The enrichments of a crack's tip a scene may ask for: those of
+:data:`skxfem.crack.radius.ENRICHMENTS` (a floor above; tests/test_scene.py checks they agree),
+the default first."""
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "clamped", "rollers", "CELLS",
            "SIZE_RANGE", "FRICTION_RANGE", "COMPONENTS", "FACES", "is_number", "check_law_fields",

@@ -47,6 +47,7 @@ from ..crack.frame import straight_frame
 from ..crack.geometry import crack_geometry
 from ..crack.griffith import InclinedCrack
 from ..crack.quadrature import tip_rule
+from ..crack.radius import ENRICHMENTS
 from ..crack.sif import sif
 from ..crack.solve import CrackSolution, solve_crack
 from ..crack.williams import near_tip
@@ -68,7 +69,6 @@ MATERIAL = Material(1.0, 0.3)
 """E = 1, ν = 0.3, plane strain."""
 MODES = {"I": (1.0, 0.0), "II": (0.0, 1.0)}
 """(K_I, K_II) of the pure modes of the Williams square."""
-ENRICHMENTS = ("topological", "geometric")
 SCALINGS = (None, "jacobi", "block")
 """The scalings of :func:`skxfem.crack.space.nodal_scaling`; None: raw."""
 RADIUS = 0.4
