@@ -180,10 +180,13 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
         except saddle.SingularSystemError as e:
             if not e.detail:
                 raise
+            ties = [law for law in dict.fromkeys(p.laws) if law != "free"]
+            held = f"the displacements and the {'/'.join(ties)} tie hold every rigid " \
+                "motion of each side of Γ" if ties else \
+                "the displacements hold every rigid motion of the body"
             raise saddle.SingularSystemError(  # check_held found every rigid motion held
-                f"the tied system is singular to working precision ({e.detail}), although "
-                f"the displacements and the {'/'.join(dict.fromkeys(p.laws))} tie hold "
-                f"every rigid motion of each side of Γ: its conditioning is beyond double "
+                f"the {'tied ' if ties else ''}system is singular to working precision "
+                f"({e.detail}), although {held}: its conditioning is beyond double "
                 f"precision (a part of the body, or a material, far stiffer or smaller "
                 f"than the rest); refine the mesh there or rescale the scene") from e
     seconds = time.perf_counter() - t0

@@ -25,7 +25,7 @@ from skxfem.levelset import plane, sphere
 from skxfem.linalg.rigid import free_motions, side_names
 from skxfem.linalg.saddle import SingularSystemError
 from skxfem.problem import assemble
-from skxfem.scene import Box, Displacement, Scene, SurfaceLoad, clamped, rollers
+from skxfem.scene import Box, Displacement, Interface, Scene, SurfaceLoad, clamped, rollers
 from skxfem.scene.benchmarks import paper_plate, strip
 from skxfem.scene.file import load_scene
 from skxfem.solver import solve
@@ -113,6 +113,23 @@ def test_a_body_without_supports_names_every_motion_of_the_whole_body(cell):
                        "direction and rotate about") as err:
         solve(scene)
     assert str(err.value).count("rotate about") == 3 * (dim - 1) - dim
+
+
+@pytest.mark.parametrize("linear", ["direct", "iterative"])
+def test_a_free_crack_is_no_tie_in_the_message(linear):
+    """A crack whose faces are free holds nothing: the body held only along z is
+    refused naming the displacements alone (it read 'nor the free tie')."""
+    from skfem import MeshTet1
+    m = MeshTet1.init_tensor(*(np.linspace(0, 1, 5),) * 3)
+    crack = Interface(plane((0.5, 0.5, 0.5), (0, 0, 1)), law="free",
+                      front=plane((0.5, 0, 0), (1, 0, 0)))
+    scene = Scene(m, material=Material(1.0, 0.3), interfaces=(crack,),
+                  displacements=(Displacement("zmin", {"z": 0.0}),),
+                  loads=(SurfaceLoad("zmax", traction=(0.0, 0.0, 1.0)),))
+    with pytest.raises(SingularSystemError, match=r"the whole body can translate .*: the "
+                       r"displacements do not hold it, so the problem is singular") as e:
+        solve(scene, linear=linear)
+    assert "tie" not in str(e.value)
 
 
 def test_rollers_on_one_side_leave_the_other_free_only_where_they_do_not_reach():

@@ -416,7 +416,7 @@ def check_held(Kr, Z, rigid_tol: float = 1e-11, dim: int | None = None):
         c = np.linalg.lstsq(Z, Q @ vectors[:, 0], rcond=None)[0]
         raise floating(f"{free_motion_name(c, dim)}: a rigid motion of energy "
                        f"{energies[0]:.1e}",
-                       "the tied system")
+                       "the system")
 
 
 def free_motion_name(c, dim: int | None = None) -> str:
@@ -489,7 +489,7 @@ def check_tie_held(K, B, fixed, modes, r: float = 3.0, rigid_tol: float = 1e-11,
     >>> check_tie_held(K, sp.csr_matrix((0, 2)), np.zeros(2, bool), Z)
     Traceback (most recent call last):
     ...
-    skxfem.linalg.saddle.SingularSystemError: the tied system is singular (a combination of the ...
+    skxfem.linalg.saddle.SingularSystemError: the system is singular (a combination of the ...
     """
     if scaled is None:
         s, _, _, Kr = augmented(K, B, fixed, r)

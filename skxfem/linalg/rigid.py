@@ -306,12 +306,14 @@ def check_held(p: Problem, normal=None, full=None, rows=None, what: str | None =
                 f"hold that {'part' if len(p.interfaces) > 1 else 'side'} with a displacement "
                 f"(support), or tie it with a law that holds the tangential jump too "
                 f"(bonded)")
-    if what is None:
-        laws = p.laws
-        what = (f"the {laws[0]} tie" if len(laws) == 1 else
+    if what is None:                         # a free crack's faces hold nothing: no tie
+        laws = [law for law in p.laws if law != "free"]
+        what = (None if not laws else f"the {laws[0]} tie" if len(laws) == 1 else
                 f"the interfaces' ties ({', '.join(laws)})")
+    held = ("the displacements do not hold it" if what is None else
+            f"neither the displacements nor {what} hold it")
     raise SingularSystemError(
-        f"{text}: neither the displacements nor {what} hold it, so "
+        f"{text}: {held}, so "
         f"the problem is singular (a part of the body can move freely, its displacement "
         f"is not unique); {hint}")
 
