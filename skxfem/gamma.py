@@ -102,7 +102,7 @@ from .crack.assembly import mass as crack_mass
 from .crack.faces import crack_multipliers, face_functions, face_traction
 from .crack.geometry import crack_geometry
 from .crack.kind3d import Crack3D
-from .crack.sif import sif
+from .crack.sif import check_reach, sif
 from .crack.space import CrackSpace, crack_space, evaluation
 from .crack.xspace import CrackXSpaceBase
 from .cut import Cut
@@ -198,6 +198,7 @@ class Crack(Gamma):
         if geo.segments.shape[-1] == 0:
             raise ValueError(f"{label or 'the crack'}: the crack {{ψ = 0, φ < 0}} "
                              f"({i.levelset.name!r}, front {i.front.name!r}) crosses no cell")
+        check_reach(mesh, geo, label)                   # before the solve, not after
         return geo
 
     def space(self, mesh, cut, order: int | None = None):

@@ -498,3 +498,44 @@ def test_rule_group_points_keep_negative_weights():
     _, _, _, _, w = G.points()
     assert (w < 0).any()
     assert np.isclose(w.sum(), far.size * 0.02)                     # cells of area 1/50
+
+
+@pytest.mark.parametrize("x, refused", [(0.9, False), (0.97, True), (1 - 1e-6, True),
+                                        (1 - 1e-12, True)])
+def test_a_tip_within_a_cell_of_the_boundary_is_refused_before_the_solve(x, refused):
+    """An edge crack whose tip is within a cell of the far side (h = 1/20): its domain
+    holds no cell (it raised numpy's 'need at least one array to concatenate', or
+    'boundary must be a positive number' with the tip on the side, after the solve);
+    now a ValueError naming the tip and the fix, from the cut.  0.1 away (two cells) it
+    solves."""
+    from skfem import MeshTri1
+
+    from skxfem.fem.material import Material
+    from skxfem.levelset import plane
+    from skxfem.scene import Displacement, Interface, Scene, SurfaceLoad
+    from skxfem.solver import solve
+    m = MeshTri1.init_tensor(*(np.linspace(0, 1, 21),) * 2)
+    crack = Interface(plane((0.5, 0.5), (0, 1)), law="free", front=plane((x, 0), (1, 0)))
+    scene = Scene(m, material=Material(1.0, 0.3), interfaces=(crack,),
+                  displacements=(Displacement("ymin", {"x": 0.0, "y": 0.0}),),
+                  loads=(SurfaceLoad("ymax", traction=(0.0, 1.0)),))
+    if refused:
+        with pytest.raises(ValueError, match=r"the tip at \((0\.97|1), 0\.5\) is .* from "
+                           r"the body's boundary, under the size of its cell \(0\.05\)"):
+            solve(scene)
+    else:
+        assert solve(scene).front[0]["K_I"][0] > 0
+
+
+def test_two_tips_within_two_cells_are_refused_by_sif():
+    """A centre crack 1.5 cells long: each tip's domain (half-way to the other) is under
+    a cell; sif names the other tip."""
+    from skfem import MeshTri1
+
+    from skxfem.crack.sif import sif
+    from skxfem.fem.material import Material
+    m = MeshTri1.init_tensor(*(np.linspace(0, 1, 21),) * 2)
+    g = crack_geometry(m, m.p[1] - 0.51, np.abs(m.p[0] - 0.5) - 0.0375)
+    V = crack_space(m, g)
+    with pytest.raises(ValueError, match="from half-way to another tip"):
+        sif(V, np.zeros(V.N), Material(1.0, 0.3))
