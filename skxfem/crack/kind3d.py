@@ -28,6 +28,7 @@ interaction integral's face term.
 """
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -39,8 +40,15 @@ from ..levelset import unit
 from ..multipliers import InterfaceRule
 from .faces import crack_multipliers
 from .faces3d import face_functions_3d, face_rule, face_traction_3d
-from .geometry3d import barycentric, crack_geometry_3d
-from .sif3d import front_points, sif_3d
+from .geometry3d import barycentric, crack_geometry_3d, front_chains
+from .sif3d import (
+    DEFAULT_LENGTH,
+    domain_reach,
+    fitted_frame,
+    front_points,
+    front_sizes,
+    sif_3d,
+)
 from .space3d import (
     CrackSpace3D,
     Load3D,
@@ -55,7 +63,30 @@ from .space3d import (
 )
 from .xspace import CrackXSpaceBase
 
-__all__ = ["Crack3D", "CrackXSpace3D"]
+__all__ = ["Crack3D", "CrackXSpace3D", "FrontPointsWarning", "front_reach"]
+
+
+class FrontPointsWarning(UserWarning):
+    """Some points of a 3D front get no K: their interaction domain would hold no cell
+    (:func:`front_reach`)."""
+
+
+def front_reach(space) -> tuple[np.ndarray, np.ndarray, float]:
+    """The front's points (3, m) where K is computed (:func:`skxfem.crack.sif3d.front_points`),
+    how far each one's interaction domain can reach (:func:`skxfem.crack.sif3d.domain_reach`,
+    with :func:`skxfem.crack.sif3d.sif_3d`'s default bump) and the front cells' size h
+    across the front (:func:`skxfem.crack.sif3d.front_sizes`).  A point whose reach is
+    under h gets no K (:meth:`Crack3D.front` warns, :meth:`Crack3D.space` refuses a front
+    with no point left): its domain would hold no cell, and K came out anywhere between
+    0 and the right value (a penny of radius 0.49 centred in the unit cube, h = 1/8, 0.01
+    from four sides: K_I from 0.009 to 2.4 along its front; an edge crack's straight
+    front 0.03 from the far side: K_I 48 to 55, with 1/8's default domain of 0.19)."""
+    chains = front_chains(space.geometry)
+    h, h_along = front_sizes(space)
+    P = front_points(space, h_along, chains)
+    L = DEFAULT_LENGTH * h_along
+    frame, kappa = fitted_frame(space, P, max(L, 2 * h_along), chains)
+    return P, domain_reach(space, P, frame.e3, kappa, L, chains), h
 
 
 @dataclass(frozen=True)
@@ -83,7 +114,17 @@ class Crack3D:
         ``order`` is not used (its own rules)."""
         i = self.interface
         radius = getattr(i, "enrichment_radius", None) if i.enrichment == "geometric" else None
-        return CrackXSpace3D(crack_space_3d(mesh, cut, i.enrichment, radius))
+        space = crack_space_3d(mesh, cut, i.enrichment, radius)
+        P, reach, h = front_reach(space)            # before the solve, not after
+        if not np.any(reach >= h):
+            raise ValueError(
+                f"the front {i.front.name!r}: no point of it has a cell ({h:.3g}) of room "
+                f"for its interaction domain (within a cell of the body's boundary, of a "
+                f"third of the way to another front, or of half its radius of curvature: "
+                f"a crack only a cell or two across): K needs a domain of a few cells "
+                f"around the front; refine the mesh near the front or move it away from "
+                f"the boundary")
+        return CrackXSpace3D(space)
 
     def multipliers(self, mesh, cut, fixed=None, per_edge=None):
         """The interface's multiplier space on the crack's crossed edges, up to the front
@@ -143,7 +184,19 @@ class Crack3D:
         faces = None
         if traction is not None and np.any(traction):
             faces = face_traction_3d(V.mesh, V.cut, np.asarray(traction, float))
-        P = front_points(V.space)
+        P, reach, h = front_reach(V.space)
+        if not np.all(reach >= h):
+            far = reach >= h
+            near = int((~far).sum())
+            where = "; ".join("(" + ", ".join(f"{v:.3g}" for v in x) + ")"
+                              for x in P[:, ~far].T[:4]) + (" …" if near > 4 else "")
+            warnings.warn(f"{self.interface.front.name!r}: no K at {near} of {far.size} "
+                          f"front points (at {where}): their interaction domain has "
+                          f"under a cell ({h:.3g}) of room there (the body's boundary is "
+                          f"that near, or another front or the centre of curvature a few "
+                          f"cells away); refine the mesh there for K", FrontPointsWarning,
+                          stacklevel=2)
+            P = P[:, far]
         K = sif_3d(V.space, U, material, P, self.interface.sif_radius,
                    body_force=body_force, faces=faces)
         return {"points": P.T.copy(), "K_I": K[:, 0], "K_II": K[:, 1], "K_III": K[:, 2]}
