@@ -496,3 +496,17 @@ def test_front_points_without_room_get_no_K_and_a_warning():
     P, K = r.front[0]["points"], r.front[0]["K_I"]
     assert K.size == P.shape[0] == 10 and np.all(K > 2.8)   # measured 2.92-3.36
     assert np.all(np.minimum(P[:, 0], P[:, 1]) > 0.2), "the points near the sides left out"
+
+
+def test_sif_3d_gives_nan_where_the_domain_has_no_room():
+    """Called directly at the default points of the oblique front, sif_3d gives NaN at
+    the points Crack3D.front leaves out (under a cell of room) and numbers elsewhere."""
+    from skxfem.crack.kind3d import front_reach
+    m = MeshTet1.init_tensor(*(np.linspace(0, 1, 9),) * 3)
+    V = crack_space_3d(m, crack_geometry_3d(m, m.p[2] - 0.5375, m.p[0] + m.p[1] - 1))
+    U = np.zeros(V.N)
+    U[V.nodal_dofs[2]] = m.p[2]
+    P, reach, h = front_reach(V)
+    K = sif_3d(V, U, MAT, P)
+    assert np.array_equal(np.isnan(K).any(axis=1), reach < h) and 4 <= (reach < h).sum() <= 8
+    assert np.all(K[reach >= h, 0] > 0)

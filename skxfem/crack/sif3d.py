@@ -542,6 +542,10 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     ``faces``: the traction the crack's faces carry
     (:class:`skxfem.crack.faces3d.FaceTraction3D`, from a contact or a tie), its term
     -∫ tᵢ uᵃᵢ,₁ q dS on both faces (:mod:`skxfem.crack.interaction`); None: free faces.
+
+    K is NaN at a point whose domain has under a front cell's size h of room
+    (:func:`domain_reach`, within a cell of the boundary: its domain would hold no
+    cell); :meth:`skxfem.crack.kind3d.Crack3D.front` leaves such points out and warns.
     """
     if not isinstance(material, Material):
         raise ValueError(f"material must be a skxfem Material, got {type(material).__name__}")
@@ -632,6 +636,9 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     K = np.zeros((P.shape[1], 3))
     size = np.abs(X).max(initial=0.0)
     for k in range(P.shape[1]):
+        if Rk[k] < h:                                     # no room: no cell in its domain
+            K[k] = np.nan
+            continue
         R, inner = Rk[k], plateau * Rk[k]
         cand = np.flatnonzero(_hat_candidates(X, P[:, k, None], frames.e3[:, k, None],
                                               L, size)[0])
