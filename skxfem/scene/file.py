@@ -313,7 +313,7 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
         Key("sif_radius", "number > 0 [L]", "a crack: the radius of the interaction "
             "integral's domain (default 0.75 enrichment_radius, at least 4 tip cells; "
             "clipped to the distance to the boundary and half that to other tips; in "
-            "3D a third of that to other fronts and half the radius of curvature)", 0.3),
+            "3D a third of that to other fronts and 1/(2 κ), κ the front's curvature)", 0.3),
     )),
     Table("[[interface]]", "several interfaces, one table each (in place of [levelset] "
           "and [interface]) with its level set (a key of [levelset], as there) and its "
