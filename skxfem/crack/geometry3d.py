@@ -9,12 +9,12 @@ of a ``MeshTet1`` and are linear in each tetrahedron, so that in a cell
   sign (nodal values within :data:`~skxfem.crack.geometry.ZERO` edge lengths of zero
   are set to zero);
 * φ_h is linear on that polygon: the cell is a **front cell** if φ_h takes both signs
-  (or vanishes, within 1e-9 h|∇φ_h|: a front along a face shared by two cells makes
-  both front cells, whatever the round-off of φ_h interpolated along their edges) on
-  it, the front crossing it along the segment {ψ_h = φ_h = 0}; a **split cell** if
-  φ_h < 0 on the whole polygon (the crack crosses it completely, or
-  runs along one of its faces: ψ_h = 0 at three nodes); else the crack does not reach
-  it (ψ_h changes sign ahead of the front).
+  (or vanishes, within :data:`~skxfem.crack.geometry.ZERO` h|∇φ_h|: a front along a
+  face shared by two cells makes both front cells, whatever the round-off of φ_h
+  interpolated along their edges) on it, the front crossing it along the segment
+  {ψ_h = φ_h = 0}; a **split cell** if φ_h < 0 on the whole polygon (the crack crosses
+  it completely, or runs along one of its faces: ψ_h = 0 at three nodes); else the
+  crack does not reach it (ψ_h changes sign ahead of the front).
 
 Sub-tetrahedra
 --------------
@@ -48,7 +48,7 @@ import numpy as np
 from skfem import MeshTet1
 
 from ..fem.simplex import split
-from .geometry import check_mesh_type, level_set_values
+from .geometry import ZERO, check_mesh_type, level_set_values
 
 __all__ = ["CrackGeometry3D", "crack_geometry_3d", "check_mesh_3d", "front_chains",
            "front_fit", "front_offset",
@@ -266,11 +266,11 @@ def crack_geometry_3d(mesh, psi, phi) -> CrackGeometry3D:
     crossed = ((ps < 0).any(axis=1) & (ps > 0).any(axis=1)) | ((ps == 0).sum(axis=1) == 3)
     # φ_h at the polygon's vertices is interpolated along edges: a front along a face
     # shared by two cells gives 0 on one side and ±1e-17 on the other.  Within the
-    # tolerance of a vertex on the front (1e-9 h |∇φ_h|, below) both are front cells,
+    # tolerance of a vertex on the front (ZERO h |∇φ_h|, below) both are front cells,
     # whose pieces then get the rules graded at the front
     h = np.ptp(mesh.p[:, t], axis=1).max(axis=0)          # (nc,) cell sizes
     gphi = _gradients(mesh, phi)
-    near = 1e-9 * h * np.linalg.norm(gphi, axis=0)
+    near = ZERO * h * np.linalg.norm(gphi, axis=0)
     front = has & (lo <= near) & (hi >= -near)
     split_ = crossed & (hi < 0) & ~front
     if not np.any(crossed & (lo < 0)):
@@ -305,7 +305,7 @@ def crack_geometry_3d(mesh, psi, phi) -> CrackGeometry3D:
     # the vertices on the front first, counted
     pv, fv = _values_at(mesh, sub_cell, sub, psi), _values_at(mesh, sub_cell, sub, phi)
     gpsi = _gradients(mesh, psi)
-    tol = 1e-9 * h[sub_cell][:, None]
+    tol = ZERO * h[sub_cell][:, None]
     on_psi = np.abs(pv) <= tol * np.linalg.norm(gpsi[:, sub_cell], axis=0)[:, None]
     on_phi = np.abs(fv) <= tol * np.linalg.norm(gphi[:, sub_cell], axis=0)[:, None]
     on = on_psi & on_phi & front[sub_cell][:, None]
@@ -334,7 +334,7 @@ def _cut_edges(mesh, psi, phi, faces, face_cell, h):
     # φ < 0 at the crossing beyond rounding: a crossing on the front (φ_h = -4e-17 where
     # the front runs through it) is a front point of its faces, not a multiplier's
     ids = np.flatnonzero(strict & (phi[a] + t * (phi[b] - phi[a])
-                                   < -1e-9 * np.abs(phi[b] - phi[a])))
+                                   < -ZERO * np.abs(phi[b] - phi[a])))
     points = mesh.p[:, a[ids]] + t[ids] * (mesh.p[:, b[ids]] - mesh.p[:, a[ids]])
     index = np.full(mesh.edges.shape[1], -1)
     index[ids] = np.arange(ids.size)
@@ -346,7 +346,7 @@ def _cut_edges(mesh, psi, phi, faces, face_cell, h):
         d = np.linalg.norm(points[:, np.maximum(cand, 0)] - faces[:, v].T[:, None], axis=0)
         d = np.where(cand >= 0, d, np.inf)
         k = np.argmin(d, axis=0)
-        hit = d[k, np.arange(k.size)] <= 1e-9 * h[face_cell]
+        hit = d[k, np.arange(k.size)] <= ZERO * h[face_cell]
         facets[v] = np.where(hit, cand[k, np.arange(k.size)], -1)
     return ids, points, facets
 
@@ -391,7 +391,7 @@ def _segments(sub, sub_cell, on, h):
         pts = np.concatenate([A[c == cell], B[c == cell]])
         d = np.linalg.norm(pts[:, None] - pts[None], axis=2)
         i, j = np.unravel_index(np.argmax(d), d.shape)
-        if d[i, j] > 1e-9 * h[cell]:
+        if d[i, j] > ZERO * h[cell]:
             segs.append(np.stack([pts[i], pts[j]]))
             cells.append(cell)
     if not segs:
