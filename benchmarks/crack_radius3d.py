@@ -83,16 +83,17 @@ here but the penny) the enriched share falls below the 15 % asked from n = 40 an
 ratio below 3 from n = 32, the penny with the default r_e meets its targets (today's
 does not: 0.1 D of its block, 20 a across, enriches 2 a around the front), the straight
 front keeps 1 % though its K levels off (worst 0.42, 0.50, 0.66, 0.74 % at n = 31, 41,
-61, 81, where today's falls to 0.17 % at n = 61), the cube's K_I loses up to 0.34 % at n ≥ 32 — but
-the pressed slab's K = 0 breaks the 1e-3 asked at n = 31, front 0.51 (1.25e-3, today
+61, 81, where today's falls to 0.17 % at n = 61), the cube's K_I loses up to 0.34 % at
+n ≥ 32 — but the pressed slab's K = 0 breaks the 1e-3 asked at n = 31, front 0.51 (1.25e-3, today
 0.39e-3), and ``tests/test_crack_contact_3d.py``'s 0.5e-3 at n = 21, front 0.5
 (0.63e-3, today 0.21e-3).  That floor is the interaction integral's quadrature, not
 the enriched zone: at n = 31, front 0.51, with today's r_e = 0.173 and R given, |K| is
 0.13e-3, 1.24e-3, 0.39e-3 at R = 0.068, 0.092 (= 3 h, fd0's), 0.13 (today's), not
-monotone in R; topological enrichment, whose R is 3 h too, gives 1.17e-3 there.  Once :func:`skxfem.crack.sif3d.sif_3d` holds K = 0 to 1e-3 at R = 3 h
-on every mesh (``--parts pressed``), ``fd0`` keeps every target here and becomes the
-measured candidate.  n = 16 stays above 3 times whatever the zone: topological
-enrichment itself took 3.7 times the tie.
+monotone in R; topological enrichment, whose R is 3 h too, gives 1.17e-3 there.  Once
+:func:`skxfem.crack.sif3d.sif_3d` holds K = 0 to 1e-3 at R = 3 h on every mesh
+(``--parts pressed``), ``fd0`` keeps every target here and becomes the measured
+candidate.  n = 16 stays above 3 times whatever the zone: topological enrichment itself
+took 3.7 times the tie.
 """
 from __future__ import annotations
 
