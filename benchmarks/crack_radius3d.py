@@ -101,13 +101,13 @@ took 3.7 times the tie.
 
 The zone decoupled from the domain, measured and left out: the enriched zone need not
 be 4/3 of R if it only has to hold the domain's cells, so R kept (0.13, today's on the
-cube from n = 24) and r_e = R + h (h the front cells' size across, :func:`skxfem.crack.
-sif3d.front_sizes`, about 0.7 of a cell's edge) on the Williams slab (n × n × 4,
-``sif_radius`` and ``radius`` given): worst |K - 1| 1.00, 0.66, 0.47 % at n = 21, 31,
-41 against 0.75, 0.51, 0.34 % with r_e = R / 0.75, for 24, 21, 30 % fewer enriched
-unknowns; r_e = R + h/2: 1.00, 1.07, 0.62 %.  The zone must reach about a cell's
-diameter beyond R, which 4/3 R does on the meshes measured, and what it saves falls
-short of the fixed part's cost above.
+cube from n = 24) and r_e = R + h (h the front cells' size across,
+:func:`skxfem.crack.sif3d.front_sizes`, about 0.7 of a cell's edge) on the Williams
+slab (n × n × 4, ``sif_radius`` and ``radius`` given): worst |K - 1| 1.00, 0.66,
+0.47 % at n = 21, 31, 41 against 0.75, 0.51, 0.34 % with r_e = R / 0.75, for 24, 21,
+30 % fewer enriched unknowns; r_e = R + h/2: 1.00, 1.07, 0.62 %.  The zone must reach
+about a cell's diameter beyond R, which 4/3 R does on the meshes measured, and what it
+saves falls short of the fixed part's cost above.
 """
 from __future__ import annotations
 
