@@ -161,6 +161,17 @@ assembly 1.04, 1.69, 3.66 s; solve 1.05, 2.09, 5.46 s; K_I at mid-front 3.6472, 
 (27.5 s at n = 32) against the tie's 0.48, 1.77 (4.0) s: the crack's time halved, the
 tie's too.  The target (≤ 3) is not met.
 
+The enriched zone and the domain, traded against accuracy (``benchmarks/crack_radius3d.py``,
+whose notes give the table; 29 November): with r_e = 4 front cells (f_d = 0 in 3D,
+:mod:`skxfem.crack.radius`) the crack takes 2.9, 2.3, 1.7 times the tie at n = 32, 40, 48
+(the default 3.7, 5.8, 3.6 in the same runs) and 19.5, 14, 10.5 % of its unknowns are
+enriched (27 % at every n), but a through crack pressed shut then gives |K| = 1.25e-3
+p√(πa) at n = 31 (the interaction integral's floor at R = 3 h): the default stays.
+At n = 16 no zone reaches 3 times: topological enrichment took 3.7, a smaller domain
+than 3 cells loses 1.5 to 5.6 % of K along a straight front.  An untimed first solve
+(imports, caches) before the timed ones moved nothing: 11.3 / 5.6 / 5.5 without it,
+10.8 / 5.1 / 6.2 with it, one run each (not kept).
+
     python benchmarks/crack_solve.py                 # n = 8, 12
     python benchmarks/crack_solve.py --sizes 8 --repeat 3
 """
