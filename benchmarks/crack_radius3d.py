@@ -121,18 +121,19 @@ import numpy as np
 
 @dataclass(frozen=True)
 class Choice:
-    """A 3D enriched zone: ``enrichment``, and for geometric f_d (``fraction_d``), n_d
-    (``cells``) and φ (``domain``), module notes."""
+    """A 3D enriched zone: ``enrichment``, and for geometric f (``fraction_d``: of the
+    crack's depth since 29 November, of the mesh's diameter D in the table of the module
+    notes, measured before), n_d (``cells``) and φ (``domain``), module notes."""
 
     enrichment: str = "geometric"
-    fraction_d: float = 0.1
+    fraction_d: float = 0.2
     cells: float = 3.0
     domain: float = 0.75
 
     def label(self) -> str:
         if self.enrichment == "topological":
             return "topological, R = 3h"
-        return f"f_d {self.fraction_d:g}, n_d {self.cells:g}, R = {self.domain:g} r_e"
+        return f"f {self.fraction_d:g} a, n_d {self.cells:g}, R = {self.domain:g} r_e"
 
 
 CHOICES = {
@@ -155,15 +156,15 @@ CHOICES = {
 def applied(choice: Choice):
     """The 3D defaults of ``choice`` for the length of the block (then restored)."""
     from skxfem.crack import radius, sif3d
-    saved = (radius.DIAMETER_FRACTION[3], radius.DOMAIN_CELLS[3], radius.DOMAIN_FRACTION,
+    saved = (radius.SIZE_FRACTION[3], radius.DOMAIN_CELLS[3], radius.DOMAIN_FRACTION,
              sif3d.DOMAIN_FRACTION)
-    radius.DIAMETER_FRACTION[3] = choice.fraction_d
+    radius.SIZE_FRACTION[3] = choice.fraction_d
     radius.DOMAIN_CELLS[3] = choice.cells
     radius.DOMAIN_FRACTION = sif3d.DOMAIN_FRACTION = choice.domain
     try:
         yield
     finally:
-        (radius.DIAMETER_FRACTION[3], radius.DOMAIN_CELLS[3], radius.DOMAIN_FRACTION,
+        (radius.SIZE_FRACTION[3], radius.DOMAIN_CELLS[3], radius.DOMAIN_FRACTION,
          sif3d.DOMAIN_FRACTION) = saved
 
 
