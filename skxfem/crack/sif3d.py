@@ -582,7 +582,11 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         bx = 0.0 if b is None else np.einsum("ain,in->an", Rf, b(X))   # in the frames
         r = np.hypot(ph, ps)
         theta = np.arctan2(ps, ph)
-        theta = np.where((ph < 0) & (np.sign(ps) != S), S * np.pi, theta)
+        # ±π by the side on the faces of the cut cells only (the branch functions'
+        # θ, skxfem.crack.space3d._kinds): a cell crossed by ψ_h ahead of the front
+        # is cut by no crack, and θ is continuous in it
+        theta = np.where((ph < 0) & (np.sign(ps) != S) & (geo.side[cc] == 0), S * np.pi,
+                         theta)
         r = np.maximum(r, 1e-300)
         # the field in each point's frame, where the auxiliary fields are given
         gu_l, G_l = _rotate(Rf, gu), _rotate(Rf, G)

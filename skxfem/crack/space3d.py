@@ -235,8 +235,9 @@ def point_values(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
     """The :class:`PointValues` at points x (3, n) of ``cells`` (n,).
 
     ``side`` (n,) the side ±1 of each point (needed in split and front cells; default
-    the cell's side).  Behind the front (φ_h < 0) θ takes the side's sign, so a point
-    counts on its own side of the crack.  ``barycentric_``: the points'
+    the cell's side).  Behind the front (φ_h < 0) in the cells the crack cuts, θ takes
+    the side's sign, so a point counts on its own side of the crack (:func:`_kinds`).
+    ``barycentric_``: the points'
     (:func:`~skxfem.crack.geometry3d.barycentric`) (λ, ∇λ) if already known.
     """
     mesh, geo = space.mesh, space.geometry
@@ -253,14 +254,25 @@ def point_values(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
     psi = np.einsum("nk,nk->n", lam, geo.psi[nodes])
     gphi = np.einsum("nk,nki->ni", geo.phi[nodes], dlam)
     gpsi = np.einsum("nk,nki->ni", geo.psi[nodes], dlam)
-    g, dg = _kinds(phi, psi, gphi, gpsi, side)
+    g, dg = _kinds(phi, psi, gphi, gpsi, side, geo.side[cells] == 0)
     return PointValues(lam, dlam, nodes, phi, psi, gphi, gpsi, g, dg)
 
 
-def _kinds(phi, psi, gphi, gpsi, side) -> tuple[np.ndarray, np.ndarray]:
+def _kinds(phi, psi, gphi, gpsi, side, cut) -> tuple[np.ndarray, np.ndarray]:
     """The six kinds g ∈ {1, H, F₁..F₄} (..., 6) and their gradients (..., 6, 3) at points
     of interpolated level sets ``phi``, ``psi`` (...) with gradients ``gphi``, ``gpsi``
-    (..., 3) (or broadcastable: one per cell) on ``side`` (...) (:func:`point_values`).
+    (..., 3) (or broadcastable: one per cell) on ``side`` (...) (:func:`point_values`),
+    ``cut`` (...) whether the point's cell is one the crack cuts (a split or front cell).
+
+    θ = atan2(ψ_h, φ_h), and ±π by ``side`` where φ_h < 0 and ψ_h has not the side's
+    sign in a cut cell (a point on a face, or rounding).  Only there: a cell that ψ_h
+    crosses ahead of the front (φ_h > 0 on its part of {ψ_h = 0}) is cut by no crack,
+    and atan2 is continuous in it, but φ_h < 0 can hold at points of it on either side
+    of {ψ_h = 0}; forcing θ there made F jump inside the cell, and the stiffness's rows of
+    the branch functions missed a face term: on the penny pressed shut
+    (:func:`skxfem.studies.cracks3d.pressed_penny`) K U₀ - Jᵀ(w p) of the exact state
+    reached 1.6e-2 h^2.5 p on the branch rows at h = 0.125 (six such cells; 1e-3 h^2.5 p
+    without them, measured).
 
     The branch functions and their gradients share their trigonometry: with s, c = sin,
     cos θ/2, F = √r {s, c, s sin θ, c sin θ} (:func:`skxfem.crack.branch.branch`) and
@@ -270,7 +282,7 @@ def _kinds(phi, psi, gphi, gpsi, side) -> tuple[np.ndarray, np.ndarray]:
     coordinates); zero at r = 0."""
     r = np.hypot(phi, psi)
     theta = np.arctan2(psi, phi)
-    wrong = (phi < 0) & (np.sign(psi) != side) & (side != 0)
+    wrong = (phi < 0) & (np.sign(psi) != side) & (side != 0) & cut
     theta = np.where(wrong, side * np.pi, theta)
     live = r > 0
     sr = np.sqrt(np.where(live, r, 1.0))
@@ -310,7 +322,7 @@ def _cell_values(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray, side: np
     psi = np.matmul(lam, geo.psi[nodes][:, :, None])[..., 0]
     gphi = np.einsum("nk,nki->ni", geo.phi[nodes], dlam)[:, None]
     gpsi = np.einsum("nk,nki->ni", geo.psi[nodes], dlam)[:, None]
-    g, dg = _kinds(phi, psi, gphi, gpsi, side)
+    g, dg = _kinds(phi, psi, gphi, gpsi, side, (geo.side[cells] == 0)[:, None])
     return lam, dlam, g, dg
 
 
