@@ -37,8 +37,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
-__all__ = ["POLAR_POINTS", "NEAR_POINTS", "VERTEX_POINTS", "collapsed", "edge_polar",
-           "vertex_polar", "order_points"]
+__all__ = ["POLAR_POINTS", "NEAR_POINTS", "NEAR_GRADING", "VERTEX_POINTS", "collapsed",
+           "edge_polar", "vertex_polar", "order_points"]
 
 POLAR_POINTS = (5, 3, 8)
 """(n_r, n_s, n_θ): Gauss points along the rays (in σ = √u), along the front and across
@@ -47,6 +47,11 @@ the rays of :func:`edge_polar`."""
 NEAR_POINTS = 5
 """Points per direction of :func:`collapsed` on the cells around the front cells (in the
 support of a front cell's node) and on the front cells' sub-tetrahedra off the front."""
+
+NEAR_GRADING = ((0.3, 8), (0.1, 12))
+"""(ratio, n): the points per direction of :func:`collapsed` on a tetrahedron near the
+front that does not meet it, where the front passes within ratio times its longest edge
+(:func:`skxfem.crack.space3d.near_points`); :data:`NEAR_POINTS` beyond."""
 
 VERTEX_POINTS = (4, 5)
 """(n_r, n_θ) of :func:`vertex_polar` (its integrand is regular: r⁻¹ u² ∝ u, but turns
