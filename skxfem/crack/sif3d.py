@@ -120,8 +120,8 @@ from .space3d import (
 )
 from .williams import near_tip_modes
 
-__all__ = ["DEFAULT_RADIUS", "MIN_RADIUS", "DEFAULT_LENGTH", "BRANCH_POINTS",
-           "default_radius_3d", "front_points", "front_frame", "fitted_frame",
+__all__ = ["DEFAULT_RADIUS", "MIN_RADIUS", "DEFAULT_LENGTH", "default_radius_3d",
+           "front_points", "front_frame", "fitted_frame",
            "front_coordinate", "front_sizes", "boundary_reach", "other_fronts", "sif_3d",
            "CrackSolution3D", "solve_crack_3d"]
 
@@ -139,16 +139,6 @@ R = 1.5 h 0.985 to 1.025, 3 h 0.947 to 1.047, 1 h 1.04 to 1.06 (too few cells)."
 
 DEFAULT_LENGTH = 1.5
 """The default half-width L of the bump along the front, in front-cell sizes along it."""
-
-BRANCH_POINTS = 6
-"""Points per direction of the collapsed Gauss rule on the domain's cells and pieces in a
-branch node's support away from the front cells (:func:`skxfem.crack.space3d.rules`'s
-``branch``; the loads take :data:`skxfem.crack.space3d.BRANCH_POINTS`, 4).  The exact
-state of the penny pressed shut (:func:`skxfem.studies.cracks3d.pressed_penny`, a =
-0.55, sif_radius 0.25) gave |K_I| = 2.5e-3, 1.1e-3, 0.9e-3 p√(πa) at h = 0.2, 0.125,
-0.1 with 4, 2.4e-3, 0.8e-3, 0.6e-3 with 6 (the near rule graded,
-:data:`~skxfem.crack.quadrature3d.NEAR_GRADING`); sif_3d took 10.1 s instead of 7.4 s
-at h = 0.1 (4.0 s with 4 and the near rule not graded)."""
 
 POINT_CHUNK = 8192
 """Quadrature points per chunk of :func:`sif_3d`'s fields (:func:`_point_chunks`)."""
@@ -571,7 +561,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     # (3 left |K_I| ≈ 1.5e-3 σ√(πa) on a crack pressed shut with its front 0.3 h past a
     # node, 4: 1e-3)
     within = cells[_cell_r_bound(space, cells) < R * (1 + 1e-9)]
-    batches = rules(space, within, plain=4, branch=BRANCH_POINTS)
+    batches = rules(space, within, plain=4)
     # the points' terms, filled chunk by chunk (at most every point of the rules)
     total = sum(int(np.count_nonzero(w)) for _, _, w, _ in batches)
     X_, e1_, gr_, B_, C_, D_ = (np.empty((3, total)) for _ in range(6))

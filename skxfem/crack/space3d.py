@@ -401,21 +401,22 @@ def _levels(space: CrackSpace3D) -> np.ndarray:
 
 
 def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS,
-          symmetric: bool = False, branch: int = BRANCH_POINTS):
+          symmetric: bool = False, grading=NEAR_GRADING):
     """The quadrature of ``cells`` (module notes), as batches of cells with as many points
     each: a list of (cells (nc,), x (nc, nq, 3), w (nc, nq), side (nc, nq)).  ``plain``:
     the points per direction of the collapsed rule on the cells and sub-tetrahedra
     outside the branch nodes' supports (1: their centroid, :func:`_plain_rule`).
     ``symmetric``: the cells and sub-tetrahedra in a branch node's support away from the
     front cells on the symmetric rule of order :data:`SMOOTH_ORDER` (the stiffness),
-    else on the collapsed rule of ``branch`` points per direction (the loads; the
-    interaction integral, :data:`SMOOTH_ORDER`'s notes).  The cells and pieces near the
-    front that do not meet it: :func:`near_points`, graded by their distance to it."""
+    else on the collapsed rule of :data:`BRANCH_POINTS` per direction (the interaction
+    integral, :data:`SMOOTH_ORDER`'s notes).  The cells and pieces near the
+    front that do not meet it: :func:`near_points`, graded by their distance to it as
+    ``grading`` says."""
     mesh, geo = space.mesh, space.geometry
     cells = np.unique(np.asarray(cells, dtype=int))
     level = _levels(space)
     by_level = {1: ((lambda T: simplex_points(T, SMOOTH_ORDER)) if symmetric else
-                    (lambda T: collapsed(T, branch))),
+                    (lambda T: collapsed(T, BRANCH_POINTS))),
                 0: lambda T: _plain_rule(T, plain)}
     # sub-tetrahedra of split and front cells, by rule
     pick = np.isin(geo.sub_cell, cells)
@@ -423,7 +424,7 @@ def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS,
     lv = level[sc]                                        # front cells: 2
     near = np.zeros(sc.size, dtype=int)
     off = (sf == 0) & (lv == 2)
-    near[off] = near_points(space, S[off])
+    near[off] = near_points(space, S[off], grading)
     kinds = [(sf == 2, edge_polar), (sf == 1, vertex_polar)] + [
         ((sf == 0) & (lv == k), rule) for k, rule in by_level.items()] + [
         (near == k, lambda T, k=k: collapsed(T, k)) for k in np.unique(near[off])]
@@ -438,7 +439,7 @@ def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS,
     groups = [(uncut[level[uncut] == k], rule) for k, rule in by_level.items()]
     ring = uncut[level[uncut] == 2]
     if ring.size:
-        n_ring = near_points(space, mesh_cells(mesh, ring))
+        n_ring = near_points(space, mesh_cells(mesh, ring), grading)
         groups += [(ring[n_ring == k], lambda T, k=k: collapsed(T, k))
                    for k in np.unique(n_ring)]
     for here, rule in groups:
@@ -449,14 +450,14 @@ def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS,
     return batches
 
 
-def near_points(space: CrackSpace3D, T: np.ndarray) -> np.ndarray:
+def near_points(space: CrackSpace3D, T: np.ndarray, grading=NEAR_GRADING) -> np.ndarray:
     """(m,) the points per direction of the collapsed rule on tetrahedra T (m, 4, 3) near
     the front that do not meet it (the cells around the front cells and the front cells'
     pieces off the front): :data:`~skxfem.crack.quadrature3d.NEAR_POINTS`, more by
-    :data:`~skxfem.crack.quadrature3d.NEAR_GRADING` where the front passes close to the
-    tetrahedron (its distance to the front's segments, at its vertices, edges' midpoints
-    and centroid, over its longest edge), and the branch functions' 1/√r gradients turn
-    within it.
+    ``grading`` (pairs (ratio, n), :data:`~skxfem.crack.quadrature3d.NEAR_GRADING`)
+    where the front passes within ratio times the tetrahedron's longest edge (its
+    distance to the front's segments at its vertices, edges' midpoints and centroid),
+    and the branch functions' 1/√r gradients turn within it.
 
     >>> from skfem import MeshTet1
     >>> from skxfem.crack.geometry3d import crack_geometry_3d
@@ -475,7 +476,7 @@ def near_points(space: CrackSpace3D, T: np.ndarray) -> np.ndarray:
                        + [T.mean(axis=1, keepdims=True)], axis=1)      # (m, 11, 3)
     d = front_distance(space.geometry, X.reshape(-1, 3).T).reshape(len(T), -1).min(axis=1)
     size = np.max([np.linalg.norm(T[:, a] - T[:, b], axis=1) for a, b in ends], axis=0)
-    for ratio, n in sorted(NEAR_GRADING, reverse=True):   # the closest last
+    for ratio, n in sorted(grading, reverse=True):   # the closest last
         out[d < ratio * size] = max(n, NEAR_POINTS)
     return out
 
