@@ -58,8 +58,8 @@ between the cells' rules and the faces'): on the branch rows the 5³ rule left 3
 5.5e-3, 1.0e-2 h^2.5 p at h = 0.2, 0.125, 0.1 (10³ everywhere: 4.4e-4, 9.3e-4, 1.6e-3,
 slow: the front passes at 1e-2 of a piece's size), this grading 9.8e-4, 1.4e-3, 1.0e-3.
 Solved, the pressure at the crossings was then within 0.27 %, 0.35 %, 0.14 % of p
-(1.6 %, 0.8 %, 1.0 % before).  Cost, benchmarks/crack_solve.py at n = 16: the cells'
-stiffness 0.74 -> 0.77 s, K along the front 1.23 -> 1.67 s."""
+(1.6 %, 0.8 %, 1.0 % before), and |K_I| that of the exact state (the interaction
+integral's own error; sif_3d keeps the 5³ rule, :mod:`skxfem.crack.sif3d`)."""
 
 VERTEX_POINTS = (4, 5)
 """(n_r, n_θ) of :func:`vertex_polar` (its integrand is regular: r⁻¹ u² ∝ u, but turns
