@@ -51,10 +51,15 @@ from cell to cell there (0.97 to 0.98 on average, by domain or by face): the Wil
 fields' planar derivatives are then not those of the field they define, by an amount
 that the domain and the face terms do not share (each off the exact-geometry value by
 0.1 to 0.6 %, their sum by 0.2 to 0.7 %; more quadrature points changed it by 0.3e-3).
-With the distance x₁ the same exact state gives 3.5e-3, 0.7e-3, 1.0e-3: at h = 0.2
-(under three cells across a) what is left is quadrature (with 6³ and 8³ points instead
-of 5³ and 4³ on the pieces near the front, 2.0e-3 and 1.6e-3; at h = 0.1 0.4e-3 and
-0.6e-3), not a bias.  The open penny (:mod:`skxfem.studies.cracks3d`) stays within
+With the distance x₁ the same exact state gives 3.4e-3, 0.76e-3, 1.0e-3.  Part of it is
+quadrature, part not: with 10³ to 14³ points on every piece near the front and in the
+branch tube (and 10 to 16 on the almost-polar rules' directions) |K_II| falls to 1e-5
+but |K_I| stays at about 1.7e-3, 0.8 to 1.0e-3, 0.55e-3 (falling as h^1.6), and the
+pieces' rule counts move it by ±0.4e-3 at h = 0.125 without converging (the weight q is
+C¹ only; a C² q, the step 10t³ - 15t⁴ + 6t⁵ and cos⁴, converged with the points to the
+same values).  The solved penny pressed shut gives the exact state's K since the
+stiffness's near rule is graded (:data:`skxfem.crack.quadrature3d.NEAR_GRADING`):
+3.6e-3, 0.70e-3, 1.08e-3.  The open penny (:mod:`skxfem.studies.cracks3d`) stays within
 0.1 % of before.
 
 **Curvature terms.**  In these curvilinear coordinates (x₁ along e₁, x₂ = ψ,
