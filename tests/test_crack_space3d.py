@@ -51,7 +51,8 @@ def close(a, b, tol):
 def test_kinds_are_the_branch_functions_and_their_chain_rule():
     """_kinds' closed forms against skxfem.crack.branch (values, and the chain rule of
     branch_local_gradient through ∇φ_h, ∇ψ_h), at random points, on the faces behind the
-    front (θ = ±π by the side), ahead of it on ψ = 0, and at r = 0 (all zero)."""
+    front (θ = ±π by the side, in cut cells only), ahead of it on ψ = 0, and at r = 0
+    (all zero)."""
     rng = np.random.default_rng(3)
     n = 400
     phi, psi = rng.uniform(-1, 1, n), rng.uniform(-1, 1, n)
@@ -60,11 +61,14 @@ def test_kinds_are_the_branch_functions_and_their_chain_rule():
     phi[50:55], psi[50:55] = 0.0, 0.0                    # on the front
     side = np.where(rng.random(n) < 0.5, -1.0, 1.0)
     side[60:70] = 0.0
+    cut = rng.random(n) < 0.7
+    cut[:40] = True
     gphi, gpsi = rng.standard_normal((n, 3)), rng.standard_normal((n, 3))
-    g, dg = _kinds(phi, psi, gphi, gpsi, side)
+    g, dg = _kinds(phi, psi, gphi, gpsi, side, cut)
     r = np.hypot(phi, psi)
     theta = np.arctan2(psi, phi)
-    theta = np.where((phi < 0) & (np.sign(psi) != side) & (side != 0), side * np.pi, theta)
+    theta = np.where((phi < 0) & (np.sign(psi) != side) & (side != 0) & cut, side * np.pi,
+                     theta)
     live = r > 0
     F = branch(np.where(live, r, 1.0), np.where(live, theta, 0.0)) * live
     loc = branch_local_gradient(np.where(live, r, 1.0), np.where(live, theta, 0.0)) * live
@@ -74,6 +78,26 @@ def test_kinds_are_the_branch_functions_and_their_chain_rule():
     assert close(dg[:, 2:], dF.transpose(1, 0, 2), 1e-13)
     assert not np.any(dg[:, :2]) and not np.any(g[50:55, 2:]) and not np.any(dg[50:55])
     assert np.allclose(g[:40, 2], np.where(side[:40] < 0, -1, 1) * np.sqrt(r[:40]))
+
+
+def test_branch_functions_are_continuous_in_cells_crossed_ahead_of_the_front():
+    """The penny {z = 0.05, ρ < 0.55} at n = 16: six cells that ψ_h crosses ahead of the
+    front (φ_h > 0 on their part of {ψ_h = 0}) have φ_h < 0 at a vertex whose ψ_h has
+    not the cell's side.  No crack cuts them: F is atan2's there, continuous, at every
+    point of the stiffness's rules (θ forced to ±π by the side made F jump inside them)."""
+    m = MeshTet1.init_tensor(*(np.linspace(-1, 1, 17),) * 3)
+    g = crack_geometry_3d(m, m.p[2] - 0.05, np.hypot(m.p[0], m.p[1]) - 0.55)
+    ps, ph = g.psi[m.t], g.phi[m.t]
+    ahead = (g.side != 0) & (ps < 0).any(axis=0) & (ps > 0).any(axis=0)
+    odd = np.flatnonzero(ahead & ((ph < 0) & (np.sign(ps) != g.side)).any(axis=0))
+    assert odd.size == 6
+    V = crack_space_3d(m, g)
+    (c, x, w, side), = rules(V, odd, symmetric=True)
+    pv = point_values(V, np.repeat(c, w.shape[1]), x.reshape(-1, 3).T, side.ravel())
+    wrong = (pv.phi < 0) & (np.sign(pv.psi) != side.ravel())
+    assert wrong.sum() > 10, "points behind the front on the other side of {ψ_h = 0}"
+    expect = branch(np.hypot(pv.phi, pv.psi), np.arctan2(pv.psi, pv.phi))
+    assert close(pv.g[:, 2:], expect.T, 1e-14)
 
 
 def test_cell_values_are_point_values_batched_by_cell():

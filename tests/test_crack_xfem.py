@@ -539,3 +539,30 @@ def test_two_tips_within_two_cells_are_refused_by_sif():
     V = crack_space(m, g)
     with pytest.raises(ValueError, match="from half-way to another tip"):
         sif(V, np.zeros(V.N), Material(1.0, 0.3))
+
+
+def test_branch_functions_are_continuous_in_cells_crossed_ahead_of_the_tip():
+    """Triangles n = 21, the crack y = 0.487 to the tip x = 0.53: a cell that ψ_h crosses
+    ahead of the tip (φ_h > 0 on its part of ψ_h = 0) with φ_h < 0 at a vertex on the
+    other side is cut by no crack; F is atan2's there (θ forced to ±π by the cell's side
+    made it jump inside: the 3D bug, skxfem/crack/space3d.py, in 2D too; K_I of the
+    Williams square there 1.0014 -> 1.0018, K_II 0.99914 -> 0.99919)."""
+    from skfem import Basis, ElementTriP1
+
+    from skxfem.crack.branch import branch
+    from skxfem.crack.space import kinds_at
+    m = unit_square(21)
+    g = crack_geometry(m, m.p[1] - 0.487, m.p[0] - 0.53)
+    ps, ph = g.psi[m.t], g.phi[m.t]
+    ahead = (g.side != 0) & (ps < 0).any(axis=0) & (ps > 0).any(axis=0)
+    odd = np.flatnonzero(ahead & ((ph < 0) & (np.sign(ps) != g.side)).any(axis=0))
+    assert odd.size >= 1
+    V = crack_space(m, g)
+    t = np.linspace(0.02, 0.96, 12)
+    ref = np.array([[a, b] for a in t for b in t if a + b < 0.98]).T
+    s = Basis(m, ElementTriP1(), elements=odd, quadrature=(ref, np.ones(ref.shape[1])))
+    val, _ = kinds_at(V, s)
+    phi, psi = (np.asarray(s.interpolate(f)) for f in (g.phi, g.psi))
+    assert ((phi < 0) & (np.sign(psi) != g.side[odd][:, None])).sum() >= 3
+    expect = branch(np.hypot(phi, psi), np.arctan2(psi, phi))
+    assert np.abs(val[2:] - expect).max() < 1e-14

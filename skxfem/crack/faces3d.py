@@ -44,15 +44,19 @@ was neither this rule nor the traction it carries but the interaction integral's
 error on the curved front (:mod:`skxfem.crack.sif3d`: the exact state gave 2.6e-3,
 1.3e-3, 3.6e-3); with its auxiliary fields in the distance to the front instead of φ_h,
 3.5e-3, 0.7e-3, 1.0e-3 for the exact state and 3.2e-3, 1.5e-3, 2.6e-3 solved.  At
-h = 0.1 the rest is the contact's pressure, within 1.9 % of p at the crossings of the
+h = 0.1 the rest was the contact's pressure, within 1.9 % of p at the crossings of the
 front's first two cells (the solved U with the exact p: 0.9e-3; the exact U with the
-solved λ: 2.6e-3).  That error is the stiffness's: the enriched rows of K U - F for the
-exact U are not Bᵀ p, because the plain 5³ rule of the cells near the front
-(:func:`skxfem.crack.space3d.rules`, ``NEAR_POINTS``) integrates the branch functions'
-1/√r gradients where the front passes close to a cell that does not hold it; with 8³
-there (in the stiffness and in sif_3d) the pressure is within 1.3 % at h = 0.125 and
-|K_I| 2.8e-3, 1.2e-3, 1.6e-3 at h = 0.2, 0.125, 0.1 (measured by patching the constant;
-not changed here).
+solved λ: 2.6e-3).  That error was the stiffness's: the enriched rows of K U - F for the
+exact U were not Bᵀ p.  Two causes, measured by K U₀ - Jᵀ(w p) of the exact state on the
+branch rows (tests/test_crack_contact_3d.py): θ forced to ±π by the side in cells that
+ψ_h crosses ahead of the front, where F then jumped inside a cell
+(:func:`skxfem.crack.space3d._kinds`; 1.6e-2 -> 5.5e-3 h^2.5 p at h = 0.125), and the
+plain 5³ rule of the cells near the front (:func:`skxfem.crack.space3d.near_points`)
+where the front passes close to a cell or piece that does not hold it (graded,
+:data:`~skxfem.crack.quadrature3d.NEAR_GRADING`: 1.4e-3).  With both, the pressure is
+within 0.27 %, 0.35 %, 0.14 % of p at h = 0.2, 0.125, 0.1 and |K_I| 3.6e-3, 0.70e-3,
+1.08e-3: that of the exact state (3.4e-3, 0.76e-3, 1.0e-3), the interaction integral's
+own error.
 
 **A front along the cells' faces.**  A through crack with its front on the tetrahedra's
 diagonal faces (21 × 21 × 2, front x = 1/2) gave |K_I| = 3.2e-3 p√(πa) with the

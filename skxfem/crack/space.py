@@ -200,8 +200,9 @@ def kinds_at(space: CrackSpace, scalar: CellBasis, side: np.ndarray | None = Non
 
     ``side`` (nel, nqp): the side ±1 of each point (a sub-cell rule's ``V``); default
     the side of each cell (:attr:`CrackGeometry.side`, for cells the crack does not
-    cross).  On the faces' side of the tip (φ_h < 0) θ takes the side's sign, so a
-    point of a sub-cell counts on its own side.
+    cross).  On the faces' side of the tip (φ_h < 0), in the cells the crack cuts, θ
+    takes the side's sign, so a point of a sub-cell counts on its own side; a cell
+    that ψ_h crosses ahead of the tip is cut by no crack, and θ is atan2's there.
 
     Returns
     -------
@@ -217,7 +218,10 @@ def kinds_at(space: CrackSpace, scalar: CellBasis, side: np.ndarray | None = Non
     phi_v, psi_v = np.asarray(phi), np.asarray(psi)
     r = np.hypot(phi_v, psi_v)
     theta = np.arctan2(psi_v, phi_v)
-    wrong = (phi_v < 0) & (np.sign(psi_v) != side) & (side != 0)
+    # ±π by the side only in the cells the crack cuts (split and tip cells): a cell that
+    # ψ_h crosses ahead of the tip is cut by no crack, and θ is continuous in it
+    cut = (geo.side[cells] == 0)[:, None]
+    wrong = (phi_v < 0) & (np.sign(psi_v) != side) & (side != 0) & cut
     theta = np.where(wrong, side * np.pi, theta)
     shape = (6,) + scalar.dx.shape
     g, dg = np.zeros(shape), np.zeros((6, 2) + scalar.dx.shape)

@@ -70,14 +70,15 @@ from .branch import branch
 from .dofs import EnrichedUnknowns, virtual_map
 from .geometry import check_geometry
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
-from .quadrature3d import NEAR_POINTS, collapsed, edge_polar, vertex_polar
+from .quadrature3d import NEAR_GRADING, NEAR_POINTS, collapsed, edge_polar, vertex_polar
 from .radius import enrichment_radius
 from .space import nodal_scaling as _nodal_scaling
 
 __all__ = ["SMOOTH_ORDER", "BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "PointValues",
            "point_values", "functions_at", "virtual_field", "evaluation", "field_at", "rules",
-           "stiffness", "mass", "Support3D", "Load3D", "outward_normals", "traction_load",
-           "body_load", "supported_dofs", "nodal_scaling", "front_distance", "crack_depth"]
+           "stiffness", "mass", "near_points", "Support3D", "Load3D", "outward_normals",
+           "traction_load", "body_load", "supported_dofs", "nodal_scaling", "front_distance",
+           "crack_depth"]
 
 SMOOTH_ORDER = 6
 """The order of the symmetric rule (:func:`skxfem.fem.quadrature.simplex_points`: 24
@@ -252,8 +253,9 @@ def point_values(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
     """The :class:`PointValues` at points x (3, n) of ``cells`` (n,).
 
     ``side`` (n,) the side ±1 of each point (needed in split and front cells; default
-    the cell's side).  Behind the front (φ_h < 0) θ takes the side's sign, so a point
-    counts on its own side of the crack.  ``barycentric_``: the points'
+    the cell's side).  Behind the front (φ_h < 0) in the cells the crack cuts, θ takes
+    the side's sign, so a point counts on its own side of the crack (:func:`_kinds`).
+    ``barycentric_``: the points'
     (:func:`~skxfem.crack.geometry3d.barycentric`) (λ, ∇λ) if already known.
     """
     mesh, geo = space.mesh, space.geometry
@@ -270,14 +272,25 @@ def point_values(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray,
     psi = np.einsum("nk,nk->n", lam, geo.psi[nodes])
     gphi = np.einsum("nk,nki->ni", geo.phi[nodes], dlam)
     gpsi = np.einsum("nk,nki->ni", geo.psi[nodes], dlam)
-    g, dg = _kinds(phi, psi, gphi, gpsi, side)
+    g, dg = _kinds(phi, psi, gphi, gpsi, side, geo.side[cells] == 0)
     return PointValues(lam, dlam, nodes, phi, psi, gphi, gpsi, g, dg)
 
 
-def _kinds(phi, psi, gphi, gpsi, side) -> tuple[np.ndarray, np.ndarray]:
+def _kinds(phi, psi, gphi, gpsi, side, cut) -> tuple[np.ndarray, np.ndarray]:
     """The six kinds g ∈ {1, H, F₁..F₄} (..., 6) and their gradients (..., 6, 3) at points
     of interpolated level sets ``phi``, ``psi`` (...) with gradients ``gphi``, ``gpsi``
-    (..., 3) (or broadcastable: one per cell) on ``side`` (...) (:func:`point_values`).
+    (..., 3) (or broadcastable: one per cell) on ``side`` (...) (:func:`point_values`),
+    ``cut`` (...) whether the point's cell is one the crack cuts (a split or front cell).
+
+    θ = atan2(ψ_h, φ_h), and ±π by ``side`` where φ_h < 0 and ψ_h has not the side's
+    sign in a cut cell (a point on a face, or rounding).  Only there: a cell that ψ_h
+    crosses ahead of the front (φ_h > 0 on its part of {ψ_h = 0}) is cut by no crack,
+    and atan2 is continuous in it, but φ_h < 0 can hold at points of it on either side
+    of {ψ_h = 0}; forcing θ there made F jump inside the cell, and the stiffness's rows of
+    the branch functions missed a face term: on the penny pressed shut
+    (:func:`skxfem.studies.cracks3d.pressed_penny`) K U₀ - Jᵀ(w p) of the exact state
+    reached 1.6e-2 h^2.5 p on the branch rows at h = 0.125 (six such cells; 1e-3 h^2.5 p
+    without them, measured).
 
     The branch functions and their gradients share their trigonometry: with s, c = sin,
     cos θ/2, F = √r {s, c, s sin θ, c sin θ} (:func:`skxfem.crack.branch.branch`) and
@@ -287,7 +300,7 @@ def _kinds(phi, psi, gphi, gpsi, side) -> tuple[np.ndarray, np.ndarray]:
     coordinates); zero at r = 0."""
     r = np.hypot(phi, psi)
     theta = np.arctan2(psi, phi)
-    wrong = (phi < 0) & (np.sign(psi) != side) & (side != 0)
+    wrong = (phi < 0) & (np.sign(psi) != side) & (side != 0) & cut
     theta = np.where(wrong, side * np.pi, theta)
     live = r > 0
     sr = np.sqrt(np.where(live, r, 1.0))
@@ -327,7 +340,7 @@ def _cell_values(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray, side: np
     psi = np.matmul(lam, geo.psi[nodes][:, :, None])[..., 0]
     gphi = np.einsum("nk,nki->ni", geo.phi[nodes], dlam)[:, None]
     gpsi = np.einsum("nk,nki->ni", geo.psi[nodes], dlam)[:, None]
-    g, dg = _kinds(phi, psi, gphi, gpsi, side)
+    g, dg = _kinds(phi, psi, gphi, gpsi, side, (geo.side[cells] == 0)[:, None])
     return lam, dlam, g, dg
 
 
@@ -406,7 +419,7 @@ def _levels(space: CrackSpace3D) -> np.ndarray:
 
 
 def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS,
-          symmetric: bool = False):
+          symmetric: bool = False, grading=NEAR_GRADING):
     """The quadrature of ``cells`` (module notes), as batches of cells with as many points
     each: a list of (cells (nc,), x (nc, nq, 3), w (nc, nq), side (nc, nq)).  ``plain``:
     the points per direction of the collapsed rule on the cells and sub-tetrahedra
@@ -414,20 +427,25 @@ def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS,
     ``symmetric``: the cells and sub-tetrahedra in a branch node's support away from the
     front cells on the symmetric rule of order :data:`SMOOTH_ORDER` (the stiffness),
     else on the collapsed rule of :data:`BRANCH_POINTS` per direction (the interaction
-    integral, :data:`SMOOTH_ORDER`'s notes)."""
+    integral, :data:`SMOOTH_ORDER`'s notes).  The cells and pieces near the
+    front that do not meet it: :func:`near_points`, graded by their distance to it as
+    ``grading`` says."""
     mesh, geo = space.mesh, space.geometry
     cells = np.unique(np.asarray(cells, dtype=int))
     level = _levels(space)
-    by_level = {2: lambda T: collapsed(T, NEAR_POINTS),
-                1: ((lambda T: simplex_points(T, SMOOTH_ORDER)) if symmetric else
+    by_level = {1: ((lambda T: simplex_points(T, SMOOTH_ORDER)) if symmetric else
                     (lambda T: collapsed(T, BRANCH_POINTS))),
                 0: lambda T: _plain_rule(T, plain)}
     # sub-tetrahedra of split and front cells, by rule
     pick = np.isin(geo.sub_cell, cells)
     sc, ss, sf, S = geo.sub_cell[pick], geo.sub_side[pick], geo.sub_front[pick], geo.sub[pick]
     lv = level[sc]                                        # front cells: 2
+    near = np.zeros(sc.size, dtype=int)
+    off = (sf == 0) & (lv == 2)
+    near[off] = near_points(space, S[off], grading)
     kinds = [(sf == 2, edge_polar), (sf == 1, vertex_polar)] + [
-        ((sf == 0) & (lv == k), rule) for k, rule in by_level.items()]
+        ((sf == 0) & (lv == k), rule) for k, rule in by_level.items()] + [
+        (near == k, lambda T, k=k: collapsed(T, k)) for k in np.unique(near[off])]
     pieces = []
     for mask, rule in kinds:
         if mask.any():
@@ -436,13 +454,49 @@ def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS,
     batches = _pack(pieces)
     # uncut cells
     uncut = np.setdiff1d(cells, geo.cells)
-    for k, rule in by_level.items():
-        here = uncut[level[uncut] == k]
+    groups = [(uncut[level[uncut] == k], rule) for k, rule in by_level.items()]
+    ring = uncut[level[uncut] == 2]
+    if ring.size:
+        n_ring = near_points(space, mesh_cells(mesh, ring), grading)
+        groups += [(ring[n_ring == k], lambda T, k=k: collapsed(T, k))
+                   for k in np.unique(n_ring)]
+    for here, rule in groups:
         if here.size:
             x, w = rule(mesh_cells(mesh, here))
             batches.append((here, x, w, np.broadcast_to(
                 geo.side[here, None].astype(float), w.shape)))
     return batches
+
+
+def near_points(space: CrackSpace3D, T: np.ndarray, grading=NEAR_GRADING) -> np.ndarray:
+    """(m,) the points per direction of the collapsed rule on tetrahedra T (m, 4, 3) near
+    the front that do not meet it (the cells around the front cells and the front cells'
+    pieces off the front): :data:`~skxfem.crack.quadrature3d.NEAR_POINTS`, more by
+    ``grading`` (pairs (ratio, n), :data:`~skxfem.crack.quadrature3d.NEAR_GRADING`)
+    where the front passes within ratio times the tetrahedron's longest edge (its
+    distance to the front's segments at its vertices, edges' midpoints and centroid),
+    and the branch functions' 1/√r gradients turn within it.
+
+    >>> from skfem import MeshTet1
+    >>> from skxfem.crack.geometry3d import crack_geometry_3d
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 4),) * 2, np.linspace(0, 1, 3))
+    >>> V = crack_space_3d(m, crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    >>> T = np.array([[0.0, 0, 0], [0.1, 0, 0], [0, 0.1, 0], [0, 0, 0.1]])   # edges ≤ 0.14
+    >>> near_points(V, T + np.array([[[0.5, y, 0.3]] for y in (0.51, 0.53, 0.6)])).tolist()
+    [12, 8, 5]
+    """
+    T = np.asarray(T, float)
+    out = np.full(len(T), NEAR_POINTS)
+    if not len(T):
+        return out
+    ends = [(a, b) for a in range(4) for b in range(a + 1, 4)]
+    X = np.concatenate([T] + [(T[:, [a]] + T[:, [b]]) / 2 for a, b in ends]
+                       + [T.mean(axis=1, keepdims=True)], axis=1)      # (m, 11, 3)
+    d = front_distance(space.geometry, X.reshape(-1, 3).T).reshape(len(T), -1).min(axis=1)
+    size = np.max([np.linalg.norm(T[:, a] - T[:, b], axis=1) for a, b in ends], axis=0)
+    for ratio, n in sorted(grading, reverse=True):   # the closest last
+        out[d < ratio * size] = max(n, NEAR_POINTS)
+    return out
 
 
 def _plain_rule(T: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
