@@ -8,9 +8,9 @@ from skxfem.crack import sif3d
 from skxfem.crack.geometry import crack_geometry
 from skxfem.crack.geometry3d import crack_geometry_3d
 from skxfem.crack.radius import (
-    SIZE_FRACTION,
     DOMAIN_CELLS,
     DOMAIN_FRACTION,
+    SIZE_FRACTION,
     default_enrichment_radius,
 )
 from skxfem.crack.sif import DEFAULT_CELLS, default_radius

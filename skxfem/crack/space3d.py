@@ -419,21 +419,23 @@ def _levels(space: CrackSpace3D) -> np.ndarray:
 
 
 def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS,
-          symmetric: bool = False, grading=NEAR_GRADING):
+          symmetric: bool | int = False, grading=NEAR_GRADING):
     """The quadrature of ``cells`` (module notes), as batches of cells with as many points
     each: a list of (cells (nc,), x (nc, nq, 3), w (nc, nq), side (nc, nq)).  ``plain``:
     the points per direction of the collapsed rule on the cells and sub-tetrahedra
     outside the branch nodes' supports (1: their centroid, :func:`_plain_rule`).
     ``symmetric``: the cells and sub-tetrahedra in a branch node's support away from the
-    front cells on the symmetric rule of order :data:`SMOOTH_ORDER` (the stiffness),
-    else on the collapsed rule of :data:`BRANCH_POINTS` per direction (the interaction
-    integral, :data:`SMOOTH_ORDER`'s notes).  The cells and pieces near the
-    front that do not meet it: :func:`near_points`, graded by their distance to it as
-    ``grading`` says."""
+    front cells on the symmetric rule of order :data:`SMOOTH_ORDER` (True: the
+    stiffness) or of the order given (the interaction integral,
+    :data:`skxfem.crack.sif3d.TUBE_ORDER`), else (False) on the collapsed rule of
+    :data:`BRANCH_POINTS` per direction (the loads; :data:`SMOOTH_ORDER`'s notes).  The
+    cells and pieces near the front that do not meet it: :func:`near_points`, graded by
+    their distance to it as ``grading`` says."""
     mesh, geo = space.mesh, space.geometry
     cells = np.unique(np.asarray(cells, dtype=int))
     level = _levels(space)
-    by_level = {1: ((lambda T: simplex_points(T, SMOOTH_ORDER)) if symmetric else
+    order = SMOOTH_ORDER if symmetric is True else int(symmetric)
+    by_level = {1: ((lambda T: simplex_points(T, order)) if order else
                     (lambda T: collapsed(T, BRANCH_POINTS))),
                 0: lambda T: _plain_rule(T, plain)}
     # sub-tetrahedra of split and front cells, by rule
