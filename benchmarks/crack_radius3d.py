@@ -27,6 +27,12 @@ and φ in 3D (or topological) for the length of its solves and measures:
 
 One heavy job: run it alone, compare the ratios of one run.
 
+Since this table the default's fixed part is a fifth of the crack's depth, not a tenth
+of the mesh's diameter (``today`` below is the old default; :mod:`skxfem.crack.radius`
+gives the new one's numbers), and sif_3d's branch tube takes a symmetric rule of order
+8, which brought the pressed crack below 1e-3 with r_e = 4 h too
+(:data:`skxfem.crack.sif3d.TUBE_ORDER`).
+
 Measured on 29 November (the machine shared with another engineer's jobs; the cube's
 ratios at n = 16, 24, 32 from one run with ``--repeat 2``, at n = 40, 48 from another,
 the other choices' from a first run without repeats).  r_e and R in front-cell sizes h
