@@ -263,9 +263,10 @@ def _williams_slab(n, nz, K, components, enrichment="geometric"):
 
 
 def test_straight_front_modes_I_and_II():
-    """n = 21 (the front mid-cell), nz = 2, geometric (r_e = 0.3): measured K_I 1.0047,
-    K_II 1.0008, K_III -0.0001 at z = 0.5 (the hat's half-width 0.5 reaches the free
-    surfaces where it vanishes)."""
+    """n = 21 (the front mid-cell), nz = 2, geometric (r_e = 0.3): measured K_I 1.0030,
+    K_II 1.0014, K_III 0.0012 at z = 0.5 (the hat's half-width 0.5 reaches the free
+    surfaces where it vanishes; 1.0047, 1.0008, -0.0001 with the branch tube on the
+    collapsed 4³ rule, sif3d.TUBE_ORDER)."""
     s, exact = _williams_slab(21, 2, (1.0, 1.0, 0.0), (2,))
     K = s.K[0]
     assert abs(K[0] - 1) < 0.01 and abs(K[1] - 1) < 0.01 and abs(K[2]) < 0.01
@@ -277,7 +278,8 @@ def test_straight_front_modes_I_and_II():
 
 
 def test_straight_front_mode_III():
-    """Measured K_III 1.0017, K_I -0.0019, K_II -0.0005 (n = 21, nz = 2)."""
+    """Measured K_III 1.0012, K_I -0.0005, K_II 0.0003 (n = 21, nz = 2; 1.0017, -0.0019,
+    -0.0005 with the branch tube on the collapsed 4³ rule)."""
     s, _ = _williams_slab(21, 2, (0.0, 0.0, 1.0), (0, 1))
     K = s.K[0]
     assert abs(K[2] - 1) < 0.01 and abs(K[0]) < 0.01 and abs(K[1]) < 0.01

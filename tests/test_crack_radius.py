@@ -8,14 +8,14 @@ from skxfem.crack import sif3d
 from skxfem.crack.geometry import crack_geometry
 from skxfem.crack.geometry3d import crack_geometry_3d
 from skxfem.crack.radius import (
-    DIAMETER_FRACTION,
     DOMAIN_CELLS,
     DOMAIN_FRACTION,
+    SIZE_FRACTION,
     default_enrichment_radius,
 )
 from skxfem.crack.sif import DEFAULT_CELLS, default_radius
 from skxfem.crack.space import crack_space
-from skxfem.crack.space3d import crack_space_3d
+from skxfem.crack.space3d import crack_depth, crack_space_3d
 
 
 def test_the_domain_cells_are_those_of_the_interaction_integrals():
@@ -34,14 +34,32 @@ def test_2d_default_is_a_fifth_of_the_diameter_and_at_least_16_3_tip_cells(n, ex
 
 @pytest.mark.parametrize("n", [7, 41])
 def test_3d_default_holds_the_default_cone_inside_three_quarters(n):
-    """r_e = max(0.1 D, 4 h), h the front cells' size across the front: at n = 7 the
-    floor (the radial cone of sif_3d, 3 h, inside 0.75 r_e), at n = 41 0.1 D."""
+    """r_e = max(0.2 a, 4 h), a the crack's depth (0.5 here: not the mesh's size) and h
+    the front cells' size across the front: at n = 7 the floor (the radial cone of
+    sif_3d, 3 h, inside 0.75 r_e), at n = 41 0.2 a."""
     m = MeshTet1.init_tensor(*(np.linspace(0, 1, n + 1),) * 2, np.linspace(0, 1, 4))
     V = crack_space_3d(m, crack_geometry_3d(m, lambda x: x[1] - 0.5, lambda x: x[0] - 0.5))
     across = sif3d.front_sizes(V)[0]
-    assert abs(V.radius - max(0.1 * np.sqrt(3), 4 * across)) < 1e-12
+    assert abs(crack_depth(V.geometry) - 0.5) < 1e-12
+    assert abs(V.radius - max(0.1, 4 * across)) < 1e-12
     assert sif3d.DEFAULT_RADIUS * across <= DOMAIN_FRACTION * V.radius + 1e-12
-    assert (V.radius > 0.1 * np.sqrt(3)) == (n == 7)
+    assert (V.radius > 0.1) == (n == 7)
+
+
+def test_3d_default_follows_the_crack_not_the_body():
+    """A penny of radius 0.3 in a block 2 and 4 across (h = 0.1): the same r_e,
+    0.2 a = 0.06 under the floor 4 h; a = 0.6: 0.12 < 4 h too; at h = 1/30 and a = 0.6
+    the fixed part, 0.12."""
+    for width, n, a, expected in ((2, 20, 0.3, None), (4, 40, 0.3, None),
+                                  (2, 60, 0.6, 0.12)):
+        x = np.linspace(-width / 2, width / 2, n + 1)
+        m = MeshTet1.init_tensor(x, x, np.linspace(-0.2, 0.2, 5))
+        g = crack_geometry_3d(m, m.p[2] - 0.01, np.hypot(m.p[0], m.p[1]) - a)
+        V = crack_space_3d(m, g)
+        assert abs(crack_depth(g) - a) < 0.05 * a       # the P1 front, the faces' vertices
+        across = sif3d.front_sizes(V)[0]
+        want = 4 * across if expected is None else expected
+        assert abs(V.radius - max(want, 0.2 * crack_depth(g), 4 * across)) < 1e-12
 
 
 def test_bad_arguments_are_refused():
@@ -49,7 +67,7 @@ def test_bad_arguments_are_refused():
         default_enrichment_radius(MeshTri1(), 0.0)
     with pytest.raises(ValueError, match="mesh must be 2D or 3D"):
         default_enrichment_radius(MeshLine(), 0.1)
-    assert set(DIAMETER_FRACTION) == set(DOMAIN_CELLS) == {2, 3}
+    assert set(SIZE_FRACTION) == set(DOMAIN_CELLS) == {2, 3}
 
 
 def test_a_straight_3d_front_with_the_default_radius():

@@ -8,22 +8,29 @@ both take
 
 .. math::
 
-    r_e = \max\left(f_d\, D,\; \frac{n_d\, h}{0.75}\right),
+    r_e = \max\left(f\, L,\; \frac{n_d\, h}{0.75}\right),
 
-D the mesh's diameter, h the size of the front's cells and n_d h the radius of the
-default interaction domain when it does not follow r_e (:func:`skxfem.crack.sif.default_radius`
-in 2D, :func:`skxfem.crack.sif3d.sif_3d` in 3D): the first term is a fixed radius, as
+L a length of the problem (the mesh's diameter D in 2D, the crack's depth a in 3D: the
+largest distance from a point of the crack to its front,
+:func:`skxfem.crack.space3d.crack_depth`), h the size of the front's cells and n_d h the
+radius of the default interaction domain when it does not follow r_e
+(:func:`skxfem.crack.sif.default_radius` in 2D, :func:`skxfem.crack.sif3d.sif_3d` in
+3D): the first term is a fixed radius, as
 geometric enrichment must have for its rate as h → 0; the second keeps the default
 domain inside 0.75 r_e, the enriched zone, on coarse meshes (a domain that reaches
 beyond r_e loses accuracy: +1.0 % in K on the Williams square at h = 1/21, +3.1 % along
-a straight 3D front at h = 1/11).  The dimension enters through two numbers only:
+a straight 3D front at h = 1/11).  The dimension enters through L and two numbers:
 
-* ``DIAMETER_FRACTION`` f_d: 0.2 in 2D, 0.1 in 3D.  The enriched zone is an area
+* ``SIZE_FRACTION`` f: 0.2 of D in 2D, 0.2 of a in 3D.  The enriched zone is an area
   ~ r_e² in 2D but a tube ~ r_e² × the front's length in 3D, twelve unknowns for each of
-  its nodes: 0.2 diameters in 3D took the penny (h = 0.2 a, its block 9.8 a across)
-  from 6.1 s to 20 s for the same K (median 0.934 against 0.937, measured before the
-  curvature terms of :mod:`skxfem.crack.sif3d`), whereas 2D needs the large zone for the
-  handbook plate (0.2 D: K_I -0.36 %; 16/3 cells: -1.15 %);
+  its nodes.  A fraction of the body's size in 3D measured the zone on the wrong length:
+  0.1 D enriched 27 % of the benchmark cube's unknowns at every n and kept the crack
+  above 3 times the bonded tie, and two crack radii around a penny in a block 20 radii
+  across (CG did not converge at h = 0.1 a); 0.2 D took the penny (h = 0.2 a, its block
+  9.8 a across) from 6.1 s to 20 s for the same K.  The singular field's zone scales
+  with the crack (the K-dominated zone is a fraction of a), hence a in 3D (the cube's
+  edge crack: 0.1; a penny: 0.2 a, the study's 0.3 a within 0.2 %, below), whereas 2D
+  keeps D, measured on its plates (0.2 D: K_I -0.36 %; 16/3 cells: -1.15 %);
 * ``DOMAIN_CELLS`` n_d: the default domain in cells, 4 tip-cell sizes in 2D
   (:data:`skxfem.crack.sif.DEFAULT_CELLS`), 3 front-cell sizes across the front in 3D
   (:data:`skxfem.crack.sif3d.DEFAULT_RADIUS`), so r_e ≥ 16/3 h and 4 h.  The floor is what makes
@@ -35,19 +42,17 @@ a straight 3D front at h = 1/11).  The dimension enters through two numbers only
 The 3D trade, measured (``benchmarks/crack_radius3d.py``, whose notes give the table;
 29 November): n_d = 3 and 0.75 are the least that hold a straight front's K to 1 %
 (a domain of 2 or 2.5 cells: 4.6 to 5.6 % or 1.5 to 2.2 % at every n; at 0.85 r_e or
-r_e: 5.5 % at n = 11), and f_d D, above the floor from about 23 cells across the
-benchmark cube, is what keeps 27 % of its unknowns enriched at every n and the crack
-above 3 times the bonded tie (3.7 to 5.8 at n = 32 to 48).  With f_d = 0 in 3D
-(r_e = 4 h, a tube that shrinks with h) the share falls to 19.5, 14, 10.5 % and the
-ratio to 2.9, 2.3, 1.7, the straight front stays within 1 % (K levelling off at 0.5 to
-0.74 % from n = 41 to 81, where 0.1 D converges: 0.17 % at n = 61), the cube's K_I
-within 0.34 % of today's, and the penny of :mod:`skxfem.studies.cracks3d` with its
-default r_e is solved at h = 0.1 a too (median 0.995, worst -0.7 %; with 0.1 D of its
-block, 20 crack radii across, two radii around the front are enriched and CG does not
-converge), but a through crack pressed shut gives |K| = 1.25e-3 p√(πa) at n = 31,
-beyond the 1e-3 asked (0.39e-3 now): the interaction integral's floor at R = 3 h
-(topological enrichment gives 1.17e-3 there), not monotone in R.  The defaults stay
-until that floor is below 1e-3.
+r_e: 5.5 % at n = 11).  The fixed part was 0.1 D until 29 November: above the floor from
+about 23 cells across the benchmark cube, it kept 27 % of its unknowns enriched at every
+n, and on a penny in a block 20 radii across it enriched two radii around the front (CG
+did not converge at h = 0.1 a).  With 0.2 a (the cube's edge crack: a = 0.5, r_e = 0.1,
+the floor up to n ≈ 40), one run each on the shared machine, ``benchmarks/crack_solve.py
+--linear auto``: crack 14.6 -> 11.0 s at n = 32 and 29.4 -> 17.4 s at n = 40 (152 856 ->
+138 006 and 291 018 -> 246 246 unknowns; ratio to the bonded tie 6.0 -> 4.6 and 5.6 ->
+3.7), K_I at mid-front 3.7361 -> 3.7299 and 3.7596 -> 3.7467 (its limit about 3.81);
+the straight front (the Williams slab, n = 11, 21, 31) within 0.86, 0.45, 0.68 %; the
+penny with its own default r_e median 0.994 / 0.9945, worst 1.024 / 0.993 at h = 0.2 a
+/ 0.1 a.
 
 >>> from skfem import MeshTri1
 >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 22), np.linspace(0, 1, 22))
@@ -60,14 +65,15 @@ from collections.abc import Callable
 
 import numpy as np
 
-__all__ = ["ENRICHMENTS", "DIAMETER_FRACTION", "DOMAIN_CELLS", "DOMAIN_FRACTION",
+__all__ = ["ENRICHMENTS", "SIZE_FRACTION", "DOMAIN_CELLS", "DOMAIN_FRACTION",
            "default_radius", "default_enrichment_radius", "enrichment_radius"]
 
 ENRICHMENTS = ("topological", "geometric")
 """The enrichments of a crack's space: the front cells' nodes, or also those within r_e."""
 
-DIAMETER_FRACTION = {2: 0.2, 3: 0.1}
-"""f_d: the fixed part of the default r_e, in diameters of the mesh (module notes)."""
+SIZE_FRACTION = {2: 0.2, 3: 0.2}
+"""f: the fixed part of the default r_e, in lengths L of the problem: the mesh's diameter
+in 2D, the crack's depth in 3D (module notes)."""
 
 DOMAIN_CELLS = {2: 4.0, 3: 3.0}
 """n_d: the default interaction domain's radius in front-cell sizes (module notes)."""
@@ -80,35 +86,43 @@ h = 1/21 (triangles, mode I): r_e = 0.141 with a 4-cell domain (r_d = 0.19 > r_e
 +1.0 %; r_e = 0.283, r_d = 0.75 r_e +0.24 %."""
 
 
-def default_radius(dim: int, diameter: float, h: float) -> float:
-    """The default r_e = max(f_d D, n_d h / 0.75) in ``dim`` D (module notes), D the
-    mesh's ``diameter`` and ``h`` the size of the front's cells.
+def default_radius(dim: int, length: float, h: float) -> float:
+    """The default r_e = max(f L, n_d h / 0.75) in ``dim`` D (module notes), L the
+    problem's ``length`` (the mesh's diameter in 2D, the crack's depth in 3D) and ``h``
+    the size of the front's cells.
 
-    >>> round(default_radius(3, 3 ** 0.5, 1 / 16), 4)
-    0.25
+    >>> round(default_radius(3, 0.5, 1 / 16), 4), round(default_radius(3, 0.5, 1 / 48), 4)
+    (0.25, 0.1)
     """
-    if dim not in DIAMETER_FRACTION:
+    if dim not in SIZE_FRACTION:
         raise ValueError(f"mesh must be 2D or 3D, got {dim}D")
     if not (np.isfinite(h) and h > 0):
         raise ValueError(f"h must be a positive cell size, got {h!r}")
-    return max(DIAMETER_FRACTION[dim] * diameter,
-               DOMAIN_CELLS[dim] * float(h) / DOMAIN_FRACTION)
+    return max(SIZE_FRACTION[dim] * length, DOMAIN_CELLS[dim] * float(h) / DOMAIN_FRACTION)
 
 
-def default_enrichment_radius(mesh, h: float) -> float:
+def default_enrichment_radius(mesh, h: float, depth: float | None = None) -> float:
     """:func:`default_radius` on ``mesh``, ``h`` the size of the front's cells: in 2D the
     largest extent of a tip cell, in 3D their mean size across the front
-    (:func:`skxfem.crack.sif3d.front_sizes`)."""
+    (:func:`skxfem.crack.sif3d.front_sizes`); ``depth`` the crack's depth, L in 3D
+    (:func:`skxfem.crack.space3d.crack_depth`; not used in 2D)."""
+    if mesh.dim() == 3:
+        if depth is None or not (np.isfinite(depth) and depth > 0):
+            raise ValueError(f"depth must be the 3D crack's depth (> 0), got {depth!r}")
+        return default_radius(3, float(depth), h)
     return default_radius(mesh.dim(), float(np.linalg.norm(np.ptp(mesh.p, axis=1))), h)
 
 
 def enrichment_radius(mesh, enrichment: str, radius: float | None,
-                      front_size: Callable[[], float]) -> float | None:
+                      front_size: Callable[[], float],
+                      depth: Callable[[], float] | None = None) -> float | None:
     """r_e of a crack's space on ``mesh``: ``None`` for ``"topological"`` enrichment,
     ``radius`` (checked: a positive number) or, if ``None``,
-    :func:`default_enrichment_radius` of ``front_size()`` for ``"geometric"``.
+    :func:`default_enrichment_radius` of ``front_size()`` (and ``depth()`` in 3D) for
+    ``"geometric"``.
 
-    ``front_size`` is called only for that default: the front cells' size h.
+    ``front_size`` and ``depth`` are called only for that default: the front cells' size h
+    and the crack's depth.
 
     >>> from skfem import MeshTri1
     >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 22), np.linspace(0, 1, 22))
@@ -124,7 +138,8 @@ def enrichment_radius(mesh, enrichment: str, radius: float | None,
     if enrichment == "topological":
         return None
     if radius is None:
-        radius = default_enrichment_radius(mesh, front_size())
+        radius = default_enrichment_radius(mesh, front_size(),
+                                           None if depth is None else depth())
     if not (isinstance(radius, (int, float, np.floating)) and np.isfinite(radius)
             and radius > 0):
         raise ValueError(f"radius must be a positive number, got {radius!r}")

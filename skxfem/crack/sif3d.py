@@ -59,8 +59,14 @@ pieces' rule counts move it by ±0.4e-3 at h = 0.125 without converging (the wei
 C¹ only; a C² q, the step 10t³ - 15t⁴ + 6t⁵ and cos⁴, converged with the points to the
 same values).  The solved penny pressed shut gives the exact state's K since the
 stiffness's near rule is graded (:data:`skxfem.crack.quadrature3d.NEAR_GRADING`):
-3.6e-3, 0.70e-3, 1.08e-3.  The open penny (:mod:`skxfem.studies.cracks3d`) stays within
-0.1 % of before.
+3.6e-3, 0.70e-3, 1.08e-3 with the branch tube on the collapsed 4³ rule, 1.9e-3,
+0.81e-3, 0.69e-3 on the symmetric rule of order 8 (:data:`TUBE_ORDER`, 45 points; the
+exact state 1.8e-3, 0.81e-3, 0.71e-3), which also holds the through crack pressed shut
+within 0.86e-3 (``benchmarks/crack_radius3d.py --parts pressed``, n = 21, 31, the front
+at 0.49, 0.5, 0.51: 1.1e-3 on 4³) and costs the straight front a little (the Williams
+slab, n = 11, 21, 31: worst 0.94, 0.52, 0.80 % against 0.86, 0.45, 0.64 %).  The open
+penny (:mod:`skxfem.studies.cracks3d`) stays within 0.3 % of before (h = 0.2: median
+1.0010, worst 1.0259; h = 0.1: 0.9917, 0.9904).
 
 **Curvature terms.**  In these curvilinear coordinates (x₁ along e₁, x₂ = ψ,
 x₃ along the front, its metric h₃ = 1 + κx₁ with κ = 1/ρ_f the front's curvature in the
@@ -125,7 +131,8 @@ from .space3d import (
 )
 from .williams import near_tip_modes
 
-__all__ = ["DEFAULT_RADIUS", "MIN_RADIUS", "DEFAULT_LENGTH", "default_radius_3d",
+__all__ = ["DEFAULT_RADIUS", "MIN_RADIUS", "DEFAULT_LENGTH", "TUBE_ORDER",
+           "default_radius_3d",
            "front_points", "front_frame", "fitted_frame", "front_coordinate", "front_sizes",
            "boundary_reach", "other_fronts", "domain_reach", "sif_3d",
            "CrackSolution3D", "solve_crack_3d"]
@@ -141,6 +148,14 @@ in 2D), and at least MIN_RADIUS front-cell sizes.  Measured on the penny
 (:mod:`skxfem.studies.cracks3d`, h = a/5, r_e = 0.5 a): R = 1.65 h (0.75 r_e) K_I/K
 1.000 to 1.019; R = 3 h (beyond r_e) 0.982 to 1.035, 4 h 0.957 to 1.050; r_e = 0.3 a:
 R = 1.5 h 0.985 to 1.025, 3 h 0.947 to 1.047, 1 h 1.04 to 1.06 (too few cells)."""
+
+TUBE_ORDER = 8
+"""The order of the symmetric rule (:func:`skxfem.fem.quadrature.simplex_points`, 45
+points) on the cells of the branch tube away from the front cells in :func:`sif_3d`
+(:func:`skxfem.crack.space3d.rules`).  The collapsed 4³ rule there (64 points, exact to
+degree 5) left a through crack pressed shut (:func:`skxfem.studies.cracks3d.pressed_slab`,
+K = 0) at |K| up to 1.1e-3 p√(πa) (n = 31, front at x = 0.51, r_e = 4 h), the penny
+pressed shut at 1.08e-3 (h = 0.1); on this rule 1.6e-4 and 0.69e-3 (module notes)."""
 
 DEFAULT_LENGTH = 1.5
 """The default half-width L of the bump along the front, in front-cell sizes along it."""
@@ -593,7 +608,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     # noise, not towards 0 on cracks pressed shut (the penny's exact state 2.5e-3,
     # 1.1e-3, 0.94e-3 p√(πa) at h = 0.2, 0.125, 0.1 against 3.4e-3, 0.76e-3, 1.0e-3; the
     # through crack of pressed_slab(11, 2) 1.2e-3 against 0.87e-3), for 40 % more time
-    batches = rules(space, within, plain=4, grading=())
+    batches = rules(space, within, plain=4, symmetric=TUBE_ORDER, grading=())
     # the points' terms, filled chunk by chunk (at most every point of the rules)
     total = sum(int(np.count_nonzero(w)) for _, _, w, _ in batches)
     X_, e1_, gr_, B_, C_, D_ = (np.empty((3, total)) for _ in range(6))

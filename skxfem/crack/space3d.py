@@ -77,7 +77,8 @@ from .space import nodal_scaling as _nodal_scaling
 __all__ = ["SMOOTH_ORDER", "BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "PointValues",
            "point_values", "functions_at", "virtual_field", "evaluation", "field_at", "rules",
            "stiffness", "mass", "near_points", "Support3D", "Load3D", "outward_normals",
-           "traction_load", "body_load", "supported_dofs", "nodal_scaling", "front_distance"]
+           "traction_load", "body_load", "supported_dofs", "nodal_scaling", "front_distance",
+           "crack_depth"]
 
 SMOOTH_ORDER = 6
 """The order of the symmetric rule (:func:`skxfem.fem.quadrature.simplex_points`: 24
@@ -160,6 +161,22 @@ def front_distance(geometry: CrackGeometry3D, x: np.ndarray) -> np.ndarray:
     return best
 
 
+def crack_depth(geometry: CrackGeometry3D) -> float:
+    """The crack's depth a: the largest distance from a point of the crack (a vertex of
+    its faces) to its front (:func:`front_distance`); an edge crack's depth, a penny's
+    radius.  The default enrichment radius is a fraction of it
+    (:mod:`skxfem.crack.radius`).
+
+    >>> from skfem import MeshTet1
+    >>> from skxfem.crack.geometry3d import crack_geometry_3d
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 5),) * 2, np.linspace(0, 1, 3))
+    >>> round(crack_depth(crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.6)), 12)
+    0.6
+    """
+    x = np.unique(geometry.faces.reshape(-1, 3), axis=0).T
+    return float(front_distance(geometry, x).max())
+
+
 def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric",
                    radius: float | None = None) -> CrackSpace3D:
     """The :class:`CrackSpace3D` of a 3D crack on ``mesh``.
@@ -171,15 +188,16 @@ def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric
     enrichment : ``"topological"`` (the front cells' nodes) or ``"geometric"`` (also the
         nodes within ``radius`` of the front).
     radius : r_e > 0 for geometric enrichment; default
-        :func:`skxfem.crack.radius.default_enrichment_radius` (0.1 mesh diameters, and at
-        least 4 front-cell sizes across the front: the default radial cone of
-        :func:`skxfem.crack.sif3d.sif_3d` inside 0.75 r_e).
+        :func:`skxfem.crack.radius.default_enrichment_radius` (0.2 of the crack's depth
+        :func:`crack_depth`, and at least 4 front-cell sizes across the front: the
+        default radial cone of :func:`skxfem.crack.sif3d.sif_3d` inside 0.75 r_e).
     """
     check_geometry(geometry, check_mesh_3d(mesh), CrackGeometry3D, "crack_geometry_3d")
     nodes = mesh.t[:, geometry.front_cells]
     radius = enrichment_radius(            # the front cells' mean size across the front
         mesh, enrichment, radius,
-        lambda: np.hypot(geometry.phi[nodes], geometry.psi[nodes]).max(axis=0).mean())
+        lambda: np.hypot(geometry.phi[nodes], geometry.psi[nodes]).max(axis=0).mean(),
+        lambda: crack_depth(geometry))
     branch_nodes = np.unique(nodes)
     if radius is not None:
         near = np.flatnonzero(front_distance(geometry, mesh.p) <= radius)
@@ -401,21 +419,23 @@ def _levels(space: CrackSpace3D) -> np.ndarray:
 
 
 def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS,
-          symmetric: bool = False, grading=NEAR_GRADING):
+          symmetric: bool | int = False, grading=NEAR_GRADING):
     """The quadrature of ``cells`` (module notes), as batches of cells with as many points
     each: a list of (cells (nc,), x (nc, nq, 3), w (nc, nq), side (nc, nq)).  ``plain``:
     the points per direction of the collapsed rule on the cells and sub-tetrahedra
     outside the branch nodes' supports (1: their centroid, :func:`_plain_rule`).
     ``symmetric``: the cells and sub-tetrahedra in a branch node's support away from the
-    front cells on the symmetric rule of order :data:`SMOOTH_ORDER` (the stiffness),
-    else on the collapsed rule of :data:`BRANCH_POINTS` per direction (the interaction
-    integral, :data:`SMOOTH_ORDER`'s notes).  The cells and pieces near the
-    front that do not meet it: :func:`near_points`, graded by their distance to it as
-    ``grading`` says."""
+    front cells on the symmetric rule of order :data:`SMOOTH_ORDER` (True: the
+    stiffness) or of the order given (the interaction integral,
+    :data:`skxfem.crack.sif3d.TUBE_ORDER`), else (False) on the collapsed rule of
+    :data:`BRANCH_POINTS` per direction (the loads; :data:`SMOOTH_ORDER`'s notes).  The
+    cells and pieces near the front that do not meet it: :func:`near_points`, graded by
+    their distance to it as ``grading`` says."""
     mesh, geo = space.mesh, space.geometry
     cells = np.unique(np.asarray(cells, dtype=int))
     level = _levels(space)
-    by_level = {1: ((lambda T: simplex_points(T, SMOOTH_ORDER)) if symmetric else
+    order = SMOOTH_ORDER if symmetric is True else int(symmetric)
+    by_level = {1: ((lambda T: simplex_points(T, order)) if order else
                     (lambda T: collapsed(T, BRANCH_POINTS))),
                 0: lambda T: _plain_rule(T, plain)}
     # sub-tetrahedra of split and front cells, by rule

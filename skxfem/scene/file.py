@@ -306,8 +306,8 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             "enrichment: the nodes within a radius of the tip (geometric, default) or the "
             "tip cells' (topological)", "geometric"),
         Key("enrichment_radius", "number > 0 [L]", "a crack: r_e, the tip's enriched zone "
-            "with geometric enrichment (default max(f D, n h / 0.75): D the mesh's "
-            "diameter, h the front cells' size, f = 0.2 in 2D and 0.1 in 3D, n h the "
+            "with geometric enrichment (default max(0.2 L, n h / 0.75): L the mesh's "
+            "diameter in 2D, the crack's depth in 3D, h the front cells' size, n h the "
             "default interaction domain, 4 cells in 2D and 3 in 3D: at least 5.3 and 4 "
             "cells)", 0.4),
         Key("sif_radius", "number > 0 [L]", "a crack: the radius of the interaction "

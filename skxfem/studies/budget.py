@@ -80,9 +80,11 @@ from ..scene.model import Box, Resolved, Scene, check_scene, resolve
 from .counts import (
     NVERTS,
     box_counts,
+    box_crack_depth,
     box_front_nodes,
     box_size,
     mesh_counts,
+    mesh_crack_depth,
     mesh_front_nodes,
 )
 
@@ -245,14 +247,19 @@ def estimate(scene: Scene, linear: str | None = None) -> Estimate:
         D, hd = np.linalg.norm(size), np.linalg.norm(np.divide(size, box.n))
         counts, cell = [box_counts(box, i.levelset) for i in items], box.cell
         branch = [0 if i.front is None else box_front_nodes(
-            box, i.levelset, i.front, _branch_radius(i, box.dim, D, hd)) for i in items]
+            box, i.levelset, i.front, _branch_radius(
+                i, box.dim, D if box.dim == 2 else box_crack_depth(box, i.levelset, i.front,
+                                                                     hd), hd))
+                  for i in items]
     else:
         mesh = resolve(scene).mesh if mesh is None else mesh
         counts, cell = [mesh_counts(mesh, i.levelset) for i in items], cell_name(mesh)
         D = np.linalg.norm(np.ptp(mesh.p, axis=1))
         hd = _cell_diameter(mesh)
         branch = [0 if i.front is None else mesh_front_nodes(
-            mesh, i.levelset, i.front, _branch_radius(i, mesh.dim(), D, hd)) for i in items]
+            mesh, i.levelset, i.front, _branch_radius(
+                i, mesh.dim(), D if mesh.dim() == 2 else mesh_crack_depth(
+                    mesh, i.levelset, i.front, hd), hd)) for i in items]
     return _estimate(scene, linear, *counts[0][:2], [c[2] for c in counts],
                      [c[3] for c in counts], cell, branch)
 
@@ -264,14 +271,15 @@ def _cell_diameter(mesh) -> float:
     return float(np.linalg.norm(np.ptp(mesh.p[:, mesh.t], axis=1), axis=0).max())
 
 
-def _branch_radius(interface, dim: int, D: float, hd: float) -> float:
+def _branch_radius(interface, dim: int, length: float, hd: float) -> float:
     """Up to which distance from a crack's front its nodes get branch functions: r_e
-    (the interface's or :func:`skxfem.crack.radius.default_radius`, 0 when topological)
-    plus a cell's diameter ``hd`` (the nodes of the cells the front or r_e reaches)."""
+    (the interface's or :func:`skxfem.crack.radius.default_radius` of ``length``, the
+    mesh's diameter in 2D and the crack's depth in 3D; 0 when topological) plus a
+    cell's diameter ``hd`` (the nodes of the cells the front or r_e reaches)."""
     if interface.enrichment == "topological":
         return hd
     r = interface.enrichment_radius
-    return (default_radius(dim, float(D), float(hd)) if r is None else r) + hd
+    return (default_radius(dim, float(length), float(hd)) if r is None else r) + hd
 
 
 def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell,

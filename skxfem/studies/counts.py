@@ -30,7 +30,7 @@ from ..levelset import nodal_values
 from ..scene.model import Box
 
 __all__ = ["box_counts", "box_size", "mesh_counts", "box_front_nodes", "mesh_front_nodes",
-           "NVERTS", "PER_CUBE"]
+           "box_crack_depth", "mesh_crack_depth", "NVERTS", "PER_CUBE"]
 
 # vertices per cell, cells per hypercube of a Box, edge directions of a Box
 NVERTS = {name: c.nverts for name, c in CELL_TYPES.items()}
@@ -135,3 +135,28 @@ def mesh_front_nodes(mesh, levelset, front, radius: float) -> int:
     """
     d = np.hypot(nodal_values(levelset, mesh), nodal_values(front, mesh))
     return int(np.sum(d <= radius))
+
+
+def _depth(psi: np.ndarray, phi: np.ndarray, band: float) -> float:
+    on = (np.abs(psi) <= band) & (phi < 0)
+    return float(-phi[on].min()) if on.any() else 0.0
+
+
+def box_crack_depth(box: Box, levelset, front, band: float) -> float:
+    """A crack's depth (the largest distance from the crack to its front,
+    :func:`skxfem.crack.space3d.crack_depth`) from a Box's nodes: the largest -φ over
+    the nodes within ``band`` of ψ = 0 where φ < 0 (φ the distance behind the front, as
+    module notes), slab by slab; 0 if there is none.
+
+    >>> from skxfem.levelset import plane
+    >>> box_crack_depth(Box(4, "tri"), plane((0, 0.5), (0, 1)), plane((0.5, 0), (1, 0)),
+    ...                 0.3)
+    0.5
+    """
+    return max((_depth(_on(levelset, x), _on(front, x), band) for _, _, x in _slabs(box)),
+               default=0.0)
+
+
+def mesh_crack_depth(mesh, levelset, front, band: float) -> float:
+    """:func:`box_crack_depth` on a built mesh."""
+    return _depth(nodal_values(levelset, mesh), nodal_values(front, mesh), band)
