@@ -466,21 +466,27 @@ def test_domain_reach_is_half_the_radius_of_curvature_on_a_penny():
 
 
 @pytest.mark.parametrize("front", [0.97, 1 - 1e-9, 1.0])
-def test_a_front_within_a_cell_of_the_boundary_is_refused_before_the_solve(front):
+def test_a_front_within_a_cell_of_the_boundary_gets_no_K_and_a_warning(front):
     """An edge crack's straight front 0.03 from the far side (h = 1/8): its domain held
-    no cell and K_I came out 48 to 55; on the side, 'I holds 3 NaN'."""
+    no cell and K_I came out 48 to 55; on the side, 'I holds 3 NaN'.  Now no point has K,
+    with a warning; the solve's other results stand."""
+    from skxfem.crack.kind3d import FrontPointsWarning
     from skxfem.levelset import plane
     from skxfem.solver import solve
-    with pytest.raises(ValueError, match=r"no point of it has a cell \(0\.1\d*\) of room"):
-        solve(_cube_crack(8, plane((front, 0, 0), (1, 0, 0))))
+    with pytest.warns(FrontPointsWarning, match=r"no K at (\d+) of \1 front points"):
+        r = solve(_cube_crack(8, plane((front, 0, 0), (1, 0, 0))))
+    assert r.front[0]["K_I"].size == 0 and np.isfinite(r.U).all()
 
 
 @pytest.mark.parametrize("a", [0.05, 0.1])
-def test_a_penny_a_cell_or_two_across_is_refused(a):
-    """h = 1/8: a penny of radius 0.05 gave K_I 0.22 of the exact value at 2 points."""
+def test_a_penny_a_cell_or_two_across_gets_no_K(a):
+    """h = 1/8: a penny of radius 0.05 gave K_I 0.22 of the exact value at 2 points; half
+    its radius of curvature leaves its domain under a cell."""
+    from skxfem.crack.kind3d import FrontPointsWarning
     from skxfem.solver import solve
-    with pytest.raises(ValueError, match="half its radius of curvature"):
-        solve(_cube_crack(8, _disc(a)))
+    with pytest.warns(FrontPointsWarning, match="centre of curvature"):
+        r = solve(_cube_crack(8, _disc(a)))
+    assert r.front[0]["K_I"].size == 0
 
 
 def test_front_points_without_room_get_no_K_and_a_warning():

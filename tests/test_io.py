@@ -846,15 +846,21 @@ def test_interface_vtu_of_a_penny_is_its_polygon(tmp_path):
     """A penny (a = 0.3, centre (0.5, 0.5, 0.5), h = 1/6): the area written is that of the
     polygon the solve cuts, {φ_h < 0} on ψ = 0 (φ_h the P1 interpolant of the distance to
     the centre), to round-off, by the shoelace formula of the front's closed chain;
-    against πa² it is 0.945 (measured: the polygon lies inside the circle, O(h²))."""
+    against πa² it is 0.945 (measured: the polygon lies inside the circle, O(h²)).  The
+    penny is under two cells across its radius: its K needs a domain of a cell at least,
+    and half the radius of curvature leaves less (skxfem.crack.kind3d.front_reach): no
+    K, a warning, the rest written."""
     from skxfem.crack.geometry3d import front_chains
+    from skxfem.crack.kind3d import FrontPointsWarning
     from skxfem.scene.file import load_scene
     from skxfem.solver import solve
 
     a = 0.3
     path = _crack_file(tmp_path, [6, 6, 3], "tet", "z - 0.5",
                        f"sqrt((x - 0.5)**2 + (y - 0.5)**2) - {a}")
-    r = solve(load_scene(path))
+    with pytest.warns(FrontPointsWarning, match=r"no K at (\d+) of \1 front points"):
+        r = solve(load_scene(path))
+    assert r.front[0]["K_I"].size == 0 and r.front[0]["points"].shape == (0, 3)
     write_result(r, tmp_path / "out")
     vtu = meshio.read(tmp_path / "out" / "interface.vtu")
     ((chain, closed),) = front_chains(r.problem.interfaces[0].cut)
@@ -862,4 +868,4 @@ def test_interface_vtu_of_a_penny_is_its_polygon(tmp_path):
     polygon = 0.5 * abs(x @ np.roll(y, -1) - y @ np.roll(x, -1))
     assert closed and abs(_measure(vtu) - polygon) < 1e-12
     assert 0.94 < _measure(vtu) / (np.pi * a ** 2) < 0.95
-    _front_data(vtu, ("K_I", "K_II", "K_III"))
+    assert "vertex" not in vtu.cells_dict and np.isnan(vtu.point_data["K_I"]).all()
