@@ -110,3 +110,17 @@ def test_bad_arguments_are_named():
         branch(np.ones(2), np.ones(3))
     with pytest.raises(ValueError, match="singular on the front"):
         branch_local_gradient(0.0, 0.0)
+
+
+def test_side_angle_forces_the_face_only_in_cut_cells():
+    """θ = ±π by the side where φ < 0 and ψ has not the side's sign, in cut cells only
+    (the one rule of skxfem/crack/space.py, space3d.py and sif3d.py); elsewhere atan2."""
+    from skxfem.crack.branch import side_angle
+    phi = np.array([-1.0, -1.0, -1.0, 1.0, -1.0])
+    psi = np.array([1e-17, -1e-17, 0.3, -0.2, 0.3])
+    side = np.array([-1.0, 1.0, -1.0, 1.0, 0.0])
+    got = side_angle(phi, psi, side, np.ones(5, bool))
+    want = np.arctan2(psi, phi)
+    want[:3] = [-np.pi, np.pi, -np.pi]          # the side's face; φ > 0 and padding: atan2
+    assert np.array_equal(got, want)
+    assert np.array_equal(side_angle(phi, psi, side, np.zeros(5, bool)), np.arctan2(psi, phi))

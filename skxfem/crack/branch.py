@@ -52,7 +52,8 @@ from numpy.typing import ArrayLike
 
 from .frame import TipFrame, as_real
 
-__all__ = ["branch", "branch_polar_derivatives", "branch_local_gradient", "branch_gradient"]
+__all__ = ["branch", "branch_polar_derivatives", "branch_local_gradient", "branch_gradient",
+           "side_angle"]
 
 
 def _polar(r: ArrayLike, theta: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
@@ -145,3 +146,21 @@ def branch_gradient(r: ArrayLike, theta: ArrayLike, frame: TipFrame) -> np.ndarr
     e1, e2 = (e.reshape(e.shape[:1] + (1,) * (g.ndim - 2 - e.ndim + 1) + e.shape[1:])
               for e in (frame.e1, frame.e2))
     return g[:, 0:1] * e1[None] + g[:, 1:2] * e2[None]
+
+
+def side_angle(phi: ArrayLike, psi: ArrayLike, side: ArrayLike, cut: ArrayLike) -> np.ndarray:
+    """θ = atan2(ψ, φ) at points of a crack's cells, from the interpolated level sets
+    ``phi``, ``psi``, on ``side`` (±1: the side of the point's cell or sub-cell; 0:
+    padding), ``cut`` whether the point's cell is one the crack cuts (a split, tip or
+    front cell).  In a cut cell, where φ < 0 and ψ has not the side's sign (a point on
+    a face, or rounding), θ is ±π by the side, so a point counts on its own face; only
+    there: a cell that ψ crosses ahead of the front is cut by no crack, and atan2 is
+    continuous in it (forcing θ there made the branch functions jump inside it).  The
+    one rule of the 2D and 3D spaces and of the 3D interaction integral.
+
+    >>> side_angle([-1.0, -1.0], [1e-17, 1e-17], [-1.0, -1.0], [True, False]).tolist()
+    [-3.141592653589793, 3.141592653589793]
+    """
+    phi, psi, side = (np.asarray(v, float) for v in (phi, psi, side))
+    wrong = (phi < 0) & (np.sign(psi) != side) & (side != 0) & np.asarray(cut, bool)
+    return np.where(wrong, side * np.pi, np.arctan2(psi, phi))

@@ -112,6 +112,7 @@ from numpy.polynomial.legendre import leggauss
 
 from ..fem.loads import force_field
 from ..fem.material import Material
+from .branch import side_angle
 from .frame import TipFrame, tip_frame
 from .geometry3d import barycentric, crack_geometry_3d, front_chains, front_fit, front_offset
 from .interaction import sif_from_interaction
@@ -628,12 +629,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
         e1, G, Rf = _point_frames(e1_nodes, pv.nodes, pv.lam, pv.dlam, gps)
         bx = 0.0 if b is None else np.einsum("ain,in->an", Rf, b(X))   # in the frames
         r = np.hypot(ph, ps)
-        theta = np.arctan2(ps, ph)
-        # ±π by the side on the faces of the cut cells only (the branch functions'
-        # θ, skxfem.crack.space3d._kinds): a cell crossed by ψ_h ahead of the front
-        # is cut by no crack, and θ is continuous in it
-        theta = np.where((ph < 0) & (np.sign(ps) != S) & (geo.side[cc] == 0), S * np.pi,
-                         theta)
+        theta = side_angle(ph, ps, S, geo.side[cc] == 0)   # the branch functions' θ
         r = np.maximum(r, 1e-300)
         # the field in each point's frame, where the auxiliary fields are given
         gu_l, G_l = _rotate(Rf, gu), _rotate(Rf, G)

@@ -76,7 +76,7 @@ from skfem.assembly import CellBasis
 
 from ..fem.quadrature import cell_rule
 from ..linalg.blocks import block_scaling
-from .branch import branch, branch_local_gradient
+from .branch import branch, branch_local_gradient, side_angle
 from .dofs import EnrichedUnknowns, virtual_map
 from .geometry import AREA_TOL, CrackGeometry, check_geometry, check_mesh_2d
 from .radius import ENRICHMENTS, enrichment_radius
@@ -217,12 +217,7 @@ def kinds_at(space: CrackSpace, scalar: CellBasis, side: np.ndarray | None = Non
     phi, psi = scalar.interpolate(geo.phi), scalar.interpolate(geo.psi)
     phi_v, psi_v = np.asarray(phi), np.asarray(psi)
     r = np.hypot(phi_v, psi_v)
-    theta = np.arctan2(psi_v, phi_v)
-    # ±π by the side only in the cells the crack cuts (split and tip cells): a cell that
-    # ψ_h crosses ahead of the tip is cut by no crack, and θ is continuous in it
-    cut = (geo.side[cells] == 0)[:, None]
-    wrong = (phi_v < 0) & (np.sign(psi_v) != side) & (side != 0) & cut
-    theta = np.where(wrong, side * np.pi, theta)
+    theta = side_angle(phi_v, psi_v, side, (geo.side[cells] == 0)[:, None])
     shape = (6,) + scalar.dx.shape
     g, dg = np.zeros(shape), np.zeros((6, 2) + scalar.dx.shape)
     g[0] = 1.0

@@ -66,7 +66,7 @@ from ..fem.material import Material, stiffness_matrix
 from ..fem.quadrature import cell_rule, simplex_points
 from ..fem.simplex import split
 from .assembly import check_facets, support_dofs
-from .branch import branch
+from .branch import branch, side_angle
 from .dofs import EnrichedUnknowns, virtual_map
 from .geometry import check_geometry
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
@@ -299,9 +299,7 @@ def _kinds(phi, psi, gphi, gpsi, side, cut) -> tuple[np.ndarray, np.ndarray]:
     (:func:`skxfem.crack.branch.branch_local_gradient` in closed form, φ and ψ the local
     coordinates); zero at r = 0."""
     r = np.hypot(phi, psi)
-    theta = np.arctan2(psi, phi)
-    wrong = (phi < 0) & (np.sign(psi) != side) & (side != 0) & cut
-    theta = np.where(wrong, side * np.pi, theta)
+    theta = side_angle(phi, psi, side, cut)
     live = r > 0
     sr = np.sqrt(np.where(live, r, 1.0))
     half = np.where(live, theta, 0.0) / 2
