@@ -1099,3 +1099,34 @@ def test_52_progress_is_one_line_per_newton_iteration_and_load_step(tmp_path, ca
     assert done[0].startswith("skxfem: load step 1 of 2") and f"in {its[0]} Newton" in done[0]
     assert main(["run", CONTACT, "--out", str(tmp_path / "b")]) == 0
     assert not [line for line in capsys.readouterr().err.splitlines() if "Newton" in line]
+
+
+def test_front_points_left_without_K_are_a_note(tmp_path, capsys):
+    """A penny under two cells across its radius: no K along its front (its interaction
+    domain has no cell of room); skxfem run says why on stderr, and result.json's front
+    lists no point."""
+    path = scene_file(tmp_path, """
+[mesh]
+box = {n = [6, 6, 3], cell = "tet"}
+[material]
+E = 1.0
+nu = 0.3
+[levelset]
+expr = "z - 0.5"
+front = "sqrt((x - 0.5)**2 + (y - 0.5)**2) - 0.3"
+[interface]
+law = "free"
+[[displacement]]
+boundary = "zmin"
+x = 0.0
+y = 0.0
+z = 0.0
+[[load]]
+boundary = "zmax"
+traction = [0.0, 0.0, 1.0]
+""")
+    assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 0
+    err = capsys.readouterr().err
+    assert "skxfem: note: " in err and "no K at 10 of 10 front points" in err
+    (front,) = json.loads((tmp_path / "out" / "result.json").read_text())["front"]
+    assert front["points"] == [] and front["K_I"] == []

@@ -36,12 +36,12 @@ The scene is solved by :func:`skxfem.solve` with the scene file's ``[solver]``
 settings (``Scene.solver``) and the options given in their place, so that
 ``skxfem.solve(skxfem.load_scene(path))`` gives the same answer.  skxfem's own
 notices (:data:`NOTICES`: each retry and each cut of a contact load step, vertices
-put on Γ) are printed as they are raised, one line ``skxfem: note: ...`` each
-on stderr.  Other Python warnings (numpy's floating-point warnings, meshio's,
-scikit-fem's) are not printed: the summary line counts them (``--debug`` shows them), and a
-floating-point overflow in the solve refuses the result (exit 2): the numbers
-of the scene are beyond double precision.  ``skxfem run`` never imports
-matplotlib.
+put on Γ, front points left without K) are printed as they are raised, one line
+``skxfem: note: ...`` each on stderr.  Other Python warnings (numpy's floating-point
+warnings, meshio's, scikit-fem's) are not printed: the summary line counts them
+(``--debug`` shows them), and a floating-point overflow in the solve refuses the
+result (exit 2): the numbers of the scene are beyond double precision.  ``skxfem run``
+never imports matplotlib.
 
 A module with ``main(argv) -> int`` becomes a subcommand with one entry in
 :data:`FORWARDED` (``skxfem reproduce`` is ``skxfem.app.reproduce.main``, imported
@@ -65,6 +65,7 @@ from .. import __version__
 from ..contact.history import StepCutWarning, StepRetryWarning
 from ..contact.laws import CONTACT_LAWS, STATUS_NAMES
 from ..contact.newton import ContactConvergenceError
+from ..crack.kind3d import FrontPointsWarning
 from ..cut import SnapWarning
 from ..linalg.choice import LINEAR_TOL
 from ..linalg.threads import limited
@@ -186,10 +187,12 @@ def _say(text: str, stream=None):
     print(printable(text), file=stream or sys.stdout)
 
 
-NOTICES = (StepRetryWarning, StepCutWarning, SnapWarning)
+NOTICES = (StepRetryWarning, StepCutWarning, SnapWarning, FrontPointsWarning)
 """skxfem's own notices, printed as ``skxfem: note: ...`` lines on stderr as they are
 raised: a contact load step solved again by another method or cut into smaller
-increments, vertices near Γ put on it (:class:`skxfem.cut.SnapWarning`)."""
+increments, vertices near Γ put on it (:class:`skxfem.cut.SnapWarning`), points of a 3D
+front left without K (:class:`skxfem.crack.kind3d.FrontPointsWarning`: result.json's
+``front`` lists only the others)."""
 
 
 @contextlib.contextmanager
