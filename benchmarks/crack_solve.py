@@ -172,6 +172,15 @@ than 3 cells loses 1.5 to 5.6 % of K along a straight front.  An untimed first s
 (imports, caches) before the timed ones moved nothing: 11.3 / 5.6 / 5.5 without it,
 10.8 / 5.1 / 6.2 with it, one run each (not kept).
 
+Later that day the default enriched zone became a fifth of the crack's depth (0.1 here,
+the floor 4 h up to n ≈ 40; it was 0.1 D = 0.173, :mod:`skxfem.crack.radius`) and K's
+branch tube a symmetric rule of order 8 (:data:`skxfem.crack.sif3d.TUBE_ORDER`).  One
+run, after then before: crack 3.33 / 3.18, 5.92 / 5.74, 10.15 / 14.45 s against the
+tie's 0.30, 0.95 / 0.99, 2.32 / 2.15 s at n = 16, 24, 32: ratios 11.2 / 10.7, 6.2 / 5.8,
+4.4 / 6.7 (152 856 -> 138 006 unknowns at n = 32; at n = 40, another pair: 291 018 ->
+246 246 unknowns, 29.4 -> 17.4 s, ratio 5.6 -> 3.7).  K_I at mid-front 3.6485, 3.7011,
+3.7277 (before 3.6472, 3.7027, 3.7361; its limit about 3.81).  Still above 3 times.
+
     python benchmarks/crack_solve.py                 # n = 8, 12
     python benchmarks/crack_solve.py --sizes 8 --repeat 3
 """
