@@ -518,3 +518,13 @@ def test_sif_3d_gives_nan_where_the_domain_has_no_room():
     K = sif_3d(V, U, MAT, P)
     assert np.array_equal(np.isnan(K).any(axis=1), reach < h) and 4 <= (reach < h).sum() <= 8
     assert np.all(K[reach >= h, 0] > 0)
+
+
+def test_a_sif_radius_under_a_cell_is_refused_before_the_solve():
+    """sif_radius 0.001 on the cube at n = 6: the domain holds no cell (K came out NaN
+    at every point, silently); a ValueError naming sif_radius and the least value."""
+    from skxfem.levelset import plane
+    from skxfem.solver import solve
+    with pytest.raises(ValueError, match=r"sif_radius 0\.001 is under the front cells' "
+                       r"size 0\.\d+: .* take it at least"):
+        solve(_cube_crack(6, plane((0.5, 0, 0), (1, 0, 0)), sif_radius=0.001))

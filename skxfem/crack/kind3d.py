@@ -43,6 +43,7 @@ from .faces3d import face_functions_3d, face_rule, face_traction_3d
 from .geometry3d import barycentric, crack_geometry_3d, front_chains
 from .sif3d import (
     DEFAULT_LENGTH,
+    check_radius,
     domain_reach,
     fitted_frame,
     front_points,
@@ -115,7 +116,10 @@ class Crack3D:
         ``order`` is not used (its own rules)."""
         i = self.interface
         radius = getattr(i, "enrichment_radius", None) if i.enrichment == "geometric" else None
-        return CrackXSpace3D(crack_space_3d(mesh, cut, i.enrichment, radius))
+        space = crack_space_3d(mesh, cut, i.enrichment, radius)
+        if i.sif_radius is not None:                    # before the solve, not after
+            check_radius(i.sif_radius, front_sizes(space)[0], "sif_radius")
+        return CrackXSpace3D(space)
 
     def multipliers(self, mesh, cut, fixed=None, per_edge=None):
         """The interface's multiplier space on the crack's crossed edges, up to the front

@@ -135,7 +135,7 @@ from .williams import near_tip_modes
 __all__ = ["DEFAULT_RADIUS", "MIN_RADIUS", "DEFAULT_LENGTH", "TUBE_ORDER",
            "default_radius_3d",
            "front_points", "front_frame", "fitted_frame", "front_coordinate", "front_sizes",
-           "boundary_reach", "other_fronts", "domain_reach", "sif_3d",
+           "boundary_reach", "other_fronts", "check_radius", "domain_reach", "sif_3d",
            "CrackSolution3D", "solve_crack_3d"]
 
 DEFAULT_RADIUS = 3.0
@@ -341,6 +341,22 @@ def other_fronts(geo, P: np.ndarray, chains: list | None = None) -> np.ndarray:
     own = np.argmin(dist, axis=0)
     dist[own, np.arange(P.shape[1])] = np.inf
     return dist.min(axis=0)
+
+
+def check_radius(radius: float, h: float, name: str = "radius") -> None:
+    """Refuse a radial cone ``radius`` under the front cells' size ``h`` across the front
+    (:func:`front_sizes`): the domain would hold no cell (K came out NaN or anything).
+
+    >>> check_radius(0.3, 0.1)
+    >>> check_radius(0.01, 0.1)
+    Traceback (most recent call last):
+    ...
+    ValueError: radius 0.01 is under the front cells' size 0.1: the interaction domain ...
+    """
+    if radius < h:
+        raise ValueError(f"{name} {radius:.3g} is under the front cells' size {h:.3g}: the "
+                         f"interaction domain would hold no cell; take it at least "
+                         f"{h:.3g} (the default: {DEFAULT_RADIUS:g} cells)")
 
 
 def domain_reach(space, P: np.ndarray, e3: np.ndarray, kappa: np.ndarray, length: float,
@@ -584,6 +600,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     for name, v in (("radius", R), ("length", L)):
         if not (np.isfinite(v) and v > 0):
             raise ValueError(f"{name} must be a positive number, got {v!r}")
+    check_radius(R, h)
     if not 0 <= plateau < 1:
         raise ValueError(f"plateau must be in [0, 1), got {plateau!r}")
     mesh, geo = space.mesh, space.geometry
