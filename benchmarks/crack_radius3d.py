@@ -252,34 +252,14 @@ def cube(names, sizes, repeat: int = 1, reference: str | None = None,
     return rows
 
 
-def slab_K(n: int, choice: Choice, nz: int = 4) -> np.ndarray:
-    """(nz - 1, 3) K along the straight front of the Williams slab (modes I and II)."""
-    from skfem import MeshTet1
+def slab_K(n: int, choice: Choice, nz: int = 4):
+    """The solution of the Williams slab (modes I and II,
+    :func:`skxfem.studies.cracks3d.williams_slab`) with ``choice``'s zone, K along its
+    front."""
+    from skxfem.studies.cracks3d import williams_slab
 
-    from skxfem.crack.frame import straight_frame
-    from skxfem.crack.sif3d import solve_crack_3d
-    from skxfem.crack.space3d import Support3D
-    from skxfem.crack.williams import near_tip
-    from skxfem.fem.material import Material
-
-    mat = Material(1.0, 0.3)
-    m = MeshTet1.init_tensor(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1),
-                             np.linspace(0, 1, nz + 1))
-    frame = straight_frame([1.0, 0, 0], [0, 1.0, 0])
-
-    def exact(x):
-        return near_tip(x, np.array([0.5, 0.5, 0.0]), frame, mat, (1.0, 1.0, 0.0)).u
-
-    sides = m.facets_satisfying(lambda x: (x[0] < 1e-12) | (x[0] > 1 - 1e-12)
-                                | (x[1] < 1e-12) | (x[1] > 1 - 1e-12))
-    zf = m.facets_satisfying(lambda x: (x[2] < 1e-12) | (x[2] > 1 - 1e-12))
-    supports = [Support3D(sides, value=exact), Support3D(zf, value=exact, components=(2,))]
-    P = np.array([[0.5] * (nz - 1), [0.5] * (nz - 1), np.arange(1, nz) / nz])
     with applied(choice):
-        s = solve_crack_3d(m, lambda x: x[1] - 0.5, lambda x: x[0] - 0.5, mat, supports,
-                           enrichment=choice.enrichment, points=P, sif_length=1 / nz,
-                           solver="direct")
-    return s
+        return williams_slab(n, nz, enrichment=choice.enrichment, solver="direct")[0]
 
 
 def slab(names, sizes, nz: int = 4):

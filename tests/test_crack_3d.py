@@ -6,13 +6,12 @@ import numpy as np
 import pytest
 from skfem import MeshTet1, MeshTri1
 
-from skxfem.crack.frame import straight_frame
 from skxfem.crack.geometry3d import crack_geometry_3d, front_chains
 from skxfem.crack.quadrature3d import collapsed, edge_polar, vertex_polar
 from skxfem.crack.sif3d import front_points, sif_3d, solve_crack_3d
 from skxfem.crack.space3d import Support3D, crack_space_3d, field_at, stiffness
-from skxfem.crack.williams import near_tip
 from skxfem.fem.material import Material
+from skxfem.studies.cracks3d import williams_slab
 
 MAT = Material(1.0, 0.3)
 
@@ -242,24 +241,8 @@ def test_stiffness_holds_rigid_motions():
 
 
 def _williams_slab(n, nz, K, components, enrichment="geometric"):
-    """The exact Williams field of ``K`` (plane strain in every z-plane for modes I, II;
-    antiplane for III) imposed on the faces x, y = 0, 1 and its ``components`` on
-    z = 0, 1 (the other two carry the field's zero traction there)."""
-    m = slab(n, nz)
-    frame = straight_frame([1.0, 0, 0], [0, 1.0, 0])
-
-    def exact(x):
-        return near_tip(x, np.array([0.5, 0.5, 0.0]), frame, MAT, K).u
-
-    sides = m.facets_satisfying(lambda x: (x[0] < 1e-12) | (x[0] > 1 - 1e-12)
-                                | (x[1] < 1e-12) | (x[1] > 1 - 1e-12))
-    zf = m.facets_satisfying(lambda x: (x[2] < 1e-12) | (x[2] > 1 - 1e-12))
-    supports = [Support3D(sides, value=exact), Support3D(zf, value=exact,
-                                                          components=components)]
-    P = np.array([[0.5] * (nz - 1), [0.5] * (nz - 1), np.arange(1, nz) / nz])
-    return solve_crack_3d(m, lambda x: x[1] - 0.5, lambda x: x[0] - 0.5, MAT, supports,
-                          enrichment=enrichment, radius=0.3, points=P,
-                          sif_length=1 / nz), exact
+    """The Williams slab (skxfem.studies.cracks3d.williams_slab), r_e = 0.3."""
+    return williams_slab(n, nz, K, components, enrichment=enrichment, radius=0.3)
 
 
 def test_straight_front_modes_I_and_II():

@@ -75,27 +75,13 @@ def test_a_straight_3d_front_with_the_default_radius():
     through the thickness): with the default r_e (the 4-cell floor, 0.257) measured K_I
     1.0079, K_II 0.9910; with the former default 0.1 D = 0.173, whose enriched zone the
     radial cone (3 h = 0.193) reaches beyond, K_I 1.0312, K_II 1.0226."""
-    from skxfem.crack.frame import straight_frame
-    from skxfem.crack.space3d import Support3D
-    from skxfem.crack.williams import near_tip
-    from tests.test_crack_3d import MAT, slab
+    from skxfem.studies.cracks3d import williams_slab
 
-    m = slab(11, 5)
-    frame = straight_frame([1.0, 0, 0], [0, 1.0, 0])
-
-    def exact(x):
-        return near_tip(x, np.array([0.5, 0.5, 0.0]), frame, MAT, (1.0, 1.0, 0.0)).u
-
-    sides = m.facets_satisfying(lambda x: (x[0] < 1e-12) | (x[0] > 1 - 1e-12)
-                                | (x[1] < 1e-12) | (x[1] > 1 - 1e-12))
-    zf = m.facets_satisfying(lambda x: (x[2] < 1e-12) | (x[2] > 1 - 1e-12))
-    supports = [Support3D(sides, value=exact), Support3D(zf, value=exact, components=(2,))]
     P = np.array([[0.5], [0.5], [0.5]])
     K = {}
     for name, r_e in (("default", None), ("0.1 D", 0.1 * np.sqrt(3))):
-        s = sif3d.solve_crack_3d(m, lambda x: x[1] - 0.5, lambda x: x[0] - 0.5, MAT,
-                                 supports, enrichment="geometric", radius=r_e, points=P,
-                                 sif_length=0.2)
+        s, _ = williams_slab(11, 5, points=P, sif_length=0.2, enrichment="geometric",
+                             radius=r_e)
         K[name] = s.K[0]
     assert np.abs(K["default"][:2] - 1).max() < 0.01
     assert np.abs(K["0.1 D"][:2] - 1).max() > 0.02

@@ -53,8 +53,8 @@ import numpy as np
 
 from ..fem.material import Material
 
-__all__ = ["MATERIAL", "graded", "penny_mesh", "penny", "pressed_slab", "pressed_penny",
-           "inclined_slab", "crack_inf_sup_3d"]
+__all__ = ["MATERIAL", "graded", "penny_mesh", "penny", "williams_slab", "pressed_slab",
+           "pressed_penny", "inclined_slab", "crack_inf_sup_3d"]
 
 MATERIAL = Material(1.0, 0.3)
 
@@ -107,6 +107,50 @@ def penny(h: float, width: float = 8.0, solver: str = "direct", radius: float = 
                        supports, loads, enrichment="geometric", radius=radius,
                        solver=solver)
     return s, s.K / (2 / np.sqrt(np.pi))
+
+
+def williams_slab(n: int, nz: int, K=(1.0, 1.0, 0.0), components=(2,),
+                  points: np.ndarray | None = None, sif_length: float | None = None,
+                  **solve) -> tuple:
+    """The exact Williams field of ``K`` (K_I, K_II, K_III: plane strain in every z-plane
+    for modes I and II, antiplane for III) about the straight front {x = y = 1/2} of the
+    edge crack {y = 1/2, x < 1/2} in the unit cube (n × n × nz cells of tetrahedra),
+    imposed on the faces x, y = 0, 1 and its ``components`` on z = 0, 1 (the other two
+    carry the field's zero traction there); solved by
+    :func:`skxfem.crack.sif3d.solve_crack_3d` (``solve``: its enrichment, radius,
+    solver, ...) with K at ``points`` (default: on the front at z = 1/nz .. 1 - 1/nz),
+    ``sif_length`` the bump's half-width (default 1/nz).  Returns (solution, exact),
+    ``exact(x)`` the imposed displacement at points x (3, ...).
+
+    >>> s, exact = williams_slab(9, 2, radius=0.3)     # K_I = K_II = 1 imposed
+    >>> s.K[0, :2].round(2).tolist()
+    [1.01, 1.0]
+    """
+    from skfem import MeshTet1
+
+    from ..crack.frame import straight_frame
+    from ..crack.sif3d import solve_crack_3d
+    from ..crack.space3d import Support3D
+    from ..crack.williams import near_tip
+
+    m = MeshTet1.init_tensor(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1),
+                             np.linspace(0, 1, nz + 1))
+    frame = straight_frame([1.0, 0, 0], [0, 1.0, 0])
+
+    def exact(x):
+        return near_tip(x, np.array([0.5, 0.5, 0.0]), frame, MATERIAL, K).u
+
+    sides = m.facets_satisfying(lambda x: (x[0] < 1e-12) | (x[0] > 1 - 1e-12)
+                                | (x[1] < 1e-12) | (x[1] > 1 - 1e-12))
+    zf = m.facets_satisfying(lambda x: (x[2] < 1e-12) | (x[2] > 1 - 1e-12))
+    supports = [Support3D(sides, value=exact),
+                Support3D(zf, value=exact, components=components)]
+    P = (np.array([[0.5] * (nz - 1), [0.5] * (nz - 1), np.arange(1, nz) / nz])
+         if points is None else points)
+    return solve_crack_3d(m, lambda x: x[1] - 0.5, lambda x: x[0] - 0.5, MATERIAL,
+                          supports, points=P,
+                          sif_length=1 / nz if sif_length is None else sif_length,
+                          **solve), exact
 
 
 def pressed_slab(n: int, nz: int = 2, law: str = "frictionless", space: str = "vital",
