@@ -44,6 +44,7 @@ from ..fem.loads import force_field
 from ..fem.material import Material
 from .assembly import face_rule, rule_groups
 from .frame import TipFrame, tip_frame
+from .geometry import CrackGeometry
 from .interaction import CrackFace, q_function, stress_intensity
 from .radius import DOMAIN_CELLS, DOMAIN_FRACTION
 from .space import CrackSpace, evaluation
@@ -76,13 +77,13 @@ def default_radius(space: CrackSpace, h: float) -> float:
     return max(DOMAIN_FRACTION * r_e, DEFAULT_CELLS * h)
 
 
-def other_tips_distance(space: CrackSpace, tip: int) -> float:
+def other_tips_distance(geometry: CrackGeometry, tip: int) -> float:
     """Half the distance from a tip to the nearest other tip (inf for one tip): the
     domain of one tip must not reach another (a centre crack of half-length 0.1 on the
     unit square in tension, h = 1/41: K_I/σ√(πa) = 1.0540 with R = 0.1, 1.0561 with
     0.19, 1.0602 with 0.2 (the ring at the other tip), 1.151 with 0.25 and 1.425 with
     0.35 (holding it))."""
-    tips = space.geometry.tips
+    tips = geometry.tips
     d = np.linalg.norm(tips - tips[:, tip:tip + 1], axis=0)
     d = np.delete(d, tip)
     return 0.5 * float(d.min()) if d.size else np.inf
@@ -132,23 +133,24 @@ def tip_reach(mesh, geo, tip: int) -> tuple[float, bool, float]:
     >>> round(reach, 4), wall, round(h, 4)
     (0.25, True, 0.1)
     """
-    tips = geo.tips
-    d = np.delete(np.linalg.norm(tips - tips[:, tip:tip + 1], axis=0), tip)
-    wall = boundary_distance(mesh, tips[:, tip])
-    other = 0.5 * float(d.min()) if d.size else np.inf
+    wall = boundary_distance(mesh, geo.tips[:, tip])
+    other = other_tips_distance(geo, tip)
     cell = geo.tip_cells[np.flatnonzero(geo.tip_of_cell == tip)[0]]
     return min(wall, other), bool(wall <= other), float(np.ptp(mesh.p[:, mesh.t[:, cell]],
                                                          axis=1).max())
 
 
-def check_reach(mesh, geo, label: str = "") -> None:
+def check_reach(mesh, geo, label: str = "", tips=None) -> list[float]:
     """Refuse a tip whose interaction domain cannot reach past its own cell
     (:func:`tip_reach`: a tip within a cell of the boundary, or two tips within two
     cells): the interaction integral then has no domain, and a domain of a cell or two
     misses K by several per cent (an edge crack's tip 0.1 from the far side of the unit
-    square, h = 1/20: K_I 13 % low, 1/40: 3.5 %, against 1/80's)."""
-    for k in range(geo.tips.shape[1]):
+    square, h = 1/20: K_I 13 % low, 1/40: 3.5 %, against 1/80's).  ``tips``: which
+    (default: every tip of ``geo``).  Returns their reaches."""
+    reaches = []
+    for k in range(geo.tips.shape[1]) if tips is None else tips:
         reach, wall, h = tip_reach(mesh, geo, k)
+        reaches.append(reach)
         if reach < h:
             x = ", ".join(f"{v:.4g}" for v in geo.tips[:, k])
             what = ("from the body's boundary" if wall else
@@ -158,6 +160,7 @@ def check_reach(mesh, geo, label: str = "") -> None:
                 f"size of its cell ({h:.3g}): its stress intensity factors need an "
                 f"interaction domain of a few cells around it; refine the mesh there "
                 f"(cells a few times smaller than that distance) or move the front")
+    return reaches
 
 
 def nodal_q(space: CrackSpace, origin: np.ndarray, r_d: float, plateau: float,
@@ -209,8 +212,7 @@ def sif(space: CrackSpace, U: np.ndarray, material: Material, r_d: float | None 
         raise ValueError(f"U must hold the {space.N} unknowns [a, b, c], got shape {U.shape}")
     origin, frame, h = tip_and_frame(space, tip)
     r_d = default_radius(space, h) if r_d is None else r_d
-    check_reach(space.mesh, space.geometry)
-    boundary = min(boundary_distance(space.mesh, origin), other_tips_distance(space, tip))
+    boundary = check_reach(space.mesh, space.geometry, tips=[tip])[0]
     q_nodes = nodal_q(space, origin, r_d, plateau, boundary)
     qt = q_nodes[space.mesh.t]
     if body_force is None:
