@@ -181,6 +181,29 @@ tie's 0.30, 0.95 / 0.99, 2.32 / 2.15 s at n = 16, 24, 32: ratios 11.2 / 10.7, 6.
 246 246 unknowns, 29.4 -> 17.4 s, ratio 5.6 -> 3.7).  K_I at mid-front 3.6485, 3.7011,
 3.7277 (before 3.6472, 3.7027, 3.7361; its limit about 3.81).  Still above 3 times.
 
+Where it stands (main 1043c0b, 29 November 2026, 13:50 UTC, ``--linear auto``, one
+run): n = 16, 24, 32: crack 3.53, 6.25, 11.10 s against the tie's 0.31, 1.03, 2.50 s,
+ratios 11.2, 6.1, 4.4; n = 40, 48 (another run): 18.82 / 4.83 s and 34.12 / 11.48 s,
+ratios 3.9 and 2.97 (409 542 crack unknowns at n = 48).  Profiled at n = 32 (crack 10.2 s
+against 2.4 s): the stiffness 2.6 s (the tie's whole assembly 0.5 s), the solve 4.4 s
+(AMG set-up 1.4 s, CG 83 iterations 2.5 s; the tie's 1.6 s), K along the front 2.3 s (a
+stage the tie does not have: 815 000 points, 43 % of them in the cells around the front
+cells, whose rules the closed crack's |K| ≤ 1e-3 needs), the cut 0.3 s.  At n = 16 K
+alone (1.0 s) is three times the tie's whole solve: the target holds from about n = 48,
+not below.
+
+Measured and left out (29 November, on this cube, by a script not kept: the same space,
+stiffness and block-scaled CG): the **vector enrichment** (Chevaugeon, Moës & Minnebo
+2013), each branch node's twelve unknowns restricted to the three Williams displacement
+modes of its frame (Qᵀ K Q, Q from the modes' coefficients on F₁..F₄; κ = 3 - 4ν).  Its
+solve is shorter, 1.13 -> 0.28 s at n = 16 (nonzeros 3.79 M -> 0.99 M, CG 61 -> 59
+iterations) and 4.36 -> 2.47 s at n = 32 (95 iterations both), but K_I at mid-front
+drops from 3.648 to 3.540 (n = 16) and from 3.727 to 3.681 (n = 32), the limit about
+3.81: the vector space at n = 32 is less accurate than the twelve functions at n = 24
+(3.701; that whole crack took 6.25 s, where the vector space saves 1.9 s of the 11.1 s at
+n = 32).  Keeping the twelve functions on the front cells' nodes (and their ring) did not
+help (3.546, 3.551 at n = 16): the outer tube's products φ_k F_l carry the r^(3/2) terms.
+
     python benchmarks/crack_solve.py                 # n = 8, 12
     python benchmarks/crack_solve.py --sizes 8 --repeat 3
 """
