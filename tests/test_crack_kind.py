@@ -81,7 +81,19 @@ def test_crack_scene_reproduces_the_harness(enrichment, cell):
 
 def test_a_scene_without_a_front_has_no_front():
     from skxfem.scene.benchmarks import strip
-    assert solve(strip(3, cell="tri")).front == ()
+    r = solve(strip(3, cell="tri"))
+    assert r.front == () and "front" not in r.timings
+
+
+def test_k_along_the_front_is_a_timed_stage():
+    """K is computed in the solve: its seconds are the stage ``front``, so that the
+    stages add up to the whole solve (the command line prints their sum)."""
+    import time
+    start = time.perf_counter()
+    r = solve(crack_scene(), linear="direct")
+    whole = time.perf_counter() - start
+    assert set(r.timings) == {"cut", "enrich", "assemble", "solve", "front"}
+    assert 0 < r.timings["front"] and sum(r.timings.values()) <= whole
 
 
 WILLIAMS_TOML = """
@@ -134,6 +146,7 @@ def test_crack_scene_file_through_skxfem_run_writes_front(tmp_path):
     assert front["points"] == [[0.5, 0.5]]
     assert abs(front["K_I"][0] - s.K_I) < 1e-10 and abs(front["K_II"][0] - s.K_II) < 1e-10
     assert data["law"] == ["free"] and data["n_multipliers"] == 0 and front["interface"] == 0
+    assert data["timings"]["front"] > 0, "K's time among the stages"
     vtu = meshio.read(tmp_path / "out" / "interface.vtu")
     (tip,) = vtu.cells_dict["vertex"][:, 0]
     assert np.allclose(vtu.points[tip], [0.5, 0.5, 0.0])
