@@ -102,7 +102,8 @@ from .crack.assembly import mass as crack_mass
 from .crack.faces import crack_multipliers, face_functions, face_traction
 from .crack.geometry import crack_geometry
 from .crack.kind3d import Crack3D
-from .crack.sif import check_reach, sif
+from .crack.radius import check_radius
+from .crack.sif import check_reach, sif, tip_reach
 from .crack.space import CrackSpace, crack_space, evaluation
 from .crack.xspace import CrackXSpaceBase
 from .cut import Cut
@@ -199,6 +200,10 @@ class Crack(Gamma):
             raise ValueError(f"{label or 'the crack'}: the crack {{ψ = 0, φ < 0}} "
                              f"({i.levelset.name!r}, front {i.front.name!r}) crosses no cell")
         check_reach(mesh, geo, label)                   # before the solve, not after
+        if i.sif_radius is not None:
+            for k in range(geo.tips.shape[1]):
+                check_radius(i.sif_radius, tip_reach(mesh, geo, k)[2],
+                             f"{label + ' ' if label else ''}sif_radius", 2)
         return geo
 
     def space(self, mesh, cut, order: int | None = None):

@@ -527,6 +527,29 @@ def test_a_tip_within_a_cell_of_the_boundary_is_refused_before_the_solve(x, refu
         assert solve(scene).front[0]["K_I"][0] > 0
 
 
+@pytest.mark.parametrize("r_d", [1e-12, 0.03])
+def test_a_sif_radius_under_the_tip_cell_is_refused_naming_it(r_d):
+    """sif_radius under the tip cell's size (h = 1/20): the domain held no cell and the
+    solve ended in numpy's 'need at least one array to concatenate'; now a ValueError
+    naming sif_radius and its least value, before the solve (and from sif)."""
+    from skxfem.crack.sif import sif
+    from skxfem.levelset import plane
+    from skxfem.scene import Displacement, Interface, Scene, SurfaceLoad
+    from skxfem.solver import solve
+    m = square(20)
+    crack = Interface(plane((0.5, 0.525), (0, 1)), law="free", front=plane((0.5, 0), (1, 0)),
+                      sif_radius=r_d)
+    scene = Scene(m, material=MAT, interfaces=(crack,),
+                  displacements=(Displacement("ymin", {"x": 0.0, "y": 0.0}),),
+                  loads=(SurfaceLoad("ymax", traction=(0.0, 1.0)),))
+    with pytest.raises(ValueError, match=r"sif_radius .* is under the front cells' size "
+                       r"0\.05: .* take it at least 0\.05"):
+        solve(scene)
+    V = crack_space(m, crack_geometry(m, m.p[1] - 0.525, m.p[0] - 0.5))
+    with pytest.raises(ValueError, match=r"r_d \(sif_radius\) .* under"):
+        sif(V, np.zeros(V.N), MAT, r_d)
+
+
 def test_two_tips_within_two_cells_are_refused_by_sif():
     """A centre crack 1.5 cells long: each tip's domain (half-way to the other) is under
     a cell; sif names the other tip."""
