@@ -511,3 +511,31 @@ def test_a_sif_radius_under_a_cell_is_refused_before_the_solve():
     with pytest.raises(ValueError, match=r"sif_radius 0\.001 is under the front cells' "
                        r"size 0\.\d+: .* take it at least"):
         solve(_cube_crack(6, plane((0.5, 0, 0), (1, 0, 0)), sif_radius=0.001))
+
+
+def rollers_cube(n):
+    """The unit cube of n³ × 6 tetrahedra on rollers below (two nodes hold x and y),
+    pulled above, an edge crack to its middle mid-cell: the supports clamp no branch
+    unknown of x or y."""
+    from skxfem import Box, Displacement, Interface, Scene, SurfaceLoad, plane
+    crack = Interface(plane((0, 0, 0.5 + 0.5 / n), (0, 0, 1)), law="free",
+                      front=plane((0.5 + 0.25 / n, 0, 0), (1, 0, 0)))
+    return Scene(Box(n, "tet"), interfaces=(crack,), material=MAT,
+                 displacements=(Displacement("zmin", {"z": 0.0}),
+                                Displacement("zmin", {"x": 0.0, "y": 0.0},
+                                             where="x < 1e-9 and y < 1e-9"),
+                                Displacement("zmin", {"y": 0.0},
+                                             where="x > 1 - 1e-9 and y < 1e-9")),
+                 loads=(SurfaceLoad("zmax", traction=(0.0, 0.0, 1.0)),))
+
+
+def test_the_default_space_on_a_coarse_tetrahedral_mesh_solves():
+    """:func:`rollers_cube` at n = 4: the default r_e (4 front cells) enriches every
+    node, and the branch functions' two relations (skxfem.crack.assembly.dependent_dofs)
+    left x and y singular: 'the system is singular to working precision' at n = 3, 4, 5.
+    Now it solves."""
+    from skxfem.solver import solve
+    r = solve(rollers_cube(4))
+    V = r.problem.interfaces[0].V.space
+    assert V.branch.size == r.mesh.p.shape[1]
+    assert np.all(r.front[0]["K_I"] > 0)

@@ -299,6 +299,45 @@ def test_traction_load_and_supports_at_the_mouth():
     assert np.allclose(g[np.isin(D, V.basis.nodal_dofs[0])], m.p[1, np.unique(m.facets[:, left])])
 
 
+@pytest.mark.parametrize("cell", ["tri", "quad"])
+def test_a_zone_over_every_node_solves_and_keeps_its_span(cell):
+    """r_e beyond every node (or the default r_e on a mesh a few cells across): ψ F₁ +
+    φ F₃ - ψ F₄ = 0 and ψ F₂ - ψ F₃ - φ F₄ = 0 made two exact null vectors per component
+    left unclamped ('the system is singular to working precision' from skxfem.solve, on
+    Box(n) up to n = 6 with the defaults).  Now F₃, F₄ of one node are dropped in those
+    components; the Galerkin residual at them vanishes: they were in the span."""
+    from skxfem.crack.assembly import dependent_dofs, traction_load
+    m = square(5, cell)
+    bottom = m.facets_satisfying(lambda x: x[1] < 1e-12, boundaries_only=True)
+    top = m.facets_satisfying(lambda x: x[1] > 1 - 1e-12, boundaries_only=True)
+    sup = [Support(bottom, components=(1,)), Support(nodes=np.array([0]))]  # x unclamped
+    loads = [Load(top, lambda x: np.stack([0.2 + 0 * x[0], 1 + 0 * x[0]]))]
+    s = solve_crack(m, lambda x: x[1] - 0.55, lambda x: x[0] - 0.5, MAT, sup, loads,
+                    radius=5.0)
+    V = s.space
+    D, _ = supported_dofs(V, sup)
+    dep = D[-2:]                                                   # F₃, F₄ of x only
+    assert dependent_dofs(V, D[:-2]).tolist() == dep.tolist()
+    assert np.isin(dep, V.branch_dofs()[:, 2:, 0]).all()
+    f = traction_load(V, loads)
+    r = stiffness(V, MAT) @ s.U - f
+    assert np.abs(r[dep]).max() < 1e-9 * np.abs(f).max()
+    assert np.isfinite(s.K).all() and s.K_I > 0
+    assert dependent_dofs(crack_space(m, V.geometry, radius=0.3), D).size == 0
+
+
+def test_the_default_space_on_a_coarse_mesh_solves():
+    """The unit square of 4 × 4 cells on rollers, an edge crack to its middle: the
+    default r_e (16/3 tip cells) enriches every node; it was refused as singular."""
+    from skxfem import Box, Displacement, Interface, Scene, SurfaceLoad, plane, solve
+    crack = Interface(plane((0, 0.625), (0, 1)), law="free", front=plane((0.56, 0), (1, 0)))
+    scene = Scene(Box(4, "tri"), interfaces=(crack,), material=MAT,
+                  displacements=(Displacement("ymin", {"y": 0.0}),
+                                 Displacement("ymin", {"x": 0.0}, where="x < 1e-9")),
+                  loads=(SurfaceLoad("ymax", traction=(0.0, 1.0)),))
+    assert solve(scene).front[0]["K_I"][0] > 0
+
+
 # ---------------------------------------------------------------- 5-6. known answers
 
 
