@@ -63,7 +63,14 @@ from skfem import Basis
 from ..fem.loads import force_field
 from ..fem.material import Material, stiffness_matrix
 from ..fem.quadrature import cell_rule, exact_orders
-from .quadrature import BRANCH_ORDER, NEAR_ORDER, split_rule, tip_rule
+from .quadrature import (
+    BRANCH_ORDER,
+    NEAR_ORDER,
+    near_rule,
+    near_tip_cells,
+    split_rule,
+    tip_rule,
+)
 from .space import CrackSpace, evaluation
 
 __all__ = ["FACET_POINTS", "RuleGroup", "rule_groups", "stiffness", "mass", "Support",
@@ -111,7 +118,9 @@ def rule_groups(space: CrackSpace, cells: np.ndarray | None = None,
 
     Tip cells: :func:`skxfem.crack.quadrature.tip_rule`; the other cells by the
     order of their integrand: around the tip cells (sharing a node with one)
-    :data:`~skxfem.crack.quadrature.NEAR_ORDER`; touching a branch node ``order``;
+    :data:`~skxfem.crack.quadrature.NEAR_ORDER`, or, within
+    :data:`~skxfem.crack.quadrature.NEAR_GAP` of a tip,
+    :func:`~skxfem.crack.quadrature.near_rule`; touching a branch node ``order``;
     else ``plain_order`` (default: the exact stiffness order).  Split cells on their
     sub-triangles, uncut cells on the whole cell.
     """
@@ -133,8 +142,12 @@ def rule_groups(space: CrackSpace, cells: np.ndarray | None = None,
         r = tip_rule(geo, NEAR_ORDER)
         pick = np.isin(r.cells, tip)
         groups.append(_group(space, r.cells[pick], r.X[:, pick], r.W[pick], r.V[pick]))
-    split = np.setdiff1d(np.intersect1d(cells, geo.split_cells), tip)
-    uncut = np.setdiff1d(cells, geo.cells)
+    near = near_tip_cells(geo, mesh, np.setdiff1d(cells[level[cells] == 2], tip))
+    if near.size:
+        r = near_rule(geo, mesh, near)
+        groups.append(_group(space, r.cells, r.X, r.W, r.V))
+    split = np.setdiff1d(np.intersect1d(cells, geo.split_cells), np.union1d(tip, near))
+    uncut = np.setdiff1d(np.setdiff1d(cells, geo.cells), near)
     for lv, (o_sub, o_cell) in orders.items():
         here = split[level[split] == lv]
         if here.size:
