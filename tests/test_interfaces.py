@@ -388,3 +388,28 @@ def test_one_path_tools_take_several_and_one_interface_tools_refuse_clearly():
         with pytest.raises(ValueError, match="one interface"):
             measure(r, lambda x: x)
     assert inf_sup(scene.alone(0)).beta > 0
+
+
+@pytest.mark.parametrize("order", ["crack", "crack, full", "full, crack", "two cracks"])
+def test_rigid_modes_of_cracks_and_full_interfaces_cost_no_energy(order):
+    """A crack (front) splits no region: its unknowns are 0 in every rigid motion.  The
+    modes set its Heaviside unknowns as a splitting Γ's (a side moving alone), and took
+    one bit per interface, not per splitting one: K Z was up to 2 (E = 1, h = 1/20) with
+    a crack whose support holds Heaviside nodes (alone, or with a full Γ), and two cracks
+    crashed skxfem.solve with numpy's 'operands could not be broadcast together'."""
+    crack = Interface(plane((0, 0.325), (0, 1)), law="free", front=plane((0.6, 0), (1, 0)))
+    other = Interface(plane((0, 0.725), (0, 1)), law="free", front=plane((0.4, 0), (-1, 0)))
+    full = Interface(plane((0, 0.725), (0, 1)), law="bonded")
+    items = {"crack": (crack,), "crack, full": (crack, full), "full, crack": (full, crack),
+             "two cracks": (crack, other)}[order]
+    scene = Scene(Box(20, "tri"), interfaces=items, material=Material(1.0, 0.3),
+                  displacements=(Displacement("ymin", {"y": 0.0}),
+                                 Displacement("ymin", {"x": 0.0}, where="x < 1e-9")),
+                  loads=(SurfaceLoad("ymax", traction=(0.0, 1.0)),))
+    p = assemble(scene)
+    assert sum(V.heaviside.size for V in (q.V.space for q in p.interfaces
+                                          if not q.V.splits)) > 0
+    Z = rigid_modes(p.V)
+    assert Z.shape[1] == 3 * p.V.regions()[0].shape[0]
+    assert np.abs(p.K @ Z).max() < 1e-11 and np.linalg.matrix_rank(Z) == Z.shape[1]
+    assert all(np.all(f["K_I"] > 0) for f in skxfem.solve(scene).front)
