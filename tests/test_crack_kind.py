@@ -122,7 +122,8 @@ def _toml(enrichment="geometric"):
                                 supports=supports, tx=f"-({_SXX})", ty=f"-({_SXY})")
 
 
-def test_crack_scene_file_through_skxfem_run_writes_front(tmp_path):
+def test_crack_scene_file_through_skxfem_run_writes_front(tmp_path, capsys):
+    """... and its summary line gives K (it gave none, and 'pressure in [-0, -0]')."""
     path = tmp_path / "williams.toml"
     path.write_text(_toml())
     scene = load_scene(path)
@@ -131,6 +132,9 @@ def test_crack_scene_file_through_skxfem_run_writes_front(tmp_path):
     data = json.loads((tmp_path / "out" / "result.json").read_text())
     s = harness()
     (front,) = data["front"]
+    line = capsys.readouterr().out
+    assert f"K_I {front['K_I'][0]:.4g}, K_II {front['K_II'][0]:.4g}" in line, line
+    assert "pressure in [0, 0]" in line, line
     assert front["points"] == [[0.5, 0.5]]
     assert abs(front["K_I"][0] - s.K_I) < 1e-10 and abs(front["K_II"][0] - s.K_II) < 1e-10
     assert data["law"] == ["free"] and data["n_multipliers"] == 0 and front["interface"] == 0
