@@ -180,6 +180,16 @@ def test_bad_crack_inputs_are_refused_naming_the_argument(kwargs, words):
         Interface(plane((0, 0.5), (0, 1)), **kwargs)
 
 
+def test_a_crack_with_a_material_per_side_is_refused_naming_it():
+    """material_plus with a crack: the solve ended in "AttributeError: 'CrackXSpace'
+    object has no attribute 'rule'"; a ValueError naming material_plus, when the scene is
+    built."""
+    from skxfem import Box, Material, Scene
+    crack = Interface(plane((0, 0.5), (0, 1)), law="free", front=plane((0.5, 0), (1, 0)))
+    with pytest.raises(ValueError, match=r"material_plus: a crack .* give one material"):
+        Scene(Box(4, "tri"), interfaces=(crack,), material_plus=Material(2.0, 0.3))
+
+
 def test_a_3d_crack_is_the_3d_kind_and_takes_tetrahedra_only():
     from skfem import MeshHex1, MeshTet1
 
