@@ -76,7 +76,8 @@ class Result:
     as :attr:`skxfem.problem.Problem.V`) and ``problem`` the assembled problem.
     ``front``: one dict per interface with a front (a crack, :class:`skxfem.gamma.Crack`),
     in the scene's order: ``points`` (m, dim) the front's points, ``K_I``, ``K_II``
-    (m,) the stress intensity factors there (:func:`skxfem.crack.sif.sif`) and
+    and, in 3D, ``K_III`` (m,) the stress intensity factors there
+    (:func:`skxfem.crack.sif.sif`, :func:`skxfem.crack.sif3d.sif_3d`) and
     ``interface`` the index of the crack in the scene's interfaces; empty without a
     crack.  ``timings``: seconds per stage, ``cut``, ``enrich``, ``assemble``,
     ``solve`` and, with a crack, ``front`` (K along its fronts).
