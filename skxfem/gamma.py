@@ -54,8 +54,9 @@ The space a kind returns is asked, by :func:`skxfem.enrich.stiffness`,
 ``signed_mass(A)`` and ``blocks(A, AH)`` (its enriched blocks: the Heaviside space's
 arithmetic of :func:`skxfem.enrich.enriched_blocks`, a crack's own
 blocks on its almost-polar rules), ``load(facet_loads, body_force, f)`` (its enriched
-load), ``constraints(scene, mesh)`` (its constrained unknowns: a crack never clamps a
-mouth shut) and ``splits`` (whether Γ splits the body into regions: a crack does not).
+load), ``constraints(scene, mesh)`` (its constrained unknowns: a crack's mouth is clamped
+shut only where the imposed value is continuous across it) and ``splits`` (whether Γ
+splits the body into regions: a crack does not).
 A law without multipliers (``free``) gives a part whose P has no column and B no row.
 
 **The crack kind** (:class:`Crack`, issue 29, 2D, any law): an interface with a
@@ -320,7 +321,8 @@ class CrackXSpace(CrackXSpaceBase):
       [a, b, c] (:func:`skxfem.crack.assembly.traction_load`,
       :func:`~skxfem.crack.assembly.body_load`);
     * ``constraints(scene, mesh)``: the scene's displacements on [a, b, c]
-      (:func:`skxfem.crack.assembly.supported_dofs`: a mouth is never clamped shut);
+      (:func:`skxfem.crack.assembly.supported_dofs`: a mouth clamped shut only where
+      the imposed value is continuous across the crack);
     * ``splits = False``: a crack ends inside the body and splits no region.
 
     Each enriched unknown's standard dof is ``enr_dofs`` and its ``H_node`` that of its

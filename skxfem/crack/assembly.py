@@ -26,18 +26,29 @@ meets it (the mouth) so that H is one value on each piece, with a Gauss rule of
 imposes the standard unknowns aᵢ = g(xᵢ) of its nodes, for its components.  The
 shifted enrichments vanish at the nodes, so u_h(xᵢ) = g(xᵢ).  A Heaviside function
 φⱼ(H - Hⱼ) also vanishes on every facet the crack does not meet (H = Hⱼ there): its
-unknowns are never constrained.  A branch function φ_k(F_l - F_l(x_k)) does not
+unknowns are not constrained there.  A branch function φ_k(F_l - F_l(x_k)) does not
 vanish along a facet: on a node whose supported facets the crack does not meet, its
 branch unknowns are set to zero (the trace is then the interpolant of g).  On a
-facet the crack meets (the mouth) every enriched unknown stays free: the data is
-imposed at the nodes only and the mouth may open, whatever g does between them
-(a nodal support never clamps the mouth shut; a discontinuous g at a mouth is
-better imposed as a traction, as code_aster's SSLP114 does).  A supported node that
-lies on the crack itself (ψ = 0, φ < 0: a mouth through a node) has two values, one
-per face: the support leaves it free.  Measured on the Williams square with the exact
-displacement imposed on all four faces (the cut face too): K within 0.41 % (geometric,
-h = 1/21, mouth mid-facet) and 0.35 % (h = 1/20, mouth at a node); imposing the Ω⁺
-value at that node instead gave errors of 1 to 3.5 %.
+facet the crack meets (the mouth) it depends on g, component by component, tested
+across the crack at the facet's crossings (:func:`_shut_mouth`):
+
+* g **continuous** there (a clamp, rollers, a rigid motion, any smooth formula): the
+  support clamps the mouth shut, every enriched unknown of the facet's nodes (Heaviside
+  and branch) set to zero, so that its trace is the interpolant of g on both faces, and
+  a supported node on the crack itself takes g too.  (Until 29 November 2026 the mouth
+  stayed free whatever g: a clamped face cut by an edge crack opened by 0.023 at its
+  mouth at h = 1/21, 0.011 at 1/41, and ``examples/crack.toml``'s contact pressure was
+  1.072 there instead of 1.)
+* g **discontinuous** across the crack (the exact near-tip field, say): the mouth stays
+  free, the data imposed at the nodes only, and a supported node on the crack (ψ = 0,
+  φ < 0: a mouth through a node), which has two values, one per face, is left free (a
+  discontinuous g at a mouth is better imposed as a traction, as code_aster's SSLP114
+  does).  Measured on the Williams square with the exact displacement imposed on all
+  four faces (the cut face too): K within 0.41 % (geometric, h = 1/21, mouth
+  mid-facet) and 0.35 % (h = 1/20, mouth at a node); imposing the Ω⁺ value at that node
+  instead gave errors of 1 to 3.5 %.
+
+A nodal support (``nodes``) imposes the nodal values only: it never clamps a mouth.
 
 >>> from skfem import MeshTri1
 >>> from skxfem.crack.geometry import crack_geometry
@@ -441,9 +452,13 @@ def supported_dofs(space: CrackSpace, supports) -> tuple[np.ndarray, np.ndarray]
     >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
     >>> V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5), radius=0.15)
     >>> left = m.facets_satisfying(lambda x: x[0] < 1e-12)
-    >>> D, g = supported_dofs(V, [Support(left)])
-    >>> D.size, bool(np.isin(V.heaviside_dofs(), D).any())      # mouth left free
-    (12, False)
+    >>> D, g = supported_dofs(V, [Support(left)])                 # u = 0: a clamp
+    >>> D.size, bool(np.isin(V.heaviside_dofs(), D).any())      # mouth clamped shut
+    (16, True)
+    >>> jumps = Support(left, value=lambda x: np.stack([np.sign(x[1] - 0.5), 0 * x[0]]))
+    >>> D, g = supported_dofs(V, [jumps])
+    >>> bool(np.isin(V.heaviside_dofs()[:, 0], D).any())        # x: its mouth left free
+    False
     """
     return support_dofs(space, supports, lambda f: _crossing(space, f)[1])
 
@@ -453,9 +468,11 @@ def support_dofs(space, supports, mouth: Callable[[np.ndarray], np.ndarray]
     """The constrained unknowns and their values of ``supports`` on a crack's ``space``
     in 2D or 3D (:func:`supported_dofs`,
     :func:`skxfem.crack.space3d.supported_dofs`): the standard unknowns of the
-    supported nodes (a node on the crack, ψ = 0 and φ < 0, has two values and stays
-    free), and the branch unknowns of supported nodes away from the mouth set to zero;
-    Heaviside unknowns are never constrained; when every node is a branch node, the
+    supported nodes, and the branch unknowns of supported nodes away from the mouth set
+    to zero; at the mouth, where the support's value is continuous across the crack
+    (:func:`_shut_mouth`), the enriched unknowns of its nodes are set to zero too and a
+    node on the crack (ψ = 0 and φ < 0) takes the value, else they stay free and such a
+    node, which has two values, is left free (module notes); when every node is a branch node, the
     branch unknowns of :func:`dependent_dofs` are set to zero too (the system is
     singular otherwise).  ``mouth(facets)``: whether the crack meets each of the checked
     boundary ``facets``.
@@ -465,20 +482,23 @@ def support_dofs(space, supports, mouth: Callable[[np.ndarray], np.ndarray]
     nd = space.nodal_dofs
     branch_of = np.full(mesh.p.shape[1], -1)
     branch_of[space.branch] = np.arange(space.branch.size)
-    cd = space.branch_dofs()
+    heaviside_of = np.full(mesh.p.shape[1], -1)
+    heaviside_of[space.heaviside] = np.arange(space.heaviside.size)
+    cd, hd = space.branch_dofs(), space.heaviside_dofs()
     dofs, vals = [], []
     for k, s in enumerate(supports):
         comps = np.asarray(s.components, dtype=int)
         if comps.size == 0 or not np.all(np.isin(comps, tuple(range(d)))):
             raise ValueError(f"supports[{k}].components must be among {tuple(range(d))}, "
                              f"got {s.components!r}")
-        nodes, clamp = [], []
+        nodes, clamp, shut = [], [], np.zeros((d, 0), int)
         if s.facets is not None:
             f = check_facets(mesh, s.facets, f"supports[{k}].facets")
             fn = np.unique(mesh.facets[:, f])
-            at_mouth = np.unique(mesh.facets[:, f[mouth(f)]])
+            at = mouth(f)
             nodes.append(fn)
-            clamp.append(np.setdiff1d(fn, at_mouth))
+            clamp.append(np.setdiff1d(fn, np.unique(mesh.facets[:, f[at]])))
+            shut = _shut_mouth(mesh, geo.psi, geo.phi, mesh.facets[:, f[at]], s.value, d)
         if s.nodes is not None:
             nn = np.asarray(s.nodes)
             if nn.ndim != 1 or nn.dtype.kind not in "iu" or (
@@ -486,22 +506,70 @@ def support_dofs(space, supports, mouth: Callable[[np.ndarray], np.ndarray]
                 raise ValueError(f"supports[{k}].nodes must be node indices, got {nn!r:.60}")
             nodes.append(nn.astype(int))
         nodes = np.unique(np.concatenate(nodes)) if nodes else np.zeros(0, int)
-        nodes = nodes[(geo.psi[nodes] != 0) | (geo.phi[nodes] >= 0)]   # not on the crack
+        on_crack = (geo.psi[nodes] == 0) & (geo.phi[nodes] < 0)
         x = mesh.p[:, nodes]
         g = np.zeros_like(x) if s.value is None else np.asarray(s.value(x), float)
         if g.shape != x.shape or not np.all(np.isfinite(g)):
             raise ValueError(f"supports[{k}].value must return finite values of shape "
                              f"{x.shape} ({d}, n), got {g.shape}")
         clamp = np.concatenate(clamp) if clamp else np.zeros(0, int)
-        kb = branch_of[clamp]
-        kb = kb[kb >= 0]
         for c in comps:
-            dofs += [nd[c, nodes], cd[kb][:, :, c].ravel()]
-            vals += [g[c], np.zeros(kb.size * 4)]
+            # a node on the crack has a value per face: one only where the mouth is shut
+            here = ~on_crack | np.isin(nodes, shut[c])
+            kb = branch_of[np.union1d(clamp, shut[c])]
+            kh = heaviside_of[shut[c]]
+            kb, kh = kb[kb >= 0], kh[kh >= 0]
+            dofs += [nd[c, nodes[here]], cd[kb][:, :, c].ravel(), hd[kh, c]]
+            vals += [g[c, here], np.zeros(kb.size * 4 + kh.size)]
     D, first = np.unique(np.concatenate(dofs or [np.zeros(0, int)]), return_index=True)
     g = np.concatenate(vals or [np.zeros(0)])[first]
     dep = dependent_dofs(space, D)
     return np.concatenate([D, dep]), np.concatenate([g, np.zeros(dep.size)])
+
+
+def _shut_mouth(mesh, psi: np.ndarray, phi: np.ndarray, facets: np.ndarray, value,
+                d: int) -> np.ndarray:
+    """(d, ...) per component, the nodes of the mouth ``facets`` (nodes per facet, nf)
+    where the imposed ``value`` (None: zero) is continuous across the crack: there the
+    support clamps the mouth shut (an object array of node arrays, one per component).
+
+    The test, at each crossing x_c of a facet's side with ψ_h = 0 behind the front
+    (φ_h < 0; e the side's unit direction from ψ < 0 to ψ > 0): the jump
+    J(δ) = g(x_c + δe) - g(x_c - δe) at δ = 1e-3 h and 1e-6 h (h the side's length).
+    A continuous g has J → 0 with δ; a discontinuous one keeps its jump: it is one where
+    |J(1e-6 h)| > ½ |J(1e-3 h)| and above 1e-12 of g's size."""
+    out = np.empty(d, dtype=object)
+    for c in range(d):
+        out[c] = np.zeros(0, int)
+    if facets.shape[1] == 0:
+        return out
+    pairs = [(i, j) for i in range(facets.shape[0]) for j in range(i + 1, facets.shape[0])]
+    a = np.concatenate([facets[i] for i, _ in pairs])
+    b = np.concatenate([facets[j] for _, j in pairs])
+    owner = np.tile(np.arange(facets.shape[1]), len(pairs))
+    lo, hi = np.where(psi[a] <= psi[b], a, b), np.where(psi[a] <= psi[b], b, a)
+    crossed = (psi[lo] <= 0) & (psi[hi] >= 0) & (psi[lo] < psi[hi])
+    lo, hi, owner = lo[crossed], hi[crossed], owner[crossed]
+    t = psi[lo] / (psi[lo] - psi[hi])
+    behind = phi[lo] + t * (phi[hi] - phi[lo]) < 0
+    lo, hi, owner, t = lo[behind], hi[behind], owner[behind], t[behind]
+    xa, xb = mesh.p[:, lo], mesh.p[:, hi]
+    xc = xa + t * (xb - xa)
+    length = np.linalg.norm(xb - xa, axis=0)
+    e = (xb - xa) / length
+
+    def g(x):
+        return np.zeros_like(x) if value is None else np.asarray(value(x), float)
+
+    def jump(delta):
+        return np.abs(g(xc + delta * length * e) - g(xc - delta * length * e))
+
+    coarse, fine = jump(1e-3), jump(1e-6)
+    size = np.abs(g(xc)).max(initial=0.0)
+    broken = (fine > 0.5 * coarse) & (fine > 1e-12 * max(size, 1e-300))   # (d, n)
+    for c in range(d):            # a facet with no crossing behind the front stays open
+        out[c] = np.unique(facets[:, np.setdiff1d(owner, owner[broken[c]])])
+    return out
 
 
 def dependent_dofs(space, fixed: np.ndarray) -> np.ndarray:

@@ -745,10 +745,10 @@ def mouth_facets(space: CrackSpace3D, facets: np.ndarray) -> np.ndarray:
 
 def supported_dofs(space: CrackSpace3D, supports) -> tuple[np.ndarray, np.ndarray]:
     """The constrained unknowns and their values: the standard unknowns of the supported
-    nodes (a node on the crack, ψ = 0 and φ < 0, has two values and stays free), and the
-    branch unknowns of supported nodes away from the mouth (the boundary facets the
-    crack meets) set to zero; Heaviside unknowns are never constrained (as in 2D,
-    :mod:`skxfem.crack.assembly`)."""
+    nodes, and the branch unknowns of supported nodes away from the mouth (the boundary
+    facets the crack meets) set to zero; at the mouth the support clamps it shut where
+    its value is continuous across the crack, and leaves it free where it jumps (as in
+    2D: :mod:`skxfem.crack.assembly`'s notes)."""
     return support_dofs(space, supports, lambda f: mouth_facets(space, f))
 
 
