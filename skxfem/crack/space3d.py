@@ -66,7 +66,7 @@ from ..fem.material import Material, stiffness_matrix
 from ..fem.quadrature import cell_rule, simplex_points
 from ..fem.simplex import split
 from .assembly import check_facets, support_dofs
-from .branch import branch, side_angle
+from .branch import branch, branch_closed_form, side_angle
 from .dofs import EnrichedUnknowns, virtual_map
 from .geometry import check_geometry
 from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
@@ -292,29 +292,16 @@ def _kinds(phi, psi, gphi, gpsi, side, cut) -> tuple[np.ndarray, np.ndarray]:
     reached 1.6e-2 h^2.5 p on the branch rows at h = 0.125 (six such cells; 1e-3 h^2.5 p
     without them, measured).
 
-    The branch functions and their gradients share their trigonometry: with s, c = sin,
-    cos θ/2, F = √r {s, c, s sin θ, c sin θ} (:func:`skxfem.crack.branch.branch`) and
-    ∂F/∂φ = {-s, c, -sin(3θ/2) sin θ, -cos(3θ/2) sin θ}/(2√r),
-    ∂F/∂ψ = {c, s, s + sin(3θ/2) cos θ, c + cos(3θ/2) cos θ}/(2√r)
-    (:func:`skxfem.crack.branch.branch_local_gradient` in closed form, φ and ψ the local
-    coordinates); zero at r = 0."""
+    F and its derivatives along φ and ψ, the local coordinates, in closed form
+    (:func:`skxfem.crack.branch.branch_closed_form`; zero at r = 0), then the chain rule
+    ∇F = ∂F/∂φ ∇φ_h + ∂F/∂ψ ∇ψ_h."""
     r = np.hypot(phi, psi)
-    theta = side_angle(phi, psi, side, cut)
-    live = r > 0
-    sr = np.sqrt(np.where(live, r, 1.0))
-    half = np.where(live, theta, 0.0) / 2
-    s, c = np.sin(half), np.cos(half)
-    st, ct = 2 * s * c, 1 - 2 * s * s                    # sin θ, cos θ
-    s3, c3 = s * (3 - 4 * s * s), c * (4 * c * c - 3)     # sin 3θ/2, cos 3θ/2
-    on = live / (2 * sr)
+    F, dphi, dpsi = branch_closed_form(r, side_angle(phi, psi, side, cut))
     shape = np.shape(r)
     g = np.empty(shape + (6,))
     g[..., 0] = 1.0
     g[..., 1] = np.where(side == 0, 1.0, side)
-    for k, f in enumerate((s, c, s * st, c * st)):
-        g[..., 2 + k] = sr * f * live
-    dphi = np.stack([-s, c, -s3 * st, -c3 * st], axis=-1) * on[..., None]
-    dpsi = np.stack([c, s, s + s3 * ct, c + c3 * ct], axis=-1) * on[..., None]
+    g[..., 2:] = F
     dg = np.zeros(shape + (6, 3))
     dg[..., 2:, :] = (dphi[..., None] * np.expand_dims(gphi, -2)
                       + dpsi[..., None] * np.expand_dims(gpsi, -2))
