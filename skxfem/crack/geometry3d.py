@@ -52,7 +52,7 @@ from .geometry import ZERO, check_mesh_type, level_set_values
 
 __all__ = ["CrackGeometry3D", "crack_geometry_3d", "check_mesh_3d", "front_chains",
            "front_fit", "front_offset",
-           "barycentric", "VOLUME_TOL"]
+           "barycentric", "shape_gradients", "cell_gradients", "VOLUME_TOL"]
 
 VOLUME_TOL = 1e-12
 """Sub-tetrahedra below VOLUME_TOL times their cell's volume are dropped (zero-volume
@@ -83,6 +83,33 @@ def nodal_level_set(name: str, value, mesh) -> np.ndarray:
     return level_set_values(name, value, mesh, mesh.edges)
 
 
+def shape_gradients(mesh, cells: np.ndarray) -> np.ndarray:
+    """The gradients ∇λ (nc, 4, 3) of the P1 shape functions (the barycentric
+    coordinates) of ``cells`` (nc,), constant in each: the rows of A⁻¹ for ∇λ₁..₃, A the
+    matrix of the edge vectors V_i - V_0 in columns, and ∇λ₀ = -(∇λ₁ + ∇λ₂ + ∇λ₃).
+
+    >>> shape_gradients(MeshTet1(), np.array([0])).sum(axis=1).round(12).tolist()
+    [[0.0, 0.0, 0.0]]
+    """
+    P = mesh.p[:, mesh.t[:, cells]]                      # (3, 4, nc)
+    A = np.transpose(P[:, 1:] - P[:, :1], (2, 0, 1))     # (nc, 3, 3) columns V_i - V_0
+    Ainv = np.linalg.inv(A)                               # rows: ∇λ₁..₃
+    return np.concatenate([-Ainv.sum(axis=1, keepdims=True), Ainv], axis=1)
+
+
+def cell_gradients(mesh, nodal: np.ndarray, cells: np.ndarray | None = None) -> np.ndarray:
+    """∇ (3, nc) of the P1 interpolant of the nodal values ``nodal`` (nverts,) in each of
+    ``cells`` (nc,; default all), constant in a cell: Σ_k nodal_k ∇λ_k
+    (:func:`shape_gradients`).
+
+    >>> m = MeshTet1()
+    >>> cell_gradients(m, 2 * m.p[0] - m.p[2]).round(12)[:, 0].tolist()
+    [2.0, 0.0, -1.0]
+    """
+    cells = np.arange(mesh.t.shape[1]) if cells is None else np.asarray(cells)
+    return np.einsum("nk,nki->in", nodal[mesh.t[:, cells]].T, shape_gradients(mesh, cells))
+
+
 def barycentric(mesh, cells: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Barycentric coordinates λ (n, 4) of points x (3, n) in their ``cells`` (n,) and
     the gradients ∇λ (n, 4, 3): the P1 shape functions and their gradients.
@@ -97,12 +124,9 @@ def barycentric(mesh, cells: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.
         uc, inv = cells[start], np.cumsum(start) - 1
     else:
         uc, inv = np.unique(cells, return_inverse=True)  # one inverse per cell
-    P = mesh.p[:, mesh.t[:, uc]]                         # (3, 4, nc)
-    A = np.transpose(P[:, 1:] - P[:, :1], (2, 0, 1))     # (nc, 3, 3) columns V_i - V_0
-    Ainv = np.linalg.inv(A)                               # rows: ∇λ₁..₃
     inv = inv.ravel()
-    dlam = np.concatenate([-Ainv.sum(axis=1, keepdims=True), Ainv], axis=1)[inv]
-    d = x - P[:, 0][:, inv]                               # (3, n) from V_0
+    dlam = shape_gradients(mesh, uc)[inv]
+    d = x - mesh.p[:, mesh.t[0, uc]][:, inv]              # (3, n) from V_0
     lam = np.empty((cells.size, 4))
     lam[:, 1:] = sum(dlam[:, 1:, j] * d[j][:, None] for j in range(3))
     lam[:, 0] = 1 - lam[:, 1:].sum(axis=1)
@@ -269,7 +293,7 @@ def crack_geometry_3d(mesh, psi, phi) -> CrackGeometry3D:
     # tolerance of a vertex on the front (ZERO h |∇φ_h|, below) both are front cells,
     # whose pieces then get the rules graded at the front
     h = np.ptp(mesh.p[:, t], axis=1).max(axis=0)          # (nc,) cell sizes
-    gphi = _gradients(mesh, phi)
+    gphi = cell_gradients(mesh, phi)
     near = ZERO * h * np.linalg.norm(gphi, axis=0)
     front = has & (lo <= near) & (hi >= -near)
     split_ = crossed & (hi < 0) & ~front
@@ -304,7 +328,7 @@ def crack_geometry_3d(mesh, psi, phi) -> CrackGeometry3D:
 
     # the vertices on the front first, counted
     pv, fv = _values_at(mesh, sub_cell, sub, psi), _values_at(mesh, sub_cell, sub, phi)
-    gpsi = _gradients(mesh, psi)
+    gpsi = cell_gradients(mesh, psi)
     tol = ZERO * h[sub_cell][:, None]
     on_psi = np.abs(pv) <= tol * np.linalg.norm(gpsi[:, sub_cell], axis=0)[:, None]
     on_phi = np.abs(fv) <= tol * np.linalg.norm(gphi[:, sub_cell], axis=0)[:, None]
@@ -354,13 +378,6 @@ def _cut_edges(mesh, psi, phi, faces, face_cell, h):
 def mesh_cells(mesh, cells: np.ndarray) -> np.ndarray:
     """The tetrahedra (n, 4, 3) of ``cells``."""
     return np.transpose(mesh.p[:, mesh.t[:, cells]], (2, 1, 0))
-
-
-def _gradients(mesh, nodal: np.ndarray) -> np.ndarray:
-    """∇ of the P1 interpolant of ``nodal`` in each cell, (3, ncells)."""
-    cells = np.arange(mesh.t.shape[1])
-    _, dlam = barycentric(mesh, cells, mesh.p[:, mesh.t[0]])
-    return np.einsum("nk,nki->in", nodal[mesh.t].T, dlam)
 
 
 def _faces(sub, sub_cell, sub_side, on_psi, fv, tol, gphi):

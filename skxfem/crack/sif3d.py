@@ -114,7 +114,14 @@ from ..fem.loads import force_field
 from ..fem.material import Material
 from .branch import side_angle
 from .frame import TipFrame, tip_frame
-from .geometry3d import barycentric, crack_geometry_3d, front_chains, front_fit, front_offset
+from .geometry3d import (
+    barycentric,
+    cell_gradients,
+    crack_geometry_3d,
+    front_chains,
+    front_fit,
+    front_offset,
+)
 from .interaction import sif_from_interaction
 from .radius import DOMAIN_FRACTION
 from .space3d import (
@@ -216,10 +223,7 @@ def front_frame(space, points: np.ndarray) -> TipFrame:
                 / (d * d).sum(axis=0), 0, 1)
     dist = np.linalg.norm(A[:, None] + t * d[:, None] - points[:, :, None], axis=0)
     cells = geo.segment_cell[np.argmin(dist, axis=1)]
-    _, dlam = barycentric(mesh, cells, points)
-    gphi = np.einsum("nk,nki->in", geo.phi[mesh.t[:, cells]].T, dlam)
-    gpsi = np.einsum("nk,nki->in", geo.psi[mesh.t[:, cells]].T, dlam)
-    return tip_frame(gphi, gpsi)
+    return tip_frame(cell_gradients(mesh, geo.phi, cells), cell_gradients(mesh, geo.psi, cells))
 
 
 def boundary_reach(mesh, points: np.ndarray, e3: np.ndarray, length: float) -> np.ndarray:
@@ -288,10 +292,8 @@ def _nodal_directions(space, cells: np.ndarray, spacing: float, chains=None) -> 
     its nearest place (:func:`fitted_frame`), so that the direction field is smooth
     and the normal lines of a curved front are straight lines along it."""
     mesh, geo = space.mesh, space.geometry
-    _, dlam = barycentric(mesh, cells, mesh.p[:, mesh.t[0, cells]])
-    gph = np.einsum("nk,nki->in", geo.phi[mesh.t[:, cells]].T, dlam)
-    gps = np.einsum("nk,nki->in", geo.psi[mesh.t[:, cells]].T, dlam)
-    fr = tip_frame(gph, gps)                              # (3, nc)
+    fr = tip_frame(cell_gradients(mesh, geo.phi, cells),
+                   cell_gradients(mesh, geo.psi, cells))  # (3, nc)
     e1, e2 = np.zeros((mesh.p.shape[1], 3)), np.zeros((mesh.p.shape[1], 3))
     for k in range(4):                                    # the 4 nodes of a cell
         np.add.at(e1, mesh.t[k, cells], fr.e1.T)
@@ -475,8 +477,7 @@ def _cell_r_bound(space, cells: np.ndarray) -> np.ndarray:
     for k in range(0, cells.size, 4096):                  # blocks: nc × nseg distances
         cc = cells[k:k + 4096]
         psi, V = geo.psi[mesh.t[:, cc]], mesh.p[:, mesh.t[:, cc]]      # (4, nc), (3, 4, nc)
-        _, dlam = barycentric(mesh, cc, V[:, 0])
-        g = np.einsum("kn,nki->in", psi, dlam)
+        g = cell_gradients(mesh, geo.psi, cc)
         g2 = (g * g).sum(axis=0)
         ok = g2 > 0
         Y = V - psi / np.where(ok, g2, 1.0) * g[:, None]  # the vertices' projections

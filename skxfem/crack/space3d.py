@@ -69,7 +69,13 @@ from .assembly import check_facets, support_dofs
 from .branch import branch, branch_closed_form, side_angle
 from .dofs import EnrichedUnknowns, virtual_map
 from .geometry import check_geometry
-from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
+from .geometry3d import (
+    CrackGeometry3D,
+    barycentric,
+    check_mesh_3d,
+    mesh_cells,
+    shape_gradients,
+)
 from .quadrature3d import NEAR_GRADING, NEAR_POINTS, collapsed, edge_polar, vertex_polar
 from .radius import enrichment_radius
 from .space import nodal_scaling as _nodal_scaling
@@ -315,11 +321,8 @@ def _cell_values(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray, side: np
     :func:`point_values` at each point, batched cell by cell."""
     mesh, geo = space.mesh, space.geometry
     nodes = mesh.t[:, cells].T                            # (nc, 4)
-    P = mesh.p[:, nodes]                                  # (3, nc, 4)
-    A = np.transpose(P[:, :, 1:] - P[:, :, :1], (1, 0, 2))     # columns V_i - V_0
-    Ainv = np.linalg.inv(A)                               # rows ∇λ₁..₃
-    dlam = np.concatenate([-Ainv.sum(axis=1, keepdims=True), Ainv], axis=1)
-    l123 = np.matmul(x - P[:, :, 0].T[:, None], np.swapaxes(Ainv, 1, 2))
+    dlam = shape_gradients(mesh, cells)                   # (nc, 4, 3)
+    l123 = np.matmul(x - mesh.p[:, nodes[:, 0]].T[:, None], np.swapaxes(dlam[:, 1:], 1, 2))
     lam = np.concatenate([1 - l123.sum(axis=2, keepdims=True), l123], axis=2)
     phi = np.matmul(lam, geo.phi[nodes][:, :, None])[..., 0]
     psi = np.matmul(lam, geo.psi[nodes][:, :, None])[..., 0]
