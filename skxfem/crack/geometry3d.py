@@ -48,7 +48,7 @@ import numpy as np
 from skfem import MeshTet1
 
 from ..fem.simplex import split
-from .geometry import ZERO, check_mesh_type, level_set_values
+from .geometry import ZERO, check_mesh_type, level_set_values, nearest_on_segments
 
 __all__ = ["CrackGeometry3D", "crack_geometry_3d", "check_mesh_3d", "front_chains",
            "front_fit", "front_offset",
@@ -516,10 +516,7 @@ def front_fit(geometry: CrackGeometry3D, points: np.ndarray, spacing: float,
         s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(seg, axis=0))])
         total = s[-1]
         # the nearest place on the chain of each point: its segment and arc length
-        t = np.clip(np.einsum("ik,ikm->km", seg, points[:, None] - pts[:, :-1, None])
-                    / np.maximum((seg * seg).sum(axis=0), 1e-300)[:, None], 0, 1)
-        dist = np.linalg.norm(pts[:, :-1, None] + t * seg[:, :, None] - points[:, None],
-                              axis=0)
+        t, _, dist = nearest_on_segments(pts[:, :-1, None], seg[:, :, None], points[:, None])
         j = np.argmin(dist, axis=0)
         cols = np.arange(points.shape[1])
         at = s[j] + t[j, cols] * (s[j + 1] - s[j])
@@ -539,16 +536,6 @@ def front_fit(geometry: CrackGeometry3D, points: np.ndarray, spacing: float,
         curvature[:, near] = kvec[:, near]
         best = np.minimum(best, dist[j, cols])
     return tangent, curvature
-
-
-def _segment_points(A: np.ndarray, B: np.ndarray, x: np.ndarray, seg: np.ndarray):
-    """The nearest points (3, n, k) of the segments ``seg`` (n, k) from A to B (3, nseg)
-    to the points x (3, n), and their distances (n, k)."""
-    a, d = A[:, seg], (B - A)[:, seg]
-    t = np.clip(((x[:, :, None] - a) * d).sum(axis=0)
-                / np.maximum((d * d).sum(axis=0), 1e-300), 0.0, 1.0)
-    c = a + t * d
-    return c, np.linalg.norm(x[:, :, None] - c, axis=0)
 
 
 OFFSET_SAMPLES = 20
@@ -594,7 +581,8 @@ def front_offset(geometry: CrackGeometry3D,
     best, c = np.full(x.shape[1], np.inf), np.full_like(x, np.nan)
     for j in range(k):
         rows = np.flatnonzero((cand[:, j, None] != cand[:, :j]).all(axis=1))
-        cj, dj = _segment_points(A, B, x[:, rows], cand[rows, j, None])
+        s = cand[rows, j, None]                           # (n, 1) the segments
+        _, cj, dj = nearest_on_segments(A[:, s], (B - A)[:, s], x[:, rows, None])
         nearer = dj[:, 0] < best[rows]
         rows = rows[nearer]
         best[rows], c[:, rows] = dj[nearer, 0], cj[:, nearer, 0]

@@ -114,6 +114,7 @@ from ..fem.loads import force_field
 from ..fem.material import Material
 from .branch import side_angle
 from .frame import TipFrame, tip_frame
+from .geometry import nearest_on_segments
 from .geometry3d import (
     barycentric,
     cell_gradients,
@@ -218,10 +219,7 @@ def front_frame(space, points: np.ndarray) -> TipFrame:
     the front cell of the nearest front segment."""
     geo, mesh = space.geometry, space.mesh
     A, B = geo.segments[0], geo.segments[1]
-    d = B - A
-    t = np.clip(((points[:, :, None] - A[:, None]) * d[:, None]).sum(axis=0)
-                / (d * d).sum(axis=0), 0, 1)
-    dist = np.linalg.norm(A[:, None] + t * d[:, None] - points[:, :, None], axis=0)
+    dist = nearest_on_segments(A[:, None], (B - A)[:, None], points[:, :, None])[2]
     cells = geo.segment_cell[np.argmin(dist, axis=1)]
     return tip_frame(cell_gradients(mesh, geo.phi, cells), cell_gradients(mesh, geo.psi, cells))
 

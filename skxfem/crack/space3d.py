@@ -68,7 +68,7 @@ from ..fem.simplex import split
 from .assembly import check_facets, support_dofs
 from .branch import branch, branch_closed_form, side_angle
 from .dofs import EnrichedUnknowns, virtual_map
-from .geometry import check_geometry
+from .geometry import check_geometry, nearest_on_segments
 from .geometry3d import (
     CrackGeometry3D,
     barycentric,
@@ -160,9 +160,8 @@ def front_distance(geometry: CrackGeometry3D, x: np.ndarray) -> np.ndarray:
     d = B - A
     best = np.full(x.shape[1], np.inf)
     for k in range(0, A.shape[1], 256):                   # batches of segments
-        a, dd = A[:, None, k:k + 256], d[:, None, k:k + 256]
-        t = np.clip(((x[:, :, None] - a) * dd).sum(axis=0) / (dd * dd).sum(axis=0), 0, 1)
-        dist = np.linalg.norm(a + t * dd - x[:, :, None], axis=0)
+        dist = nearest_on_segments(A[:, None, k:k + 256], d[:, None, k:k + 256],
+                                   x[:, :, None])[2]
         best = np.minimum(best, dist.min(axis=1))
     return best
 
