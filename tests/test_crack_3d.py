@@ -11,6 +11,7 @@ from skxfem.crack.geometry3d import (
     cell_gradients,
     crack_geometry_3d,
     front_chains,
+    runs,
     shape_gradients,
 )
 from skxfem.crack.quadrature3d import collapsed, edge_polar, vertex_polar
@@ -96,6 +97,17 @@ def test_cell_gradients_are_exact_on_a_linear_field_and_barycentric_shares_them(
     assert np.array_equal(cell_gradients(m, a @ m.p, cells), cell_gradients(m, a @ m.p)[:, cells])
     x = m.p[:, m.t[:, cells]].mean(axis=1)
     assert np.array_equal(barycentric(m, cells, x)[1], shape_gradients(m, cells))
+
+
+@pytest.mark.parametrize("keys", [np.array([3, 3, 1, 3, 3, 3, 0]),
+                                  np.array([[0, 1], [0, 1], [0, 2], [1, 2], [1, 2]]),
+                                  np.zeros(0, int), np.zeros((0, 4), int)])
+def test_runs_are_the_first_of_each_run_and_the_run_of_each_key(keys):
+    """keys[first][run] is keys, consecutive runs differ, and the runs count up."""
+    first, run = runs(keys)
+    assert np.array_equal(keys[first][run], keys) and run.shape == (len(keys),)
+    assert np.all(np.diff(run) >= 0) and np.all(np.diff(run) <= 1)
+    assert all(np.any(keys[i] != keys[i - 1]) for i in first[1:])
 
 
 def test_penny_front_is_one_closed_loop():

@@ -52,7 +52,7 @@ from .geometry import ZERO, check_mesh_type, level_set_values, nearest_on_segmen
 
 __all__ = ["CrackGeometry3D", "crack_geometry_3d", "check_mesh_3d", "front_chains",
            "front_fit", "front_offset",
-           "barycentric", "shape_gradients", "cell_gradients", "VOLUME_TOL"]
+           "barycentric", "shape_gradients", "cell_gradients", "runs", "VOLUME_TOL"]
 
 VOLUME_TOL = 1e-12
 """Sub-tetrahedra below VOLUME_TOL times their cell's volume are dropped (zero-volume
@@ -81,6 +81,24 @@ def nodal_level_set(name: str, value, mesh) -> np.ndarray:
     True
     """
     return level_set_values(name, value, mesh, mesh.edges)
+
+
+def runs(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The runs of equal consecutive ``keys`` (n, ...) (points of one cell, in the order
+    of quadrature batches; a key of several entries, such as a cell's nodes, is equal
+    when all are): the first index of each run and the run of each key (n,), so that
+    ``keys[first][run]`` is ``keys``.  What is computed once per cell is computed once
+    per run: as ``np.unique(keys, return_inverse=True)`` without its sort.
+
+    >>> first, run = runs(np.array([4, 4, 2, 2, 2, 4]))
+    >>> first.tolist(), run.tolist()
+    ([0, 2, 5], [0, 0, 1, 1, 1, 2])
+    """
+    keys = np.asarray(keys)
+    new = np.ones(len(keys), dtype=bool)
+    change = keys[1:] != keys[:-1]
+    new[1:] = change.any(axis=tuple(range(1, change.ndim))) if change.ndim > 1 else change
+    return np.flatnonzero(new), np.cumsum(new) - 1
 
 
 def shape_gradients(mesh, cells: np.ndarray) -> np.ndarray:
@@ -120,8 +138,8 @@ def barycentric(mesh, cells: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.
     """
     cells = np.asarray(cells).ravel()
     if cells.size and np.all(cells[1:] >= cells[:-1]):   # sorted (quadrature batches):
-        start = np.concatenate([[True], cells[1:] != cells[:-1]])   # no sort needed
-        uc, inv = cells[start], np.cumsum(start) - 1
+        first, inv = runs(cells)                          # no sort needed
+        uc = cells[first]
     else:
         uc, inv = np.unique(cells, return_inverse=True)  # one inverse per cell
     inv = inv.ravel()

@@ -122,6 +122,7 @@ from .geometry3d import (
     front_chains,
     front_fit,
     front_offset,
+    runs,
 )
 from .interaction import sif_from_interaction
 from .radius import DOMAIN_FRACTION
@@ -452,8 +453,7 @@ def _x1_bound(space, cells, X, psi, grad_psi) -> np.ndarray:
     mesh, geo = space.mesh, space.geometry
     if cells.size == 0:
         return np.zeros(0)
-    first = np.flatnonzero(np.concatenate([[True], cells[1:] != cells[:-1]]))
-    inv = np.cumsum(np.concatenate([[False], cells[1:] != cells[:-1]]))
+    first, inv = runs(cells)
     g2 = (grad_psi * grad_psi).sum(axis=0)
     y = X - psi / g2 * grad_psi
     uc = cells[first]
@@ -714,9 +714,7 @@ def _point_frames(e1_nodes: np.ndarray, nodes: np.ndarray, lam: np.ndarray,
     e1n = e1_nodes[nodes]                                 # (n, 4, 3)
     e1 = np.einsum("nk,nki->in", lam, e1n)
     # G is constant in a cell: once per run of points of one cell
-    new = np.ones(len(nodes), dtype=bool)
-    new[1:] = (nodes[1:] != nodes[:-1]).any(axis=1)
-    first, run = np.flatnonzero(new), np.cumsum(new) - 1
+    first, run = runs(nodes)
     G = np.einsum("nkj,nki->jin", dlam[first], e1n[first])[:, :, run]
     return e1, G, tip_frame(e1, grad_psi).R
 
