@@ -35,6 +35,7 @@ from .contact.interface import operators, sticking_rows
 from .cut import point_lengths
 from .enrich import mass
 from .problem import assemble
+from .scene.laws import CONTACT_LAWS
 from .scene.model import resolve
 
 __all__ = ["InfSup", "inf_sup_constant", "inf_sup"]
@@ -137,7 +138,16 @@ def inf_sup(scene, scaling: str = "h", law: str | None = None) -> InfSup:
     """
     if scaling not in ("h", "l2"):
         raise ValueError(f"scaling must be 'h' or 'l2', got {scaling!r}")
-    p = assemble(resolve(scene), "bilateral" if law == "stick" else law)
+    resolved = resolve(scene)
+    laws = [i.law for i in resolved.scene.interfaces] if law is None else [law]
+    contact = [name for name in laws if name in CONTACT_LAWS]
+    if contact or all(name == "free" for name in laws):
+        what = (f"law {contact[0]!r} is a contact law, whose multipliers change with the "
+                f"contact state" if contact else "law 'free' has no multipliers (free "
+                "faces), so no inf-sup constant")
+        raise ValueError(f"inf_sup: {what}; give law='bilateral' (the normal multipliers), "
+                         f"'stick' or 'bonded'")
+    p = assemble(resolved, "bilateral" if law == "stick" else law)
     mesh, V = p.mesh, p.V
     L = np.ptp(mesh.p, axis=1).max()
     A = p.K + (p.scene.material.E / L ** 2) * mass(V)

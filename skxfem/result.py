@@ -40,6 +40,7 @@ interface they are Ω⁻ and Ω⁺ (``[[-1], [1]]``), which :attr:`Result.u_minu
 """
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -75,9 +76,11 @@ class Result:
     as :attr:`skxfem.problem.Problem.V`) and ``problem`` the assembled problem.
     ``front``: one dict per interface with a front (a crack, :class:`skxfem.gamma.Crack`),
     in the scene's order: ``points`` (m, dim) the front's points, ``K_I``, ``K_II``
-    (m,) the stress intensity factors there (:func:`skxfem.crack.sif.sif`) and
+    and, in 3D, ``K_III`` (m,) the stress intensity factors there
+    (:func:`skxfem.crack.sif.sif`, :func:`skxfem.crack.sif3d.sif_3d`) and
     ``interface`` the index of the crack in the scene's interfaces; empty without a
-    crack.
+    crack.  ``timings``: seconds per stage, ``cut``, ``enrich``, ``assemble``,
+    ``solve`` and, with a crack, ``front`` (K along its fronts).
     """
 
     scene: object
@@ -212,7 +215,8 @@ def result(pb, U: np.ndarray, traction: np.ndarray, max_jump: float, n_multiplie
     """The :class:`Result` of the assembled problem ``pb`` solved as U in ``seconds``, with
     the ``traction`` (dim, n) at the cut edges' points (of every interface in turn);
     ``contact``: the keywords ``steps``, ``status``, ``ops``, ``law``, ``removed``.  Its
-    ``timings``: the stages of ``pb.timings`` (cut, enrich, assemble) and the solve."""
+    ``timings``: the stages of ``pb.timings`` (cut, enrich, assemble), the solve and,
+    with a crack, ``front``: K along its fronts (:func:`_fronts`)."""
     t = pb.timings
     timings = {"cut": t["cut"] + t["space"], "enrich": t["enrich"],
                "assemble": sum(t[k] for k in ("stiffness", "load", "constraints", "interface",
@@ -222,6 +226,10 @@ def result(pb, U: np.ndarray, traction: np.ndarray, max_jump: float, n_multiplie
                   n_dofs=pb.V.N, n_multipliers=int(n_multipliers), timings=timings, U=U,
                   V=pb.V, linear=linear, linear_info=linear_info, problem=pb,
                   regions=regions, u_regions=fields, **contact)
+    start = time.perf_counter()
+    front = _fronts(pb, U, traction, contact.get("steps", ()))
+    if front:
+        timings["front"] = time.perf_counter() - start
     qs = pb.interfaces
     sizes = [q.cut.edge_ids.size for q in qs]
     offsets = np.cumsum([0] + sizes[:-1])
@@ -231,7 +239,7 @@ def result(pb, U: np.ndarray, traction: np.ndarray, max_jump: float, n_multiplie
         jump=np.hstack([q.gamma.point_jumps(q.V, U[q.columns]) for q in qs]),
         facets=np.hstack([_joined(q.cut.facets) + o for q, o in zip(qs, offsets)]),
         interface=np.repeat(np.arange(len(qs)), sizes),
-        front=_fronts(pb, U, traction, contact.get("steps", ())), **common)
+        front=front, **common)
 
 
 def _joined(facets: np.ndarray) -> np.ndarray:

@@ -144,9 +144,11 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
         raise ValueError(f"dependent must be 'remove' or 'raise', got {dependent!r}")
     settings = p.scene.solver.override(linear, linear_tol)
     cracks = [not q.V.splits for q in p.interfaces]
+    zone = max((q.V.space.branch.size / p.mesh.p.shape[1]
+                for c, q in zip(cracks, p.interfaces) if c), default=0.0)
     linear = choose_linear(settings.linear, p.mesh.dim(), p.V.N,
                            any(c and q.P.shape[1] for c, q in zip(cracks, p.interfaces)),
-                           any(cracks))
+                           any(cracks), zone)
     linear_tol = settings.linear_tol
     mesh, V, B, D = p.mesh, p.V, p.B, p.D
     t0 = time.perf_counter()

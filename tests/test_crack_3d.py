@@ -2,6 +2,8 @@
 the geometry of a crack and its front, the almost-polar rules, the space's stiffness,
 and K_I, K_II, K_III along a straight through-thickness front with the exact Williams
 fields imposed on the boundary."""
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from skfem import MeshTet1, MeshTri1
@@ -18,6 +20,7 @@ from skxfem.crack.quadrature3d import collapsed, edge_polar, vertex_polar
 from skxfem.crack.sif3d import front_points, sif_3d, solve_crack_3d
 from skxfem.crack.space3d import Support3D, crack_space_3d, field_at, stiffness
 from skxfem.fem.material import Material
+from skxfem.scene import Displacement
 from skxfem.studies.cracks3d import williams_slab
 
 MAT = Material(1.0, 0.3)
@@ -545,3 +548,56 @@ def test_a_sif_radius_under_a_cell_is_refused_before_the_solve():
     with pytest.raises(ValueError, match=r"sif_radius 0\.001 is under the front cells' "
                        r"size 0\.\d+: .* take it at least"):
         solve(_cube_crack(6, plane((0.5, 0, 0), (1, 0, 0)), sif_radius=0.001))
+
+
+def rollers_cube(n):
+    """The unit cube of n³ × 6 tetrahedra on rollers below (two nodes hold x and y),
+    pulled above, an edge crack to its middle mid-cell: the supports clamp no branch
+    unknown of x or y."""
+    from skxfem import Box, Displacement, Interface, Scene, SurfaceLoad, plane
+    crack = Interface(plane((0, 0, 0.5 + 0.5 / n), (0, 0, 1)), law="free",
+                      front=plane((0.5 + 0.25 / n, 0, 0), (1, 0, 0)))
+    return Scene(Box(n, "tet"), interfaces=(crack,), material=MAT,
+                 displacements=(Displacement("zmin", {"z": 0.0}),
+                                Displacement("zmin", {"x": 0.0, "y": 0.0},
+                                             where="x < 1e-9 and y < 1e-9"),
+                                Displacement("zmin", {"y": 0.0},
+                                             where="x > 1 - 1e-9 and y < 1e-9")),
+                 loads=(SurfaceLoad("zmax", traction=(0.0, 0.0, 1.0)),))
+
+
+def test_the_default_space_on_a_coarse_tetrahedral_mesh_solves():
+    """:func:`rollers_cube` at n = 4: the default r_e (4 front cells) enriches every
+    node, and the branch functions' two relations (skxfem.crack.assembly.dependent_dofs)
+    left x and y singular: 'the system is singular to working precision' at n = 3, 4, 5.
+    Now it solves."""
+    from skxfem.solver import solve
+    r = solve(rollers_cube(4))
+    V = r.problem.interfaces[0].V.space
+    assert V.branch.size == r.mesh.p.shape[1]
+    assert np.all(r.front[0]["K_I"] > 0)
+
+
+def test_K_does_not_depend_on_how_the_level_sets_are_scaled():
+    """:func:`rollers_cube`'s crack clamped below, given by ψ = 10 (z - z₀) (or 0.2
+    (z - z₀)): the front cells' size (√(φ² + ψ²) of their nodes) came out 5 times too
+    large and no front point got K ('under a cell of room'); the geometry now rescales
+    ψ (crack.geometry3d.orthonormal_on_front): the same K."""
+    from skxfem.levelset import LevelSet
+    from skxfem.solver import solve
+    n = 8
+    z0, x0 = 0.5 + 0.5 / n, 0.5 + 0.25 / n
+
+    def K(a):
+        scene = rollers_cube(n)
+        crack = replace(scene.interfaces[0], levelset=LevelSet(lambda x: a * (x[2] - z0), 3),
+                        front=LevelSet(lambda x: x[0] - x0, 3))
+        scene = replace(scene, displacements=(
+            Displacement("zmin", {"x": 0.0, "y": 0.0, "z": 0.0}),),
+            **scene.given_interfaces((crack,)))
+        return solve(scene).front[0]["K_I"]
+
+    ref = K(1.0)
+    assert ref.size == n
+    for a in (10.0, 0.2):
+        assert np.allclose(K(a), ref, rtol=1e-9, atol=0)

@@ -81,7 +81,19 @@ def test_crack_scene_reproduces_the_harness(enrichment, cell):
 
 def test_a_scene_without_a_front_has_no_front():
     from skxfem.scene.benchmarks import strip
-    assert solve(strip(3, cell="tri")).front == ()
+    r = solve(strip(3, cell="tri"))
+    assert r.front == () and "front" not in r.timings
+
+
+def test_k_along_the_front_is_a_timed_stage():
+    """K is computed in the solve: its seconds are the stage ``front``, so that the
+    stages add up to the whole solve (the command line prints their sum)."""
+    import time
+    start = time.perf_counter()
+    r = solve(crack_scene(), linear="direct")
+    whole = time.perf_counter() - start
+    assert set(r.timings) == {"cut", "enrich", "assemble", "solve", "front"}
+    assert 0 < r.timings["front"] and sum(r.timings.values()) <= whole
 
 
 WILLIAMS_TOML = """
@@ -122,7 +134,8 @@ def _toml(enrichment="geometric"):
                                 supports=supports, tx=f"-({_SXX})", ty=f"-({_SXY})")
 
 
-def test_crack_scene_file_through_skxfem_run_writes_front(tmp_path):
+def test_crack_scene_file_through_skxfem_run_writes_front(tmp_path, capsys):
+    """... and its summary line gives K (it gave none, and 'pressure in [-0, -0]')."""
     path = tmp_path / "williams.toml"
     path.write_text(_toml())
     scene = load_scene(path)
@@ -131,9 +144,13 @@ def test_crack_scene_file_through_skxfem_run_writes_front(tmp_path):
     data = json.loads((tmp_path / "out" / "result.json").read_text())
     s = harness()
     (front,) = data["front"]
+    line = capsys.readouterr().out
+    assert f"K_I {front['K_I'][0]:.4g}, K_II {front['K_II'][0]:.4g}" in line, line
+    assert "pressure in [0, 0]" in line, line
     assert front["points"] == [[0.5, 0.5]]
     assert abs(front["K_I"][0] - s.K_I) < 1e-10 and abs(front["K_II"][0] - s.K_II) < 1e-10
     assert data["law"] == ["free"] and data["n_multipliers"] == 0 and front["interface"] == 0
+    assert data["timings"]["front"] > 0, "K's time among the stages"
     vtu = meshio.read(tmp_path / "out" / "interface.vtu")
     (tip,) = vtu.cells_dict["vertex"][:, 0]
     assert np.allclose(vtu.points[tip], [0.5, 0.5, 0.0])
@@ -174,6 +191,16 @@ def test_crack_scene_file_in_interface_tables(tmp_path):
 def test_bad_crack_inputs_are_refused_naming_the_argument(kwargs, words):
     with pytest.raises(ValueError, match=words):
         Interface(plane((0, 0.5), (0, 1)), **kwargs)
+
+
+def test_a_crack_with_a_material_per_side_is_refused_naming_it():
+    """material_plus with a crack: the solve ended in "AttributeError: 'CrackXSpace'
+    object has no attribute 'rule'"; a ValueError naming material_plus, when the scene is
+    built."""
+    from skxfem import Box, Material, Scene
+    crack = Interface(plane((0, 0.5), (0, 1)), law="free", front=plane((0.5, 0), (1, 0)))
+    with pytest.raises(ValueError, match=r"material_plus: a crack .* give one material"):
+        Scene(Box(4, "tri"), interfaces=(crack,), material_plus=Material(2.0, 0.3))
 
 
 def test_a_3d_crack_is_the_3d_kind_and_takes_tetrahedra_only():

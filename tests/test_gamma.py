@@ -156,3 +156,28 @@ def test_load_states_take_the_problems_space_and_refuse_another_gamma_or_mesh(mo
                 replace(twice, mesh=Box(4, "quad"))):
         with pytest.raises(ValueError, match=r"history\[1\]: a load state must keep"):
             skxfem.contact.solve(base, history=[base, bad])
+
+
+@pytest.mark.parametrize("a, warned", [(0.06, True), (0.2, False)])
+def test_a_2d_tip_whose_domain_is_clipped_under_a_few_cells_warns(a, warned):
+    """A centre crack of half-length a on the unit square (h = 1/20): at a = 0.06 each
+    tip's domain stops half-way to the other, 1.2 cells, and K_I came out 11 % low
+    (against Tada's centre crack), silently; now a FrontPointsWarning names the tip.  At
+    a = 0.2 (4 cells) no warning."""
+    import warnings
+
+    from skxfem import Box, Displacement, Interface, Material, Scene, SurfaceLoad
+    from skxfem.crack.kind3d import FrontPointsWarning
+    from skxfem.levelset import LevelSet, plane
+    front = LevelSet(lambda x: np.abs(x[0] - 0.5) - a, 2, "centre crack")
+    scene = Scene(Box(20, "tri"), material=Material(1.0, 0.3), interfaces=(
+        Interface(plane((0, 0.525), (0, 1)), law="free", front=front),),
+        displacements=(Displacement("ymin", {"y": 0.0}),
+                       Displacement("ymin", {"x": 0.0}, where="x < 1e-9")),
+        loads=(SurfaceLoad("ymax", traction=(0.0, 1.0)),))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        skxfem.solve(scene)
+    texts = [str(w.message) for w in caught if issubclass(w.category, FrontPointsWarning)]
+    assert len(texts) == (2 if warned else 0), texts
+    assert all("clipped to 1.2 cells by another tip" in t for t in texts)

@@ -212,3 +212,18 @@ def test_inf_sup_measures_the_scenes_law():
     scene = exact_strip(8, "tri", space="vital", law="bilateral")
     assert inf_sup(scene).beta == inf_sup(scene, law="bilateral").beta
     assert inf_sup(scene).size * 2 == inf_sup(scene, law="bonded").size
+
+
+@pytest.mark.parametrize("law", ["free", "frictionless"])
+def test_a_law_without_a_tie_is_refused_naming_the_law_to_give(law):
+    """A crack with free faces ended in numpy's 'zero-size array to reduction operation
+    maximum'; a contact law in "law must be one of ('bonded', 'bilateral', 'free')".
+    Both name the law and the laws to give; with law='bilateral' the crack's faces have
+    a constant."""
+    from skxfem import Box, Interface, Scene
+    from skxfem.levelset import plane
+    crack = Interface(plane((0, 0.55), (0, 1)), law=law, front=plane((0.5, 0), (1, 0)))
+    scene = Scene(Box(10, "tri"), interfaces=(crack,))
+    with pytest.raises(ValueError, match=rf"inf_sup: law '{law}' .*; give law='bilateral'"):
+        inf_sup(scene)
+    assert inf_sup(scene, law="bilateral").beta > 0

@@ -327,15 +327,29 @@ def _run(args, caught: list) -> int:
     shown = "on stderr" if args.debug else "not shown (--debug shows them)"
     hidden = f"; {len(caught)} warning(s) {shown}" if caught else ""
     if contact:
-        _say(f"{_contact_line(result)} -> {paths['json'].parent}{hidden}")
+        _say(f"{_contact_line(result)}{_fronts(result)} -> {paths['json'].parent}{hidden}")
         return 0
-    p = result.pressure
+    p = result.pressure + 0.0                            # + 0.0: -0.0 printed as 0
     span = f"pressure in [{p.min():.4g}, {p.max():.4g}]" if p.size else "no interface point"
     _say(f"{s.name}: {result.n_dofs} dofs, {result.n_multipliers} multipliers, "
-         f"max jump {result.max_jump:.2e}, {span}, "
+         f"max jump {result.max_jump:.2e}, {span}{_fronts(result)}, "
          f"{result.linear} solve{_iterations(result)}, "
          f"{sum(result.timings.values()):.2f} s -> {paths['json'].parent}{hidden}")
     return 0
+
+
+def _fronts(result) -> str:
+    """', K_I in [a, b], K_II in [c, d]' over the front points of every crack of the
+    result (and K_III in 3D), else '': the numbers a crack's scene is run for."""
+    if not result.front:
+        return ""
+    words = []
+    for key in ("K_I", "K_II", "K_III"):
+        k = np.concatenate([np.asarray(f.get(key, ()), float) for f in result.front])
+        if k.size:
+            words.append(f"{key} {k[0] + 0.0:.4g}" if k.size == 1 else
+                         f"{key} in [{k.min() + 0.0:.4g}, {k.max() + 0.0:.4g}]")
+    return ", " + ", ".join(words) if words else ""
 
 
 def _iterations(result) -> str:

@@ -3,7 +3,8 @@
 * ``result.json``: the scene name, ``law`` and ``space``, the multiplier
   ``points`` (where Γ cuts the mesh edges), ``normals``, ``traction`` (the
   whole vector), ``pressure``, ``jump`` ([[u]] = u⁻ - u⁺), ``max_jump``,
-  ``n_dofs``, ``n_multipliers``, the ``timings`` in seconds per stage and
+  ``n_dofs``, ``n_multipliers``, the ``timings`` in seconds per stage (``cut``,
+  ``enrich``, ``assemble``, ``solve``, and ``front`` with a crack: K along it) and
   ``linear_solve``: the solve taken (``linear``) and how it went
   (:attr:`skxfem.result.Result.linear_info`: for a tie its ``tol``, residual,
   balance, and the iterations and residuals of an iterative solve, with the

@@ -262,6 +262,14 @@ def _state(state: Scene, scene: Scene, pb: Problem, i: int):
 def _laws(scene: Scene, hs) -> tuple[Law, ...]:
     """The :class:`~skxfem.contact.newton.Law` of each interface of ``scene``, with the
     mean cut-edge length ``hs[k]`` of interface k."""
+    for k, i in enumerate(scene.interfaces):
+        if i.law == "free":
+            raise ValueError(
+                f"{scene.label(k) or 'the interface'}: law 'free' (a crack with free faces, "
+                f"no multipliers) cannot be solved with the contact law of another "
+                f"interface: the contact Newton takes a law with multipliers on each; give "
+                f"it law 'frictionless' (faces that open are free, faces that meet press "
+                f"instead of passing through each other)")
     return tuple(parameters(i, h, scene.material.E) for i, h in zip(scene.interfaces, hs))
 
 

@@ -63,12 +63,19 @@ from skfem import Basis
 from ..fem.loads import force_field
 from ..fem.material import Material, stiffness_matrix
 from ..fem.quadrature import cell_rule, exact_orders
-from .quadrature import BRANCH_ORDER, NEAR_ORDER, split_rule, tip_rule
+from .quadrature import (
+    BRANCH_ORDER,
+    NEAR_ORDER,
+    near_rule,
+    near_tip_cells,
+    split_rule,
+    tip_rule,
+)
 from .space import CrackSpace, evaluation
 
 __all__ = ["FACET_POINTS", "RuleGroup", "rule_groups", "stiffness", "mass", "Support",
            "Load", "facet_pieces", "traction_load", "face_rule", "face_load",
-           "body_load", "supported_dofs", "support_dofs", "mouth_facets",
+           "body_load", "supported_dofs", "support_dofs", "dependent_dofs", "mouth_facets",
            "check_facets"]
 
 FACET_POINTS = 8
@@ -111,7 +118,9 @@ def rule_groups(space: CrackSpace, cells: np.ndarray | None = None,
 
     Tip cells: :func:`skxfem.crack.quadrature.tip_rule`; the other cells by the
     order of their integrand: around the tip cells (sharing a node with one)
-    :data:`~skxfem.crack.quadrature.NEAR_ORDER`; touching a branch node ``order``;
+    :data:`~skxfem.crack.quadrature.NEAR_ORDER`, or, within
+    :data:`~skxfem.crack.quadrature.NEAR_GAP` of a tip,
+    :func:`~skxfem.crack.quadrature.near_rule`; touching a branch node ``order``;
     else ``plain_order`` (default: the exact stiffness order).  Split cells on their
     sub-triangles, uncut cells on the whole cell.
     """
@@ -133,8 +142,12 @@ def rule_groups(space: CrackSpace, cells: np.ndarray | None = None,
         r = tip_rule(geo, NEAR_ORDER)
         pick = np.isin(r.cells, tip)
         groups.append(_group(space, r.cells[pick], r.X[:, pick], r.W[pick], r.V[pick]))
-    split = np.setdiff1d(np.intersect1d(cells, geo.split_cells), tip)
-    uncut = np.setdiff1d(cells, geo.cells)
+    near = near_tip_cells(geo, mesh, np.setdiff1d(cells[level[cells] == 2], tip))
+    if near.size:
+        r = near_rule(geo, mesh, near)
+        groups.append(_group(space, r.cells, r.X, r.W, r.V))
+    split = np.setdiff1d(np.intersect1d(cells, geo.split_cells), np.union1d(tip, near))
+    uncut = np.setdiff1d(np.setdiff1d(cells, geo.cells), near)
     for lv, (o_sub, o_cell) in orders.items():
         here = split[level[split] == lv]
         if here.size:
@@ -442,8 +455,10 @@ def support_dofs(space, supports, mouth: Callable[[np.ndarray], np.ndarray]
     :func:`skxfem.crack.space3d.supported_dofs`): the standard unknowns of the
     supported nodes (a node on the crack, ψ = 0 and φ < 0, has two values and stays
     free), and the branch unknowns of supported nodes away from the mouth set to zero;
-    Heaviside unknowns are never constrained.  ``mouth(facets)``: whether the crack
-    meets each of the checked boundary ``facets``.
+    Heaviside unknowns are never constrained; when every node is a branch node, the
+    branch unknowns of :func:`dependent_dofs` are set to zero too (the system is
+    singular otherwise).  ``mouth(facets)``: whether the crack meets each of the checked
+    boundary ``facets``.
     """
     mesh, geo = space.mesh, space.geometry
     d = mesh.dim()
@@ -483,7 +498,50 @@ def support_dofs(space, supports, mouth: Callable[[np.ndarray], np.ndarray]
         for c in comps:
             dofs += [nd[c, nodes], cd[kb][:, :, c].ravel()]
             vals += [g[c], np.zeros(kb.size * 4)]
-    if not dofs:
-        return np.zeros(0, int), np.zeros(0)
-    D, first = np.unique(np.concatenate(dofs), return_index=True)
-    return D, np.concatenate(vals)[first]
+    D, first = np.unique(np.concatenate(dofs or [np.zeros(0, int)]), return_index=True)
+    g = np.concatenate(vals or [np.zeros(0)])[first]
+    dep = dependent_dofs(space, D)
+    return np.concatenate([D, dep]), np.concatenate([g, np.zeros(dep.size)])
+
+
+def dependent_dofs(space, fixed: np.ndarray) -> np.ndarray:
+    r"""The branch unknowns that are linear combinations of the others when every node of
+    the mesh is a branch node, to be set to zero (which leaves the space unchanged).
+
+    The four branch functions of (r, θ), the polar coordinates of (φ_h, ψ_h), satisfy at
+    every point
+
+    .. math:: \psi_h F_1 + \varphi_h F_3 - \psi_h F_4 = 0,\qquad
+              \psi_h F_2 - \psi_h F_3 - \varphi_h F_4 = 0
+
+    (φ_h = r cos θ, ψ_h = r sin θ, F₃ = sin θ F₁, F₄ = sin θ F₂), and the shape
+    functions N_k reproduce φ_h and ψ_h: so Σ_k N_k [ψ_k (F₁ - F₁(x_k)) + φ_k (F₃ -
+    F₃(x_k)) - ψ_k (F₄ - F₄(x_k))] vanishes on every cell whose nodes are all branch
+    nodes (likewise the second).  When they all are (a radius r_e
+    beyond the farthest node, or the default r_e on a mesh of a few cells across),
+    these two combinations per component are exact null vectors of the stiffness: the
+    system is singular.  Dropping F₃ and F₄ of one node k (the farthest from the front,
+    where the 2 × 2 matrix of their coefficients, det = -(φ_k² + ψ_k²), is best
+    conditioned) removes both without changing the span.  A component with a branch
+    unknown among ``fixed`` (a clamped support) has no such null vector (it would be
+    non-zero there) and keeps its unknowns.
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> from skxfem.crack.space import crack_space
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 5), np.linspace(0, 1, 5))
+    >>> g = crack_geometry(m, m.p[1] - 0.55, m.p[0] - 0.5)
+    >>> dependent_dofs(crack_space(m, g, "geometric", 0.3), np.zeros(0, int)).size
+    0
+    >>> V = crack_space(m, g, "geometric", 2.0)                     # every node
+    >>> dependent_dofs(V, np.zeros(0, int)).size                    # F₃, F₄ of one node
+    4
+    """
+    mesh, geo = space.mesh, space.geometry
+    if not np.isin(np.unique(mesh.t), space.branch).all():
+        return np.zeros(0, int)
+    cd = space.branch_dofs()                               # (nb, 4, d)
+    k = int(np.argmax(geo.phi[space.branch] ** 2 + geo.psi[space.branch] ** 2))
+    out = [cd[k, 2:, c] for c in range(mesh.dim())
+           if not np.isin(cd[:, :, c], fixed).any()]
+    return np.concatenate(out).astype(int) if out else np.zeros(0, int)

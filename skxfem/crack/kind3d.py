@@ -69,7 +69,8 @@ __all__ = ["Crack3D", "CrackXSpace3D", "FrontPointsWarning", "front_reach"]
 
 class FrontPointsWarning(UserWarning):
     """Some points of a 3D front get no K: their interaction domain would hold no cell
-    (:func:`front_reach`)."""
+    (:func:`front_reach`); or a 2D tip's domain is clipped under the default by the
+    boundary or another tip, and its K is doubtful (:mod:`skxfem.gamma`)."""
 
 
 def front_reach(space) -> tuple[np.ndarray, np.ndarray, float]:

@@ -66,7 +66,8 @@ from collections.abc import Callable
 import numpy as np
 
 __all__ = ["ENRICHMENTS", "SIZE_FRACTION", "DOMAIN_CELLS", "DOMAIN_FRACTION",
-           "default_radius", "default_enrichment_radius", "enrichment_radius"]
+           "default_radius", "default_enrichment_radius", "enrichment_radius",
+           "check_radius"]
 
 ENRICHMENTS = ("topological", "geometric")
 """The enrichments of a crack's space: the front cells' nodes, or also those within r_e."""
@@ -144,3 +145,21 @@ def enrichment_radius(mesh, enrichment: str, radius: float | None,
             and radius > 0):
         raise ValueError(f"radius must be a positive number, got {radius!r}")
     return radius
+
+
+def check_radius(radius: float, h: float, name: str = "radius", dim: int = 3) -> None:
+    """Refuse an interaction domain ``radius`` under the size ``h`` of the front's cells
+    (2D: the tip cell's extent; 3D: the front cells' size across the front,
+    :func:`skxfem.crack.sif3d.front_sizes`): the domain would hold no cell (K came out
+    NaN in 3D, numpy's 'need at least one array to concatenate' in 2D).
+
+    >>> check_radius(0.3, 0.1)
+    >>> check_radius(0.01, 0.1)
+    Traceback (most recent call last):
+    ...
+    ValueError: radius 0.01 is under the front cells' size 0.1: the interaction domain ...
+    """
+    if radius < h * (1 - 1e-9):                          # h to round-off: accepted
+        raise ValueError(f"{name} {radius:.3g} is under the front cells' size {h:.3g}: the "
+                         f"interaction domain would hold no cell; take it at least "
+                         f"{h:.3g} (the default: {DOMAIN_CELLS[dim]:g} cells)")

@@ -46,7 +46,7 @@ from .assembly import face_rule, rule_groups
 from .frame import TipFrame, tip_frame
 from .geometry import CrackGeometry, nearest_on_segments
 from .interaction import CrackFace, q_function, stress_intensity
-from .radius import DOMAIN_CELLS, DOMAIN_FRACTION
+from .radius import DOMAIN_CELLS, DOMAIN_FRACTION, check_radius
 from .space import CrackSpace, evaluation
 
 __all__ = ["DEFAULT_CELLS", "DOMAIN_FRACTION", "default_radius", "other_tips_distance",
@@ -196,7 +196,8 @@ def sif(space: CrackSpace, U: np.ndarray, material: Material, r_d: float | None 
     space, U : the crack's space and the unknowns [a, b, c].
     material : the :class:`skxfem.fem.material.Material` (plane strain or stress).
     r_d : the domain radius; default :func:`default_radius`; clipped to the distance from
-        the tip to the boundary and half that to the other tips.
+        the tip to the boundary and half that to the other tips; one under the tip cell's
+        size is refused (:func:`skxfem.crack.radius.check_radius`: no cell in the domain).
     plateau : ρ: q = 1 inside ρR (:func:`skxfem.crack.interaction.q_function`).
     tip : which tip of the geometry.
     face_traction : ``(x, side) -> (2, n)`` the traction σ·m* the face of ``side``
@@ -209,6 +210,8 @@ def sif(space: CrackSpace, U: np.ndarray, material: Material, r_d: float | None 
     if U.shape != (space.N,):
         raise ValueError(f"U must hold the {space.N} unknowns [a, b, c], got shape {U.shape}")
     origin, frame, h = tip_and_frame(space, tip)
+    if r_d is not None:
+        check_radius(r_d, h, "r_d (sif_radius)", 2)
     r_d = default_radius(space, h) if r_d is None else r_d
     boundary = check_reach(space.mesh, space.geometry, tips=[tip])[0]
     q_nodes = nodal_q(space, origin, r_d, plateau, boundary)

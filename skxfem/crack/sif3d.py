@@ -125,7 +125,7 @@ from .geometry3d import (
     runs,
 )
 from .interaction import sif_from_interaction
-from .radius import DOMAIN_FRACTION
+from .radius import DOMAIN_FRACTION, check_radius
 from .space3d import (
     body_load,
     crack_space_3d,
@@ -342,22 +342,6 @@ def other_fronts(geo, P: np.ndarray, chains: list | None = None) -> np.ndarray:
     own = np.argmin(dist, axis=0)
     dist[own, np.arange(P.shape[1])] = np.inf
     return dist.min(axis=0)
-
-
-def check_radius(radius: float, h: float, name: str = "radius") -> None:
-    """Refuse a radial cone ``radius`` under the front cells' size ``h`` across the front
-    (:func:`front_sizes`): the domain would hold no cell (K came out NaN or anything).
-
-    >>> check_radius(0.3, 0.1)
-    >>> check_radius(0.01, 0.1)
-    Traceback (most recent call last):
-    ...
-    ValueError: radius 0.01 is under the front cells' size 0.1: the interaction domain ...
-    """
-    if radius < h:
-        raise ValueError(f"{name} {radius:.3g} is under the front cells' size {h:.3g}: the "
-                         f"interaction domain would hold no cell; take it at least "
-                         f"{h:.3g} (the default: {DEFAULT_RADIUS:g} cells)")
 
 
 def domain_reach(space, P: np.ndarray, e3: np.ndarray, kappa: np.ndarray, length: float,

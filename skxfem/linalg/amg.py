@@ -120,14 +120,18 @@ def _region_modes(V, motions, node_of, nd) -> tuple[np.ndarray, int]:
     spaces = getattr(V, "per_interface", (V,))
     patterns, node_region = V.regions()
     R = patterns.shape[0]
-    # a region's signs as the bits of one number
-    codes = ((patterns > 0).astype(np.int64) << np.arange(len(spaces))).sum(axis=1)
+    # a region's signs as the bits of one number, one bit per interface that splits
+    codes = ((patterns > 0).astype(np.int64) << np.arange(patterns.shape[1])).sum(axis=1)
+    bit = np.cumsum([Vk.splits for Vk in spaces]) - 1   # the bit of each splitting one
     order = np.argsort(codes)
     region_of = node_region[node_of]  # the region of each standard dof's node
     starts = np.cumsum([V.n_std] + [Vk.n_enr for Vk in spaces])
     far = []   # the region on the far side of interface k of each of its enriched dofs
     for k, Vk in enumerate(spaces):
-        want = codes[region_of[Vk.enr_dofs]] ^ (1 << k)
+        if not Vk.splits:   # a crack: the body is one around its front, its unknowns 0
+            far.append(region_of[Vk.enr_dofs])
+            continue
+        want = codes[region_of[Vk.enr_dofs]] ^ (1 << int(bit[k]))
         at = np.minimum(np.searchsorted(codes[order], want), R - 1)
         far.append(np.where(codes[order][at] == want, order[at], -1))
     Z = np.zeros((V.N, R * len(motions)))

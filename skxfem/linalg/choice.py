@@ -13,7 +13,8 @@ from __future__ import annotations
 
 import importlib.util
 
-__all__ = ["LINEAR", "AUTO_ITERATIVE", "LINEAR_TOL", "choose_linear", "check_linear_tol"]
+__all__ = ["LINEAR", "AUTO_ITERATIVE", "AUTO_ZONE", "LINEAR_TOL", "choose_linear",
+           "check_linear_tol"]
 
 LINEAR = ("auto", "direct", "iterative")
 """The linear solves: SuperLU on the saddle system (:func:`skxfem.linalg.saddle.solve`),
@@ -26,6 +27,20 @@ when pyamg is installed: measured break-even on 2 cores, 3D near 3k unknowns
 (5.5x faster at 17k), 2D near 100k (1.6x faster at 529k),
 ``benchmarks/tie_solve.py``."""
 
+AUTO_ZONE = 0.7
+"""``auto`` solves a 3D crack directly when its branch-enriched nodes are more than this
+fraction of the mesh's nodes (``crack_zone``): the zone is then no tube but most of the
+body, and projected CG stalls on the near dependence of the branch functions
+(:func:`skxfem.crack.assembly.dependent_dofs`; exact when every node is enriched).
+Measured on the unit cube of n³ × 6 tetrahedra with an edge crack to its middle and the
+default r_e, on rollers with two nodes held (one run each): n = 7, 91 % enriched, 7 104
+unknowns: CG stopped at 6.7e-6 after 500 iterations; n = 6, 82 %: 1.2e-12 after 500;
+n = 9, 65 %: 1e-12 in 74; n = 8, 52 %: 48; n = 12, 25 %: 58.  A body clamped below (its
+supports hold the branch unknowns too) converges even fully enriched (144 iterations),
+and the direct solve costs it time there (``tests/test_linalg_blocks.py``'s cube at
+n = 8, 78 %: 3.7 s against CG's 1.6 s): a zone that large means a coarse mesh, a small
+system."""
+
 LINEAR_TOL = 1e-12
 """The relative residual the iterative solve reaches by default (``linear_tol``).
 Measured (one run): a bonded block in uniform compression, 5 × 20 × 20
@@ -33,7 +48,7 @@ hexahedra, λ exact to 3.7e-10 at 1e-10 (36 CG iterations, 4.1 s), 1.8e-12 at
 1e-12 (43, 4.6 s), 2.9e-13 at 1e-13 (46, 5.0 s); the direct solve 3.5e-14."""
 
 def choose_linear(method: str, dim: int, n_unknowns: int, crack_multipliers: bool = False,
-                  crack: bool = False) -> str:
+                  crack: bool = False, crack_zone: float = 0.0) -> str:
     """The linear solve ``method`` resolves to for ``n_unknowns`` in ``dim`` D:
     ``auto`` is ``iterative`` from :data:`AUTO_ITERATIVE` unknowns if pyamg is
     there, and ``direct`` whatever the size where multipliers (contact, a tie) live on
@@ -46,10 +61,14 @@ def choose_linear(method: str, dim: int, n_unknowns: int, crack_multipliers: boo
     tolerance (the edge crack of ``tests/test_linalg_blocks.py`` on 200 × 200 cells,
     161 274 unknowns: 6.9e-12 after 3000 iterations, one run; its LU 17 s), whereas a 3D
     crack's zone stays a tube a few cells across and CG reaches 1e-12 in about 60
-    iterations (``benchmarks/crack_solve.py``).
+    iterations (``benchmarks/crack_solve.py``) — unless the mesh is so coarse that the
+    zone holds more than :data:`AUTO_ZONE` of its nodes (``crack_zone``, the largest
+    fraction of a crack): then ``direct``.
 
     >>> choose_linear("auto", 2, 10**6, crack=True), choose_linear("iterative", 2, 10, crack=True)
     ('direct', 'iterative')
+    >>> [choose_linear("auto", 3, 10**4, crack=True, crack_zone=z) for z in (0.3, 0.9)]
+    ['iterative', 'direct']
 
     Raises
     ------
@@ -61,7 +80,7 @@ def choose_linear(method: str, dim: int, n_unknowns: int, crack_multipliers: boo
     if method != "auto":
         return method
     big = n_unknowns >= AUTO_ITERATIVE[dim] and not crack_multipliers \
-        and not (crack and dim == 2)
+        and not (crack and (dim == 2 or crack_zone > AUTO_ZONE))
     return "iterative" if big and importlib.util.find_spec("pyamg") else "direct"
 
 

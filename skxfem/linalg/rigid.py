@@ -199,12 +199,14 @@ def region_names(p: Problem) -> list[str]:
     """How a message names each region of a problem (in the order of
     :meth:`skxfem.enrich.XSpaces.regions`): "the part of the body where ψ₀ > 0 and
     ψ₁ < 0", ψ_k the level set of ``interfaces[k]``; with one level set, Ω⁻ and Ω⁺
-    by :func:`side_names` (the wording alone depends on the count)."""
+    by :func:`side_names` (the wording alone depends on the count).  Only the interfaces
+    that split the body count: a crack (a front) splits no region."""
     patterns = p.V.regions()[0]
-    if patterns.shape[1] == 1:
-        return list(side_names(p.interfaces[0]))
+    split = [k for k, q in enumerate(p.interfaces) if q.V.splits]   # a crack splits none
+    if len(split) == 1:
+        return list(side_names(p.interfaces[split[0]]))
     return ["the part of the body where " + " and ".join(
-        f"ψ{str(k).translate(_SUB)} {'<' if s < 0 else '>'} 0" for k, s in enumerate(row))
+        f"ψ{str(k).translate(_SUB)} {'<' if s < 0 else '>'} 0" for k, s in zip(split, row))
         for row in patterns.tolist()]
 
 

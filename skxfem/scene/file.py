@@ -311,9 +311,10 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             "default interaction domain, 4 cells in 2D and 3 in 3D: at least 5.3 and 4 "
             "cells)", 0.4),
         Key("sif_radius", "number > 0 [L]", "a crack: the radius of the interaction "
-            "integral's domain (default 0.75 enrichment_radius, at least 4 tip cells; "
-            "clipped to the distance to the boundary and half that to other tips; in "
-            "3D a third of that to other fronts and 1/(2 κ), κ the front's curvature)", 0.3),
+            "integral's domain (default 0.75 enrichment_radius, at least 4 tip cells in "
+            "2D, 3 front cells in 3D; not under one; clipped to the distance to the "
+            "boundary and half that to other tips; in 3D a third of that to other "
+            "fronts and 1/(2 κ), κ the front's curvature)", 0.3),
     )),
     Table("[[interface]]", "several interfaces, one table each (in place of [levelset] "
           "and [interface]) with its level set (a key of [levelset], as there) and its "

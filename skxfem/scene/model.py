@@ -173,6 +173,11 @@ class Scene:
                 raise ValueError("Scene material_plus: a material per side of Γ is for a "
                                  "scene with one interface; with several, the regions are "
                                  "more than two (give one material)")
+            if self.interfaces[0].front is not None:
+                raise ValueError("Scene material_plus: a crack (an interface with a front) "
+                                 "splits no region, so it has no side to give a material; "
+                                 "a crack between two materials is not modelled (its near-tip "
+                                 "field is not the Williams field of its K): give one material")
             if self.material_plus.plane != self.material.plane:
                 raise ValueError(f"Scene material_plus plane {self.material_plus.plane!r} "
                                  f"differs from material's {self.material.plane!r}: a 2D "
