@@ -24,3 +24,49 @@ def test_box_size_is_exact_where_numpy_wraps(n):
     nodes, cells = box_size(b)
     assert cells == math.prod(b.n) > 2**63 and nodes == math.prod(k + 1 for k in b.n)
     assert box_size(Box(n if isinstance(n, int) else n[0], "tet"))[1] % 6 == 0
+
+
+@pytest.mark.parametrize("chunk", [10**6, 300])
+def test_a_cracks_counts_in_one_sweep_are_those_of_three(chunk, monkeypatch):
+    """box_crack_counts is box_counts, box_crack_depth and box_front_nodes (a penny in a
+    Box of tetrahedra; one slab, and many when the slabs hold 300 nodes) and
+    mesh_crack_counts the mesh's three on the built Box (the same depth and front nodes:
+    they are the nodes'); in one slab and on the mesh ψ and φ are evaluated once at
+    each node."""
+    import numpy as np
+
+    import skxfem.studies.counts as c
+    from skxfem.levelset import LevelSet
+
+    monkeypatch.setattr(c, "_CHUNK", chunk)
+    calls = {"psi": 0, "phi": 0}
+
+    def counted(name, f):
+        def g(x):
+            calls[name] += x.shape[1]
+            return f(x)
+        return LevelSet(g, 3, name)
+
+    psi = counted("psi", lambda x: x[2] - 0.52)
+    phi = counted("phi", lambda x: np.hypot(x[0] - 0.5, x[1] - 0.4) - 0.3)
+    b = Box((9, 8, 7), "tet")
+
+    def radius(depth):
+        return 0.5 * depth + 0.1
+
+    one = c.box_crack_counts(b, psi, phi, 0.2, radius)
+    depth = c.box_crack_depth(b, psi, phi, 0.2)
+    assert one == (c.box_counts(b, psi), depth, c.box_front_nodes(b, psi, phi, radius(depth)))
+    assert 0 < one[2] < box_size(b)[0] and depth > 0
+    m = box(b.n, "tet")
+    calls.update(psi=0, phi=0)
+    on_mesh = c.mesh_crack_counts(m, psi, phi, 0.2, radius)
+    assert calls == {"psi": m.nvertices, "phi": m.nvertices}
+    mesh_depth = c.mesh_crack_depth(m, psi, phi, 0.2)
+    assert on_mesh == (c.mesh_counts(m, psi), mesh_depth,
+                       c.mesh_front_nodes(m, psi, phi, radius(mesh_depth)))
+    assert on_mesh[1:] == one[1:]
+    calls.update(psi=0, phi=0)
+    c.box_crack_counts(b, psi, phi, 0.2, radius)
+    if chunk == 10**6:
+        assert calls == {"psi": m.nvertices, "phi": m.nvertices}

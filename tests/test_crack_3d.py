@@ -8,7 +8,14 @@ import numpy as np
 import pytest
 from skfem import MeshTet1, MeshTri1
 
-from skxfem.crack.geometry3d import crack_geometry_3d, front_chains
+from skxfem.crack.geometry3d import (
+    barycentric,
+    cell_gradients,
+    crack_geometry_3d,
+    front_chains,
+    runs,
+    shape_gradients,
+)
 from skxfem.crack.quadrature3d import collapsed, edge_polar, vertex_polar
 from skxfem.crack.sif3d import front_points, sif_3d, solve_crack_3d
 from skxfem.crack.space3d import Support3D, crack_space_3d, field_at, stiffness
@@ -77,6 +84,33 @@ def test_a_crack_along_mesh_faces_is_counted_once(psi, phi, a):
     assert np.allclose(g.faces[:, :, 1], psi) and np.all(g.faces[:, :, 0] <= phi + 1e-12)
     if psi == 0.5:
         assert np.all(m.p[1, m.t[:, g.face_cell]].mean(axis=0) < 0.5), "the Ω⁻ side's cell"
+
+
+def test_cell_gradients_are_exact_on_a_linear_field_and_barycentric_shares_them():
+    """On a jittered mesh, the P1 gradient of a linear field is its gradient in every
+    cell (all cells or some, repeated and unsorted); barycentric's ∇λ at points of a
+    cell are its shape_gradients."""
+    rng = np.random.default_rng(5)
+    m = MeshTet1.init_tensor(*(np.linspace(0, 1, 4),) * 3)
+    m = MeshTet1(m.p + 0.05 * rng.uniform(-1, 1, m.p.shape), m.t)
+    a = np.array([0.3, -1.2, 2.0])
+    g = cell_gradients(m, a @ m.p + 0.7)
+    assert g.shape == (3, m.t.shape[1]) and np.allclose(g, a[:, None], atol=1e-12)
+    cells = np.array([7, 2, 7, 0])
+    assert np.array_equal(cell_gradients(m, a @ m.p, cells), cell_gradients(m, a @ m.p)[:, cells])
+    x = m.p[:, m.t[:, cells]].mean(axis=1)
+    assert np.array_equal(barycentric(m, cells, x)[1], shape_gradients(m, cells))
+
+
+@pytest.mark.parametrize("keys", [np.array([3, 3, 1, 3, 3, 3, 0]),
+                                  np.array([[0, 1], [0, 1], [0, 2], [1, 2], [1, 2]]),
+                                  np.zeros(0, int), np.zeros((0, 4), int)])
+def test_runs_are_the_first_of_each_run_and_the_run_of_each_key(keys):
+    """keys[first][run] is keys, consecutive runs differ, and the runs count up."""
+    first, run = runs(keys)
+    assert np.array_equal(keys[first][run], keys) and run.shape == (len(keys),)
+    assert np.all(np.diff(run) >= 0) and np.all(np.diff(run) <= 1)
+    assert all(np.any(keys[i] != keys[i - 1]) for i in first[1:])
 
 
 def test_penny_front_is_one_closed_loop():

@@ -4,6 +4,7 @@ import pytest
 
 from skxfem.crack.branch import (
     branch,
+    branch_closed_form,
     branch_gradient,
     branch_local_gradient,
     branch_polar_derivatives,
@@ -124,3 +125,19 @@ def test_side_angle_forces_the_face_only_in_cut_cells():
     want[:3] = [-np.pi, np.pi, -np.pi]          # the side's face; φ > 0 and padding: atan2
     assert np.array_equal(got, want)
     assert np.array_equal(side_angle(phi, psi, side, np.zeros(5, bool)), np.arctan2(psi, phi))
+
+
+def test_the_closed_form_is_the_branch_functions_and_their_chain_rule():
+    """branch_closed_form against branch and branch_local_gradient (l last), at random
+    points, on both faces (θ = ±π), and zero at r = 0."""
+    r, theta = RNG.uniform(0, 2, (30, 7)), RNG.uniform(-np.pi, np.pi, (30, 7))
+    theta[0], theta[1], r[2, :3] = np.pi, -np.pi, 0.0
+    F, d1, d2 = branch_closed_form(r, theta)
+    assert F.shape == d1.shape == d2.shape == (30, 7, 4)
+    live = r > 0
+    assert not np.any(F[~live]) and not np.any(d1[~live]) and not np.any(d2[~live])
+    assert np.allclose(F, np.moveaxis(branch(r, theta), 0, -1), rtol=1e-14, atol=1e-15)
+    g = branch_local_gradient(r[live], theta[live])                  # (4, 2, n)
+    scale = np.abs(g).max(axis=(0, 1))[:, None]
+    assert np.all(np.abs(d1[live] - g[:, 0].T) <= 1e-14 * scale)
+    assert np.all(np.abs(d2[live] - g[:, 1].T) <= 1e-14 * scale)

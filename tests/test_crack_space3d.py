@@ -49,7 +49,7 @@ def close(a, b, tol):
 
 
 def test_kinds_are_the_branch_functions_and_their_chain_rule():
-    """_kinds' closed forms against skxfem.crack.branch (values, and the chain rule of
+    """_kinds against skxfem.crack.branch (values, and the chain rule of
     branch_local_gradient through ∇φ_h, ∇ψ_h), at random points, on the faces behind the
     front (θ = ±π by the side, in cut cells only), ahead of it on ψ = 0, and at r = 0
     (all zero)."""

@@ -9,7 +9,7 @@ import pytest
 from skfem import MeshTet1
 
 from skxfem.crack.assembly import Load, Support, mouth_facets, stiffness, supported_dofs
-from skxfem.crack.geometry import crack_geometry
+from skxfem.crack.geometry import crack_geometry, nearest_on_segments
 from skxfem.crack.kind3d import FrontPointsWarning
 from skxfem.crack.quadrature import simplex_points
 from skxfem.crack.solve import solve_crack
@@ -42,6 +42,26 @@ def williams(n, K, enrichment, cell="tri"):
 def _areas(tris):
     d1, d2 = tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]
     return 0.5 * np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
+
+
+def test_nearest_on_segments_against_dense_sampling():
+    """The distance from random points to random segments (2D and 3D, one of zero
+    length) is the least over 2001 points along each, within the sampling's step; the
+    nearest point lies on the segment, at an end where the foot is beyond it."""
+    rng = np.random.default_rng(11)
+    for dim in (2, 3):
+        a, d = rng.normal(size=(dim, 1, 5)), rng.normal(size=(dim, 1, 5))
+        d[:, 0, 4] = 0.0
+        x = rng.normal(size=(dim, 40, 1)) * 2
+        t, c, dist = nearest_on_segments(a, d, x)
+        assert t.shape == dist.shape == (40, 5) and c.shape == (dim, 40, 5)
+        s = np.linspace(0, 1, 2001)
+        dense = np.linalg.norm(x[..., None] - a[..., None] - d[..., None] * s,
+                               axis=0).min(axis=-1)
+        step = np.linalg.norm(d, axis=0) / 2000
+        assert np.all(dist <= dense + 1e-12) and np.all(dense - dist <= step + 1e-12)
+        assert np.all((t >= 0) & (t <= 1)) and np.allclose(c, a + t * d)
+        assert np.allclose(dist[:, 4], np.linalg.norm(x[:, :, 0] - a[:, 0, 4:], axis=0))
 
 
 @pytest.mark.parametrize("cell", ["tri", "quad"])

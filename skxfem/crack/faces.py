@@ -48,6 +48,7 @@ from scipy.spatial import cKDTree
 
 from ..multipliers import Space
 from ..stabilised import multiplier_space
+from .geometry import nearest_on_segments
 
 __all__ = ["EdgeGraph", "edge_graph", "check_crossed", "end_values", "harmonic_extension",
            "face_functions",
@@ -171,8 +172,7 @@ def face_functions(geo, x: np.ndarray, piece: np.ndarray) -> sp.csr_matrix:
     E = end_values(geo)
     nseg = geo.segment_cell.size
     A, B = geo.segments[0][:, piece], geo.segments[1][:, piece]
-    d = B - A
-    t = np.clip(((x - A) * d).sum(axis=0) / (d * d).sum(axis=0), 0.0, 1.0)
+    t = nearest_on_segments(A, B - A, x)[0]               # x lies on its piece
     return (sp.diags(1 - t) @ E[piece] + sp.diags(t) @ E[nseg + piece]).tocsr()
 
 

@@ -60,7 +60,7 @@ from ..levelset import nodal_values
 
 __all__ = ["CrackGeometry", "crack_geometry", "check_mesh_2d", "check_mesh_type",
            "check_geometry", "orthonormal_at_tips",
-           "level_set_values", "ZERO",
+           "level_set_values", "nearest_on_segments", "ZERO",
            "AREA_TOL"]
 
 ZERO = 1e-9
@@ -232,6 +232,25 @@ class CrackGeometry:
     def segments_length(self) -> np.ndarray:
         """(nseg,) the lengths of the crack pieces."""
         return np.linalg.norm(self.segments[1] - self.segments[0], axis=0)
+
+
+def nearest_on_segments(a: np.ndarray, d: np.ndarray, x: np.ndarray
+                        ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The nearest points of segments to points, all broadcast together: for the
+    segments from ``a`` along ``d`` (dim, ...) and the points ``x`` (dim, ...), the
+    parameter t = (x - a)·d/|d|² clamped to [0, 1] (...) (a foot beyond an end takes
+    that end; a segment of zero length its point a), the nearest points c = a + t d
+    (dim, ...) and the distances |x - c| (...), unsigned.  Each caller takes the least
+    over its segments (``min``; ``argmin``: the first of equal distances).
+
+    >>> t, c, dist = nearest_on_segments(np.array([[0.0], [0.0]]), np.array([[2.0], [0.0]]),
+    ...                                  np.array([[1.0, 3.0], [1.0, 0.0]]))
+    >>> t.tolist(), c[0].tolist(), dist.tolist()     # above the middle; beyond the end
+    ([0.5, 1.0], [1.0, 2.0], [1.0, 1.0])
+    """
+    t = np.clip(((x - a) * d).sum(axis=0) / np.maximum((d * d).sum(axis=0), 1e-300), 0.0, 1.0)
+    c = a + t * d
+    return t, c, np.linalg.norm(x - c, axis=0)
 
 
 def _zero_segments(X, ps, ph):

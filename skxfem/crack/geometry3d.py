@@ -48,11 +48,11 @@ import numpy as np
 from skfem import MeshTet1
 
 from ..fem.simplex import split
-from .geometry import ZERO, check_mesh_type, level_set_values
+from .geometry import ZERO, check_mesh_type, level_set_values, nearest_on_segments
 
 __all__ = ["CrackGeometry3D", "crack_geometry_3d", "check_mesh_3d", "front_chains",
            "orthonormal_on_front", "front_fit", "front_offset",
-           "barycentric", "VOLUME_TOL"]
+           "barycentric", "shape_gradients", "cell_gradients", "runs", "VOLUME_TOL"]
 
 VOLUME_TOL = 1e-12
 """Sub-tetrahedra below VOLUME_TOL times their cell's volume are dropped (zero-volume
@@ -83,6 +83,51 @@ def nodal_level_set(name: str, value, mesh) -> np.ndarray:
     return level_set_values(name, value, mesh, mesh.edges)
 
 
+def runs(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The runs of equal consecutive ``keys`` (n, ...) (points of one cell, in the order
+    of quadrature batches; a key of several entries, such as a cell's nodes, is equal
+    when all are): the first index of each run and the run of each key (n,), so that
+    ``keys[first][run]`` is ``keys``.  What is computed once per cell is computed once
+    per run: as ``np.unique(keys, return_inverse=True)`` without its sort.
+
+    >>> first, run = runs(np.array([4, 4, 2, 2, 2, 4]))
+    >>> first.tolist(), run.tolist()
+    ([0, 2, 5], [0, 0, 1, 1, 1, 2])
+    """
+    keys = np.asarray(keys)
+    new = np.ones(len(keys), dtype=bool)
+    change = keys[1:] != keys[:-1]
+    new[1:] = change.any(axis=tuple(range(1, change.ndim))) if change.ndim > 1 else change
+    return np.flatnonzero(new), np.cumsum(new) - 1
+
+
+def shape_gradients(mesh, cells: np.ndarray) -> np.ndarray:
+    """The gradients ∇λ (nc, 4, 3) of the P1 shape functions (the barycentric
+    coordinates) of ``cells`` (nc,), constant in each: the rows of A⁻¹ for ∇λ₁..₃, A the
+    matrix of the edge vectors V_i - V_0 in columns, and ∇λ₀ = -(∇λ₁ + ∇λ₂ + ∇λ₃).
+
+    >>> shape_gradients(MeshTet1(), np.array([0])).sum(axis=1).round(12).tolist()
+    [[0.0, 0.0, 0.0]]
+    """
+    P = mesh.p[:, mesh.t[:, cells]]                      # (3, 4, nc)
+    A = np.transpose(P[:, 1:] - P[:, :1], (2, 0, 1))     # (nc, 3, 3) columns V_i - V_0
+    Ainv = np.linalg.inv(A)                               # rows: ∇λ₁..₃
+    return np.concatenate([-Ainv.sum(axis=1, keepdims=True), Ainv], axis=1)
+
+
+def cell_gradients(mesh, nodal: np.ndarray, cells: np.ndarray | None = None) -> np.ndarray:
+    """∇ (3, nc) of the P1 interpolant of the nodal values ``nodal`` (nverts,) in each of
+    ``cells`` (nc,; default all), constant in a cell: Σ_k nodal_k ∇λ_k
+    (:func:`shape_gradients`).
+
+    >>> m = MeshTet1()
+    >>> cell_gradients(m, 2 * m.p[0] - m.p[2]).round(12)[:, 0].tolist()
+    [2.0, 0.0, -1.0]
+    """
+    cells = np.arange(mesh.t.shape[1]) if cells is None else np.asarray(cells)
+    return np.einsum("nk,nki->in", nodal[mesh.t[:, cells]].T, shape_gradients(mesh, cells))
+
+
 def barycentric(mesh, cells: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Barycentric coordinates λ (n, 4) of points x (3, n) in their ``cells`` (n,) and
     the gradients ∇λ (n, 4, 3): the P1 shape functions and their gradients.
@@ -93,16 +138,13 @@ def barycentric(mesh, cells: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.
     """
     cells = np.asarray(cells).ravel()
     if cells.size and np.all(cells[1:] >= cells[:-1]):   # sorted (quadrature batches):
-        start = np.concatenate([[True], cells[1:] != cells[:-1]])   # no sort needed
-        uc, inv = cells[start], np.cumsum(start) - 1
+        first, inv = runs(cells)                          # no sort needed
+        uc = cells[first]
     else:
         uc, inv = np.unique(cells, return_inverse=True)  # one inverse per cell
-    P = mesh.p[:, mesh.t[:, uc]]                         # (3, 4, nc)
-    A = np.transpose(P[:, 1:] - P[:, :1], (2, 0, 1))     # (nc, 3, 3) columns V_i - V_0
-    Ainv = np.linalg.inv(A)                               # rows: ∇λ₁..₃
     inv = inv.ravel()
-    dlam = np.concatenate([-Ainv.sum(axis=1, keepdims=True), Ainv], axis=1)[inv]
-    d = x - P[:, 0][:, inv]                               # (3, n) from V_0
+    dlam = shape_gradients(mesh, uc)[inv]
+    d = x - mesh.p[:, mesh.t[0, uc]][:, inv]              # (3, n) from V_0
     lam = np.empty((cells.size, 4))
     lam[:, 1:] = sum(dlam[:, 1:, j] * d[j][:, None] for j in range(3))
     lam[:, 0] = 1 - lam[:, 1:].sum(axis=1)
@@ -269,7 +311,7 @@ def crack_geometry_3d(mesh, psi, phi) -> CrackGeometry3D:
     # tolerance of a vertex on the front (ZERO h |∇φ_h|, below) both are front cells,
     # whose pieces then get the rules graded at the front
     h = np.ptp(mesh.p[:, t], axis=1).max(axis=0)          # (nc,) cell sizes
-    gphi = _gradients(mesh, phi)
+    gphi = cell_gradients(mesh, phi)
     near = ZERO * h * np.linalg.norm(gphi, axis=0)
     front = has & (lo <= near) & (hi >= -near)
     split_ = crossed & (hi < 0) & ~front
@@ -304,7 +346,7 @@ def crack_geometry_3d(mesh, psi, phi) -> CrackGeometry3D:
 
     # the vertices on the front first, counted
     pv, fv = _values_at(mesh, sub_cell, sub, psi), _values_at(mesh, sub_cell, sub, phi)
-    gpsi = _gradients(mesh, psi)
+    gpsi = cell_gradients(mesh, psi)
     tol = ZERO * h[sub_cell][:, None]
     on_psi = np.abs(pv) <= tol * np.linalg.norm(gpsi[:, sub_cell], axis=0)[:, None]
     on_phi = np.abs(fv) <= tol * np.linalg.norm(gphi[:, sub_cell], axis=0)[:, None]
@@ -387,13 +429,6 @@ def _cut_edges(mesh, psi, phi, faces, face_cell, h):
 def mesh_cells(mesh, cells: np.ndarray) -> np.ndarray:
     """The tetrahedra (n, 4, 3) of ``cells``."""
     return np.transpose(mesh.p[:, mesh.t[:, cells]], (2, 1, 0))
-
-
-def _gradients(mesh, nodal: np.ndarray) -> np.ndarray:
-    """∇ of the P1 interpolant of ``nodal`` in each cell, (3, ncells)."""
-    cells = np.arange(mesh.t.shape[1])
-    _, dlam = barycentric(mesh, cells, mesh.p[:, mesh.t[0]])
-    return np.einsum("nk,nki->in", nodal[mesh.t].T, dlam)
 
 
 def _faces(sub, sub_cell, sub_side, on_psi, fv, tol, gphi):
@@ -532,10 +567,7 @@ def front_fit(geometry: CrackGeometry3D, points: np.ndarray, spacing: float,
         s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(seg, axis=0))])
         total = s[-1]
         # the nearest place on the chain of each point: its segment and arc length
-        t = np.clip(np.einsum("ik,ikm->km", seg, points[:, None] - pts[:, :-1, None])
-                    / np.maximum((seg * seg).sum(axis=0), 1e-300)[:, None], 0, 1)
-        dist = np.linalg.norm(pts[:, :-1, None] + t * seg[:, :, None] - points[:, None],
-                              axis=0)
+        t, _, dist = nearest_on_segments(pts[:, :-1, None], seg[:, :, None], points[:, None])
         j = np.argmin(dist, axis=0)
         cols = np.arange(points.shape[1])
         at = s[j] + t[j, cols] * (s[j + 1] - s[j])
@@ -555,16 +587,6 @@ def front_fit(geometry: CrackGeometry3D, points: np.ndarray, spacing: float,
         curvature[:, near] = kvec[:, near]
         best = np.minimum(best, dist[j, cols])
     return tangent, curvature
-
-
-def _segment_points(A: np.ndarray, B: np.ndarray, x: np.ndarray, seg: np.ndarray):
-    """The nearest points (3, n, k) of the segments ``seg`` (n, k) from A to B (3, nseg)
-    to the points x (3, n), and their distances (n, k)."""
-    a, d = A[:, seg], (B - A)[:, seg]
-    t = np.clip(((x[:, :, None] - a) * d).sum(axis=0)
-                / np.maximum((d * d).sum(axis=0), 1e-300), 0.0, 1.0)
-    c = a + t * d
-    return c, np.linalg.norm(x[:, :, None] - c, axis=0)
 
 
 OFFSET_SAMPLES = 20
@@ -610,7 +632,8 @@ def front_offset(geometry: CrackGeometry3D,
     best, c = np.full(x.shape[1], np.inf), np.full_like(x, np.nan)
     for j in range(k):
         rows = np.flatnonzero((cand[:, j, None] != cand[:, :j]).all(axis=1))
-        cj, dj = _segment_points(A, B, x[:, rows], cand[rows, j, None])
+        s = cand[rows, j, None]                           # (n, 1) the segments
+        _, cj, dj = nearest_on_segments(A[:, s], (B - A)[:, s], x[:, rows, None])
         nearer = dj[:, 0] < best[rows]
         rows = rows[nearer]
         best[rows], c[:, rows] = dj[nearer, 0], cj[:, nearer, 0]

@@ -44,7 +44,7 @@ from ..fem.loads import force_field
 from ..fem.material import Material
 from .assembly import face_rule, rule_groups
 from .frame import TipFrame, tip_frame
-from .geometry import CrackGeometry
+from .geometry import CrackGeometry, nearest_on_segments
 from .interaction import CrackFace, q_function, stress_intensity
 from .radius import DOMAIN_CELLS, DOMAIN_FRACTION, check_radius
 from .space import CrackSpace, evaluation
@@ -114,9 +114,7 @@ def boundary_distance(mesh, x: np.ndarray) -> float:
     """
     f = mesh.boundary_facets()
     a, b = mesh.p[:, mesh.facets[0, f]], mesh.p[:, mesh.facets[1, f]]
-    d = b - a
-    t = np.clip(((x[:, None] - a) * d).sum(axis=0) / (d * d).sum(axis=0), 0, 1)
-    return float(np.linalg.norm(a + t * d - x[:, None], axis=0).min())
+    return float(nearest_on_segments(a, b - a, x[:, None])[2].min())
 
 
 def tip_reach(mesh, geo, tip: int) -> tuple[float, bool, float]:

@@ -114,7 +114,16 @@ from ..fem.loads import force_field
 from ..fem.material import Material
 from .branch import side_angle
 from .frame import TipFrame, tip_frame
-from .geometry3d import barycentric, crack_geometry_3d, front_chains, front_fit, front_offset
+from .geometry import nearest_on_segments
+from .geometry3d import (
+    barycentric,
+    cell_gradients,
+    crack_geometry_3d,
+    front_chains,
+    front_fit,
+    front_offset,
+    runs,
+)
 from .interaction import sif_from_interaction
 from .radius import DOMAIN_FRACTION, check_radius
 from .space3d import (
@@ -211,15 +220,9 @@ def front_frame(space, points: np.ndarray) -> TipFrame:
     the front cell of the nearest front segment."""
     geo, mesh = space.geometry, space.mesh
     A, B = geo.segments[0], geo.segments[1]
-    d = B - A
-    t = np.clip(((points[:, :, None] - A[:, None]) * d[:, None]).sum(axis=0)
-                / (d * d).sum(axis=0), 0, 1)
-    dist = np.linalg.norm(A[:, None] + t * d[:, None] - points[:, :, None], axis=0)
+    dist = nearest_on_segments(A[:, None], (B - A)[:, None], points[:, :, None])[2]
     cells = geo.segment_cell[np.argmin(dist, axis=1)]
-    _, dlam = barycentric(mesh, cells, points)
-    gphi = np.einsum("nk,nki->in", geo.phi[mesh.t[:, cells]].T, dlam)
-    gpsi = np.einsum("nk,nki->in", geo.psi[mesh.t[:, cells]].T, dlam)
-    return tip_frame(gphi, gpsi)
+    return tip_frame(cell_gradients(mesh, geo.phi, cells), cell_gradients(mesh, geo.psi, cells))
 
 
 def boundary_reach(mesh, points: np.ndarray, e3: np.ndarray, length: float) -> np.ndarray:
@@ -288,10 +291,8 @@ def _nodal_directions(space, cells: np.ndarray, spacing: float, chains=None) -> 
     its nearest place (:func:`fitted_frame`), so that the direction field is smooth
     and the normal lines of a curved front are straight lines along it."""
     mesh, geo = space.mesh, space.geometry
-    _, dlam = barycentric(mesh, cells, mesh.p[:, mesh.t[0, cells]])
-    gph = np.einsum("nk,nki->in", geo.phi[mesh.t[:, cells]].T, dlam)
-    gps = np.einsum("nk,nki->in", geo.psi[mesh.t[:, cells]].T, dlam)
-    fr = tip_frame(gph, gps)                              # (3, nc)
+    fr = tip_frame(cell_gradients(mesh, geo.phi, cells),
+                   cell_gradients(mesh, geo.psi, cells))  # (3, nc)
     e1, e2 = np.zeros((mesh.p.shape[1], 3)), np.zeros((mesh.p.shape[1], 3))
     for k in range(4):                                    # the 4 nodes of a cell
         np.add.at(e1, mesh.t[k, cells], fr.e1.T)
@@ -436,8 +437,7 @@ def _x1_bound(space, cells, X, psi, grad_psi) -> np.ndarray:
     mesh, geo = space.mesh, space.geometry
     if cells.size == 0:
         return np.zeros(0)
-    first = np.flatnonzero(np.concatenate([[True], cells[1:] != cells[:-1]]))
-    inv = np.cumsum(np.concatenate([[False], cells[1:] != cells[:-1]]))
+    first, inv = runs(cells)
     g2 = (grad_psi * grad_psi).sum(axis=0)
     y = X - psi / g2 * grad_psi
     uc = cells[first]
@@ -459,8 +459,7 @@ def _cell_r_bound(space, cells: np.ndarray) -> np.ndarray:
     for k in range(0, cells.size, 4096):                  # blocks: nc × nseg distances
         cc = cells[k:k + 4096]
         psi, V = geo.psi[mesh.t[:, cc]], mesh.p[:, mesh.t[:, cc]]      # (4, nc), (3, 4, nc)
-        _, dlam = barycentric(mesh, cc, V[:, 0])
-        g = np.einsum("kn,nki->in", psi, dlam)
+        g = cell_gradients(mesh, geo.psi, cc)
         g2 = (g * g).sum(axis=0)
         ok = g2 > 0
         Y = V - psi / np.where(ok, g2, 1.0) * g[:, None]  # the vertices' projections
@@ -699,9 +698,7 @@ def _point_frames(e1_nodes: np.ndarray, nodes: np.ndarray, lam: np.ndarray,
     e1n = e1_nodes[nodes]                                 # (n, 4, 3)
     e1 = np.einsum("nk,nki->in", lam, e1n)
     # G is constant in a cell: once per run of points of one cell
-    new = np.ones(len(nodes), dtype=bool)
-    new[1:] = (nodes[1:] != nodes[:-1]).any(axis=1)
-    first, run = np.flatnonzero(new), np.cumsum(new) - 1
+    first, run = runs(nodes)
     G = np.einsum("nkj,nki->jin", dlam[first], e1n[first])[:, :, run]
     return e1, G, tip_frame(e1, grad_psi).R
 

@@ -66,10 +66,16 @@ from ..fem.material import Material, stiffness_matrix
 from ..fem.quadrature import cell_rule, simplex_points
 from ..fem.simplex import split
 from .assembly import check_facets, support_dofs
-from .branch import branch, side_angle
+from .branch import branch, branch_closed_form, side_angle
 from .dofs import EnrichedUnknowns, virtual_map
-from .geometry import check_geometry
-from .geometry3d import CrackGeometry3D, barycentric, check_mesh_3d, mesh_cells
+from .geometry import check_geometry, nearest_on_segments
+from .geometry3d import (
+    CrackGeometry3D,
+    barycentric,
+    check_mesh_3d,
+    mesh_cells,
+    shape_gradients,
+)
 from .quadrature3d import NEAR_GRADING, NEAR_POINTS, collapsed, edge_polar, vertex_polar
 from .radius import enrichment_radius
 from .space import nodal_scaling as _nodal_scaling
@@ -154,9 +160,8 @@ def front_distance(geometry: CrackGeometry3D, x: np.ndarray) -> np.ndarray:
     d = B - A
     best = np.full(x.shape[1], np.inf)
     for k in range(0, A.shape[1], 256):                   # batches of segments
-        a, dd = A[:, None, k:k + 256], d[:, None, k:k + 256]
-        t = np.clip(((x[:, :, None] - a) * dd).sum(axis=0) / (dd * dd).sum(axis=0), 0, 1)
-        dist = np.linalg.norm(a + t * dd - x[:, :, None], axis=0)
+        dist = nearest_on_segments(A[:, None, k:k + 256], d[:, None, k:k + 256],
+                                   x[:, :, None])[2]
         best = np.minimum(best, dist.min(axis=1))
     return best
 
@@ -292,29 +297,16 @@ def _kinds(phi, psi, gphi, gpsi, side, cut) -> tuple[np.ndarray, np.ndarray]:
     reached 1.6e-2 h^2.5 p on the branch rows at h = 0.125 (six such cells; 1e-3 h^2.5 p
     without them, measured).
 
-    The branch functions and their gradients share their trigonometry: with s, c = sin,
-    cos θ/2, F = √r {s, c, s sin θ, c sin θ} (:func:`skxfem.crack.branch.branch`) and
-    ∂F/∂φ = {-s, c, -sin(3θ/2) sin θ, -cos(3θ/2) sin θ}/(2√r),
-    ∂F/∂ψ = {c, s, s + sin(3θ/2) cos θ, c + cos(3θ/2) cos θ}/(2√r)
-    (:func:`skxfem.crack.branch.branch_local_gradient` in closed form, φ and ψ the local
-    coordinates); zero at r = 0."""
+    F and its derivatives along φ and ψ, the local coordinates, in closed form
+    (:func:`skxfem.crack.branch.branch_closed_form`; zero at r = 0), then the chain rule
+    ∇F = ∂F/∂φ ∇φ_h + ∂F/∂ψ ∇ψ_h."""
     r = np.hypot(phi, psi)
-    theta = side_angle(phi, psi, side, cut)
-    live = r > 0
-    sr = np.sqrt(np.where(live, r, 1.0))
-    half = np.where(live, theta, 0.0) / 2
-    s, c = np.sin(half), np.cos(half)
-    st, ct = 2 * s * c, 1 - 2 * s * s                    # sin θ, cos θ
-    s3, c3 = s * (3 - 4 * s * s), c * (4 * c * c - 3)     # sin 3θ/2, cos 3θ/2
-    on = live / (2 * sr)
+    F, dphi, dpsi = branch_closed_form(r, side_angle(phi, psi, side, cut))
     shape = np.shape(r)
     g = np.empty(shape + (6,))
     g[..., 0] = 1.0
     g[..., 1] = np.where(side == 0, 1.0, side)
-    for k, f in enumerate((s, c, s * st, c * st)):
-        g[..., 2 + k] = sr * f * live
-    dphi = np.stack([-s, c, -s3 * st, -c3 * st], axis=-1) * on[..., None]
-    dpsi = np.stack([c, s, s + s3 * ct, c + c3 * ct], axis=-1) * on[..., None]
+    g[..., 2:] = F
     dg = np.zeros(shape + (6, 3))
     dg[..., 2:, :] = (dphi[..., None] * np.expand_dims(gphi, -2)
                       + dpsi[..., None] * np.expand_dims(gpsi, -2))
@@ -328,11 +320,8 @@ def _cell_values(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray, side: np
     :func:`point_values` at each point, batched cell by cell."""
     mesh, geo = space.mesh, space.geometry
     nodes = mesh.t[:, cells].T                            # (nc, 4)
-    P = mesh.p[:, nodes]                                  # (3, nc, 4)
-    A = np.transpose(P[:, :, 1:] - P[:, :, :1], (1, 0, 2))     # columns V_i - V_0
-    Ainv = np.linalg.inv(A)                               # rows ∇λ₁..₃
-    dlam = np.concatenate([-Ainv.sum(axis=1, keepdims=True), Ainv], axis=1)
-    l123 = np.matmul(x - P[:, :, 0].T[:, None], np.swapaxes(Ainv, 1, 2))
+    dlam = shape_gradients(mesh, cells)                   # (nc, 4, 3)
+    l123 = np.matmul(x - mesh.p[:, nodes[:, 0]].T[:, None], np.swapaxes(dlam[:, 1:], 1, 2))
     lam = np.concatenate([1 - l123.sum(axis=2, keepdims=True), l123], axis=2)
     phi = np.matmul(lam, geo.phi[nodes][:, :, None])[..., 0]
     psi = np.matmul(lam, geo.psi[nodes][:, :, None])[..., 0]

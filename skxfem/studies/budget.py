@@ -68,6 +68,7 @@ skxfem.studies.budget.TooLargeError: the scene 'strip...' needs at least ... GB 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
@@ -80,12 +81,10 @@ from ..scene.model import Box, Resolved, Scene, check_scene, resolve
 from .counts import (
     NVERTS,
     box_counts,
-    box_crack_depth,
-    box_front_nodes,
+    box_crack_counts,
     box_size,
     mesh_counts,
-    mesh_crack_depth,
-    mesh_front_nodes,
+    mesh_crack_counts,
 )
 
 __all__ = ["DEFAULT_MAX_BYTES", "Estimate", "TooLargeError", "check", "estimate",
@@ -245,21 +244,23 @@ def estimate(scene: Scene, linear: str | None = None) -> Estimate:
         box = scene.mesh
         size = box.size or (1.0,) * box.dim
         D, hd = np.linalg.norm(size), np.linalg.norm(np.divide(size, box.n))
-        counts, cell = [box_counts(box, i.levelset) for i in items], box.cell
-        branch = [0 if i.front is None else box_front_nodes(
-            box, i.levelset, i.front, _branch_radius(
-                i, box.dim, D if box.dim == 2 else box_crack_depth(box, i.levelset, i.front,
-                                                                     hd), hd))
-                  for i in items]
+        dim, cell = box.dim, box.cell
+        count, crack = partial(box_counts, box), partial(box_crack_counts, box)
     else:
         mesh = resolve(scene).mesh if mesh is None else mesh
-        counts, cell = [mesh_counts(mesh, i.levelset) for i in items], cell_name(mesh)
-        D = np.linalg.norm(np.ptp(mesh.p, axis=1))
-        hd = _cell_diameter(mesh)
-        branch = [0 if i.front is None else mesh_front_nodes(
-            mesh, i.levelset, i.front, _branch_radius(
-                i, mesh.dim(), D if mesh.dim() == 2 else mesh_crack_depth(
-                    mesh, i.levelset, i.front, hd), hd)) for i in items]
+        D, hd = np.linalg.norm(np.ptp(mesh.p, axis=1)), _cell_diameter(mesh)
+        dim, cell = mesh.dim(), cell_name(mesh)
+        count, crack = partial(mesh_counts, mesh), partial(mesh_crack_counts, mesh)
+    counts, branch = [], []
+    for i in items:                      # a crack: ψ and φ evaluated once, its depth in 3D
+        if i.front is None:
+            counts.append(count(i.levelset))
+            branch.append(0)
+        else:
+            c, _, near = crack(i.levelset, i.front, hd, lambda depth, i=i: _branch_radius(
+                i, dim, D if dim == 2 else depth, hd))
+            counts.append(c)
+            branch.append(near)
     return _estimate(scene, linear, *counts[0][:2], [c[2] for c in counts],
                      [c[3] for c in counts], cell, branch)
 
