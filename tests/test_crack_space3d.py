@@ -123,19 +123,26 @@ def _pointwise_stiffness(V, material):
     lam_, mu = material.lame(3)
     near = V.support_cells(V.enriched_nodes())
     nv = V.T.shape[0]
-    K = sp.csr_matrix((nv, nv))
+    parts = []
     for cells, x, w, side in rules(V, near, plain=1, symmetric=True):
         nq = w.shape[1]
-        _, G, vnode = functions_at(V, np.repeat(cells, nq), x.reshape(-1, 3).T, side.ravel())
-        wq = w.ravel()
-        A = np.einsum("q,qai,qbj->qaibj", wq, G, G)      # ∂_i f_a ∂_j f_b, each point
-        Ke = (lam_ * A + mu * A.transpose(0, 1, 4, 3, 2)
-              + mu * np.einsum("qakbk->qab", A)[:, :, None, :, None]
-              * np.eye(3)[None, None, :, None, :])       # [q, a, i, b, j]
-        dof = 3 * vnode[:, :, None] + np.arange(3)       # (q, 24, 3)
-        rows = np.broadcast_to(dof[:, :, :, None, None], Ke.shape).ravel()
-        cols = np.broadcast_to(dof[:, None, None], Ke.shape).ravel()
-        K = K + sp.csr_matrix((Ke.ravel(), (rows, cols)), shape=(nv, nv))
+        _, G_, vnode_ = functions_at(V, np.repeat(cells, nq), x.reshape(-1, 3).T,
+                                     side.ravel())
+        wq_ = w.ravel()
+        for k in range(0, wq_.size, 2048):     # points in chunks: 5184 numbers a point
+            G, vnode, wq = G_[k:k + 2048], vnode_[k:k + 2048], wq_[k:k + 2048]
+            A = np.einsum("q,qai,qbj->qaibj", wq, G, G)      # ∂_i f_a ∂_j f_b, each point
+            Ke = (lam_ * A + mu * A.transpose(0, 1, 4, 3, 2)
+                  + mu * np.einsum("qakbk->qab", A)[:, :, None, :, None]
+                  * np.eye(3)[None, None, :, None, :])       # [q, a, i, b, j]
+            dof = 3 * vnode[:, :, None] + np.arange(3)       # (q, 24, 3)
+            rows = np.broadcast_to(dof[:, :, :, None, None], Ke.shape).ravel()
+            cols = np.broadcast_to(dof[:, None, None], Ke.shape).ravel()
+            parts.append(sp.coo_matrix((Ke.ravel(), (rows, cols)), shape=(nv, nv)).tocsr()
+                         .tocoo())                          # summed within the chunk
+    K = sp.csr_matrix((np.concatenate([c.data for c in parts]),
+                       (np.concatenate([c.row for c in parts]),
+                        np.concatenate([c.col for c in parts]))), shape=(nv, nv))
     rest = np.setdiff1d(np.arange(mesh.t.shape[1]), near)
     Ks = stiffness_matrix(material, Basis(mesh, ElementTetP1(), elements=rest,
                                           quadrature=cell_rule(mesh)))
