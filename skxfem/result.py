@@ -77,7 +77,9 @@ class Result:
     ``front``: one dict per interface with a front (a crack, :class:`skxfem.gamma.Crack`),
     in the scene's order: ``points`` (m, dim) the front's points, ``K_I``, ``K_II``
     and, in 3D, ``K_III`` (m,) the stress intensity factors there
-    (:func:`skxfem.crack.sif.sif`, :func:`skxfem.crack.sif3d.sif_3d`) and
+    (:func:`skxfem.crack.sif.sif`, :func:`skxfem.crack.sif3d.sif_3d`), in 3D
+    ``interior`` (m,) whether K is trusted there (the point's domain clear of the free
+    surfaces the front ends on, :func:`skxfem.crack.kind3d.interior_points`), and
     ``interface`` the index of the crack in the scene's interfaces; empty without a
     crack.  ``timings``: seconds per stage, ``cut``, ``enrich``, ``assemble``,
     ``solve`` and, with a crack, ``front`` (K along its fronts).

@@ -340,12 +340,19 @@ def _run(args, caught: list) -> int:
 
 def _fronts(result) -> str:
     """', K_I in [a, b], K_II in [c, d]' over the front points of every crack of the
-    result (and K_III in 3D), else '': the numbers a crack's scene is run for."""
+    result (and K_III in 3D), else '': the numbers a crack's scene is run for.  In 3D
+    over the interior points (``interior``: K trusted, away from the free surfaces the
+    front ends on) when there are any."""
     if not result.front:
         return ""
+    inner = [np.asarray(f.get("interior", np.ones(len(f["points"]))), bool)
+             for f in result.front]
+    if not any(i.any() for i in inner):
+        inner = [np.ones(i.size, bool) for i in inner]
     words = []
     for key in ("K_I", "K_II", "K_III"):
-        k = np.concatenate([np.asarray(f.get(key, ()), float) for f in result.front])
+        k = np.concatenate([np.asarray(f[key], float)[i]
+                            for f, i in zip(result.front, inner) if key in f] or [[]])
         if k.size:
             words.append(f"{key} {k[0] + 0.0:.4g}" if k.size == 1 else
                          f"{key} in [{k.min() + 0.0:.4g}, {k.max() + 0.0:.4g}]")

@@ -23,7 +23,9 @@
 * ``front`` (only for a scene with a crack, an interface with a ``front``): one entry
   per crack, ``interface`` (its index in ``interfaces``), ``points`` (one list per front
   point), ``K_I`` and ``K_II`` (and ``K_III`` in 3D; one number per point), the stress
-  intensity factors of :attr:`skxfem.result.Result.front`.
+  intensity factors of :attr:`skxfem.result.Result.front`, and in 3D ``interior`` (a
+  boolean per point: K is trusted there, its domain clear of the free surfaces the
+  front ends on).
 * ``displacement.vtu``: each region as its own piece of mesh with its own
   field ``displacement``, so that ParaView's *Warp By Vector* shows the
   discontinuity: piece r holds the cells with a vertex in region r, on its own
@@ -188,7 +190,9 @@ def result_summary(result) -> dict:
         data["front"] = [{"interface": int(f["interface"]),
                           "points": _plain(np.asarray(f["points"]), "front points"),
                           **{k: _plain(np.asarray(f[k]), k)
-                             for k in ("K_I", "K_II", "K_III") if k in f}}
+                             for k in ("K_I", "K_II", "K_III") if k in f},
+                          **({"interior": np.asarray(f["interior"], bool).tolist()}
+                             if "interior" in f else {})}
                          for f in fronts]
     return data
 
