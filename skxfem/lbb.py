@@ -142,11 +142,11 @@ def inf_sup(scene, scaling: str = "h", law: str | None = None) -> InfSup:
     laws = [i.law for i in resolved.scene.interfaces] if law is None else [law]
     contact = [name for name in laws if name in CONTACT_LAWS]
     if contact or all(name == "free" for name in laws):
-        what = (f"law {contact[0]!r} is a contact law, whose multipliers change with the "
-                f"contact state" if contact else "law 'free' has no multipliers (free "
-                "faces), so no inf-sup constant")
-        raise ValueError(f"inf_sup: {what}; give law='bilateral' (the normal multipliers), "
-                         f"'stick' or 'bonded'")
+        what = (f"law {contact[0]!r} is a contact law, whose multipliers change "
+                f"with the contact state" if contact else "law 'free' has no "
+                "multipliers (free faces), so no inf-sup constant")
+        raise ValueError(f"inf_sup: {what}; give law='bilateral' (the normal "
+                         f"multipliers), 'stick' or 'bonded'")
     p = assemble(resolved, "bilateral" if law == "stick" else law)
     mesh, V = p.mesh, p.V
     L = np.ptp(mesh.p, axis=1).max()
