@@ -36,9 +36,9 @@ across the crack at the facet's crossings (:func:`_shut_mouth`):
   support clamps the mouth shut, every enriched unknown of the facet's nodes (Heaviside
   and branch) set to zero, so that its trace is the interpolant of g on both faces, and
   a supported node on the crack itself takes g too.  (Until 29 November 2026 the mouth
-  stayed free whatever g: a clamped face cut by an edge crack opened by 0.023 at its
-  mouth at h = 1/21, 0.011 at 1/41, and ``examples/crack.toml``'s contact pressure was
-  1.072 there instead of 1.)
+  stayed free whatever g: the crack chapter's edge crack, its mouth on a clamped face,
+  pulled open, h = 1/21, opened there by (0.0053, -0.0058) with K_I 0.755 against 0.750
+  now, and ``examples/crack.toml``'s contact pressure was 1.072 there instead of 1.)
 * g **discontinuous** across the crack (the exact near-tip field, say): the mouth stays
   free, the data imposed at the nodes only, and a supported node on the crack (ψ = 0,
   φ < 0: a mouth through a node), which has two values, one per face, is left free (a
