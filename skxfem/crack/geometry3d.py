@@ -51,10 +51,17 @@ from ..fem.simplex import split
 from .geometry import ZERO, check_mesh_type, level_set_values, nearest_on_segments
 
 __all__ = ["CrackGeometry3D", "crack_geometry_3d", "check_mesh_3d", "front_chains",
-           "orthonormal_on_front", "front_fit", "front_offset",
+           "orthonormal_on_front", "orthonormal_at_nodes", "FAR", "front_fit",
+           "front_offset",
            "barycentric", "shape_gradients", "cell_gradients", "runs", "VOLUME_TOL"]
 
 VOLUME_TOL = 1e-12
+
+FAR = 0.1
+"""The level sets pass for signed distances along the front while |∇ψ_h|, the part β of
+|∇φ_h| normal to ∇ψ_h (each within FAR of 1) and ∇φ_h·∇ψ_h/|∇ψ_h|² (within FAR of 0)
+are; beyond, they are mapped to them (:func:`orthonormal_on_front`, node by node if
+need be: :func:`orthonormal_at_nodes`)."""
 """Sub-tetrahedra below VOLUME_TOL times their cell's volume are dropped (zero-volume
 pieces of a level set through a node or along an edge)."""
 
@@ -268,7 +275,7 @@ def _volumes(X):
     return np.abs(np.linalg.det(d)) / 6
 
 
-def crack_geometry_3d(mesh, psi, phi) -> CrackGeometry3D:
+def crack_geometry_3d(mesh, psi, phi, _remap: bool = False) -> CrackGeometry3D:
     """The :class:`CrackGeometry3D` of the crack {ψ = 0, φ < 0} on a tetrahedral mesh.
 
     Parameters
@@ -360,7 +367,13 @@ def crack_geometry_3d(mesh, psi, phi) -> CrackGeometry3D:
     normal = gpsi[:, face_cell] / np.linalg.norm(gpsi[:, face_cell], axis=0)
     segments, segment_cell = _segments(sub, sub_cell, on, h)
     edge_ids, points, facets = _cut_edges(mesh, psi, phi, faces, face_cell, h)
-    psi, phi = orthonormal_on_front(gpsi[:, front_cells], gphi[:, front_cells], psi, phi)
+    mapped = orthonormal_on_front(gpsi[:, front_cells], gphi[:, front_cells], psi, phi)
+    if mapped is None:                    # no one map along the front: node by node
+        if not _remap:
+            return crack_geometry_3d(mesh, *orthonormal_at_nodes(mesh, psi, phi),
+                                     _remap=True)
+        mapped = psi, phi
+    psi, phi = mapped
     return CrackGeometry3D(psi, phi, front_cells, split_cells, side, sub, sub_cell,
                            sub_side, sub_front, faces, face_cell, normal, segments,
                            segment_cell, edge_ids, mesh.edges[:, edge_ids], points,
@@ -378,7 +391,10 @@ def orthonormal_on_front(gpsi: np.ndarray, gphi: np.ndarray, psi: np.ndarray,
     size (:func:`skxfem.crack.sif3d.front_sizes`) read φ and ψ as distances: with
     ψ = 10 (z - z₀) the sizes came out 5 × too large and no front point got K ('under a
     cell of room'), silently but for a warning.  As the 2D
-    :func:`skxfem.crack.geometry.orthonormal_at_tips`.
+    :func:`skxfem.crack.geometry.orthonormal_at_tips`.  None where the level sets are
+    more than :data:`FAR` from signed distances somewhere along the front and one of
+    γ, c, β is not one number along it: no one map fits
+    (:func:`orthonormal_at_nodes` then maps them node by node).
 
     >>> g = np.array([[0.0], [0.0], [10.0]])
     >>> psi, phi = orthonormal_on_front(g, np.array([[1.0], [0.0], [5.0]]),
@@ -395,7 +411,45 @@ def orthonormal_on_front(gpsi: np.ndarray, gphi: np.ndarray, psi: np.ndarray,
         return m if np.ptp(v) <= tol * max(abs(m), 1.0) and abs(m - neutral) > tol \
             else neutral
 
+    if (np.abs(gamma - 1).max(initial=0) <= FAR and np.abs(beta - 1).max(initial=0) <= FAR
+            and np.abs(c).max(initial=0) <= FAR):
+        pass                                      # near signed distances: the one map
+    elif any(np.ptp(v) > tol * max(abs(float(v.mean())), 1.0) for v in (gamma, c, beta)):
+        return None                               # far from them, and not one map
     g, cc, b = one(gamma, 1.0), one(c, 0.0), one(beta, 1.0)
+    return psi / g, (phi - cc * psi) / b
+
+
+def orthonormal_at_nodes(mesh, psi: np.ndarray, phi: np.ndarray
+                         ) -> tuple[np.ndarray, np.ndarray]:
+    """The nodal level sets (ψᵢ/γᵢ, (φᵢ - cᵢψᵢ)/βᵢ) with γ, c, β of
+    :func:`orthonormal_on_front` averaged at each node over its cells: the map node by
+    node, where no one map fits along the front (an ellipse's implicit form
+    (x/a)² + (y/b)² - 1, whose |∇φ| runs from 2/a to 2/b along it).  The crack moves by
+    the change of the interpolants, O(h²) where γ, c, β are smooth; the geometry is then
+    built again on these values (:func:`crack_geometry_3d`).  A node whose γ or β is under
+    1e-6 of their median (∇ψ = 0, or ∇φ along ∇ψ, far from the front) takes the median.
+
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 5),) * 3)
+    >>> psi, phi = orthonormal_at_nodes(m, 3 * (m.p[2] - 0.5), m.p[0] ** 2 - 0.25)
+    >>> bool(np.allclose(psi, m.p[2] - 0.5)), round(float(phi[m.p[0] == 0.5][0]), 12)
+    (True, 0.0)
+    """
+    gpsi, gphi = cell_gradients(mesh, psi), cell_gradients(mesh, phi)
+    gamma = np.linalg.norm(gpsi, axis=0)
+    c = (gphi * gpsi).sum(axis=0) / np.maximum(gamma, 1e-300) ** 2
+    beta = np.linalg.norm(gphi - c * gpsi, axis=0)
+    n, t = mesh.p.shape[1], mesh.t
+    count = np.bincount(t.ravel(), minlength=n)
+
+    def at_nodes(v):
+        out = np.bincount(t.ravel(), weights=np.tile(v, t.shape[0]), minlength=n)
+        return out / np.maximum(count, 1)
+
+    g, cc, b = at_nodes(gamma), at_nodes(c), at_nodes(beta)
+    for v in (g, b):
+        mid = float(np.median(v))
+        v[~(v > 1e-6 * mid)] = mid
     return psi / g, (phi - cc * psi) / b
 
 
