@@ -59,7 +59,7 @@ from ..fem.simplex import split
 from ..levelset import nodal_values
 
 __all__ = ["CrackGeometry", "crack_geometry", "check_mesh_2d", "check_mesh_type",
-           "check_geometry", "orthonormal_at_tips",
+           "check_geometry", "orthonormal_at_tips", "level_set_scales",
            "level_set_values", "nearest_on_segments", "ZERO",
            "AREA_TOL"]
 
@@ -442,6 +442,20 @@ def crack_geometry(mesh, psi, phi) -> CrackGeometry:
                          np.transpose(seg_ref, (1, 2, 0)), normals)
 
 
+def level_set_scales(gpsi: np.ndarray, gphi: np.ndarray
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """How far the level sets are from signed distances, from their gradients ``gpsi``,
+    ``gphi`` (dim, ...): γ = |∇ψ|, c = ∇φ·∇ψ/γ² and β = |∇φ - c∇ψ|, the part of |∇φ|
+    normal to ∇ψ (...), so that (ψ/γ, (φ - cψ)/β) have orthonormal gradients.
+
+    >>> [float(v) for v in level_set_scales(np.array([0.0, 10.0]), np.array([1.0, 5.0]))]
+    [10.0, 0.5, 1.0]
+    """
+    gamma = np.linalg.norm(gpsi, axis=0)
+    c = (gphi * gpsi).sum(axis=0) / np.maximum(gamma, 1e-300) ** 2
+    return gamma, c, np.linalg.norm(gphi - c * gpsi, axis=0)
+
+
 def orthonormal_at_tips(mesh, psi: np.ndarray, phi: np.ndarray, tip_cells: np.ndarray,
                         tip_of_cell: np.ndarray, tip_ref: np.ndarray, tol: float = 1e-6
                         ) -> tuple[np.ndarray, np.ndarray]:
@@ -466,9 +480,7 @@ def orthonormal_at_tips(mesh, psi: np.ndarray, phi: np.ndarray, tip_cells: np.nd
         b = Basis(mesh, mesh.elem(), elements=tip_cells[i:i + 1],
                   quadrature=(tip_ref[:, i:i + 1], np.ones(1)))
         gpsi, gphi = (b.interpolate(v).grad[:, 0, 0] for v in (psi, phi))
-        gamma = float(np.linalg.norm(gpsi))
-        c = float(gphi @ gpsi) / gamma ** 2
-        beta = float(np.linalg.norm(gphi - c * gpsi))
+        gamma, c, beta = (float(v) for v in level_set_scales(gpsi, gphi))
         if not (gamma > 0 and beta > 0):
             return psi, phi
         maps.append((gamma, c, beta))

@@ -48,7 +48,13 @@ import numpy as np
 from skfem import MeshTet1
 
 from ..fem.simplex import split
-from .geometry import ZERO, check_mesh_type, level_set_values, nearest_on_segments
+from .geometry import (
+    ZERO,
+    check_mesh_type,
+    level_set_scales,
+    level_set_values,
+    nearest_on_segments,
+)
 
 __all__ = ["CrackGeometry3D", "crack_geometry_3d", "check_mesh_3d", "front_chains",
            "orthonormal_on_front", "orthonormal_at_nodes", "FAR", "front_fit",
@@ -56,14 +62,14 @@ __all__ = ["CrackGeometry3D", "crack_geometry_3d", "check_mesh_3d", "front_chain
            "barycentric", "shape_gradients", "cell_gradients", "runs", "VOLUME_TOL"]
 
 VOLUME_TOL = 1e-12
+"""Sub-tetrahedra below VOLUME_TOL times their cell's volume are dropped (zero-volume
+pieces of a level set through a node or along an edge)."""
 
 FAR = 0.1
 """The level sets pass for signed distances along the front while |∇ψ_h|, the part β of
 |∇φ_h| normal to ∇ψ_h (each within FAR of 1) and ∇φ_h·∇ψ_h/|∇ψ_h|² (within FAR of 0)
 are; beyond, they are mapped to them (:func:`orthonormal_on_front`, node by node if
 need be: :func:`orthonormal_at_nodes`)."""
-"""Sub-tetrahedra below VOLUME_TOL times their cell's volume are dropped (zero-volume
-pieces of a level set through a node or along an edge)."""
 
 _EDGES = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
 
@@ -381,7 +387,8 @@ def crack_geometry_3d(mesh, psi, phi, _remap: bool = False) -> CrackGeometry3D:
 
 
 def orthonormal_on_front(gpsi: np.ndarray, gphi: np.ndarray, psi: np.ndarray,
-                         phi: np.ndarray, tol: float = 1e-2) -> tuple[np.ndarray, np.ndarray]:
+                         phi: np.ndarray, tol: float = 1e-2
+                         ) -> tuple[np.ndarray, np.ndarray] | None:
     """The nodal level sets (ψ̂, φ̂) = (ψ/γ, (φ - c ψ)/β), the same crack, with gradients
     near orthonormal on the front: γ = |∇ψ_h|, c = ∇φ_h·∇ψ_h/γ², β = |∇φ_h - c∇ψ_h| in
     the front cells (``gpsi``, ``gphi``, (3, nf)), each taken where it is one number
@@ -402,20 +409,19 @@ def orthonormal_on_front(gpsi: np.ndarray, gphi: np.ndarray, psi: np.ndarray,
     >>> psi.tolist(), phi.tolist()
     ([1.0, -1.0], [-4.0, 7.0])
     """
-    gamma = np.linalg.norm(gpsi, axis=0)
-    c = (gphi * gpsi).sum(axis=0) / gamma ** 2
-    beta = np.linalg.norm(gphi - c * gpsi, axis=0)
+    gamma, c, beta = level_set_scales(gpsi, gphi)
+
+    def one_number(v):
+        return np.ptp(v) <= tol * max(abs(float(v.mean())), 1.0)
 
     def one(v, neutral):
         m = float(v.mean())
-        return m if np.ptp(v) <= tol * max(abs(m), 1.0) and abs(m - neutral) > tol \
-            else neutral
+        return m if one_number(v) and abs(m - neutral) > tol else neutral
 
-    if (np.abs(gamma - 1).max(initial=0) <= FAR and np.abs(beta - 1).max(initial=0) <= FAR
-            and np.abs(c).max(initial=0) <= FAR):
-        pass                                      # near signed distances: the one map
-    elif any(np.ptp(v) > tol * max(abs(float(v.mean())), 1.0) for v in (gamma, c, beta)):
-        return None                               # far from them, and not one map
+    near = (np.abs(gamma - 1).max(initial=0) <= FAR and np.abs(beta - 1).max(initial=0)
+            <= FAR and np.abs(c).max(initial=0) <= FAR)
+    if not near and not all(one_number(v) for v in (gamma, c, beta)):
+        return None                               # far from distances, and no one map
     g, cc, b = one(gamma, 1.0), one(c, 0.0), one(beta, 1.0)
     return psi / g, (phi - cc * psi) / b
 
@@ -435,10 +441,7 @@ def orthonormal_at_nodes(mesh, psi: np.ndarray, phi: np.ndarray
     >>> bool(np.allclose(psi, m.p[2] - 0.5)), round(float(phi[m.p[0] == 0.5][0]), 12)
     (True, 0.0)
     """
-    gpsi, gphi = cell_gradients(mesh, psi), cell_gradients(mesh, phi)
-    gamma = np.linalg.norm(gpsi, axis=0)
-    c = (gphi * gpsi).sum(axis=0) / np.maximum(gamma, 1e-300) ** 2
-    beta = np.linalg.norm(gphi - c * gpsi, axis=0)
+    gamma, c, beta = level_set_scales(cell_gradients(mesh, psi), cell_gradients(mesh, phi))
     n, t = mesh.p.shape[1], mesh.t
     count = np.bincount(t.ravel(), minlength=n)
 
