@@ -480,7 +480,7 @@ def test_domain_reach_is_half_the_radius_of_curvature_on_a_penny():
     m = MeshTet1.init_tensor(*(np.linspace(-1, 1, 17),) * 3)
     V = crack_space_3d(m, crack_geometry_3d(m, m.p[2] - 0.05, np.hypot(m.p[0], m.p[1])
                                             - 0.55))
-    P, reach, h = front_reach(V)
+    P, reach, h, _ = front_reach(V)
     # the fitted curvature of the P1 front (chords inside the circle): 0.260-0.270
     assert np.allclose(reach, 0.55 / 2, rtol=0.08) and 0.1 < h < 0.2, (reach, h)
 
@@ -534,7 +534,7 @@ def test_sif_3d_gives_nan_where_the_domain_has_no_room():
     V = crack_space_3d(m, crack_geometry_3d(m, m.p[2] - 0.5375, m.p[0] + m.p[1] - 1))
     U = np.zeros(V.N)
     U[V.nodal_dofs[2]] = m.p[2]
-    P, reach, h = front_reach(V)
+    P, reach, h, _ = front_reach(V)
     K = sif_3d(V, U, MAT, P)
     assert np.array_equal(np.isnan(K).any(axis=1), reach < h) and 4 <= (reach < h).sum() <= 8
     assert np.all(K[reach >= h, 0] > 0)

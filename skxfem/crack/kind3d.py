@@ -73,38 +73,35 @@ class FrontPointsWarning(UserWarning):
     boundary or another tip, and its K is doubtful (:mod:`skxfem.gamma`)."""
 
 
-def interior_points(space, P: np.ndarray) -> np.ndarray:
+def interior_points(P: np.ndarray, chains: list, length: float) -> np.ndarray:
     """(m,) whether the bump along the front of each point P (3, m) (half-width
-    :data:`~skxfem.crack.sif3d.DEFAULT_LENGTH` front-cell sizes along it) stays clear of
-    the free surfaces the front ends on: its distance to the ends of every open chain of
-    :func:`~skxfem.crack.geometry3d.front_chains` is at least that half-width.  K is
-    trusted there only (:mod:`skxfem.crack.sif3d`'s notes: the surfaces add a term to the
-    integral where the bump reaches them, and the field has its own singularity where
-    the front meets a surface): on a bonded through crack (7³ cells), the points half a
-    cell from the sides gave K_III = 0.21, -0.20, the others at most 0.010 in size.
+    ``length``) stays clear of the free surfaces the front ends on: its distance to the
+    ends of every open chain of ``chains`` (:func:`~skxfem.crack.geometry3d.front_chains`)
+    is at least that half-width.  K is trusted there only (:mod:`skxfem.crack.sif3d`'s
+    notes: the surfaces add a term to the integral where the bump reaches them, and the
+    field has its own singularity where the front meets a surface): on a bonded through
+    crack (7³ cells), the points half a cell from the sides gave K_III = 0.21, -0.20, the
+    others at most 0.010 in size.
 
-    >>> from skfem import MeshTet1
-    >>> from skxfem.crack.geometry3d import crack_geometry_3d
-    >>> from skxfem.crack.space3d import crack_space_3d
-    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 7),) * 2, np.linspace(0, 1, 7))
-    >>> V = crack_space_3d(m, crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.5))
+    >>> chain = np.array([[0.5, 0.5], [0.5, 0.5], [0.0, 1.0]])      # x = y = 1/2
     >>> P = np.array([[0.5] * 4, [0.5] * 4, [0.05, 0.2, 0.5, 0.95]])
-    >>> interior_points(V, P).tolist()
-    [False, False, True, False]
+    >>> interior_points(P, [(chain, False)], 0.15).tolist()
+    [False, True, True, False]
     """
-    ends = [pts[:, [0, -1]] for pts, closed in front_chains(space.geometry) if not closed]
+    ends = [pts[:, [0, -1]] for pts, closed in chains if not closed]
     if not ends:
         return np.ones(P.shape[1], dtype=bool)
     E = np.hstack(ends)
     d = np.linalg.norm(P[:, :, None] - E[:, None], axis=0).min(axis=1)
-    return d >= DEFAULT_LENGTH * front_sizes(space)[1] * (1 - 1e-9)
+    return d >= length * (1 - 1e-9)
 
 
-def front_reach(space) -> tuple[np.ndarray, np.ndarray, float]:
+def front_reach(space) -> tuple[np.ndarray, np.ndarray, float, np.ndarray]:
     """The front's points (3, m) where K is computed (:func:`skxfem.crack.sif3d.front_points`),
     how far each one's interaction domain can reach (:func:`skxfem.crack.sif3d.domain_reach`,
-    with :func:`skxfem.crack.sif3d.sif_3d`'s default bump) and the front cells' size h
-    across the front (:func:`skxfem.crack.sif3d.front_sizes`).  A point whose reach is
+    with :func:`skxfem.crack.sif3d.sif_3d`'s default bump), the front cells' size h
+    across the front (:func:`skxfem.crack.sif3d.front_sizes`) and whether each point is
+    interior (:func:`interior_points`, that bump's half-width).  A point whose reach is
     under h gets no K (:meth:`Crack3D.front` leaves it out and warns; a front with no
     point left has none, the solve's other results stand): its domain would hold no
     cell, and K came out anywhere between
@@ -116,7 +113,8 @@ def front_reach(space) -> tuple[np.ndarray, np.ndarray, float]:
     P = front_points(space, h_along, chains)
     L = DEFAULT_LENGTH * h_along
     frame, kappa = fitted_frame(space, P, max(L, 2 * h_along), chains)
-    return P, domain_reach(space, P, frame.e3, kappa, L, chains), h
+    return (P, domain_reach(space, P, frame.e3, kappa, L, chains), h,
+            interior_points(P, chains, L))
 
 
 @dataclass(frozen=True)
@@ -209,7 +207,7 @@ class Crack3D:
         faces = None
         if traction is not None and np.any(traction):
             faces = face_traction_3d(V.mesh, V.cut, np.asarray(traction, float))
-        P, reach, h = front_reach(V.space)
+        P, reach, h, interior = front_reach(V.space)
         if not np.all(reach >= h):
             far = reach >= h
             near = int((~far).sum())
@@ -221,11 +219,11 @@ class Crack3D:
                           f"that near, or another front or the centre of curvature a few "
                           f"cells away); refine the mesh there for K", FrontPointsWarning,
                           stacklevel=2)
-            P = P[:, far]
+            P, interior = P[:, far], interior[far]
         K = (sif_3d(V.space, U, material, P, self.interface.sif_radius,
                     body_force=body_force, faces=faces) if P.shape[1] else np.zeros((0, 3)))
         return {"points": P.T.copy(), "K_I": K[:, 0], "K_II": K[:, 1], "K_III": K[:, 2],
-                "interior": interior_points(V.space, P)}
+                "interior": interior}
 
 
 def _face_jump(space: CrackSpace3D, cells: np.ndarray, x: np.ndarray) -> sp.csr_matrix:
