@@ -491,7 +491,7 @@ def support_dofs(space, supports, mouth: Callable[[np.ndarray], np.ndarray]
         if comps.size == 0 or not np.all(np.isin(comps, tuple(range(d)))):
             raise ValueError(f"supports[{k}].components must be among {tuple(range(d))}, "
                              f"got {s.components!r}")
-        nodes, clamp, shut = [], [], np.zeros((d, 0), int)
+        nodes, clamp, shut = [], [], [np.zeros(0, int)] * d
         if s.facets is not None:
             f = check_facets(mesh, s.facets, f"supports[{k}].facets")
             fn = np.unique(mesh.facets[:, f])
@@ -528,21 +528,18 @@ def support_dofs(space, supports, mouth: Callable[[np.ndarray], np.ndarray]
 
 
 def _shut_mouth(mesh, psi: np.ndarray, phi: np.ndarray, facets: np.ndarray, value,
-                d: int) -> np.ndarray:
-    """(d, ...) per component, the nodes of the mouth ``facets`` (nodes per facet, nf)
+                d: int) -> list[np.ndarray]:
+    """Per component (d arrays), the nodes of the mouth ``facets`` (nodes per facet, nf)
     where the imposed ``value`` (None: zero) is continuous across the crack: there the
-    support clamps the mouth shut (an object array of node arrays, one per component).
+    support clamps the mouth shut.
 
     The test, at each crossing x_c of a facet's side with ψ_h = 0 behind the front
     (φ_h < 0; e the side's unit direction from ψ < 0 to ψ > 0): the jump
     J(δ) = g(x_c + δe) - g(x_c - δe) at δ = 1e-3 h and 1e-6 h (h the side's length).
     A continuous g has J → 0 with δ; a discontinuous one keeps its jump: it is one where
     |J(1e-6 h)| > ½ |J(1e-3 h)| and above 1e-12 of g's size."""
-    out = np.empty(d, dtype=object)
-    for c in range(d):
-        out[c] = np.zeros(0, int)
     if facets.shape[1] == 0:
-        return out
+        return [np.zeros(0, int)] * d
     pairs = [(i, j) for i in range(facets.shape[0]) for j in range(i + 1, facets.shape[0])]
     a = np.concatenate([facets[i] for i, _ in pairs])
     b = np.concatenate([facets[j] for _, j in pairs])
@@ -567,9 +564,8 @@ def _shut_mouth(mesh, psi: np.ndarray, phi: np.ndarray, facets: np.ndarray, valu
     coarse, fine = jump(1e-3), jump(1e-6)
     size = np.abs(g(xc)).max(initial=0.0)
     broken = (fine > 0.5 * coarse) & (fine > 1e-12 * max(size, 1e-300))   # (d, n)
-    for c in range(d):            # a facet with no crossing behind the front stays open
-        out[c] = np.unique(facets[:, np.setdiff1d(owner, owner[broken[c]])])
-    return out
+    # a facet with no crossing behind the front stays open
+    return [np.unique(facets[:, np.setdiff1d(owner, owner[broken[c]])]) for c in range(d)]
 
 
 def dependent_dofs(space, fixed: np.ndarray) -> np.ndarray:
