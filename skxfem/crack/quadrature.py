@@ -49,7 +49,7 @@ from numpy.polynomial.legendre import leggauss
 
 from ..fem.cells import reference_simplices
 from ..fem.quadrature import SubcellRule, pack_rules, simplex_points
-from .geometry import AREA_TOL
+from .geometry import AREA_TOL, nearest_on_segments
 
 __all__ = ["BRANCH_ORDER", "NEAR_ORDER", "NEAR_GAP", "POLAR_POINTS", "MAX_ANGLE",
            "angular_pieces", "almost_polar", "split_rule", "tip_rule", "near_tip_cells",
@@ -211,13 +211,8 @@ def _nearest(tri: np.ndarray, p: np.ndarray) -> np.ndarray:
     lam = np.linalg.solve(M, p - a)
     if lam.min() >= 0 and lam.sum() <= 1:
         return p.copy()
-    best, dist = None, np.inf
-    for u, v in ((a, b), (b, c), (c, a)):
-        t = np.clip((p - u) @ (v - u) / ((v - u) @ (v - u)), 0.0, 1.0)
-        q = u + t * (v - u)
-        if np.linalg.norm(p - q) < dist:
-            best, dist = q, np.linalg.norm(p - q)
-    return best
+    _, q, dist = nearest_on_segments(tri.T, np.roll(tri, -1, axis=0).T - tri.T, p[:, None])
+    return q[:, np.argmin(dist)]                      # on its sides ab, bc, ca
 
 
 def _pieces(geometry, mesh, cells: np.ndarray):
