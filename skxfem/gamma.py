@@ -229,8 +229,8 @@ class Crack(Gamma):
     def rule(self, mesh, cut) -> InterfaceRule:
         """Gauss points on the crack pieces (:func:`skxfem.crack.assembly.face_rule`,
         √r-graded at a tip), the normals of their pieces and the multiplier functions
-        there (:func:`skxfem.crack.faces.face_functions`, constant from the last crossed
-        edge to the tip; none if the crack crosses no edge strictly)."""
+        there (:func:`skxfem.crack.faces.face_functions`, constant from the last point,
+        crossed edge or node, to the tip; none if the crack has no such point)."""
         x, w, cells, ref = face_rule_of(self._space(mesh, cut))
         nseg = cut.segment_cell.size
         per_piece = x.shape[1] // max(nseg, 1)
