@@ -62,9 +62,10 @@ A law without multipliers (``free``) gives a part whose P has no column and B no
 **The crack kind** (:class:`Crack`, issue 29, 2D, any law): an interface with a
 ``front`` φ; its cut is :func:`skxfem.crack.geometry.crack_geometry` (the fields of a
 Cut), its space :class:`CrackXSpace` (the unknowns [a, b, c] of
-:func:`skxfem.crack.space.crack_space`), its multipliers those of the crossed edges up
-to the front (:func:`skxfem.crack.faces.crack_multipliers`), its rule Gauss points on
-the crack pieces with the multiplier functions there, its front the K of
+:func:`skxfem.crack.space.crack_space`), its multipliers those of the crossed edges and
+of the nodes on the crack up to the front (:func:`skxfem.crack.faces.crack_multipliers`),
+its rule Gauss points on the crack pieces with the multiplier functions there, its
+front the K of
 :func:`skxfem.crack.sif.sif` with the faces' traction from the multipliers
 (``Result.front``, ``result.json``'s ``front``).  A 3D front (a ``MeshTet1``) is the
 kind :class:`skxfem.crack.kind3d.Crack3D` (any law: its multipliers on the crossed
@@ -188,7 +189,8 @@ class Crack(Gamma):
     Its cut is the :class:`~skxfem.crack.geometry.CrackGeometry` (the fields of a Cut),
     its space the :class:`CrackXSpace` of [a, b, c], its rule Gauss points on the
     crack pieces; any law: ``free`` faces carry no multiplier, the others multipliers
-    on the crossed edges up to the front (:mod:`skxfem.crack.faces`)."""
+    on the crossed edges and the nodes on the crack up to the front
+    (:mod:`skxfem.crack.faces`)."""
 
     splits = False
     """A crack ends inside the body: it splits no region."""
@@ -215,8 +217,8 @@ class Crack(Gamma):
         return CrackXSpace(self._space(mesh, cut))
 
     def multipliers(self, mesh, cut, fixed=None, per_edge=None) -> Space:
-        """The interface's multiplier space on the crack's crossed edges, up to the front
-        (:func:`skxfem.crack.faces.crack_multipliers`)."""
+        """The interface's multiplier space on the crack's crossed edges and nodes, up to
+        the front (:func:`skxfem.crack.faces.crack_multipliers`)."""
         return crack_multipliers(self.interface.space, mesh, cut, fixed=fixed,
                                  per_edge=per_edge)
 
@@ -227,8 +229,8 @@ class Crack(Gamma):
     def rule(self, mesh, cut) -> InterfaceRule:
         """Gauss points on the crack pieces (:func:`skxfem.crack.assembly.face_rule`,
         √r-graded at a tip), the normals of their pieces and the multiplier functions
-        there (:func:`skxfem.crack.faces.face_functions`, constant from the last crossed
-        edge to the tip; none if the crack crosses no edge strictly)."""
+        there (:func:`skxfem.crack.faces.face_functions`, constant from the last point,
+        crossed edge or node, to the tip; none if the crack has no such point)."""
         x, w, cells, ref = face_rule_of(self._space(mesh, cut))
         nseg = cut.segment_cell.size
         per_piece = x.shape[1] // max(nseg, 1)
@@ -245,9 +247,16 @@ class Crack(Gamma):
 
     def point_jumps(self, V, U: np.ndarray) -> np.ndarray:
         """[[u]] = u⁻ - u⁺ (dim, n) at the crack's cut points (the crossings of its cut
-        edges, each in a cell of its edge), U on [a, b, c]."""
+        edges, each in a cell of its edge; a node on the crack in the cell of a crack
+        piece that ends there), U on [a, b, c]."""
         cut, mesh = V.cut, V.mesh
-        cells = mesh.f2t[0, cut.edge_ids]
+        strict = cut.edge_ids >= 0
+        cells = np.zeros(cut.edge_ids.size, dtype=np.int64)
+        cells[strict] = mesh.f2t[0, cut.edge_ids[strict]]
+        end, piece_cell = cut.facets.ravel(), np.tile(cut.segment_cell, 2)
+        at_node = end >= 0
+        at_node[at_node] = ~strict[end[at_node]]
+        cells[end[at_node]] = piece_cell[at_node]
         ref = mesh.mapping().invF(cut.points[:, :, None], tind=cells)[:, :, 0]
         return (_face_jump(V, cells, ref) @ U).reshape(mesh.dim(), -1)
 

@@ -4,6 +4,7 @@ the crack kind of Γ, the face term of the interaction integral fed by the multi
 (a closed crack gives K = 0) and the closed inclined crack with Coulomb friction
 (skxfem.crack.griffith) against Dolbow, Moës & Belytschko's K_II."""
 import json
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -53,11 +54,40 @@ def test_spaces_on_the_crossed_edges_keep_a_constant_up_to_the_tip(cell, name):
     assert np.allclose(N, N[0]) and np.isclose(N[0].sum(), 1.0)
 
 
-def test_a_crack_along_mesh_lines_has_no_multiplier_and_contact_is_refused():
-    m = _square(10, "tri")                          # y = 0.5 is a mesh line
-    g = crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.55)
-    with pytest.raises(ValueError, match="crosses no mesh edge strictly"):
-        crack_multipliers("vital", m, g)
+@pytest.mark.parametrize("cell", ["tri", "quad"])
+@pytest.mark.parametrize("name", ["naive", "winner", "vital"])
+def test_a_crack_along_mesh_lines_has_its_multipliers_at_the_nodes(cell, name):
+    """y = 1/2 on an even mesh runs along mesh edges: no edge is crossed strictly, and
+    each node on the crack behind the tip (not the one at the tip, where the jump
+    vanishes, nor those ahead) carries a multiplier of its own, exactly at the node."""
+    m = _square(10, cell)
+    g = crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5)       # the tip at a node
+    assert np.all(g.edge_ids == -1) and np.array_equal(g.edges[0], g.edges[1])
+    assert np.allclose(g.points, [np.arange(5) / 10, np.full(5, 0.5)])
+    assert (g.facets == -1).sum() == 1, "every piece ends at nodes; the tip's is none"
+    S = crack_multipliers(name, m, g)
+    assert S.P.shape == (5, 5) and np.allclose(S.P.toarray(), np.eye(5))
+    g = crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.55)      # the tip mid-edge
+    assert np.allclose(g.points[0], np.arange(6) / 10) and (g.facets == -1).sum() == 1
+    E = end_values(g)
+    assert np.allclose(np.asarray(E.sum(axis=1)).ravel(), 1.0)
+    x = np.array([[0.52, 0.55], [0.5, 0.5]])                # on the tip piece: constant
+    tip_piece = np.flatnonzero((g.facets == -1).any(axis=0))[0]
+    N = face_functions(g, x, np.full(2, tip_piece)).toarray()
+    assert np.allclose(N, np.eye(6)[[5, 5]])
+
+
+def test_a_crack_with_no_point_behind_its_front_is_refused_naming_the_fix():
+    """The refusal is left for a geometry with no crossing and no node on the crack (it
+    takes a crack inside its tip cells, which crack_geometry refuses first); its message
+    names the fixes."""
+    m = _square(10, "tri")
+    g = crack_geometry(m, m.p[1] - 0.55, m.p[0] - 0.5)
+    bare = replace(g, edge_ids=np.zeros(0, int), edges=np.zeros((2, 0), int),
+                   points=np.zeros((2, 0)), facets=np.full(g.facets.shape, -1))
+    with pytest.raises(ValueError, match="no mesh node behind its front.*refine the mesh.*"
+                                         "law 'free'"):
+        crack_multipliers("vital", m, bare)
 
 
 def _pressed(n, cell, law="frictionless", space="vital", p=1.0):
@@ -73,10 +103,13 @@ def _pressed(n, cell, law="frictionless", space="vital", p=1.0):
 
 @pytest.mark.parametrize("law", ["frictionless", "coulomb", "adhesive", "bilateral", "bonded"])
 @pytest.mark.parametrize("cell", ["tri", "quad"])
-def test_a_crack_pressed_shut_gives_K_zero_with_the_face_term(law, cell):
+@pytest.mark.parametrize("n", [21, 20])
+def test_a_crack_pressed_shut_gives_K_zero_with_the_face_term(law, cell, n):
     """σ_yy = -p everywhere (the faces carry p, the multipliers): |K| ≤ 1e-3 p√(πa)
-    with a = 1/2, the faces' traction read from the multipliers; without it K_I ≈ -0.8."""
-    r = solve(_pressed(21, cell, law))
+    with a = 1/2, the faces' traction read from the multipliers; without it K_I ≈ -0.8.
+    n = 21: the crack runs mid-cell; n = 20: along mesh edges, its multipliers at the
+    nodes."""
+    r = solve(_pressed(n, cell, law))
     (front,) = r.front
     scale = np.sqrt(np.pi * 0.5)
     assert abs(front["K_I"][0]) < 1e-3 * scale and abs(front["K_II"][0]) < 1e-3 * scale
@@ -97,9 +130,10 @@ def test_the_crack_contact_problem_goes_through_the_one_path():
     assert abs(q.rule.N.sum(axis=1) - 1).max() < 1e-12, "λ_h up to the tip"
 
 
-def inclined(n, beta_deg, friction, cell="tri", a=0.25):
+def inclined(n, beta_deg, friction, cell="tri", a=0.25, space="vital", mirror=False):
     """The closed inclined crack of skxfem.crack.griffith in the unit square: its exact
-    displacement on the four sides."""
+    displacement on the four sides.  ``mirror``: the mesh mirrored in x = 1/2 (a
+    triangle mesh's diagonals then cross a 45° crack instead of running along it)."""
     c = InclinedCrack(a=a, beta=np.radians(beta_deg), sigma=1.0, friction=friction,
                       center=(0.5, 0.5))
 
@@ -109,11 +143,82 @@ def inclined(n, beta_deg, friction, cell="tri", a=0.25):
     disp = tuple(Displacement(b, {"x": u(0), "y": u(1)})
                  for b in ("xmin", "xmax", "ymin", "ymax"))
     law = "coulomb" if friction > 0 else "frictionless"
-    crack = Interface(LevelSet(c.psi, 2, "psi"), law=law,
+    crack = Interface(LevelSet(c.psi, 2, "psi"), law=law, space=space,
                       friction=friction if friction > 0 else None,
                       front=LevelSet(c.phi, 2, "phi"))
-    return c, Scene(unit_square(n, cell), material=MATERIAL, displacements=disp,
-                    interfaces=(crack,))
+    m = unit_square(n, cell)
+    if mirror:
+        m = type(m)(np.array([1 - m.p[0], m.p[1]]), m.t[[0, 2, 1]] if cell == "tri"
+                    else m.t[[0, 3, 2, 1]])
+    return c, Scene(m, material=MATERIAL, displacements=disp, interfaces=(crack,))
+
+
+def _check_griffith(c, r, tol=0.01, point=0.03):
+    """K_II against Dolbow et al.'s where the faces slide (relative ``tol``, the sign of
+    the tip frame), |K| ≤ 3e-3 σ√(πa) where they stick, K_I = 0, the contact pressure
+    σ cos² β within 0.5 % in the mean and ``point`` at every point."""
+    (front,) = r.front
+    scale = c.sigma * np.sqrt(np.pi * c.a)
+    expect = np.array([c.K_II_at(p) for p in front["points"]])
+    if c.slides:
+        assert np.abs(front["K_II"] / expect - 1).max() < tol, (front["K_II"], expect)
+    else:
+        assert np.abs(front["K_II"]).max() < 3e-3 * scale
+    assert np.abs(front["K_I"]).max() < 3e-3 * scale
+    p = -r.normal_traction / c.pressure
+    assert abs(p.mean() - 1) < 0.005 and np.abs(p - 1).max() < point
+
+
+@pytest.mark.parametrize("friction", [0.0, 1.2])
+@pytest.mark.parametrize("n", [11, 20, 21])
+@pytest.mark.parametrize("cell", ["tri", "quad"])
+def test_a_45_degree_crack_through_nodes_only(cell, n, friction):
+    """β = 45° through the centre runs along the triangles' diagonals or through the
+    quadrilaterals' (n even: the centre is a node): it crosses no edge strictly and its
+    multipliers sit at the nodes behind the tips.  μ = 0: the faces slide, K_II =
+    σ√(πa)/2; μ = 1.2 > tan β: they stick, K = 0; the pressure σ cos² β = 1/2."""
+    c, scene = inclined(n, 45.0, friction, cell)
+    r = solve(scene)
+    cut = r.problem.interfaces[0].cut
+    assert cut.edge_ids.size > 0 and np.all(cut.edge_ids == -1)
+    assert np.allclose(cut.points[0], cut.points[1])               # on y = x
+    assert np.allclose(np.round(cut.points * n), cut.points * n), "at the nodes"
+    assert c.slides == (friction < 1)
+    _check_griffith(c, r)
+
+
+@pytest.mark.parametrize("space", ["naive", "winner", "vital"])
+@pytest.mark.parametrize("cell", ["tri", "quad"])
+def test_a_45_degree_crack_with_its_tips_at_nodes_in_every_space(cell, space):
+    """a = 2√2/10 on 10 × 10 cells: both tips at nodes, which carry no multiplier (the
+    jump vanishes there); μ = 0.3 < tan β: the faces slide against friction."""
+    c, scene = inclined(10, 45.0, 0.3, cell, a=0.2 * np.sqrt(2), space=space)
+    r = solve(scene)
+    cut = r.problem.interfaces[0].cut
+    assert np.allclose(cut.points[0], [0.4, 0.5, 0.6]) and np.all(cut.edge_ids == -1)
+    _check_griffith(c, r)
+
+
+@pytest.mark.parametrize("friction", [0.0, 1.2])
+@pytest.mark.parametrize("space", ["naive", "winner", "vital"])
+@pytest.mark.parametrize("case", ["45° across mirrored triangles", "26.6° on quads",
+                                  "10° through the centre node"])
+def test_a_crack_through_some_nodes_and_across_edges(case, space, friction):
+    """A mix of nodes and strict crossings: the 45° crack across the diagonals of a
+    mirrored triangle mesh (a node, then a diagonal's midpoint, in turn), slope 1/2 on
+    quadrilaterals (a node every second cell), 10° through the centre node of an even
+    mesh."""
+    n, beta, cell, mirror = {"45° across mirrored triangles": (11, 45.0, "tri", True),
+                             "26.6° on quads": (20, np.degrees(np.arctan(0.5)), "quad",
+                                                False),
+                             "10° through the centre node": (12, 10.0, "tri", False)}[case]
+    c, scene = inclined(n, beta, friction, cell, space=space, mirror=mirror)
+    r = solve(scene)
+    kind = r.problem.interfaces[0].cut.edge_ids
+    assert (kind == -1).any() and (kind >= 0).any()
+    # the naive space's pressure wobbles where a node meets strict crossings (10°, μ = 0:
+    # 3.5 % at a point, 0.02 % in the mean; winner and vital 0.5 %)
+    _check_griffith(c, r, point=0.05 if space == "naive" else 0.03)
 
 
 @pytest.mark.parametrize("cell, tol", [("tri", 0.01), ("quad", 0.01)])

@@ -124,6 +124,27 @@ def test_geometry_treats_a_crack_through_a_node_exactly():
     assert np.isin(node, m.t[:, g.tip_cells]).all()
 
 
+@pytest.mark.parametrize("cell", ["tri", "quad"])
+def test_geometry_lists_the_nodes_on_the_crack_as_cut_points(cell):
+    """As skxfem.cut.Cut lists a vertex on Γ: the crossings of strictly cut edges first,
+    then each node behind the tip that ends a crack piece, the edge (v, v) with id -1,
+    the pieces' ends indexing both; a tip at a node is none (the jump vanishes there)."""
+    m = square(10, cell)
+    psi, phi, _ = straight((0.7, 0.6), np.arctan(0.5))   # slope 1/2 from a node at the tip
+    g = crack_geometry(m, psi, phi)
+    node = g.edge_ids == -1
+    assert node.any() and (~node).any() and not node[:np.argmax(node)].any()
+    v = g.edges[0, node]
+    assert np.array_equal(v, g.edges[1, node]) and np.allclose(g.points[:, node], m.p[:, v])
+    assert np.all(g.psi[v] == 0) and np.all(g.phi[v] < 0), "behind the tip only"
+    assert not np.any(np.all(np.isclose(g.points, [[0.7], [0.6]]), axis=0)), "no tip point"
+    assert np.all(g.psi[g.edges[0, ~node]] * g.psi[g.edges[1, ~node]] < 0)
+    ends = g.facets >= 0
+    assert np.allclose(g.points[:, g.facets[ends]], g.segments.transpose(1, 0, 2)[:, ends])
+    assert set(np.flatnonzero(node)) <= set(g.facets[ends])
+    assert (g.facets == -1).sum() == 1, "the tip's end only"
+
+
 ON_EDGES = {   # ψ, φ, the crack's length on the 4 × 4 unit square
     "along edges, tip at a node": ("y - 0.5", "x - 0.5", 0.5),
     "along edges, tip mid-edge": ("y - 0.5", "x - 0.625", 0.625),

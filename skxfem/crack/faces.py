@@ -1,27 +1,35 @@
 r"""Contact on the crack faces: the multipliers on the crossed edges, up to the front.
 
-A crack's multipliers live where those of a Γ that cuts the body through live: one
-λ_e at the crossing x_e of every mesh edge e the crack crosses strictly
-(``edge_ids`` of :class:`~skxfem.crack.geometry.CrackGeometry`; an edge ψ_h crosses
-ahead of the front is not one, nor is an edge of the tip cell the crack does not
-reach).  The spaces are those of :mod:`skxfem.stabilised` (naive, winner nodes =
-algo1, vital edges = algo2) on the graph of these edges: its nodes are the ends of
-the crossed edges, so the tip cell's nodes beyond the front carry no multiplier.
+A crack's multipliers live where those of a Γ that cuts the body through live
+(:mod:`skxfem.cut`): one λ_e at the crossing x_e of every mesh edge e the crack
+crosses strictly (``edge_ids`` of :class:`~skxfem.crack.geometry.CrackGeometry`; an
+edge ψ_h crosses ahead of the front is not one, nor is an edge of the tip cell the
+crack does not reach), and, in 2D, one at every mesh node the crack passes through
+behind its front (ψ = 0, φ < 0; the point (v, v), edge id -1, as a vertex on Γ of a
+:class:`~skxfem.cut.Cut`), exactly: a crack along mesh edges or quadrilaterals'
+diagonals (the 45° crack of a structured mesh) has its multipliers at the nodes.
+The spaces are those of :mod:`skxfem.stabilised` (naive, winner nodes = algo1, vital
+edges = algo2) on the graph of the crossed edges, a node on the crack with a
+multiplier of its own (:func:`skxfem.stabilised.multiplier_space`): the graph's nodes
+are the ends of the crossed edges, so the tip cell's nodes beyond the front carry no
+multiplier, nor does a tip at a node (the jump vanishes there).  A 3D crack's nodes
+carry none (:mod:`skxfem.crack.faces3d`: a 3D crack needs crossed edges).
 
 **The multiplier functions on the faces.**  A crack piece (the part of Γ_h in one
-reference triangle) may end at a point that is no crossing: the tip, a point of a
-quadrilateral's diagonal, a node on the crack.  The value of λ_h there is the
-harmonic extension of the edge values along the chain of pieces (a graph with the
-piece ends as vertices, weights 1/length, the crossings held): linear in arc length
-between two crossings, **constant from the last crossing to the tip**.  On each piece
-λ_h is linear between its ends.  So every row of the map from the edge λ to λ_h sums to
-one: a constant traction stays in the space up to the front (the patch test), and
-the tip piece carries the λ of the crossed edge it enters by.
+reference triangle) may end at a point that carries no multiplier: the tip, a point
+of a quadrilateral's diagonal.  The value of λ_h there is the harmonic extension of
+the point values along the chain of pieces (a graph with the piece ends as vertices,
+weights 1/length, the points held): linear in arc length between two points,
+**constant from the last point to the tip**.  On each piece λ_h is linear between its
+ends.  So every row of the map from the point λ to λ_h sums to one: a constant
+traction stays in the space up to the front (the patch test), and the tip piece
+carries the λ of the point it enters by.
 
 **Vital edges at the front (what the package does; the paper leaves it open).**  The
 edge cover of algo2 runs on the ends of the crossed edges only: the tip cell enters by
-the edge it is crossed through, and its nodes beyond the front get no multiplier and
-no vital edge; the tip piece takes the λ of its entry edge (above).  No relation is
+the edge it is crossed through (or a node on the crack), and its nodes beyond the
+front get no multiplier and no vital edge; the tip piece takes the λ of its entry
+point (above).  No relation is
 extrapolated past the last crossing.  The inf-sup constant of these spaces near the
 front is measured by :func:`skxfem.studies.cracks.crack_inf_sup` (book chapter
 ``crack``).
@@ -91,29 +99,36 @@ def edge_graph(geo) -> EdgeGraph:
 
 
 def check_crossed(geo) -> None:
-    """Refuse a crack (2D or 3D geometry) that crosses no mesh edge strictly: it has no
-    point to carry a multiplier."""
-    if geo.edge_ids.size == 0:
-        raise ValueError("the crack crosses no mesh edge strictly (it runs along mesh edges "
-                         "or faces, or through nodes only), so it has no point to carry "
-                         "multipliers: contact on its faces needs a crack that crosses cells "
-                         "(move it off the mesh lines or planes, e.g. an odd number of "
-                         "cells) or law 'free'")
+    """Refuse a crack (2D or 3D geometry) with no point to carry a multiplier: in 2D one
+    that crosses no mesh edge strictly and passes through no mesh node behind its front,
+    in 3D one that crosses no mesh edge strictly (a 3D crack's nodes carry none)."""
+    if geo.edge_ids.size:
+        return
+    if geo.points.shape[0] == 2:
+        raise ValueError("the crack crosses no mesh edge strictly and passes through no mesh "
+                         "node behind its front, so it has no point to carry multipliers: "
+                         "contact on its faces needs a crack longer than its tip cells "
+                         "(refine the mesh) or law 'free'")
+    raise ValueError("the crack crosses no mesh edge strictly (it runs along mesh edges "
+                     "or faces, or through nodes only), so it has no point to carry "
+                     "multipliers: contact on its faces needs a crack that crosses cells "
+                     "(move it off the mesh lines or planes, e.g. an odd number of "
+                     "cells) or law 'free'")
 
 
 def end_values(geo) -> sp.csr_matrix:
     """(2 nseg, ne) λ_h at the ends of the crack pieces from the edge multipliers:
     row k·nseg + s is end k of piece s (``geo.segments[k][:, s]``).
 
-    A crossing end is its edge's λ; the other ends (a tip, a quadrilateral's diagonal,
-    a node on the crack) take the harmonic extension along the chain of pieces (module
-    notes): linear in arc length between crossings, constant to a tip.  Ends of a run
-    of pieces that reaches no crossing get 0 (no multiplier there).
+    An end at a point (a crossing, a node on the crack) is its λ; the other ends (a
+    tip, a point of a quadrilateral's diagonal) take the harmonic extension along the
+    chain of pieces (module notes): linear in arc length between points, constant to a
+    tip.  Ends of a run of pieces that reaches no point get 0 (no multiplier there).
 
     Raises
     ------
     ValueError
-        If the crack crosses no edge strictly (no multiplier at all).
+        If the crack has no point (:func:`check_crossed`).
     """
     check_crossed(geo)
     nseg = geo.segment_cell.size
@@ -178,14 +193,15 @@ def face_functions(geo, x: np.ndarray, piece: np.ndarray) -> sp.csr_matrix:
 
 def crack_multipliers(name: str, mesh, geo, fixed=None, per_edge=None) -> Space:
     """The multiplier space ``name`` ("naive", "winner", "vital") on the crack's
-    crossed edges (:func:`skxfem.stabilised.multiplier_space` on its
-    :class:`EdgeGraph`; module notes for the front; a 3D crack's:
-    :mod:`skxfem.crack.faces3d`).  ``fixed``, ``per_edge``: as there.
+    crossed edges and nodes (:func:`skxfem.stabilised.multiplier_space` on its
+    :class:`EdgeGraph`; a node on the crack has a multiplier of its own; module notes
+    for the front; a 3D crack's: :mod:`skxfem.crack.faces3d`).  ``fixed``,
+    ``per_edge``: as there.
 
     Raises
     ------
     ValueError
-        If the crack crosses no edge strictly, or ``name`` is not a space.
+        If the crack has no point (:func:`check_crossed`), or ``name`` is not a space.
     """
     check_crossed(geo)
     return multiplier_space(name, mesh, edge_graph(geo), fixed=fixed, per_edge=per_edge)
@@ -196,7 +212,7 @@ def face_traction(geo, traction: np.ndarray, x_rule: np.ndarray):
     ``face_traction``: ``(x, side) -> (2, n)`` at the points ``x_rule`` (2, n) of
     :func:`skxfem.crack.assembly.face_rule` (the points the SIF asks at).
 
-    ``traction`` (2, ne) is the interface traction r = σ·n at the crossings (the
+    ``traction`` (2, ne) is the interface traction r = σ·n at the points (the
     multipliers, :mod:`skxfem.levelset`'s sign: n into Ω⁺); on the faces r_h = Σ N_e r_e
     (:func:`face_functions`, constant to the tip), and the face of Ω⁻ (outward normal
     +n) carries t⁻ = r_h, that of Ω⁺ (outward normal -n) t⁺ = -r_h
@@ -218,7 +234,7 @@ def face_traction(geo, traction: np.ndarray, x_rule: np.ndarray):
     ne = geo.edge_ids.size
     if traction.shape != (2, ne) or not np.all(np.isfinite(traction)):
         raise ValueError(f"traction must hold finite values of shape (2, {ne}) (one vector "
-                         f"per crossed edge), got {traction.shape}")
+                         f"per point: crossed edge or node on the crack), got {traction.shape}")
     nseg = geo.segment_cell.size
     piece = np.repeat(np.arange(nseg), x_rule.shape[1] // max(nseg, 1))
     r = (face_functions(geo, x_rule, piece) @ traction.T).T      # (2, n)

@@ -174,14 +174,16 @@ class CrackGeometry:
     The fields of a :class:`skxfem.cut.Cut`, in its names, for the crack kind of Γ of
     :mod:`skxfem.gamma` (``psi``, ``cells``, ``side``, ``sub_*`` above too):
 
-    edge_ids : (ne,) the mesh edges (``mesh.facets``) the crack crosses strictly, where
-        the multipliers live; an edge ψ_h crosses ahead of the tip is not one.
-        ``edges`` (2, ne) their nodes, ``points`` (2, ne) the crossings.
+    edge_ids : (ne,) where the multipliers live: the mesh edges (``mesh.facets``) the
+        crack crosses strictly (an edge ψ_h crosses ahead of the tip is not one), then
+        -1 for each node on the crack behind the tip (ψ = 0, φ < 0) that ends a crack
+        piece, as :class:`skxfem.cut.Cut` lists a vertex on Γ.  ``edges`` (2, ne) their
+        nodes ((v, v) for a node), ``points`` (2, ne) the crossings and the nodes.
     enriched : the nodes of the split and tip cells (the space chooses Heaviside or
         branch for each, :mod:`skxfem.crack.space`).
     facets : (2, nseg) each crack piece's ends as indices into ``points``; -1 for an end
-        that is no crossing of a cut edge: the tip (the facets stop at the front), a
-        node on the crack, or a point of a quadrilateral's diagonal.  ``facet_ref``
+        that is none: the tip (the facets stop at the front) or a point of a
+        quadrilateral's diagonal.  ``facet_ref``
         (2, 2, nseg) [end, coordinate, piece] in the cell's reference coordinates,
         ``facet_cell``, ``normals`` (2, nseg) unit, into Ω⁺, ``measures`` (nseg,).
     """
@@ -226,7 +228,7 @@ class CrackGeometry:
     @property
     def pieces(self) -> np.ndarray:
         """(nseg, 2, 2) the crack pieces [piece, end, coordinate], physical, in the order of
-        ``facets`` (whose -1 ends they locate: the tip, a node on the crack)."""
+        ``facets`` (whose -1 ends they locate: the tip, a point of a diagonal)."""
         return np.transpose(self.segments, (2, 0, 1))
 
     def segments_length(self) -> np.ndarray:
@@ -432,12 +434,12 @@ def crack_geometry(mesh, psi, phi) -> CrackGeometry:
     sub, sub_cell = np.concatenate(subs), np.concatenate(cells_)
     sub_side, sub_fan = np.concatenate(sides), np.concatenate(fans)
     keep = _area(sub) > AREA_TOL * 0.5
-    edge_ids, points, facets = _cut_edges(mesh, psi, phi, seg, seg_cell, h)
+    edge_ids, edges, points, facets = _cut_edges(mesh, psi, phi, seg, seg_cell, h)
     normals = _segment_normals(P[seg_tri], ps[seg_tri], seg)
     psi, phi = orthonormal_at_tips(mesh, psi, phi, tip_cells, tip_of_cell, tip_ref)
     return CrackGeometry(psi, phi, tips, tip_cells, tip_of_cell, tip_ref, split_cells, side,
                          seg, seg_cell, sub[keep], sub_cell[keep], sub_side[keep],
-                         sub_fan[keep], edge_ids, mesh.facets[:, edge_ids], points,
+                         sub_fan[keep], edge_ids, edges, points,
                          np.unique(mesh.t[:, np.union1d(split_cells, tip_cells)]), facets,
                          np.transpose(seg_ref, (1, 2, 0)), normals)
 
@@ -523,9 +525,13 @@ def _owns_edge_piece(mesh, nodes, ps, has):
 
 
 def _cut_edges(mesh, psi, phi, seg, seg_cell, h):
-    """The mesh edges the crack crosses strictly (ψ changes sign, φ < 0 at the crossing),
-    their crossing points, and each crack piece's ends as indices into them (-1: an end
-    that is no such crossing, the tip or a node on the crack)."""
+    """The points that carry the crack's multipliers, as :class:`skxfem.cut.Cut` lists
+    them: the crossings of the mesh edges the crack crosses strictly (ψ changes sign,
+    φ < 0 at the crossing), then the nodes on the crack that end a crack piece (ψ = 0,
+    φ < 0: behind the front), each the degenerate edge (v, v) with id -1.  Returns
+    (edge_ids, edges (2, ne), points (2, ne), facets): each crack piece's ends as
+    indices into the points (-1: an end that is neither, the tip or a point of a
+    quadrilateral's diagonal)."""
     a, b = mesh.facets
     strict = psi[a] * psi[b] < 0
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -534,17 +540,29 @@ def _cut_edges(mesh, psi, phi, seg, seg_cell, h):
     points = mesh.p[:, a[ids]] + t[ids] * (mesh.p[:, b[ids]] - mesh.p[:, a[ids]])
     index = np.full(mesh.facets.shape[1], -1)
     index[ids] = np.arange(ids.size)
-    cand = index[mesh.t2f[:, seg_cell]]                  # (nle, nseg) points of the cell
+    on = (psi == 0) & (phi < 0)                           # nodes on the crack
+    nodes = np.where(on[mesh.t[:, seg_cell]], mesh.t[:, seg_cell], -1)   # (nloc, nseg)
+    ends = np.zeros(nodes.shape, dtype=bool)              # a node that ends a piece
+    for end in (0, 1):
+        d = np.linalg.norm(mesh.p[:, np.maximum(nodes, 0)] - seg[end][:, None], axis=0)
+        ends |= (nodes >= 0) & (d <= 1e-9 * h[seg_cell])
+    vertices = np.unique(nodes[ends])
+    node_index = np.full(mesh.p.shape[1], -1)
+    node_index[vertices] = ids.size + np.arange(vertices.size)
+    edges = np.hstack([mesh.facets[:, ids], np.vstack([vertices, vertices])])
+    points = np.hstack([points, mesh.p[:, vertices]])
+    ids = np.r_[ids, np.full(vertices.size, -1)]
+    cand = np.vstack([index[mesh.t2f[:, seg_cell]], node_index[mesh.t[:, seg_cell]]])
     facets = np.full((2, seg_cell.size), -1)
-    if ids.size == 0:                                     # a crack along mesh edges
-        return ids, points, facets
+    if ids.size == 0:                                     # no point behind the front
+        return ids, edges, points, facets
     for end in (0, 1):
         d = np.linalg.norm(points[:, np.maximum(cand, 0)] - seg[end][:, None], axis=0)
         d = np.where(cand >= 0, d, np.inf)
         k = np.argmin(d, axis=0)
         hit = d[k, np.arange(k.size)] <= 1e-9 * h[seg_cell]
         facets[end] = np.where(hit, cand[k, np.arange(k.size)], -1)
-    return ids, points, facets
+    return ids, edges, points, facets
 
 
 def _segment_normals(P, ps, seg):
