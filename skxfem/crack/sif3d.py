@@ -687,6 +687,11 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     return K
 
 
+DEGENERATE = 0.1
+"""The length of e₁ₕ (the P1 interpolant of unit nodal directions, made normal to e₂)
+under which a point's direction is taken from its nearest node (:func:`_point_frames`)."""
+
+
 def _point_frames(e1_nodes: np.ndarray, nodes: np.ndarray, lam: np.ndarray,
                   dlam: np.ndarray, grad_psi: np.ndarray):
     """The frames of points of cells with nodes ``nodes`` (n, 4), barycentric λ (n, 4)
@@ -694,12 +699,26 @@ def _point_frames(e1_nodes: np.ndarray, nodes: np.ndarray, lam: np.ndarray,
     alike: e₁ₕ (3, n), the P1 interpolant of the nodal ``e1_nodes``
     (:func:`_nodal_directions`; the extension direction Q/q), its gradient ∂ⱼe₁ₖ
     [j, k, n], and R (3, 3, n), rows e₁, e₂ = ∇ψ_h/|∇ψ_h| and e₃ (e₁ₕ made normal to
-    e₂, unit)."""
+    e₂, unit).
+
+    Between two fronts (a centre crack's) the nodes' directions turn round, each node
+    pointing ahead of its nearest front: in a cell across the line where the nearest
+    front changes, e₁ₕ of opposite nodal directions nearly vanishes (under
+    :data:`DEGENERATE` of a unit vector) and has no direction.  Such a point takes the
+    direction of its nearest node (the largest λ) and ∂e₁ = 0: it lies half-way between
+    the fronts, where no domain reaches (:func:`domain_reach` clips R to a third of the
+    distance to another front), so q = 0 there and K does not depend on it."""
     e1n = e1_nodes[nodes]                                 # (n, 4, 3)
     e1 = np.einsum("nk,nki->in", lam, e1n)
     # G is constant in a cell: once per run of points of one cell
     first, run = runs(nodes)
     G = np.einsum("nkj,nki->jin", dlam[first], e1n[first])[:, :, run]
+    e2 = grad_psi / np.linalg.norm(grad_psi, axis=0)
+    flat = np.linalg.norm(e1 - (e1 * e2).sum(axis=0) * e2, axis=0) < DEGENERATE
+    if flat.any():
+        nearest = np.argmax(lam[flat], axis=1)
+        e1[:, flat] = e1n[flat, nearest].T
+        G[:, :, flat] = 0.0
     return e1, G, tip_frame(e1, grad_psi).R
 
 
