@@ -33,6 +33,15 @@ along Γ harder than friction can hold (it slides as a rigid body), with
 refused; a dof that carries tension (``bilateral``, ``bonded``) or a part that
 a support touches is left to the solve.
 
+**No load.** Loads with no resultant (f = 0: a load history unloaded to zero, or
+loads that cancel) under a pointed cone (β < 90°) leave every p_j = 0: Γ carries no
+force, friction holds nothing (zero pressure, zero friction force), and any rigid
+motion that keeps Γ open is an equilibrium, so the part's place is not determined.
+:func:`check_held_by_gamma` refuses that state by name (:attr:`Holding.unloaded`),
+before Newton, which otherwise met a singular matrix or returned one of those states.
+Unloaded in several steps to a small load instead, the part tends to where friction
+leaves it (``tests/test_contact_holding.py``).
+
 Only the translations are tested (the moments are a further condition, not
 tested here), so a part whose loads lie inside the cone can still fail to
 be held (it could tip); the test never refuses a problem that has a
