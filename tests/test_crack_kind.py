@@ -345,3 +345,35 @@ def test_3d_front_points_near_the_free_surfaces_are_not_interior(tmp_path, capsy
     line = _fronts(r)
     k3 = front["K_III"][inner]
     assert f"K_III in [{k3.min() + 0.0:.4g}, {k3.max() + 0.0:.4g}]" in line
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_free_faces_passing_through_each_other_are_said(dim):
+    """An edge crack pressed shut with free faces: K_I < 0 (the faces interpenetrate,
+    -3.54 in 2D) was returned with nothing said.  A FrontPointsWarning names the front,
+    K_I and the cure; pulled open, or with frictionless faces (K_I = 0), nothing."""
+    import warnings
+
+    from skxfem.crack.kind3d import FrontPointsWarning
+    from skxfem.scene import Box, clamped
+    top, bottom = ("ymax", "ymin") if dim == 2 else ("zmax", "zmin")
+    gamma_ = plane(np.r_[np.zeros(dim - 1), 0.52], np.eye(dim)[-1])
+    front = plane(np.r_[0.5, np.zeros(dim - 1)], np.eye(dim)[0])
+
+    def pressed(p, law="free"):
+        return Scene(Box(10 if dim == 2 else 6, "tri" if dim == 2 else "tet"),
+                     interfaces=(Interface(gamma_, law=law, front=front),),
+                     material=MATERIAL, displacements=(clamped(bottom),),
+                     loads=(SurfaceLoad(top, pressure=p),))
+
+    with pytest.warns(FrontPointsWarning, match=r"'plane\(.*\)': K_I < 0 \(down to -.*front "
+                      r"points.*law 'free', pass through each other.*law = 'frictionless'"):
+        (fr,) = solve(pressed(1.0)).front
+    assert np.all(fr["K_I"] < 0)
+    for scene in (pressed(-1.0), pressed(1.0, "frictionless")):
+        with warnings.catch_warnings():
+            warnings.filterwarnings("error", category=FrontPointsWarning,
+                                    message=".*pass through")
+            (fr,) = solve(scene).front
+        if scene.interfaces[0].law == "free":
+            assert np.all(fr["K_I"] > 0), "pulled open"
