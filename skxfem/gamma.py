@@ -197,7 +197,11 @@ class Crack(Gamma):
         """The crack's geometry on ``mesh`` (:func:`skxfem.crack.geometry.crack_geometry`);
         a ValueError naming ``label`` if it crosses no cell."""
         i = self.interface
-        geo = crack_geometry(mesh, i.levelset.fun, i.front.fun)
+        try:
+            geo = crack_geometry(mesh, i.levelset.fun, i.front.fun)
+        except ValueError as err:                       # named as the 3D kind names it
+            raise ValueError(f"{label or 'the crack'} ({i.levelset.name!r}, front "
+                             f"{i.front.name!r}): {err}") from None
         if geo.segments.shape[-1] == 0:
             raise ValueError(f"{label or 'the crack'}: the crack {{ψ = 0, φ < 0}} "
                              f"({i.levelset.name!r}, front {i.front.name!r}) crosses no cell")

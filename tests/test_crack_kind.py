@@ -377,3 +377,28 @@ def test_free_faces_passing_through_each_other_are_said(dim):
             (fr,) = solve(scene).front
         if scene.interfaces[0].law == "free":
             assert np.all(fr["K_I"] > 0), "pulled open"
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_a_level_set_not_finite_or_a_front_outside_is_refused_by_name(dim):
+    """φ NaN on part of the mesh (a square root of a negative number) was 'phi: psi
+    returned NaN or inf at some mesh vertices' (the front called psi, no place); a front
+    that never meets the crack named no key to change.  Both now name the crack, the
+    level set, a vertex and the cure."""
+    from skxfem.scene import Box, clamped
+    top, bottom = ("ymax", "ymin") if dim == 2 else ("zmax", "zmin")
+    psi = LevelSet(lambda x: x[-1] - 0.52, dim, "crack")
+
+    def scene(front):
+        return Scene(Box(6, "tri" if dim == 2 else "tet"),
+                     interfaces=(Interface(psi, law="free", front=front),),
+                     material=MATERIAL, displacements=(clamped(bottom),),
+                     loads=(SurfaceLoad(top, pressure=-1.0),))
+
+    with pytest.raises(ValueError, match=r"the crack \('crack', front 'root'\): phi \(the "
+                       r"front's level set\) is NaN or inf at \d+ of \d+ mesh vertices, e.g. "
+                       r"nan at \(0, 0.*must be finite"):
+        solve(scene(LevelSet(lambda x: np.sqrt(x[0] - 0.3) - 0.2, dim, "root")))
+    with pytest.raises(ValueError, match=r"the crack \('crack', front 'far'\): phi < 0 all "
+                       r".*move the front \(phi = 0\) into the body, or.*leave the front out"):
+        solve(scene(LevelSet(lambda x: x[0] - 2.0, dim, "far")))
