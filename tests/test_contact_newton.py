@@ -350,3 +350,25 @@ def test_a_part_sliding_everywhere_is_not_called_unsupported():
         contact.solve(pressed_sheared(2, (1.0, 0.5, 0.01)))
     res = contact.solve(pressed_sheared(2, (1.0, 0.5, 0.1, 0.01)))
     assert np.all(res.steps[-1].pressure > 0) and (res.steps[-1].status == 1).any()
+
+
+def test_a_crack_in_a_millimetre_steel_cube_is_solved_as_in_unit_numbers():
+    """The 3D crack of pressed_sheared (Coulomb faces sliding) in a cube of 1 mm, E = 2e11,
+    p = 1e8 was refused as singular ('a part of the body can move freely': the smallest
+    LU pivot 6e-13 of the largest, under 1e-11, fell with ρ = E/h); equilibrated
+    (contact.step.equilibrate), it is solved in a few iterations, its pressure and
+    tractions those of the unit cube with E = 1, p = 1 times p."""
+    def scaled(L, E, p):
+        s = pressed_sheared(3, (1.0,), front=True)
+        box = Box((4, 4, 4), "tet", size=(L, L, L))
+        i = s.interfaces[0]
+        crack = replace(i, levelset=plane((0, 0, 0.52 * L), (0, 0, 1)),
+                        front=plane((0.6 * L, 0, 0), (1, 0, 0)))
+        return replace(s, mesh=box, interfaces=(crack,), material=Material(E=E, nu=0.3),
+                       loads=(SurfaceLoad("zmax", traction=(0.3 * p, 0.0, -p)),))
+    unit = contact.solve(scaled(1.0, 1.0, 1.0)).steps[-1]
+    steel = contact.solve(scaled(1e-3, 2e11, 1e8), max_cuts=0).steps[-1]
+    assert steel.newton.iterations <= 8 and steel.newton.rescued == 0
+    assert np.array_equal(steel.status, unit.status)
+    assert np.allclose(steel.pressure / 1e8, unit.pressure, rtol=1e-8, atol=1e-10)
+    assert np.allclose(steel.traction / 1e8, unit.traction, rtol=1e-8, atol=1e-10)
