@@ -104,7 +104,7 @@ from .crack.assembly import face_rule as face_rule_of
 from .crack.assembly import mass as crack_mass
 from .crack.faces import crack_multipliers, face_functions, face_traction
 from .crack.geometry import crack_geometry
-from .crack.kind3d import Crack3D, FrontPointsWarning
+from .crack.kind3d import Crack3D, FrontPointsWarning, warn_closing
 from .crack.radius import check_radius
 from .crack.sif import DEFAULT_CELLS, check_reach, default_radius, sif, tip_reach
 from .crack.space import CrackSpace, crack_space, evaluation
@@ -199,7 +199,11 @@ class Crack(Gamma):
         """The crack's geometry on ``mesh`` (:func:`skxfem.crack.geometry.crack_geometry`);
         a ValueError naming ``label`` if it crosses no cell."""
         i = self.interface
-        geo = crack_geometry(mesh, i.levelset.fun, i.front.fun)
+        try:
+            geo = crack_geometry(mesh, i.levelset.fun, i.front.fun)
+        except ValueError as err:                       # named as the 3D kind names it
+            raise ValueError(f"{label or 'the crack'} ({i.levelset.name!r}, front "
+                             f"{i.front.name!r}): {err}") from None
         if geo.segments.shape[-1] == 0:
             raise ValueError(f"{label or 'the crack'}: the crack {{ψ = 0, φ < 0}} "
                              f"({i.levelset.name!r}, front {i.front.name!r}) crosses no cell")
@@ -281,6 +285,7 @@ class Crack(Gamma):
         K = np.array([sif(V.space, U, material, self.interface.sif_radius, tip=k,
                           face_traction=faces, body_force=body_force)
                       for k in range(tips.shape[1])]).reshape(-1, 2)
+        warn_closing(self.interface, tips.T, K)
         return {"points": tips.T.copy(), "K_I": K[:, 0], "K_II": K[:, 1]}
 
     def _space(self, mesh, cut):

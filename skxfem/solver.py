@@ -132,6 +132,12 @@ def solve(scene: Scene | Resolved, dependent: str = "remove", linear: str | None
         raise ValueError(f"max_iter applies to the contact laws {CONTACT_LAWS} (Newton "
                          f"iterations per load step); the scene's law is "
                          f"{in_words(laws)}: leave max_iter unset")
+    if scene.scene.steps != (1.0,):   # a tie's state is the loads', whatever the path
+        steps = [f if isinstance(f, float) else f.name for f in scene.scene.steps]
+        raise ValueError(f"steps (here {steps!r:.100}) are the load path of a contact solve "
+                         f"(laws {CONTACT_LAWS}); the scene's law is {in_words(laws)}, "
+                         f"solved once under its loads and imposed displacements (the steps "
+                         f"would be ignored): leave steps out, or scale the loads")
     return solve_problem(assemble(scene), dependent, settings.linear, settings.linear_tol)
 
 

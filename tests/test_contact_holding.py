@@ -22,7 +22,7 @@ from skxfem.contact.interface import tangent_frames
 from skxfem.fem.material import Material
 from skxfem.levelset import plane
 from skxfem.linalg.saddle import SingularSystemError
-from skxfem.scene import Box, Scene, SurfaceLoad, clamped
+from skxfem.scene import Box, Displacement, Interface, Scene, SurfaceLoad, clamped
 
 SLOPE = 0.4
 
@@ -135,3 +135,67 @@ def test_a_pull_below_the_pressure_is_held(dim):
     st = res.steps[-1]
     assert np.all(st.status == 1)
     assert np.allclose(resultant(res), 0.1 * np.eye(dim)[-1], atol=1e-10)
+
+
+def unloaded(dim, steps, support=False, front=None, cell=None):
+    """The unit square (cube) cut at 0.52 by a Coulomb Γ (μ = 0.5), the bottom clamped,
+    the top pressed and sheared by t = (0.3, -1): friction alone holds the top
+    tangentially unless ``support`` holds it in x; ``steps`` the load factors."""
+    top, bottom = ("ymax", "ymin") if dim == 2 else ("zmax", "zmin")
+    mesh = Box((6, 6) if dim == 2 else (4, 4, 4), cell or ("quad" if dim == 2 else "hex"))
+    point, normal = np.r_[np.zeros(dim - 1), 0.52], np.eye(dim)[-1]
+    held = (Displacement(top, {"x": 0.0}),) if support else ()
+    iface = Interface(plane(point, normal), law="coulomb", friction=0.5, front=front)
+    return Scene(mesh, interfaces=(iface,), material=Material(E=1000.0, nu=0.3),
+                 displacements=(clamped(bottom),) + held,
+                 loads=(SurfaceLoad(top, traction=(0.3,) + (0.0,) * (dim - 2) + (-1.0,)),),
+                 steps=steps)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_a_part_only_friction_holds_is_refused_at_zero_load_naming_the_step_and_the_fix(dim):
+    """Pressed and sheared, then unloaded to 0: no point of Γ is pressed, friction holds
+    nothing, and any rigid motion keeping Γ open is an equilibrium.  Refused before
+    Newton, naming the step, the part, the motion and the cure (2D: a bare singular
+    Newton matrix after 64 cuts; 3D: a state at zero pressure returned as an answer)."""
+    t0 = time.perf_counter()
+    with pytest.raises(SingularSystemError) as e:
+        contact.solve(unloaded(dim, (1.0, 0.5, 0.0)))
+    assert time.perf_counter() - t0 < 10.0
+    text = str(e.value)
+    assert text.startswith("load step 0.0: Ω⁺ (the part of the body where ψ > 0) can "
+                           "translate in every direction"), text
+    assert "no resultant" in text and "Coulomb friction μ = 0.5 holds nothing" in text
+    assert "hold that part with a support" in text and "before zero load" in text
+    # a load state without loads: named by its name
+    scene = unloaded(dim, (1.0,))
+    rest = replace(scene, loads=(), name="rest")
+    with pytest.raises(SingularSystemError, match="load step 'rest': Ω⁺"):
+        contact.solve(scene, history=(scene, rest))
+    # loads that cancel on the part (it is squeezed from both sides): the same
+    up = "y > 0.6" if dim == 2 else "z > 0.6"
+    pair = replace(scene, name="squeezed", loads=tuple(
+        SurfaceLoad(face, pressure=1.0, where=up) for face in ("xmin", "xmax")))
+    with pytest.raises(SingularSystemError, match="load step 'squeezed': Ω⁺.*no resultant"):
+        contact.solve(scene, history=(scene, pair))
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_the_same_part_held_by_a_support_is_solved_at_zero_load(dim):
+    """The top held in x: the zero-load state is Γ unloaded, U = 0 (nothing carries a
+    force), as it is without the history."""
+    res = contact.solve(unloaded(dim, (1.0, 0.5, 0.0), support=True))
+    st = res.steps[-1]
+    assert np.abs(st.pressure).max() < 1e-12
+    assert np.abs(st.U).max() < 1e-10 * np.abs(res.steps[0].U).max()
+
+
+def test_a_part_stopped_before_zero_load_tends_to_where_friction_leaves_it():
+    """The cure the refusal names: unloaded in steps to 1e-3, the part ends pressed
+    (1e-3 of the load), one point sticking, the others sliding back; the tangential
+    jump tends to one value along Γ (the part's rigid slide) as the load goes to 0."""
+    res = contact.solve(unloaded(2, (1.0, 0.5, 0.1, 0.01, 1e-3)))
+    slip = [st.slip[:, 0] for st in res.steps]
+    assert np.all(res.steps[-1].pressure > 0)
+    spread = [np.ptp(s) for s in slip[2:]]
+    assert spread[0] > spread[1] > spread[2] and spread[2] < 0.1 * spread[0], spread

@@ -345,3 +345,60 @@ def test_3d_front_points_near_the_free_surfaces_are_not_interior(tmp_path, capsy
     line = _fronts(r)
     k3 = front["K_III"][inner]
     assert f"K_III in [{k3.min() + 0.0:.4g}, {k3.max() + 0.0:.4g}]" in line
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_free_faces_passing_through_each_other_are_said(dim):
+    """An edge crack pressed shut with free faces: K_I < 0 (the faces interpenetrate,
+    -3.54 in 2D) was returned with nothing said.  A FrontPointsWarning names the front,
+    K_I and the cure; pulled open, or with frictionless faces (K_I = 0), nothing."""
+    import warnings
+
+    from skxfem.crack.kind3d import FrontPointsWarning
+    from skxfem.scene import Box, clamped
+    top, bottom = ("ymax", "ymin") if dim == 2 else ("zmax", "zmin")
+    gamma_ = plane(np.r_[np.zeros(dim - 1), 0.52], np.eye(dim)[-1])
+    front = plane(np.r_[0.5, np.zeros(dim - 1)], np.eye(dim)[0])
+
+    def pressed(p, law="free"):
+        return Scene(Box(10 if dim == 2 else 6, "tri" if dim == 2 else "tet"),
+                     interfaces=(Interface(gamma_, law=law, front=front),),
+                     material=MATERIAL, displacements=(clamped(bottom),),
+                     loads=(SurfaceLoad(top, pressure=p),))
+
+    with pytest.warns(FrontPointsWarning, match=r"'plane\(.*\)': K_I < 0 \(down to -.*front "
+                      r"points.*law 'free', pass through each other.*law = 'frictionless'"):
+        (fr,) = solve(pressed(1.0)).front
+    assert np.all(fr["K_I"] < 0)
+    for scene in (pressed(-1.0), pressed(1.0, "frictionless")):
+        with warnings.catch_warnings():
+            warnings.filterwarnings("error", category=FrontPointsWarning,
+                                    message=".*pass through")
+            (fr,) = solve(scene).front
+        if scene.interfaces[0].law == "free":
+            assert np.all(fr["K_I"] > 0), "pulled open"
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_a_level_set_not_finite_or_a_front_outside_is_refused_by_name(dim):
+    """φ NaN on part of the mesh (a square root of a negative number) was 'phi: psi
+    returned NaN or inf at some mesh vertices' (the front called psi, no place); a front
+    that never meets the crack named no key to change.  Both now name the crack, the
+    level set, a vertex and the cure."""
+    from skxfem.scene import Box, clamped
+    top, bottom = ("ymax", "ymin") if dim == 2 else ("zmax", "zmin")
+    psi = LevelSet(lambda x: x[-1] - 0.52, dim, "crack")
+
+    def scene(front):
+        return Scene(Box(6, "tri" if dim == 2 else "tet"),
+                     interfaces=(Interface(psi, law="free", front=front),),
+                     material=MATERIAL, displacements=(clamped(bottom),),
+                     loads=(SurfaceLoad(top, pressure=-1.0),))
+
+    with pytest.raises(ValueError, match=r"the crack \('crack', front 'root'\): phi \(the "
+                       r"front's level set\) is NaN or inf at \d+ of \d+ mesh vertices, e.g. "
+                       r"nan at \(0, 0.*must be finite"):
+        solve(scene(LevelSet(lambda x: np.sqrt(x[0] - 0.3) - 0.2, dim, "root")))
+    with pytest.raises(ValueError, match=r"the crack \('crack', front 'far'\): phi < 0 all "
+                       r".*move the front \(phi = 0\) into the body, or.*leave the front out"):
+        solve(scene(LevelSet(lambda x: x[0] - 2.0, dim, "far")))

@@ -62,6 +62,33 @@ def test_3d_default_follows_the_crack_not_the_body():
         assert abs(V.radius - max(want, 0.2 * crack_depth(g), 4 * across)) < 1e-12
 
 
+@pytest.mark.parametrize("dim", [2, 3])
+def test_a_geometric_radius_that_reaches_no_node_beyond_the_front_cells_is_refused(dim):
+    """r_e under a cell (the tip/front cells' nodes only within it) gave topological
+    enrichment under the name geometric, silently: on the edge crack of 10 × 10 triangles,
+    r_e = 0.1 = h gave K_I 3.128 against 3.390 at r_e = 0.3.  Refused, by name, with the
+    distance of the nearest node it would need and the cure; from that distance on, the
+    zone holds more nodes than the front cells'."""
+    n = 10 if dim == 2 else 6
+    if dim == 2:
+        m = MeshTri1.init_tensor(*(np.linspace(0, 1, n + 1),) * 2)
+        g, space = crack_geometry(m, m.p[1] - 0.52, m.p[0] - 0.5), crack_space
+    else:
+        m = MeshTet1.init_tensor(*(np.linspace(0, 1, n + 1),) * 3)
+        g, space = crack_geometry_3d(m, m.p[2] - 0.52, m.p[0] - 0.5), crack_space_3d
+    topo = space(m, g, "topological")
+    for r in (0.2 / n, 1.0 / n):
+        with pytest.raises(ValueError, match=r"enrichment_radius .* reaches no node beyond "
+                           r"the front cells' \(the nearest is .* from the front.*take "
+                           r"enrichment_radius above .*enrichment='topological'"):
+            space(m, g, "geometric", r)
+    near = float(str(pytest.raises(ValueError, space, m, g, "geometric", 1.0 / n).value)
+                 .split("the nearest is ")[1].split(" ")[0])
+    geo = space(m, g, "geometric", 1.001 * near)
+    assert geo.N > topo.N, "just beyond it, the zone holds one more node"
+    assert space(m, g, "geometric").N > topo.N            # the default radius: accepted
+
+
 def test_bad_arguments_are_refused():
     with pytest.raises(ValueError, match="h must be a positive"):
         default_enrichment_radius(MeshTri1(), 0.0)

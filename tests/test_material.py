@@ -121,3 +121,12 @@ def test_the_largest_accepted_poisson_ratio_solves_the_patch_test(cell):
     psi = plane((0.5,) * (dim - 1) + (0.53,), (0.0,) * (dim - 1) + (1.0,))
     error, _ = patch_error(patch_scene(Box(4, cell), psi, material=Material(1.0, NU_MAX)))
     assert error <= 1e-8
+
+
+def test_numpy_scalars_and_0d_arrays_are_numbers():
+    """E and ν computed with numpy (np.float32, a 0-d array) are the same material."""
+    for E, nu in ((np.float32(2.0), np.array(0.25)), (np.array(2), np.float64(0.25))):
+        m = Material(E=E, nu=nu)
+        assert (type(m.E), type(m.nu)) == (float, float) and m == Material(2.0, 0.25)
+    with pytest.raises(TypeError, match="material E must be a real number"):
+        Material(E=np.array([2.0]))

@@ -24,6 +24,7 @@ from skxfem.scene import (
 )
 from skxfem.scene.benchmarks import paper_plate, strip
 from skxfem.scene.expr import Expression
+from skxfem.scene.settings import Solver
 
 DIM = {"tri": 2, "quad": 2, "tet": 3, "hex": 3, "prism": 3}
 
@@ -620,3 +621,52 @@ def test_a_scenes_crack_enrichments_are_the_spaces_own():
     from skxfem.crack.radius import ENRICHMENTS
     from skxfem.scene.parts import CRACK_ENRICHMENTS
     assert sorted(CRACK_ENRICHMENTS) == sorted(ENRICHMENTS)
+
+
+SCALARS = [np.float64(0.2), np.float32(0.25), np.array(0.2), np.array(2), np.int64(2)]
+"""Real scalars a notebook computes with numpy: each is a number to the scene."""
+
+
+@pytest.mark.parametrize("v", SCALARS, ids=repr)
+def test_every_number_of_a_scene_takes_numpy_scalars_and_0d_arrays(v):
+    """sif_radius, enrichment_radius, friction, ρ, loads, imposed values, E, load factors,
+    box lengths, body force, linear_tol: numpy's scalars and 0-d arrays were refused
+    ("must be a positive number ... got array(0.2)"); each is stored as a Python float."""
+    g, front = plane((0, 0.5), (0, 1)), plane((0.5, 0), (1, 0))
+    crack = Interface(g, law="coulomb", friction=v, rho_n=v, rho_t=v, front=front,
+                      enrichment_radius=v, sif_radius=v)
+    for key in ("friction", "rho_n", "rho_t", "enrichment_radius", "sif_radius"):
+        assert type(getattr(crack, key)) is float and getattr(crack, key) == float(v), key
+    short = Scene(Box(2, "quad", size=(v, v)), plane((0, 0.1), (0, 1)), law="coulomb",
+                  friction=v, material=Material(E=v), steps=(v, 1.0), body_force=(v, v),
+                  loads=(SurfaceLoad("ymax", pressure=v),
+                         SurfaceLoad("xmax", traction=(v, v))),
+                  displacements=(Displacement("ymin", {"x": v, "y": 0.0}),))
+    assert type(short.friction) is float and type(short.material.E) is float
+    assert short.steps[0] == float(v) and type(short.steps[0]) is float
+    assert short.mesh.size == (float(v),) * 2 and type(short.mesh.size[0]) is float
+    assert type(short.loads[0].pressure) is float and type(short.body_force[0]) is float
+    assert type(short.displacements[0].components["x"]) is float
+    if float(v) < 1:
+        assert Solver(linear_tol=v).linear_tol == float(v)
+
+
+@pytest.mark.parametrize("bad, error, words", [
+    (True, ValueError, "must be a positive number"),
+    (np.bool_(True), ValueError, "must be a positive number"),
+    ("0.2", ValueError, "must be a positive number"),
+    (np.nan, ValueError, "must be a positive number"),
+    (np.array(np.inf), ValueError, "must be a positive number"),
+    (np.array([0.2, 0.3]), ValueError, r"must be a positive number .*got array\(\[0.2, 0.3\]\)"),
+    (np.array([0.2]), ValueError, r"must be a positive number .*got array\(\[0.2\]\)"),
+    (0.2 + 0j, ValueError, "must be a positive number"),
+], ids=repr)
+def test_what_is_not_one_real_number_is_still_refused_by_name(bad, error, words):
+    g, front = plane((0, 0.5), (0, 1)), plane((0.5, 0), (1, 0))
+    for key in ("sif_radius", "enrichment_radius"):
+        with pytest.raises(error, match=f"Interface {key} {words}"):
+            Interface(g, front=front, **{key: bad})
+    with pytest.raises(ValueError, match="Interface friction .*must be a number >= 0"):
+        Interface(g, law="coulomb", friction=bad, front=front)
+    with pytest.raises((TypeError, ValueError), match="SurfaceLoad pressure"):
+        SurfaceLoad("ymax", pressure=bad if not isinstance(bad, str) else [bad])

@@ -742,3 +742,16 @@ def test_auto_takes_the_direct_solve_on_small_scenes_and_bad_names_are_refused()
     assert r.linear == "direct" and r.n_dofs < AUTO_ITERATIVE[2]
     with pytest.raises(ValueError, match="linear must be one of"):
         solve(strip(4, "quad"), linear="cholesky")
+
+
+@pytest.mark.parametrize("law", ["bonded"])
+def test_load_steps_given_to_a_tie_are_refused_not_ignored(law):
+    """steps = [1, 0] on a tie (or a free crack) were ignored: the result was the state
+    at load factor 1, with nothing said.  Refused by name, with the cure; the default
+    path (one step at 1) solves as before."""
+    s = dataclasses.replace(strip(n=3), law=law)
+    for steps in ((1.0, 0.0), (2.0,), (0.5, 1.0)):
+        with pytest.raises(ValueError, match=r"steps \(here \[.*\]\) are the load path of a "
+                           r"contact solve .*leave steps out, or scale the loads"):
+            solve(dataclasses.replace(s, steps=steps))
+    assert solve(s).U.shape == solve(dataclasses.replace(s, steps=(1,))).U.shape

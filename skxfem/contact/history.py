@@ -102,6 +102,7 @@ from ..problem import Problem, assemble, state_loads
 from ..result import Result, on_edges, result
 from ..scene.laws import in_words
 from ..scene.model import Interface, Scene, check_steps, resolve
+from ..scene.parts import is_number
 from ..scene.settings import MAX_ITER
 from .fixed_point import fixed_point
 from .holding import check_held_by_gamma
@@ -294,10 +295,10 @@ def _states(scene: Scene, pb: Problem, history, hs) -> list[_State]:
                                      f"of {HISTORY_LAWS}, got {j.law!r}")
             out.append(_State(item.name, *_state(item, scene, pb, i), _laws(item, hs),
                               item.body_force))
-        elif isinstance(item, (int, float, np.integer, np.floating)) and \
-                not isinstance(item, bool) and np.isfinite(item):
-            out.append(_State(float(item), item * pb.F, item * pb.g, laws,
-                              scaled_force(scene.body_force, float(item), pb.mesh.dim())))
+        elif is_number(item) and np.isfinite(item):
+            item = float(item)
+            out.append(_State(item, item * pb.F, item * pb.g, laws,
+                              scaled_force(scene.body_force, item, pb.mesh.dim())))
         else:
             raise ValueError(f"history[{i}] must be a finite load factor or a Scene, "
                              f"got {item!r}")

@@ -33,6 +33,15 @@ along Γ harder than friction can hold (it slides as a rigid body), with
 refused; a dof that carries tension (``bilateral``, ``bonded``) or a part that
 a support touches is left to the solve.
 
+**No load.** Loads with no resultant (f = 0: a load history unloaded to zero, or
+loads that cancel) under a pointed cone (β < 90°) leave every p_j = 0: Γ carries no
+force, friction holds nothing (zero pressure, zero friction force), and any rigid
+motion that keeps Γ open is an equilibrium, so the part's place is not determined.
+:func:`check_held_by_gamma` refuses that state by name (:attr:`Holding.unloaded`),
+before Newton, which otherwise met a singular matrix or returned one of those states.
+Unloaded in several steps to a small load instead, the part tends to where friction
+leaves it (``tests/test_contact_holding.py``).
+
 Only the translations are tested (the moments are a further condition, not
 tested here), so a part whose loads lie inside the cone can still fail to
 be held (it could tip); the test never refuses a problem that has a
@@ -92,7 +101,16 @@ class Holding:
         """The resultant lies in the cone (or β ≥ 90° without a pull): the test passes."""
         if self.half_angle > RIGHT + ANGLE_TOL:
             return True                   # no conclusion
+        if self.unloaded:
+            return False                  # a pointed cone balances nothing but p = 0
         return self.angle <= self.half_angle + ANGLE_TOL
+
+    @property
+    def unloaded(self) -> bool:
+        """The loads on the part have no resultant (``angle`` NaN): with β < 90° every
+        pressure on Γ is then 0, Γ holds nothing and the part's place is not
+        determined (module notes)."""
+        return bool(np.isnan(self.angle))
 
     @property
     def pulled(self) -> bool:
@@ -129,8 +147,8 @@ def holding(pb, ops, laws, F, modes) -> list[Holding]:
 
     ``modes``: :func:`skxfem.linalg.amg.rigid_modes` of ``pb.V`` (column R i + r the
     i-th motion of part r); ``laws`` the :class:`~skxfem.contact.newton.PointLaws`
-    of the dofs.  A part whose loads are nil, or whose dofs on Γ include one that
-    carries tension, gets none.
+    of the dofs.  A part whose dofs on Γ include one that carries tension gets none;
+    one whose loads have no resultant gets ``angle`` NaN (:attr:`Holding.unloaded`).
     """
     dim = pb.mesh.dim()
     parts = modes.shape[1] // (3 if dim == 2 else 6)
@@ -140,9 +158,8 @@ def holding(pb, ops, laws, F, modes) -> list[Holding]:
         if np.any(T[pb.D] != 0):          # a support touches it
             continue
         f = T.T @ F
-        if np.linalg.norm(f) <= 1e-10 * max(float(np.abs(T).T @ np.abs(F) @ np.ones(dim)),
-                                            1e-300):
-            continue                      # no load on it (or loads that cancel)
+        unloaded = np.linalg.norm(f) <= 1e-10 * max(
+            float(np.abs(T).T @ np.abs(F) @ np.ones(dim)), 1e-300)  # or loads that cancel
         a = ops.Bn @ T                    # (m, dim): where Γ pushes the part at each dof
         t = [B @ T for B in ops.Bt]
         size = np.linalg.norm(a, axis=1)
@@ -162,7 +179,8 @@ def holding(pb, ops, laws, F, modes) -> list[Holding]:
             tilt = _angle(a[j], axis)
             planar &= tilt < 1e-9
             beta = max(beta, tilt + _half_angle(a[j], Tj, mu))
-        out.append(Holding(r, f, axis, beta, _angle(f, axis), bool(planar)))
+        out.append(Holding(r, 0.0 * f if unloaded else f, axis, beta,
+                           np.nan if unloaded else _angle(f, axis), bool(planar)))
     return out
 
 
@@ -204,6 +222,8 @@ def check_held_by_gamma(pb, ops, laws, F, modes, label=None, check_rigid=None) -
         if h.held:
             continue
         who, f = names[h.part], h.force
+        if h.unloaded:
+            _refuse_unloaded(who, ops, laws, pb, label, check_rigid)
         if h.pulled:
             what = (f"Γ, which the loads on it pull open (their resultant {_vector(f)} points "
                     f"away from Γ, {np.degrees(h.angle - RIGHT):.3g}° beyond its plane, and Γ "
@@ -236,3 +256,19 @@ def check_held_by_gamma(pb, ops, laws, F, modes, label=None, check_rigid=None) -
             f"{_vector(along / np.linalg.norm(along))} {force}, so it slides along Γ as a "
             f"rigid body and no equilibrium exists (more load steps, another rho_n/rho_t "
             f"or max_iter cannot help): hold it with a support, {cure}, or change the loads")
+
+
+def _refuse_unloaded(who: str, ops, laws, pb, label, check_rigid) -> None:
+    """Refuse a state with no load on a part that only Γ holds (module notes): every
+    pressure on Γ is 0, so Γ holds nothing and the part's place is not determined;
+    the step, the part, the motion left free (via ``check_rigid``) and the cure."""
+    what = (f"Γ (the loads on it have no resultant in this state: zero load, or loads "
+            f"that cancel; so no point of Γ is pressed, and with zero pressure "
+            f"{_friction(laws, pb)} holds nothing)")
+    hint = ("hold that part with a support, or stop the load history before zero load "
+            "(unloaded in several steps, e.g. to 0.1 then 0.01 of the load, the part "
+            "tends to the place where friction leaves it)")
+    if check_rigid is not None:
+        check_rigid(np.full(ops.w.size, OPEN), what, hint)
+    raise FrictionCannotHoldError(
+        f"load step {label!r}: {who} is held by nothing but {what}: {hint}")

@@ -28,7 +28,9 @@ support takes that force.
    tie, solved only as accurately as the iterate needs, :func:`forcing`; a
    singular one, an active set that leaves a part of the body free, is
    replaced by the Jacobian that keeps the points closed at the last iterate,
-   then every point closed; if that is singular too, the law or the space is
+   then every point closed, then (Coulomb) every point closed and sticking (a
+   part that only Γ holds, its every point sliding, is free along Γ in the
+   slip branch's Jacobian); if that is singular too, the law or the space is
    at fault and the :class:`~skxfem.contact.step.SingularStepError`, a
    ValueError, is raised);
 4. :func:`line_search`: the largest α ∈ {1, ½, …, 2⁻⁸} that decreases the
@@ -42,6 +44,7 @@ support takes that force.
 5. :func:`relative_residuals`, the convergence test: the residual of every
    equation in force units (the interface rows times the lumped weight w)
    divided by a force that cannot vanish, max(|F|, |K U|, max diag K · |U|),
+   at least :data:`FLOOR` of that of the step's start (a step to zero load),
    each ≤ ``tol``.  The interface equations are measured with the *reference*
    ρ = E/h, not the step's ρ: their zeros are the same for every ρ > 0, so the
    test does not depend on the augmentation, and it does not look at the
@@ -68,13 +71,25 @@ from .laws import LAWS, disk_projection, status
 
 __all__ = ["Law", "PointLaws", "point_laws", "join_laws", "StepProblem", "Iterate", "Residual",
            "NewtonInfo", "ContactConvergenceError", "jumps", "residual", "jacobian",
-           "line_search", "relative_residuals", "newton", "predict", "LINE_SEARCH", "TOL"]
+           "line_search", "relative_residuals", "newton", "predict", "LINE_SEARCH", "TOL",
+           "FLOOR"]
 
 TOL = 1e-12
 """The default tolerance of :func:`relative_residuals`.  Measured on the known
 answers of ``tests/test_contact_newton.py``: at 1e-10, Newton may stop one
 iteration early with tractions 1e-8 to 6e-8 off (3D slip, μ = 5); at 1e-12 every
 case is exact to 1e-12, at the cost of that one iteration."""
+
+FLOOR = 1e-2
+"""The least force scale of a load step's convergence test, as a fraction of the
+scale of the state it starts from (:func:`force_scale`): a step is converged when
+its residuals are ``tol`` of its own forces or ``tol`` × 1e-2 (1e-14) of those it
+started from.  Its slip increments are differences from that state, so their
+round-off is of that state's size.  Without the floor a step to zero load (a crack
+unloaded, its faces reopening) had a scale that vanished with the answer (U → 0):
+Newton reached |U| = 1e-206 and never passed the test ("did not converge", every
+cut of the step too).  A step whose forces stay above 1/100 of its start's
+is tested as before."""
 
 LINE_SEARCH = tuple(0.5 ** np.arange(9))
 """The step lengths tried by :func:`line_search`, longest first."""
@@ -344,9 +359,11 @@ def descent(A, R, rows, cols, dx) -> np.ndarray:
 def force_scale(step: StepProblem, U) -> float:
     """A force that cannot vanish unless the whole state does: max(|F|, |K U|,
     max diag K · |U|) (an interface opened by imposed displacements has F = 0
-    and K U = 0 on the free unknowns, but not U)."""
+    and K U = 0 on the free unknowns, but not U), and at least :data:`FLOOR` times
+    that of the state the step starts from, ``U_prev``."""
     diag = np.abs(step.K.diagonal()).max() if step.K.shape[0] else 0.0
-    return max(_max(step.F), _max(step.K @ U), diag * _max(U), 1e-300)
+    start = max(_max(step.K @ step.U_prev), diag * _max(step.U_prev))
+    return max(_max(step.F), _max(step.K @ U), diag * _max(U), FLOOR * start, 1e-300)
 
 
 def relative_residuals(step: StepProblem, it: Iterate) -> np.ndarray:
@@ -527,16 +544,25 @@ def _singular_fallback(step, it, res, closed_before, linear, modes, blocksize, e
                        linear_tol=1e-12, setup=None):
     """A singular Newton matrix (the active set leaves a part of the body free):
     the Jacobian that keeps closed the points closed at the last iterate, then
-    the one with every unilateral point closed.  If that one is singular too,
-    no active set helps: the law or the space is at fault (``error`` re-raised)."""
+    the one with every unilateral point closed, then, with Coulomb points, the
+    one with every point closed and sticking (its tangential law linearised at
+    y = 0, inside the friction ball: a part that only Γ holds, every point of it
+    sliding, is free along Γ in the slip branch's Jacobian, e.g. unloaded towards
+    zero).  The residual stays the step's own, so the answer does not change,
+    only the path to it.  If the last is singular too, no active set helps: the
+    law or the space is at fault (``error`` re-raised)."""
     chi = np.where(step.laws.unilateral, res.g_n <= 0, True)
+    everywhere = np.ones(chi.size, bool)
     tried = [chi]
-    for close in (closed_before, np.ones(chi.size, bool)):
-        if any(np.array_equal(chi | close, t) for t in tried):
+    attempts = [(closed_before, res), (everywhere, res)]
+    if np.any(step.laws.tangential == "coulomb"):
+        attempts.append((everywhere, replace(res, y=np.zeros_like(res.y))))
+    for close, seen in attempts:
+        if seen is res and any(np.array_equal(chi | close, t) for t in tried):
             continue
         tried.append(chi | close)
         try:
-            return _linear_step(step, it, res, close, linear, modes, blocksize, setup,
+            return _linear_step(step, it, seen, close, linear, modes, blocksize, setup,
                                 linear_tol)
         except linear_step.SingularStepError as e:
             error = e

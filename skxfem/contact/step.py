@@ -51,8 +51,8 @@ from ..linalg.iterative import solve as tie_solve
 from ..linalg.saddle import SingularSystemError, factorise, floating
 from .laws import disk_projection
 
-__all__ = ["scales", "direct", "linearised", "iterative", "TieStep", "SingularStepError",
-           "KINK"]
+__all__ = ["scales", "equilibrate", "EQUILIBRATE", "direct", "linearised", "iterative", "TieStep",
+           "SingularStepError", "KINK"]
 
 
 class SingularStepError(ValueError):
@@ -76,18 +76,44 @@ def scales(A, nu):
     return r, c
 
 
+EQUILIBRATE = 5
+"""Passes of :func:`equilibrate` before the Newton matrix is factorised."""
+
+
+def equilibrate(A, r, c, passes: int = EQUILIBRATE):
+    """Row and column scales of ``A`` from (r, c) by ``passes`` of Ruiz's equilibration
+    (each row and column divided by the square root of its largest entry), which
+    :func:`direct` factorises: the LU pivots, and so the singularity test of
+    :func:`skxfem.linalg.saddle.factorise`, then no longer depend on the units.  With
+    :func:`scales` alone the smallest pivot of a 3D crack's Newton matrix, Coulomb faces
+    sliding, fell as ρ = E/h grew (measured, smallest over the first steps: 4.5e-5 at
+    E = 1, L = 1; 2.7e-8 at E = 2e11; 6.3e-13 at E = 2e11, L = 1e-3, a millimetre cube
+    of steel, which was refused as singular, 'a part of the body can move freely');
+    equilibrated, 1e-5 to 6e-5 for all, and that cube converges in 5 iterations.
+    The row scales of the merit stay those of :func:`scales`."""
+    A = abs(sp.csr_matrix(A))
+    for _ in range(passes):
+        col = (sp.diags(r) @ A @ sp.diags(c)).max(axis=0).toarray().ravel()
+        c = c / np.sqrt(np.where(col > 0, col, 1.0))
+        row = (sp.diags(r) @ A @ sp.diags(c)).max(axis=1).toarray().ravel()
+        r = r / np.sqrt(np.where(row > 0, row, 1.0))
+    return r, c
+
+
 def direct(A, R, nu, reuse=None):
-    """Solve A x = -R by SuperLU on the scaled matrix: x, the row scales, and
-    the factorisation, which ``reuse`` passes back to the next call: if A has
-    not changed (a Newton step whose active set and, for Coulomb, iterate
-    leave the matrix as it was), it is not factorised again."""
+    """Solve A x = -R by SuperLU on the scaled matrix: x, the row scales
+    (:func:`scales`, the merit's), and the factorisation, which ``reuse`` passes back
+    to the next call: if A has not changed (a Newton step whose active set and, for
+    Coulomb, iterate leave the matrix as it was), it is not factorised again.  The
+    matrix factorised is scaled by :func:`equilibrate`."""
     A = sp.csr_matrix(A)
     if reuse is not None and reuse[0].shape == A.shape and (reuse[0] != A).nnz == 0:
-        _, r, c, lu = reuse
-        return c * lu.solve(-r * R), r, reuse
+        _, r, _, lu, (re, ce) = reuse
+        return ce * lu.solve(-re * R), r, reuse
     r, c = scales(A, nu)
-    lu = factorise(sp.diags(r) @ A @ sp.diags(c), floating=_singular_step)
-    return c * lu.solve(-r * R), r, (A, r, c, lu)
+    re, ce = equilibrate(A, r, c)
+    lu = factorise(sp.diags(re) @ A @ sp.diags(ce), floating=_singular_step)
+    return ce * lu.solve(-re * R), r, (A, r, c, lu, (re, ce))
 
 
 def _singular_step(detail: str) -> SingularStepError:

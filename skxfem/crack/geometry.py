@@ -116,6 +116,27 @@ def check_geometry(geometry, mesh, kind: type, maker: str):
     return geometry
 
 
+def _where_not_finite(name: str, value, mesh) -> None:
+    """Raise a ValueError naming ``name`` (ψ or φ) and a vertex where the callable
+    ``value`` is NaN or inf, if it is anywhere on ``mesh`` (else return)."""
+    with np.errstate(all="ignore"):
+        try:
+            v = np.asarray(value(mesh.p), dtype=float)
+        except (TypeError, ValueError):
+            return
+    if v.shape != mesh.p.shape[1:]:
+        return
+    bad = ~np.isfinite(v)
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        x = ", ".join(f"{c:.4g}" for c in mesh.p[:, k])
+        role = "the front's level set" if name == "phi" else "the crack's level set"
+        raise ValueError(f"{name} ({role}) is NaN or inf at {int(bad.sum())} of {bad.size} "
+                         f"mesh vertices, e.g. {v[k]} at ({x}): it must be finite on the "
+                         f"whole mesh (a square root or a log of a negative number, a "
+                         f"division by zero?)")
+
+
 def level_set_values(name: str, value, mesh, edges: np.ndarray | None = None) -> np.ndarray:
     """Nodal values of a level set ``value`` (a callable or one value per node), checked:
     a ValueError naming ``name`` for NaN, inf or a wrong shape.  Values within
@@ -130,6 +151,7 @@ def level_set_values(name: str, value, mesh, edges: np.ndarray | None = None) ->
         try:
             v = nodal_values(value, mesh)
         except ValueError as err:
+            _where_not_finite(name, value, mesh)
             raise ValueError(f"{name}: {err}") from None
     else:
         v = np.asarray(value)
@@ -385,8 +407,9 @@ def crack_geometry(mesh, psi, phi) -> CrackGeometry:
                          f"{phi.max():.3g}] at the nodes): check psi and phi")
     if tip_tri.size == 0:
         raise ValueError("phi < 0 all along psi = 0 in the mesh: phi never vanishes on the "
-                         "crack, so it has no tip inside the body (a crack that cuts the "
-                         "body through is an interface of skxfem.cut)")
+                         "crack, so it has no tip inside the body: move the front (phi = 0) "
+                         "into the body, or, for a Γ that cuts the body through, leave the "
+                         "front out (an interface of skxfem.cut)")
     tips = _unique_points(F(tip_ref.T[:, :, None], tind=cell_of[tip_tri])[:, :, 0],
                           h[cell_of[tip_tri]])
 

@@ -334,7 +334,8 @@ def crack_geometry_3d(mesh, psi, phi, _remap: bool = False) -> CrackGeometry3D:
                          f"{phi.max():.3g}] at the nodes): check psi and phi")
     if not np.any(front):
         raise ValueError("phi < 0 all over psi = 0 in the mesh: the crack has no front "
-                         "inside the body (a surface that cuts the body through is an "
+                         "inside the body: move the front (phi = 0) into the body, or, for a "
+                         "surface that cuts the body through, leave the front out (an "
                          "interface of skxfem.cut)")
     front_cells, split_cells = np.flatnonzero(front), np.flatnonzero(split_)
     side = np.where(ps.mean(axis=1) < 0, -1, 1)

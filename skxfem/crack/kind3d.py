@@ -64,13 +64,45 @@ from .space3d import (
 )
 from .xspace import CrackXSpaceBase
 
-__all__ = ["Crack3D", "CrackXSpace3D", "FrontPointsWarning", "front_reach", "interior_points"]
+__all__ = ["Crack3D", "CrackXSpace3D", "FrontPointsWarning", "front_reach", "interior_points",
+           "warn_closing", "CLOSING"]
 
 
 class FrontPointsWarning(UserWarning):
     """Some points of a 3D front get no K: their interaction domain would hold no cell
     (:func:`front_reach`); or a 2D tip's domain is clipped under the default by the
-    boundary or another tip, and its K is doubtful (:mod:`skxfem.gamma`)."""
+    boundary or another tip, and its K is doubtful (:mod:`skxfem.gamma`); or a free
+    crack's faces pass through each other at front points (K_I < 0,
+    :func:`warn_closing`)."""
+
+
+CLOSING = 1e-3
+"""A K_I below -CLOSING × the largest |K| of the front counts as negative
+(:func:`warn_closing`); above, it is round-off of a K_I = 0 (pure shear)."""
+
+
+def warn_closing(interface, points: np.ndarray, K: np.ndarray) -> None:
+    """Warn (:class:`FrontPointsWarning`) where a crack with ``free`` faces has K_I < 0:
+    its faces pass through each other near those ``points`` (m, dim) (the law puts
+    nothing between them), so that K_I is not a physical one.  ``K`` (m, 2 or 3): K_I,
+    K_II (, K_III) at the points.  A crack pressed shut needs a contact law on its
+    faces (``frictionless``, or ``coulomb`` with its friction), whose K_I is 0 there.
+    Measured: an edge crack to the middle of the unit square, pressed by 1 on top, free
+    faces: K_I = -3.54, with nothing said (frictionless faces: 0)."""
+    if interface.law != "free" or not K.size:
+        return
+    scale = np.abs(K).max()
+    closing = K[:, 0] < -CLOSING * scale
+    if not closing.any():
+        return
+    where = "; ".join("(" + ", ".join(f"{v:.3g}" for v in x) + ")"
+                      for x in points[closing][:4]) + (" …" if closing.sum() > 4 else "")
+    warnings.warn(f"{interface.front.name!r}: K_I < 0 (down to {K[:, 0].min():.4g}) at "
+                  f"{int(closing.sum())} of {closing.size} front points (at {where}): the "
+                  f"faces of this crack, law 'free', pass through each other there (nothing "
+                  f"stops them), so K_I is not a physical one; for faces pressed together "
+                  f"give the crack a contact law (law = 'frictionless', or 'coulomb' with "
+                  f"its friction)", FrontPointsWarning, stacklevel=3)
 
 
 def interior_points(P: np.ndarray, chains: list, length: float) -> np.ndarray:
@@ -222,6 +254,7 @@ class Crack3D:
             P, interior = P[:, far], interior[far]
         K = (sif_3d(V.space, U, material, P, self.interface.sif_radius,
                     body_force=body_force, faces=faces) if P.shape[1] else np.zeros((0, 3)))
+        warn_closing(self.interface, P.T, K)
         return {"points": P.T.copy(), "K_I": K[:, 0], "K_II": K[:, 1], "K_III": K[:, 2],
                 "interior": interior}
 

@@ -67,7 +67,7 @@ import numpy as np
 
 __all__ = ["ENRICHMENTS", "SIZE_FRACTION", "DOMAIN_CELLS", "DOMAIN_FRACTION",
            "default_radius", "default_enrichment_radius", "enrichment_radius",
-           "check_radius"]
+           "check_radius", "geometric_nodes"]
 
 ENRICHMENTS = ("topological", "geometric")
 """The enrichments of a crack's space: the front cells' nodes, or also those within r_e."""
@@ -123,7 +123,7 @@ def enrichment_radius(mesh, enrichment: str, radius: float | None,
     ``"geometric"``.
 
     ``front_size`` and ``depth`` are called only for that default: the front cells' size h
-    and the crack's depth.
+    and the crack's depth.  The nodes within r_e: :func:`geometric_nodes`.
 
     >>> from skfem import MeshTri1
     >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 22), np.linspace(0, 1, 22))
@@ -145,6 +145,40 @@ def enrichment_radius(mesh, enrichment: str, radius: float | None,
             and radius > 0):
         raise ValueError(f"radius must be a positive number, got {radius!r}")
     return radius
+
+
+def geometric_nodes(front_nodes: np.ndarray, distance: np.ndarray, radius: float | None,
+                    given: bool = False) -> np.ndarray:
+    """The nodes that get the branch functions: ``front_nodes`` (those of the front's
+    cells, every enrichment's) and, with a ``radius`` r_e (geometric), every node within r_e
+    of the front, ``distance`` (N,) each node's distance to it.
+
+    A radius the user ``given`` that reaches no node beyond the front cells' is refused:
+    it gave topological enrichment (rate h^½) under the name geometric, silently.  The
+    message names enrichment_radius, the nearest such node's distance (about a cell) and
+    the cure.
+
+    >>> geometric_nodes(np.array([0, 1]), np.array([0.1, 0.1, 0.2, 0.5]), 0.3).tolist()
+    [0, 1, 2]
+    >>> geometric_nodes(np.array([0, 1]), np.array([0.1, 0.1, 0.2, 0.5]), 0.15, given=True)
+    Traceback (most recent call last):
+    ...
+    ValueError: enrichment_radius 0.15 reaches no node beyond the front cells' (the nearest ...
+    """
+    if radius is None:
+        return np.unique(front_nodes)
+    near = np.flatnonzero(distance <= radius)
+    beyond = np.setdiff1d(near, front_nodes)
+    if given and beyond.size == 0:
+        others = np.setdiff1d(np.arange(distance.size), front_nodes)
+        nearest = float(distance[others].min()) if others.size else np.inf
+        raise ValueError(
+            f"enrichment_radius {radius:.3g} reaches no node beyond the front cells' (the "
+            f"nearest is {nearest:.3g} from the front, about a cell): geometric enrichment "
+            f"within it is topological enrichment; take enrichment_radius above "
+            f"{nearest:.3g} (None: the default, several cells), or ask for "
+            f"enrichment='topological'")
+    return np.union1d(front_nodes, near)
 
 
 def check_radius(radius: float, h: float, name: str = "radius", dim: int = 3) -> None:

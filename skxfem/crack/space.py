@@ -79,7 +79,7 @@ from ..linalg.blocks import block_scaling
 from .branch import branch, branch_local_gradient, side_angle
 from .dofs import EnrichedUnknowns, virtual_map
 from .geometry import AREA_TOL, CrackGeometry, check_geometry, check_mesh_2d
-from .radius import ENRICHMENTS, enrichment_radius
+from .radius import ENRICHMENTS, enrichment_radius, geometric_nodes
 
 __all__ = ["KINDS", "ENRICHMENTS", "CrackSpace",
            "crack_space", "kinds_at", "evaluation", "evaluation_at", "Evaluation",
@@ -155,14 +155,13 @@ def crack_space(mesh, geometry: CrackGeometry, enrichment: str = "geometric",
     [4, 32]
     """
     check_geometry(geometry, check_mesh_2d(mesh), CrackGeometry, "crack_geometry")
+    given = radius is not None
     radius = enrichment_radius(            # the tip cells' largest extent: h
         mesh, enrichment, radius,
         lambda: np.ptp(mesh.p[:, mesh.t[:, geometry.tip_cells]], axis=1).max())
-    branch_nodes = np.unique(mesh.t[:, geometry.tip_cells])
-    if radius is not None:
-        d = np.min(np.linalg.norm(mesh.p[:, :, None] - geometry.tips[:, None], axis=0),
-                   axis=1)
-        branch_nodes = np.union1d(branch_nodes, np.flatnonzero(d <= radius))
+    d = None if radius is None else np.min(
+        np.linalg.norm(mesh.p[:, :, None] - geometry.tips[:, None], axis=0), axis=1)
+    branch_nodes = geometric_nodes(mesh.t[:, geometry.tip_cells].ravel(), d, radius, given)
     heav = np.setdiff1d(np.unique(mesh.t[:, geometry.split_cells]), branch_nodes)
     H_node = np.sign(geometry.psi[heav])
     keep = _far_side(mesh, geometry)[heav, (H_node > 0).astype(int)] | (H_node == 0)

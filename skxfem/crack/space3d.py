@@ -77,7 +77,7 @@ from .geometry3d import (
     shape_gradients,
 )
 from .quadrature3d import NEAR_GRADING, NEAR_POINTS, collapsed, edge_polar, vertex_polar
-from .radius import enrichment_radius
+from .radius import enrichment_radius, geometric_nodes
 from .space import nodal_scaling as _nodal_scaling
 
 __all__ = ["SMOOTH_ORDER", "BRANCH_POINTS", "CrackSpace3D", "crack_space_3d", "PointValues",
@@ -199,14 +199,13 @@ def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric
     """
     check_geometry(geometry, check_mesh_3d(mesh), CrackGeometry3D, "crack_geometry_3d")
     nodes = mesh.t[:, geometry.front_cells]
+    given = radius is not None
     radius = enrichment_radius(            # the front cells' mean size across the front
         mesh, enrichment, radius,
         lambda: np.hypot(geometry.phi[nodes], geometry.psi[nodes]).max(axis=0).mean(),
         lambda: crack_depth(geometry))
-    branch_nodes = np.unique(nodes)
-    if radius is not None:
-        near = np.flatnonzero(front_distance(geometry, mesh.p) <= radius)
-        branch_nodes = np.union1d(branch_nodes, near)
+    branch_nodes = geometric_nodes(nodes.ravel(), None if radius is None else
+                                   front_distance(geometry, mesh.p), radius, given)
     heav = np.setdiff1d(np.unique(mesh.t[:, geometry.split_cells]), branch_nodes)
     H_node = np.sign(geometry.psi[heav])
     keep = _far_side(mesh, geometry)[heav, (H_node > 0).astype(int)] | (H_node == 0)

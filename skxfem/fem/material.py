@@ -63,6 +63,8 @@ class Material:
     def __post_init__(self):
         for key in ("E", "nu"):
             value = getattr(self, key)
+            if isinstance(value, np.ndarray) and value.ndim == 0:
+                value = value[()]                       # a 0-d array: its number
             if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
                 raise TypeError(f"material {key} must be a real number, got {value!r}")
             object.__setattr__(self, key, float(value))   # numpy's numbers as Python's

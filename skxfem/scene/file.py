@@ -309,7 +309,7 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             "with geometric enrichment (default max(0.2 L, n h / 0.75): L the mesh's "
             "diameter in 2D, the crack's depth in 3D, h the front cells' size, n h the "
             "default interaction domain, 4 cells in 2D and 3 in 3D: at least 5.3 and 4 "
-            "cells)", 0.4),
+            "cells; one that reaches no node beyond the front cells is refused)", 0.4),
         Key("sif_radius", "number > 0 [L]", "a crack: the radius of the interaction "
             "integral's domain (default 0.75 enrichment_radius, at least 4 tip cells in "
             "2D, 3 front cells in 3D; not under one; clipped to the distance to the "

@@ -68,6 +68,18 @@ Value = Union[float, str, Callable[[np.ndarray], np.ndarray]]
 
 
 def is_number(v) -> bool:
+    """Whether ``v`` is a real scalar: a Python or numpy integer or float, or a 0-d numpy
+    array of one (a number a notebook computed with numpy).  Never a bool, a string, a
+    complex number or an array of several values.  Every number a scene checks goes
+    through here (its callers then take ``float(v)``).
+
+    >>> [is_number(v) for v in (0.2, np.float32(0.2), np.array(0.2), np.array(2))]
+    [True, True, True, True]
+    >>> [is_number(v) for v in (True, np.bool_(True), "0.2", 1j, np.array([0.2]), np.ones(2))]
+    [False, False, False, False, False, False]
+    """
+    if isinstance(v, np.ndarray):
+        return v.ndim == 0 and v.dtype.kind in "iuf"
     return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool)
 
 
@@ -146,6 +158,7 @@ class Box:
                     or not all(is_number(s) and np.isfinite(s) and s > 0 for s in self.size)):
                 raise ValueError(f"Box size must be {self.dim} positive numbers, "
                                  f"got {self.size!r}")
+            object.__setattr__(self, "size", tuple(float(s) for s in self.size))
             lo, hi = SIZE_RANGE
             if not all(lo <= s <= hi for s in self.size):
                 raise ValueError(f"Box size must lie in [{lo:.0e}, {hi:.0e}] (beyond, the "
