@@ -450,7 +450,8 @@ def supported_dofs(space: CrackSpace, supports) -> tuple[np.ndarray, np.ndarray]
     >>> from skxfem.crack.geometry import crack_geometry
     >>> from skxfem.crack.space import crack_space
     >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
-    >>> V = crack_space(m, crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5), radius=0.15)
+    >>> g = crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5)
+    >>> V = crack_space(m, g, enrichment="topological")       # the tip cells' nodes
     >>> left = m.facets_satisfying(lambda x: x[0] < 1e-12)
     >>> D, g = supported_dofs(V, [Support(left)])                 # u = 0: a clamp
     >>> D.size, bool(np.isin(V.heaviside_dofs(), D).any())      # mouth clamped shut
