@@ -215,10 +215,10 @@ def pressed_penny(n: int, law: str = "frictionless", a: float = 0.55, p: float =
 
 
 def inclined_slab(n: int, nz: int, friction: float, beta_deg: float = 30.0,
-                  a: float = 0.25):
+                  a: float = 0.25, center=(0.5, 0.5)):
     """(crack, scene): the closed inclined Griffith crack of
     :class:`skxfem.crack.griffith.InclinedCrack` (half-length a, angle β, σ = 1, friction
-    μ, centre (1/2, 1/2)) through a slab [0, 1]² × [0, nz/10] of n × n × nz cells of
+    μ, its centre ``center``) through a slab [0, 1]² × [0, nz/10] of n × n × nz cells of
     tetrahedra, in plane strain: the exact field's u_x, u_y (and u_z = 0) on the four sides,
     its traction σ_zz = ν(σ_xx + σ_yy) on the faces z = 0 and z = nz/10.  Coulomb's law
     on the faces (``frictionless`` for μ = 0).
@@ -234,7 +234,7 @@ def inclined_slab(n: int, nz: int, friction: float, beta_deg: float = 30.0,
     from ..scene import Displacement, Interface, Scene, Solver, SurfaceLoad
 
     c = InclinedCrack(a=a, beta=np.radians(beta_deg), sigma=1.0, friction=friction,
-                      center=(0.5, 0.5))
+                      center=center)
     T = nz / 10
     m = MeshTet1.init_tensor(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1),
                              np.linspace(0, T, nz + 1))
