@@ -156,9 +156,10 @@ def williams_slab(n: int, nz: int, K=(1.0, 1.0, 0.0), components=(2,),
 def pressed_slab(n: int, nz: int = 2, law: str = "frictionless", space: str = "vital",
                  p: float = 1.0, front: float = 0.5):
     """The scene of a through-thickness edge crack y = 1/2, x < ``front`` in the unit cube
-    (n × n × nz cells of tetrahedra; n odd: the crack runs mid-cell), pressed shut by p on
-    y = 1, on rollers at x = 0 (u_x = 0), y = 0 (u_y = 0) and z = 0 (u_z = 0), the other
-    faces free: the uniform field σ_yy = -p solves it, the faces carry p, and K = 0.
+    (n × n × nz cells of tetrahedra; n odd: the crack runs mid-cell, n even: along a node
+    plane, its multipliers at its nodes), pressed shut by p on y = 1, on rollers at x = 0
+    (u_x = 0), y = 0 (u_y = 0) and z = 0 (u_z = 0), the other faces free: the uniform
+    field σ_yy = -p solves it, the faces carry p, and K = 0.
     The rollers are on faces whose normal is normal to the load (σ·n = 0 there), so that
     the Heaviside unknowns they leave free at the crack's mouth feel no reaction.
 
