@@ -10,17 +10,19 @@ import scipy.sparse as sp
 from skfem import Basis, ElementTetP1, MeshTet1
 
 from skxfem.crack.branch import branch, branch_local_gradient
-from skxfem.crack.geometry3d import crack_geometry_3d
+from skxfem.crack.geometry3d import crack_geometry_3d, mesh_cells
 from skxfem.crack.quadrature3d import collapsed, vertex_polar
 from skxfem.crack.space3d import (
     SMOOTH_ORDER,
     _cell_values,
     _kinds,
+    _levels,
     _pack,
     crack_space_3d,
     evaluation,
     field_at,
     functions_at,
+    near_points,
     point_values,
     rules,
     stiffness,
@@ -114,6 +116,32 @@ def test_cell_values_are_point_values_batched_by_cell():
         assert close(np.repeat(dlam, nq, axis=0), pv.dlam, 1e-13)
         assert close(g.reshape(-1, 6), pv.g, 1e-13)
         assert close(dg.reshape(-1, 6, 3), pv.dg, 1e-11)
+
+
+def test_the_tube_pieces_near_the_front_take_the_graded_rule():
+    """rules(tube=((1.0, 6),)): the cells and pieces of the branch tube within one longest
+    edge of the front take the collapsed 6³ rule (216 points), the others keep the
+    symmetric rule; every cell's weights still sum to its volume."""
+    m = cube(8, 3)
+    V = crack_space_3d(m, edge_crack(m, 0.53), "geometric", 0.4)
+    cells = np.arange(m.t.shape[1])
+    level = _levels(V)
+    volume = np.abs(np.linalg.det(mesh_cells(m, cells)[:, 1:] - mesh_cells(m, cells)[:, :1])) / 6
+    points = {}
+    for tube in ((), ((1.0, 6),)):
+        total = np.zeros(cells.size)
+        count = np.zeros(cells.size, dtype=int)
+        for c, x, w, side in rules(V, cells, plain=2, symmetric=8, tube=tube):
+            np.add.at(total, c, w.sum(axis=1))
+            np.add.at(count, c, np.count_nonzero(w, axis=1))
+        assert np.allclose(total, volume, rtol=1e-12, atol=0)
+        points[tube] = count
+    uncut = np.setdiff1d(np.flatnonzero(level == 1), V.geometry.cells)
+    graded = points[((1.0, 6),)][uncut] == 216
+    assert graded.any() and not graded.all()               # the near ones only
+    assert np.all(points[()][uncut] == 45)                 # the symmetric rule of order 8
+    d = near_points(V, mesh_cells(m, uncut), ((1.0, 6),), default=0)
+    assert np.array_equal(d == 6, graded)
 
 
 def _pointwise_stiffness(V, material):

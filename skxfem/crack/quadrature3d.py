@@ -48,7 +48,7 @@ NEAR_POINTS = 5
 """Points per direction of :func:`collapsed` on the cells around the front cells (in the
 support of a front cell's node) and on the front cells' sub-tetrahedra off the front."""
 
-NEAR_GRADING = ((0.3, 8), (0.1, 12))
+NEAR_GRADING = ((0.3, 8), (0.1, 12), (0.03, 16), (0.01, 20))
 """(ratio, n): the points per direction of :func:`collapsed` on a tetrahedron near the
 front that does not meet it, where the front passes within ratio times its longest edge
 (:func:`skxfem.crack.space3d.near_points`); :data:`NEAR_POINTS` beyond.  The exact state
@@ -59,7 +59,15 @@ between the cells' rules and the faces'): on the branch rows the 5³ rule left 3
 slow: the front passes at 1e-2 of a piece's size), this grading 9.8e-4, 1.4e-3, 1.0e-3.
 Solved, the pressure at the crossings was then within 0.27 %, 0.35 %, 0.14 % of p
 (1.6 %, 0.8 %, 1.0 % before), and |K_I| that of the exact state (the interaction
-integral's own error; sif_3d keeps the 5³ rule, :mod:`skxfem.crack.sif3d`)."""
+integral's own error; sif_3d grades its own near rule only for faces that carry a
+traction, :data:`skxfem.crack.sif3d.FACE_RULES`).  The two closest steps (0.03, 0.01)
+are for a front that passes a piece at a hundredth of its size (a front cell's piece
+off the front, the neighbour across a face the front nearly touches): the through
+crack pressed shut (:func:`skxfem.studies.cracks3d.pressed_slab`, n = 13, front at
+x = 0.575) gave |K| = 1.02e-3 p√(πa) with the pressure 0.37 % off with two steps, 8.0e-4
+and 0.23 % with them (its exact state 4.5e-4); n = 11 at x = 0.5875 4.6e-4 -> 2.2e-4.
+They cost the stiffness of that slab 201 000 -> 352 000 points, of the pressed penny at
+n = 16 1.54 M -> 1.71 M, of the cube of ``benchmarks/crack_solve.py`` none (n = 16, 24)."""
 
 VERTEX_POINTS = (4, 5)
 """(n_r, n_θ) of :func:`vertex_polar` (its integrand is regular: r⁻¹ u² ∝ u, but turns

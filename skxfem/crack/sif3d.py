@@ -141,7 +141,7 @@ from .space3d import (
 )
 from .williams import near_tip_modes
 
-__all__ = ["DEFAULT_RADIUS", "MIN_RADIUS", "DEFAULT_LENGTH", "TUBE_ORDER",
+__all__ = ["DEFAULT_RADIUS", "MIN_RADIUS", "DEFAULT_LENGTH", "TUBE_ORDER", "FACE_RULES",
            "default_radius_3d",
            "front_points", "front_frame", "fitted_frame", "front_coordinate", "front_sizes",
            "boundary_reach", "other_fronts", "check_radius", "domain_reach", "sif_3d",
@@ -166,6 +166,33 @@ points) on the cells of the branch tube away from the front cells in :func:`sif_
 degree 5) left a through crack pressed shut (:func:`skxfem.studies.cracks3d.pressed_slab`,
 K = 0) at |K| up to 1.1e-3 p√(πa) (n = 31, front at x = 0.51, r_e = 4 h), the penny
 pressed shut at 1.08e-3 (h = 0.1); on this rule 1.6e-4 and 0.69e-3 (module notes)."""
+
+FACE_RULES = {"grading": ((0.3, 8), (0.1, 12)), "tube": ((0.5, 6),)}
+"""The rules of :func:`sif_3d` when the crack's faces carry a traction (a contact or a
+tie: ``faces`` given), for :func:`skxfem.crack.space3d.rules`: the pieces near the front
+graded by their distance to it as the stiffness's first steps
+(:data:`skxfem.crack.quadrature3d.NEAR_GRADING`; else 5³ points each), and the branch
+tube's cells within half their longest edge of the front on the collapsed 6³ rule
+(``tube``; else the symmetric rule of :data:`TUBE_ORDER`).  A crack pressed shut has
+K = 0 only as the difference of the domain and face terms, each about 0.5 p√(πa): the
+integral must hold each to 1e-3 of it, on every mesh.  Measured on the exact state of
+:func:`skxfem.studies.cracks3d.pressed_slab` (σ = -p e_y ⊗ e_y, the faces carrying p),
+the front at x = 0.40 to 0.60 by 0.0125 (17 places): the worst |K| over p√(πa) at
+n = 7, 9, 11, 13 was 1.61e-3, 1.51e-3, 1.11e-3, 0.84e-3 on a free crack's rules, is
+0.77e-3, 0.72e-3, 0.78e-3, 0.72e-3 on these (the pieces' grading alone: 1.15e-3 at
+n = 7; the tube's alone: 1.13e-3 at n = 9); solved, 0.86e-3, 0.71e-3, 0.78e-3, 0.80e-3,
+0.61e-3, 0.51e-3, 0.39e-3 at n = 7, 9, 11, 13, 15, 21, 31 (1.64e-3 at n = 7, x = 0.495
+before, with the stiffness's closest steps).  The points of K: 59 000 -> 268 000
+(n = 11), 72 000 -> 424 000 (n = 21), 298 000 -> 826 000 (the pressed penny at
+h = 0.2), K's time 0.13 -> 0.63 s, 0.14 -> 1.15 s, 0.94 -> 2.68 s, against a contact
+solve of 0.5 to 10 s.  Finer steps ((0.5, 8), (0.3, 10), (0.1, 16) and a tube of one
+edge) held the slab alike (0.74e-3) for twice the points; on the penny pressed shut at
+h = 0.2 (2.75 cells per radius, R = 0.25) no rule is reliable: its exact state gave
+|K_I| 1.85e-3, 2.56e-3, 1.07e-3 p√(πa) on the free rules, these and the finer ones
+(0.81e-3, 0.73e-3, 1.02e-3 at h = 0.125; solved 1.97e-3, 2.71e-3, 1.08e-3 at h = 0.2
+and 0.81e-3, 0.82e-3, 1.13e-3 at h = 0.125), the P1 front's own error (module notes).
+A free crack keeps the rules above: its K is the domain term alone, and 1e-3 of that
+is 1e-3 of K."""
 
 DEFAULT_LENGTH = 1.5
 """The default half-width L of the bump along the front, in front-cell sizes along it."""
@@ -605,11 +632,12 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     # (3 left |K_I| ≈ 1.5e-3 σ√(πa) on a crack pressed shut with its front 0.3 h past a
     # node, 4: 1e-3)
     within = cells[_cell_r_bound(space, cells) < R * (1 + 1e-9)]
-    # the near rule not graded (grading=()): the stiffness's grading here moved K by
-    # noise, not towards 0 on cracks pressed shut (the penny's exact state 2.5e-3,
-    # 1.1e-3, 0.94e-3 p√(πa) at h = 0.2, 0.125, 0.1 against 3.4e-3, 0.76e-3, 1.0e-3; the
-    # through crack of pressed_slab(11, 2) 1.2e-3 against 0.87e-3), for 40 % more time
-    batches = rules(space, within, plain=4, symmetric=TUBE_ORDER, grading=())
+    # a free crack's near rule not graded (grading=()): its K is the domain term alone;
+    # faces with a traction: FACE_RULES (the difference of two terms)
+    traction = faces is not None
+    batches = rules(space, within, plain=4, symmetric=TUBE_ORDER,
+                    grading=FACE_RULES["grading"] if traction else (),
+                    tube=FACE_RULES["tube"] if traction else ())
     # the points' terms, filled chunk by chunk (at most every point of the rules)
     total = sum(int(np.count_nonzero(w)) for _, _, w, _ in batches)
     X_, e1_, gr_, B_, C_, D_ = (np.empty((3, total)) for _ in range(6))

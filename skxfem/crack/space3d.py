@@ -405,7 +405,7 @@ def _levels(space: CrackSpace3D) -> np.ndarray:
 
 
 def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS,
-          symmetric: bool | int = False, grading=NEAR_GRADING):
+          symmetric: bool | int = False, grading=NEAR_GRADING, tube=()):
     """The quadrature of ``cells`` (module notes), as batches of cells with as many points
     each: a list of (cells (nc,), x (nc, nq, 3), w (nc, nq), side (nc, nq)).  ``plain``:
     the points per direction of the collapsed rule on the cells and sub-tetrahedra
@@ -416,7 +416,11 @@ def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS,
     :data:`skxfem.crack.sif3d.TUBE_ORDER`), else (False) on the collapsed rule of
     :data:`BRANCH_POINTS` per direction (the loads; :data:`SMOOTH_ORDER`'s notes).  The
     cells and pieces near the front that do not meet it: :func:`near_points`, graded by
-    their distance to it as ``grading`` says."""
+    their distance to it as ``grading`` says.  ``tube``: pairs (ratio, n) as
+    ``grading``, for the cells and pieces of the branch nodes' supports away from the
+    front cells: those within ratio times their longest edge of the front take the
+    collapsed rule of n³ points instead (the interaction integral of a crack whose
+    faces carry a traction, :data:`skxfem.crack.sif3d.FACE_RULES`)."""
     mesh, geo = space.mesh, space.geometry
     cells = np.unique(np.asarray(cells, dtype=int))
     level = _levels(space)
@@ -431,9 +435,13 @@ def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS,
     near = np.zeros(sc.size, dtype=int)
     off = (sf == 0) & (lv == 2)
     near[off] = near_points(space, S[off], grading)
+    if tube:                                              # the tube's pieces near the front
+        in_tube = np.flatnonzero((sf == 0) & (lv == 1))
+        near[in_tube] = near_points(space, S[in_tube], tube, default=0)
+        lv = np.where(near > 0, -1, lv)                   # off the by_level rules
     kinds = [(sf == 2, edge_polar), (sf == 1, vertex_polar)] + [
         ((sf == 0) & (lv == k), rule) for k, rule in by_level.items()] + [
-        (near == k, lambda T, k=k: collapsed(T, k)) for k in np.unique(near[off])]
+        (near == k, lambda T, k=k: collapsed(T, k)) for k in np.unique(near[near > 0])]
     pieces = []
     for mask, rule in kinds:
         if mask.any():
@@ -442,12 +450,17 @@ def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS,
     batches = _pack(pieces)
     # uncut cells
     uncut = np.setdiff1d(cells, geo.cells)
-    groups = [(uncut[level[uncut] == k], rule) for k, rule in by_level.items()]
-    ring = uncut[level[uncut] == 2]
-    if ring.size:
-        n_ring = near_points(space, mesh_cells(mesh, ring), grading)
-        groups += [(ring[n_ring == k], lambda T, k=k: collapsed(T, k))
-                   for k in np.unique(n_ring)]
+    n_uncut = np.zeros(uncut.size, dtype=int)
+    ring = level[uncut] == 2
+    n_uncut[ring] = near_points(space, mesh_cells(mesh, uncut[ring]), grading)
+    if tube:
+        in_tube = level[uncut] == 1
+        n_uncut[in_tube] = near_points(space, mesh_cells(mesh, uncut[in_tube]), tube,
+                                       default=0)
+    groups = [(uncut[(level[uncut] == k) & (n_uncut == 0)], rule)
+              for k, rule in by_level.items()]
+    groups += [(uncut[n_uncut == k], lambda T, k=k: collapsed(T, k))
+               for k in np.unique(n_uncut[n_uncut > 0])]
     for here, rule in groups:
         if here.size:
             x, w = rule(mesh_cells(mesh, here))
@@ -456,14 +469,16 @@ def rules(space: CrackSpace3D, cells: np.ndarray, plain: int = BRANCH_POINTS,
     return batches
 
 
-def near_points(space: CrackSpace3D, T: np.ndarray, grading=NEAR_GRADING) -> np.ndarray:
+def near_points(space: CrackSpace3D, T: np.ndarray, grading=NEAR_GRADING,
+                default: int = NEAR_POINTS) -> np.ndarray:
     """(m,) the points per direction of the collapsed rule on tetrahedra T (m, 4, 3) near
     the front that do not meet it (the cells around the front cells and the front cells'
     pieces off the front): :data:`~skxfem.crack.quadrature3d.NEAR_POINTS`, more by
     ``grading`` (pairs (ratio, n), :data:`~skxfem.crack.quadrature3d.NEAR_GRADING`)
     where the front passes within ratio times the tetrahedron's longest edge (its
     distance to the front's segments at its vertices, edges' midpoints and centroid),
-    and the branch functions' 1/√r gradients turn within it.
+    and the branch functions' 1/√r gradients turn within it; ``default`` where no
+    ratio is reached (0: none, the caller keeps its own rule there).
 
     >>> from skfem import MeshTet1
     >>> from skxfem.crack.geometry3d import crack_geometry_3d
@@ -474,7 +489,7 @@ def near_points(space: CrackSpace3D, T: np.ndarray, grading=NEAR_GRADING) -> np.
     [12, 8, 5]
     """
     T = np.asarray(T, float)
-    out = np.full(len(T), NEAR_POINTS)
+    out = np.full(len(T), default)
     if not len(T):
         return out
     ends = [(a, b) for a in range(4) for b in range(a + 1, 4)]
