@@ -213,13 +213,17 @@ def test_a_3d_crack_is_the_3d_kind_and_takes_tetrahedra_only():
     assert type(g) is Crack3D and not g.splits
     with pytest.raises(ValueError, match="MeshTet1"):
         g.cut(MeshHex1().refined(1), "interfaces[0]")
-    # contact on its faces (tests/test_crack_contact_3d.py) needs crossed edges: a crack
-    # along mesh planes has none, and its multipliers are refused by name
+    # contact on its faces (tests/test_crack_contact_3d.py): a crack along mesh planes
+    # crosses no edge strictly, its multipliers are at its nodes behind the front, as a
+    # Cut lists a vertex on Γ (the point (v, v), edge id -1)
     g = gamma(Interface(plane((0, 0, 0.5), (0, 0, 1)), law="frictionless",
                         front=plane((0.5, 0, 0), (1, 0, 0))))
     m = MeshTet1.init_tensor(*(np.linspace(0, 1, 5),) * 3)            # z = 0.5: a plane
-    with pytest.raises(ValueError, match="crosses no mesh edge strictly"):
-        g.multipliers(m, g.cut(m))
+    cut = g.cut(m)
+    assert np.all(cut.edge_ids == -1) and np.array_equal(cut.edges[0], cut.edges[1])
+    assert np.allclose(cut.points, m.p[:, cut.edges[0]]) and np.all(cut.points[0] < 0.5)
+    assert cut.edge_ids.size == 10, "x = 0, 1/4 (x = 1/2 is the front), y = 0 .. 1"
+    assert g.multipliers(m, cut).P.shape == (10, 10)
 
 
 @pytest.mark.parametrize("edit, words", [

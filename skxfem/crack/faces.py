@@ -4,16 +4,17 @@ A crack's multipliers live where those of a Γ that cuts the body through live
 (:mod:`skxfem.cut`): one λ_e at the crossing x_e of every mesh edge e the crack
 crosses strictly (``edge_ids`` of :class:`~skxfem.crack.geometry.CrackGeometry`; an
 edge ψ_h crosses ahead of the front is not one, nor is an edge of the tip cell the
-crack does not reach), and, in 2D, one at every mesh node the crack passes through
-behind its front (ψ = 0, φ < 0; the point (v, v), edge id -1, as a vertex on Γ of a
-:class:`~skxfem.cut.Cut`), exactly: a crack along mesh edges or quadrilaterals'
-diagonals (the 45° crack of a structured mesh) has its multipliers at the nodes.
+crack does not reach), and one at every mesh node the crack passes through behind
+its front (ψ = 0, φ < 0; the point (v, v), edge id -1, as a vertex on Γ of a
+:class:`~skxfem.cut.Cut`; :func:`skxfem.crack.geometry.crack_points`, 2D and 3D),
+exactly: a crack along mesh edges, planes or quadrilaterals' diagonals (the 45° crack
+of a structured mesh) has its multipliers at the nodes.
 The spaces are those of :mod:`skxfem.stabilised` (naive, winner nodes = algo1, vital
 edges = algo2) on the graph of the crossed edges, a node on the crack with a
 multiplier of its own (:func:`skxfem.stabilised.multiplier_space`): the graph's nodes
 are the ends of the crossed edges, so the tip cell's nodes beyond the front carry no
-multiplier, nor does a tip at a node (the jump vanishes there).  A 3D crack's nodes
-carry none (:mod:`skxfem.crack.faces3d`: a 3D crack needs crossed edges).
+multiplier, nor does a tip at a node (the jump vanishes there); in 3D
+:mod:`skxfem.crack.faces3d`.
 
 **The multiplier functions on the faces.**  A crack piece (the part of Γ_h in one
 reference triangle) may end at a point that carries no multiplier: the tip, a point
@@ -99,21 +100,15 @@ def edge_graph(geo) -> EdgeGraph:
 
 
 def check_crossed(geo) -> None:
-    """Refuse a crack (2D or 3D geometry) with no point to carry a multiplier: in 2D one
-    that crosses no mesh edge strictly and passes through no mesh node behind its front,
-    in 3D one that crosses no mesh edge strictly (a 3D crack's nodes carry none)."""
+    """Refuse a crack (2D or 3D geometry) with no point to carry a multiplier: one that
+    crosses no mesh edge strictly and passes through no mesh node behind its front."""
     if geo.edge_ids.size:
         return
-    if geo.points.shape[0] == 2:
-        raise ValueError("the crack crosses no mesh edge strictly and passes through no mesh "
-                         "node behind its front, so it has no point to carry multipliers: "
-                         "contact on its faces needs a crack longer than its tip cells "
-                         "(refine the mesh) or law 'free'")
-    raise ValueError("the crack crosses no mesh edge strictly (it runs along mesh edges "
-                     "or faces, or through nodes only), so it has no point to carry "
-                     "multipliers: contact on its faces needs a crack that crosses cells "
-                     "(move it off the mesh lines or planes, e.g. an odd number of "
-                     "cells) or law 'free'")
+    cells = "tip cells" if geo.points.shape[0] == 2 else "front cells"
+    raise ValueError("the crack crosses no mesh edge strictly and passes through no mesh "
+                     "node behind its front, so it has no point to carry multipliers: "
+                     f"contact on its faces needs a crack longer than its {cells} "
+                     "(refine the mesh) or law 'free'")
 
 
 def end_values(geo) -> sp.csr_matrix:

@@ -4,17 +4,33 @@ The 3D twin of :mod:`skxfem.crack.faces`, on a
 :class:`~skxfem.crack.geometry3d.CrackGeometry3D`.  One λ_e lives at the crossing x_e
 of every mesh edge e the crack crosses strictly (``edge_ids``: ψ changes sign along e
 and φ < 0 at the crossing; an edge of a front cell crossed ahead of the front is not
-one).  The spaces are those of :mod:`skxfem.stabilised` (naive, winner nodes = algo1,
-vital edges = algo2) on the graph of these edges
+one), and one at every mesh node on the crack behind its front that is a vertex of a
+face (ψ = 0, φ < 0; the point (v, v), edge id -1, as a vertex on Γ of a
+:class:`~skxfem.cut.Cut`: :func:`skxfem.crack.geometry.crack_points`, the same function
+as in 2D).  So a crack along a mesh plane, or along the tetrahedra's diagonal faces
+(the 45° crack of a structured mesh), has its multipliers at its nodes, and a plane
+that crosses some edges and passes through some nodes has both.  The spaces are those
+of :mod:`skxfem.stabilised` (naive, winner nodes = algo1, vital edges = algo2) on the
+graph of the crossed edges, a node on the crack with a multiplier of its own
 (:func:`skxfem.crack.faces.crack_multipliers`, the same function as in 2D, on the
 faces' :func:`~skxfem.crack.faces.edge_graph`): its nodes are the ends of the crossed
 edges, so a front cell's nodes that only edges crossed ahead
 of the front reach carry no multiplier.
 
+**Nodes on the crack** (tests/test_crack_contact_3d.py).  Before they carried a
+multiplier, a crack along a mesh plane was refused, and one that crosses edges and
+passes through nodes was held at its crossings only: sliding (the plane
+y = 1/2 + (x - 1/2)/2 on 10 × 10 × 2 cells, frictionless, pressed by σ_yy) its faces
+interpenetrated by 1.7e-2 at the nodes and 3.5e-2 at the crossings against a slip of
+0.32, |K_I| = 7.7e-3 p√(πa); now 1.6e-4 and 1.5e-3, |K_I| ≤ 1.2e-3.  A uniform stress
+was held either way (the pressure within 5e-5 of p, K ≈ 0).  pressed_slab at n = 10 (a
+node plane) gives |K| ≤ 3.0e-4 p√(πa) and the pressure within 7.1e-5 of p with every
+law and space.
+
 **The multiplier functions on the faces.**  The crack's faces are the triangles of
 {ψ_h = 0, φ_h ≤ 0} in each split or front cell (``faces``).  Their vertices are
-crossings, or points that are none: on the front (ψ_h = φ_h = 0), at a node on the
-crack.  λ_h at such a vertex is the harmonic extension of the crossings' values over
+points (crossings, nodes on the crack), or none: on the front (ψ_h = φ_h = 0), inside
+a cell's face.  λ_h at such a vertex is the harmonic extension of the points' values over
 the graph of the faces' sides (weights 1/length, the crossings held,
 :func:`vertex_values`), so that a front point takes a mean of the crossings behind
 it and of its neighbours along the front; on each face λ_h is linear between its
@@ -103,10 +119,10 @@ def vertex_values(geo) -> sp.csr_matrix:
     """(3 nface, ne) λ_h at the faces' vertices from the edge multipliers: row
     k·nface + f is vertex k of face f (``geo.faces[f, k]``).
 
-    A crossing is its edge's λ; the other vertices (on the front, at a node on the
-    crack) take the harmonic extension over the faces' sides (module notes,
-    :func:`skxfem.crack.faces.harmonic_extension`); a ValueError if the crack crosses no
-    edge strictly (:func:`skxfem.crack.faces.check_crossed`).
+    A point (a crossing, a node on the crack) is its λ; the other vertices (on the
+    front) take the harmonic extension over the faces' sides (module notes,
+    :func:`skxfem.crack.faces.harmonic_extension`); a ValueError if the crack has no
+    point (:func:`skxfem.crack.faces.check_crossed`).
     """
     check_crossed(geo)
     nf = geo.face_cell.size
@@ -241,7 +257,8 @@ def face_traction_3d(mesh, geo, traction: np.ndarray) -> FaceTraction3D:
     ne = geo.edge_ids.size
     if traction.shape != (3, ne) or not np.all(np.isfinite(traction)):
         raise ValueError(f"traction must hold finite values of shape (3, {ne}) (one vector "
-                         f"per crossed edge), got {traction.shape}")
+                         f"per point: crossed edge or node on the crack), got "
+                         f"{traction.shape}")
     rule = face_rule(mesh, geo)
     r = (face_functions_3d(geo, rule) @ traction.T).T
     return FaceTraction3D(rule.points, rule.weights, rule.cells, r)

@@ -60,7 +60,7 @@ from ..levelset import nodal_values
 
 __all__ = ["CrackGeometry", "crack_geometry", "check_mesh_2d", "check_mesh_type",
            "check_geometry", "orthonormal_at_tips", "level_set_scales",
-           "level_set_values", "nearest_on_segments", "ZERO",
+           "level_set_values", "nearest_on_segments", "crack_points", "ZERO",
            "AREA_TOL"]
 
 ZERO = 1e-9
@@ -548,43 +548,65 @@ def _owns_edge_piece(mesh, nodes, ps, has):
 
 
 def _cut_edges(mesh, psi, phi, seg, seg_cell, h):
-    """The points that carry the crack's multipliers, as :class:`skxfem.cut.Cut` lists
-    them: the crossings of the mesh edges the crack crosses strictly (ψ changes sign,
-    φ < 0 at the crossing), then the nodes on the crack that end a crack piece (ψ = 0,
-    φ < 0: behind the front), each the degenerate edge (v, v) with id -1.  Returns
-    (edge_ids, edges (2, ne), points (2, ne), facets): each crack piece's ends as
-    indices into the points (-1: an end that is neither, the tip or a point of a
-    quadrilateral's diagonal)."""
+    """The points that carry the crack's multipliers (:func:`crack_points`): the
+    crossings of the mesh edges the crack crosses strictly (ψ changes sign, φ < 0 at the
+    crossing), then the nodes on the crack that end a crack piece.  Returns (edge_ids,
+    edges (2, ne), points (2, ne), facets): each crack piece's ends as indices into the
+    points (-1: an end that is neither, the tip or a point of a quadrilateral's
+    diagonal)."""
     a, b = mesh.facets
     strict = psi[a] * psi[b] < 0
     with np.errstate(divide="ignore", invalid="ignore"):
         t = np.where(strict, psi[a] / (psi[a] - psi[b]), 0.0)
     ids = np.flatnonzero(strict & (phi[a] + t * (phi[b] - phi[a]) < 0))
     points = mesh.p[:, a[ids]] + t[ids] * (mesh.p[:, b[ids]] - mesh.p[:, a[ids]])
-    index = np.full(mesh.facets.shape[1], -1)
+    return crack_points(mesh, mesh.facets, mesh.t2f, psi, phi, ids, points, seg, seg_cell,
+                        1e-9 * h[seg_cell])
+
+
+def crack_points(mesh, edges, cell_edges, psi, phi, ids, points, ends, cells, tol):
+    """The points that carry a crack's multipliers, 2D or 3D, as :class:`skxfem.cut.Cut`
+    lists them: the crossings ``points`` (dim, m) of the mesh edges ``ids`` (m,) (columns
+    of ``edges`` (2, n_edges); ``cell_edges`` (k, ncells) each cell's edges: ``mesh.t2f``
+    in 2D, ``mesh.t2e`` in 3D), then the nodes on the crack (ψ = 0, φ < 0: behind its
+    front) that are a vertex of a crack piece, each the degenerate edge (v, v) with
+    edge id -1.  ``ends`` (nv, dim, npiece) the pieces' vertices (a 2D piece's two ends,
+    a 3D face's three), ``cells`` (npiece,) their cells, ``tol`` (npiece,) how near a
+    vertex lies to a point that it is.
+
+    Returns (edge_ids (ne,), edges (2, ne), points (dim, ne), facets (nv, npiece)): each
+    piece's vertices as indices into the points (-1: no point, e.g. on the front).
+
+    >>> from skfem import MeshTri1
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 3), np.linspace(0, 1, 3))
+    >>> g = crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.75)      # along mesh edges
+    >>> g.edge_ids.tolist(), g.points.T.tolist()                 # its nodes behind the tip
+    ([-1, -1], [[0.0, 0.5], [0.5, 0.5]])
+    """
+    index = np.full(edges.shape[1], -1)
     index[ids] = np.arange(ids.size)
     on = (psi == 0) & (phi < 0)                           # nodes on the crack
-    nodes = np.where(on[mesh.t[:, seg_cell]], mesh.t[:, seg_cell], -1)   # (nloc, nseg)
-    ends = np.zeros(nodes.shape, dtype=bool)              # a node that ends a piece
-    for end in (0, 1):
-        d = np.linalg.norm(mesh.p[:, np.maximum(nodes, 0)] - seg[end][:, None], axis=0)
-        ends |= (nodes >= 0) & (d <= 1e-9 * h[seg_cell])
-    vertices = np.unique(nodes[ends])
+    nodes = np.where(on[mesh.t[:, cells]], mesh.t[:, cells], -1)   # (nloc, npiece)
+    vertex = np.zeros(nodes.shape, dtype=bool)            # a node that is a piece vertex
+    for end in ends:
+        d = np.linalg.norm(mesh.p[:, np.maximum(nodes, 0)] - end[:, None], axis=0)
+        vertex |= (nodes >= 0) & (d <= tol)
+    vertices = np.unique(nodes[vertex])
     node_index = np.full(mesh.p.shape[1], -1)
     node_index[vertices] = ids.size + np.arange(vertices.size)
-    edges = np.hstack([mesh.facets[:, ids], np.vstack([vertices, vertices])])
+    edges = np.hstack([edges[:, ids], np.vstack([vertices, vertices])])
     points = np.hstack([points, mesh.p[:, vertices]])
     ids = np.r_[ids, np.full(vertices.size, -1)]
-    cand = np.vstack([index[mesh.t2f[:, seg_cell]], node_index[mesh.t[:, seg_cell]]])
-    facets = np.full((2, seg_cell.size), -1)
+    cand = np.vstack([index[cell_edges[:, cells]], node_index[mesh.t[:, cells]]])
+    facets = np.full((len(ends), cells.size), -1)
     if ids.size == 0:                                     # no point behind the front
         return ids, edges, points, facets
-    for end in (0, 1):
-        d = np.linalg.norm(points[:, np.maximum(cand, 0)] - seg[end][:, None], axis=0)
+    for k, end in enumerate(ends):
+        d = np.linalg.norm(points[:, np.maximum(cand, 0)] - end[:, None], axis=0)
         d = np.where(cand >= 0, d, np.inf)
-        k = np.argmin(d, axis=0)
-        hit = d[k, np.arange(k.size)] <= 1e-9 * h[seg_cell]
-        facets[end] = np.where(hit, cand[k, np.arange(k.size)], -1)
+        j = np.argmin(d, axis=0)
+        hit = d[j, np.arange(j.size)] <= tol
+        facets[k] = np.where(hit, cand[j, np.arange(j.size)], -1)
     return ids, edges, points, facets
 
 

@@ -51,6 +51,7 @@ from ..fem.simplex import split
 from .geometry import (
     ZERO,
     check_mesh_type,
+    crack_points,
     level_set_scales,
     level_set_values,
     nearest_on_segments,
@@ -187,12 +188,14 @@ class CrackGeometry3D:
     (:mod:`skxfem.crack.kind3d`):
 
     edge_ids : (ne,) the mesh edges (``mesh.edges``) the crack crosses strictly (ψ changes
-        sign, φ < 0 at the crossing); ``edges`` (2, ne) their nodes, ``points`` (3, ne)
-        the crossings.
+        sign, φ < 0 at the crossing), then -1 for each node on the crack behind its
+        front that is a vertex of a face (:func:`skxfem.crack.geometry.crack_points`);
+        ``edges`` (2, ne) their nodes ((v, v) for a node), ``points`` (3, ne) the
+        crossings and nodes.
     enriched : the nodes of the split and front cells.
     facets : (3, nface) each face's vertices as indices into ``points``, -1 for a vertex
-        that is no crossing of a cut edge (on the front, at a node, inside a cell's
-        face); ``facet_cell``, ``normals``, ``measures`` the faces' cells, normals, areas.
+        that is none (on the front, inside a cell's face); ``facet_cell``, ``normals``,
+        ``measures`` the faces' cells, normals, areas.
     """
 
     psi: np.ndarray
@@ -373,7 +376,7 @@ def crack_geometry_3d(mesh, psi, phi, _remap: bool = False) -> CrackGeometry3D:
     faces, face_cell = _faces(sub, sub_cell, sub_side, on_psi, fv, tol, gphi)
     normal = gpsi[:, face_cell] / np.linalg.norm(gpsi[:, face_cell], axis=0)
     segments, segment_cell = _segments(sub, sub_cell, on, h)
-    edge_ids, points, facets = _cut_edges(mesh, psi, phi, faces, face_cell, h)
+    edge_ids, edges, points, facets = _cut_edges(mesh, psi, phi, faces, face_cell, h)
     mapped = orthonormal_on_front(gpsi[:, front_cells], gphi[:, front_cells], psi, phi)
     if mapped is None:                    # no one map along the front: node by node
         if not _remap:
@@ -383,7 +386,7 @@ def crack_geometry_3d(mesh, psi, phi, _remap: bool = False) -> CrackGeometry3D:
     psi, phi = mapped
     return CrackGeometry3D(psi, phi, front_cells, split_cells, side, sub, sub_cell,
                            sub_side, sub_front, faces, face_cell, normal, segments,
-                           segment_cell, edge_ids, mesh.edges[:, edge_ids], points,
+                           segment_cell, edge_ids, edges, points,
                            np.unique(t[:, cells]), facets)
 
 
@@ -458,8 +461,11 @@ def orthonormal_at_nodes(mesh, psi: np.ndarray, phi: np.ndarray
 
 
 def _cut_edges(mesh, psi, phi, faces, face_cell, h):
-    """The mesh edges the crack crosses strictly, their crossings, and each face's
-    vertices as indices into them (-1: no crossing)."""
+    """The points that carry the crack's multipliers
+    (:func:`skxfem.crack.geometry.crack_points`): the crossings of the mesh edges the
+    crack crosses strictly, then the nodes on the crack behind its front that are a
+    vertex of a face.  Returns (edge_ids, edges (2, ne), points (3, ne), facets (3,
+    nface)): each face's vertices as indices into the points (-1: neither)."""
     a, b = mesh.edges
     strict = psi[a] * psi[b] < 0
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -469,19 +475,8 @@ def _cut_edges(mesh, psi, phi, faces, face_cell, h):
     ids = np.flatnonzero(strict & (phi[a] + t * (phi[b] - phi[a])
                                    < -ZERO * np.abs(phi[b] - phi[a])))
     points = mesh.p[:, a[ids]] + t[ids] * (mesh.p[:, b[ids]] - mesh.p[:, a[ids]])
-    index = np.full(mesh.edges.shape[1], -1)
-    index[ids] = np.arange(ids.size)
-    facets = np.full((3, face_cell.size), -1)
-    if ids.size == 0 or face_cell.size == 0:
-        return ids, points, facets
-    cand = index[mesh.t2e[:, face_cell]]                  # (6, nface)
-    for v in range(3):
-        d = np.linalg.norm(points[:, np.maximum(cand, 0)] - faces[:, v].T[:, None], axis=0)
-        d = np.where(cand >= 0, d, np.inf)
-        k = np.argmin(d, axis=0)
-        hit = d[k, np.arange(k.size)] <= ZERO * h[face_cell]
-        facets[v] = np.where(hit, cand[k, np.arange(k.size)], -1)
-    return ids, points, facets
+    return crack_points(mesh, mesh.edges, mesh.t2e, psi, phi, ids, points,
+                        np.transpose(faces, (1, 2, 0)), face_cell, ZERO * h[face_cell])
 
 
 def mesh_cells(mesh, cells: np.ndarray) -> np.ndarray:

@@ -7,12 +7,12 @@ The objects :func:`skxfem.gamma.gamma` returns for an interface with a 3D ``fron
 They wrap the modules of the 3D crack (:mod:`~skxfem.crack.geometry3d`,
 :mod:`~skxfem.crack.space3d`, :mod:`~skxfem.crack.sif3d`) as :class:`skxfem.gamma.Crack`
 wraps the 2D ones.  Any law: ``free`` faces carry no multiplier, the others (a tie,
-contact with or without friction, adhesion) multipliers on the crossed edges up to
-the front (:mod:`~skxfem.crack.faces3d`: the stable spaces on the faces' graph, λ_h
-extended harmonically to the front); a body force loads every unknown and enters K;
-the front's ``K_I``, ``K_II``, ``K_III`` at :func:`~skxfem.crack.sif3d.front_points`
-(``result.json``'s ``front``), with the faces' traction from the multipliers in the
-interaction integral's face term.
+contact with or without friction, adhesion) multipliers on the crossed edges and the
+nodes on the crack up to the front (:mod:`~skxfem.crack.faces3d`: the stable spaces on
+the faces' graph, λ_h extended harmonically to the front); a body force loads every
+unknown and enters K; the front's ``K_I``, ``K_II``, ``K_III`` at
+:func:`~skxfem.crack.sif3d.front_points` (``result.json``'s ``front``), with the faces'
+traction from the multipliers in the interaction integral's face term.
 
 >>> from skfem import MeshTet1
 >>> from skxfem.levelset import plane
@@ -203,7 +203,7 @@ class Crack3D:
         """Gauss points on the crack's faces, graded at the front
         (:func:`skxfem.crack.faces3d.face_rule`), their normals and the multiplier
         functions there (:func:`skxfem.crack.faces3d.face_functions_3d`; none if the
-        crack crosses no edge strictly)."""
+        crack has no point: no crossed edge, no node behind its front)."""
         R = face_rule(mesh, cut)
         lam, _ = barycentric(mesh, R.cells, R.points)
         N = (face_functions_3d(cut, R) if cut.edge_ids.size else
@@ -216,12 +216,21 @@ class Crack3D:
         return _face_jump(V.space, rule.cells, rule.points)
 
     def point_jumps(self, V, U: np.ndarray) -> np.ndarray:
-        """[[u]] = u⁻ - u⁺ (3, n) at the crack's cut points."""
+        """[[u]] = u⁻ - u⁺ (3, n) at the crack's cut points (the crossings of its cut
+        edges, each in a cell of its edge; a node on the crack in the cell of a face it is
+        a vertex of)."""
         mesh, cut = V.mesh, V.cut
         owner = np.full(mesh.edges.shape[1], -1)
         for k in range(6):                                # the 6 edges of a cell
             owner[mesh.t2e[k]] = np.arange(mesh.t.shape[1])
-        return (_face_jump(V.space, owner[cut.edge_ids], cut.points) @ U).reshape(3, -1)
+        strict = cut.edge_ids >= 0
+        cells = np.zeros(cut.edge_ids.size, dtype=np.int64)
+        cells[strict] = owner[cut.edge_ids[strict]]
+        vertex, face_cell = cut.facets.ravel(), np.tile(cut.face_cell, 3)
+        at_node = vertex >= 0
+        at_node[at_node] = ~strict[vertex[at_node]]
+        cells[vertex[at_node]] = face_cell[at_node]
+        return (_face_jump(V.space, cells, cut.points) @ U).reshape(3, -1)
 
     def front(self, V, U: np.ndarray, material, traction=None, body_force=None) -> dict:
         """``points`` (m, 3) along the front (:func:`skxfem.crack.sif3d.front_points`),

@@ -156,9 +156,10 @@ def williams_slab(n: int, nz: int, K=(1.0, 1.0, 0.0), components=(2,),
 def pressed_slab(n: int, nz: int = 2, law: str = "frictionless", space: str = "vital",
                  p: float = 1.0, front: float = 0.5):
     """The scene of a through-thickness edge crack y = 1/2, x < ``front`` in the unit cube
-    (n × n × nz cells of tetrahedra; n odd: the crack runs mid-cell), pressed shut by p on
-    y = 1, on rollers at x = 0 (u_x = 0), y = 0 (u_y = 0) and z = 0 (u_z = 0), the other
-    faces free: the uniform field σ_yy = -p solves it, the faces carry p, and K = 0.
+    (n × n × nz cells of tetrahedra; n odd: the crack runs mid-cell, n even: along a node
+    plane, its multipliers at its nodes), pressed shut by p on y = 1, on rollers at x = 0
+    (u_x = 0), y = 0 (u_y = 0) and z = 0 (u_z = 0), the other faces free: the uniform
+    field σ_yy = -p solves it, the faces carry p, and K = 0.
     The rollers are on faces whose normal is normal to the load (σ·n = 0 there), so that
     the Heaviside unknowns they leave free at the crack's mouth feel no reaction.
 
@@ -215,10 +216,10 @@ def pressed_penny(n: int, law: str = "frictionless", a: float = 0.55, p: float =
 
 
 def inclined_slab(n: int, nz: int, friction: float, beta_deg: float = 30.0,
-                  a: float = 0.25):
+                  a: float = 0.25, center=(0.5, 0.5)):
     """(crack, scene): the closed inclined Griffith crack of
     :class:`skxfem.crack.griffith.InclinedCrack` (half-length a, angle β, σ = 1, friction
-    μ, centre (1/2, 1/2)) through a slab [0, 1]² × [0, nz/10] of n × n × nz cells of
+    μ, its centre ``center``) through a slab [0, 1]² × [0, nz/10] of n × n × nz cells of
     tetrahedra, in plane strain: the exact field's u_x, u_y (and u_z = 0) on the four sides,
     its traction σ_zz = ν(σ_xx + σ_yy) on the faces z = 0 and z = nz/10.  Coulomb's law
     on the faces (``frictionless`` for μ = 0).
@@ -234,7 +235,7 @@ def inclined_slab(n: int, nz: int, friction: float, beta_deg: float = 30.0,
     from ..scene import Displacement, Interface, Scene, Solver, SurfaceLoad
 
     c = InclinedCrack(a=a, beta=np.radians(beta_deg), sigma=1.0, friction=friction,
-                      center=(0.5, 0.5))
+                      center=center)
     T = nz / 10
     m = MeshTet1.init_tensor(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1),
                              np.linspace(0, T, nz + 1))
