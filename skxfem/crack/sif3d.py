@@ -318,12 +318,18 @@ def _nodal_directions(space, cells: np.ndarray, spacing: float, chains=None) -> 
     its nearest place (:func:`fitted_frame`), so that the direction field is smooth
     and the normal lines of a curved front are straight lines along it."""
     mesh, geo = space.mesh, space.geometry
-    fr = tip_frame(cell_gradients(mesh, geo.phi, cells),
-                   cell_gradients(mesh, geo.psi, cells))  # (3, nc)
+    gphi, gpsi = (cell_gradients(mesh, f, cells) for f in (geo.phi, geo.psi))   # (3, nc)
+    n = gpsi / np.linalg.norm(gpsi, axis=0)
+    ahead = gphi - (gphi * n).sum(axis=0) * n             # ∇φ_h's part in the crack's plane
+    size = np.linalg.norm(ahead, axis=0)
+    # a cell where ∇φ_h has none (a centre crack's φ = |t·(x - c)| - a at its kink, far
+    # from both fronts) gives no sign: its nodes take it from their other cells
+    ahead = np.where(size > 1e-12 * np.linalg.norm(gphi, axis=0), ahead / np.where(
+        size > 0, size, 1.0), 0.0)
     e1, e2 = np.zeros((mesh.p.shape[1], 3)), np.zeros((mesh.p.shape[1], 3))
     for k in range(4):                                    # the 4 nodes of a cell
-        np.add.at(e1, mesh.t[k, cells], fr.e1.T)
-        np.add.at(e2, mesh.t[k, cells], fr.e2.T)
+        np.add.at(e1, mesh.t[k, cells], ahead.T)
+        np.add.at(e2, mesh.t[k, cells], n.T)
     nodes = np.unique(mesh.t[:, cells])
     t, _ = front_fit(geo, mesh.p[:, nodes], spacing, chains)
     d = np.cross(e2[nodes].T, t, axis=0)
