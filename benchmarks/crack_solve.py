@@ -204,6 +204,13 @@ drops from 3.648 to 3.540 (n = 16) and from 3.727 to 3.681 (n = 32), the limit a
 n = 32).  Keeping the twelve functions on the front cells' nodes (and their ring) did not
 help (3.546, 3.551 at n = 16): the outer tube's products φ_k F_l carry the r^(3/2) terms.
 
+Where it stands (main 87eb333, 29 November 2026, 16:30 UTC, ``--linear auto --sizes 8
+12 16 24``, one run): crack 4.00, 2.26, 3.21, 6.36 s against the tie's 0.14, 0.18, 0.33,
+1.07 s, ratios 28.8, 12.5, 9.75, 5.92 (K along the front alone 0.55, 0.81, 1.09, 1.69 s;
+at n = 8 the enriched zone holds over 70 % of the nodes and the solve is direct, 2.82 s).
+The finer rules of the interaction integral for faces that carry a traction
+(:data:`skxfem.crack.sif3d.FACE_RULES`) leave this free crack's K and time as they were.
+
     python benchmarks/crack_solve.py                 # n = 8, 12
     python benchmarks/crack_solve.py --sizes 8 --repeat 3
 """
