@@ -41,7 +41,8 @@ n = 9, 65 %: 1e-12 in 74; n = 8, 52 %: 48; n = 12, 25 %: 58.  A body clamped bel
 supports hold the branch unknowns too) converges even fully enriched (144 iterations),
 and the direct solve costs it time there (``tests/test_linalg_blocks.py``'s cube at
 n = 8, 78 %: 3.7 s against CG's 1.6 s): a zone that large means a coarse mesh, a small
-system."""
+system.  So :func:`skxfem.solver.solve_problem` gives CG a few iterations first there
+(:data:`skxfem.solver.ZONE_ITERATIONS`) and solves directly only if it stalls."""
 
 LINEAR_TOL = 1e-12
 """The relative residual the iterative solve reaches by default (``linear_tol``).
