@@ -60,7 +60,7 @@ from ..levelset import nodal_values
 
 __all__ = ["CrackGeometry", "crack_geometry", "check_mesh_2d", "check_mesh_type",
            "check_geometry", "orthonormal_at_tips", "level_set_scales",
-           "level_set_values", "nearest_on_segments", "crack_points", "ZERO",
+           "level_set_values", "nearest_on_segments", "crack_points", "point_cells", "ZERO",
            "AREA_TOL"]
 
 ZERO = 1e-9
@@ -608,6 +608,29 @@ def crack_points(mesh, edges, cell_edges, psi, phi, ids, points, ends, cells, to
         hit = d[j, np.arange(j.size)] <= tol
         facets[k] = np.where(hit, cand[j, np.arange(j.size)], -1)
     return ids, edges, points, facets
+
+
+def point_cells(geo, edge_cell: np.ndarray) -> np.ndarray:
+    """(ne,) a cell of each point of a crack's geometry ``geo`` (2D or 3D, its
+    :func:`crack_points`): a crossing's, the cell ``edge_cell`` (one per mesh edge) gives
+    its edge; a node's, the cell of a crack piece (a face in 3D) it is a vertex of.
+
+    >>> from skfem import MeshTri1
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 3), np.linspace(0, 1, 3))
+    >>> g = crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.75)      # two nodes on the crack
+    >>> c = point_cells(g, m.f2t[0])
+    >>> bool(np.all([np.isin(v, m.t[:, k]) for v, k in zip(g.edges[0], c)]))
+    True
+    """
+    strict = geo.edge_ids >= 0
+    cells = np.zeros(geo.edge_ids.size, dtype=np.int64)
+    cells[strict] = edge_cell[geo.edge_ids[strict]]
+    vertex = geo.facets.ravel()
+    piece_cell = np.tile(geo.facet_cell, geo.facets.shape[0])
+    at_node = vertex >= 0
+    at_node[at_node] = ~strict[vertex[at_node]]
+    cells[vertex[at_node]] = piece_cell[at_node]
+    return cells
 
 
 def _segment_normals(P, ps, seg):
