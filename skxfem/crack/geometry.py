@@ -54,6 +54,7 @@ from dataclasses import dataclass
 import numpy as np
 from skfem import Basis, MeshQuad1, MeshTri1
 
+from ..cut import with_vertices
 from ..fem.cells import reference_simplices
 from ..fem.simplex import split
 from ..levelset import nodal_values
@@ -583,20 +584,14 @@ def crack_points(mesh, edges, cell_edges, psi, phi, ids, points, ends, cells, to
     >>> g.edge_ids.tolist(), g.points.T.tolist()                 # its nodes behind the tip
     ([-1, -1], [[0.0, 0.5], [0.5, 0.5]])
     """
-    index = np.full(edges.shape[1], -1)
-    index[ids] = np.arange(ids.size)
     on = (psi == 0) & (phi < 0)                           # nodes on the crack
     nodes = np.where(on[mesh.t[:, cells]], mesh.t[:, cells], -1)   # (nloc, npiece)
     vertex = np.zeros(nodes.shape, dtype=bool)            # a node that is a piece vertex
     for end in ends:
         d = np.linalg.norm(mesh.p[:, np.maximum(nodes, 0)] - end[:, None], axis=0)
         vertex |= (nodes >= 0) & (d <= tol)
-    vertices = np.unique(nodes[vertex])
-    node_index = np.full(mesh.p.shape[1], -1)
-    node_index[vertices] = ids.size + np.arange(vertices.size)
-    edges = np.hstack([edges[:, ids], np.vstack([vertices, vertices])])
-    points = np.hstack([points, mesh.p[:, vertices]])
-    ids = np.r_[ids, np.full(vertices.size, -1)]
+    ids, edges, points, index, node_index = with_vertices(
+        edges, ids, points, np.unique(nodes[vertex]), mesh.p)
     cand = np.vstack([index[cell_edges[:, cells]], node_index[mesh.t[:, cells]]])
     facets = np.full((len(ends), cells.size), -1)
     if ids.size == 0:                                     # no point behind the front
