@@ -69,8 +69,8 @@ from .fem.meshes import cell_name
 from .fem.simplex import edge_point, split
 from .levelset import nodal_values
 
-__all__ = ["Cut", "cut", "strictly_cut_edges", "snap", "SNAP", "SnapWarning", "check_apart",
-           "point_lengths", "ROUND_OFF", "rescaled", "PSI_RANGE", "PSI_FLOOR"]
+__all__ = ["Cut", "cut", "strictly_cut_edges", "with_vertices", "snap", "SNAP", "SnapWarning",
+           "check_apart", "point_lengths", "ROUND_OFF", "rescaled", "PSI_RANGE", "PSI_FLOOR"]
 
 SNAP = 1e-9
 """Vertices closer to Γ than SNAP times their shortest edge are put on it, ψ = 0
@@ -164,6 +164,34 @@ def strictly_cut_edges(edges, psi, x) -> tuple[np.ndarray, np.ndarray]:
     edge_ids = np.flatnonzero(np.sign(psi[edges[0]]) * np.sign(psi[edges[1]]) < 0)  # no underflow
     a, b = edges[:, edge_ids]
     return edge_ids, edge_point(x[:, a].T, x[:, b].T, psi[a], psi[b]).T
+
+
+def with_vertices(all_edges, edge_ids, points, vertices, x):
+    """The points that carry Γ's multipliers: the crossings ``points`` (dim, m) of the
+    edges ``edge_ids`` (m,) (columns of ``all_edges``), then the ``vertices`` on Γ, each
+    the degenerate edge (v, v) with id -1 at ``x[:, v]``.
+
+    Returns
+    -------
+    edge_ids, edges, points, point_of_edge, point_of_vertex
+        (ne,), (2, ne), (dim, ne), and the index of each mesh edge's and each vertex's
+        point (-1: none).
+
+    >>> ids, edges, pts, pe, pv = with_vertices(np.array([[0, 1], [1, 2]]), np.array([1]),
+    ...                                         np.array([[1.5]]), np.array([0]),
+    ...                                         np.array([[0., 1., 2.]]))
+    >>> ids.tolist(), edges.tolist(), pts.tolist(), pe.tolist(), pv.tolist()
+    ([1, -1], [[1, 0], [2, 0]], [[1.5, 0.0]], [-1, 0], [1, -1, -1])
+    """
+    ne = edge_ids.size
+    point_of_edge = np.full(all_edges.shape[1], -1)
+    point_of_edge[edge_ids] = np.arange(ne)
+    point_of_vertex = np.full(x.shape[1], -1)
+    point_of_vertex[vertices] = ne + np.arange(vertices.size)
+    edges = np.hstack([all_edges[:, edge_ids], np.vstack([vertices, vertices])])
+    points = np.hstack([points, x[:, vertices]])
+    edge_ids = np.r_[edge_ids, np.full(vertices.size, -1)]
+    return edge_ids, edges, points, point_of_edge, point_of_vertex
 
 
 def snap(mesh, psi: np.ndarray, edges: np.ndarray | None = None):
@@ -310,15 +338,8 @@ def cut(mesh, psi, name: str = "") -> Cut:
     at[mesh.t[:, cells][zero[mesh.t[:, cells]]]] = True
     if on_gamma.size:
         at[mesh.facets[:, on_gamma]] = True
-    vertices = np.flatnonzero(at)
-    ne = edge_ids.size
-    point_of_edge = np.full(all_edges.shape[1], -1)
-    point_of_edge[edge_ids] = np.arange(ne)
-    point_of_vertex = np.full(psi.size, -1)
-    point_of_vertex[vertices] = ne + np.arange(vertices.size)
-    edges = np.hstack([all_edges[:, edge_ids], np.vstack([vertices, vertices])])
-    points = np.hstack([points, mesh.p[:, vertices]])
-    edge_ids = np.r_[edge_ids, np.full(vertices.size, -1)]
+    edge_ids, edges, points, point_of_edge, point_of_vertex = with_vertices(
+        all_edges, edge_ids, points, np.flatnonzero(at), mesh.p)
 
     # the nodes' sides, the enriched nodes
     support_plus = np.zeros(psi.size, dtype=bool)

@@ -103,7 +103,7 @@ from .crack.assembly import (
 from .crack.assembly import face_rule as face_rule_of
 from .crack.assembly import mass as crack_mass
 from .crack.faces import crack_multipliers, face_functions, face_traction
-from .crack.geometry import crack_geometry
+from .crack.geometry import crack_geometry, point_cells
 from .crack.kind3d import Crack3D, FrontPointsWarning, warn_closing
 from .crack.radius import check_radius
 from .crack.sif import DEFAULT_CELLS, check_reach, default_radius, sif, tip_reach
@@ -254,13 +254,7 @@ class Crack(Gamma):
         edges, each in a cell of its edge; a node on the crack in the cell of a crack
         piece that ends there), U on [a, b, c]."""
         cut, mesh = V.cut, V.mesh
-        strict = cut.edge_ids >= 0
-        cells = np.zeros(cut.edge_ids.size, dtype=np.int64)
-        cells[strict] = mesh.f2t[0, cut.edge_ids[strict]]
-        end, piece_cell = cut.facets.ravel(), np.tile(cut.segment_cell, 2)
-        at_node = end >= 0
-        at_node[at_node] = ~strict[end[at_node]]
-        cells[end[at_node]] = piece_cell[at_node]
+        cells = point_cells(cut, mesh.f2t[0])
         ref = mesh.mapping().invF(cut.points[:, :, None], tind=cells)[:, :, 0]
         return (_face_jump(V, cells, ref) @ U).reshape(mesh.dim(), -1)
 

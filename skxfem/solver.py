@@ -199,15 +199,15 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
                full=[q.law == "bonded" for q in p.interfaces])
     G = sp.block_diag([_differences(q.cut, q.ncomp) @ q.P for q in p.interfaces],
                       format="csr")
-    if try_cg:
+    if linear == "iterative" or try_cg:
         try:
-            U, mu, info = _iterative(p, cracks, G, linear_tol, ZONE_ITERATIONS)
+            U, mu, info = _iterative(p, cracks, G, linear_tol,
+                                     **({"maxiter": ZONE_ITERATIONS} if try_cg else {}))
             linear = "iterative"
         except (iterative.ConvergenceError, saddle.SingularSystemError):
-            pass                                          # stalled: the direct solve
-    if linear == "iterative" and not try_cg:
-        U, mu, info = _iterative(p, cracks, G, linear_tol)
-    elif linear == "direct":
+            if not try_cg:
+                raise
+    if linear == "direct":                                # chosen, or CG stalled first
         try:
             U, mu, info = saddle.solve(p.K, B, p.F, D, p.g, G=G)
         except saddle.SingularSystemError as e:

@@ -54,13 +54,14 @@ from dataclasses import dataclass
 import numpy as np
 from skfem import Basis, MeshQuad1, MeshTri1
 
+from ..cut import with_vertices
 from ..fem.cells import reference_simplices
 from ..fem.simplex import split
 from ..levelset import nodal_values
 
 __all__ = ["CrackGeometry", "crack_geometry", "check_mesh_2d", "check_mesh_type",
            "check_geometry", "orthonormal_at_tips", "level_set_scales",
-           "level_set_values", "nearest_on_segments", "crack_points", "ZERO",
+           "level_set_values", "nearest_on_segments", "crack_points", "point_cells", "ZERO",
            "AREA_TOL"]
 
 ZERO = 1e-9
@@ -583,20 +584,14 @@ def crack_points(mesh, edges, cell_edges, psi, phi, ids, points, ends, cells, to
     >>> g.edge_ids.tolist(), g.points.T.tolist()                 # its nodes behind the tip
     ([-1, -1], [[0.0, 0.5], [0.5, 0.5]])
     """
-    index = np.full(edges.shape[1], -1)
-    index[ids] = np.arange(ids.size)
     on = (psi == 0) & (phi < 0)                           # nodes on the crack
     nodes = np.where(on[mesh.t[:, cells]], mesh.t[:, cells], -1)   # (nloc, npiece)
     vertex = np.zeros(nodes.shape, dtype=bool)            # a node that is a piece vertex
     for end in ends:
         d = np.linalg.norm(mesh.p[:, np.maximum(nodes, 0)] - end[:, None], axis=0)
         vertex |= (nodes >= 0) & (d <= tol)
-    vertices = np.unique(nodes[vertex])
-    node_index = np.full(mesh.p.shape[1], -1)
-    node_index[vertices] = ids.size + np.arange(vertices.size)
-    edges = np.hstack([edges[:, ids], np.vstack([vertices, vertices])])
-    points = np.hstack([points, mesh.p[:, vertices]])
-    ids = np.r_[ids, np.full(vertices.size, -1)]
+    ids, edges, points, index, node_index = with_vertices(
+        edges, ids, points, np.unique(nodes[vertex]), mesh.p)
     cand = np.vstack([index[cell_edges[:, cells]], node_index[mesh.t[:, cells]]])
     facets = np.full((len(ends), cells.size), -1)
     if ids.size == 0:                                     # no point behind the front
@@ -608,6 +603,29 @@ def crack_points(mesh, edges, cell_edges, psi, phi, ids, points, ends, cells, to
         hit = d[j, np.arange(j.size)] <= tol
         facets[k] = np.where(hit, cand[j, np.arange(j.size)], -1)
     return ids, edges, points, facets
+
+
+def point_cells(geo, edge_cell: np.ndarray) -> np.ndarray:
+    """(ne,) a cell of each point of a crack's geometry ``geo`` (2D or 3D, its
+    :func:`crack_points`): a crossing's, the cell ``edge_cell`` (one per mesh edge) gives
+    its edge; a node's, the cell of a crack piece (a face in 3D) it is a vertex of.
+
+    >>> from skfem import MeshTri1
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 3), np.linspace(0, 1, 3))
+    >>> g = crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.75)      # two nodes on the crack
+    >>> c = point_cells(g, m.f2t[0])
+    >>> bool(np.all([np.isin(v, m.t[:, k]) for v, k in zip(g.edges[0], c)]))
+    True
+    """
+    strict = geo.edge_ids >= 0
+    cells = np.zeros(geo.edge_ids.size, dtype=np.int64)
+    cells[strict] = edge_cell[geo.edge_ids[strict]]
+    vertex = geo.facets.ravel()
+    piece_cell = np.tile(geo.facet_cell, geo.facets.shape[0])
+    at_node = vertex >= 0
+    at_node[at_node] = ~strict[vertex[at_node]]
+    cells[vertex[at_node]] = piece_cell[at_node]
+    return cells
 
 
 def _segment_normals(P, ps, seg):

@@ -40,6 +40,7 @@ from ..levelset import unit
 from ..multipliers import InterfaceRule
 from .faces import crack_multipliers
 from .faces3d import face_functions_3d, face_rule, face_traction_3d
+from .geometry import point_cells
 from .geometry3d import barycentric, crack_geometry_3d, front_chains
 from .sif3d import (
     DEFAULT_LENGTH,
@@ -223,14 +224,7 @@ class Crack3D:
         owner = np.full(mesh.edges.shape[1], -1)
         for k in range(6):                                # the 6 edges of a cell
             owner[mesh.t2e[k]] = np.arange(mesh.t.shape[1])
-        strict = cut.edge_ids >= 0
-        cells = np.zeros(cut.edge_ids.size, dtype=np.int64)
-        cells[strict] = owner[cut.edge_ids[strict]]
-        vertex, face_cell = cut.facets.ravel(), np.tile(cut.face_cell, 3)
-        at_node = vertex >= 0
-        at_node[at_node] = ~strict[vertex[at_node]]
-        cells[vertex[at_node]] = face_cell[at_node]
-        return (_face_jump(V.space, cells, cut.points) @ U).reshape(3, -1)
+        return (_face_jump(V.space, point_cells(cut, owner), cut.points) @ U).reshape(3, -1)
 
     def front(self, V, U: np.ndarray, material, traction=None, body_force=None) -> dict:
         """``points`` (m, 3) along the front (:func:`skxfem.crack.sif3d.front_points`),
