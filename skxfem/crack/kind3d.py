@@ -226,7 +226,8 @@ class Crack3D:
             owner[mesh.t2e[k]] = np.arange(mesh.t.shape[1])
         return (_face_jump(V.space, point_cells(cut, owner), cut.points) @ U).reshape(3, -1)
 
-    def front(self, V, U: np.ndarray, material, traction=None, body_force=None) -> dict:
+    def front(self, V, U: np.ndarray, material, traction=None, body_force=None, others=()
+              ) -> dict:
         """``points`` (m, 3) along the front (:func:`skxfem.crack.sif3d.front_points`),
         ``K_I``, ``K_II``, ``K_III`` (m,) there (:func:`skxfem.crack.sif3d.sif_3d`, the
         interface's ``sif_radius`` the radial cone's radius; ``body_force`` the body
