@@ -87,7 +87,9 @@ def solve(scene: Scene | Resolved, dependent: str = "remove", linear: str | None
         :data:`LINEAR`: ``"direct"``, ``"iterative"`` (AMG + projected CG,
         pyamg), or ``"auto"``: the iterative one from :data:`AUTO_ITERATIVE`
         unknowns if pyamg is there (the direct one for a crack in 2D or with
-        multipliers on its faces: :func:`skxfem.linalg.choice.choose_linear`).
+        multipliers on its faces: :func:`skxfem.linalg.choice.choose_linear`),
+        and the direct one after it where CG stalls (``"iterative"`` asked for
+        then fails, naming the cure).
         ``None``: ``scene.solver.linear`` (default ``"auto"``).
     linear_tol
         The relative residual of the iterative solve, recorded in
@@ -205,8 +207,9 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
                                      **({"maxiter": ZONE_ITERATIONS} if try_cg else {}))
             linear = "iterative"
         except (iterative.ConvergenceError, saddle.SingularSystemError):
-            if not try_cg:
-                raise
+            if not (try_cg or settings.linear == "auto"):
+                raise                     # asked for 'iterative': its failure said
+            linear = "direct"             # auto: CG stalled, the direct solve decides
     if linear == "direct":                                # chosen, or CG stalled first
         try:
             U, mu, info = saddle.solve(p.K, B, p.F, D, p.g, G=G)

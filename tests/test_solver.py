@@ -755,3 +755,28 @@ def test_load_steps_given_to_a_tie_are_refused_not_ignored(law):
                            r"contact solve .*leave steps out, or scale the loads"):
             solve(dataclasses.replace(s, steps=steps))
     assert solve(s).U.shape == solve(dataclasses.replace(s, steps=(1,))).U.shape
+
+
+def test_auto_falls_back_to_the_direct_solve_where_cg_stalls(monkeypatch):
+    """``linear='auto'`` chose CG for a 3D crack (zone under AUTO_ZONE) and, where CG did
+    not reach 1e-12 in 500 iterations, stopped with 'use the direct solve' (a slab on
+    rollers, n = 10: 5.3e-4): auto is the solve's own choice, so a stalled CG now hands
+    the solve to the direct one; asked for by name, 'iterative' still fails, naming the
+    cure.  (CG is made to stall here; the slab itself takes 10 s.)"""
+    import skxfem.linalg.iterative as iterative
+    import skxfem.solver as solver
+
+    scene = strip(8, cell="quad")
+    monkeypatch.setattr(solver, "choose_linear",       # auto chooses CG, whatever the size
+                        lambda method, *a, **k: "iterative" if method == "auto" else method)
+
+    def stalls(*args, **kwargs):
+        raise iterative.ConvergenceError("projected CG did not reach 1e-12 (test)", 500, 5e-4)
+
+    monkeypatch.setattr(iterative, "solve", stalls)
+    r = solve(scene, linear="auto")
+    assert r.linear == "direct"
+    direct = solve(scene, linear="direct")
+    assert np.allclose(r.pressure, direct.pressure, rtol=1e-12, atol=1e-14)
+    with pytest.raises(iterative.ConvergenceError, match="did not reach"):
+        solve(scene, linear="iterative")
