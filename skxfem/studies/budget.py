@@ -77,6 +77,7 @@ from ..crack.radius import default_radius
 from ..fem.meshes import CELLS, cell_name
 from ..fem.quadrature import cell_rule
 from ..linalg.choice import choose_linear
+from ..linalg.scalars import is_integer
 from ..scene.model import Box, Resolved, Scene, check_scene, resolve
 from .counts import (
     NVERTS,
@@ -356,7 +357,7 @@ def check(scene: Scene, max_bytes: int = DEFAULT_MAX_BYTES,
     TooLargeError
         (a ValueError) If the estimate exceeds ``max_bytes``.
     """
-    if not (isinstance(max_bytes, (int, np.integer)) and max_bytes > 0):
+    if not (is_integer(max_bytes) and max_bytes > 0):
         raise ValueError(f"max_bytes must be a positive integer, got {max_bytes!r}")
     given = scene   # a Resolved scene's estimate reads its mesh
     scene = given.scene if isinstance(given, Resolved) else check_scene(given)
