@@ -315,7 +315,8 @@ class Interface:
     ``enrichment`` the tip enrichment (``"geometric"``: the nodes within a radius of
     the tip, or ``"topological"``: the tip cells'); ``enrichment_radius`` that radius
     r_e (None: one rule in 2D and 3D, :func:`skxfem.crack.radius.default_enrichment_radius`:
-    0.2 of the mesh's diameter in 2D, of the crack's depth in 3D, and at least 4/3 of the default
+    0.2 of the mesh's diameter in 2D (at most three crack depths), of the crack's depth in
+    3D, and at least 4/3 of the default
     interaction domain, 16/3 tip cells in 2D, 4 front cells in 3D);
     ``sif_radius`` the interaction integral's radius (None: 0.75 r_e and at least a few
     cells, :func:`skxfem.crack.sif.default_radius`).
