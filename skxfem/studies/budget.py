@@ -120,6 +120,20 @@ and :data:`SAFETY`, the slipping block (Coulomb, hex n = 42, 259 290 unknowns)
 is estimated at 3.7 GB for a measured peak of 2.95 GB (27 November 2026)."""
 
 
+CRACK_NODE_BYTES = {2: 100 * 2**10, 3: 250 * 2**10}
+"""Peak bytes per branch node of a crack besides the linear solve (its enriched cells'
+sub-cell rules, branch values and COO assembly, 4 dim unknowns per node): above the
+largest measured in ``scripts/calibrate_budget.py``'s crack sweep (module notes), 2D
+23-105 KB, 3D 48-241 KB, the contact laws the most."""
+CRACK_LU = {2: 2.5, 3: 1.0}
+"""The factor on :data:`LU_FILL` where multipliers live on a crack's faces: in 2D the
+contact step's LU filled 1.5-2.3 times the model (the two tips' zones: the inclined and
+centre cracks), in 3D within it; Coulomb's in 2D once more (:data:`COULOMB_LU`)."""
+COULOMB_LU = {2: 2.0, 3: 1.0}
+"""Coulomb on a 2D crack's faces held about two factorisations at its peak (the
+inclined crack, n = 21-81: the peak less one LU was 1.0-1.25 LU)."""
+
+
 @dataclass(frozen=True)
 class Estimate:
     """Upper bounds of what solving a scene meets.
@@ -196,7 +210,8 @@ def parse_bytes(text: str) -> int:
     return int(value * scale)
 
 
-def _memory(dim: int, cell: str, order, n_nodes, n_cells, n_dofs, n_enr, m) -> float:
+def _memory(dim: int, cell: str, order, n_nodes, n_cells, n_dofs, ncols, m,
+            lu_factor: float = 1.0) -> float:
     """Bytes of the terms named in the module notes (before :data:`SAFETY`)."""
     nq = cell_rule(CELLS[cell], order)[1].size
     nbf = dim * NVERTS[cell]
@@ -205,8 +220,9 @@ def _memory(dim: int, cell: str, order, n_nodes, n_cells, n_dofs, n_enr, m) -> f
                        + 8 * NVERTS[cell])                                # t
     nodes = n_nodes * 8 * dim * 4
     c, p = LU_FILL[dim]
-    lu = LU_BYTES * c * (n_dofs + m) ** p
-    dense = 8 * (3 * m * n_enr + 2 * m * m + 2 * n_enr * n_enr)
+    block = max(n_dofs / (dim * n_nodes), 1.0) ** (2 - p)   # unknowns per node: fill
+    lu = LU_BYTES * c * (n_dofs + m) ** p * block * lu_factor
+    dense = 8 * (3 * m * ncols + 2 * m * m + 2 * ncols * ncols)
     return cells + nodes + lu + dense
 
 
@@ -243,70 +259,87 @@ def estimate(scene: Scene, linear: str | None = None) -> Estimate:
     if mesh is None and isinstance(scene.mesh, Box):
         box = scene.mesh
         size = box.size or (1.0,) * box.dim
-        D, hd = np.linalg.norm(size), np.linalg.norm(np.divide(size, box.n))
+        D = np.linalg.norm(size)
         dim, cell = box.dim, box.cell
         count, crack = partial(box_counts, box), partial(box_crack_counts, box)
     else:
         mesh = resolve(scene).mesh if mesh is None else mesh
-        D, hd = np.linalg.norm(np.ptp(mesh.p, axis=1)), _cell_diameter(mesh)
+        D = np.linalg.norm(np.ptp(mesh.p, axis=1))
         dim, cell = mesh.dim(), cell_name(mesh)
         count, crack = partial(mesh_counts, mesh), partial(mesh_crack_counts, mesh)
-    counts, branch = [], []
-    for i in items:                      # a crack: ψ and φ evaluated once, its depth in 3D
+    counts, cracks = [], []
+    for i in items:                      # a crack: ψ and φ evaluated once
         if i.front is None:
             counts.append(count(i.levelset))
-            branch.append(0)
+            cracks.append(None)
         else:
-            c, _, near = crack(i.levelset, i.front, hd, lambda depth, i=i: _branch_radius(
-                i, dim, D if dim == 2 else depth, hd))
-            counts.append(c)
-            branch.append(near)
-    return _estimate(scene, linear, *counts[0][:2], [c[2] for c in counts],
-                     [c[3] for c in counts], cell, branch)
+            cracks.append(crack(i.levelset, i.front, partial(_branch_radius, i, dim, D)))
+            counts.append((cracks[-1].nodes, cracks[-1].cells))
+    return _estimate(scene, linear, *counts[0][:2],
+                     [0 if k is not None else c[2] for c, k in zip(counts, cracks)],
+                     [0 if k is not None else c[3] for c, k in zip(counts, cracks)], cell,
+                     cracks)
 
 
-def _cell_diameter(mesh) -> float:
-    """The largest diagonal of ``mesh``'s cells' bounding boxes: a bound of a cell's
-    diameter on every cell type, as a Box's cell diagonal is (the longest edge, used
-    before, falls short of it on quadrilaterals, hexahedra and prisms)."""
-    return float(np.linalg.norm(np.ptp(mesh.p[:, mesh.t], axis=1), axis=0).max())
-
-
-def _branch_radius(interface, dim: int, length: float, hd: float) -> float:
-    """Up to which distance from a crack's front its nodes get branch functions: r_e
-    (the interface's or :func:`skxfem.crack.radius.default_radius` of ``length``, the
-    mesh's diameter in 2D and the crack's depth in 3D; 0 when topological) plus a
-    cell's diameter ``hd`` (the nodes of the cells the front or r_e reaches)."""
+def _branch_radius(interface, dim: int, diameter: float, depth: float, h: float
+                   ) -> float | None:
+    """r_e of a crack as its space takes it (:mod:`skxfem.crack.radius`): None when
+    topological, else the interface's ``enrichment_radius`` or
+    :func:`skxfem.crack.radius.default_radius` of the mesh's ``diameter`` (2D) or the
+    crack's ``depth`` (3D) and the front cells' size ``h``."""
     if interface.enrichment == "topological":
-        return hd
+        return None
     r = interface.enrichment_radius
-    return (default_radius(dim, float(length), float(hd)) if r is None else r) + hd
+    return default_radius(dim, float(diameter if dim == 2 else depth), float(h)) \
+        if r is None else r
 
 
 def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell,
-              n_branch=None) -> Estimate:
-    """The :class:`Estimate` of ``scene`` from its counts (enriched nodes, cut edges
-    and a crack's branch nodes: one count per interface)."""
+              cracks=None) -> Estimate:
+    """The :class:`Estimate` of ``scene`` from its counts, one per interface: enriched
+    nodes and cut edges, or for a crack its
+    :class:`~skxfem.studies.counts.CrackCounts` (``cracks``, None for the others)."""
     dim = scene.dim
     items = scene.interfaces
-    n_branch = [0] * len(items) if n_branch is None else n_branch
-    n_enr = dim * sum(n_enr_nodes) + 4 * dim * sum(n_branch)
+    cracks = [None] * len(items) if cracks is None else cracks
+    enr, sites, cols = [], [], []            # per interface: unknowns, points, B's columns
+    for e, k, c in zip(n_enr_nodes, n_edges, cracks, strict=True):
+        if c is None:
+            enr.append(dim * e)
+            sites.append(k)
+            cols.append(dim * e)
+        else:
+            enr.append(dim * c.heaviside + 4 * dim * c.branch)
+            sites.append(c.points)
+            cols.append(dim * c.crack_nodes)
+    n_enr = sum(enr)
     n_dofs = dim * n_nodes + n_enr
-    m = sum((0 if i.law == "free" else 1 if i.law == "bilateral" else dim) * e
-            for i, e in zip(items, n_edges, strict=True))   # contact: λ_n and friction
+    ncomp = [0 if i.law == "free" else 1 if i.law == "bilateral" else dim for i in items]
+    m = sum(k * p for k, p in zip(ncomp, sites))          # contact: λ_n and friction
+    ncols = sum(c for k, c in zip(ncomp, cols) if k)      # B's columns: where it has rows
     laws = ["frictionless" if i.law == "coulomb" and i.friction == 0 else i.law
             for i in items]
     law = ("coulomb" if "coulomb" in laws else
            next((x for x in laws if x in CONTACT_LAWS), laws[0]))
     on_crack = any(i.front is not None and i.law != "free" for i in items)
-    chosen = choose_linear(linear, dim, n_dofs, on_crack, any(i.front is not None for i in items))
-    if chosen == "iterative":
+    crack = any(i.front is not None for i in items)
+    zone = max((c.branch / c.nodes for c in cracks if c is not None), default=0.0)
+    chosen = choose_linear(linear, dim, n_dofs, on_crack, crack, zone)
+    # a zone over AUTO_ZONE: auto tries CG first, then the direct solve (solve_problem)
+    tried = chosen == "direct" and choose_linear(linear, dim, n_dofs, on_crack,
+                                                 crack) == "iterative"
+    branch = CRACK_NODE_BYTES[dim] * sum(c.branch for c in cracks if c is not None)
+    bytes_ = 0.0
+    if chosen == "iterative" or tried:
         per = (CONTACT_ITERATIVE_BYTES if law in CONTACT_LAWS else ITERATIVE_BYTES)[dim]
         per += KRYLOV_BYTES if law == "coulomb" else 0
-        bytes_ = SAFETY * per * _clip(n_dofs + m)
-    else:
-        bytes_ = SAFETY * _memory(dim, cell, scene.quadrature_order,
-                                  *map(_clip, (n_nodes, n_cells, n_dofs, n_enr, m)))
+        bytes_ = SAFETY * (per * _clip(n_dofs + m) + branch)
+    if chosen == "direct":
+        factor = (CRACK_LU[dim] * (COULOMB_LU[dim] if law == "coulomb" else 1.0)
+                  if on_crack else 1.0)
+        bytes_ = max(bytes_, SAFETY * (_memory(
+            dim, cell, scene.quadrature_order,
+            *map(_clip, (n_nodes, n_cells, n_dofs, ncols, m)), factor) + branch))
     return Estimate(n_nodes, n_cells, n_dofs, m, int(bytes_), chosen)
 
 
