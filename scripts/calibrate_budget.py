@@ -30,12 +30,36 @@ from skxfem.levelset import plane
 from skxfem.scene import Box, Displacement, Scene, SurfaceLoad, clamped
 from skxfem.solver import solve
 
-kind, cell, n, linear = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
-if cell == "tet":  # the paper's plate on tetrahedra
+args, linear = sys.argv[1:-1], sys.argv[-1]
+kind, cell, n = args[0], args[1], int(args[2])
+dim = 2 if cell in ("tri", "quad") else 3
+if kind == "crack":  # crack:cell:n:shape:pos:law
+    from skxfem.fem.material import Material
+    from skxfem.levelset import LevelSet
+    from skxfem.scene import Interface
+    shape, pos, law = args[3:6]
+    e = np.eye(dim)
+    z0 = (n // 2 + (0.0 if pos == "node" else 0.5)) / n
+    if shape == "edge":
+        phi = plane((0.5,) * dim, e[0])
+    elif dim == 3:
+        phi = LevelSet(lambda x: np.hypot(x[0] - 0.5, x[1] - 0.5) - 0.3, 3, "penny")
+    else:
+        phi = LevelSet(lambda x: np.abs(x[0] - 0.5) - 0.3, 2, "centre")
+    crack = Interface(plane((0.5,) * (dim - 1) + (z0,), e[-1]), law=law, front=phi,
+                      **({"friction": 0.3} if law == "coulomb" else {}))
+    top, bottom = ("ymax", "ymin") if dim == 2 else ("zmax", "zmin")
+    load = (SurfaceLoad(top, traction=tuple(e[-1])) if law in ("free", "bonded")
+            else SurfaceLoad(top, pressure=1.0))
+    scene = Scene(Box((n,) * dim, cell), interfaces=(crack,), material=Material(1.0, 0.3),
+                  displacements=(clamped(bottom),), loads=(load,))
+elif kind == "inclined":  # inclined:cell:n:friction
+    from skxfem.studies.cracks import inclined_scene
+    scene = inclined_scene(n, 30.0, float(args[3]), cell=cell)[1]
+elif cell == "tet":  # the paper's plate on tetrahedra
     hexes = scenes.paper_plate(n, cell="hex")
     scene = dataclasses.replace(hexes, mesh=Box(hexes.mesh.n, "tet"))
 elif kind == "press":  # frictionless contact, pressed everywhere
-    dim = 2 if cell in ("tri", "quad") else 3
     top, bottom = ("ymax", "ymin") if dim == 2 else ("zmax", "zmin")
     mid = (0.5,) * (dim - 1) + (0.5 + 0.5 / n,)  # mid-cell for an even n
     scene = Scene(Box((n,) * dim, cell), plane(mid, np.eye(dim)[-1]),
@@ -62,16 +86,19 @@ with open("/proc/self/clear_refs", "w") as f:
     f.write("5")   # reset the peak VmHWM
 r = solve(scene, linear=linear)
 peak = status("VmHWM:")
-if kind == "press":  # a ContactResult: the sizes of its bilateral problem
+if r.is_contact:  # a ContactResult: the sizes of its bilateral problem
     p = r.problem
+    solved = r.linear
     r = dataclasses.make_dataclass("R", [])()
     r.mesh, r.n_dofs, r.V, r.n_multipliers = p.mesh, p.V.N, p.V, p.B.shape[0]
-    r.removed = 0
-print(json.dumps({"case": f"{kind}:{cell}:{n}", "nodes": int(r.mesh.nvertices),
+    r.removed, r.linear = 0, solved
+print(json.dumps({"case": ":".join(args), "nodes": int(r.mesh.nvertices),
                   "cells": int(r.mesh.nelements), "N": int(r.n_dofs),
                   "n_enr": int(r.V.n_enr), "m": int(r.n_multipliers + r.removed),
                   **seen, "measured_MB": round((peak - before) / 2**20, 1),
-                  "estimate_MB": round(est.bytes / 2**20, 1), "linear": est.linear,
+                  "estimate_MB": round(est.bytes / 2**20, 1),
+                  "ratio": round(est.bytes / (peak - before), 2), "linear": est.linear,
+                  "solved": r.linear,
                   "bytes_per_unknown": round((peak - before)
                                              / (r.n_dofs + r.n_multipliers + r.removed)),
                   "est_nodes": est.n_nodes, "est_dofs": est.n_dofs,

@@ -23,18 +23,32 @@ The counts are upper bounds:
 With several interfaces (``Scene(interfaces=...)``) each is counted so, its
 enriched nodes and its multipliers (with its own law) added to the others'.
 
-A crack (an interface with a ``front``) counts as the whole surface ψ = 0 (its
-Heaviside nodes and crossed edges are a part of those), no multiplier for the law
-``free``, and 4 × dim branch unknowns on each node within r_e plus a cell's diameter of
-the front (:func:`~skxfem.studies.counts.box_front_nodes`; r_e the interface's
-``enrichment_radius`` or the default rule :func:`skxfem.crack.radius.default_radius`
-with h a cell's diameter, 0 for topological enrichment).  ``auto`` then resolves as
-the solve does: direct wherever multipliers live on a crack's faces, and for any
-crack in 2D (:func:`skxfem.linalg.choice.choose_linear`).  On the cube of
-``benchmarks/crack_solve.py`` (tetrahedra, law ``free``) the unknowns' bound is 1.26
-and 2.04 times the solve's at n = 8 and 12 (12 636 against 9 990, 35 880 against
-17 550); before, it counted no branch unknown (2 916 and 8 112: below the solve's,
-so no bound) but 867 and 1 875 multipliers, and chose the direct solve at n = 8.
+A crack (an interface with a ``front``) is counted as its solve builds it
+(:class:`~skxfem.studies.counts.CrackCounts`): its multipliers on its own cut points
+behind the front (``ncomp`` each, none for the law ``free``), not on every edge the
+whole surface ψ = 0 touches; 4 × dim branch unknowns on each node of the front's cells
+or within r_e of the front, r_e as :mod:`skxfem.crack.radius` takes it (the interface's
+``enrichment_radius``, or the default rule from the crack's depth and the front cells'
+size, found from ψ and φ at the nodes as the space finds them; none beyond the front
+cells for topological enrichment), dim Heaviside unknowns on the other nodes of the cells
+it cuts; the dense interface terms only on the columns B reads (the jumping unknowns of
+the cells it cuts, dim per node) and only where multipliers live.  On the cubes and
+squares of the sweep below the unknowns are exact.  The LU fill grows with the unknowns
+per node (:data:`LU_FILL` times their ratio to dim, to the power 2 - p); a crack adds
+:data:`CRACK_NODE_BYTES` per branch node, and :data:`CRACK_LU` and :data:`COULOMB_LU`
+where multipliers live on its faces.  ``auto`` resolves as the solve does: direct wherever
+multipliers live on a crack's faces and for any crack in 2D; where a 3D crack's zone holds
+more than :data:`~skxfem.linalg.choice.AUTO_ZONE` of the nodes the solve tries CG and
+falls back to the direct solve, so the estimate is the larger of the two.
+
+Measured (``scripts/calibrate_budget.py``, whose notes give the whole table; 29 November
+2026): estimate over peak, contact and bonded cracks on tetrahedral cubes n = 6-11 1.2-1.9
+(the 10³ and 11³ cubes of ``skxfem run``'s frictionless edge crack: 1.63 GB for a 1.35 GB
+peak and 0.58 GB for 0.51 GB; before: 11.2 and 12.7 GB, refused at the default limit), 2D
+cracks n = 21-81 (triangles, quadrilaterals; free, frictionless, Coulomb) 1.3-2.4; free 3D
+cracks 1.4-2.9 where the direct solve ran, 3.7-7 where auto's CG try converged (the
+estimate prices the direct fall-back).  Before: 0.37-0.85 for free 3D cracks (no bound) and
+3-15 for the others.
 
 ψ is evaluated at the nodes in slabs of about 10⁶ points, so the guard itself
 stays small.  The memory depends on the linear solver that will run

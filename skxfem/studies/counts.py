@@ -20,8 +20,8 @@ than the distance gives fewer nodes).
 
 >>> c = box_crack_counts(Box(4, "tri"), plane((0, 0.5), (0, 1)), plane((0.5, 0), (1, 0)),
 ...                      lambda depth, h: 0.3)
->>> c.branch, c.heaviside, c.points                 # 2 crossings: x = 0.5 is the front
-(5, 4, 2)
+>>> c.branch, c.heaviside, c.points   # the front at a node: 4 squares around it
+(9, 3, 2)
 """
 from __future__ import annotations
 
@@ -254,7 +254,7 @@ def box_crack_counts(box: Box, levelset, front, radius: Callable) -> CrackCounts
     >>> c = box_crack_counts(Box(4, "tri"), plane((0, 0.5), (0, 1)),
     ...                      plane((0.5, 0), (1, 0)), lambda depth, h: 0.3)
     >>> c.points, c.crack_nodes, c.front_nodes, c.branch, c.heaviside, c.depth
-    (2, 9, 3, 5, 4, 0.5)
+    (2, 12, 9, 9, 3, 0.5)
     """
     n, dim = box.n, box.dim
     corners = list(itertools.product((0, 1), repeat=dim))
