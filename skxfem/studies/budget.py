@@ -42,13 +42,13 @@ more than :data:`~skxfem.linalg.choice.AUTO_ZONE` of the nodes the solve tries C
 falls back to the direct solve, so the estimate is the larger of the two.
 
 Measured (``scripts/calibrate_budget.py``, whose notes give the whole table; 29 November
-2026): estimate over peak, contact and bonded cracks on tetrahedral cubes n = 6-11 1.2-1.9
-(the 10³ and 11³ cubes of ``skxfem run``'s frictionless edge crack: 1.63 GB for a 1.35 GB
-peak and 0.58 GB for 0.51 GB; before: 11.2 and 12.7 GB, refused at the default limit), 2D
-cracks n = 21-81 (triangles, quadrilaterals; free, frictionless, Coulomb) 1.3-2.4; free 3D
-cracks 1.4-2.9 where the direct solve ran, 3.7-7 where auto's CG try converged (the
-estimate prices the direct fall-back).  Before: 0.37-0.85 for free 3D cracks (no bound) and
-3-15 for the others.
+2026): estimate over peak, contact and bonded cracks on tetrahedral cubes n = 6-12
+1.16-2.06 (the 10³ and 11³ cubes of ``skxfem run``'s frictionless edge crack: 1.63 GB for
+a 1.35 GB peak and 0.58 GB for 0.43 GB; before: 11.2 and 12.7 GB, refused at the default
+limit), 2D cracks n = 21-81 (triangles, quadrilaterals; free, frictionless, Coulomb)
+1.32-2.45; free 3D cracks 1.35-2.85 where the solve took the path priced, 4-7 where
+auto's CG try converged (the estimate prices the direct fall-back).  Before: 0.37-0.85
+for free 3D cracks (no bound) and 3-30 for the others.
 
 ψ is evaluated at the nodes in slabs of about 10⁶ points, so the guard itself
 stays small.  The memory depends on the linear solver that will run
