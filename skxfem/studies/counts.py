@@ -216,8 +216,9 @@ def _tally(n_nodes: int, n_cells: int, ids, ps, ph, tets, extent: float,
            count_near: Callable[[float], int], radius) -> CrackCounts:
     """:class:`CrackCounts` from the cells on which ψ takes both signs or vanishes: their
     corners' node ``ids`` (nc, k), ψ ``ps`` and φ ``ph`` there; ``tets``: the
-    tetrahedra of a cell as corner indices (3D; None in 2D), ``extent`` the largest
-    extent of a cell (2D), ``count_near(r)`` the nodes with √(ψ² + φ²) ≤ r and
+    tetrahedra of a cell as corner indices (None in 2D, and for 3D cells that are no
+    tetrahedra, which 3D cracks refuse), ``extent`` the largest extent of a cell (h
+    where ``tets`` is None), ``count_near(r)`` the nodes with √(ψ² + φ²) ≤ r and
     ``radius(depth, h)`` r_e or None."""
     front = (ph.min(axis=0) <= 0) & (ph.max(axis=0) >= 0)
     crack = front | (ph.min(axis=0) < 0)
@@ -315,7 +316,7 @@ def mesh_crack_counts(mesh, levelset, front, radius: Callable) -> CrackCounts:
     tip = cut & (phi[t].min(axis=0) <= 0) & (phi[t].max(axis=0) >= 0)
     extent = float(np.ptp(mesh.p[:, t[:, tip]], axis=1).max()) if tip.any() else 0.0
     d = np.hypot(psi, phi)
-    tets = (tuple(range(t.shape[0])),) if mesh.dim() == 3 else None
+    tets = ((0, 1, 2, 3),) if mesh.dim() == 3 and t.shape[0] == 4 else None   # 3D: tets
     c = _tally(int(mesh.nvertices), int(mesh.nelements), t[:, cut], psi[t[:, cut]],
                phi[t[:, cut]], tets, extent, lambda r: int(np.sum(d <= r)), radius)
     return dataclasses.replace(c, points=points)
