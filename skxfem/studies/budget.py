@@ -33,8 +33,9 @@ size, found from ψ and φ at the nodes as the space finds them; none beyond the
 cells for topological enrichment), dim Heaviside unknowns on the other nodes of the cells
 it cuts; the dense interface terms only on the columns B reads (the jumping unknowns of
 the cells it cuts, dim per node) and only where multipliers live.  On the cubes and
-squares of the sweep below the unknowns are exact.  The LU fill grows with the unknowns
-per node (:data:`LU_FILL` times their ratio to dim, to the power 2 - p); a crack adds
+squares of the sweep below the unknowns are bounds within 7 % (most exact).  The LU fill
+grows with the unknowns per node that a crack's zone adds (:data:`LU_FILL` times the
+ratio of the unknowns per node to dim, to the power 2 - p; 1 for a tie); a crack adds
 :data:`CRACK_NODE_BYTES` per branch node, and :data:`CRACK_LU` and :data:`COULOMB_LU`
 where multipliers live on its faces.  ``auto`` resolves as the solve does: direct wherever
 multipliers live on a crack's faces and for any crack in 2D; where a 3D crack's zone holds
@@ -42,13 +43,15 @@ more than :data:`~skxfem.linalg.choice.AUTO_ZONE` of the nodes the solve tries C
 falls back to the direct solve, so the estimate is the larger of the two.
 
 Measured (``scripts/calibrate_budget.py``, whose notes give the whole table; 29 November
-2026): estimate over peak, contact and bonded cracks on tetrahedral cubes n = 6-12
-1.16-2.06 (the 10³ and 11³ cubes of ``skxfem run``'s frictionless edge crack: 1.63 GB for
-a 1.35 GB peak and 0.58 GB for 0.43 GB; before: 11.2 and 12.7 GB, refused at the default
+2026): estimate over peak, contact and bonded cracks on tetrahedral cubes n = 6-16
+1.33-2.48 (the 10³ and 11³ cubes of ``skxfem run``'s frictionless edge crack: 2.02 GB for
+a 1.35 GB peak and 0.70 GB for 0.43 GB; before: 11.2 and 12.7 GB, refused at the default
 limit), 2D cracks n = 21-81 (triangles, quadrilaterals; free, frictionless, Coulomb)
-1.32-2.45; free 3D cracks 1.35-2.85 where the solve took the path priced, 4-7 where
-auto's CG try converged (the estimate prices the direct fall-back).  Before: 0.37-0.85
-for free 3D cracks (no bound) and 3-30 for the others.
+1.32-2.45; free 3D cracks n = 6-20 1.35-2.85 where the solve took the path priced, 4-7
+where auto's CG try converged (the estimate prices the direct fall-back: 1.56 and 1.79
+times the direct solve's peak at n = 10 and 8).  Before: 0.37-0.85 for free 3D cracks (no
+bound) and 3-46 for the others.  Ties and fully cutting interfaces are estimated as
+before.
 
 ψ is evaluated at the nodes in slabs of about 10⁶ points, so the guard itself
 stays small.  The memory depends on the linear solver that will run
@@ -139,10 +142,11 @@ CRACK_NODE_BYTES = {2: 100 * 2**10, 3: 250 * 2**10}
 sub-cell rules, branch values and COO assembly, 4 dim unknowns per node): above the
 largest measured in ``scripts/calibrate_budget.py``'s crack sweep (module notes), 2D
 23-105 KB, 3D 48-241 KB, the contact laws the most."""
-CRACK_LU = {2: 2.5, 3: 1.0}
+CRACK_LU = {2: 2.5, 3: 1.3}
 """The factor on :data:`LU_FILL` where multipliers live on a crack's faces: in 2D the
 contact step's LU filled 1.5-2.3 times the model (the two tips' zones: the inclined and
-centre cracks), in 3D within it; Coulomb's in 2D once more (:data:`COULOMB_LU`)."""
+centre cracks), in 3D up to 1.39 times (n = 12-16; 1.0 at n = 6); Coulomb's in 2D once
+more (:data:`COULOMB_LU`)."""
 COULOMB_LU = {2: 2.0, 3: 1.0}
 """Coulomb on a 2D crack's faces held about two factorisations at its peak (the
 inclined crack, n = 21-81: the peak less one LU was 1.0-1.25 LU)."""
@@ -225,8 +229,9 @@ def parse_bytes(text: str) -> int:
 
 
 def _memory(dim: int, cell: str, order, n_nodes, n_cells, n_dofs, ncols, m,
-            lu_factor: float = 1.0) -> float:
-    """Bytes of the terms named in the module notes (before :data:`SAFETY`)."""
+            lu_factor: float = 1.0, per_node: float = 1.0) -> float:
+    """Bytes of the terms named in the module notes (before :data:`SAFETY`);
+    ``per_node``: the unknowns per node over dim, where a crack's zone raises them."""
     nq = cell_rule(CELLS[cell], order)[1].size
     nbf = dim * NVERTS[cell]
     cells = n_cells * (PER_CELL * 8 * nq * nbf * (1 + dim + dim * dim)  # basis values
@@ -234,8 +239,7 @@ def _memory(dim: int, cell: str, order, n_nodes, n_cells, n_dofs, ncols, m,
                        + 8 * NVERTS[cell])                                # t
     nodes = n_nodes * 8 * dim * 4
     c, p = LU_FILL[dim]
-    block = max(n_dofs / (dim * n_nodes), 1.0) ** (2 - p)   # unknowns per node: fill
-    lu = LU_BYTES * c * (n_dofs + m) ** p * block * lu_factor
+    lu = LU_BYTES * c * (n_dofs + m) ** p * per_node ** (2 - p) * lu_factor
     dense = 8 * (3 * m * ncols + 2 * m * m + 2 * ncols * ncols)
     return cells + nodes + lu + dense
 
@@ -351,9 +355,11 @@ def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell,
     if chosen == "direct":
         factor = (CRACK_LU[dim] * (COULOMB_LU[dim] if law == "coulomb" else 1.0)
                   if on_crack else 1.0)
+        zoned = sum(e for e, c in zip(enr, cracks) if c is not None)
         bytes_ = max(bytes_, SAFETY * (_memory(
             dim, cell, scene.quadrature_order,
-            *map(_clip, (n_nodes, n_cells, n_dofs, ncols, m)), factor) + branch))
+            *map(_clip, (n_nodes, n_cells, n_dofs, ncols, m)), factor,
+            1.0 + zoned / (dim * n_nodes)) + branch))
     return Estimate(n_nodes, n_cells, n_dofs, m, int(bytes_), chosen)
 
 
