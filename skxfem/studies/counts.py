@@ -314,7 +314,8 @@ def mesh_crack_counts(mesh, levelset, front, radius: Callable) -> CrackCounts:
     a, b = edges
     points = _crossings(psi[a], psi[b], phi[a], phi[b]) + int(np.sum((psi == 0) & (phi < 0)))
     tip = cut & (phi[t].min(axis=0) <= 0) & (phi[t].max(axis=0) >= 0)
-    extent = float(np.ptp(mesh.p[:, t[:, tip]], axis=1).max()) if tip.any() else 0.0
+    extent = float(np.ptp(mesh.p[:, t[:, tip if tip.any() else slice(None)]],
+                          axis=1).max())              # no front cell: the solve refuses
     d = np.hypot(psi, phi)
     tets = ((0, 1, 2, 3),) if mesh.dim() == 3 and t.shape[0] == 4 else None   # 3D: tets
     c = _tally(int(mesh.nvertices), int(mesh.nelements), t[:, cut], psi[t[:, cut]],
