@@ -116,13 +116,25 @@ fall back to it); peak and estimates in MB; fricl: frictionless), measured by
     press:hex:12                 7605/7605   169/507  i/i    63    101 ( 1.6)   101 (1.60)
     press:tet:8                  2916/2916   225/1875 d/d    50    230 ( 4.6)   230 (4.63)
     plate:tet:9                  3600/3600   280/2352 d/d    62    336 ( 5.4)   336 (5.41)
+    tri:41:edge:mid:fricl        6956/7020    21/82   d/d    90    447 ( 5.0)   194 (2.15)
+    quad:41:edge:mid:coulomb     6956/7020    21/42   d/d   121    428 ( 3.5)   333 (2.76)
+    tri:81:edge:node:fricl      26620/26852   41/82   d/d   536   5042 ( 9.4)   967 (1.80)
+    quad:61:edge:mid:bonded     15232/15296   62/62   d/d   321   1630 ( 5.1)   498 (1.55)
+    tri:61:centre:mid:free      21488/21616    0/0    d/d   267   4830 (18.1)   507 (1.90)
+    inclined:tri:61:0.3         22280/22488   26/106  d/d   940   5483 ( 5.8)  1808 (1.92)
+    tet:12:edge:node:coulomb    20514/20592   78/234  d/d  2163  27798 (12.8)  2858 (1.32)
+    tet:12:penny:node:fricl     23547/24435   37/111  d/d  2737  27798 (10.2)  3894 (1.42)
+    tet:12:penny:mid:coulomb    17655/17847   48/477  d/d  1515  20298 (13.4)  2225 (1.47)
+    tet:9:edge:mid:bonded        6000/6000   150/513  d/d   257   4785 (18.6)   428 (1.66)
+    tet:7:penny:node:coulomb     7680/7680    12/36   d/d   427   2198 ( 5.2)   764 (1.79)
 
 The free 3D cracks whose zone holds most of the coarse cube (n = 6-10: i/d) are priced
 for the direct solve auto falls back to when its CG stalls (skxfem.solver), hence 4-7
 times the peak of the CG that converged; forced direct (``--linear direct``), their
 peaks were 540 MB at n = 8 (edge, node plane) and 1049 MB at n = 10, estimated 965 and
-1636 MB (1.79, 1.56).  Every other crack is 1.32-2.85 times its peak.  The last three
-rows (a tie and contact across the whole body) keep the estimates of before.
+1636 MB (1.79, 1.56).  Every other crack is 1.32-2.85 times its peak.  The rows
+press:hex:12, press:tet:8 and plate:tet:9 (contact and a tie across the whole body)
+keep the estimates of before.
 Tetrahedral cubes only: 3D cracks take tetrahedra.
 """
 import subprocess

@@ -43,15 +43,15 @@ more than :data:`~skxfem.linalg.choice.AUTO_ZONE` of the nodes the solve tries C
 falls back to the direct solve, so the estimate is the larger of the two.
 
 Measured (``scripts/calibrate_budget.py``, whose notes give the whole table; 29 November
-2026): estimate over peak, contact and bonded cracks on tetrahedral cubes n = 6-16
-1.33-2.48 (the 10³ and 11³ cubes of ``skxfem run``'s frictionless edge crack: 2.02 GB for
-a 1.35 GB peak and 0.70 GB for 0.43 GB; before: 11.2 and 12.7 GB, refused at the default
-limit), 2D cracks n = 21-81 (triangles, quadrilaterals; free, frictionless, Coulomb)
-1.32-2.45; free 3D cracks n = 6-20 1.35-2.85 where the solve took the path priced, 4-7
-where auto's CG try converged (the estimate prices the direct fall-back: 1.56 and 1.79
-times the direct solve's peak at n = 10 and 8).  Before: 0.37-0.85 for free 3D cracks (no
-bound) and 3-46 for the others.  Ties and fully cutting interfaces are estimated as
-before.
+2026; 96 cases), estimate over peak: contact and bonded cracks on tetrahedral cubes
+n = 6-16 1.32-2.48 (the 10³ and 11³ cubes of ``skxfem run``'s frictionless edge crack:
+2.02 GB for a 1.35 GB peak and 0.70 GB for 0.43 GB; before: 11.2 and 12.7 GB, refused at
+the default limit); 2D cracks n = 21-82 (triangles, quadrilaterals; free, frictionless,
+Coulomb, bonded) 1.32-2.76; free 3D cracks n = 6-20 1.35-2.85 where the solve took the
+path priced, 4-7 where auto's CG try converged (the estimate prices the direct
+fall-back: 1.56 and 1.79 times the direct solve's peak at n = 10 and 8).  Before:
+0.37-0.85 for free 3D cracks (no bound) and 3-46 for the others.  Ties and fully cutting
+interfaces are estimated as before.
 
 ψ is evaluated at the nodes in slabs of about 10⁶ points, so the guard itself
 stays small.  The memory depends on the linear solver that will run
