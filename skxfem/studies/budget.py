@@ -90,7 +90,7 @@ from functools import partial
 import numpy as np
 
 from ..contact.laws import CONTACT_LAWS
-from ..crack.radius import default_radius
+from ..crack.radius import DEPTH_CAP, default_radius
 from ..fem.meshes import CELLS, cell_name
 from ..fem.quadrature import cell_rule
 from ..linalg.choice import choose_linear
@@ -304,13 +304,19 @@ def _branch_radius(interface, dim: int, diameter: float, depth: float, h: float
                    ) -> float | None:
     """r_e of a crack as its space takes it (:mod:`skxfem.crack.radius`): None when
     topological, else the interface's ``enrichment_radius`` or
-    :func:`skxfem.crack.radius.default_radius` of the mesh's ``diameter`` (2D) or the
-    crack's ``depth`` (3D) and the front cells' size ``h``."""
+    :func:`skxfem.crack.radius.default_radius` of the mesh's ``diameter`` (2D, at most
+    :data:`~skxfem.crack.radius.DEPTH_CAP` depths) or the crack's ``depth`` (3D) and the
+    front cells' size ``h`` (in 2D ``depth`` + ``h`` bounds the crack's depth, which its
+    pieces' ends measure, between the nodes: so r_e bounds the space's)."""
     if interface.enrichment == "topological":
         return None
     r = interface.enrichment_radius
-    return default_radius(dim, float(diameter if dim == 2 else depth), float(h)) \
-        if r is None else r
+    if r is not None:
+        return r
+    if dim == 2:
+        return default_radius(2, float(diameter), float(h),
+                              DEPTH_CAP * (float(depth) + float(h)))
+    return default_radius(3, float(depth), float(h))
 
 
 def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell,
