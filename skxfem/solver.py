@@ -220,11 +220,15 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
             held = f"the displacements and the {'/'.join(ties)} tie hold every rigid " \
                 "motion of each side of Γ" if ties else \
                 "the displacements hold every rigid motion of the body"
+            branch = (f"; or, a crack's branch functions enriching {zone:.0%} of the "
+                      f"nodes (nearly dependent over a zone many cells across), give it a "
+                      f"smaller enrichment_radius or enrichment = 'topological'"
+                      if any(cracks) else "")
             raise saddle.SingularSystemError(  # check_held found every rigid motion held
                 f"the {'tied ' if ties else ''}system is singular to working precision "
                 f"({e.detail}), although {held}: its conditioning is beyond double "
                 f"precision (a part of the body, or a material, far stiffer or smaller "
-                f"than the rest); refine the mesh there or rescale the scene") from e
+                f"than the rest); refine the mesh there or rescale the scene{branch}") from e
     seconds = time.perf_counter() - t0
     its = getattr(info, "iterations", None)
     linear_info = {"residual": float(info.residual), "balance": float(info.balance),
