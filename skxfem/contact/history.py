@@ -121,6 +121,7 @@ from .newton import (
     point_laws,
     predict,
 )
+from .slide import translations
 
 __all__ = ["Step", "parameters", "solve", "progress_line", "ContactConvergenceError",
            "StepCutWarning", "StepRetryWarning", "METHODS", "RHO_RANGE", "MAX_CUTS",
@@ -389,6 +390,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     linear = choose_linear(settings.linear, pb.mesh.dim(), pb.V.N, cracks, cracks)
     linear_tol = settings.linear_tol
     modes = rigid_modes(pb.V)
+    parts = tuple(translations(modes, pb.D, pb.mesh.dim()))  # the parts only Γ holds
     t0 = time.perf_counter()
     solve_kw = {"linear": linear} if linear == "direct" else {
         "linear": linear, "modes": modes, "blocksize": pb.mesh.dim(),
@@ -416,7 +418,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
                             _check_rigid(pb, ops, laws, status, None, what, hint, label))
 
         def one(start, U_prev, F1, g1, where, guess=None, laws=laws):
-            step = StepProblem(ops, pb.K, F1, free, U_prev, laws, rho_ref)
+            step = StepProblem(ops, pb.K, F1, free, U_prev, laws, rho_ref, parts)
             U = start.U.copy()
             U[pb.D] = g1
             start = Iterate(U, start.lam, start.r)

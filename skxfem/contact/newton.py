@@ -68,6 +68,7 @@ import scipy.sparse as sp
 from ..linalg.iterative import ConvergenceError
 from . import step as linear_step
 from .laws import LAWS, disk_projection, status
+from .slide import slide
 
 __all__ = ["Law", "PointLaws", "point_laws", "join_laws", "StepProblem", "Iterate", "Residual",
            "NewtonInfo", "ContactConvergenceError", "jumps", "residual", "jacobian",
@@ -189,7 +190,9 @@ class StepProblem:
     and load ``F`` on all unknowns, the ``free`` unknowns, ``U_prev`` (the
     converged state the slip increments start from), the ``laws`` and
     ``rho_ref`` (the reference ρ of the convergence test, E/h; several
-    interfaces: (m,), each dof its interface's)."""
+    interfaces: (m,), each dof its interface's); ``slides`` the translations (N, dim)
+    of each part that only Γ holds (:func:`skxfem.contact.slide.translations`), which
+    a singular step slides to where friction holds them (:func:`newton`)."""
 
     ops: object
     K: sp.csr_matrix
@@ -198,6 +201,7 @@ class StepProblem:
     U_prev: np.ndarray
     laws: PointLaws
     rho_ref: float | np.ndarray
+    slides: tuple = ()
 
     @property
     def nu(self) -> int:
@@ -433,8 +437,18 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
             dx, scaled, factor, krylov = _linear_step(
                 step, it, res, None, linear, modes, blocksize, factor, eta)
         except linear_step.SingularStepError as e:
-            dx, scaled, factor, krylov = _singular_fallback(
-                step, it, res, closed_before, linear, modes, blocksize, e, eta, setup)
+            slid = slide(step, it, res, step.F) if step.slides else None
+            if slid is not None:  # every point of a part only Γ holds slides: move it
+                it = Iterate(slid[0], it.lam, slid[1])
+                res = residual(step, it)
+            try:
+                if slid is None:
+                    raise e
+                dx, scaled, factor, krylov = _linear_step(
+                    step, it, res, None, linear, modes, blocksize, factor, eta)
+            except linear_step.SingularStepError as e2:
+                dx, scaled, factor, krylov = _singular_fallback(
+                    step, it, res, closed_before, linear, modes, blocksize, e2, eta, setup)
         if linear == "iterative":
             inner.append(krylov)
         if merit_rows is None:  # one merit for the whole step: no cycle can decrease it

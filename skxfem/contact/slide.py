@@ -1,0 +1,198 @@
+r"""The rigid slide of a part that only Γ holds, where every Coulomb point of it slides.
+
+A part of the body that no support touches is held along Γ by friction alone.
+Where every closed point of it slides, the Newton matrix of
+:mod:`skxfem.contact.newton` is singular: in the slip branch the friction force
+R ŝ does not change with the slip (2D), so nothing fixes how far the part slides
+as a rigid body.  Unloaded from a large load to a small one, this is the usual
+state: the elastic shear relaxes, the points slide backwards on one side and
+forwards on the other, and the answer has a point sticking between them in a
+band |r_τ − ρ_τ s| ≤ μp that is μp/ρ_τ thin (ρ_τ ≈ E/h is set for the loaded
+state, the pressure fell 100-fold).  The merit ‖R‖ is flat along that slide
+until a point enters its band, so no line search finds it, and the
+all-closed-and-sticking Jacobian of the fallback moves the part by a few
+per cent of the way per iteration (``tests/test_contact_holding.py``: the
+friction residual stalled at 1e-4 for 60 iterations, then 64 step cuts).
+
+**The slide.**  The part's rigid slides are the translations Z t (t ∈ ℝ^q) that
+keep every closed point closed (Bₙ Z t = 0 there: q = dim − 1 on a plane Γ).
+Tested with Z, equilibrium says that the friction forces balance the resultant
+f = Zᵀ F + (Bₙ Z)ᵀ λ of the part's loads; with every point sliding, r_τj =
+−R_j ŝ_j (R_j = μ p_j the radius of its ball, s_j its slip increment), this is
+the stationarity of the convex
+
+.. math:: \Phi(t) = \sum_j w_j R_j \,|s_j + D_j t| - f\cdot t, \qquad
+          D_j = \frac{B_\tau Z|_j}{w_j},
+
+the friction's dissipation (w_j the weights of the dofs): its minimiser is the
+slide at which friction holds the part, a point j sticking where s_j + D_j t = 0.
+:func:`slide` moves the part there (the pressure and the displacement of the
+rest as they are), sets each sliding point's traction on its ball, −R ŝ, and
+leaves Newton to correct the elastic part from a state whose matrix is regular
+(one point sticks).  Φ is minimised exactly in 1D (q = 1: a weighted median of
+the points' breakpoints) and by iteratively reweighted least squares
+(Weiszfeld) otherwise, then snapped onto the nearest point that sticks.
+
+>>> d, s, c = np.array([[1.0], [1.0], [1.0]]), np.array([-1.0, 0.0, 2.0]), np.ones(3)
+>>> float(minimise(s[:, None], d[:, :, None], c, np.zeros(1))[0])   # the median
+0.0
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .laws import SLIP
+
+__all__ = ["translations", "slides", "minimise", "bounded", "slide"]
+
+SNAP = 1e-10
+"""A point whose slip |s + D t| is below this fraction of the largest slip of the
+part, at the minimiser found, is taken to stick (:func:`slide`)."""
+
+
+def translations(modes: np.ndarray, D: np.ndarray, dim: int) -> list[np.ndarray]:
+    """The translations (N, dim) of each part that no support touches: columns of the
+    rigid ``modes`` (:func:`skxfem.linalg.amg.rigid_modes`, column R i + r the i-th
+    motion of part r) that move no imposed unknown ``D``.
+
+    >>> modes = np.eye(6)    # 2D, two parts: columns 0, 2 part 0's translations
+    >>> [T.shape for T in translations(modes, np.array([0]), 2)]   # unknown 0 held
+    [(4, 2)]
+    """
+    parts = modes.shape[1] // (3 if dim == 2 else 6)
+    out = []
+    for r in range(parts):
+        T = modes[:, [parts * i + r for i in range(dim)]]
+        if not np.any(T[D] != 0):
+            out.append(T)
+    return out
+
+
+def slides(T: np.ndarray, Bn, closed: np.ndarray) -> np.ndarray:
+    """The slides (N, q) of a part with translations ``T`` (N, dim): those that keep
+    the normal jump of the ``closed`` dofs, an orthonormal basis of the null space
+    of Bₙ T there (q = 0 where the closed dofs hold every translation)."""
+    a = Bn[closed] @ T
+    if a.shape[0] == 0:
+        return T
+    _, sigma, Vt = np.linalg.svd(a)
+    scale = np.abs(T).max() * max(float(np.abs(a).max()), 1e-300)
+    rank = int(np.sum(sigma > 1e-8 * scale / max(np.abs(T).max(), 1e-300)))
+    return T @ Vt[rank:].T
+
+
+def minimise(s: np.ndarray, D: np.ndarray, c: np.ndarray, f: np.ndarray,
+             iterations: int = 200) -> np.ndarray:
+    """The minimiser t (q,) of Φ(t) = Σ c_j |s_j + D_j t| - f·t (module notes).
+
+    ``s`` (n, k) slips, ``D`` (n, k, q) their change per unit t, ``c`` (n,) ≥ 0 the
+    weights w_j R_j.  q = 1: the exact weighted median of the breakpoints; else
+    Weiszfeld's iteration, snapped onto the point whose slip it nearly cancels."""
+    n, k, q = D.shape
+    if q == 1 and k == 1:
+        d, c0 = D[:, 0, 0], c * (D[:, 0, 0] != 0)
+        ok = c0 > 0
+        if ok.any():
+            t_j = -s[ok, 0] / d[ok]                 # where each point's slip vanishes
+            weight = c0[ok] * np.abs(d[ok])
+            order = np.argsort(t_j)
+            # Φ' just past the i-th breakpoint: 2 Σ_{≤i} weight - Σ weight - f
+            slope = 2 * np.cumsum(weight[order]) - weight.sum() - f[0]
+            i = int(np.searchsorted(slope, 0.0))
+            return np.array([t_j[order][min(i, t_j.size - 1)]])
+    # Weiszfeld: t = argmin Σ c_j |s_j + D_j t|² / (2|s_j + D_j t|) - f·t, reweighted
+    t = np.zeros(q)
+    best, value = t, _phi(s, D, c, f, t)
+    for _ in range(iterations):
+        g = s + np.einsum("nkq,q->nk", D, t)
+        norm = np.maximum(np.linalg.norm(g, axis=1), 1e-14 * max(np.abs(s).max(), 1e-300))
+        a = c / norm
+        A = np.einsum("n,nkq,nkp->qp", a, D, D)
+        b = f - np.einsum("n,nkq,nk->q", a, D, s)
+        try:
+            t = np.linalg.solve(A, b)
+        except np.linalg.LinAlgError:
+            break
+        v = _phi(s, D, c, f, t)
+        if v < value:
+            best, value = t, v
+    # snap onto the point nearest to sticking, where it lowers Φ
+    for j in np.argsort(np.linalg.norm(s + np.einsum("nkq,q->nk", D, best), axis=1))[:3]:
+        if c[j] > 0 and np.linalg.matrix_rank(D[j]) == q and k == q:
+            snapped = np.linalg.solve(D[j], -s[j])
+            if _phi(s, D, c, f, snapped) <= value:
+                best, value = snapped, _phi(s, D, c, f, snapped)
+    return best
+
+
+def bounded(D: np.ndarray, c: np.ndarray, f: np.ndarray, directions: int = 720) -> bool:
+    """Whether Φ (:func:`minimise`) has a minimiser: the friction the points can give
+    along every slide e, Σ c_j |D_j e|, exceeds the load along it, f·e (q = 1 exactly;
+    q = 2 on ``directions`` unit vectors; q > 2 on the axes and their opposites)."""
+    q = D.shape[2]
+    if q == 1:
+        E = np.array([[1.0], [-1.0]])
+    elif q == 2:
+        a = np.linspace(0.0, 2 * np.pi, directions, endpoint=False)
+        E = np.c_[np.cos(a), np.sin(a)]
+    else:
+        E = np.vstack([np.eye(q), -np.eye(q)])
+    reach = np.linalg.norm(np.einsum("nkq,eq->enk", D, E), axis=2) @ c
+    return bool(np.all(reach > E @ f * (1 + 1e-9)))
+
+
+def _phi(s, D, c, f, t) -> float:
+    return float(c @ np.linalg.norm(s + np.einsum("nkq,q->nk", D, t), axis=1) - f @ t)
+
+
+def _slips(ops, U, U_prev) -> np.ndarray:
+    """s (m, k): the weighted tangential jump increments
+    (:func:`skxfem.contact.newton.jumps`)."""
+    return np.stack([B @ (U - U_prev) for B in ops.Bt], axis=1) / ops.w[:, None]
+
+
+def slide(step, it, res, F):
+    """(U, r_τ) of the iterate ``it`` with every part that only Γ holds slid to where
+    friction holds it (module notes), or None where no part slides (``step.slides``: the
+    translations of those parts, :func:`translations`; ``F`` the step's loads).  Only
+    the Coulomb dofs that are closed and pressed (radius > 0) hold a part; a part whose
+    Coulomb dofs are not all sliding, or that a point sticking by its law holds, is
+    left as it is."""
+    laws, ops = step.laws, step.ops
+    closed = res.status != 0
+    coulomb = (laws.tangential == "coulomb") & closed & (res.radius > 0)
+    free = ~laws.tangent_held
+    U, r = it.U.copy(), it.r.copy()
+    moved = False
+    for T in step.slides:
+        Z = slides(T, ops.Bn, closed)
+        if Z.shape[1] == 0:
+            continue
+        D = np.stack([B @ Z for B in ops.Bt], axis=1) / ops.w[:, None, None]  # (m, k, q)
+        D = D * free[:, :, None]
+        on = coulomb & (np.abs(D).max(axis=(1, 2)) > 0)
+        if not on.any() or np.any(res.status[on] != SLIP):
+            continue
+        if np.any((laws.tangential != "coulomb") & closed & (np.abs(D).max(axis=(1, 2)) > 0)
+                  & (laws.tangential != "free")):
+            continue                  # a point that sticks by its law holds the part
+        s = _slips(ops, U, step.U_prev) * free
+        f = Z.T @ F + (ops.Bn @ Z).T @ it.lam
+        c = ops.w[on] * res.radius[on]
+        if not bounded(D[on], c, f):
+            continue                  # these points cannot hold the part: Newton's to find
+        t = minimise(s[on], D[on], c, f)
+        U = U + Z @ t
+        moved = True
+    if not moved:
+        return None
+    s = _slips(ops, U, step.U_prev) * free
+    norm = np.linalg.norm(s, axis=1)
+    scale = max(float(norm[coulomb].max()) if coulomb.any() else 0.0, 1e-300)
+    sliding = coulomb & (norm > SNAP * scale)
+    r[sliding] = -(res.radius[sliding] / norm[sliding])[:, None] * s[sliding]
+    stuck = coulomb & ~sliding
+    size = np.linalg.norm(r[stuck], axis=1)
+    over = size > res.radius[stuck]
+    r[np.flatnonzero(stuck)[over]] *= (res.radius[stuck][over] / size[over])[:, None]
+    return U, r * free
