@@ -33,9 +33,9 @@ leaves Newton to correct the elastic part from a state whose matrix is regular
 the points' breakpoints) and by iteratively reweighted least squares
 (Weiszfeld) otherwise, then snapped onto the nearest point that sticks.
 
->>> d, s, c = np.array([[1.0], [1.0], [1.0]]), np.array([-1.0, 0.0, 2.0]), np.ones(3)
->>> float(minimise(s[:, None], d[:, :, None], c, np.zeros(1))[0])   # the median
-0.0
+>>> d, s, c = np.array([[1.0], [1.0], [1.0]]), np.array([-1.0, 0.5, 2.0]), np.ones(3)
+>>> float(minimise(s[:, None], d[:, :, None], c, np.zeros(1))[0])   # the median point sticks
+-0.5
 """
 from __future__ import annotations
 
@@ -57,7 +57,7 @@ def translations(modes: np.ndarray, D: np.ndarray, dim: int) -> list[np.ndarray]
 
     >>> modes = np.eye(6)    # 2D, two parts: columns 0, 2 part 0's translations
     >>> [T.shape for T in translations(modes, np.array([0]), 2)]   # unknown 0 held
-    [(4, 2)]
+    [(6, 2)]
     """
     parts = modes.shape[1] // (3 if dim == 2 else 6)
     out = []
