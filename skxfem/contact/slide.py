@@ -153,11 +153,14 @@ def _slips(ops, U, U_prev) -> np.ndarray:
 
 def slide(step, it, res, F):
     """(U, r_τ) of the iterate ``it`` with every part that only Γ holds slid to where
-    friction holds it (module notes), or None where no part slides (``step.slides``: the
-    translations of those parts, :func:`translations`; ``F`` the step's loads).  Only
-    the Coulomb dofs that are closed and pressed (radius > 0) hold a part; a part whose
-    Coulomb dofs are not all sliding, or that a point sticking by its law holds, is
-    left as it is."""
+    friction holds it (module notes), or None where no part slides to a point that
+    sticks (``step.slides``: the translations of those parts, :func:`translations`;
+    ``F`` the step's loads).  A part is slid only where all its Coulomb dofs that are
+    closed and pressed (radius > 0) slide, no dof holds it by its law (a no-slip law),
+    and those dofs can hold its loads (:func:`bounded`); a 3D part held with every
+    point sliding, the slip directions apart, is left as it is.  The sliding dofs get
+    the traction on their ball against their slip, -R ŝ, the dofs that stick the least
+    (minimum-norm) tractions that balance the part's loads, each kept in its ball."""
     laws, ops = step.laws, step.ops
     closed = res.status != 0
     coulomb = (laws.tangential == "coulomb") & closed & (res.radius > 0)
@@ -168,31 +171,32 @@ def slide(step, it, res, F):
         Z = slides(T, ops.Bn, closed)
         if Z.shape[1] == 0:
             continue
-        D = np.stack([B @ Z for B in ops.Bt], axis=1) / ops.w[:, None, None]  # (m, k, q)
-        D = D * free[:, :, None]
-        on = coulomb & (np.abs(D).max(axis=(1, 2)) > 0)
-        if not on.any() or np.any(res.status[on] != SLIP):
+        G = np.stack([B @ Z for B in ops.Bt], axis=1) * free[:, :, None]  # (m, k, q)
+        D = G / ops.w[:, None, None]
+        touches = np.abs(D).max(axis=(1, 2)) > 0
+        on = coulomb & touches
+        if not on.any() or np.any(res.status[on] != SLIP) or np.any(
+                (laws.tangential == "stick") & closed & touches):
             continue
-        if np.any((laws.tangential != "coulomb") & closed & (np.abs(D).max(axis=(1, 2)) > 0)
-                  & (laws.tangential != "free")):
-            continue                  # a point that sticks by its law holds the part
-        s = _slips(ops, U, step.U_prev) * free
         f = Z.T @ F + (ops.Bn @ Z).T @ it.lam
         c = ops.w[on] * res.radius[on]
         if not bounded(D[on], c, f):
-            continue                  # these points cannot hold the part: Newton's to find
-        t = minimise(s[on], D[on], c, f)
+            continue                  # these dofs cannot hold the part: Newton's to find
+        t = minimise((_slips(ops, U, step.U_prev) * free)[on], D[on], c, f)
+        s = _slips(ops, U + Z @ t, step.U_prev) * free
+        norm = np.linalg.norm(s, axis=1)
+        sliding = on & (norm > SNAP * norm[on].max())
+        stuck = on & ~sliding
+        if not stuck.any():
+            continue                  # held with every point sliding (3D)
         U = U + Z @ t
+        r[sliding] = -(res.radius[sliding] / norm[sliding])[:, None] * s[sliding]
+        # the stuck tractions balance the part: Σ_j G_jᵀ r_j = -f
+        known = np.einsum("nkq,nk->q", G[~stuck], r[~stuck])
+        A = G[stuck].transpose(2, 0, 1).reshape(G.shape[2], -1)      # (q, n_stuck k)
+        x = np.linalg.lstsq(A, -f - known, rcond=None)[0].reshape(-1, G.shape[1])
+        size = np.linalg.norm(x, axis=1)
+        R = res.radius[stuck]
+        r[stuck] = x * np.minimum(1.0, R / np.where(size > 0, size, 1.0))[:, None]
         moved = True
-    if not moved:
-        return None
-    s = _slips(ops, U, step.U_prev) * free
-    norm = np.linalg.norm(s, axis=1)
-    scale = max(float(norm[coulomb].max()) if coulomb.any() else 0.0, 1e-300)
-    sliding = coulomb & (norm > SNAP * scale)
-    r[sliding] = -(res.radius[sliding] / norm[sliding])[:, None] * s[sliding]
-    stuck = coulomb & ~sliding
-    size = np.linalg.norm(r[stuck], axis=1)
-    over = size > res.radius[stuck]
-    r[np.flatnonzero(stuck)[over]] *= (res.radius[stuck][over] / size[over])[:, None]
-    return U, r * free
+    return (U, r * free) if moved else None
