@@ -25,8 +25,12 @@ support takes that force.
    solve);
 3. the linear step J Δx = -R (:mod:`skxfem.contact.step`: SuperLU on J, a
    matrix unchanged since the last iteration not factorised again; or one
-   tie, solved only as accurately as the iterate needs, :func:`forcing`; a
-   singular one, an active set that leaves a part of the body free, is
+   tie, solved only as accurately as the iterate needs, :func:`forcing`; at a
+   singular one, an active set that leaves a part of the body free, a part
+   that only Γ holds, its every Coulomb point sliding, is first slid as a
+   rigid body to where friction holds it, a point sticking
+   (:mod:`skxfem.contact.slide`: the slip branch does not see how far it
+   slides); if the matrix stays singular, it is
    replaced by the Jacobian that keeps the points closed at the last iterate,
    then every point closed, then (Coulomb) every point closed and sticking (a
    part that only Γ holds, its every point sliding, is free along Γ in the
