@@ -122,3 +122,31 @@ def test_load_histories_that_unload_a_part_friction_holds_converge_whole(E, path
         _coulomb(res, k)
         checked += 1
     assert checked
+
+
+def test_two_interfaces_slide_the_slabs_that_stick_together_as_one():
+    """Γ₁ at y = 0.35 and Γ₂ at y = 0.7 (μ = 0.5), the bottom clamped, the top pressed and
+    sheared, then unloaded 100-fold: Γ₁ slides everywhere while Γ₂ sticks in part, so the
+    middle slab and the top slide together; sliding each alone was refused (a dof of it
+    sticks) and the step took 5 increments, 8 s.  Now one, Coulomb's inequalities hold,
+    and the loads on the top and on the two slabs together balance Γ's forces."""
+    from skxfem.fem.material import Material
+    from skxfem.levelset import plane
+    from skxfem.scene import Box, Interface, Scene, SurfaceLoad, clamped
+    gammas = tuple(Interface(plane((0.0, h), (0.0, 1.0)), law="coulomb", friction=0.5)
+                   for h in (0.35, 0.7))
+    scene = Scene(Box((6, 6), "quad"), interfaces=gammas, material=Material(E=1000.0, nu=0.3),
+                  displacements=(clamped("ymin"),),
+                  loads=(SurfaceLoad("ymax", traction=(0.3, -1.0)),), steps=(1.0, 0.01))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        res = contact.solve(scene, max_cuts=0)
+    last = res.steps[-1]
+    assert last.increments == 1
+    p, r = last.pressure, last.traction
+    assert np.all(p >= 0) and np.all(np.abs(r[:, 0]) <= 0.5 * p * (1 + 1e-9) + 1e-15)
+    pb, ops = res.problem, res.ops
+    middle, top = translations(rigid_modes(pb.V), pb.D, 2)
+    for T in (top, middle + top):
+        forces = (ops.Bn @ T).T @ (-p) + (ops.Bt[0] @ T).T @ r[:, 0]
+        assert np.allclose(forces, -T.T @ last.F, rtol=1e-9, atol=1e-14)

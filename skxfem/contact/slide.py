@@ -14,6 +14,10 @@ all-closed-and-sticking Jacobian of the fallback moves the part by a few
 per cent of the way per iteration (``tests/test_contact_holding.py``: the
 friction residual stalled at 1e-4 for 60 iterations, then 64 step cuts).
 
+**Which parts.**  Parts joined by a closed point that sticks move together: with
+two interfaces, a middle slab that Γ₂ holds in part to the top slides with it on
+Γ₁ (:func:`clusters`); a cluster stuck to a part a support holds is held.
+
 **The slide.**  The part's rigid slides are the translations Z t (t ∈ ℝ^q) that
 keep every closed point closed (Bₙ Z t = 0 there: q = dim − 1 on a plane Γ).
 Tested with Z, equilibrium says that the friction forces balance the resultant
@@ -43,7 +47,7 @@ import numpy as np
 
 from .laws import SLIP
 
-__all__ = ["translations", "slides", "minimise", "bounded", "slide"]
+__all__ = ["translations", "slides", "minimise", "bounded", "clusters", "slide"]
 
 SNAP = 1e-10
 """A point whose slip |s + D t| is below this fraction of the largest slip of the
@@ -151,6 +155,37 @@ def _slips(ops, U, U_prev) -> np.ndarray:
     return np.stack([B @ (U - U_prev) for B in ops.Bt], axis=1) / ops.w[:, None]
 
 
+def clusters(parts, ops, status, laws) -> list[np.ndarray]:
+    """The translations (N, dim) of the clusters of ``parts`` (translations of the parts
+    that only Γ holds) that move as one: parts joined by a closed dof that sticks (or
+    whose law has no slip) move together; a cluster that such a dof joins to a part a
+    support holds is held, and left out."""
+    stuck = (status == 1) | ((status != 0) & (laws.tangential == "stick"))
+    touch = [(abs(ops.Bn @ T).sum(axis=1) + sum(abs(B @ T).sum(axis=1) for B in ops.Bt)) > 0
+             for T in parts]
+    label = list(range(len(parts)))
+
+    def root(i):
+        while label[i] != i:
+            i = label[i]
+        return i
+    for a in range(len(parts)):
+        for b in range(a + 1, len(parts)):
+            if np.any(touch[a] & touch[b] & stuck):
+                label[root(a)] = root(b)
+    anchored = set()
+    for a in range(len(parts)):
+        others = np.any([touch[b] for b in range(len(parts)) if b != a], axis=0) \
+            if len(parts) > 1 else np.zeros(touch[a].size, bool)
+        if np.any(touch[a] & stuck & ~others):
+            anchored.add(root(a))          # stuck to a supported part
+    groups = {}
+    for a in range(len(parts)):
+        groups.setdefault(root(a), []).append(a)
+    return [sum(parts[a] for a in members) for key, members in groups.items()
+            if key not in anchored]
+
+
 def slide(step, it, res, F):
     """(U, r_τ) of the iterate ``it`` with every part that only Γ holds slid to where
     friction holds it (module notes), or None where no part slides to a point that
@@ -167,7 +202,7 @@ def slide(step, it, res, F):
     free = ~laws.tangent_held
     U, r = it.U.copy(), it.r.copy()
     moved = False
-    for T in step.slides:
+    for T in clusters(step.slides, ops, res.status, laws):
         Z = slides(T, ops.Bn, closed)
         if Z.shape[1] == 0:
             continue
