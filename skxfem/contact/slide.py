@@ -80,8 +80,7 @@ def slides(T: np.ndarray, Bn, closed: np.ndarray) -> np.ndarray:
     if a.shape[0] == 0:
         return T
     _, sigma, Vt = np.linalg.svd(a)
-    scale = np.abs(T).max() * max(float(np.abs(a).max()), 1e-300)
-    rank = int(np.sum(sigma > 1e-8 * scale / max(np.abs(T).max(), 1e-300)))
+    rank = int(np.sum(sigma > 1e-8 * max(float(np.abs(a).max()), 1e-300)))
     return T @ Vt[rank:].T
 
 
