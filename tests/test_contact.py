@@ -713,3 +713,33 @@ def test_one_result_for_every_law():
     x0, p0 = evaluate.pressure_along(tie, 0)
     assert np.allclose(p, p0) and np.allclose(x, x0)
     assert io.result_summary(stuck).keys() >= io.result_summary(tie).keys()
+
+
+def test_a_retry_that_lets_a_part_drift_off_is_cut_not_refused():
+    """A tetrahedral cube whose top only friction (μ = 0.5) holds, pressed and sheared by
+    (0.3, 0, -1), then by (-0.003, 0, -0.01) at once: Newton failed and the fixed point's
+    answer had the top drift off by a rigid motion, refused as 'can rotate about an axis
+    along z' (main).  A retry whose state leaves a part free has failed: the step is cut
+    and solved; Coulomb's inequalities and the top's equilibrium hold."""
+    import sys
+    import warnings
+    from pathlib import Path
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_contact_holding import unloaded
+
+    from skxfem.contact.slide import translations
+    from skxfem.linalg.amg import rigid_modes
+    scene = unloaded(3, (1.0,), cell="tet")
+    back = replace(scene, name="back", loads=(SurfaceLoad("zmax", traction=(-0.003, 0.0,
+                                                                             -0.01)),))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = contact.solve(scene, history=(scene, back))
+    last = res.steps[-1]
+    assert last.increments > 1
+    p, r = last.pressure, last.traction
+    assert np.all(p >= 0) and np.all(np.linalg.norm(r, axis=1) <= 0.5 * p * (1 + 1e-9) + 1e-15)
+    pb, ops = res.problem, res.ops
+    T = translations(rigid_modes(pb.V), pb.D, 3)[0]
+    forces = (ops.Bn @ T).T @ (-p) + sum((B @ T).T @ r[:, a] for a, B in enumerate(ops.Bt))
+    assert np.allclose(forces, -T.T @ last.F, rtol=1e-8, atol=1e-12)

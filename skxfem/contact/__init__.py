@@ -5,6 +5,8 @@ The modules, in the order of the contact chapter: :mod:`~skxfem.contact.laws`
 (where they are imposed: the operators at the multiplier dofs),
 :mod:`~skxfem.contact.newton` (one load step by a globalised semi-smooth Newton
 method), :mod:`~skxfem.contact.step` (the linear solve of a Newton step),
+:mod:`~skxfem.contact.slide` (the rigid slide of a part that only Γ holds, where
+its every point slides and the Newton matrix is singular),
 :mod:`~skxfem.contact.fixed_point` (the paper's scheme),
 :mod:`~skxfem.contact.holding` (whether Γ can hold, under its loads, a part that
 nothing else holds) and :mod:`~skxfem.contact.history` (a load history:

@@ -121,6 +121,7 @@ from .newton import (
     point_laws,
     predict,
 )
+from .slide import translations
 
 __all__ = ["Step", "parameters", "solve", "progress_line", "ContactConvergenceError",
            "StepCutWarning", "StepRetryWarning", "METHODS", "RHO_RANGE", "MAX_CUTS",
@@ -388,6 +389,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     linear = choose_linear(settings.linear, pb.mesh.dim(), pb.V.N, cracks, cracks)
     linear_tol = settings.linear_tol
     modes = rigid_modes(pb.V)
+    parts = tuple(translations(modes, pb.D, pb.mesh.dim()))  # the parts only Γ holds
     t0 = time.perf_counter()
     solve_kw = {"linear": linear} if linear == "direct" else {
         "linear": linear, "modes": modes, "blocksize": pb.mesh.dim(),
@@ -414,8 +416,16 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
                             lambda status, what, hint, laws=laws, label=state.label:
                             _check_rigid(pb, ops, laws, status, None, what, hint, label))
 
+        def determined(res, laws=laws, label=state.label):
+            """Whether a state found for a retry leaves no part free (:func:`_rescue`)."""
+            try:
+                check_determined(pb, ops, laws, res.status, res.y, modes, label, scaled)
+            except SingularSystemError:
+                return False
+            return True
+
         def one(start, U_prev, F1, g1, where, guess=None, laws=laws):
-            step = StepProblem(ops, pb.K, F1, free, U_prev, laws, rho_ref)
+            step = StepProblem(ops, pb.K, F1, free, U_prev, laws, rho_ref, parts)
             U = start.U.copy()
             U[pb.D] = g1
             start = Iterate(U, start.lam, start.r)
@@ -429,7 +439,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
                               **solve_kw, **watch)
             except ContactConvergenceError as failed:
                 return _rescue(step, start, failed, tol, max_iter, solve_kw,
-                               where + _blame(failed, pb, ops))
+                               where + _blame(failed, pb, ops), determined)
 
         where = f"load step {i + 1} of {len(states)} ({_describe(state.label)})"
         if names != names_before:  # a new law: the last increment predicts nothing
@@ -518,13 +528,17 @@ def step_results(result: Result) -> list[Result]:
 
 
 def _rescue(step: StepProblem, start: Iterate, failed: ContactConvergenceError, tol: float,
-            max_iter: int, solve_kw: dict, where: str = "a load step"):
+            max_iter: int, solve_kw: dict, where: str = "a load step", determined=None):
     """A step whose Newton iteration failed, solved again from the same start (module
     notes, which say why): Newton at the default ρ = E/h where the step's is another,
     then, for Coulomb, the paper's fixed point; from the first answer found, Newton
     with the step's own ρ.  Each attempt is said before it runs, by a
     :class:`StepRetryWarning` that starts with ``where``.  Re-raises ``failed`` if none
-    converges (``failed.retries``: how many ran)."""
+    converges (``failed.retries``: how many ran).  ``determined(res)``: whether a
+    state found leaves no part free (:func:`check_determined`); a retry that finds
+    one that does has failed (the fixed point may let a part that only Γ holds drift
+    off, every point open, by a rigid motion so large that the convergence test,
+    whose force scale grows with |U|, passes it), and the step is cut instead."""
     laws = step.laws
     attempts = []
     if not (np.allclose(laws.rho_n, step.rho_ref) and np.allclose(laws.rho_t, step.rho_ref)):
@@ -550,6 +564,9 @@ def _rescue(step: StepProblem, start: Iterate, failed: ContactConvergenceError, 
             it, res, info = newton(step, near, tol=tol, max_iter=max_iter, **solve_kw)
         except ContactConvergenceError as e:
             reason = f"Newton from the answer of {name} {_reason(e)}"
+            continue
+        if determined is not None and not determined(res):
+            reason = f"{name} found a state that leaves a part free"
             continue
         return it, res, replace(info, rescued=len(failed.statuses) - 1)
     failed.retries = len(attempts)

@@ -25,8 +25,12 @@ support takes that force.
    solve);
 3. the linear step J Δx = -R (:mod:`skxfem.contact.step`: SuperLU on J, a
    matrix unchanged since the last iteration not factorised again; or one
-   tie, solved only as accurately as the iterate needs, :func:`forcing`; a
-   singular one, an active set that leaves a part of the body free, is
+   tie, solved only as accurately as the iterate needs, :func:`forcing`; at a
+   singular one, an active set that leaves a part of the body free, a part
+   that only Γ holds, its every Coulomb point sliding, is first slid as a
+   rigid body to where friction holds it, a point sticking
+   (:mod:`skxfem.contact.slide`: the slip branch does not see how far it
+   slides); if the matrix stays singular, it is
    replaced by the Jacobian that keeps the points closed at the last iterate,
    then every point closed, then (Coulomb) every point closed and sticking (a
    part that only Γ holds, its every point sliding, is free along Γ in the
@@ -68,6 +72,7 @@ import scipy.sparse as sp
 from ..linalg.iterative import ConvergenceError
 from . import step as linear_step
 from .laws import LAWS, disk_projection, status
+from .slide import slide
 
 __all__ = ["Law", "PointLaws", "point_laws", "join_laws", "StepProblem", "Iterate", "Residual",
            "NewtonInfo", "ContactConvergenceError", "jumps", "residual", "jacobian",
@@ -189,7 +194,9 @@ class StepProblem:
     and load ``F`` on all unknowns, the ``free`` unknowns, ``U_prev`` (the
     converged state the slip increments start from), the ``laws`` and
     ``rho_ref`` (the reference ρ of the convergence test, E/h; several
-    interfaces: (m,), each dof its interface's)."""
+    interfaces: (m,), each dof its interface's); ``slides`` the translations (N, dim)
+    of each part that only Γ holds (:func:`skxfem.contact.slide.translations`), which
+    a singular step slides to where friction holds them (:func:`newton`)."""
 
     ops: object
     K: sp.csr_matrix
@@ -198,6 +205,7 @@ class StepProblem:
     U_prev: np.ndarray
     laws: PointLaws
     rho_ref: float | np.ndarray
+    slides: tuple = ()
 
     @property
     def nu(self) -> int:
@@ -433,8 +441,18 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
             dx, scaled, factor, krylov = _linear_step(
                 step, it, res, None, linear, modes, blocksize, factor, eta)
         except linear_step.SingularStepError as e:
-            dx, scaled, factor, krylov = _singular_fallback(
-                step, it, res, closed_before, linear, modes, blocksize, e, eta, setup)
+            slid = slide(step, it, res, step.F) if step.slides else None
+            if slid is not None:  # every point of a part only Γ holds slides: move it
+                it = Iterate(slid[0], it.lam, slid[1])
+                res = residual(step, it)
+            try:
+                if slid is None:
+                    raise e
+                dx, scaled, factor, krylov = _linear_step(
+                    step, it, res, None, linear, modes, blocksize, factor, eta)
+            except linear_step.SingularStepError as e2:
+                dx, scaled, factor, krylov = _singular_fallback(
+                    step, it, res, closed_before, linear, modes, blocksize, e2, eta, setup)
         if linear == "iterative":
             inner.append(krylov)
         if merit_rows is None:  # one merit for the whole step: no cycle can decrease it
