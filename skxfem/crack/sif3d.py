@@ -89,8 +89,10 @@ The integrand holds σ uᵃ,₁ ∼ 1/r near the front, integrated by the
 almost-polar rules of the front cells.  Faces that carry a traction (a contact or a tie
 on them, :mod:`skxfem.crack.faces3d`) add the face term -∫ tᵢ uᵃᵢ,₁ q dS on both faces
 (:mod:`skxfem.crack.interaction`), on the faces' rule graded at the front; free faces
-none.  The free surfaces the front meets add a boundary term when the bump reaches them
-(K is reported there but is only trusted a bump's width inside).
+none.  The free surfaces the front meets add a boundary term when the domain reaches them
+(K is reported there but is only trusted where the domain stays clear of them: a bump's
+width inside for a front square to them, farther for one that meets them obliquely,
+:func:`domain_reach`, :func:`end_reach`).
 
 >>> from skfem import MeshTet1
 >>> from skxfem.crack.geometry3d import crack_geometry_3d
