@@ -36,9 +36,11 @@ on *scalar* bases (built once by :func:`xfem_space` and shared with
 unknowns [a, b¹, b², …].  No cell is cut by two interfaces
 (:func:`skxfem.cut.check_apart`), so on a cell the enrichment of Γ_k is zero
 unless Γ_k cuts it (H^k is constant there and equals H^k_j at its nodes):
-the enrichments of two interfaces never meet on a cell, their blocks in K
-are zero, and K is :func:`enriched_blocks` of each interface around the one
-standard block A.  Each interface's own space ``per_interface[k]`` numbers
+the Heaviside enrichments of two interfaces never meet on a cell, their blocks
+in K are zero, and K is :func:`enriched_blocks` of each interface around the one
+standard block A.  A crack's branch functions reach past the cells it cuts (r_e
+from its front): a space that has them gives its blocks with the others
+(``coupling``, :func:`couplings`).  Each interface's own space ``per_interface[k]`` numbers
 [a, b^k]; :meth:`XSpaces.columns` places it among the unknowns.
 
 >>> from skfem import MeshTri1
@@ -71,7 +73,7 @@ from .fem.side_bases import Parts, parts, side_bases
 from .scene.boundary import dirichlet, imposed
 
 __all__ = ["XSpace", "XSpaces", "xfem_space", "stiffness", "mass",
-           "enriched_blocks", "as_spaces", "signed_bases", "far_side_fraction",
+           "enriched_blocks", "couplings", "as_spaces", "signed_bases", "far_side_fraction",
            "body_load",
            "jump_matrix", "split_fields", "from_fields", "region_fields", "constrained_dofs",
            "one_interface",
@@ -383,18 +385,43 @@ def signed_bases(V: XSpace, orders: tuple[int, int] | None = None):
     return side_bases(V.mesh, V.cut, V.basis.elem, cell_rule(V.mesh, orders[0]), orders[1])
 
 
-def enriched_blocks(V: XSpace | XSpaces, A, AH) -> sp.csr_matrix:
+def enriched_blocks(V: XSpace | XSpaces, A, AH, cross=None) -> sp.csr_matrix:
     """The X-FEM matrix on [a, b¹, b², …] from A = ∫ g(φᵢ, φⱼ) on the standard dofs
     and, for each interface k, A_H = ∫ H^k g(φᵢ, φⱼ) (``AH``, one per interface): A,
-    the blocks of each enrichment with A (module notes, H² = 1), and zero between two
-    enrichments.  Only the columns of the enriched dofs of each A_H are read."""
+    the blocks of each enrichment with A (module notes, H² = 1), and between two
+    enrichments ``cross[(j, k)]`` (j's rows, k's columns; :func:`couplings`), else zero.
+    Only the columns of the enriched dofs of each A_H are read."""
     V = as_spaces(V)
     A = A.tocsr()
+    cross = cross or {}
     parts = [Vk.blocks(A, AHk) for Vk, AHk in zip(V.per_interface, AH, strict=True)]
     rows = [[A] + [Aab for Aab, _ in parts]]
+
+    def between(k, j):
+        return cross[(k, j)] if (k, j) in cross else (
+            cross[(j, k)].T if (j, k) in cross else None)
+
     for k, (Aab, Abb) in enumerate(parts):
-        rows.append([Aab.T] + [Abb if j == k else None for j in range(len(parts))])
+        rows.append([Aab.T] + [Abb if j == k else between(k, j) for j in range(len(parts))])
     return sp.bmat(rows, format="csr")
+
+
+def couplings(V: XSpace | XSpaces, material: Material) -> dict:
+    """The stiffness blocks between the enrichments of two interfaces, ``(j, k) ->``
+    j's rows and k's columns, from a space's ``coupling(other, material)`` (a crack's:
+    its branch functions reach past the cells it cuts, into another crack's enriched
+    supports); none from two Heaviside spaces (a shifted Heaviside enrichment vanishes
+    outside its interface's cut cells, and no cell is cut by two)."""
+    spaces, out = as_spaces(V).per_interface, {}
+    for k in range(len(spaces)):
+        for j in range(k):
+            for a, b, key in ((spaces[j], spaces[k], (j, k)), (spaces[k], spaces[j], (k, j))):
+                if hasattr(a, "coupling"):
+                    block = a.coupling(b, material)
+                    if block is not None and block.nnz:
+                        out[key] = block
+                    break
+    return out
 
 
 def stiffness(V: XSpace | XSpaces, material: Material,
@@ -422,7 +449,7 @@ def stiffness(V: XSpace | XSpaces, material: Material,
     for Vk in V.per_interface:  # each space signs its own (a crack: its own blocks)
         A, AHk = Vk.signed_stiffness(material, A)
         AH.append(AHk)
-    return enriched_blocks(V, A, AH)
+    return enriched_blocks(V, A, AH, couplings(V, material))
 
 
 @BilinearForm

@@ -39,6 +39,8 @@ from typing import Callable
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .linalg.scalars import is_integer
+
 __all__ = ["LevelSet", "plane", "circle", "sphere", "union", "intersection",
            "complement", "nodal_values", "gradient", "point_normals", "unit"]
 
@@ -70,7 +72,7 @@ class LevelSet:
     def __post_init__(self):
         if not callable(self.fun):
             raise TypeError(f"LevelSet fun must be a callable psi(x), got {self.fun!r}")
-        ok = isinstance(self.dim, (int, np.integer)) and not isinstance(self.dim, bool)
+        ok = is_integer(self.dim)
         if not ok or self.dim not in (2, 3):
             raise (ValueError if ok else TypeError)(
                 f"LevelSet dim must be the int 2 or 3 (coordinates fun reads), got {self.dim!r}")

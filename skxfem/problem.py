@@ -37,6 +37,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
+from .crack.sif import check_clearance
 from .cut import Cut, check_apart
 from .enrich import XSpace, XSpaces, constrained_dofs, one_interface, stiffness
 from .gamma import Gamma, gamma
@@ -235,7 +236,9 @@ def assemble(scene: Scene | Resolved, law: str | None = None) -> Problem:
     ValueError
         An unknown law, a scene that does not fit its mesh, a level set that
         cuts no cell or vanishes on a region (from :func:`skxfem.cut.cut`), two
-        interfaces that cut one cell (:func:`skxfem.cut.check_apart`).
+        interfaces that cut one cell (:func:`skxfem.cut.check_apart`), a 2D crack's
+        tip within three cells of another interface
+        (:func:`skxfem.crack.sif.check_clearance`).
     """
     scene, mesh = resolve(scene)
     items = scene.interfaces
@@ -243,8 +246,9 @@ def assemble(scene: Scene | Resolved, law: str | None = None) -> Problem:
     timings, lap = _clock()
     gammas = [gamma(i) for i in items]   # the geometry of each Γ (skxfem.gamma)
     cuts = tuple(g.cut(mesh, scene.label(k)) for k, g in enumerate(gammas))
-    check_apart(mesh, cuts, [f"interfaces[{k}] ({i.levelset.name!r})"
-                             for k, i in enumerate(items)])
+    names = [f"interfaces[{k}] ({i.levelset.name!r})" for k, i in enumerate(items)]
+    check_apart(mesh, cuts, names)
+    check_clearance(mesh, cuts, names)      # a crack's tips clear of the other interfaces
     lap("cut")
     V = XSpaces(tuple(g.space(mesh, cut, scene.quadrature_order)
                       for g, cut in zip(gammas, cuts)))

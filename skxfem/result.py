@@ -253,14 +253,17 @@ def _joined(facets: np.ndarray) -> np.ndarray:
 def _fronts(pb, U: np.ndarray, traction: np.ndarray, steps=()) -> tuple:
     """The stress intensity factors of each interface with a front (its kind's
     :meth:`skxfem.gamma.Gamma.front`, given the interface's ``traction`` at its cut
-    points, which loaded faces carry, and the body force of the solved state, whose
-    term the interaction integral holds; None for one that has none), each with the
-    index of its ``interface`` in the scene."""
+    points, which loaded faces carry, the body force of the solved state, whose
+    term the interaction integral holds, and the scene's other interfaces with their
+    unknowns, whose fields reach into a front's domain; None for one that has none),
+    each with the index of its ``interface`` in the scene."""
     ends = np.cumsum([0] + [q.cut.edge_ids.size for q in pb.interfaces])
     force = _body_force(pb, steps)
+    qs = pb.interfaces
     fronts = (q.gamma.front(q.V, U[q.columns], pb.scene.material, traction[:, a:b],
-                            body_force=force)
-              for q, a, b in zip(pb.interfaces, ends[:-1], ends[1:]))
+                            body_force=force,
+                            others=tuple((o.gamma, o.V, U[o.columns]) for o in qs if o is not q))
+              for q, a, b in zip(qs, ends[:-1], ends[1:]))
     return tuple(dict(f, interface=k) for k, f in enumerate(fronts) if f is not None)
 
 

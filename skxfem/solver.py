@@ -87,7 +87,9 @@ def solve(scene: Scene | Resolved, dependent: str = "remove", linear: str | None
         :data:`LINEAR`: ``"direct"``, ``"iterative"`` (AMG + projected CG,
         pyamg), or ``"auto"``: the iterative one from :data:`AUTO_ITERATIVE`
         unknowns if pyamg is there (the direct one for a crack in 2D or with
-        multipliers on its faces: :func:`skxfem.linalg.choice.choose_linear`).
+        multipliers on its faces: :func:`skxfem.linalg.choice.choose_linear`),
+        and the direct one after it where CG stalls (``"iterative"`` asked for
+        then fails, naming the cure).
         ``None``: ``scene.solver.linear`` (default ``"auto"``).
     linear_tol
         The relative residual of the iterative solve, recorded in
@@ -205,8 +207,9 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
                                      **({"maxiter": ZONE_ITERATIONS} if try_cg else {}))
             linear = "iterative"
         except (iterative.ConvergenceError, saddle.SingularSystemError):
-            if not try_cg:
-                raise
+            if not (try_cg or settings.linear == "auto"):
+                raise                     # asked for 'iterative': its failure said
+            linear = "direct"             # auto: CG stalled, the direct solve decides
     if linear == "direct":                                # chosen, or CG stalled first
         try:
             U, mu, info = saddle.solve(p.K, B, p.F, D, p.g, G=G)
@@ -217,11 +220,15 @@ def solve_problem(p: Problem, dependent: str = "remove", linear: str | None = No
             held = f"the displacements and the {'/'.join(ties)} tie hold every rigid " \
                 "motion of each side of Γ" if ties else \
                 "the displacements hold every rigid motion of the body"
+            branch = (f"; or, a crack's branch functions enriching {zone:.0%} of the "
+                      f"nodes (nearly dependent over a zone many cells across), give it a "
+                      f"smaller enrichment_radius or enrichment = 'topological'"
+                      if any(cracks) else "")
             raise saddle.SingularSystemError(  # check_held found every rigid motion held
                 f"the {'tied ' if ties else ''}system is singular to working precision "
                 f"({e.detail}), although {held}: its conditioning is beyond double "
                 f"precision (a part of the body, or a material, far stiffer or smaller "
-                f"than the rest); refine the mesh there or rescale the scene") from e
+                f"than the rest); refine the mesh there or rescale the scene{branch}") from e
     seconds = time.perf_counter() - t0
     its = getattr(info, "iterations", None)
     linear_info = {"residual": float(info.residual), "balance": float(info.balance),

@@ -247,11 +247,33 @@ def test_a_crack_counts_its_branch_unknowns(enrichment, law):
         assert (e.n_multipliers == 0) == (law == "free")
 
 
+@pytest.mark.parametrize("n", [41, 81])
+def test_a_short_2d_cracks_zone_is_counted_on_its_depth(n):
+    """A centre crack of half-length 0.05 in the unit square: its space enriches three
+    depths around the tips, not a fifth of the diameter (skxfem.crack.radius.DEPTH_CAP);
+    the count follows, still a bound (the nodes' depth is a cell short of the pieces'):
+    measured 5544 / 4568 and 19 960 / 18 056 unknowns (0.2 D: 8 272, 30 424)."""
+    from skxfem.levelset import LevelSet
+    from skxfem.scene import Displacement, Interface, SurfaceLoad
+
+    crack = Interface(plane((0, 0.5 + 0.3 / n), (0, 1)), law="free",
+                      front=LevelSet(lambda x: np.abs(x[0] - 0.5) - 0.05, 2))
+    s = Scene(Box(n, "tri"), interfaces=(crack,), loads=(SurfaceLoad("ymax", traction=(
+        0.0, 1.0)),), displacements=(Displacement("ymin", {"y": 0.0}),
+                                     Displacement("xmin", {"x": 0.0}, where="y < 0.01")))
+    r = solve(s)
+    assert r.n_dofs <= estimate(s).n_dofs <= 1.25 * r.n_dofs
+
+
 def test_a_3d_crack_counts_its_tube_and_auto_resolves_as_the_solve():
     """The edge crack of benchmarks/crack_solve.py at n = 8 (9 990 unknowns, the branch
-    functions within r_e = 4 front cells): bounded within 1.5 times; with contact on its
-    faces ``auto`` is the direct solve, as :func:`skxfem.solve` takes it."""
+    functions within r_e = 4 front cells): its unknowns counted within 10 % (before: 12 636,
+    the zone on a cell's diameter); its zone holds most nodes, so ``auto`` tries CG and
+    solves directly if it stalls (skxfem.solver.solve_problem): the estimate prices the
+    direct solve and bounds both.  With contact on its faces ``auto`` is the direct
+    solve, as :func:`skxfem.solve` takes it."""
     from skxfem.fem.material import Material
+    from skxfem.linalg.choice import AUTO_ZONE
     from skxfem.scene import Displacement, Interface, SurfaceLoad
 
     def scene(law):
@@ -262,9 +284,12 @@ def test_a_3d_crack_counts_its_tube_and_auto_resolves_as_the_solve():
                      loads=(SurfaceLoad("zmax", traction=(0.0, 0.0, 1.0)),))
 
     e = estimate(scene("free"), "auto")
-    assert e.linear == "iterative" and e.n_multipliers == 0
     r = solve(scene("free"), linear="auto")
-    assert r.n_dofs == 9990 and r.n_dofs <= e.n_dofs <= 1.5 * r.n_dofs
+    assert r.n_dofs == 9990 <= e.n_dofs <= 1.1 * r.n_dofs and e.n_multipliers == 0
+    branch = r.problem.interfaces[0].V.space.branch.size
+    assert branch > AUTO_ZONE * r.mesh.nvertices and e.linear == "direct"
+    iterative = estimate(scene("free"), "iterative")
+    assert iterative.bytes < e.bytes == max(e.bytes, estimate(scene("free"), "direct").bytes)
     assert estimate(scene("frictionless"), "auto").linear == "direct"
 
 
@@ -280,3 +305,93 @@ def test_a_2d_crack_is_estimated_for_the_direct_solve_that_auto_takes():
 
     crack, tie = estimate(scene(plane((0.5, 0), (1, 0))), "auto"), estimate(scene(None), "auto")
     assert crack.n_dofs > 10**5 and (crack.linear, tie.linear) == ("direct", "iterative")
+
+
+CRACK_PEAK = r"""
+import json, sys
+import numpy as np
+from skxfem import scenes
+from skxfem.fem.material import Material
+from skxfem.levelset import plane
+from skxfem.scene import Box, Interface, Scene, SurfaceLoad, clamped
+from skxfem.solver import solve
+from skxfem.studies import budget
+from skxfem.studies.cracks import inclined_scene
+
+def status(key):                             # kB in /proc/self/status
+    with open("/proc/self/status") as f:
+        return 1024 * int(next(l for l in f if l.startswith(key)).split()[1])
+
+kind, cell, n, law = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
+if kind == "inclined":                       # two tips, Coulomb or frictionless faces
+    scene = inclined_scene(n, 30.0, 0.3 if law == "coulomb" else 0.0, cell=cell)[1]
+else:                                        # an edge crack to the middle, mid-cell
+    dim = 2 if cell in ("tri", "quad") else 3
+    e = np.eye(dim)
+    crack = Interface(plane((0.5,) * (dim - 1) + ((n // 2 + 0.5) / n,), e[-1]), law=law,
+                      front=plane((0.5,) * dim, e[0]))
+    top, bottom = ("ymax", "ymin") if dim == 2 else ("zmax", "zmin")
+    load = SurfaceLoad(top, traction=tuple(e[-1])) if law == "free" else \
+        SurfaceLoad(top, pressure=1.0)
+    scene = Scene(Box((n,) * dim, cell), interfaces=(crack,), material=Material(1.0, 0.3),
+                  displacements=(clamped(bottom),), loads=(load,))
+solve(scenes.strip(2, cell="quad"))          # imports and caches before measuring
+before = status("VmRSS:")
+with open("/proc/self/clear_refs", "w") as f:
+    f.write("5")                             # reset the peak (VmHWM) to the current RSS
+solve(scene)
+print(json.dumps({"measured": status("VmHWM:") - before,
+                  "estimate": budget.estimate(scene).bytes}))
+"""
+
+
+@pytest.mark.parametrize("case", ["edge:tet:6:frictionless", "edge:tet:6:free",
+                                  "edge:tri:41:free", "inclined:tri:21:coulomb",
+                                  "inclined:quad:21:frictionless"])
+def test_a_cracks_memory_is_an_upper_bound_within_the_stated_factor(case):
+    """As test_08 for cracks (auto, as ``skxfem run``), 2D and 3D, free and contact
+    faces.  Before, the 3D free crack was below its peak (0.44 times: priced for the
+    iterative solve that auto, its zone most of the cube, gives up for the direct one)
+    and the contact cracks 3-6 times above (the whole plane's edges as multipliers)."""
+    done = subprocess.run([sys.executable, "-c", CRACK_PEAK, *case.split(":")],
+                          capture_output=True, text=True, timeout=300, check=True)
+    r = json.loads(done.stdout)
+    assert r["measured"] > 15 * 2**20, "large enough to be measured"
+    assert r["measured"] <= r["estimate"] <= FACTOR * r["measured"], r
+
+
+CUBE = """name = "cube"
+[mesh]
+box = {{n = {n}, cell = "tet"}}
+[levelset]
+expr = "z - 0.5"
+front = "x - 0.5"
+[interface]
+law = "frictionless"
+[material]
+E = 1.0
+nu = 0.3
+[[displacement]]
+boundary = "zmin"
+kind = "clamped"
+[[load]]
+boundary = "zmax"
+{load}
+"""
+
+
+@pytest.mark.parametrize("n, peak", [(10, 1.35), (11, 0.43)])
+@pytest.mark.parametrize("load", ["pressure = 1.0", "traction = [0.0, 0.0, 1.0]"])
+def test_a_contact_crack_scene_passes_the_clis_default_limit(n, peak, load, tmp_path):
+    """The edge crack on the 10³ (through nodes) and 11³ (mid-cell) cubes of
+    tetrahedra, frictionless faces, the top pressed or pulled: the check ``skxfem run``
+    makes (budget.check at the default 4 GB) refused them at 11.2 and 12.7 GB; their
+    peaks, pressed, measured with ``scripts/calibrate_budget.py`` (its notes), are 1.35
+    and 0.43 GB (1.45 and 0.51 GB in the session that found the refusal)."""
+    from skxfem.app.cli import load_scene
+
+    path = tmp_path / "cube.toml"
+    path.write_text(CUBE.format(n=n, load=load))
+    e = check(load_scene(path), budget.DEFAULT_MAX_BYTES, "--max-memory")
+    assert e.linear == "direct" and e.n_multipliers > 0
+    assert peak * 2**30 <= e.bytes <= 3 * peak * 2**30

@@ -27,12 +27,11 @@ def test_box_size_is_exact_where_numpy_wraps(n):
 
 
 @pytest.mark.parametrize("chunk", [10**6, 300])
-def test_a_cracks_counts_in_one_sweep_are_those_of_three(chunk, monkeypatch):
-    """box_crack_counts is box_counts, box_crack_depth and box_front_nodes (a penny in a
-    Box of tetrahedra; one slab, and many when the slabs hold 300 nodes) and
-    mesh_crack_counts the mesh's three on the built Box (the same depth and front nodes:
-    they are the nodes'); in one slab and on the mesh ψ and φ are evaluated once at
-    each node."""
+def test_a_cracks_counts_on_a_box_are_those_of_the_built_box(chunk, monkeypatch):
+    """box_crack_counts (one slab, and many when the slabs hold 300 nodes) counts what
+    mesh_crack_counts counts on the built Box (a penny on tetrahedra: the cubes hold
+    the tetrahedra, so the crack and front nodes are bounds, the rest equal); in one slab
+    and on the mesh ψ and φ are evaluated once at each node."""
     import numpy as np
 
     import skxfem.studies.counts as c
@@ -51,22 +50,51 @@ def test_a_cracks_counts_in_one_sweep_are_those_of_three(chunk, monkeypatch):
     phi = counted("phi", lambda x: np.hypot(x[0] - 0.5, x[1] - 0.4) - 0.3)
     b = Box((9, 8, 7), "tet")
 
-    def radius(depth):
-        return 0.5 * depth + 0.1
+    def radius(depth, h):
+        return 0.5 * depth + h
 
-    one = c.box_crack_counts(b, psi, phi, 0.2, radius)
-    depth = c.box_crack_depth(b, psi, phi, 0.2)
-    assert one == (c.box_counts(b, psi), depth, c.box_front_nodes(b, psi, phi, radius(depth)))
-    assert 0 < one[2] < box_size(b)[0] and depth > 0
+    one = c.box_crack_counts(b, psi, phi, radius)
     m = box(b.n, "tet")
     calls.update(psi=0, phi=0)
-    on_mesh = c.mesh_crack_counts(m, psi, phi, 0.2, radius)
+    on_mesh = c.mesh_crack_counts(m, psi, phi, radius)
     assert calls == {"psi": m.nvertices, "phi": m.nvertices}
-    mesh_depth = c.mesh_crack_depth(m, psi, phi, 0.2)
-    assert on_mesh == (c.mesh_counts(m, psi), mesh_depth,
-                       c.mesh_front_nodes(m, psi, phi, radius(mesh_depth)))
-    assert on_mesh[1:] == one[1:]
+    assert (one.nodes, one.cells, one.points, one.depth) == \
+        (on_mesh.nodes, on_mesh.cells, on_mesh.points, on_mesh.depth)
+    assert np.isclose(one.front_size, on_mesh.front_size) and one.branch == on_mesh.branch
+    assert one.crack_nodes >= on_mesh.crack_nodes and one.front_nodes >= on_mesh.front_nodes
+    assert 0 < one.branch < one.nodes and one.depth > 0 and one.points > 0
     calls.update(psi=0, phi=0)
-    c.box_crack_counts(b, psi, phi, 0.2, radius)
+    c.box_crack_counts(b, psi, phi, radius)
     if chunk == 10**6:
         assert calls == {"psi": m.nvertices, "phi": m.nvertices}
+
+
+@pytest.mark.parametrize("n, z0, front", [(6, 0.5, "edge"), (7, 0.5, "edge"),
+                                          (6, 0.52, "penny"), (8, 0.5, "penny")])
+def test_a_cracks_counts_are_its_space_and_points(n, z0, front):
+    """On a cube of tetrahedra, the crack and the node plane or not: the branch and
+    Heaviside nodes and r_e are those of skxfem.crack.space3d (r_e to 0.2 %: the space
+    snaps its nodal values and takes its front cells to round-off) (the zone as
+    skxfem.crack.radius builds it, found from the nodes), the points those the crack
+    carries (its own cut points behind the front; before, every edge the whole plane
+    ψ = 0 touched: 2342 for 55 at n = 10)."""
+    import numpy as np
+
+    from skxfem.crack.geometry3d import crack_geometry_3d
+    from skxfem.crack.radius import default_radius
+    from skxfem.crack.space3d import crack_space_3d
+    from skxfem.levelset import LevelSet, plane
+    from skxfem.studies.counts import box_crack_counts
+
+    psi = plane((0.5, 0.5, z0), (0, 0, 1))
+    phi = plane((0.5, 0.5, 0.5), (1, 0, 0)) if front == "edge" else \
+        LevelSet(lambda x: np.hypot(x[0] - 0.5, x[1] - 0.5) - 0.3, 3, "penny")
+    counts = box_crack_counts(Box(n, "tet"), psi, phi,
+                              lambda depth, h: default_radius(3, depth, h))
+    m = box(n, "tet")
+    g = crack_geometry_3d(m, psi, phi)
+    V = crack_space_3d(m, g)
+    assert np.isclose(counts.radius, V.radius, rtol=2e-3)      # its snapped nodal values
+    assert V.branch.size <= counts.branch <= 1.1 * V.branch.size
+    assert counts.heaviside >= V.heaviside.size
+    assert g.points.shape[1] <= counts.points <= 2 * g.points.shape[1]

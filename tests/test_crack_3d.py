@@ -545,11 +545,12 @@ def test_domain_reach_is_half_the_radius_of_curvature_on_a_penny():
     assert np.allclose(reach, 0.55 / 2, rtol=0.08) and 0.1 < h < 0.2, (reach, h)
 
 
-@pytest.mark.parametrize("front", [0.97, 1 - 1e-9, 1.0])
+@pytest.mark.parametrize("front", [0.97, 1 - 1e-9])
 def test_a_front_within_a_cell_of_the_boundary_gets_no_K_and_a_warning(front):
     """An edge crack's straight front 0.03 from the far side (h = 1/8): its domain held
     no cell and K_I came out 48 to 55; on the side, 'I holds 3 NaN'.  Now no point has K,
-    with a warning; the solve's other results stand."""
+    with a warning; the solve's other results stand.  (On the side itself, 1.0, the
+    crack cuts the body through and is refused: kind3d.front_on_boundary.)"""
     from skxfem.crack.kind3d import FrontPointsWarning
     from skxfem.levelset import plane
     from skxfem.solver import solve

@@ -755,3 +755,56 @@ def test_load_steps_given_to_a_tie_are_refused_not_ignored(law):
                            r"contact solve .*leave steps out, or scale the loads"):
             solve(dataclasses.replace(s, steps=steps))
     assert solve(s).U.shape == solve(dataclasses.replace(s, steps=(1,))).U.shape
+
+
+def test_auto_falls_back_to_the_direct_solve_where_cg_stalls(monkeypatch):
+    """``linear='auto'`` chose CG for a 3D crack (zone under AUTO_ZONE) and, where CG did
+    not reach 1e-12 in 500 iterations, stopped with 'use the direct solve' (a slab on
+    rollers, n = 10: 5.3e-4): auto is the solve's own choice, so a stalled CG now hands
+    the solve to the direct one; asked for by name, 'iterative' still fails, naming the
+    cure.  (CG is made to stall here; the slab itself takes 10 s.)"""
+    import skxfem.linalg.iterative as iterative
+    import skxfem.solver as solver
+
+    scene = strip(8, cell="quad")
+    monkeypatch.setattr(solver, "choose_linear",       # auto chooses CG, whatever the size
+                        lambda method, *a, **k: "iterative" if method == "auto" else method)
+
+    def stalls(*args, **kwargs):
+        raise iterative.ConvergenceError("projected CG did not reach 1e-12 (test)", 500, 5e-4)
+
+    monkeypatch.setattr(iterative, "solve", stalls)
+    r = solve(scene, linear="auto")
+    assert r.linear == "direct"
+    direct = solve(scene, linear="direct")
+    assert np.allclose(r.pressure, direct.pressure, rtol=1e-12, atol=1e-14)
+    with pytest.raises(iterative.ConvergenceError, match="did not reach"):
+        solve(scene, linear="iterative")
+
+
+def test_a_singular_crack_system_names_the_enrichment_radius():
+    """Two arcs of one circle (R = 3) as one crack with four tips in a 20 x 20 plate, h =
+    1/3: the default zone enriches half the nodes with branch functions, nearly
+    dependent far from the tips, and the LU found the system singular; the message
+    blamed 'a part of the body, or a material, far stiffer or smaller' only.  It now
+    names the crack's zone and the cure, which solves."""
+    from skxfem.levelset import LevelSet
+    from skxfem.linalg.saddle import SingularSystemError
+    from skxfem.scene import Interface
+
+    def scene(**radius):
+        crack = Interface(LevelSet(lambda x: np.hypot(x[0] - 10, x[1] - 10) - 3, 2, "ring"),
+                          law="free", front=LevelSet(lambda x: np.abs(x[0] - 10) - 2, 2,
+                                                     "ends"), **radius)
+        return Scene(Box(60, "tri", size=(20.0, 20.0)), interfaces=(crack,),
+                     displacements=(Displacement("ymin", {"x": 0.0, "y": 0.0},
+                                                 where="x < 1e-9"),
+                                    Displacement("ymin", {"y": 0.0}, where="x > 20 - 1e-9")),
+                     loads=(SurfaceLoad("ymax", traction=(0.0, 1.0)),
+                            SurfaceLoad("ymin", traction=(0.0, -1.0))))
+
+    with pytest.raises(SingularSystemError, match=r"crack's branch functions enriching \d+% "
+                       r"of the nodes.*smaller enrichment_radius"):
+        solve(scene(), linear="direct")
+    (front,) = solve(scene(enrichment_radius=2.0), linear="direct").front
+    assert front["K_I"].size == 4 and np.all(front["K_I"] > 0)

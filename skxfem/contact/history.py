@@ -97,12 +97,12 @@ from ..linalg.dependent import dependencies, unit_rows
 from ..linalg.iterative import stiffness_setup
 from ..linalg.rigid import check_held
 from ..linalg.saddle import SingularSystemError
+from ..linalg.scalars import is_integer, is_number
 from ..linalg.threads import limited
 from ..problem import Problem, assemble, state_loads
 from ..result import Result, on_edges, result
 from ..scene.laws import in_words
 from ..scene.model import Interface, Scene, check_steps, resolve
-from ..scene.parts import is_number
 from ..scene.settings import MAX_ITER
 from .fixed_point import fixed_point
 from .holding import check_held_by_gamma
@@ -366,8 +366,7 @@ def solve(scene: Scene, history=None, method: str = "newton", tol: float = TOL,
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
-    if not (isinstance(max_cuts, (int, np.integer)) and not isinstance(max_cuts, bool)
-            and max_cuts >= 0):
+    if not (is_integer(max_cuts) and max_cuts >= 0):
         raise ValueError(f"max_cuts must be an integer >= 0, got {max_cuts!r}")
     max_cuts = int(max_cuts)
     if not (isinstance(tol, float) and 0 < tol < 1):

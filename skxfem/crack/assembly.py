@@ -73,7 +73,7 @@ from skfem import Basis
 
 from ..fem.loads import force_field
 from ..fem.material import Material, stiffness_matrix
-from ..fem.quadrature import cell_rule, exact_orders
+from ..fem.quadrature import cell_rule, exact_orders, subcell_rule
 from .quadrature import (
     BRANCH_ORDER,
     NEAR_ORDER,
@@ -84,7 +84,9 @@ from .quadrature import (
 )
 from .space import CrackSpace, evaluation
 
-__all__ = ["FACET_POINTS", "RuleGroup", "rule_groups", "stiffness", "mass", "Support",
+__all__ = ["FACET_POINTS", "RuleGroup", "rule_groups", "stiffness", "coupling",
+           "cut_coupling", "mass",
+           "Support",
            "Load", "facet_pieces", "traction_load", "face_rule", "face_load",
            "body_load", "supported_dofs", "support_dofs", "dependent_dofs", "mouth_facets",
            "check_facets"]
@@ -197,14 +199,129 @@ def stiffness(space: CrackSpace, material: Material) -> sp.csr_matrix:
     for G in rule_groups(space, near):
         cells, ref, side, _, w = G.points()
         B = evaluation(space, cells, ref, side).grad     # rows (2 i + j) npts + p
-        n = cells.size
-        e11, e22 = B[:n], B[3 * n:]
-        e12 = (B[n:2 * n] + B[2 * n:3 * n]) / 2
-        W = sp.diags(w)
-        K = K + (e11.T @ W @ ((lam + 2 * mu) * e11 + lam * e22)
-                 + e22.T @ W @ ((lam + 2 * mu) * e22 + lam * e11)
-                 + 4 * mu * (e12.T @ W @ e12))
+        K = K + _strain_energy(B, B, w, lam, mu)
     return K.tocsr()
+
+
+def _strain_energy(Bu: sp.csr_matrix, Bv: sp.csr_matrix, w: np.ndarray, lam: float,
+                   mu: float) -> sp.csr_matrix:
+    """∫ σ(u):ε(v) on the points of weights w, from the gradient operators Bu, Bv (rows
+    (2 i + j) npts + p, :func:`skxfem.crack.space.evaluation`): rows Bv's columns."""
+    n = w.size
+    u11, u22, u12 = Bu[:n], Bu[3 * n:], (Bu[n:2 * n] + Bu[2 * n:3 * n]) / 2
+    v11, v22, v12 = Bv[:n], Bv[3 * n:], (Bv[n:2 * n] + Bv[2 * n:3 * n]) / 2
+    W = sp.diags(w)
+    return (v11.T @ W @ ((lam + 2 * mu) * u11 + lam * u22)
+            + v22.T @ W @ ((lam + 2 * mu) * u22 + lam * u11)
+            + 4 * mu * (v12.T @ W @ u12))
+
+
+def coupling(space: CrackSpace, other: CrackSpace, material: Material) -> sp.csr_matrix:
+    """The stiffness between the enrichments of two cracks of one scene: ∫ σ(u):ε(v), v
+    on ``space``'s enriched unknowns (rows), u on ``other``'s (columns), an
+    (N - n_std, N_other - n_std) block.
+
+    A crack's branch functions reach r_e from its tip, past its own cells: where two
+    cracks' enriched supports share cells their enrichments interact, and the whole
+    stiffness holds this block (and its transpose) between them.  Each shared cell on
+    the rules of the crack that cuts it or whose tip it is near (:func:`rule_groups`: the
+    almost-polar rule, sub-triangles), the others on the other crack's rules at least at
+    the branch functions' order.
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> from skxfem.crack.space import crack_space
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 12), np.linspace(0, 1, 12))
+    >>> a = crack_space(m, crack_geometry(m, m.p[1] - 0.3, m.p[0] - 0.45), "geometric", 0.4)
+    >>> b = crack_space(m, crack_geometry(m, m.p[1] - 0.7, m.p[0] - 0.45), "geometric", 0.4)
+    >>> C = coupling(a, b, Material(1.0, 0.3))
+    >>> C.shape == (a.N - a.n_std, b.N - b.n_std), bool(abs(C).max() > 0)
+    (True, True)
+    >>> bool(abs(coupling(b, a, Material(1.0, 0.3)) - C.T).max() < 1e-12)
+    True
+    """
+    mesh = space.mesh
+    lam, mu = material.lame(2)
+    shared = np.intersect1d(space.support_cells(space.enriched_nodes()),
+                            other.support_cells(other.enriched_nodes()))
+    block = sp.csr_matrix((space.N - space.n_std, other.N - other.n_std))
+    if not shared.size:
+        return block
+
+    def own(V):                     # its cut cells and the cells around its tip cells
+        near = V.support_cells(np.unique(mesh.t[:, V.geometry.tip_cells]))
+        return np.union1d(np.flatnonzero(V.geometry.side == 0), near)
+
+    mine = np.setdiff1d(np.intersect1d(shared, own(space)),
+                        np.flatnonzero(other.geometry.side == 0))
+    for first, cells in ((space, mine), (other, np.setdiff1d(shared, mine))):
+        if not cells.size:
+            continue
+        for G in rule_groups(first, cells, plain_order=BRANCH_ORDER):
+            c, ref, side, _, w = G.points()
+            sides = {id(first): side, id(space if first is other else other): None}
+            Bv = evaluation(space, c, ref, sides[id(space)]).grad[:, space.n_std:]
+            Bu = evaluation(other, c, ref, sides[id(other)]).grad[:, other.n_std:]
+            block = block + _strain_energy(Bu, Bv, w, lam, mu)
+    return block.tocsr()
+
+
+def cut_coupling(space: CrackSpace, other, material: Material) -> sp.csr_matrix:
+    """The stiffness between a crack's enrichment (rows) and the Heaviside enrichment of
+    a cut interface of the same scene (``other``, a :class:`skxfem.enrich.XSpace`;
+    columns): an (N - n_std, other.n_enr) block.
+
+    The cut's shifted enrichment φⱼ(H - Hⱼ) lives on its cut cells only, and there the
+    crack's own Heaviside enrichment is zero (no cell is cut by two interfaces): the
+    block is the crack's branch functions against it, on the cut's sub-triangles of each
+    side (H = ±1 there) at the branch functions' order.
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> from skxfem.crack.space import crack_space
+    >>> from skxfem.cut import cut
+    >>> from skxfem.enrich import xfem_space
+    >>> from skxfem.levelset import plane
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 12), np.linspace(0, 1, 12))
+    >>> a = crack_space(m, crack_geometry(m, m.p[1] - 0.3, m.p[0] - 0.45), "geometric", 0.4)
+    >>> b = xfem_space(m, cut(m, plane((0, 0.62), (0, 1))))
+    >>> C = cut_coupling(a, b, Material(1.0, 0.3))
+    >>> C.shape == (a.N - a.n_std, b.n_enr), bool(abs(C).max() > 0)
+    (True, True)
+    """
+    mesh, ocut = space.mesh, other.cut
+    lam, mu = material.lame(2)
+    block = sp.csr_matrix((space.N - space.n_std, other.n_enr))
+    shared = np.intersect1d(space.support_cells(space.branch), ocut.cells)
+    column = np.full(other.n_std, -1)
+    column[other.enr_dofs] = np.arange(other.n_enr)
+    H = np.asarray(other.H_node, float)
+    for s in (-1.0, 1.0):
+        sub = np.flatnonzero((ocut.sub_side == s) & np.isin(ocut.sub_cell, shared))
+        if not sub.size:
+            continue
+        rule = subcell_rule(ocut.sub_ref[sub], np.arange(sub.size), BRANCH_ORDER)
+        b = Basis(mesh, mesh.elem(), elements=ocut.sub_cell[sub], quadrature=(rule.X, rule.W))
+        live = b.dx != 0
+        cells = np.broadcast_to(b.tind[:, None], live.shape)[live]
+        ref = rule.X[:, live]
+        Bv = evaluation(space, cells, ref).grad[:, space.n_std:]
+        n = cells.size
+        rows, cols, vals = [], [], []
+        for k in range(b.Nbfun):                          # φⱼ (s - Hⱼ) eᶜ: its gradient
+            dN = np.asarray(b.basis[k][0].grad)[:, live]  # (2, n)
+            node = mesh.t[k, cells]
+            for c in range(2):
+                e = column[other.basis.nodal_dofs[c, node]]
+                ok = e >= 0
+                for j in range(2):
+                    rows.append((2 * c + j) * n + np.flatnonzero(ok))
+                    cols.append(e[ok])
+                    vals.append(dN[j, ok] * (s - H[e[ok]]))
+        Bu = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                           shape=(4 * n, other.n_enr))
+        block = block + _strain_energy(Bu, Bv, b.dx[live], lam, mu)
+    return block.tocsr()
 
 
 def mass(space: CrackSpace) -> sp.csr_matrix:

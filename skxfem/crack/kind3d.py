@@ -67,8 +67,8 @@ from .space3d import (
 )
 from .xspace import CrackXSpaceBase
 
-__all__ = ["Crack3D", "CrackXSpace3D", "FrontPointsWarning", "front_reach", "interior_points",
-           "room_advice", "warn_closing", "CLOSING"]
+__all__ = ["Crack3D", "CrackXSpace3D", "FrontPointsWarning", "front_reach", "front_on_boundary",
+           "interior_points", "room_advice", "warn_closing", "CLOSING"]
 
 
 class FrontPointsWarning(UserWarning):
@@ -180,6 +180,36 @@ def front_reach(space, radius: float | None = None
     return P, reach, h, interior_points(P, chains, L) & clear
 
 
+def front_on_boundary(mesh, geo) -> np.ndarray:
+    """Whether each front segment of the 3D crack ``geo`` lies on the body's boundary (nseg,):
+    both its ends within round-off (1e-9 of its cell's size) of the plane of a boundary
+    face of its cell.  A front all on the boundary is a crack that cuts the body through
+    (:meth:`Crack3D.cut` refuses it, as the 2D kind refuses a tip on the boundary).
+
+    >>> from skfem import MeshTet1
+    >>> from skxfem.crack.geometry3d import crack_geometry_3d
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 5),) * 3)
+    >>> g = crack_geometry_3d(m, lambda x: x[2] - 0.52, lambda x: x[0] - 1.0)
+    >>> bool(front_on_boundary(m, g).all())
+    True
+    >>> g = crack_geometry_3d(m, lambda x: x[2] - 0.52, lambda x: x[0] - 0.6)
+    >>> bool(front_on_boundary(m, g).any())
+    False
+    """
+    ends, cells = geo.segments, geo.segment_cell              # (2, 3, nseg), (nseg,)
+    boundary = np.zeros(mesh.facets.shape[1], dtype=bool)
+    boundary[mesh.boundary_facets()] = True
+    size = np.ptp(mesh.p[:, mesh.t[:, cells]], axis=1).max(axis=0)      # (nseg,)
+    on = np.zeros(cells.size, dtype=bool)
+    for f in mesh.t2f[:, cells]:                              # each face of each cell
+        a, b, c = (mesh.p[:, mesh.facets[k, f]] for k in range(3))
+        n = np.cross(b - a, c - a, axis=0)
+        n = n / np.linalg.norm(n, axis=0)
+        d = np.abs(((ends - a[None]) * n[None]).sum(axis=1)).max(axis=0)   # (nseg,)
+        on |= boundary[f] & (d <= 1e-9 * size)
+    return on
+
+
 @dataclass(frozen=True)
 class Crack3D:
     """A 3D crack: Γ = {ψ = 0, φ < 0} on a ``MeshTet1``, φ the interface's ``front``
@@ -194,10 +224,18 @@ class Crack3D:
         ValueError naming ``label`` if it crosses no cell."""
         i = self.interface
         try:
-            return crack_geometry_3d(mesh, i.levelset.fun, i.front.fun)
+            geo = crack_geometry_3d(mesh, i.levelset.fun, i.front.fun)
         except ValueError as err:
             raise ValueError(f"{label or 'the crack'} ({i.levelset.name!r}, front "
                              f"{i.front.name!r}): {err}") from None
+        if geo.segments.shape[-1] and front_on_boundary(mesh, geo).all():
+            raise ValueError(
+                f"{label or 'the crack'} ({i.levelset.name!r}, front {i.front.name!r}): its "
+                f"front lies on the body's boundary all along, so the crack cuts the body "
+                f"through (held together along that line only, and no K anywhere): for a "
+                f"surface that cuts the body through leave the front out (an interface of "
+                f"skxfem.cut), or move the front (phi = 0) into the body")
+        return geo
 
     def space(self, mesh, cut, order: int | None = None):
         """The crack's space [a, b, c] (:func:`skxfem.crack.space3d.crack_space_3d` with the
@@ -256,7 +294,8 @@ class Crack3D:
             owner[mesh.t2e[k]] = np.arange(mesh.t.shape[1])
         return (_face_jump(V.space, point_cells(cut, owner), cut.points) @ U).reshape(3, -1)
 
-    def front(self, V, U: np.ndarray, material, traction=None, body_force=None) -> dict:
+    def front(self, V, U: np.ndarray, material, traction=None, body_force=None, others=()
+              ) -> dict:
         """``points`` (m, 3) along the front (:func:`skxfem.crack.sif3d.front_points`),
         ``K_I``, ``K_II``, ``K_III`` (m,) there (:func:`skxfem.crack.sif3d.sif_3d`, the
         interface's ``sif_radius`` the radial cone's radius; ``body_force`` the body

@@ -8,7 +8,8 @@ both take
 
 .. math::
 
-    r_e = \max\left(f\, L,\; \frac{n_d\, h}{0.75}\right),
+    r_e = \max\left(f\, L,\; \frac{n_d\, h}{0.75}\right)\quad
+    \bigl(\text{2D: } f L \text{ at most } 3a\bigr),
 
 L a length of the problem (the mesh's diameter D in 2D, the crack's depth a in 3D: the
 largest distance from a point of the crack to its front,
@@ -30,7 +31,15 @@ a straight 3D front at h = 1/11).  The dimension enters through L and two number
   9.8 a across) from 6.1 s to 20 s for the same K.  The singular field's zone scales
   with the crack (the K-dominated zone is a fraction of a), hence a in 3D (the cube's
   edge crack: 0.1; a penny: 0.2 a, the study's 0.3 a within 0.2 %, below), whereas 2D
-  keeps D, measured on its plates (0.2 D: K_I -0.36 %; 16/3 cells: -1.15 %);
+  keeps D, measured on its plates (0.2 D: K_I -0.36 %; 16/3 cells: -1.15 %), but at
+  most ``DEPTH_CAP`` = 3 crack depths a (:func:`skxfem.crack.space.crack_depth`): a
+  fifth of the body around a short crack is many times its length.  A centre crack of
+  half-length 0.05 in the unit square under tension (29 November, one run each):
+  K_I/σ√(πa) 1.0095, 1.0096, 1.0095 at n = 41, 81, 161 with 0.2 D = 0.28 (7 672,
+  29 624, 116 280 unknowns; 0.8, 3.4, 21.8 s), 1.0089, 1.0096, 1.0095 with 3 a (4 568,
+  18 056, 71 960; 0.17, 0.52, 2.7 s); with 2 a 1.0078, -, 1.0094 and with 1.33 a
+  (the tip's room over 0.75) 1.0033, 1.0087, 1.0092.  The plates, the Williams square
+  and the closed inclined crack have 3 a above 0.2 D: their r_e is as before;
 * ``DOMAIN_CELLS`` n_d: the default domain in cells, 4 tip-cell sizes in 2D
   (:data:`skxfem.crack.sif.DEFAULT_CELLS`), 3 front-cell sizes across the front in 3D
   (:data:`skxfem.crack.sif3d.DEFAULT_RADIUS`), so r_e ≥ 16/3 h and 4 h.  The floor is what makes
@@ -65,7 +74,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-__all__ = ["ENRICHMENTS", "SIZE_FRACTION", "DOMAIN_CELLS", "DOMAIN_FRACTION",
+__all__ = ["ENRICHMENTS", "SIZE_FRACTION", "DEPTH_CAP", "DOMAIN_CELLS", "DOMAIN_FRACTION",
            "default_radius", "default_enrichment_radius", "enrichment_radius",
            "check_radius", "geometric_nodes"]
 
@@ -75,6 +84,10 @@ ENRICHMENTS = ("topological", "geometric")
 SIZE_FRACTION = {2: 0.2, 3: 0.2}
 """f: the fixed part of the default r_e, in lengths L of the problem: the mesh's diameter
 in 2D, the crack's depth in 3D (module notes)."""
+
+DEPTH_CAP = 3.0
+"""In 2D, the fixed part of the default r_e is at most this many crack depths (module
+notes): a fifth of the mesh's diameter is the plates' radius, not a short crack's."""
 
 DOMAIN_CELLS = {2: 4.0, 3: 3.0}
 """n_d: the default interaction domain's radius in front-cell sizes (module notes)."""
@@ -87,31 +100,40 @@ h = 1/21 (triangles, mode I): r_e = 0.141 with a 4-cell domain (r_d = 0.19 > r_e
 +1.0 %; r_e = 0.283, r_d = 0.75 r_e +0.24 %."""
 
 
-def default_radius(dim: int, length: float, h: float) -> float:
-    """The default r_e = max(f L, n_d h / 0.75) in ``dim`` D (module notes), L the
-    problem's ``length`` (the mesh's diameter in 2D, the crack's depth in 3D) and ``h``
-    the size of the front's cells.
+def default_radius(dim: int, length: float, h: float, cap: float = np.inf) -> float:
+    """The default r_e = max(min(f L, ``cap``), n_d h / 0.75) in ``dim`` D (module notes),
+    L the problem's ``length`` (the mesh's diameter in 2D, the crack's depth in 3D), ``h``
+    the size of the front's cells and ``cap`` a bound of the fixed part (2D:
+    :data:`DEPTH_CAP` crack depths).
 
     >>> round(default_radius(3, 0.5, 1 / 16), 4), round(default_radius(3, 0.5, 1 / 48), 4)
     (0.25, 0.1)
+    >>> round(default_radius(2, 2 ** 0.5, 1 / 161), 4)      # a short crack: f D ...
+    0.2828
+    >>> round(default_radius(2, 2 ** 0.5, 1 / 161, cap=3 * 0.05), 4)   # ... or 3 depths
+    0.15
     """
     if dim not in SIZE_FRACTION:
         raise ValueError(f"mesh must be 2D or 3D, got {dim}D")
     if not (np.isfinite(h) and h > 0):
         raise ValueError(f"h must be a positive cell size, got {h!r}")
-    return max(SIZE_FRACTION[dim] * length, DOMAIN_CELLS[dim] * float(h) / DOMAIN_FRACTION)
+    return max(min(SIZE_FRACTION[dim] * length, cap),
+               DOMAIN_CELLS[dim] * float(h) / DOMAIN_FRACTION)
 
 
 def default_enrichment_radius(mesh, h: float, depth: float | None = None) -> float:
     """:func:`default_radius` on ``mesh``, ``h`` the size of the front's cells: in 2D the
     largest extent of a tip cell, in 3D their mean size across the front
-    (:func:`skxfem.crack.sif3d.front_sizes`); ``depth`` the crack's depth, L in 3D
-    (:func:`skxfem.crack.space3d.crack_depth`; not used in 2D)."""
+    (:func:`skxfem.crack.sif3d.front_sizes`); ``depth`` the crack's depth
+    (:func:`skxfem.crack.space3d.crack_depth`, :func:`skxfem.crack.space.crack_depth`):
+    L in 3D, in 2D the cap :data:`DEPTH_CAP` depths (None: no cap)."""
+    ok = depth is not None and np.isfinite(depth) and depth > 0
     if mesh.dim() == 3:
-        if depth is None or not (np.isfinite(depth) and depth > 0):
+        if not ok:
             raise ValueError(f"depth must be the 3D crack's depth (> 0), got {depth!r}")
         return default_radius(3, float(depth), h)
-    return default_radius(mesh.dim(), float(np.linalg.norm(np.ptp(mesh.p, axis=1))), h)
+    return default_radius(mesh.dim(), float(np.linalg.norm(np.ptp(mesh.p, axis=1))), h,
+                          DEPTH_CAP * float(depth) if ok else np.inf)
 
 
 def enrichment_radius(mesh, enrichment: str, radius: float | None,
@@ -119,7 +141,7 @@ def enrichment_radius(mesh, enrichment: str, radius: float | None,
                       depth: Callable[[], float] | None = None) -> float | None:
     """r_e of a crack's space on ``mesh``: ``None`` for ``"topological"`` enrichment,
     ``radius`` (checked: a positive number) or, if ``None``,
-    :func:`default_enrichment_radius` of ``front_size()`` (and ``depth()`` in 3D) for
+    :func:`default_enrichment_radius` of ``front_size()`` and ``depth()`` for
     ``"geometric"``.
 
     ``front_size`` and ``depth`` are called only for that default: the front cells' size h

@@ -50,8 +50,8 @@ from .radius import DOMAIN_CELLS, DOMAIN_FRACTION, check_radius
 from .space import CrackSpace, evaluation
 
 __all__ = ["DEFAULT_CELLS", "DOMAIN_FRACTION", "default_radius", "other_tips_distance",
-           "tip_and_frame", "boundary_distance", "tip_reach", "check_reach", "nodal_q",
-           "sif"]
+           "tip_and_frame", "boundary_distance", "tip_reach", "check_reach", "segments_distance",
+           "gamma_segments", "tip_room", "check_clearance", "nodal_q", "sif"]
 
 DEFAULT_CELLS = DOMAIN_CELLS[2]
 """The smallest default domain radius r_d, in sizes of the tip cell (4; the default r_e
@@ -90,18 +90,24 @@ def other_tips_distance(geometry: CrackGeometry, tip: int) -> float:
 
 
 def tip_and_frame(space: CrackSpace, tip: int = 0) -> tuple[np.ndarray, TipFrame, float]:
-    """The tip point (2,), its frame from ∇φ_h, ∇ψ_h in its first tip cell, and the size
-    (diameter) of that cell."""
+    """The tip point (2,), its frame from ∇φ_h, ∇ψ_h at the tip, the mean over its tip
+    cells (one for a tip inside a cell; those on either side of the edge or around the
+    node it lies on, so that a mirror image of the scene gets the mirror frame), and the
+    size (diameter) of its first tip cell.
+
+    A curved crack's ∇ψ_h turns by about h/R from cell to cell: the first cell alone
+    broke the mirror symmetry of an arc crack whose tips lie on mesh lines (R = 6,
+    h = 1/3, a mirror-symmetric quad mesh: K_II -1.055 and -0.934 at mirror tips)."""
     geo = space.geometry
     if not 0 <= tip < geo.tips.shape[1]:
         raise ValueError(f"tip must be in 0 .. {geo.tips.shape[1] - 1}, got {tip!r}")
-    k = np.flatnonzero(geo.tip_of_cell == tip)[0]
-    cell, ref = geo.tip_cells[k], geo.tip_ref[:, k]
-    b = Basis(space.mesh, space.mesh.elem(), elements=np.array([cell]),
-              quadrature=(ref[:, None], np.ones(1)))
-    gphi = b.interpolate(geo.phi).grad[:, 0, 0]
-    gpsi = b.interpolate(geo.psi).grad[:, 0, 0]
-    h = float(np.ptp(space.mesh.p[:, space.mesh.t[:, cell]], axis=1).max())
+    ks = np.flatnonzero(geo.tip_of_cell == tip)
+    cells, ref = geo.tip_cells[ks], geo.tip_ref[:, ks]
+    b = Basis(space.mesh, space.mesh.elem(), elements=cells,
+              quadrature=(ref[:, :, None], np.ones((cells.size, 1))))
+    gphi = b.interpolate(geo.phi).grad[:, :, 0].mean(axis=1)
+    gpsi = b.interpolate(geo.psi).grad[:, :, 0].mean(axis=1)
+    h = float(np.ptp(space.mesh.p[:, space.mesh.t[:, cells[0]]], axis=1).max())
     return geo.tips[:, tip], tip_frame(gphi, gpsi), h
 
 
@@ -161,6 +167,108 @@ def check_reach(mesh, geo, label: str = "", tips=None) -> list[float]:
     return reaches
 
 
+def segments_distance(x: np.ndarray, segments: np.ndarray | None) -> float:
+    """The distance from the point x (2,) to the segments (2, 2, n) [end, coordinate,
+    piece] of the scene's other interfaces (their Γ_h: a crack's pieces, a cut's facets);
+    inf for none.
+
+    >>> line = np.array([[[0.0], [0.8]], [[1.0], [0.8]]])      # y = 0.8, 0 <= x <= 1
+    >>> round(segments_distance(np.array([0.5, 0.5]), line), 12)
+    0.3
+    """
+    if segments is None or np.shape(segments)[-1] == 0:
+        return np.inf
+    a, b = segments[0], segments[1]
+    return float(nearest_on_segments(a, b - a, np.asarray(x, float)[:, None])[2].min())
+
+
+def gamma_segments(cut) -> np.ndarray:
+    """Γ_h of an interface of a 2D scene as segments (2, 2, n) [end, coordinate, piece]:
+    a crack's pieces (:class:`~skxfem.crack.geometry.CrackGeometry`), a cut's facets
+    (:class:`skxfem.cut.Cut`)."""
+    if hasattr(cut, "segments"):
+        return cut.segments
+    return np.transpose(cut.points[:, cut.facets], (1, 0, 2))
+
+
+def tip_room(mesh, geo: CrackGeometry, tip: int, others) -> tuple[float, int]:
+    """How far the interaction domain of tip ``tip`` of the crack ``geo`` may reach for
+    the scene's other interfaces (``others``: their cuts; a crack's geometry has
+    ``tips``), and which of them is the nearest (-1: none): two cells short of each
+    one's Γ_h (no cell of the domain, the cells within R + h of the tip, is one it cuts:
+    its own enrichment, a Heaviside jump, the domain would integrate across), and half
+    the distance to a crack's tip (as to the crack's own other tips,
+    :func:`other_tips_distance`: its singular field); inf for none.
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 11), np.linspace(0, 1, 11))
+    >>> a = crack_geometry(m, m.p[1] - 0.55, m.p[0] - 0.25)
+    >>> b = crack_geometry(m, m.p[1] - 0.55, 0.75 - m.p[0])
+    >>> room, k = tip_room(m, a, 0, [b])
+    >>> round(room, 4), k              # half of the 0.5 between the tips
+    (0.25, 0)
+    """
+    h = tip_reach(mesh, geo, tip)[2]
+    x = geo.tips[:, tip]
+    rooms = []
+    for cut in others:
+        room = segments_distance(x, gamma_segments(cut)) - 2 * h
+        tips = getattr(cut, "tips", None)
+        if tips is not None and tips.size:
+            room = min(room, 0.5 * float(np.linalg.norm(tips - x[:, None], axis=0).min()))
+        rooms.append(room)
+    if not rooms:
+        return np.inf, -1
+    k = int(np.argmin(rooms))
+    return float(rooms[k]), k
+
+
+def check_clearance(mesh, cuts, names) -> list[list[float]]:
+    """Refuse a 2D crack's tip whose interaction domain has under a cell of room for the
+    scene's other interfaces (:func:`tip_room`): two cracks' tips that close also enrich
+    the same nodes with nearly the same functions (their system is singular).  ``cuts``:
+    each interface's cut (a crack's geometry has ``tips``), ``names`` how the message
+    names them.  Returns, for each cut, the room of each of its tips (empty for a cut
+    without tips).
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 11), np.linspace(0, 1, 11))
+    >>> a = crack_geometry(m, m.p[1] - 0.55, m.p[0] - 0.45)
+    >>> b = crack_geometry(m, m.p[1] - 0.55, 0.5 - m.p[0])
+    >>> check_clearance(m, (a, b), ("a", "b"))
+    Traceback (most recent call last):
+    ...
+    ValueError: a: the tip at (0.45, 0.55) is 0.05 from b: its interaction domain has ...
+    """
+    out = []
+    for k, cut in enumerate(cuts):
+        tips = getattr(cut, "tips", None)
+        if mesh.dim() != 2 or tips is None:
+            out.append([])
+            continue
+        others = [c for j, c in enumerate(cuts) if j != k]
+        named = [n for j, n in enumerate(names) if j != k]
+        row = []
+        for i in range(tips.shape[1]):
+            room, j = tip_room(mesh, cut, i, others)
+            h = tip_reach(mesh, cut, i)[2]
+            if room < h:
+                x = ", ".join(f"{v:.4g}" for v in tips[:, i])
+                d = segments_distance(tips[:, i], gamma_segments(others[j]))
+                raise ValueError(
+                    f"{names[k]}: the tip at ({x}) is {d:.3g} from {named[j]}: its "
+                    f"interaction domain has under a cell ({h:.3g}) of room clear of it "
+                    f"(two cells short of another interface, half-way to another tip), "
+                    f"and enrichments that close are nearly the same functions; refine the "
+                    f"mesh there (cells a few times smaller than that distance) or move the "
+                    f"interfaces apart")
+            row.append(room)
+        out.append(row)
+    return out
+
+
 def nodal_q(space: CrackSpace, origin: np.ndarray, r_d: float, plateau: float,
             boundary: float) -> np.ndarray:
     """q at the nodes: :func:`skxfem.crack.interaction.q_function` of their distance."""
@@ -188,7 +296,8 @@ def _faces(space, q_nodes, face_traction):
 
 def sif(space: CrackSpace, U: np.ndarray, material: Material, r_d: float | None = None,
         plateau: float = 0.5, tip: int = 0, face_traction: Callable | None = None,
-        body_force=None) -> np.ndarray:
+        body_force=None, others: Callable | None = None,
+        room: float = np.inf) -> np.ndarray:
     """(K_I, K_II) at a tip of the solution U by the domain interaction integral.
 
     Parameters
@@ -205,6 +314,12 @@ def sif(space: CrackSpace, U: np.ndarray, material: Material, r_d: float | None 
     body_force : the body force b the solution carries
         (:func:`skxfem.fem.loads.force_field`: ``x -> (2, n)`` or two values);
         None: none.
+    others : ``(cells, ref) -> (2, 2, npts)``: ∇u of the field's parts that are not
+        on this crack's unknowns (the enrichment of the scene's other cracks, whose
+        branch functions reach far past their own cells), added to ∇u_h at the
+        domain's points (cells and reference coordinates); None: none.
+    room : how far the domain may reach for the scene's other interfaces
+        (:func:`tip_room`); R is clipped to it, and one under a cell is refused.
     """
     U = np.asarray(U, float)
     if U.shape != (space.N,):
@@ -214,6 +329,12 @@ def sif(space: CrackSpace, U: np.ndarray, material: Material, r_d: float | None 
         check_radius(r_d, h, "r_d (sif_radius)", 2)
     r_d = default_radius(space, h) if r_d is None else r_d
     boundary = check_reach(space.mesh, space.geometry, tips=[tip])[0]
+    if room < h:
+        x = ", ".join(f"{v:.4g}" for v in origin)
+        raise ValueError(f"the tip at ({x}) has {room:.3g} of room for the scene's other "
+                         f"interfaces, under a cell ({h:.3g}): refine the mesh there or move "
+                         f"them apart")
+    boundary = min(boundary, room)
     q_nodes = nodal_q(space, origin, r_d, plateau, boundary)
     qt = q_nodes[space.mesh.t]
     if body_force is None:
@@ -226,6 +347,8 @@ def sif(space: CrackSpace, U: np.ndarray, material: Material, r_d: float | None 
     for G in rule_groups(space, domain, plain_order=4):
         cells, ref, side, x, w = G.points()
         _, gu = evaluation(space, cells, ref, side).at(U)
+        if others is not None:
+            gu = gu + others(cells, ref)
         eps = (gu + np.swapaxes(gu, 0, 1)) / 2
         sig = 2 * mu * eps + lam * (eps[0, 0] + eps[1, 1]) * np.eye(2)[:, :, None]
         live = G.scalar.dx != 0                           # padding only: weights may be < 0

@@ -82,7 +82,7 @@ from .geometry import AREA_TOL, CrackGeometry, check_geometry, check_mesh_2d
 from .radius import ENRICHMENTS, enrichment_radius, geometric_nodes
 
 __all__ = ["KINDS", "ENRICHMENTS", "CrackSpace",
-           "crack_space", "kinds_at", "evaluation", "evaluation_at", "Evaluation",
+           "crack_depth", "crack_space", "kinds_at", "evaluation", "evaluation_at", "Evaluation",
            "nodal_scaling", "condition_number"]
 
 KINDS = ("1", "H", "F1", "F2", "F3", "F4")
@@ -131,6 +131,24 @@ def _polar_nodes(geometry: CrackGeometry, nodes: np.ndarray):
     return np.hypot(phi, psi), np.arctan2(np.where(psi == 0, 0.0, psi), phi)
 
 
+def crack_depth(geometry: CrackGeometry) -> float:
+    """The crack's depth a: the largest distance from a point of the crack (an end of its
+    pieces) to its nearest tip; an edge crack's length, a centre crack's half-length.
+    The default enrichment radius is at most :data:`skxfem.crack.radius.DEPTH_CAP` of it.
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 11), np.linspace(0, 1, 11))
+    >>> round(crack_depth(crack_geometry(m, m.p[1] - 0.55, m.p[0] - 0.35)), 12)
+    0.35
+    >>> round(crack_depth(crack_geometry(m, m.p[1] - 0.55, np.abs(m.p[0] - 0.5) - 0.2)), 12)
+    0.2
+    """
+    x = geometry.segments.transpose(1, 0, 2).reshape(2, -1)           # the pieces' ends
+    d = np.linalg.norm(x[:, :, None] - geometry.tips[:, None], axis=0)
+    return float(d.min(axis=1).max())
+
+
 def crack_space(mesh, geometry: CrackGeometry, enrichment: str = "geometric",
                 radius: float | None = None) -> CrackSpace:
     """The :class:`CrackSpace` of a crack on ``mesh``.
@@ -142,8 +160,9 @@ def crack_space(mesh, geometry: CrackGeometry, enrichment: str = "geometric",
     enrichment : ``"topological"`` (the tip cells' nodes) or ``"geometric"`` (the nodes
         within ``radius`` of a tip).
     radius : r_e > 0 for geometric enrichment; default
-        :func:`skxfem.crack.radius.default_enrichment_radius` (0.2 mesh diameters, and at
-        least 16/3 tip-cell sizes: the default interaction domain inside 0.75 r_e).
+        :func:`skxfem.crack.radius.default_enrichment_radius` (0.2 mesh diameters, at
+        most three crack depths :func:`crack_depth`, and at least 16/3 tip-cell sizes:
+        the default interaction domain inside 0.75 r_e).
 
     Examples
     --------
@@ -158,7 +177,8 @@ def crack_space(mesh, geometry: CrackGeometry, enrichment: str = "geometric",
     given = radius is not None
     radius = enrichment_radius(            # the tip cells' largest extent: h
         mesh, enrichment, radius,
-        lambda: np.ptp(mesh.p[:, mesh.t[:, geometry.tip_cells]], axis=1).max())
+        lambda: np.ptp(mesh.p[:, mesh.t[:, geometry.tip_cells]], axis=1).max(),
+        lambda: crack_depth(geometry))
     d = None if radius is None else np.min(
         np.linalg.norm(mesh.p[:, :, None] - geometry.tips[:, None], axis=0), axis=1)
     branch_nodes = geometric_nodes(mesh.t[:, geometry.tip_cells].ravel(), d, radius, given)

@@ -83,6 +83,40 @@ class CrackXSpaceBase:
         n = self.n_std
         return (M[:n, :n] if A is None else A), M
 
+    def coupling(self, other, material: Material) -> sp.csr_matrix | None:
+        """The stiffness block between this crack's enrichment (rows) and that of
+        ``other``, another interface's space of the scene (columns), for
+        :func:`skxfem.enrich.couplings`: None where their enrichments share no cell (a
+        crack's branch functions reach r_e from its front; a cut interface's shifted
+        Heaviside enrichment lives on its cut cells only).  The 2D kind assembles it
+        with another crack or a cut interface (:func:`skxfem.crack.assembly.coupling`,
+        :func:`~skxfem.crack.assembly.cut_coupling`); where it is not assembled (a 3D
+        crack's zone meeting another interface's enrichment) the scene is refused,
+        naming the cure, rather than solved without it."""
+        crack = isinstance(other, CrackXSpaceBase)
+        mine = self.space.support_cells(self.space.enriched_nodes() if crack else
+                                        self.space.branch)   # shifted H: own cut cells
+        theirs = (other.space.support_cells(other.space.enriched_nodes()) if crack else
+                  other.cut.cells)
+        shared = np.intersect1d(mine, theirs)
+        if not shared.size:
+            return None
+        block = self._coupling(other, material)
+        if block is not None:
+            return block
+        x = ", ".join(f"{v:.4g}" for v in self.mesh.p[:, self.mesh.t[:, shared[0]]].mean(axis=1))
+        raise ValueError(
+            f"a crack's enriched zone (its branch functions, within enrichment_radius of its "
+            f"front) and another interface's enrichment share {shared.size} cell(s) (e.g. "
+            f"around ({x})): their interaction is not assembled in {self.mesh.dim()}D; "
+            f"give the crack a smaller enrichment_radius (or enrichment = 'topological'), "
+            f"or move them apart")
+
+    def _coupling(self, other, material: Material) -> sp.csr_matrix | None:
+        """The block of :meth:`coupling` where the enrichments share cells; None: the
+        kind does not assemble it (the 2D kind does)."""
+        return None
+
     def blocks(self, A, K) -> tuple[sp.csr_matrix, sp.csr_matrix]:
         """(K_ab, K_bb): the crack stiffness' blocks of its enriched unknowns."""
         n = self.n_std

@@ -14,7 +14,6 @@ the validation and a faster assembly of the same matrix from scalar forms
 """
 from __future__ import annotations
 
-import numbers
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -22,6 +21,8 @@ import numpy as np
 import scipy.sparse as sp
 from skfem import BilinearForm
 from skfem.models.elasticity import lame_parameters, linear_elasticity, linear_stress, plane_stress
+
+from ..linalg.scalars import is_number
 
 __all__ = ["Material", "E_RANGE", "NU_MAX", "stiffness_form", "partial_form", "stiffness_matrix"]
 
@@ -63,9 +64,7 @@ class Material:
     def __post_init__(self):
         for key in ("E", "nu"):
             value = getattr(self, key)
-            if isinstance(value, np.ndarray) and value.ndim == 0:
-                value = value[()]                       # a 0-d array: its number
-            if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+            if not is_number(value):
                 raise TypeError(f"material {key} must be a real number, got {value!r}")
             object.__setattr__(self, key, float(value))   # numpy's numbers as Python's
         if not E_RANGE[0] <= float(self.E) <= E_RANGE[1]:  # also refuses NaN and inf

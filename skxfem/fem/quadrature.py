@@ -28,6 +28,8 @@ from numpy.typing import ArrayLike
 from skfem.quadrature import get_quadrature
 from skfem.refdom import RefHex, RefLine, RefQuad, RefTet, RefTri, RefWedge
 
+from ..linalg.scalars import is_integer
+
 __all__ = [
     "DEFAULT_ORDER",
     "simplex_or_tensor_rule",
@@ -69,8 +71,7 @@ DEFAULT_ORDER = {refdom: cell for refdom, (cell, _) in EXACT_ORDERS["stiffness"]
 
 
 def _check_order(order) -> int:
-    if isinstance(order, bool) or not isinstance(order, (int, np.integer)) \
-            or order < 0:
+    if not is_integer(order) or order < 0:
         raise ValueError(f"order must be a non-negative integer, got {order!r}")
     return int(order)
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import importlib.util
 
-import numpy as np
+from .scalars import is_number
 
 __all__ = ["LINEAR", "AUTO_ITERATIVE", "AUTO_ZONE", "LINEAR_TOL", "choose_linear",
            "check_linear_tol"]
@@ -90,14 +90,11 @@ def choose_linear(method: str, dim: int, n_unknowns: int, crack_multipliers: boo
 def check_linear_tol(tol) -> float:
     """``tol`` as a float if it is a number in (0, 1), else a ValueError.
 
+    >>> import numpy as np
     >>> check_linear_tol(1e-8), check_linear_tol(np.array(1e-8))   # numpy's numbers too
     (1e-08, 1e-08)
     """
-    if isinstance(tol, np.ndarray) and tol.ndim == 0:
-        tol = tol[()]                                   # a 0-d array: its number
-    if isinstance(tol, (bool, np.bool_)) or not isinstance(tol, (int, float, np.integer,
-                                                                 np.floating)) \
-            or not 0 < tol < 1:
+    if not is_number(tol) or not 0 < tol < 1:
         raise ValueError(f"linear_tol must be a number in (0, 1), the relative residual of "
                          f"the iterative linear solve (default {LINEAR_TOL:g}), got {tol!r}")
     return float(tol)

@@ -307,7 +307,8 @@ SCHEMA: dict[str, Table] = {t.name: t for t in (
             "tip cells' (topological)", "geometric"),
         Key("enrichment_radius", "number > 0 [L]", "a crack: r_e, the tip's enriched zone "
             "with geometric enrichment (default max(0.2 L, n h / 0.75): L the mesh's "
-            "diameter in 2D, the crack's depth in 3D, h the front cells' size, n h the "
+            "diameter in 2D (0.2 L at most three crack depths), the crack's depth in 3D, "
+            "h the front cells' size, n h the "
             "default interaction domain, 4 cells in 2D and 3 in 3D: at least 5.3 and 4 "
             "cells; one that reaches no node beyond the front cells is refused)", 0.4),
         Key("sif_radius", "number > 0 [L]", "a crack: the radius of the interaction "

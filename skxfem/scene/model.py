@@ -48,6 +48,8 @@ from skfem import Mesh
 from ..fem import meshes
 from ..fem.material import Material
 from ..levelset import LevelSet
+from ..linalg.scalars import is_integer
+from ..linalg.scalars import is_number as _is_number
 from .boundary import dirichlet, load_facets, traction
 from .expr import Expression
 from .laws import CONTACT_LAWS, SPACES
@@ -64,7 +66,6 @@ from .parts import (
     clamped,
     rollers,
 )
-from .parts import is_number as _is_number
 from .settings import Solver
 
 __all__ = ["Box", "Displacement", "SurfaceLoad", "Interface", "Scene", "clamped", "rollers",
@@ -202,8 +203,7 @@ class Scene:
         object.__setattr__(self, "steps", tuple(f if isinstance(f, Scene) else float(f)
                                                 for f in self.steps))
         q, top = self.quadrature_order, MAX_QUADRATURE_ORDER.get(self.dim, 8)
-        if q is not None and not (isinstance(q, (int, np.integer))
-                                  and not isinstance(q, (bool, np.bool_)) and 1 <= q <= top):
+        if q is not None and not (is_integer(q) and 1 <= q <= top):
             raise ValueError(f"Scene quadrature_order must be an integer from 1 to {top} in "
                              f"{self.dim}D, or None (the minimal exact rule, which affine "
                              f"cells need), got {q!r}")

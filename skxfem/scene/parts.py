@@ -20,18 +20,21 @@ and the law's parameters (a scene with one interface gives them to the
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields, replace
 from typing import Callable, Mapping, Union
 
 import numpy as np
 
 from ..fem.cells import CELL_TYPES
 from ..levelset import LevelSet
+from ..linalg.scalars import is_integer, is_number
 from .expr import Expression
 from .laws import CONTACT_LAWS, FRICTION_LAWS, SPACES
 from .laws import TIE_LAWS as LAWS
 
 CRACK_ENRICHMENTS = ("geometric", "topological")
+#: The name of a LevelSet not given one.
+UNNAMED = next(f.default for f in fields(LevelSet) if f.name == "name")
 """The enrichments of a crack's tip a scene may ask for: those of
 :data:`skxfem.crack.radius.ENRICHMENTS` (a floor above; tests/test_scene.py checks they agree),
 the default first."""
@@ -65,22 +68,6 @@ underflowed and Λ = r/(μp) came out NaN.  Above 1e10 a pressed point sticks to
 round-off (the same answer from 1e6 to 1e200); at 1e308 μp overflowed."""
 
 Value = Union[float, str, Callable[[np.ndarray], np.ndarray]]
-
-
-def is_number(v) -> bool:
-    """Whether ``v`` is a real scalar: a Python or numpy integer or float, or a 0-d numpy
-    array of one (a number a notebook computed with numpy).  Never a bool, a string, a
-    complex number or an array of several values.  Every number a scene checks goes
-    through here (its callers then take ``float(v)``).
-
-    >>> [is_number(v) for v in (0.2, np.float32(0.2), np.array(0.2), np.array(2))]
-    [True, True, True, True]
-    >>> [is_number(v) for v in (True, np.bool_(True), "0.2", 1j, np.array([0.2]), np.ones(2))]
-    [False, False, False, False, False, False]
-    """
-    if isinstance(v, np.ndarray):
-        return v.ndim == 0 and v.dtype.kind in "iuf"
-    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool)
 
 
 def _check_value(v, what: str) -> float | Callable:
@@ -148,8 +135,7 @@ class Box:
                                    if v.ndim == 0 else v)
         n = (self.n,) * self.dim if is_number(self.n) else self.n
         if (not isinstance(n, (tuple, list)) or len(n) != self.dim
-                or not all(isinstance(k, (int, np.integer)) and not isinstance(k, bool)
-                           and k >= 1 for k in n)):
+                or not all(is_integer(k) and k >= 1 for k in n)):
             raise ValueError(f"Box n must be a positive integer or {self.dim} of them "
                              f"for cell {self.cell!r}, got {self.n!r}")
         object.__setattr__(self, "n", tuple(int(k) for k in n))
@@ -329,7 +315,8 @@ class Interface:
     ``enrichment`` the tip enrichment (``"geometric"``: the nodes within a radius of
     the tip, or ``"topological"``: the tip cells'); ``enrichment_radius`` that radius
     r_e (None: one rule in 2D and 3D, :func:`skxfem.crack.radius.default_enrichment_radius`:
-    0.2 of the mesh's diameter in 2D, of the crack's depth in 3D, and at least 4/3 of the default
+    0.2 of the mesh's diameter in 2D (at most three crack depths), of the crack's depth in
+    3D, and at least 4/3 of the default
     interaction domain, 16/3 tip cells in 2D, 4 front cells in 3D);
     ``sif_radius`` the interaction integral's radius (None: 0.75 r_e and at least a few
     cells, :func:`skxfem.crack.sif.default_radius`).
@@ -363,6 +350,8 @@ class Interface:
             if getattr(self, key) is not None:
                 object.__setattr__(self, key, float(getattr(self, key)))
         check_crack_fields(self)
+        if self.front is not None and self.front.name == UNNAMED:
+            object.__setattr__(self, "front", replace(self.front, name="phi"))  # not 'psi'
         for key in ("enrichment_radius", "sif_radius"):
             if getattr(self, key) is not None:
                 object.__setattr__(self, key, float(getattr(self, key)))

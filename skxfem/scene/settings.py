@@ -17,9 +17,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-import numpy as np
-
 from ..linalg.choice import LINEAR, LINEAR_TOL, check_linear_tol
+from ..linalg.scalars import is_integer
 
 __all__ = ["Solver", "MAX_ITER", "check_linear", "check_max_iter"]
 
@@ -44,15 +43,17 @@ def check_linear(linear) -> str:
 def check_max_iter(max_iter) -> int:
     """``max_iter`` as an int if it is a positive integer (numpy's too), else a ValueError.
 
+    >>> import numpy as np
     >>> check_max_iter(np.int64(40)), type(check_max_iter(np.int64(40))).__name__
     (40, 'int')
+    >>> check_max_iter(np.array(40))
+    40
     >>> check_max_iter(0)
     Traceback (most recent call last):
     ...
     ValueError: max_iter must be a positive integer (Newton iterations per load step), got 0
     """
-    if isinstance(max_iter, (bool, np.bool_)) or not isinstance(max_iter, (int, np.integer)) \
-            or max_iter < 1:
+    if not is_integer(max_iter) or max_iter < 1:
         raise ValueError(f"max_iter must be a positive integer (Newton iterations per load "
                          f"step), got {max_iter!r}")
     return int(max_iter)

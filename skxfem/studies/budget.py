@@ -23,18 +23,35 @@ The counts are upper bounds:
 With several interfaces (``Scene(interfaces=...)``) each is counted so, its
 enriched nodes and its multipliers (with its own law) added to the others'.
 
-A crack (an interface with a ``front``) counts as the whole surface ψ = 0 (its
-Heaviside nodes and crossed edges are a part of those), no multiplier for the law
-``free``, and 4 × dim branch unknowns on each node within r_e plus a cell's diameter of
-the front (:func:`~skxfem.studies.counts.box_front_nodes`; r_e the interface's
-``enrichment_radius`` or the default rule :func:`skxfem.crack.radius.default_radius`
-with h a cell's diameter, 0 for topological enrichment).  ``auto`` then resolves as
-the solve does: direct wherever multipliers live on a crack's faces, and for any
-crack in 2D (:func:`skxfem.linalg.choice.choose_linear`).  On the cube of
-``benchmarks/crack_solve.py`` (tetrahedra, law ``free``) the unknowns' bound is 1.26
-and 2.04 times the solve's at n = 8 and 12 (12 636 against 9 990, 35 880 against
-17 550); before, it counted no branch unknown (2 916 and 8 112: below the solve's,
-so no bound) but 867 and 1 875 multipliers, and chose the direct solve at n = 8.
+A crack (an interface with a ``front``) is counted as its solve builds it
+(:class:`~skxfem.studies.counts.CrackCounts`): its multipliers on its own cut points
+behind the front (``ncomp`` each, none for the law ``free``), not on every edge the
+whole surface ψ = 0 touches; 4 × dim branch unknowns on each node of the front's cells
+or within r_e of the front, r_e as :mod:`skxfem.crack.radius` takes it (the interface's
+``enrichment_radius``, or the default rule from the crack's depth and the front cells'
+size, found from ψ and φ at the nodes as the space finds them; none beyond the front
+cells for topological enrichment), dim Heaviside unknowns on the other nodes of the cells
+it cuts; the dense interface terms only on the columns B reads (the jumping unknowns of
+the cells it cuts, dim per node) and only where multipliers live.  On the cubes and
+squares of the sweep below the unknowns are bounds within 7 % (most exact).  The LU fill
+grows with the unknowns per node that a crack's zone adds (:data:`LU_FILL` times the
+ratio of the unknowns per node to dim, to the power 2 - p; 1 for a tie); a crack adds
+:data:`CRACK_NODE_BYTES` per branch node, and :data:`CRACK_LU` and :data:`COULOMB_LU`
+where multipliers live on its faces.  ``auto`` resolves as the solve does: direct wherever
+multipliers live on a crack's faces and for any crack in 2D; where a 3D crack's zone holds
+more than :data:`~skxfem.linalg.choice.AUTO_ZONE` of the nodes the solve tries CG and
+falls back to the direct solve, so the estimate is the larger of the two.
+
+Measured (``scripts/calibrate_budget.py``, whose notes give the whole table; 29 November
+2026; 96 cases), estimate over peak: contact and bonded cracks on tetrahedral cubes
+n = 6-16 1.32-2.48 (the 10³ and 11³ cubes of ``skxfem run``'s frictionless edge crack:
+2.02 GB for a 1.35 GB peak and 0.70 GB for 0.43 GB; before: 11.2 and 12.7 GB, refused at
+the default limit); 2D cracks n = 21-82 (triangles, quadrilaterals; free, frictionless,
+Coulomb, bonded) 1.32-2.76; free 3D cracks n = 6-20 1.35-2.85 where the solve took the
+path priced, 4-7 where auto's CG try converged (the estimate prices the direct
+fall-back: 1.56 and 1.79 times the direct solve's peak at n = 10 and 8).  Before:
+0.37-0.85 for free 3D cracks (no bound) and 3-46 for the others.  Ties and fully cutting
+interfaces are estimated as before.
 
 ψ is evaluated at the nodes in slabs of about 10⁶ points, so the guard itself
 stays small.  The memory depends on the linear solver that will run
@@ -73,10 +90,11 @@ from functools import partial
 import numpy as np
 
 from ..contact.laws import CONTACT_LAWS
-from ..crack.radius import default_radius
+from ..crack.radius import DEPTH_CAP, default_radius
 from ..fem.meshes import CELLS, cell_name
 from ..fem.quadrature import cell_rule
 from ..linalg.choice import choose_linear
+from ..linalg.scalars import is_integer
 from ..scene.model import Box, Resolved, Scene, check_scene, resolve
 from .counts import (
     NVERTS,
@@ -118,6 +136,21 @@ to each Newton step besides): ``press`` in ``scripts/calibrate_budget.py``, tri
 128, quad 256: 2915-3054; hex 12, 24: 9552-10841.  With :data:`KRYLOV_BYTES`
 and :data:`SAFETY`, the slipping block (Coulomb, hex n = 42, 259 290 unknowns)
 is estimated at 3.7 GB for a measured peak of 2.95 GB (27 November 2026)."""
+
+
+CRACK_NODE_BYTES = {2: 100 * 2**10, 3: 250 * 2**10}
+"""Peak bytes per branch node of a crack besides the linear solve (its enriched cells'
+sub-cell rules, branch values and COO assembly, 4 dim unknowns per node): above the
+largest measured in ``scripts/calibrate_budget.py``'s crack sweep (module notes), 2D
+23-105 KB, 3D 48-241 KB, the contact laws the most."""
+CRACK_LU = {2: 2.5, 3: 1.3}
+"""The factor on :data:`LU_FILL` where multipliers live on a crack's faces: in 2D the
+contact step's LU filled 1.5-2.3 times the model (the two tips' zones: the inclined and
+centre cracks), in 3D up to 1.39 times (n = 12-16; 1.0 at n = 6); Coulomb's in 2D once
+more (:data:`COULOMB_LU`)."""
+COULOMB_LU = {2: 2.0, 3: 1.0}
+"""Coulomb on a 2D crack's faces held about two factorisations at its peak (the
+inclined crack, n = 21-81: the peak less one LU was 1.0-1.25 LU)."""
 
 
 @dataclass(frozen=True)
@@ -196,8 +229,10 @@ def parse_bytes(text: str) -> int:
     return int(value * scale)
 
 
-def _memory(dim: int, cell: str, order, n_nodes, n_cells, n_dofs, n_enr, m) -> float:
-    """Bytes of the terms named in the module notes (before :data:`SAFETY`)."""
+def _memory(dim: int, cell: str, order, n_nodes, n_cells, n_dofs, ncols, m,
+            lu_factor: float = 1.0, per_node: float = 1.0) -> float:
+    """Bytes of the terms named in the module notes (before :data:`SAFETY`);
+    ``per_node``: the unknowns per node over dim, where a crack's zone raises them."""
     nq = cell_rule(CELLS[cell], order)[1].size
     nbf = dim * NVERTS[cell]
     cells = n_cells * (PER_CELL * 8 * nq * nbf * (1 + dim + dim * dim)  # basis values
@@ -205,8 +240,8 @@ def _memory(dim: int, cell: str, order, n_nodes, n_cells, n_dofs, n_enr, m) -> f
                        + 8 * NVERTS[cell])                                # t
     nodes = n_nodes * 8 * dim * 4
     c, p = LU_FILL[dim]
-    lu = LU_BYTES * c * (n_dofs + m) ** p
-    dense = 8 * (3 * m * n_enr + 2 * m * m + 2 * n_enr * n_enr)
+    lu = LU_BYTES * c * (n_dofs + m) ** p * per_node ** (2 - p) * lu_factor
+    dense = 8 * (3 * m * ncols + 2 * m * m + 2 * ncols * ncols)
     return cells + nodes + lu + dense
 
 
@@ -243,70 +278,95 @@ def estimate(scene: Scene, linear: str | None = None) -> Estimate:
     if mesh is None and isinstance(scene.mesh, Box):
         box = scene.mesh
         size = box.size or (1.0,) * box.dim
-        D, hd = np.linalg.norm(size), np.linalg.norm(np.divide(size, box.n))
+        D = np.linalg.norm(size)
         dim, cell = box.dim, box.cell
         count, crack = partial(box_counts, box), partial(box_crack_counts, box)
     else:
         mesh = resolve(scene).mesh if mesh is None else mesh
-        D, hd = np.linalg.norm(np.ptp(mesh.p, axis=1)), _cell_diameter(mesh)
+        D = np.linalg.norm(np.ptp(mesh.p, axis=1))
         dim, cell = mesh.dim(), cell_name(mesh)
         count, crack = partial(mesh_counts, mesh), partial(mesh_crack_counts, mesh)
-    counts, branch = [], []
-    for i in items:                      # a crack: ψ and φ evaluated once, its depth in 3D
+    counts, cracks = [], []
+    for i in items:                      # a crack: ψ and φ evaluated once
         if i.front is None:
             counts.append(count(i.levelset))
-            branch.append(0)
+            cracks.append(None)
         else:
-            c, _, near = crack(i.levelset, i.front, hd, lambda depth, i=i: _branch_radius(
-                i, dim, D if dim == 2 else depth, hd))
-            counts.append(c)
-            branch.append(near)
-    return _estimate(scene, linear, *counts[0][:2], [c[2] for c in counts],
-                     [c[3] for c in counts], cell, branch)
+            cracks.append(crack(i.levelset, i.front, partial(_branch_radius, i, dim, D)))
+            counts.append((cracks[-1].nodes, cracks[-1].cells))
+    return _estimate(scene, linear, *counts[0][:2],
+                     [0 if k is not None else c[2] for c, k in zip(counts, cracks)],
+                     [0 if k is not None else c[3] for c, k in zip(counts, cracks)], cell,
+                     cracks)
 
 
-def _cell_diameter(mesh) -> float:
-    """The largest diagonal of ``mesh``'s cells' bounding boxes: a bound of a cell's
-    diameter on every cell type, as a Box's cell diagonal is (the longest edge, used
-    before, falls short of it on quadrilaterals, hexahedra and prisms)."""
-    return float(np.linalg.norm(np.ptp(mesh.p[:, mesh.t], axis=1), axis=0).max())
-
-
-def _branch_radius(interface, dim: int, length: float, hd: float) -> float:
-    """Up to which distance from a crack's front its nodes get branch functions: r_e
-    (the interface's or :func:`skxfem.crack.radius.default_radius` of ``length``, the
-    mesh's diameter in 2D and the crack's depth in 3D; 0 when topological) plus a
-    cell's diameter ``hd`` (the nodes of the cells the front or r_e reaches)."""
+def _branch_radius(interface, dim: int, diameter: float, depth: float, h: float
+                   ) -> float | None:
+    """r_e of a crack as its space takes it (:mod:`skxfem.crack.radius`): None when
+    topological, else the interface's ``enrichment_radius`` or
+    :func:`skxfem.crack.radius.default_radius` of the mesh's ``diameter`` (2D, at most
+    :data:`~skxfem.crack.radius.DEPTH_CAP` depths) or the crack's ``depth`` (3D) and the
+    front cells' size ``h`` (in 2D ``depth`` + ``h`` bounds the crack's depth, which its
+    pieces' ends measure, between the nodes: so r_e bounds the space's)."""
     if interface.enrichment == "topological":
-        return hd
+        return None
     r = interface.enrichment_radius
-    return (default_radius(dim, float(length), float(hd)) if r is None else r) + hd
+    if r is not None:
+        return r
+    if dim == 2:
+        return default_radius(2, float(diameter), float(h),
+                              DEPTH_CAP * (float(depth) + float(h)))
+    return default_radius(3, float(depth), float(h))
 
 
 def _estimate(scene, linear, n_nodes, n_cells, n_enr_nodes, n_edges, cell,
-              n_branch=None) -> Estimate:
-    """The :class:`Estimate` of ``scene`` from its counts (enriched nodes, cut edges
-    and a crack's branch nodes: one count per interface)."""
+              cracks=None) -> Estimate:
+    """The :class:`Estimate` of ``scene`` from its counts, one per interface: enriched
+    nodes and cut edges, or for a crack its
+    :class:`~skxfem.studies.counts.CrackCounts` (``cracks``, None for the others)."""
     dim = scene.dim
     items = scene.interfaces
-    n_branch = [0] * len(items) if n_branch is None else n_branch
-    n_enr = dim * sum(n_enr_nodes) + 4 * dim * sum(n_branch)
+    cracks = [None] * len(items) if cracks is None else cracks
+    enr, sites, cols = [], [], []            # per interface: unknowns, points, B's columns
+    for e, k, c in zip(n_enr_nodes, n_edges, cracks, strict=True):
+        if c is None:
+            enr.append(dim * e)
+            sites.append(k)
+            cols.append(dim * e)
+        else:
+            enr.append(dim * c.heaviside + 4 * dim * c.branch)
+            sites.append(c.points)
+            cols.append(dim * c.crack_nodes)
+    n_enr = sum(enr)
     n_dofs = dim * n_nodes + n_enr
-    m = sum((0 if i.law == "free" else 1 if i.law == "bilateral" else dim) * e
-            for i, e in zip(items, n_edges, strict=True))   # contact: λ_n and friction
+    ncomp = [0 if i.law == "free" else 1 if i.law == "bilateral" else dim for i in items]
+    m = sum(k * p for k, p in zip(ncomp, sites))          # contact: λ_n and friction
+    ncols = sum(c for k, c in zip(ncomp, cols) if k)      # B's columns: where it has rows
     laws = ["frictionless" if i.law == "coulomb" and i.friction == 0 else i.law
             for i in items]
     law = ("coulomb" if "coulomb" in laws else
            next((x for x in laws if x in CONTACT_LAWS), laws[0]))
     on_crack = any(i.front is not None and i.law != "free" for i in items)
-    chosen = choose_linear(linear, dim, n_dofs, on_crack, any(i.front is not None for i in items))
-    if chosen == "iterative":
+    crack = any(i.front is not None for i in items)
+    zone = max((c.branch / c.nodes for c in cracks if c is not None), default=0.0)
+    chosen = choose_linear(linear, dim, n_dofs, on_crack, crack, zone)
+    # a zone over AUTO_ZONE: auto tries CG first, then the direct solve (solve_problem)
+    tried = chosen == "direct" and choose_linear(linear, dim, n_dofs, on_crack,
+                                                 crack) == "iterative"
+    branch = CRACK_NODE_BYTES[dim] * sum(c.branch for c in cracks if c is not None)
+    bytes_ = 0.0
+    if chosen == "iterative" or tried:
         per = (CONTACT_ITERATIVE_BYTES if law in CONTACT_LAWS else ITERATIVE_BYTES)[dim]
         per += KRYLOV_BYTES if law == "coulomb" else 0
-        bytes_ = SAFETY * per * _clip(n_dofs + m)
-    else:
-        bytes_ = SAFETY * _memory(dim, cell, scene.quadrature_order,
-                                  *map(_clip, (n_nodes, n_cells, n_dofs, n_enr, m)))
+        bytes_ = SAFETY * (per * _clip(n_dofs + m) + branch)
+    if chosen == "direct":
+        factor = (CRACK_LU[dim] * (COULOMB_LU[dim] if law == "coulomb" else 1.0)
+                  if on_crack else 1.0)
+        zoned = sum(e for e, c in zip(enr, cracks) if c is not None)
+        bytes_ = max(bytes_, SAFETY * (_memory(
+            dim, cell, scene.quadrature_order,
+            *map(_clip, (n_nodes, n_cells, n_dofs, ncols, m)), factor,
+            1.0 + zoned / (dim * n_nodes)) + branch))
     return Estimate(n_nodes, n_cells, n_dofs, m, int(bytes_), chosen)
 
 
@@ -356,7 +416,7 @@ def check(scene: Scene, max_bytes: int = DEFAULT_MAX_BYTES,
     TooLargeError
         (a ValueError) If the estimate exceeds ``max_bytes``.
     """
-    if not (isinstance(max_bytes, (int, np.integer)) and max_bytes > 0):
+    if not (is_integer(max_bytes) and max_bytes > 0):
         raise ValueError(f"max_bytes must be a positive integer, got {max_bytes!r}")
     given = scene   # a Resolved scene's estimate reads its mesh
     scene = given.scene if isinstance(given, Resolved) else check_scene(given)
