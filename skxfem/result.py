@@ -79,7 +79,7 @@ class Result:
     and, in 3D, ``K_III`` (m,) the stress intensity factors there
     (:func:`skxfem.crack.sif.sif`, :func:`skxfem.crack.sif3d.sif_3d`), in 3D
     ``interior`` (m,) whether K is trusted there (the point's domain clear of the free
-    surfaces the front ends on, :func:`skxfem.crack.kind3d.interior_points`), and
+    surfaces the front ends on, :func:`skxfem.crack.kind3d.front_reach`), and
     ``interface`` the index of the crack in the scene's interfaces; empty without a
     crack.  ``timings``: seconds per stage, ``cut``, ``enrich``, ``assemble``,
     ``solve`` and, with a crack, ``front`` (K along its fronts).

@@ -45,7 +45,9 @@ from .geometry3d import barycentric, crack_geometry_3d, front_chains
 from .sif3d import (
     DEFAULT_LENGTH,
     check_radius,
+    default_radius_3d,
     domain_reach,
+    end_reach,
     fitted_frame,
     front_points,
     front_sizes,
@@ -66,8 +68,7 @@ from .space3d import (
 from .xspace import CrackXSpaceBase
 
 __all__ = ["Crack3D", "CrackXSpace3D", "FrontPointsWarning", "front_reach", "front_on_boundary",
-           "interior_points",
-           "warn_closing", "CLOSING"]
+           "interior_points", "room_advice", "warn_closing", "CLOSING"]
 
 
 class FrontPointsWarning(UserWarning):
@@ -130,25 +131,53 @@ def interior_points(P: np.ndarray, chains: list, length: float) -> np.ndarray:
     return d >= length * (1 - 1e-9)
 
 
-def front_reach(space) -> tuple[np.ndarray, np.ndarray, float, np.ndarray]:
+def room_advice(reach: np.ndarray, h: float) -> str:
+    """What limits the interaction domain of front points whose ``reach`` (n,)
+    (:func:`skxfem.crack.sif3d.domain_reach`) is under the front cells' size ``h``, and
+    what gives them K: cells across the front smaller than the least reach there (the
+    reach is the geometry's: the body's boundary beside the front, a third of the
+    distance to another front, half the radius of curvature; not the surfaces the front
+    ends on, whatever its angle to them); none on the boundary itself.
+
+    >>> print(room_advice(np.array([0.03, 0.05]), 0.125)[:55])
+    their interaction domain has 0.03 of room at the least,
+    """
+    least = float(np.min(reach))
+    return (f"their interaction domain has {least:.3g} of room at the least, under the "
+            f"front cells' size {h:.3g} across the front (the body's boundary beside the "
+            f"front, another front three times as far or the centre of curvature twice "
+            f"as far; not a surface the front ends on, at any angle); cells across the "
+            f"front under {least:.3g} there give those points K (refine the mesh about "
+            f"the front there); a front on the boundary itself has none on any mesh")
+
+
+def front_reach(space, radius: float | None = None
+                ) -> tuple[np.ndarray, np.ndarray, float, np.ndarray]:
     """The front's points (3, m) where K is computed (:func:`skxfem.crack.sif3d.front_points`),
     how far each one's interaction domain can reach (:func:`skxfem.crack.sif3d.domain_reach`,
     with :func:`skxfem.crack.sif3d.sif_3d`'s default bump), the front cells' size h
     across the front (:func:`skxfem.crack.sif3d.front_sizes`) and whether each point is
-    interior (:func:`interior_points`, that bump's half-width).  A point whose reach is
-    under h gets no K (:meth:`Crack3D.front` leaves it out and warns; a front with no
-    point left has none, the solve's other results stand): its domain would hold no
-    cell, and K came out anywhere between
+    interior: its domain (``radius``, default :func:`skxfem.crack.sif3d.default_radius_3d`,
+    clipped to the reach; that bump's half-width) clear of the surfaces the front ends on
+    (:func:`interior_points` and :func:`skxfem.crack.sif3d.end_reach`: a front meeting a
+    surface obliquely has its domain cut by it farther from its end than a bump's
+    half-width).  A point whose reach is under h gets no K (:meth:`Crack3D.front` leaves
+    it out and warns; a front with no point left has none, the solve's other results
+    stand): its domain would hold no cell, and K came out anywhere between
     0 and the right value (a penny of radius 0.49 centred in the unit cube, h = 1/8, 0.01
     from four sides: K_I from 0.009 to 2.4 along its front; an edge crack's straight
-    front 0.03 from the far side: K_I 48 to 55, with 1/8's default domain of 0.19)."""
+    front 0.03 from the far side: K_I 48 to 55, with 1/8's default domain of 0.19).  The
+    surfaces the front ends on limit the reach only where they leave a cell of room, at
+    any angle to the front (:func:`skxfem.crack.sif3d.domain_reach`)."""
     chains = front_chains(space.geometry)
     h, h_along = front_sizes(space)
     P = front_points(space, h_along, chains)
     L = DEFAULT_LENGTH * h_along
     frame, kappa = fitted_frame(space, P, max(L, 2 * h_along), chains)
-    return (P, domain_reach(space, P, frame.e3, kappa, L, chains), h,
-            interior_points(P, chains, L))
+    reach = domain_reach(space, P, frame.e3, kappa, L, chains, h)
+    R = np.minimum(default_radius_3d(space, h) if radius is None else float(radius), reach)
+    clear = end_reach(space.mesh, P, frame.e3, L, chains) >= R
+    return P, reach, h, interior_points(P, chains, L) & clear
 
 
 def front_on_boundary(mesh, geo) -> np.ndarray:
@@ -282,18 +311,15 @@ class Crack3D:
         faces = None
         if traction is not None and np.any(traction):
             faces = face_traction_3d(V.mesh, V.cut, np.asarray(traction, float))
-        P, reach, h, interior = front_reach(V.space)
+        P, reach, h, interior = front_reach(V.space, self.interface.sif_radius)
         if not np.all(reach >= h):
             far = reach >= h
             near = int((~far).sum())
             where = "; ".join("(" + ", ".join(f"{v:.3g}" for v in x) + ")"
                               for x in P[:, ~far].T[:4]) + (" …" if near > 4 else "")
             warnings.warn(f"{self.interface.front.name!r}: no K at {near} of {far.size} "
-                          f"front points (at {where}): their interaction domain has "
-                          f"under a cell ({h:.3g}) of room there (the body's boundary is "
-                          f"that near, or another front or the centre of curvature a few "
-                          f"cells away); refine the mesh there for K", FrontPointsWarning,
-                          stacklevel=2)
+                          f"front points (at {where}): {room_advice(reach[~far], h)}",
+                          FrontPointsWarning, stacklevel=2)
             P, interior = P[:, far], interior[far]
         K = (sif_3d(V.space, U, material, P, self.interface.sif_radius,
                     body_force=body_force, faces=faces) if P.shape[1] else np.zeros((0, 3)))

@@ -67,7 +67,16 @@ crack pressed shut (:func:`skxfem.studies.cracks3d.pressed_slab`, n = 13, front 
 x = 0.575) gave |K| = 1.02e-3 p√(πa) with the pressure 0.37 % off with two steps, 8.0e-4
 and 0.23 % with them (its exact state 4.5e-4); n = 11 at x = 0.5875 4.6e-4 -> 2.2e-4.
 They cost the stiffness of that slab 201 000 -> 352 000 points, of the pressed penny at
-n = 16 1.54 M -> 1.71 M, of the cube of ``benchmarks/crack_solve.py`` none (n = 16, 24)."""
+n = 16 1.54 M -> 1.71 M, of the cube of ``benchmarks/crack_solve.py`` none (n = 16, 24).
+
+Closer still, the steps do not resolve the branch functions' 1/r stiffness along a line
+on a piece's face: the front of that cube (n = 12) 1e-9 behind the node plane x = 0.5
+gave K_I 3.60356 at mid-front, 1e-9 past it 3.60041, on it 3.59996 (there the cells on
+both sides touch the front and take the almost-polar rules).  A step (1e-3, 32) added:
+3.60271 behind; (1e-5, 48) too: 3.60219 and 3.60009, slowly towards the value on the
+plane.  Left as
+is (K within 1e-3 across a node plane, tests/test_crack_3d.py); a rule that resolves it
+would give such a piece the almost-polar rule about the front's trace on its face."""
 
 VERTEX_POINTS = (4, 5)
 """(n_r, n_θ) of :func:`vertex_polar` (its integrand is regular: r⁻¹ u² ∝ u, but turns

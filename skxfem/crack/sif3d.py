@@ -89,8 +89,10 @@ The integrand holds σ uᵃ,₁ ∼ 1/r near the front, integrated by the
 almost-polar rules of the front cells.  Faces that carry a traction (a contact or a tie
 on them, :mod:`skxfem.crack.faces3d`) add the face term -∫ tᵢ uᵃᵢ,₁ q dS on both faces
 (:mod:`skxfem.crack.interaction`), on the faces' rule graded at the front; free faces
-none.  The free surfaces the front meets add a boundary term when the bump reaches them
-(K is reported there but is only trusted a bump's width inside).
+none.  The free surfaces the front meets add a boundary term when the domain reaches them
+(K is reported there but is only trusted where the domain stays clear of them: a bump's
+width inside for a front square to them, farther for one that meets them obliquely,
+:func:`domain_reach`, :func:`end_reach`).
 
 >>> from skfem import MeshTet1
 >>> from skxfem.crack.geometry3d import crack_geometry_3d
@@ -144,8 +146,10 @@ from .williams import near_tip_modes
 __all__ = ["DEFAULT_RADIUS", "MIN_RADIUS", "DEFAULT_LENGTH", "TUBE_ORDER", "FACE_RULES",
            "default_radius_3d",
            "front_points", "front_frame", "fitted_frame", "front_coordinate", "front_sizes",
-           "boundary_reach", "other_fronts", "check_radius", "domain_reach", "sif_3d",
-           "CrackSolution3D", "solve_crack_3d"]
+           "END_SURFACE_TURN", "END_SURFACE_SPREAD", "END_CROSSING", "boundary_samples",
+           "end_surfaces",
+           "surface_reach", "boundary_reach", "end_reach", "other_fronts", "check_radius",
+           "domain_reach", "sif_3d", "CrackSolution3D", "solve_crack_3d"]
 
 DEFAULT_RADIUS = 3.0
 """The default radius R of the radial cone with topological enrichment, in front-cell
@@ -252,12 +256,122 @@ def front_frame(space, points: np.ndarray) -> TipFrame:
     return tip_frame(cell_gradients(mesh, geo.phi, cells), cell_gradients(mesh, geo.psi, cells))
 
 
-def boundary_reach(mesh, points: np.ndarray, e3: np.ndarray, length: float) -> np.ndarray:
+END_SURFACE_TURN = 30.0
+"""The largest angle (degrees) between the normals of two boundary facets that share an
+edge on one smooth surface (:func:`end_surfaces`): the faces of a cube meet at 90°, a
+curved surface meshed at a few cells per radius turns by under 20° from facet to facet."""
+
+END_SURFACE_SPREAD = 60.0
+"""The largest angle (degrees) between a facet's normal and the normal where the front
+meets the surface, for the facet to count as part of that end surface
+(:func:`end_surfaces`): it stops the surface at the far side of a round bar, which is a
+side wall for the points across it."""
+
+
+END_CROSSING = 0.2
+"""The least cosine of the angle between the front, leaving the body at its end, and the
+outward normal of a facet the end lies on, for that facet to be a surface the front
+ends on (:func:`end_surfaces`; the front within 78° of its normal): a front running
+along a face (its end on the edge where that face meets the one it crosses) does not
+end on it, and that face stays a side wall its domain is clipped to."""
+
+
+def boundary_samples(mesh) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The boundary facets' samples (3, 7 nf) (their vertices, edge midpoints and
+    centroids), the outward normals (3, nf) and the boundary facets (nf,) (the samples
+    are facet-major in blocks of nf: sample j of facet k is column j nf + k)."""
+    from .space3d import outward_normals
+    f = mesh.boundary_facets()
+    a, b, c = (mesh.p[:, mesh.facets[k, f]] for k in range(3))
+    samples = np.hstack([a, b, c, (a + b) / 2, (b + c) / 2, (a + c) / 2, (a + b + c) / 3])
+    return samples, outward_normals(mesh, f), f
+
+
+def end_surfaces(mesh, chains: list) -> np.ndarray:
+    """(nf,) whether each boundary facet (``mesh.boundary_facets()``) lies on a surface
+    that an open chain of ``chains`` (:func:`~skxfem.crack.geometry3d.front_chains`) ends
+    on: the facets that hold a chain's end and that the front crosses there
+    (:data:`END_CROSSING`), and those reached from them across edges where the normal
+    turns by under :data:`END_SURFACE_TURN` degrees, their normal within
+    :data:`END_SURFACE_SPREAD` degrees of the end's.  The surface is the one the front
+    ends on whatever its angle to the front (a through crack whose front is tilted in
+    its plane meets the sides obliquely); a closed front ends on none.
+
+    >>> from skfem import MeshTet1
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 3),) * 3)
+    >>> chain = np.array([[0.5, 0.7], [0.0, 1.0], [0.5, 0.5]])    # y = 0 to y = 1
+    >>> ends = end_surfaces(m, [(chain, False)])
+    >>> from skxfem.crack.space3d import outward_normals
+    >>> n = outward_normals(m, m.boundary_facets())
+    >>> np.array_equal(ends, np.abs(n[1]) > 0.5)             # the faces y = 0 and y = 1
+    True
+    """
+    samples, n, f = boundary_samples(mesh)
+    out = np.zeros(f.size, dtype=bool)
+    E = [pts[:, [0, -1]] for pts, closed in chains if not closed]
+    if not E:
+        return out
+    E = np.hstack(E)
+    T = np.hstack([np.stack([pts[:, 0] - pts[:, 1], pts[:, -1] - pts[:, -2]], axis=1)
+                   for pts, closed in chains if not closed])
+    T = T / np.linalg.norm(T, axis=0)                       # outward along the front
+    # the facets each end lies on: within 1e-9 of the mesh's size of the facet's plane
+    # and inside it (its barycentric coordinates ≥ -1e-9)
+    a, b, c = (mesh.p[:, mesh.facets[k, f]] for k in range(3))
+    size = np.ptp(mesh.p, axis=1).max()
+    u, v = b - a, c - a
+    uu, uv, vv = (u * u).sum(0), (u * v).sum(0), (v * v).sum(0)
+    det = uu * vv - uv * uv
+    seeds = np.zeros(f.size, dtype=bool)
+    for k in range(E.shape[1]):
+        w = E[:, k, None] - a
+        off = np.abs((w * n).sum(axis=0))
+        wu, wv = (w * u).sum(0), (w * v).sum(0)
+        l1, l2 = (vv * wu - uv * wv) / det, (uu * wv - uv * wu) / det
+        on = ((off <= 1e-9 * size) & (l1 >= -1e-9) & (l2 >= -1e-9) & (l1 + l2 <= 1 + 1e-9)
+              & ((n * T[:, k, None]).sum(axis=0) >= END_CROSSING))
+        seeds |= on
+    # boundary facets sharing an edge, the normal turning by under END_SURFACE_TURN
+    edges = mesh.f2e[:, f]                                     # (3, nf)
+    order = np.argsort(edges.ravel(), kind="stable")
+    key = edges.ravel()[order]
+    pair = np.flatnonzero(key[1:] == key[:-1])
+    i, j = order[pair] % f.size, order[pair + 1] % f.size
+    smooth = (n[:, i] * n[:, j]).sum(axis=0) >= np.cos(np.radians(END_SURFACE_TURN))
+    from scipy.sparse.csgraph import connected_components
+    spread = np.cos(np.radians(END_SURFACE_SPREAD))
+    for s in np.flatnonzero(seeds):
+        near = (n * n[:, s, None]).sum(axis=0) >= spread
+        keep = smooth & near[i] & near[j]
+        g = sp.coo_matrix((np.ones(keep.sum()), (i[keep], j[keep])), shape=(f.size,) * 2)
+        _, label = connected_components(g, directed=False)
+        out |= label == label[s]
+    return out
+
+
+def surface_reach(samples: np.ndarray, points: np.ndarray, e3: np.ndarray,
+                  length: float) -> np.ndarray:
+    """For each point P (3, m) with its tangent e₃ (3, m): the least distance, in the
+    plane normal to e₃, from P to the ``samples`` (3, k) within ``length`` of that plane;
+    inf where none is."""
+    out = np.empty(points.shape[1])
+    for k in range(points.shape[1]):
+        d = samples - points[:, k, None]
+        along = e3[:, k] @ d
+        radial = np.sqrt(np.maximum((d * d).sum(axis=0) - along ** 2, 0.0))
+        use = np.abs(along) <= length
+        out[k] = radial[use].min() if use.any() else np.inf
+    return out
+
+
+def boundary_reach(mesh, points: np.ndarray, e3: np.ndarray, length: float,
+                   chains: list | None = None) -> np.ndarray:
     """For each front point P (3, m) with its tangent e₃ (3, m): the distance, in the plane
     normal to the front, from P to the boundary facets within ``length`` of that plane
-    (sampled at their vertices, edge midpoints and centroids), leaving out the facets
-    nearly normal to e₃ (|n·e₃| > 0.9: the free surfaces the front ends on).  The radial
-    cone is clipped to it, so that q vanishes on the rest of the boundary.
+    (sampled at their vertices, edge midpoints and centroids), leaving out the surfaces
+    the front ends on (:func:`end_surfaces` of the open chains of ``chains``; None: none
+    left out).  The radial cone is clipped to it, so that q vanishes on the rest of the
+    boundary (the surfaces the front ends on: :func:`domain_reach`).
 
     >>> from skfem import MeshTet1
     >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 5),) * 3)
@@ -265,20 +379,35 @@ def boundary_reach(mesh, points: np.ndarray, e3: np.ndarray, length: float) -> n
     ...                0.25).round(12).tolist()
     [0.3]
     """
-    from .space3d import outward_normals
-    f = mesh.boundary_facets()
-    n = outward_normals(mesh, f)
-    a, b, c = (mesh.p[:, mesh.facets[k, f]] for k in range(3))
-    samples = np.hstack([a, b, c, (a + b) / 2, (b + c) / 2, (a + c) / 2, (a + b + c) / 3])
-    normal = np.tile(n, 7)
-    out = np.empty(points.shape[1])
-    for k in range(points.shape[1]):
-        d = samples - points[:, k, None]
-        along = e3[:, k] @ d
-        radial = np.sqrt(np.maximum((d * d).sum(axis=0) - along ** 2, 0.0))
-        use = (np.abs(along) <= length) & (np.abs(e3[:, k] @ normal) <= 0.9)
-        out[k] = radial[use].min() if use.any() else np.inf
-    return out
+    samples, _, f = boundary_samples(mesh)
+    if chains is not None:
+        samples = samples[:, ~np.tile(end_surfaces(mesh, chains), 7)]
+    return surface_reach(samples, points, e3, length)
+
+
+def end_reach(mesh, points: np.ndarray, e3: np.ndarray, length: float,
+              chains: list) -> np.ndarray:
+    """For each front point P (3, m) with its tangent e₃ (3, m): the distance, in the plane
+    normal to the front, from P to the surfaces the front ends on (:func:`end_surfaces`
+    of ``chains``, sampled as in :func:`boundary_reach`) within ``length`` of that plane;
+    inf where none is (a relative margin of 1e-9 inside).  A domain of radius R and
+    half-width ``length`` reaches such a surface where it is under R: a front square to
+    the surface, when P is within ``length`` of the front's end; a front meeting it
+    obliquely, farther (the domain's cylinder cuts the surface a distance R tan α past
+    the end, α the angle between the front and the surface's normal).
+
+    >>> from skfem import MeshTet1
+    >>> m = MeshTet1.init_tensor(*(np.linspace(0, 1, 5),) * 3)
+    >>> chain = np.array([[0.5, 0.5], [0.0, 1.0], [0.5, 0.5]])      # along y
+    >>> P = np.array([[0.5, 0.5], [0.1, 0.5], [0.5, 0.5]])
+    >>> e3 = np.array([[0.0, 0.0], [1.0, 1.0], [0.0, 0.0]])
+    >>> end_reach(m, P, e3, 0.25, [(chain, False)]).tolist()      # y = 0 within 0.25
+    [0.0, inf]
+    """
+    samples, _, _ = boundary_samples(mesh)
+    # a sample at the bump's edge (|s| = length, where Λ = 0) is not in the domain
+    return surface_reach(samples[:, np.tile(end_surfaces(mesh, chains), 7)], points, e3,
+                         length * (1 - 1e-9))
 
 
 def _rotate(R: np.ndarray, T: np.ndarray) -> np.ndarray:
@@ -378,7 +507,7 @@ def other_fronts(geo, P: np.ndarray, chains: list | None = None) -> np.ndarray:
 
 
 def domain_reach(space, P: np.ndarray, e3: np.ndarray, kappa: np.ndarray, length: float,
-                 chains: list | None = None) -> np.ndarray:
+                 chains: list | None = None, h: float | None = None) -> np.ndarray:
     """How far (m,) the interaction domain of each front point P (3, m), tangent e₃
     (3, m), curvature κ (m,) (:func:`fitted_frame`), can reach: the distance to the
     boundary in the plane normal to the front (:func:`boundary_reach` within the bump's
@@ -386,12 +515,27 @@ def domain_reach(space, P: np.ndarray, e3: np.ndarray, kappa: np.ndarray, length
     (:func:`other_fronts`) and half the radius of curvature 1/(2|κ|).  :func:`sif_3d`
     clips its radius R to it.
 
-    The last keeps a curved front's domain off its centre of curvature, where the
+    The surfaces the front ends on (:func:`end_surfaces`) clip it too where that leaves
+    a front cell's size ``h`` of room or more (default :func:`front_sizes`; the domain
+    then stays off them, as off any wall, and the point is interior); where it would
+    leave less (the points near the end, all of them for a front square to the
+    surface), they do not, and the domain is clipped to the body there
+    (:func:`end_reach`: such a point is not interior).  A front meeting them obliquely
+    had its points within about R tan α + ``length`` of its ends without K (α the angle
+    from square; the test was |n·e₃| ≤ 0.9, α over 26°): at slope 0.49 (α = 26.1°) on
+    the cube of ``benchmarks/crack_solve.py``, n = 10, 4 of 8 points.
+
+    The curvature keeps a curved front's domain off its centre of curvature, where the
     stretch h₃ = 1 + κ x₁ along the front vanishes: a penny of radius a = 0.2 in the
     unit cube (clamped below, pulled above) gave K_I/2σ√(a/π) = 1.05-1.08 with R ≤ 2a/3
     at n = 12, 16, 24, but 0.63-0.66 with R = a, and its default R (0.25, 0.20, 0.13)
     gave a median 0.80 and 0.77 at n = 12 and 16 (1.07 at n = 24, where R < 2a/3)."""
-    return np.minimum.reduce([boundary_reach(space.mesh, P, e3, length),
+    chains = front_chains(space.geometry) if chains is None else chains
+    h = front_sizes(space)[0] if h is None else float(h)
+    samples, _, _ = boundary_samples(space.mesh)
+    ends = np.tile(end_surfaces(space.mesh, chains), 7)
+    walls, at_ends = (surface_reach(samples[:, k], P, e3, length) for k in (~ends, ends))
+    return np.minimum.reduce([walls, np.where(at_ends >= h, at_ends, np.inf),
                               other_fronts(space.geometry, P, chains) / 3,
                               0.5 / np.maximum(np.abs(kappa), 1e-300)])
 
@@ -689,7 +833,7 @@ def sif_3d(space, U: np.ndarray, material: Material, points: np.ndarray | None =
     A, B, C, D = A_[:, :, :n], B_[:, :n], C_[:, :n], D_[:, :n]
     if faces is not None:
         xf, wf, rf, Df = _face_terms(space, faces, material, e1_nodes, cells)
-    Rk = np.minimum(R, domain_reach(space, P, frames.e3, kappa, L, chains))
+    Rk = np.minimum(R, domain_reach(space, P, frames.e3, kappa, L, chains, h))
     den = _hat_integral(geo, P, frames.e3, L, Rk)
     K = np.zeros((P.shape[1], 3))
     size = np.abs(X).max(initial=0.0)
