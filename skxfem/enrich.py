@@ -402,7 +402,8 @@ def enriched_blocks(V: XSpace | XSpaces, A, AH, cross=None) -> sp.csr_matrix:
             cross[(j, k)].T if (j, k) in cross else None)
 
     for k, (Aab, Abb) in enumerate(parts):
-        rows.append([Aab.T] + [Abb if j == k else between(k, j) for j in range(len(parts))])
+        rows.append([Aab.T] + [Abb if j == k else between(k, j)
+                               for j in range(len(parts))])
     return sp.bmat(rows, format="csr")
 
 

@@ -452,7 +452,8 @@ def newton(step: StepProblem, start: Iterate, tol: float = TOL, max_iter: int = 
                     step, it, res, None, linear, modes, blocksize, factor, eta)
             except linear_step.SingularStepError as e2:
                 dx, scaled, factor, krylov = _singular_fallback(
-                    step, it, res, closed_before, linear, modes, blocksize, e2, eta, setup)
+                    step, it, res, closed_before, linear, modes, blocksize, e2, eta,
+                    setup)
         if linear == "iterative":
             inner.append(krylov)
         if merit_rows is None:  # one merit for the whole step: no cycle can decrease it
