@@ -72,7 +72,7 @@ import scipy.sparse as sp
 from ..linalg.iterative import ConvergenceError
 from . import step as linear_step
 from .laws import LAWS, disk_projection, status
-from .slide import slide
+from .slide import slide, slips
 
 __all__ = ["Law", "PointLaws", "point_laws", "join_laws", "StepProblem", "Iterate", "Residual",
            "NewtonInfo", "ContactConvergenceError", "jumps", "residual", "jacobian",
@@ -270,8 +270,7 @@ class NewtonInfo:
 def jumps(ops, U, U_prev):
     """d (m,) and s (m, k): the weighted normal jump and tangential jump increment."""
     d = ops.Bn @ U / ops.w
-    s = np.stack([Bt @ (U - U_prev) for Bt in ops.Bt], axis=1) / ops.w[:, None]
-    return d, s.reshape(d.size, len(ops.Bt))
+    return d, slips(ops, U, U_prev).reshape(d.size, len(ops.Bt))
 
 
 def _radius(laws: PointLaws, lam, g_n):

@@ -47,7 +47,7 @@ import numpy as np
 
 from .laws import SLIP
 
-__all__ = ["translations", "slides", "minimise", "bounded", "clusters", "slide"]
+__all__ = ["translations", "slides", "minimise", "bounded", "clusters", "slide", "slips"]
 
 SNAP = 1e-10
 """A point whose slip |s + D t| is below this fraction of the largest slip of the
@@ -148,9 +148,9 @@ def _phi(s, D, c, f, t) -> float:
     return float(c @ np.linalg.norm(s + np.einsum("nkq,q->nk", D, t), axis=1) - f @ t)
 
 
-def _slips(ops, U, U_prev) -> np.ndarray:
-    """s (m, k): the weighted tangential jump increments
-    (:func:`skxfem.contact.newton.jumps`)."""
+def slips(ops, U, U_prev) -> np.ndarray:
+    """s (m, k): the weighted tangential jump increments over the step, Bt_a (U - U_prev)
+    / w (the s of :func:`skxfem.contact.newton.jumps`)."""
     return np.stack([B @ (U - U_prev) for B in ops.Bt], axis=1) / ops.w[:, None]
 
 
@@ -216,8 +216,8 @@ def slide(step, it, res, F):
         c = ops.w[on] * res.radius[on]
         if not bounded(D[on], c, f):
             continue                  # these dofs cannot hold the part: Newton's to find
-        t = minimise((_slips(ops, U, step.U_prev) * free)[on], D[on], c, f)
-        s = _slips(ops, U + Z @ t, step.U_prev) * free
+        t = minimise((slips(ops, U, step.U_prev) * free)[on], D[on], c, f)
+        s = slips(ops, U + Z @ t, step.U_prev) * free
         norm = np.linalg.norm(s, axis=1)
         sliding = on & (norm > SNAP * norm[on].max())
         stuck = on & ~sliding
