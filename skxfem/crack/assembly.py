@@ -259,9 +259,9 @@ def coupling(space: CrackSpace, other: CrackSpace, material: Material) -> sp.csr
             continue
         for G in rule_groups(first, cells, plain_order=BRANCH_ORDER):
             c, ref, side, _, w = G.points()
-            sides = {id(first): side, id(space if first is other else other): None}
-            Bv = evaluation(space, c, ref, sides[id(space)]).grad[:, space.n_std:]
-            Bu = evaluation(other, c, ref, sides[id(other)]).grad[:, other.n_std:]
+            sv, su = (side, None) if first is space else (None, side)   # cut by first
+            Bv = evaluation(space, c, ref, sv).grad[:, space.n_std:]
+            Bu = evaluation(other, c, ref, su).grad[:, other.n_std:]
             block = block + _strain_energy(Bu, Bv, w, lam, mu)
     return block.tocsr()
 
