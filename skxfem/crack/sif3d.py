@@ -111,6 +111,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 from numpy.polynomial.legendre import leggauss
+from scipy.sparse.csgraph import connected_components
 
 from ..fem.loads import force_field
 from ..fem.material import Material
@@ -338,7 +339,6 @@ def end_surfaces(mesh, chains: list) -> np.ndarray:
     pair = np.flatnonzero(key[1:] == key[:-1])
     i, j = order[pair] % f.size, order[pair + 1] % f.size
     smooth = (n[:, i] * n[:, j]).sum(axis=0) >= np.cos(np.radians(END_SURFACE_TURN))
-    from scipy.sparse.csgraph import connected_components
     spread = np.cos(np.radians(END_SURFACE_SPREAD))
     for s in np.flatnonzero(seeds):
         near = (n * n[:, s, None]).sum(axis=0) >= spread
@@ -379,7 +379,7 @@ def boundary_reach(mesh, points: np.ndarray, e3: np.ndarray, length: float,
     ...                0.25).round(12).tolist()
     [0.3]
     """
-    samples, _, f = boundary_samples(mesh)
+    samples = boundary_samples(mesh)[0]
     if chains is not None:
         samples = samples[:, ~np.tile(end_surfaces(mesh, chains), 7)]
     return surface_reach(samples, points, e3, length)
