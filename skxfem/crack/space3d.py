@@ -75,6 +75,7 @@ from .geometry3d import (
     cell_gradients,
     check_mesh_3d,
     mesh_cells,
+    projected_diameters,
     shape_gradients,
 )
 from .quadrature3d import NEAR_GRADING, NEAR_POINTS, collapsed, edge_polar, vertex_polar
@@ -202,18 +203,13 @@ def cross_section(mesh, geometry: CrackGeometry3D) -> float:
     [1.414214, 1.414214]
     """
     cells = geometry.front_cells
-    e3 = np.cross(cell_gradients(mesh, geometry.phi, cells),
-                  cell_gradients(mesh, geometry.psi, cells), axis=0)
-    norm = np.linalg.norm(e3, axis=0)
     nodes = mesh.t[:, cells]
-    ok = norm > 0
-    if not ok.any():                 # ∇φ_h ∥ ∇ψ_h in every front cell: the nodes' distance
+    d = projected_diameters(np.transpose(mesh.p[:, nodes], (2, 1, 0)),
+                            cell_gradients(mesh, geometry.phi, cells).T,
+                            cell_gradients(mesh, geometry.psi, cells).T)
+    if np.isnan(d).all():            # ∇φ_h ∥ ∇ψ_h in every front cell: the nodes' distance
         return float(np.hypot(geometry.phi[nodes], geometry.psi[nodes]).max(axis=0).mean())
-    e3 = e3[:, ok] / norm[ok]
-    x = mesh.p[:, nodes[:, ok]]                                    # (3, 4, nf)
-    x = x - np.einsum("ikn,in->kn", x, e3)[None] * e3[:, None]
-    i, j = np.triu_indices(nodes.shape[0], 1)
-    return float(np.linalg.norm(x[:, i] - x[:, j], axis=0).max(axis=0).mean())
+    return float(np.nanmean(d))
 
 
 def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric",

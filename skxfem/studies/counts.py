@@ -34,7 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..crack.geometry import ZERO
-from ..crack.geometry3d import _polygon_phi
+from ..crack.geometry3d import _polygon_phi, projected_diameters
 from ..fem.cells import CELL_TYPES
 from ..levelset import nodal_values
 from ..scene.model import Box
@@ -218,15 +218,8 @@ def _cross_section(x: np.ndarray, ps: np.ndarray, ph: np.ndarray) -> float:
     the diameter of the corners projected on the plane normal to ∇φ × ∇ψ."""
     E = x[:, 1:] - x[:, :1]                                            # (n, 3, 3) edges
     g = [np.linalg.solve(E, (v[:, 1:] - v[:, :1])[:, :, None])[:, :, 0] for v in (ph, ps)]
-    e3 = np.cross(g[0], g[1])
-    norm = np.linalg.norm(e3, axis=1)
-    ok = norm > 0
-    if not ok.any():
-        return float(np.hypot(ps, ph).max(axis=1).mean())
-    e3, x = e3[ok] / norm[ok, None], x[ok]
-    x = x - np.einsum("nki,ni->nk", x, e3)[:, :, None] * e3[:, None]
-    i, j = np.triu_indices(4, 1)
-    return float(np.linalg.norm(x[:, i] - x[:, j], axis=2).max(axis=1).mean())
+    d = projected_diameters(x, *g)
+    return float(np.hypot(ps, ph).max(axis=1).mean() if np.isnan(d).all() else np.nanmean(d))
 
 
 def _tally(n_nodes: int, n_cells: int, ids, ps, ph, tets, extent: float,
