@@ -576,7 +576,8 @@ def test_a_front_ending_on_the_sides_at_45_degrees_has_K_at_every_point():
     |n·e₃| > 0.9 test), 6 of 16 points got no K and a warning to refine the mesh, which
     does not help (the sides are the surfaces the front ends on).  Now every point has
     K, no warning; the points whose domain reaches the sides are not interior (measured:
-    the 3 nearest each end), the others as before (K_I 2.92-3.36)."""
+    the 3 nearest each end), the others K_I 3.03-3.46 (2.92-3.36 when the default zone
+    counted its cells by the nodes' distance to the front, crack.space3d.cross_section)."""
     import warnings
 
     from skxfem.levelset import plane
@@ -589,7 +590,7 @@ def test_a_front_ending_on_the_sides_at_45_degrees_has_K_at_every_point():
     assert K.size == P.shape[0] == 16 and np.isfinite(K).all()
     near = np.minimum(P[:, 0], P[:, 1]) < 0.2
     assert np.array_equal(interior, ~near) and near.sum() == 6, (P, interior)
-    assert np.all((K[interior] > 2.9) & (K[interior] < 3.4)), K
+    assert np.all((K[interior] > 2.95) & (K[interior] < 3.55)), K
 
 
 def test_end_surfaces_are_the_sides_the_front_crosses_not_those_it_runs_along():
