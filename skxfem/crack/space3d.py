@@ -74,7 +74,6 @@ from .geometry3d import (
     barycentric,
     cell_gradients,
     check_mesh_3d,
-    front_chains,
     mesh_cells,
     projected_diameters,
     shape_gradients,
@@ -226,8 +225,7 @@ def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric
     radius : r_e > 0 for geometric enrichment; default
         :func:`skxfem.crack.radius.default_enrichment_radius` (0.2 of the crack's depth
         :func:`crack_depth`, and at least 4 front-cell sizes across the front,
-        :func:`cross_section`, but no more than the depth where the front faces itself, a
-        loop or two fronts: the
+        :func:`cross_section`: the
         default radial cone of :func:`skxfem.crack.sif3d.sif_3d` inside 0.75 r_e).
     """
     check_geometry(geometry, check_mesh_3d(mesh), CrackGeometry3D, "crack_geometry_3d")
@@ -236,12 +234,6 @@ def crack_space_3d(mesh, geometry: CrackGeometry3D, enrichment: str = "geometric
     radius = enrichment_radius(            # the front cells' mean size across the front
         mesh, enrichment, radius, lambda: cross_section(mesh, geometry),
         lambda: crack_depth(geometry))
-    chains = None if radius is None or given else front_chains(geometry)
-    if chains and (len(chains) > 1 or chains[0][1]):
-        # a front that faces itself (a loop, or two fronts): the default zone stops at the
-        # crack's depth, where the nearest front point, whose polar coordinates the
-        # branch functions take, jumps across the crack's middle
-        radius = min(radius, crack_depth(geometry))
     branch_nodes = geometric_nodes(nodes.ravel(), None if radius is None else
                                    front_distance(geometry, mesh.p), radius, given)
     heav = np.setdiff1d(np.unique(mesh.t[:, geometry.split_cells]), branch_nodes)
