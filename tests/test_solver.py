@@ -784,12 +784,14 @@ def test_auto_falls_back_to_the_direct_solve_where_cg_stalls(monkeypatch):
 
 
 def _pulled(crack, n: int, size: float) -> Scene:
-    """The square of side ``size`` (n × n cells of two triangles) with ``crack``, pulled
-    by σ_yy = 1 on its top and bottom, held at its two lower corners (E = 1, ν = 0.3)."""
+    """The square of side ``size`` (n × n cells of two triangles) with ``crack`` (an
+    Interface or a tuple of them), pulled by σ_yy = 1 on its top and bottom, held at its
+    two lower corners (E = 1, ν = 0.3)."""
     held = (Displacement("ymin", {"x": 0.0, "y": 0.0}, where="x < 1e-9"),
             Displacement("ymin", {"y": 0.0}, where=f"x > {size} - 1e-9"))
     pull = tuple(SurfaceLoad(b, traction=(0.0, t)) for b, t in (("ymax", 1.0), ("ymin", -1.0)))
-    return Scene(Box(n, "tri", size=(size, size)), interfaces=(crack,),
+    cracks = crack if isinstance(crack, tuple) else (crack,)
+    return Scene(Box(n, "tri", size=(size, size)), interfaces=cracks,
                  material=Material(1.0, 0.3), displacements=held, loads=pull)
 
 
@@ -842,3 +844,21 @@ def test_a_four_tip_ring_crack_solves_directly_with_its_default_zone():
     K_I = direct["K_I"][order]                                 # (-,-), (-,+), (+,-), (+,+)
     assert abs(K_I[0] - K_I[3]) < 5e-3 * K_I.max() and abs(K_I[1] - K_I[2]) < 5e-3 * K_I.max()
     assert K_I.min() > 0.1
+
+
+def test_two_cracks_whose_branch_functions_nearly_coincide_are_a_singular_system():
+    """The ring's two arcs as two cracks whose fronts differ by 1e-9 x above and below
+    the ring, where both zones reach: the nodes there hold two nearly equal sets of
+    branch functions.  Their own block (scaled by node) is not positive definite: the
+    solve refuses the system as singular and names the zone's cure."""
+    from skxfem.levelset import LevelSet
+    from skxfem.linalg.saddle import SingularSystemError
+
+    def arc(s):
+        return Interface(LevelSet(lambda x: np.hypot(x[0] - 0.5, x[1] - 0.5) - 0.2, 2, "o"),
+                         law="free", front=LevelSet(lambda x: np.maximum(
+                             np.abs(x[1] - 0.5) - 0.1, s * (0.5 - x[0])) + 1e-9 * s * x[0],
+                             2, f"arc {s}"))
+    with pytest.raises(SingularSystemError, match=r"singular to working precision .*"
+                       r"smaller enrichment_radius"):
+        solve(_pulled((arc(1), arc(-1)), 21, 1.0), linear="direct")
