@@ -883,7 +883,8 @@ def test_an_arc_crack_in_biaxial_tension_matches_the_closed_form():
     at h = 1/6."""
     from skxfem.solver import solve
     scene, K = _arc_scene(160, "quad", 40.0, enrichment_radius=2.0)
-    (front,) = solve(scene, linear="direct").front
+    with pytest.warns(FrontPointsWarning, match="curvature"):      # ρ/10 is 1.2 cells
+        (front,) = solve(scene, linear="direct").front
     print(front["K_I"] / K[0] - 1, np.abs(front["K_II"]) / K[1] - 1)
     assert np.allclose(front["K_I"], K[0], rtol=0.025)
     assert np.allclose(np.abs(front["K_II"]), K[1], rtol=0.05)
