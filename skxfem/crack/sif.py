@@ -25,21 +25,22 @@ points; this module makes them from a solution U on the crack's space:
    tip cells on their almost-polar rule), q interpolated at the points
    (:mod:`skxfem.crack.interaction`); without one the domain is the ring of step 2.
 
-The auxiliary fields are a straight crack's.  On a crack of curvature κ = 1/ρ they miss
+The auxiliary fields are a straight crack's. On a crack of curvature κ = 1/ρ they miss
 the faces by about κr at r from the tip, and K follows the domain's radius R: a circular
 arc (radius 3, α = asin 2/3) under equal biaxial tension, against Sih, Paris & Erdogan's
 closed form (2.0772, 0.7934), quadrilaterals, r_e = 2, 29 November: K_I +1.8, +2.6,
-+4.2 % and K_II -3.3, -9.4, -16.4 % with R = 0.5, 1, 1.5 at h = 1/6 on a 40 plate (the
-same at h = 1/3: the error is the domain's, not the mesh's; the plate adds +0.9 % and
-+2.8 %, from 20, 40 and 80 plates), so about +4.5 R/ρ per cent in K_I and -36 R/ρ in
-K_II.  The default 0.75 r_e (1.5 there; 4.2, 4.8 with the default r_e on the 20, 40
-plates) converged in h to that wrong K.  :data:`CURVATURE_FRACTION` = 0.1 keeps K_II
-within about 4 % where the mesh allows (R = ρ/10 at 2 cells and more); the domain keeps :data:`CURVATURE_CELLS` = 2
-cells (on this arc K stays on the same line in R from 2 cells up: R = 0.34 at h = 1/6,
-K_I +1.65 %, K_II -1.5 % on the 40 plate), and :mod:`skxfem.gamma` warns a tip whose
-curvature would take it under.  The default on the 40 plate: K_I +2.1, +1.4, +1.6 %,
-K_II -6.0, -3.3, -1.5 % at h = 1/3, 1/4, 1/6 (triangles: +2.1/+0.0, +1.1/-0.4,
-+2.0/+1.0 % and -8.5/-5.4, -4.8/-4.0, -2.8/-1.1 % at the two tips).
++4.2 % and K_II -3.3, -9.4, -16.4 % with R = 0.5, 1, 1.5 at h = 1/6 on a 40 plate (the same
+at h = 1/3: the error is the domain's, not the mesh's; the plate adds +0.9 % and +2.8 %,
+from 20, 40 and 80 plates), so about +4.5 R/ρ per cent in K_I and -36 R/ρ in K_II. The
+default 0.75 r_e (1.5 there; 4.2, 4.8 with the default r_e on the 20, 40 plates)
+converged in h to that wrong K. :data:`CURVATURE_FRACTION` = 0.1 keeps K_II within about
+4 % where the mesh allows (R = ρ/10 at 2 cells and more); the domain keeps
+:data:`CURVATURE_CELLS` = 2 cells (on this arc K stays on the same line in R from 2
+cells up: R = 0.34 at h = 1/6, K_I +1.65 %, K_II -1.5 % on the 40 plate), and
+:mod:`skxfem.gamma` warns a tip whose curvature would take it under. The default on the
+40 plate: K_I +2.1, +1.4, +1.6 %, K_II -6.0, -3.3, -1.5 % at h = 1/3, 1/4, 1/6
+(triangles: +2.1/+0.0, +1.1/-0.4, +2.0/+1.0 % and -8.5/-5.4, -4.8/-4.0, -2.8/-1.1 % at
+the two tips).
 
 >>> from skfem import MeshTri1
 >>> from skxfem.crack.geometry import crack_geometry
