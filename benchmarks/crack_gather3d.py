@@ -27,7 +27,9 @@ function discontinuous across the crack) at the nodes of the split cells; ``near
 ``jump`` and the twelve of the nodes within 2 front-cell sizes of the front; ``F1``
 F₁'s three at every branch node, F₂..F₄ gathered.  ``p0`` constant coefficients per
 station (Laborde's gathering); ``p1``, ``p2``: at each station polynomials of that
-degree in the node's (φ, ψ)/r_e across the front (36, 72 unknowns per station).
+degree in the node's (φ, ψ)/r_e across the front (36, 72 unknowns per station).  ``--heaviside``:
+each variant also on the space with Heaviside unknowns at the zone's split nodes
+(:func:`zone_heaviside`, GetFEM's arrangement below), named ``H …``.
 
 The stiffness is the library's (:func:`skxfem.problem.assemble`), so the zone's cells
 are still integrated: gathering shrinks the solve only.  Each space (the current one
@@ -119,20 +121,49 @@ F1 2     -1.2 / 21 948 / 4.84 / 7.36   -0.74 / 58 686 / 7.82 / 15.5
 near2    -1.1 / 19 914 / 4.78 / 2.29   -0.59 / 55 698 / 7.68 / 4.27
 ======== ============================= =============================
 
-(CG iterations 58-79 for all but the ``F1`` p1 and p2 spaces, 107-288.)  The answer:
-**no**.  Laborde's gathering (p0, with or without the front cells' nodes free) brings
-the unknowns to the tie's (15 972 against 17 340 at n = 16, 49 908 against 52 500 at
-n = 24) and the solve's nonzeros to a sixth or a quarter, but K_I falls by 14-26 %: in
-this space the branch functions also carry the crack's opening across the zone (r_e =
-4 front cells), which constants per station cannot.  No variant keeps K_I within 0.5 %
-of the current space at n ≤ 16; those within 2 % (degree 2 across the front, with the
-jump or the near nodes free) keep 70-90 % of the current nonzeros and save little or
-nothing of the solve.  The best trade is ``F1 0`` (F₁ free at every branch node, F₂..F₄
-gathered): 35-41 % of the nonzeros, CG 2-4 times shorter, K_I 1.1-3.6 % low, like the
-vector enrichment of ``crack_solve.py``'s notes (3 % at n = 16).  And the solve is not
-all: with a solve as short as the tie's, the assembly (stiffness 1.6-2.5 s at n = 16,
-3.7 s at n = 24 in these runs) and K along the front (1.4-2.8 s) alone stay 6-8 and about 4
-times the tie's whole time at n = 16 and 24.
+(CG iterations 58-79 for all but the ``F1`` p1 and p2 spaces, 107-288.)  In the
+library's space, then: Laborde's gathering (p0, with or without the front cells' nodes
+free) brings the unknowns to the tie's (15 972 against 17 340 at n = 16, 49 908 against
+52 500 at n = 24) and the solve's nonzeros to a sixth or a quarter, but K_I falls by
+14-26 %: the branch functions there also carry the crack's opening across the zone
+(r_e = 4 front cells; its branch nodes have no Heaviside unknowns), which constants per
+station cannot.  No variant keeps K_I within 0.5 % at n ≤ 16; those within 2 % (degree
+2 across the front, with the jump or the near nodes free) keep 70-90 % of the current
+nonzeros and save little of the solve.  ``F1 0`` (F₁ free at every branch node, F₂..F₄
+gathered): 35-41 % of the nonzeros, K_I 1.1-3.6 % low, like the vector enrichment of
+``crack_solve.py``'s notes (3 % at n = 16).
+
+**With GetFEM's Heaviside in the zone** (``--heaviside``, :func:`zone_heaviside`: H
+also at the branch nodes of split cells that are no front cell's node, 63, 117, 153,
+225 nodes at n = 8, 12, 16, 24; its stiffness by the library's own code, which follows
+the map T) the loss goes.  The ``H current`` space (the twelve per node and those H) is
+itself nearer K_I's limit (about 3.81): 3.7187, 3.7113, 3.7159, 3.7436, +0.03, +1.89,
++1.32, +0.81 % over the current space (189-675 more unknowns).  Its ``H F1 0``
+(H at those nodes, F₁ free at every branch node, the front cells' nodes' twelve free,
+F₂..F₄ gathered on stations 3 front cells apart): K_I at mid-front -1.76, -0.64, -0.10,
++0.01 % against the current space (3.6521, 3.6189, 3.6639, 3.7141), along the interior
+of the front within 2.14, 0.78, 0.37, 0.30 %; 5 868, 11 940, 22 137, 58 956 unknowns
+(50, 52, 61, 74 % of the current), 0.80, 1.34, 2.01, 3.94 M nonzeros (36, 33, 36, 43 %;
+the tie's K 0.65 M at n = 16, 1.97 M at 24), CG 69, 68, 73, 77 iterations (the current
+161, 59, 63, 69); spacing 2, 3, 4 at n = 16: -0.09, -0.10, -0.10 %.  ``H gather 0``
+(every branch node gathered, H in the zone): -11.3, -12.7, -9.4, -6.2 %; ``H front 0``
+-7.3, -5.4, -3.7, -2.4 %; degree 2 across brings these to +0.34 and +0.87 % at n = 16, but at 3.4
+and 3.9 M nonzeros and 197 and 215 iterations.  Times (CG, least of 2, the machine
+at a load of 4 on its 2 cores, so only the ratios within a run): ``H F1 0`` 1.23-1.81 s
+against the current 3.39 s at n = 16 (the tie's solve 0.48 s, its whole 0.92 s) and
+2.82 against 5.50 s at n = 24 (the tie's solve 1.66 s): the solve about half, 1.7 times
+the tie's at n = 24, 3 times at n = 16.
+
+**The answer**: K_I within 0.5 % of the current space, yes from n = 16 (not at n = 8,
+12), but only with Heaviside unknowns at the zone's split nodes and F₁ per node: then
+the unknowns are 61-74 % of the current ones and the solve half of it, not the tie's.
+Gathering down to the tie's unknowns (p0 everywhere) loses 6-13 % of K_I with the
+Heaviside, 15-26 % without.  And the solve is not all: with a solve as short as the
+tie's, the assembly (stiffness 1.6-2.8 s at n = 16, 2.6-4.7 s at n = 24 in these runs)
+and K along the front (1.4-3 s) would alone stay 6-8 and about 4 times the tie's whole
+time at n = 16 and 24 (``crack_solve.py``'s 22:36 run, n = 24: assembly 1.89 s, solve
+2.97 s, K 2.35 s against the tie's 1.06 s: halving the solve gives about 6.2 s of 7.66 s, a
+ratio about 5.8 instead of 7.2).
 
 The assembly left (``--zones``, one run, the stiffness stage of
 :func:`skxfem.problem.assemble`; a cut-off χ(r) integrates its support, as a zone of
@@ -142,10 +173,12 @@ n = 8, 77 / 23 / 5 % at 12, 44 / 13 / 3 % at 16, 20 / 6 / 1 % at 24; the stiffne
 0.47 / 0.29 / 0.15 s, 0.93 / 0.63 / 0.32 s, 1.94 / 0.77 / 0.31 s, 3.05 / 0.90 / 0.63 s.
 A cut-off whose support is r_e / 2 would save 60-70 % of the stiffness from n = 16 (1.2
 and 2.2 s at n = 16, 24: more than the tie's whole time), if a gathered space on it were
-accurate, which the measurements above say it is not without the per-node freedom.
+accurate (above: only with per-node freedom left, whose cells are the zone's).
 
     python benchmarks/crack_gather3d.py                  # n = 8, 12, 16, spacings 2 3 4
     python benchmarks/crack_gather3d.py --sizes 24 --no-direct
+    python benchmarks/crack_gather3d.py --sizes 16 --no-direct --keep "" F1 --heaviside
+    python benchmarks/crack_gather3d.py --sizes 8 12 16 24 --zones
 """
 from __future__ import annotations
 
@@ -310,6 +343,42 @@ def front_K(p, U):
     return K, f["interior"], f["points"], time.perf_counter() - t0
 
 
+def zone_heaviside(space):
+    """``space`` (a :class:`~skxfem.crack.space3d.CrackSpace3D`) with Heaviside unknowns
+    also at its branch nodes of split cells that are no front cell's node (their
+    supports cut through, as GetFEM's discontinuous space has them in the zone; the
+    front cells' nodes not, where H would open the plane ahead of the front): the map
+    T of :func:`skxfem.crack.dofs.virtual_map` rebuilt, which every operator of the
+    space follows (the stiffness integrates the virtual functions T uses)."""
+    from dataclasses import replace
+
+    from skxfem.crack.dofs import virtual_map
+
+    t, geo = space.mesh.t, space.geometry
+    extra = np.setdiff1d(np.intersect1d(space.branch, t[:, geo.split_cells]),
+                         t[:, geo.front_cells])
+    heav = np.union1d(space.heaviside, extra)
+    H_node = np.sign(geo.psi[heav])
+    if not H_node.all():
+        raise ValueError("space: a zone node on the crack's plane (H = 0)")
+    T = virtual_map(space.nodal_dofs, heav, H_node, space.branch, space.F_node)
+    return replace(space, heaviside=heav, H_node=H_node, T=T)
+
+
+def assemble_with_zone_heaviside(scene):
+    """:func:`skxfem.problem.assemble` of ``scene`` with its 3D crack's space made by
+    :func:`zone_heaviside` (the kind's space builder wrapped for this call only)."""
+    from unittest import mock
+
+    from skxfem.crack import kind3d
+    from skxfem.problem import assemble
+
+    build = kind3d.crack_space_3d
+    with mock.patch.object(kind3d, "crack_space_3d",
+                           lambda *a, **k: zone_heaviside(build(*a, **k))):
+        return assemble(scene)
+
+
 def zone_costs(n: int) -> None:
     """Print the crack's stiffness stage (:func:`skxfem.problem.assemble`) and the cells
     of its branch nodes' supports with the default zone r_e, with r_e / 2 and with the
@@ -349,6 +418,11 @@ def main(argv=None) -> int:
                     help="the gathered coefficients' degree across the front")
     ap.add_argument("--keep", nargs="+", default=["", "front", "jump", "F1"],
                     help="the variants (prolongation's keep; '' gathers every node)")
+    ap.add_argument("--repeat", type=int, default=1, help="the least time of so many "
+                    "solves of each space (a shared machine)")
+    ap.add_argument("--heaviside", action="store_true", help="also every variant on "
+                    "the space with Heaviside unknowns at the zone's split nodes "
+                    "(zone_heaviside), named 'H ...'")
     ap.add_argument("--zones", action="store_true", help="the stiffness's cost by zone "
                     "(zone_costs) instead of the solves")
     args = ap.parse_args(argv)
@@ -371,7 +445,8 @@ def main(argv=None) -> int:
             raise ValueError("the scene: one crack, its unknowns the whole space's")
         a = p.timings
         zone = V.space.support_cells(V.space.branch).size / p.mesh.t.shape[1]
-        print(f"# n = {n}: tie {r_tie.n_dofs} unknowns, {t_tie:.2f} s (solve "
+        print(f"# n = {n}: tie {r_tie.n_dofs} unknowns ({r_tie.problem.K.nnz} nonzeros in "
+              f"K), {t_tie:.2f} s (solve "
               f"{r_tie.timings['solve']:.2f} s, {r_tie.linear}); crack assembly "
               f"{sum(a.values()):.2f} s (stiffness {a['stiffness']:.2f} s), branch nodes "
               f"{V.space.branch.size} of {p.mesh.p.shape[1]}, their supports {zone:.0%} of "
@@ -379,13 +454,25 @@ def main(argv=None) -> int:
         variants = [("current", None, "", 0)] + [
             (f"{k or 'gather'} {s:g} p{d}", s, k, d)
             for d in args.degrees for k in args.keep for s in args.spacings]
+        runs = [(p, V, name, spacing, keep, degree)
+                for name, spacing, keep, degree in variants]
+        if args.heaviside:
+            pH = assemble_with_zone_heaviside(crack)
+            VH = pH.V.per_interface[0]
+            print(f"# n = {n}: {VH.space.heaviside.size - V.space.heaviside.size} zone "
+                  f"nodes with Heaviside unknowns too", flush=True)
+            runs += [(pH, VH, "H " + name, spacing, keep, degree)
+                     for name, spacing, keep, degree in variants]
         ref = None
-        for name, spacing, keep, degree in variants:
+        for p, V, name, spacing, keep, degree in runs:
             G, kept, stations = prolongation(V, spacing, keep, p.D, degree)
             times, U = [], None
             for m in methods:
-                U, sec, its, nnz = solve_gathered(p, G, kept, stations, m)
-                times.append(sec)
+                best = np.inf
+                for _ in range(args.repeat):
+                    U, sec, its, nnz = solve_gathered(p, G, kept, stations, m)
+                    best = min(best, sec)
+                times.append(best)
             K, interior, pts, tk = front_K(p, U)
             mid = np.argmin(np.abs(pts[:, 1] - 0.5))
             if ref is None:
