@@ -800,8 +800,11 @@ def test_the_four_tip_ring_of_the_sweep_solves_with_its_default_zone():
     1/3: the default zone enriches half the nodes with branch functions, nearly
     dependent far from the tips, and the Jacobi-scaled LU found the system singular
     (only enrichment_radius = 2 solved).  The direct solve now scales each enriched
-    node's block: the default solves, its tips mirrored through the centre within 1e-3
-    (K_I 1.2159 to 1.2161, K_II -1.5137 to -1.5162)."""
+    node's block: the default solves, the four tips' K within 1.5 % (K_I 1.2796 to
+    1.2915, K_II -1.3918 to -1.4009; mirrored through the centre within 1e-3 and 4.9e-3).
+    The domain is clipped to a tenth of the radius of curvature (crack.sif.tip_radius),
+    2 cells here; with 0.75 r_e, which the curvature made wrong (test_crack_xfem), the
+    mirrored tips agreed within 1e-3 (K_I 1.2159 to 1.2161)."""
     from skxfem.levelset import LevelSet
 
     crack = Interface(LevelSet(lambda x: np.hypot(x[0] - 10, x[1] - 10) - 3, 2, "ring"),
@@ -810,8 +813,8 @@ def test_the_four_tip_ring_of_the_sweep_solves_with_its_default_zone():
     order = np.lexsort(front["points"].T[::-1])          # (8, 7.8), (8, 12.2), (12, ...)
     for k in ("K_I", "K_II"):                            # the mesh: symmetric through the
         K = front[k][order]                              # centre, its diagonals not in x
-        assert max(abs(K[0] - K[3]), abs(K[1] - K[2])) < 1e-3 * np.abs(K).max(), k
-        assert np.ptp(K) < 3e-3 * np.abs(K).max(), k
+        assert max(abs(K[0] - K[3]), abs(K[1] - K[2])) < 7.5e-3 * np.abs(K).max(), k
+        assert np.ptp(K) < 1.5e-2 * np.abs(K).max(), k
     assert front["K_I"].min() > 1.0
 
 
