@@ -13,7 +13,7 @@ import pytest
 from skfem import MeshTet1
 
 from skxfem.app.cli import main
-from skxfem.crack.faces import crack_multipliers, front_points, tie_front
+from skxfem.crack.faces import crack_multipliers, face_multipliers, front_points, tie_front
 from skxfem.crack.faces3d import face_rule, vertex_values
 from skxfem.crack.geometry3d import crack_geometry_3d
 from skxfem.crack.sif3d import _point_frames
@@ -63,7 +63,9 @@ def test_the_points_next_to_a_3d_front_take_the_lambda_behind_them(name):
     h = 1/11) lose their own multipliers; each takes a mean (weights ≥ 0, summing to
     one) of the last points behind the band (x = 0.32), the others keep their rows;
     vital edges and groups only where a point keeps its row.  The 3D crack kind of Γ
-    builds its spaces so."""
+    builds its spaces so under a contact law (skxfem.crack.faces.face_multipliers; a
+    crack bonded under tension, 11³ cells, opened near its front when tied: K_I 0.013
+    -> 0.071, tests/test_crack_kind.py)."""
     m = _slab(11, 2)
     g = crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.53)
     tied = front_points(m, g)
@@ -83,6 +85,8 @@ def test_the_points_next_to_a_3d_front_take_the_lambda_behind_them(name):
         assert T.groups[T.vital].max() < T.size and np.all(T.groups[~T.vital] == -1)
     q = assemble(resolve(pressed_slab(11, 2, space=name)), "bilateral").interfaces[0]
     assert q.P.shape[1] < crack_multipliers(name, q.V.mesh, q.cut).size
+    for law, size in (("coulomb", T.size), ("bonded", S.size), ("bilateral", S.size)):
+        assert face_multipliers(law, name, m, g).size == size, "a tie holds every point"
 
 
 def test_a_3d_crack_made_of_front_points_keeps_its_space():
