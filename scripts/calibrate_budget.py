@@ -23,6 +23,16 @@ depends on the machine.
 pulled (``free``, ``bonded``) or pressed (``frictionless``, ``coulomb`` with μ = 0.3);
 ``inclined:cell:n:mu`` is :func:`skxfem.studies.cracks.inclined_scene` (30°, two tips).
 
+Later on 29 November the 3D default r_e took the front cells' cross-section
+(:func:`skxfem.crack.space3d.cross_section`, h√2 for these cubes) instead of the nodes'
+distance to the front (0.71 h with the plane through the middle of the cells): the
+``mid`` zones are about twice as wide, the ``node`` ones 11 % wider.  Measured then
+(case: N, peak / estimate MB, ratio): tet:11:edge:mid:frictionless 19 008, 1944 / 3444,
+1.77; tet:9:penny:mid:coulomb 15 000, 1171 / 2109, 1.80; tet:13:edge:mid:bonded 24 444,
+2808 / 4618, 1.64; tet:10:edge:node:frictionless 17 325, 1575 / 2471, 1.57;
+tet:7:edge:mid:frictionless 7680, 416 / 802, 1.93; tet:9:edge:mid:free (CG) 13 560,
+226 / 1559, 6.89.  The table below is from before.
+
 The crack sweep of 29 November 2026 (one process per case, one at a time, ``--linear
 auto`` as ``skxfem run``; the peak is the solve's, ``before`` the estimate of main at
 68a947a, ``now`` this one; N and m the solve's and the estimate's; solve the linear solve

@@ -126,7 +126,9 @@ def test_the_3d_crack_contact_problem_goes_through_the_one_path():
 def test_a_through_crack_pressed_shut_gives_K_zero_with_the_face_term(law):
     """σ_yy = -p everywhere (the faces carry p, the multipliers): measured (n = 11,
     nz = 2, every law) |K_I| ≤ 0.9e-3, |K_II| ≤ 0.4e-3 p√(πa), the pressure within
-    2.4e-4 of p at every crossing, the jump 1e-5; without the face term K_I ≈ -0.48."""
+    2.4e-4 of p at every crossing, the jump 1e-5; without the face term K_I ≈ -0.68
+    (-0.48 with the smaller default zone before crack.space3d.cross_section: it depends
+    on the domain, as the issue says)."""
     r = solve(pressed_slab(11, 2, law))
     (front,) = r.front
     scale = np.sqrt(np.pi * 0.5)
@@ -137,7 +139,7 @@ def test_a_through_crack_pressed_shut_gives_K_zero_with_the_face_term(law):
     assert np.abs(r.jump).max() < 1e-4, "the faces stay shut and stuck"
     q = r.problem.interfaces[0]
     free = gamma(q.interface).front(q.V, r.U[q.columns], MATERIAL)   # no face traction
-    assert np.all((free["K_I"] > -0.6 * scale) & (free["K_I"] < -0.3 * scale)), \
+    assert np.all((free["K_I"] > -0.8 * scale) & (free["K_I"] < -0.3 * scale)), \
         "the face term makes K vanish"
 
 

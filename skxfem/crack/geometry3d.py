@@ -60,7 +60,8 @@ from .geometry import (
 __all__ = ["CrackGeometry3D", "crack_geometry_3d", "check_mesh_3d", "front_chains",
            "orthonormal_on_front", "orthonormal_at_nodes", "FAR", "front_fit",
            "front_offset",
-           "barycentric", "shape_gradients", "cell_gradients", "runs", "VOLUME_TOL"]
+           "barycentric", "shape_gradients", "cell_gradients", "projected_diameters", "runs",
+           "VOLUME_TOL"]
 
 VOLUME_TOL = 1e-12
 """Sub-tetrahedra below VOLUME_TOL times their cell's volume are dropped (zero-volume
@@ -127,6 +128,24 @@ def shape_gradients(mesh, cells: np.ndarray) -> np.ndarray:
     A = np.transpose(P[:, 1:] - P[:, :1], (2, 0, 1))     # (nc, 3, 3) columns V_i - V_0
     Ainv = np.linalg.inv(A)                               # rows: ∇λ₁..₃
     return np.concatenate([-Ainv.sum(axis=1, keepdims=True), Ainv], axis=1)
+
+
+def projected_diameters(x: np.ndarray, grad_phi: np.ndarray, grad_psi: np.ndarray
+                        ) -> np.ndarray:
+    """The diameter of each tetrahedron's corners ``x`` (n, 4, 3) projected on the plane
+    normal to its front direction ∇φ × ∇ψ (``grad_phi``, ``grad_psi`` (n, 3)): its size
+    across the front; NaN where ∇φ ∥ ∇ψ.
+
+    >>> x = np.array([[[0, 0, 0], [1, 0, 0], [1, 1, 0], [1, 1, 1]]], float)
+    >>> projected_diameters(x, np.array([[1.0, 0, 0]]), np.array([[0, 0, 1.0]])).round(6)
+    array([1.414214])
+    """
+    e3 = np.cross(grad_phi, grad_psi)
+    norm = np.linalg.norm(e3, axis=1, keepdims=True)
+    e3 = np.divide(e3, norm, out=np.full_like(e3, np.nan), where=norm > 0)
+    x = x - np.einsum("nki,ni->nk", x, e3)[:, :, None] * e3[:, None]
+    i, j = np.triu_indices(x.shape[1], 1)
+    return np.linalg.norm(x[:, i] - x[:, j], axis=2).max(axis=1)
 
 
 def cell_gradients(mesh, nodal: np.ndarray, cells: np.ndarray | None = None) -> np.ndarray:

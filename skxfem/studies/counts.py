@@ -34,7 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..crack.geometry import ZERO
-from ..crack.geometry3d import _polygon_phi
+from ..crack.geometry3d import _polygon_phi, projected_diameters
 from ..fem.cells import CELL_TYPES
 from ..levelset import nodal_values
 from ..scene.model import Box
@@ -212,14 +212,25 @@ def _polygon_front(ps: np.ndarray, ph: np.ndarray) -> np.ndarray:
     return has & (lo <= near) & (hi >= -near)
 
 
+def _cross_section(x: np.ndarray, ps: np.ndarray, ph: np.ndarray) -> float:
+    """The mean size across the front of tetrahedra with corners ``x`` (n, 4, 3), ψ ``ps``
+    and φ ``ph`` (n, 4) there, as :func:`skxfem.crack.space3d.cross_section` takes it:
+    the diameter of the corners projected on the plane normal to ∇φ × ∇ψ."""
+    E = x[:, 1:] - x[:, :1]                                            # (n, 3, 3) edges
+    g = [np.linalg.solve(E, (v[:, 1:] - v[:, :1])[:, :, None])[:, :, 0] for v in (ph, ps)]
+    d = projected_diameters(x, *g)
+    return float(np.hypot(ps, ph).max(axis=1).mean() if np.isnan(d).all() else np.nanmean(d))
+
+
 def _tally(n_nodes: int, n_cells: int, ids, ps, ph, tets, extent: float,
-           count_near: Callable[[float], int], radius) -> CrackCounts:
+           count_near: Callable[[float], int], radius, corners=None) -> CrackCounts:
     """:class:`CrackCounts` from the cells on which ψ takes both signs or vanishes: their
     corners' node ``ids`` (nc, k), ψ ``ps`` and φ ``ph`` there; ``tets``: the
     tetrahedra of a cell as corner indices (None in 2D, and for 3D cells that are no
     tetrahedra, which 3D cracks refuse), ``extent`` the largest extent of a cell (h
-    where ``tets`` is None), ``count_near(r)`` the nodes with √(ψ² + φ²) ≤ r and
-    ``radius(depth, h)`` r_e or None."""
+    where ``tets`` is None), ``count_near(r)`` the nodes with √(ψ² + φ²) ≤ r,
+    ``radius(depth, h)`` r_e or None and ``corners`` (k, nc or 1, 3) the cells' corners
+    (with ``tets``: h, the front tetrahedra's :func:`_cross_section`)."""
     front = (ph.min(axis=0) <= 0) & (ph.max(axis=0) >= 0)
     crack = front | (ph.min(axis=0) < 0)
     node, first = np.unique(ids[:, crack], return_index=True)
@@ -233,7 +244,9 @@ def _tally(n_nodes: int, n_cells: int, ids, ps, ph, tets, extent: float,
         tp = np.moveaxis(ps[:, front][t], 2, 0).reshape(-1, 4)
         tf = np.moveaxis(ph[:, front][t], 2, 0).reshape(-1, 4)
         on = _polygon_front(tp, tf)
-        h = float(np.hypot(tp[on], tf[on]).max(axis=1).mean()) if on.any() else extent
+        xc = np.broadcast_to(corners, (corners.shape[0], ps.shape[1], 3))[:, front]
+        x = np.moveaxis(xc[t], 2, 0).reshape(-1, 4, 3)
+        h = _cross_section(x[on], tp[on], tf[on]) if on.any() else extent
     r = radius(depth, h)
     reach = None if r is None else r + FRONT_MARGIN * h
     d = np.hypot(psi_n, phi_n)
@@ -299,8 +312,10 @@ def box_crack_counts(box: Box, levelset, front, radius: Callable) -> CrackCounts
                    for a, b, x in _slabs(box))
 
     tets = KUHN if box.cell == "tet" else None
+    spacing = np.array([L / k for L, k in zip(size, n)])
     c = _tally(*box_size(box), np.hstack(ids), np.hstack(ps), np.hstack(ph), tets,
-               max(L / k for L, k in zip(size, n)), count_near, radius)
+               float(spacing.max()), count_near, radius,
+               (np.array(corners) * spacing)[:, None])
     return dataclasses.replace(c, points=points)
 
 
@@ -319,5 +334,6 @@ def mesh_crack_counts(mesh, levelset, front, radius: Callable) -> CrackCounts:
     d = np.hypot(psi, phi)
     tets = ((0, 1, 2, 3),) if mesh.dim() == 3 and t.shape[0] == 4 else None   # 3D: tets
     c = _tally(int(mesh.nvertices), int(mesh.nelements), t[:, cut], psi[t[:, cut]],
-               phi[t[:, cut]], tets, extent, lambda r: int(np.sum(d <= r)), radius)
+               phi[t[:, cut]], tets, extent, lambda r: int(np.sum(d <= r)), radius,
+               np.moveaxis(mesh.p[:, t[:, cut]], 0, 2))
     return dataclasses.replace(c, points=points)
