@@ -328,12 +328,13 @@ def test_coulomb_inclined_crack_through_a_slab(friction):
     """β = 30°, a = 1/4 at n = 21, nz = 3 (the slab 0.3 thick, the middle points a bump's
     width from its faces), the points within two rings of the front cells tied to those
     behind them (skxfem.crack.faces.tie_front).  μ = 0.3 < tan β: the faces slide;
-    measured K_II/K_exact 1.0001 and 1.0009 at the middle of the two fronts, |K_I| ≤
-    2.1e-4, |K_III| ≤ 4.3e-5 σ√(πa), the pressure 1.0003 σ cos²β on average, within
-    1.03 % at every point.  μ = 0.8: they stick, |K_I| ≤ 0.9e-4, |K_II| ≤ 0.5e-4 σ√(πa),
+    measured K_II/K_exact 1.0000 and 1.0008 at the middle of the two fronts, |K_I| ≤
+    1.5e-4, |K_III| ≤ 4.0e-5 σ√(πa), the pressure 1.0003 σ cos²β on average, within
+    1.04 % at every point.  μ = 0.8: they stick, |K_I| ≤ 0.9e-4, |K_II| ≤ 0.5e-4 σ√(πa),
     the pressure within 0.02 %.  Without the tie (every point its own multiplier):
-    K_II/K_exact 1.0015, 1.0023, |K_I| ≤ 1.22e-3, the worst point 1.11 %; sticking
-    |K_I| ≤ 2.2e-4, the pressure within 0.11 %."""
+    K_II/K_exact 1.0011, 1.0019, |K_I| ≤ 0.94e-3, the worst point 1.02 %; sticking
+    |K_I| ≤ 2.2e-4, the pressure within 0.11 % (before the cross-section zone of
+    crack.space3d: 1.22e-3 sliding without the tie, 2.1e-4 with it)."""
     c, scene = inclined_slab(21, 3, friction)
     r = solve(scene, linear="auto")
     assert r.n_dofs > 5000 and r.linear == "direct", "auto: direct for a crack's contact"
@@ -361,9 +362,9 @@ def test_centre_crack_whose_cells_straddle_the_two_fronts_bisector(n):
     two fronts lie in cells whose nodes point ahead of opposite fronts, e₁ₕ vanishes
     there; the face term stopped with 'grad_phi is zero or parallel to grad_psi'.  Those
     points take their nearest node's direction (no domain reaches them): measured
-    K_II/K_exact 1.006-1.010, |K_I| ≤ 3.9e-3, 0.93e-3 σ√(πa) at n = 11, 13 (n = 11: every
+    K_II/K_exact 1.005-1.009, |K_I| ≤ 3.9e-3, 0.84e-3 σ√(πa) at n = 11, 13 (n = 11: every
     point is within two rings of the front cells, none tied; n = 13 without the tie of
-    skxfem.crack.faces.tie_front: 1.9e-3, the worst point's pressure 3.6 %, now 0.66 %)."""
+    skxfem.crack.faces.tie_front: 2.0e-3, the worst point's pressure 3.4 %, now 0.64 %)."""
     c, scene = inclined_slab(n, 2, 0.0)
     (front,) = solve(scene).front
     P = np.asarray(front["points"])
@@ -548,26 +549,27 @@ def test_a_crack_through_nodes_sliding_does_not_interpenetrate_there():
     nodes, 3.5e-2 at the crossings, against a slip of 0.32) and |K_I| was 7.7e-3 p√(πa);
     with theirs, [[u]]·n ≤ 1.6e-4 at the nodes, 1.5e-3 at the crossings, |K_I| ≤ 1.2e-3
     and K_II within 0.4 % of the crack moved 1e-3 off the nodes (which crosses edges
-    only: |K_I| ≤ 0.8e-3).  The points within two rings of the front cells (x ≥ 0.3:
-    two of the crack's five cells; its front x = 1/2 on a node plane) now take the λ of
-    those at x = 0.2 (skxfem.crack.faces.tie_front), which hold the faces shut on their
-    weighted mean only: [[u]]·n ≤ 1.4e-3 at the nodes, 5.3e-3 at x = 0.2, |K_I| ≤ 4.7e-3
-    (3.6e-3 off the nodes), K_II within 0.3 %.  This coarse crack is where the tie costs:
-    with the front mid-cell (x = 0.45, 0.53, 0.55) it brings |K_I| from 4.8e-3, 5.3e-3,
-    5.8e-3 to 2.3e-3, 0.1e-3, 0.9e-3, and at 20 × 20 × 2 cells (x = 0.5, 0.515, 0.525,
-    0.475) from 0.67e-3, 2.9e-3, 3.2e-3, 2.1e-3 to 0.81e-3, 1.1e-3, 0.52e-3, 1.6e-3
-    (skxfem.crack.faces3d's notes)."""
+    only: |K_I| ≤ 0.8e-3); with the cross-section zone (crack.space3d) 0.9e-4, 2.3e-3,
+    1.5e-3 (1.8e-3 off the nodes).  The points within two rings of the front cells
+    (x ≥ 0.3: two of the crack's five cells; its front x = 1/2 on a node plane) now take
+    the λ of those at x = 0.2 (skxfem.crack.faces.tie_front), which hold the faces shut
+    on their weighted mean only: [[u]]·n ≤ 1.8e-3 at the nodes, 5.1e-3 at x = 0.2,
+    |K_I| ≤ 5.1e-3 (the same off the nodes), K_II within 0.3 %.  This coarse crack is
+    where the tie costs: with the front at x = 0.45, 0.53, 0.55 it takes |K_I| from
+    3.1e-3, 3.2e-3, 3.4e-3 to 4.9e-3, 1.8e-3, 0.8e-3, and at 20 × 20 × 2 cells (x = 0.5,
+    0.515, 0.525, 0.475) from 0.85e-3, 2.8e-3, 3.2e-3, 2.3e-3 to 0.07e-3, 0.19e-3,
+    0.16e-3, 0.06e-3 (skxfem.crack.faces3d's notes)."""
     r = _tilted("frictionless")
     q = r.problem.interfaces[0]
     node = q.cut.edge_ids < 0
     jn = q.cut.face_normal[:, 0] @ r.jump                # > 0: interpenetration
     assert np.abs(r.jump).max() > 0.3, "the faces slide"
-    assert jn[node].max() < 2e-3 and jn.max() < 7e-3
+    assert jn[node].max() < 3e-3 and jn.max() < 7e-3
     off = _tilted("frictionless", shift=1e-3)
     assert np.all(off.problem.interfaces[0].cut.edge_ids >= 0)
     (front,), (ref,) = r.front, off.front
     scale = np.sqrt(np.pi * 0.5)
-    assert np.abs(front["K_I"]).max() < 6e-3 * scale
+    assert np.abs(front["K_I"]).max() < 7e-3 * scale
     assert np.abs(front["K_II"] / ref["K_II"] - 1).max() < 0.01
 
 

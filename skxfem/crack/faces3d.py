@@ -56,26 +56,30 @@ nearest; vital edges and groups stay on the untied points.  Measured, same run, 
 → after, on the closed inclined slab (:func:`skxfem.studies.cracks3d.inclined_slab`,
 β = 30°, a = 1/4, nz = 3, the middle points of the two fronts; tests/test_crack_contact_3d.py):
 
-* n = 21 (133 points, 40 → 24 multipliers): frictionless |K_I| 2.6e-3 → 0.41e-3
-  σ√(πa), K_II within 0.06 % either way, the pressure 0.04 % → 0.06 % in the mean and
-  2.4 % → 2.3 % at the worst point; coulomb μ = 0.3 (sliding) |K_I| 1.22e-3 → 0.21e-3,
-  K_II 0.23 % → 0.09 %, the worst point 1.1 % → 1.0 %; μ = 0.8 (sticking) |K_I|
-  2.2e-4 → 0.9e-4, |K_II| 0.8e-4 → 0.5e-4, the worst point 0.11 % → 0.02 %;
-* n = 13 (91 points, 24 → 8): frictionless |K_I| 1.2e-3 → 0.78e-3 (3.3e-3 → 1.0e-3
-  at every front point), the worst point 3.7 % → 0.9 %; μ = 0.3 0.85e-3 → 0.68e-3,
-  1.7 % → 0.4 %; μ = 0.8 0.60e-3 → 0.59e-3; K_II within 0.95 % either way;
-* frictionless at n = 15, 17, 19: |K_I| 3.3e-3, 5.8e-3, 2.5e-3 → 0.26e-3, 0.43e-3,
+* n = 21 (133 points, 40 → 24 multipliers): frictionless |K_I| 2.0e-3 → 0.29e-3
+  σ√(πa), K_II within 0.06 % either way, the pressure 0.01 % → 0.07 % in the mean and
+  2.3 % at the worst point either way; coulomb μ = 0.3 (sliding) |K_I| 0.94e-3 →
+  0.15e-3, K_II 0.19 % → 0.08 %, the worst point 1.0 % either way; μ = 0.8 (sticking)
+  |K_I| 2.2e-4 → 0.9e-4, |K_II| 0.8e-4 → 0.5e-4, the worst point 0.11 % → 0.02 %;
+* n = 13 (91 points, 24 → 8): frictionless |K_I| 1.4e-3 → 0.72e-3 (3.3e-3 → 0.94e-3
+  at every front point), the worst point 3.5 % → 0.8 %; μ = 0.3 0.97e-3 → 0.65e-3,
+  1.6 % → 0.4 %; μ = 0.8 0.60e-3 → 0.59e-3; K_II within 0.95 % either way;
+* the tilted crack through nodes (tests/test_crack_contact_3d.py, 10 × 10 × 2, five
+  cells long, front x = 1/2 on a node plane) is where it costs: |K_I| 1.5e-3 → 5.1e-3,
+  the faces interpenetrating by 5.1e-3 (not 2.3e-3) at the points that hold the band
+  (the contact holds a weighted mean of the gaps of a point and those tied to it); with
+  its front at x = 0.45, 0.53, 0.55 |K_I| 3.1e-3, 3.2e-3, 3.4e-3 → 4.9e-3, 1.8e-3,
+  0.8e-3; at 20 × 20 × 2 (x = 0.5, 0.515, 0.525, 0.475) 0.85e-3, 2.8e-3, 3.2e-3,
+  2.3e-3 → 0.07e-3, 0.19e-3, 0.16e-3, 0.06e-3 (p√(π x_f)).
+
+Measured before the 3D default zone counted its cells by the front cells' cross-section
+(main's merge of hsize9; the numbers above are with it):
+
+* frictionless slab at n = 15, 17, 19: |K_I| 3.3e-3, 5.8e-3, 2.5e-3 → 0.26e-3, 0.43e-3,
   0.44e-3; at n = 11 (and nz = 2 at n = 11, the 45° crack at n = 10) every point is
   within the rings, the space is kept.  One ring: 0.25e-3, 0.21e-3, 2.1e-3, 1.1e-3,
-  1.1e-3 at n = 13, 15, 17, 19, 21 (worse from n = 17 on);
-* the tilted crack through nodes (tests/test_crack_contact_3d.py, 10 × 10 × 2, five
-  cells long, front x = 1/2 on a node plane) is where it costs: |K_I| 1.2e-3 → 4.7e-3,
-  the faces interpenetrating by 5.3e-3 (not 1.5e-3) at the points that hold the band
-  (the contact holds a weighted mean of the gaps of a point and those tied to it);
-  one ring 1.4e-3.  With its front mid-cell (x = 0.45, 0.53, 0.55) the tie brings
-  |K_I| from 4.8e-3, 5.3e-3, 5.8e-3 to 2.3e-3, 0.1e-3, 0.9e-3, and at 20 × 20 × 2
-  (x = 0.5, 0.515, 0.525, 0.475) from 0.67e-3, 2.9e-3, 3.2e-3, 2.1e-3 to 0.81e-3,
-  1.1e-3, 0.52e-3, 1.6e-3 (p√(π x_f));
+  1.1e-3 at n = 13, 15, 17, 19, 21 (worse than two from n = 17 on); on the tilted
+  crack 1.4e-3 (two: 4.7e-3);
 * the pressed slabs: |K| unchanged to 2e-6 at n = 11, 21 (x = 1/2), 0.41e-3
   → 0.29e-3 (n = 7, x = 0.495) and 0.80e-3 → 0.56e-3 (n = 13, x = 0.575), the pressure
   within 0.09 % → 0.02 % and 0.23 % → 0.05 %; the pressed penny at h = 0.2 has every
@@ -83,16 +87,18 @@ nearest; vital edges and groups stay on the untied points.  Measured, same run, 
   (239 points, 67 → 19 multipliers) |K_I| 0.82e-3 → 0.74e-3, |K_II| 0.33e-3 either
   way, the pressure within 0.35 % → 0.008 % of p.
 
-What it costs: the contact Newton takes more iterations where most of a short crack
-is tied (tests/test_contact_newton.py's pressed and sheared Coulomb crack, 2.4 cells
-long on 4³ cells: 6, 5, 4 per step → 10, 29, 15; 6³: 6, 8, 5 → 10, 6, 30; 8³: 7, 7,
-5 → 14, 13, 4; the 2D tie leaves the 2D crack at 3, 2, 2 → 5, 1, 2); the inclined
+What it costs (measured before the cross-section zone): the contact Newton takes more
+iterations where most of a short crack is tied (tests/test_contact_newton.py's
+pressed and sheared Coulomb crack, 2.4 cells long on 4³ cells: 6, 5, 4 per step → 10,
+29, 15; 6³: 6, 8, 5 → 10, 6, 30; 8³: 7, 7, 5 → 14, 13, 4; the 2D tie leaves the 2D
+crack at 3, 2, 2 → 5, 1, 2); the inclined
 slab's solves take the same time (n = 21, μ = 0.3: 19.0 s, 18.7 s in one run).
 
 A tie (``bonded``, ``bilateral``) keeps every point's multiplier
 (:func:`skxfem.crack.faces.face_multipliers`): tied, a crack bonded under tension
 (11³ cells, the front x = 1/2) opened near its front, K_I 0.013 → 0.071, the jump
-4.4e-3 → 4.6e-2.  The inf-sup constant near the front does not fall (the setting of
+4.4e-3 → 4.6e-2.  The inf-sup constant near the front does not fall (before the
+cross-section zone, the setting of
 :func:`skxfem.studies.cracks3d.crack_inf_sup_3d`, its normal multipliers, law
 ``frictionless`` for the tied space): vital 0.442, 0.431, 0.428 → 0.443, 0.431, 0.428
 and winner 0.390, 0.373, 0.369 → 0.390, 0.374, 0.369 at n = 11, 15, 21 (24, 32, 44 →
