@@ -111,10 +111,12 @@ from .crack.geometry import crack_geometry, point_cells
 from .crack.kind3d import Crack3D, FrontPointsWarning, warn_closing
 from .crack.radius import check_radius
 from .crack.sif import (
+    CURVATURE_CELLS,
     DEFAULT_CELLS,
     check_reach,
-    default_radius,
+    curvature_reach,
     sif,
+    tip_radius,
     tip_reach,
     tip_room,
 )
@@ -341,17 +343,27 @@ def _warn_clipped(space: CrackSpace, interface: Interface, rooms=None) -> None:
     by several per cent, silently.  Measured: a centre crack on the unit square, h =
     1/20, clipped by the other tip: K_I 11 % low at 1.2 cells, within 1 % at 1.6, 2 and
     3; an edge crack's tip 0.1 from the far side: 13 % low at 2 cells, 3.5 % at 4
-    (:func:`skxfem.crack.sif.check_reach`)."""
+    (:func:`skxfem.crack.sif.check_reach`).  A curved crack's default domain is
+    clipped to a fraction of its radius of curvature, but kept at CURVATURE_CELLS cells
+    (:func:`skxfem.crack.sif.tip_radius`): where the curvature would take it under, the
+    mesh is too coarse for the curvature there, and the tip gets the same warning."""
     mesh, geo = space.mesh, space.geometry
     for k in range(geo.tips.shape[1]):
         reach, wall, h = tip_reach(mesh, geo, k)
+        x = ", ".join(f"{v:.4g}" for v in geo.tips[:, k])
         by = "the boundary" if wall else "another tip"
         room = rooms[k] if rooms is not None else np.inf        # :func:`tip_room`
         if room < reach:
             reach, by = room, "another interface"
-        r_d = interface.sif_radius or default_radius(space, h)
+        curved = np.inf if interface.sif_radius else curvature_reach(space, k)[0]
+        if curved < CURVATURE_CELLS * h * (1 - 1e-9):
+            warnings.warn(f"{interface.front.name!r}: the crack's curvature at the tip at "
+                          f"({x}) would clip its interaction domain to {curved / h:.2g} "
+                          f"cells, under the {CURVATURE_CELLS:g} it keeps: its K may be off "
+                          f"by several per cent; refine the mesh there (cells under "
+                          f"{curved / CURVATURE_CELLS:.3g})", FrontPointsWarning, stacklevel=3)
+        r_d = interface.sif_radius or tip_radius(space, k)
         if reach < min(r_d, CLIPPED_CELLS * h * (1 - 1e-9)):
-            x = ", ".join(f"{v:.4g}" for v in geo.tips[:, k])
             warnings.warn(f"{interface.front.name!r}: the interaction domain of the tip at "
                           f"({x}) is clipped to {reach / h:.2g} cells by {by}"
                           f" (the default: {DEFAULT_CELLS:g}): its K may be off by several "

@@ -38,6 +38,7 @@ from skxfem.multipliers import interface_mass, interface_rule
 from skxfem.scene import (
     Box,
     Displacement,
+    Interface,
     Scene,
     SurfaceLoad,
     clamped,
@@ -782,29 +783,82 @@ def test_auto_falls_back_to_the_direct_solve_where_cg_stalls(monkeypatch):
         solve(scene, linear="iterative")
 
 
-def test_a_singular_crack_system_names_the_enrichment_radius():
+def _pulled(crack, n: int, size: float) -> Scene:
+    """The square of side ``size`` (n × n cells of two triangles) with ``crack`` (an
+    Interface or a tuple of them), pulled by σ_yy = 1 on its top and bottom, held at its
+    two lower corners (E = 1, ν = 0.3)."""
+    held = (Displacement("ymin", {"x": 0.0, "y": 0.0}, where="x < 1e-9"),
+            Displacement("ymin", {"y": 0.0}, where=f"x > {size} - 1e-9"))
+    pull = tuple(SurfaceLoad(b, traction=(0.0, t)) for b, t in (("ymax", 1.0), ("ymin", -1.0)))
+    cracks = crack if isinstance(crack, tuple) else (crack,)
+    return Scene(Box(n, "tri", size=(size, size)), interfaces=cracks,
+                 material=Material(1.0, 0.3), displacements=held, loads=pull)
+
+
+def test_the_four_tip_ring_of_the_sweep_solves_with_its_default_zone():
     """Two arcs of one circle (R = 3) as one crack with four tips in a 20 x 20 plate, h =
     1/3: the default zone enriches half the nodes with branch functions, nearly
-    dependent far from the tips, and the LU found the system singular; the message
-    blamed 'a part of the body, or a material, far stiffer or smaller' only.  It now
-    names the crack's zone and the cure, which solves."""
+    dependent far from the tips, and the Jacobi-scaled LU found the system singular
+    (only enrichment_radius = 2 solved).  The direct solve now scales each enriched
+    node's block: the default solves, its tips mirrored through the centre within 1e-3
+    (K_I 1.2159 to 1.2161, K_II -1.5137 to -1.5162)."""
+    from skxfem.levelset import LevelSet
+
+    crack = Interface(LevelSet(lambda x: np.hypot(x[0] - 10, x[1] - 10) - 3, 2, "ring"),
+                      law="free", front=LevelSet(lambda x: np.abs(x[0] - 10) - 2, 2, "ends"))
+    (front,) = solve(_pulled(crack, 60, 20.0), linear="direct").front
+    order = np.lexsort(front["points"].T[::-1])          # (8, 7.8), (8, 12.2), (12, ...)
+    for k in ("K_I", "K_II"):                            # the mesh: symmetric through the
+        K = front[k][order]                              # centre, its diagonals not in x
+        assert max(abs(K[0] - K[3]), abs(K[1] - K[2])) < 1e-3 * np.abs(K).max(), k
+        assert np.ptp(K) < 3e-3 * np.abs(K).max(), k
+    assert front["K_I"].min() > 1.0
+
+
+def _ring(n):
+    """A ring crack of radius 0.15 cut into two arcs by φ = |y - 0.5| - 0.1 (four tips)
+    in the unit square of n × n triangle pairs, :func:`_pulled`."""
+    from skxfem.levelset import LevelSet
+    ring = Interface(LevelSet(lambda x: np.hypot(x[0] - 0.5, x[1] - 0.5) - 0.15, 2, "ring"),
+                     law="free", front=LevelSet(lambda x: np.abs(x[1] - 0.5) - 0.1, 2, "band"))
+    return _pulled(ring, n, 1.0)
+
+
+def test_a_four_tip_ring_crack_solves_directly_with_its_default_zone():
+    """The default zone of the ring's four tips (r_e = 0.28, 51 % of the nodes at h = 1/41)
+    reaches above and below the ring, where ∇ψ is parallel to ∇φ: branch nodes there have
+    an 8 × 8 Jacobi-scaled block down to 1.4e-12, and the Jacobi-scaled LU refused the
+    system as singular (pivot 9.6e-12).  The direct solve now scales each enriched node's
+    block (as CG does): K is CG's, and the tips mirrored through the centre agree."""
+    from skxfem.linalg.saddle import SingularSystemError
+    from skxfem.linalg.saddle import solve as saddle_solve
+    from skxfem.problem import assemble
+    p = assemble(_ring(41))
+    with pytest.raises(SingularSystemError, match="smallest LU pivot"):
+        saddle_solve(p.K, p.B, p.F, p.D, p.g)                  # Jacobi scaling alone
+    (direct,) = solve(_ring(41), linear="direct").front
+    (cg,) = solve(_ring(41), linear="iterative").front
+    for k in ("K_I", "K_II"):
+        assert np.abs(direct[k] - cg[k]).max() < 1e-4 * np.abs(direct["K_I"]).max()
+    order = np.lexsort(direct["points"].T[::-1])               # by x, then y
+    K_I = direct["K_I"][order]                                 # (-,-), (-,+), (+,-), (+,+)
+    assert abs(K_I[0] - K_I[3]) < 5e-3 * K_I.max() and abs(K_I[1] - K_I[2]) < 5e-3 * K_I.max()
+    assert K_I.min() > 0.1
+
+
+def test_two_cracks_whose_branch_functions_nearly_coincide_are_a_singular_system():
+    """The ring's two arcs as two cracks whose fronts differ by 1e-9 x above and below
+    the ring, where both zones reach: the nodes there hold two nearly equal sets of
+    branch functions.  Their own block (scaled by node) is not positive definite: the
+    solve refuses the system as singular and names the zone's cure."""
     from skxfem.levelset import LevelSet
     from skxfem.linalg.saddle import SingularSystemError
-    from skxfem.scene import Interface
 
-    def scene(**radius):
-        crack = Interface(LevelSet(lambda x: np.hypot(x[0] - 10, x[1] - 10) - 3, 2, "ring"),
-                          law="free", front=LevelSet(lambda x: np.abs(x[0] - 10) - 2, 2,
-                                                     "ends"), **radius)
-        return Scene(Box(60, "tri", size=(20.0, 20.0)), interfaces=(crack,),
-                     displacements=(Displacement("ymin", {"x": 0.0, "y": 0.0},
-                                                 where="x < 1e-9"),
-                                    Displacement("ymin", {"y": 0.0}, where="x > 20 - 1e-9")),
-                     loads=(SurfaceLoad("ymax", traction=(0.0, 1.0)),
-                            SurfaceLoad("ymin", traction=(0.0, -1.0))))
-
-    with pytest.raises(SingularSystemError, match=r"crack's branch functions enriching \d+% "
-                       r"of the nodes.*smaller enrichment_radius"):
-        solve(scene(), linear="direct")
-    (front,) = solve(scene(enrichment_radius=2.0), linear="direct").front
-    assert front["K_I"].size == 4 and np.all(front["K_I"] > 0)
+    def arc(s):
+        return Interface(LevelSet(lambda x: np.hypot(x[0] - 0.5, x[1] - 0.5) - 0.2, 2, "o"),
+                         law="free", front=LevelSet(lambda x: np.maximum(
+                             np.abs(x[1] - 0.5) - 0.1, s * (0.5 - x[0])) + 1e-9 * s * x[0],
+                             2, f"arc {s}"))
+    with pytest.raises(SingularSystemError, match=r"singular to working precision .*"
+                       r"smaller enrichment_radius"):
+        solve(_pulled((arc(1), arc(-1)), 21, 1.0), linear="direct")

@@ -247,6 +247,7 @@ def coupling(space: CrackSpace, other: CrackSpace, material: Material) -> sp.csr
     block = sp.csr_matrix((space.N - space.n_std, other.N - other.n_std))
     if not shared.size:
         return block
+    check_distinct(space, other)
 
     def own(V):                     # its cut cells and the cells around its tip cells
         near = V.support_cells(np.unique(mesh.t[:, V.geometry.tip_cells]))
@@ -264,6 +265,49 @@ def coupling(space: CrackSpace, other: CrackSpace, material: Material) -> sp.csr
             Bu = evaluation(other, c, ref, su).grad[:, other.n_std:]
             block = block + _strain_energy(Bu, Bv, w, lam, mu)
     return block.tocsr()
+
+
+def check_distinct(space: CrackSpace, other: CrackSpace, tol: float = 1e-12) -> None:
+    """Refuse two cracks whose branch functions coincide on a node both enrich.
+
+    The branch functions are functions of the level sets (φ_h, ψ_h) of their crack; on a
+    node k whose support holds the same nodal ψ and φ for both cracks (to ``tol`` of
+    their range), φ_k (F_l - F_l(x_k)) is the same function for both, and the stiffness
+    is singular (LU pivot 2e-33).  A broken ring written as two cracks on one ψ = |x - c| -
+    R with the fronts φ = max(|y - c_y| - d, ±(c_x - x)), equal above and below the
+    ring, did that.  The message names the nodes and the cure.
+
+    >>> from skfem import MeshQuad1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> from skxfem.crack.space import crack_space
+    >>> m = MeshQuad1.init_tensor(*(np.linspace(0, 1, 9),) * 2)
+    >>> def crack(y):                      # an edge crack on y to x = 0.45, r_e = 0.3
+    ...     return crack_space(m, crack_geometry(m, m.p[1] - y, m.p[0] - 0.45), radius=0.3)
+    >>> check_distinct(crack(0.3), crack(0.7))
+    >>> check_distinct(crack(0.3), crack(0.3))
+    Traceback (most recent call last):
+    ...
+    ValueError: two cracks give 16 node(s) (e.g. (0.25, 0.125)) the same branch ...
+    """
+    mesh, ga, gb = space.mesh, space.geometry, other.geometry
+    common = np.intersect1d(space.branch, other.branch)
+    if not common.size:
+        return
+    scale = max(np.ptp(ga.psi), np.ptp(ga.phi), np.ptp(gb.psi), np.ptp(gb.phi))
+    differ = ((np.abs(ga.psi - gb.psi) > tol * scale)
+              | (np.abs(ga.phi - gb.phi) > tol * scale))[mesh.t].any(axis=0)   # per cell
+    near = np.zeros(mesh.p.shape[1], dtype=bool)          # a node of a cell that differs
+    near[mesh.t[:, differ].ravel()] = True
+    same = ~near[common]
+    if same.any():
+        x = ", ".join(f"{v:.4g}" for v in mesh.p[:, common[same][0]])
+        raise ValueError(
+            f"two cracks give {int(same.sum())} node(s) (e.g. ({x})) the same branch "
+            f"functions: their level sets psi and phi (the front) are equal over those "
+            f"nodes' supports, so the stiffness is singular; give each crack a front phi "
+            f"of its own there (e.g. phi vanishing on the rays through its own tips), or "
+            f"enrichment_radius small enough that the enriched zones stop short of where "
+            f"the level sets agree")
 
 
 def cut_coupling(space: CrackSpace, other, material: Material) -> sp.csr_matrix:

@@ -8,7 +8,8 @@ points; this module makes them from a solution U on the crack's space:
 2. **the domain**: q is the P1/Q1 interpolant of the nodal values
    q(r_i) = :func:`skxfem.crack.interaction.q_function` of the nodes' distance to T,
    1 inside ρR, 0 beyond R, with R = min(r_d, distance from T to the boundary, half
-   the distance to the other tips); the
+   the distance to the other tips), the default r_d at most a tenth of a curved crack's
+   radius of curvature at T (:func:`tip_radius`, below); the
    integrand holds ∇q, so the domain is the cells where the nodal q differ (a ring
    away from the tip once ρR exceeds a cell);
 3. **the points**: the cells' own rules (:func:`skxfem.crack.assembly.rule_groups`:
@@ -23,6 +24,23 @@ points; this module makes them from a solution U on the crack's space:
 6. **a body force** b: its term −∫ b·u^aux_{,1} q dA over every cell where q ≠ 0 (the
    tip cells on their almost-polar rule), q interpolated at the points
    (:mod:`skxfem.crack.interaction`); without one the domain is the ring of step 2.
+
+The auxiliary fields are a straight crack's. On a crack of curvature κ = 1/ρ they miss
+the faces by about κr at r from the tip, and K follows the domain's radius R: a circular
+arc (radius 3, α = asin 2/3) under equal biaxial tension, against Sih, Paris & Erdogan's
+closed form (2.0772, 0.7934), quadrilaterals, r_e = 2, 29 November: K_I +1.8, +2.6,
++4.2 % and K_II -3.3, -9.4, -16.4 % with R = 0.5, 1, 1.5 at h = 1/6 on a 40 plate (the same
+at h = 1/3: the error is the domain's, not the mesh's; the plate adds +0.9 % and +2.8 %,
+from 20, 40 and 80 plates), so about +4.5 R/ρ per cent in K_I and -36 R/ρ in K_II. The
+default 0.75 r_e (1.5 there; 4.2, 4.8 with the default r_e on the 20, 40 plates)
+converged in h to that wrong K. :data:`CURVATURE_FRACTION` = 0.1 keeps K_II within about
+4 % where the mesh allows (R = ρ/10 at 2 cells and more); the domain keeps
+:data:`CURVATURE_CELLS` = 2 cells (on this arc K stays on the same line in R from 2
+cells up: R = 0.34 at h = 1/6, K_I +1.65 %, K_II -1.5 % on the 40 plate), and
+:mod:`skxfem.gamma` warns a tip whose curvature would take it under. The default on the
+40 plate: K_I +2.1, +1.4, +1.6 %, K_II -6.0, -3.3, -1.5 % at h = 1/3, 1/4, 1/6
+(triangles: +2.1/+0.0, +1.1/-0.4, +2.0/+1.0 % and -8.5/-5.4, -4.8/-4.0, -2.8/-1.1 % at
+the two tips).
 
 >>> from skfem import MeshTri1
 >>> from skxfem.crack.geometry import crack_geometry
@@ -49,7 +67,9 @@ from .interaction import CrackFace, q_function, stress_intensity
 from .radius import DOMAIN_CELLS, DOMAIN_FRACTION, check_radius
 from .space import CrackSpace, evaluation
 
-__all__ = ["DEFAULT_CELLS", "DOMAIN_FRACTION", "default_radius", "other_tips_distance",
+__all__ = ["DEFAULT_CELLS", "DOMAIN_FRACTION", "CURVATURE_FRACTION", "CURVATURE_CELLS",
+           "default_radius",
+           "tip_curvature", "curvature_reach", "tip_radius", "other_tips_distance",
            "tip_and_frame", "boundary_distance", "tip_reach", "check_reach", "segments_distance",
            "gamma_segments", "tip_room", "check_clearance", "nodal_q", "sif"]
 
@@ -75,6 +95,82 @@ def default_radius(space: CrackSpace, h: float) -> float:
     """
     r_e = space.radius if space.enrichment == "geometric" else 0.0
     return max(DOMAIN_FRACTION * r_e, DEFAULT_CELLS * h)
+
+
+CURVATURE_FRACTION = 0.1
+"""The default domain of a curved crack's tip reaches at most this fraction of the
+crack's radius of curvature ρ = 1/|κ| there (:func:`tip_curvature`, :func:`tip_radius`).
+The auxiliary fields are those of a straight crack: a domain of radius R around a tip
+of curvature κ = 1/ρ misses K by about -36 R/ρ per cent in K_II and +4.5 R/ρ in K_I
+(the arc crack under biaxial tension, module notes)."""
+
+CURVATURE_CELLS = 2.0
+"""The fewest tip-cell sizes the curvature leaves the default domain (:func:`tip_radius`);
+under :data:`DEFAULT_CELLS` for a straight crack, as few as a boundary may leave it
+(:mod:`skxfem.gamma`'s ``CLIPPED_CELLS``): the arc crack's K follows the same line in
+R from 2 cells up."""
+
+
+def tip_curvature(space: CrackSpace, tip: int, origin: np.ndarray, frame: TipFrame,
+                  window: float) -> float:
+    r"""The curvature κ of the crack near a tip: the circle through the tip nearest (least
+    squares) the crack's points (the ends of its pieces, ``geometry.segments``) within
+    ``window`` of it.
+
+    In the tip frame (s along e₁, t along e₂) a circle through the tip is
+    t = κ' (s² + t²) / 2 + u s (its centre at (-u, 1)/κ'), linear in κ' and u; a
+    straight crack is κ' = 0, t = u s exactly, whatever ∇ψ_h's error in e₁.  Then
+    κ = κ' / √(1 + u²), positive when the crack turns towards e₂ (Ω⁺); 0 with under two
+    points off the tip.
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> from skxfem.crack.space import crack_space
+    >>> m = MeshTri1.init_tensor(np.linspace(-1, 1, 41), np.linspace(-1, 1, 41))
+    >>> psi = np.hypot(m.p[0], m.p[1] + 2) - 2.5         # a circle of radius 2.5
+    >>> V = crack_space(m, crack_geometry(m, psi, m.p[0] - 0.3))
+    >>> x, f, h = tip_and_frame(V, 0)
+    >>> round(1 / abs(tip_curvature(V, 0, x, f, 0.5)), 2)
+    2.5
+    """
+    p = space.geometry.segments.transpose(1, 0, 2).reshape(2, -1) - origin[:, None]
+    p = p[:, np.linalg.norm(p, axis=0) <= window]
+    s, t = frame.e1 @ p, frame.e2 @ p
+    A = np.stack([(s ** 2 + t ** 2) / 2, s], axis=1)
+    (k, u), _, rank, _ = np.linalg.lstsq(A, t, rcond=None)
+    return float(k / np.hypot(1.0, u)) if rank == 2 else 0.0
+
+
+def curvature_reach(space: CrackSpace, tip: int = 0) -> tuple[float, float]:
+    """How far the default domain of a tip may reach for the crack's curvature there
+    (:data:`CURVATURE_FRACTION` / |κ|, inf for a straight crack: :func:`tip_curvature`
+    over the unclipped default domain, :func:`default_radius`), and that default.
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> from skxfem.crack.space import crack_space
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 22), np.linspace(0, 1, 22))
+    >>> g = crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.5)    # straight: no clip
+    >>> curvature_reach(crack_space(m, g, "topological"), 0)[0]
+    inf
+    """
+    origin, frame, h = tip_and_frame(space, tip)
+    r_d = default_radius(space, h)
+    kappa = abs(tip_curvature(space, tip, origin, frame, r_d))
+    return (CURVATURE_FRACTION / kappa if CURVATURE_FRACTION < kappa * r_d else np.inf), r_d
+
+
+def tip_radius(space: CrackSpace, tip: int = 0) -> float:
+    """The default domain radius at a tip: :func:`default_radius`, clipped to
+    :func:`curvature_reach` (a fraction of the crack's radius of curvature) but not under
+    :data:`CURVATURE_CELLS` tip-cell sizes (a mesh that coarse for the curvature gets a
+    :class:`~skxfem.crack.kind3d.FrontPointsWarning` from :mod:`skxfem.gamma`).  A
+    straight crack keeps :func:`default_radius` exactly."""
+    reach, r_d = curvature_reach(space, tip)
+    if reach >= r_d:
+        return r_d
+    h = tip_and_frame(space, tip)[2]
+    return min(r_d, max(reach, CURVATURE_CELLS * h))
 
 
 def other_tips_distance(geometry: CrackGeometry, tip: int) -> float:
@@ -304,7 +400,8 @@ def sif(space: CrackSpace, U: np.ndarray, material: Material, r_d: float | None 
     ----------
     space, U : the crack's space and the unknowns [a, b, c].
     material : the :class:`skxfem.fem.material.Material` (plane strain or stress).
-    r_d : the domain radius; default :func:`default_radius`; clipped to the distance from
+    r_d : the domain radius; default :func:`tip_radius` (:func:`default_radius`, at most
+        a fraction of a curved crack's radius of curvature); clipped to the distance from
         the tip to the boundary and half that to the other tips; one under the tip cell's
         size is refused (:func:`skxfem.crack.radius.check_radius`: no cell in the domain).
     plateau : ρ: q = 1 inside ρR (:func:`skxfem.crack.interaction.q_function`).
@@ -327,7 +424,7 @@ def sif(space: CrackSpace, U: np.ndarray, material: Material, r_d: float | None 
     origin, frame, h = tip_and_frame(space, tip)
     if r_d is not None:
         check_radius(r_d, h, "r_d (sif_radius)", 2)
-    r_d = default_radius(space, h) if r_d is None else r_d
+    r_d = tip_radius(space, tip) if r_d is None else r_d
     boundary = check_reach(space.mesh, space.geometry, tips=[tip])[0]
     if room < h:
         x = ", ".join(f"{v:.4g}" for v in origin)
