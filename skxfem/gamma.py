@@ -106,7 +106,7 @@ from .crack.assembly import (
 from .crack.assembly import coupling as crack_coupling
 from .crack.assembly import face_rule as face_rule_of
 from .crack.assembly import mass as crack_mass
-from .crack.faces import crack_multipliers, face_functions, face_traction, tie_front
+from .crack.faces import face_functions, face_multipliers, face_traction
 from .crack.geometry import crack_geometry, point_cells
 from .crack.kind3d import Crack3D, FrontPointsWarning, warn_closing
 from .crack.radius import check_radius
@@ -236,10 +236,10 @@ class Crack(Gamma):
     def multipliers(self, mesh, cut, fixed=None, per_edge=None) -> Space:
         """The interface's multiplier space on the crack's crossed edges and nodes, up to
         the front (:func:`skxfem.crack.faces.crack_multipliers`), the points on an edge
-        with a node of a tip cell tied to those behind them
-        (:func:`skxfem.crack.faces.tie_front`)."""
-        return tie_front(crack_multipliers(self.interface.space, mesh, cut, fixed=fixed,
-                                           per_edge=per_edge), mesh, cut)
+        with a node near a tip cell tied to those behind them under a contact law
+        (:func:`skxfem.crack.faces.face_multipliers`)."""
+        i = self.interface
+        return face_multipliers(i.law, i.space, mesh, cut, fixed=fixed, per_edge=per_edge)
 
     def normals(self, cut) -> np.ndarray:
         """∇ψ/|∇ψ| (dim, n) at the crack's cut points."""

@@ -13,7 +13,7 @@ import pytest
 from skfem import MeshTet1
 
 from skxfem.app.cli import main
-from skxfem.crack.faces import crack_multipliers
+from skxfem.crack.faces import crack_multipliers, face_multipliers, front_points, tie_front
 from skxfem.crack.faces3d import face_rule, vertex_values
 from skxfem.crack.geometry3d import crack_geometry_3d
 from skxfem.crack.sif3d import _point_frames
@@ -54,6 +54,49 @@ def test_spaces_on_the_crossed_edges_keep_a_constant_up_to_the_front(name):
     assert np.isclose(R.weights.sum(), 0.53), "the faces' rule covers {y = 1/2, x < 0.53}"
     rule = gamma(pressed_slab(11, 2, space=name).interfaces[0]).rule(m, g)
     assert abs(rule.N.sum(axis=1) - 1).max() < 1e-12, "λ_h up to the front"
+
+
+@pytest.mark.parametrize("name", ["naive", "winner", "vital"])
+def test_the_points_next_to_a_3d_front_take_the_lambda_behind_them(name):
+    """skxfem.crack.faces.tie_front on a 3D crack: the points on an edge with a node
+    within two rings of the front cells (x = 0.36 to 0.50 for the front x = 0.53 at
+    h = 1/11) lose their own multipliers; each takes a mean (weights ≥ 0, summing to
+    one) of the last points behind the band (x = 0.32), the others keep their rows;
+    vital edges and groups only where a point keeps its row.  The 3D crack kind of Γ
+    builds its spaces so under a contact law (skxfem.crack.faces.face_multipliers; a
+    crack bonded under tension, 11³ cells, opened near its front when tied: K_I 0.013
+    -> 0.071, tests/test_crack_kind.py)."""
+    m = _slab(11, 2)
+    g = crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.53)
+    tied = front_points(m, g)
+    x = g.points[0]
+    assert np.allclose(np.unique(x[tied].round(12)), np.arange(4, 6, 0.5) / 11)
+    S = crack_multipliers(name, m, g)
+    T = tie_front(S, m, g)
+    assert T.name == name and T.size < S.size and T.P.shape[0] == g.edge_ids.size
+    assert np.allclose(np.asarray(T.P.sum(axis=1)).ravel(), 1.0) and T.P.min() >= 0
+    N = tie_front(crack_multipliers("naive", m, g), m, g).P.toarray()
+    source = np.flatnonzero(~tied)[np.abs(N[tied]).sum(axis=0) > 0]   # a column per kept point
+    assert np.allclose(x[source], 3.5 / 11), "the last points behind the band"
+    kept = S.P[~tied].toarray()
+    assert np.allclose(T.P[~tied].toarray(), kept[:, np.abs(kept).sum(axis=0) > 0])
+    if name == "vital":
+        assert T.vital.any() and not (T.vital & tied).any()
+        assert T.groups[T.vital].max() < T.size and np.all(T.groups[~T.vital] == -1)
+    q = assemble(resolve(pressed_slab(11, 2, space=name)), "bilateral").interfaces[0]
+    assert q.P.shape[1] < crack_multipliers(name, q.V.mesh, q.cut).size
+    for law, size in (("coulomb", T.size), ("bonded", S.size), ("bilateral", S.size)):
+        assert face_multipliers(law, name, m, g).size == size, "a tie holds every point"
+
+
+def test_a_3d_crack_made_of_front_points_keeps_its_space():
+    """A crack 1.65 cells long: every point is within two rings of the front cells, so
+    tie_front keeps the space (no point to take a λ from)."""
+    m = _slab(11, 2)
+    g = crack_geometry_3d(m, m.p[1] - 0.5, m.p[0] - 0.15)
+    S = crack_multipliers("vital", m, g)
+    assert front_points(m, g).all() and tie_front(S, m, g) is S
+    assert not front_points(m, g, 1).all()
 
 
 @pytest.mark.parametrize("front", [0.53, 3 / 7 + 1e-4, 0.5])
@@ -283,10 +326,15 @@ def test_the_pressed_pennys_exact_state_balances_its_faces_on_every_row():
 @pytest.mark.parametrize("friction", [0.3, 0.8])
 def test_coulomb_inclined_crack_through_a_slab(friction):
     """β = 30°, a = 1/4 at n = 21, nz = 3 (the slab 0.3 thick, the middle points a bump's
-    width from its faces).  μ = 0.3 < tan β: the faces slide; measured K_II/K_exact 1.007
-    and 1.000 at the middle of the two fronts, |K_I| ≤ 4.7e-3, |K_III| ≤ 3e-5 σ√(πa),
-    the pressure 0.998 σ cos²β on average, within 3.8 % at every crossing.  μ = 0.8:
-    they stick, |K| ≤ 2.2e-3 σ√(πa), the pressure within 2 %."""
+    width from its faces), the points within two rings of the front cells tied to those
+    behind them (skxfem.crack.faces.tie_front).  μ = 0.3 < tan β: the faces slide;
+    measured K_II/K_exact 1.0000 and 1.0008 at the middle of the two fronts, |K_I| ≤
+    1.5e-4, |K_III| ≤ 4.0e-5 σ√(πa), the pressure 1.0003 σ cos²β on average, within
+    1.04 % at every point.  μ = 0.8: they stick, |K_I| ≤ 0.9e-4, |K_II| ≤ 0.5e-4 σ√(πa),
+    the pressure within 0.02 %.  Without the tie (every point its own multiplier):
+    K_II/K_exact 1.0011, 1.0019, |K_I| ≤ 0.94e-3, the worst point 1.02 %; sticking
+    |K_I| ≤ 2.2e-4, the pressure within 0.11 % (before the cross-section zone of
+    crack.space3d: 1.22e-3 sliding without the tie, 2.1e-4 with it)."""
     c, scene = inclined_slab(21, 3, friction)
     r = solve(scene, linear="auto")
     assert r.n_dofs > 5000 and r.linear == "direct", "auto: direct for a crack's contact"
@@ -298,14 +346,14 @@ def test_coulomb_inclined_crack_through_a_slab(friction):
     if c.slides:
         expect = np.array([c.K_II_at(p[:2]) for p in P[middle]])
         assert np.all(np.abs(expect) > 0.2 * scale)
-        assert np.abs(front["K_II"][middle] / expect - 1).max() < 0.03
+        assert np.abs(front["K_II"][middle] / expect - 1).max() < 0.004
     else:
-        assert np.abs(front["K_II"][middle]).max() < 3e-3 * scale
-    assert np.abs(front["K_I"][middle]).max() < 1e-2 * scale
-    assert np.abs(front["K_III"][middle]).max() < 2e-3 * scale
+        assert np.abs(front["K_II"][middle]).max() < 3e-4 * scale
+    assert np.abs(front["K_I"][middle]).max() < 5e-4 * scale
+    assert np.abs(front["K_III"][middle]).max() < 3e-4 * scale
     p = -r.normal_traction
-    assert abs(p.mean() / c.pressure - 1) < 0.005
-    assert np.abs(p / c.pressure - 1).max() < 0.05
+    assert abs(p.mean() / c.pressure - 1) < 0.002
+    assert np.abs(p / c.pressure - 1).max() < 0.02
 
 
 @pytest.mark.parametrize("n", [11, 13])
@@ -314,7 +362,9 @@ def test_centre_crack_whose_cells_straddle_the_two_fronts_bisector(n):
     two fronts lie in cells whose nodes point ahead of opposite fronts, e₁ₕ vanishes
     there; the face term stopped with 'grad_phi is zero or parallel to grad_psi'.  Those
     points take their nearest node's direction (no domain reaches them): measured
-    K_II/K_exact 1.007-1.009, |K_I| ≤ 3.7e-3 σ√(πa) at n = 11, 13."""
+    K_II/K_exact 1.005-1.009, |K_I| ≤ 3.9e-3, 0.84e-3 σ√(πa) at n = 11, 13 (n = 11: every
+    point is within two rings of the front cells, none tied; n = 13 without the tie of
+    skxfem.crack.faces.tie_front: 2.0e-3, the worst point's pressure 3.4 %, now 0.64 %)."""
     c, scene = inclined_slab(n, 2, 0.0)
     (front,) = solve(scene).front
     P = np.asarray(front["points"])
@@ -499,18 +549,27 @@ def test_a_crack_through_nodes_sliding_does_not_interpenetrate_there():
     nodes, 3.5e-2 at the crossings, against a slip of 0.32) and |K_I| was 7.7e-3 p√(πa);
     with theirs, [[u]]·n ≤ 1.6e-4 at the nodes, 1.5e-3 at the crossings, |K_I| ≤ 1.2e-3
     and K_II within 0.4 % of the crack moved 1e-3 off the nodes (which crosses edges
-    only: |K_I| ≤ 0.8e-3)."""
+    only: |K_I| ≤ 0.8e-3); with the cross-section zone (crack.space3d) 0.9e-4, 2.3e-3,
+    1.5e-3 (1.8e-3 off the nodes).  The points within two rings of the front cells
+    (x ≥ 0.3: two of the crack's five cells; its front x = 1/2 on a node plane) now take
+    the λ of those at x = 0.2 (skxfem.crack.faces.tie_front), which hold the faces shut
+    on their weighted mean only: [[u]]·n ≤ 1.8e-3 at the nodes, 5.1e-3 at x = 0.2,
+    |K_I| ≤ 5.1e-3 (the same off the nodes), K_II within 0.3 %.  This coarse crack is
+    where the tie costs: with the front at x = 0.45, 0.53, 0.55 it takes |K_I| from
+    3.1e-3, 3.2e-3, 3.4e-3 to 4.9e-3, 1.8e-3, 0.8e-3, and at 20 × 20 × 2 cells (x = 0.5,
+    0.515, 0.525, 0.475) from 0.85e-3, 2.8e-3, 3.2e-3, 2.3e-3 to 0.07e-3, 0.19e-3,
+    0.16e-3, 0.06e-3 (skxfem.crack.faces3d's notes)."""
     r = _tilted("frictionless")
     q = r.problem.interfaces[0]
     node = q.cut.edge_ids < 0
     jn = q.cut.face_normal[:, 0] @ r.jump                # > 0: interpenetration
     assert np.abs(r.jump).max() > 0.3, "the faces slide"
-    assert jn[node].max() < 1e-3 and jn.max() < 3e-3
+    assert jn[node].max() < 3e-3 and jn.max() < 7e-3
     off = _tilted("frictionless", shift=1e-3)
     assert np.all(off.problem.interfaces[0].cut.edge_ids >= 0)
     (front,), (ref,) = r.front, off.front
     scale = np.sqrt(np.pi * 0.5)
-    assert np.abs(front["K_I"]).max() < 2e-3 * scale
+    assert np.abs(front["K_I"]).max() < 7e-3 * scale
     assert np.abs(front["K_II"] / ref["K_II"] - 1).max() < 0.01
 
 

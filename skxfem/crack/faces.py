@@ -36,17 +36,19 @@ front is measured by :func:`skxfem.studies.cracks.crack_inf_sup` (book chapter
 ``crack``).
 
 **The points next to the front share the λ behind them** (:func:`tie_front`, what the
-2D crack kind of Γ uses).  A point on a mesh edge with a node within
-:data:`FRONT_RINGS` (2) rings of cells of a tip cell (:func:`front_points`) carries no
-multiplier of its own: it takes the harmonic extension of the others along the pieces,
-i.e. the λ of the nearest point behind it, and λ_h is constant from there to the tip
-(as it was on the tip piece).  The jump at such a point is made by unknowns whose
-equilibrium also carries the discretisation error of the stress next to the tip; a
-multiplier of its own there reads that error as contact pressure (with topological
-enrichment it grows like h^-½), and the interaction integral's face term weighs it by
-1/√r.  Measured on the closed inclined crack (:func:`skxfem.studies.cracks.inclined_scene`,
-vital space, β = 20°, 30°, 60°, μ = 0, 0.3, 0.8, triangles and quadrilaterals,
-1/h = 21, 41; 28 sliding solves per enrichment), the worst cases before → after:
+crack kinds of Γ use under a contact law, 2D and 3D: :func:`face_multipliers`;
+:mod:`skxfem.crack.faces3d` for the 3D numbers).  A
+point on a mesh edge with a node within :data:`FRONT_RINGS` (2) rings of cells of a tip
+cell (:func:`front_points`) carries no multiplier of its own: it takes the harmonic
+extension of the others along the pieces, i.e. the λ of the nearest point behind it, and
+λ_h is constant from there to the tip (as it was on the tip piece).  The jump at such a
+point is made by unknowns whose equilibrium also carries the discretisation error of the
+stress next to the tip; a multiplier of its own there reads that error as contact
+pressure (with topological enrichment it grows like h^-½), and the interaction
+integral's face term weighs it by 1/√r.  Measured on the closed inclined crack
+(:func:`skxfem.studies.cracks.inclined_scene`, vital space, β = 20°, 30°, 60°, μ = 0,
+0.3, 0.8, triangles and quadrilaterals, 1/h = 21, 41; 28 sliding solves per enrichment),
+the worst cases before → after:
 geometric enrichment, |K_I| 4.1e-3 → 3.1e-4 σ√(πa), K_II 0.52 % → 0.16 %, the mean
 pressure 0.76 % → 0.08 %, the worst point 5.9 % → 1.8 %; topological enrichment
 (β = 20°, 30°), |K_I| 2.9e-2 → 1.4e-2, the worst point 23 % → 3.9 %.  One ring (the
@@ -55,7 +57,9 @@ these cases.  The inf-sup constant near the front does not fall
 (:func:`skxfem.studies.cracks.crack_inf_sup`).  Within those rings the faces carry one
 traction and one contact state, those of the point behind: a zone that opens there only,
 shut behind, is not resolved (refine the mesh).  A crack whose every point is a front
-point keeps its space.
+point keeps its space.  The same code ties a 3D crack's points (:func:`piece_graph`: the
+faces' sides for the segments), each then a mean of the last points behind the band,
+weighted by the harmonic extension over the faces.
 
 >>> from skfem import MeshTri1
 >>> from skxfem.crack.geometry import crack_geometry
@@ -78,12 +82,13 @@ from scipy.sparse.linalg import splu
 from scipy.spatial import cKDTree
 
 from ..multipliers import Space
+from ..scene.laws import LAWS
 from ..stabilised import multiplier_space
 from .geometry import nearest_on_segments
 
 __all__ = ["EdgeGraph", "edge_graph", "check_crossed", "end_values", "harmonic_extension",
            "face_functions", "crack_multipliers", "FRONT_RINGS", "front_points",
-           "tie_front", "face_traction"]
+           "tie_front", "face_multipliers", "face_traction"]
 
 FRONT_RINGS = 2
 """The points on an edge with a node within this many rings of cells of the tip cells
@@ -137,14 +142,41 @@ def check_crossed(geo) -> None:
                      "(refine the mesh) or law 'free'")
 
 
-def end_values(geo) -> sp.csr_matrix:
-    """(2 nseg, ne) λ_h at the ends of the crack pieces from the edge multipliers:
-    row k·nseg + s is end k of piece s (``geo.segments[k][:, s]``).
+def piece_graph(geo) -> tuple[np.ndarray, np.ndarray, float]:
+    """The graph of a crack's pieces, 2D or 3D (``geo.pieces``: segments, or a 3D
+    crack's faces): ``x`` (nv·npiece, dim) the pieces' vertices, vertex-major as
+    ``geo.facets.ravel()`` (row k·npiece + s is vertex k of piece s), ``sides``
+    (2, m) the pairs of rows joined by a side of a piece, and the tolerance within
+    which two vertices are one (1e-9 of the longest side).
 
-    An end at a point (a crossing, a node on the crack) is its λ; the other ends (a
-    tip, a point of a quadrilateral's diagonal) take the harmonic extension along the
-    chain of pieces (module notes): linear in arc length between points, constant to a
-    tip.  Ends of a run of pieces that reaches no point get 0 (no multiplier there).
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 6), np.linspace(0, 1, 6))
+    >>> x, sides, tol = piece_graph(crack_geometry(m, m.p[1] - 0.5, m.p[0] - 0.55))
+    >>> x.shape, sides.shape                  # 6 pieces of 2 ends, 1 side each
+    ((12, 2), (2, 6))
+    """
+    pieces = geo.pieces                                   # (npiece, nv, dim)
+    npiece, nv, dim = pieces.shape
+    x = np.transpose(pieces, (1, 0, 2)).reshape(-1, dim)
+    k = np.arange(npiece)
+    pairs = ((0, 1),) if nv == 2 else tuple((i, (i + 1) % nv) for i in range(nv))
+    sides = np.hstack([np.stack([i * npiece + k, j * npiece + k]) for i, j in pairs])
+    length = np.linalg.norm(x[sides[0]] - x[sides[1]], axis=1)
+    return x, sides, 1e-9 * (float(length.max(initial=0.0)) or 1.0)
+
+
+def end_values(geo, ends: np.ndarray | None = None) -> sp.csr_matrix:
+    """(nv·npiece, ne) λ_h at the vertices of the crack pieces from the point
+    multipliers, 2D or 3D (:func:`piece_graph`): row k·npiece + s is end (vertex) k of
+    piece s (``geo.facets[k, s]``).  ``ends`` (nv·npiece,): the point at each vertex,
+    -1 for none (default ``geo.facets.ravel()``; :func:`tie_front` frees some).
+
+    A vertex at a point (a crossing, a node on the crack) is its λ; the others (a
+    tip, a point of a quadrilateral's diagonal, a vertex on a 3D front) take the
+    harmonic extension over the pieces' sides (module notes): in 2D linear in arc
+    length between points, constant to a tip.  Vertices of a part of the crack that
+    reaches no point get 0 (no multiplier there).
 
     Raises
     ------
@@ -152,11 +184,9 @@ def end_values(geo) -> sp.csr_matrix:
         If the crack has no point (:func:`check_crossed`).
     """
     check_crossed(geo)
-    nseg = geo.segment_cell.size
-    x = np.transpose(geo.segments, (0, 2, 1)).reshape(-1, 2)    # end-major, as facets
-    sides = np.stack([np.arange(nseg), nseg + np.arange(nseg)])
-    return harmonic_extension(geo.facets.ravel(), x, sides, geo.edge_ids.size,
-                              1e-9 * float(geo.segments_length().max()))
+    x, sides, tol = piece_graph(geo)
+    ends = geo.facets.ravel() if ends is None else ends
+    return harmonic_extension(ends, x, sides, geo.edge_ids.size, tol)
 
 
 def harmonic_extension(ends: np.ndarray, x: np.ndarray, sides: np.ndarray, ne: int,
@@ -229,10 +259,10 @@ def crack_multipliers(name: str, mesh, geo, fixed=None, per_edge=None) -> Space:
 
 
 def front_points(mesh, geo, rings: int = None) -> np.ndarray:
-    """(ne,) bool: the points of a 2D crack (crossings, nodes on the crack) on a mesh
-    edge with a node within ``rings`` rings of cells of the tip cells
-    (:attr:`~skxfem.crack.geometry.CrackGeometry.tip_cells`; 1: their own nodes; default
-    :data:`FRONT_RINGS`).
+    """(ne,) bool: the points of a crack (crossings, nodes on the crack; 2D or 3D) on a
+    mesh edge with a node within ``rings`` rings of cells of the tip cells
+    (:attr:`~skxfem.crack.geometry.CrackGeometry.tip_cells`, a 3D crack's front cells;
+    1: their own nodes; default :data:`FRONT_RINGS`).
 
     >>> from skfem import MeshTri1
     >>> from skxfem.crack.geometry import crack_geometry
@@ -252,10 +282,11 @@ def front_points(mesh, geo, rings: int = None) -> np.ndarray:
 
 
 def tie_front(space: Space, mesh, geo) -> Space:
-    """The multiplier ``space`` of a 2D crack with its :func:`front_points` tied to the
-    others (module notes): the row of P of each is the harmonic extension of the other
-    points' rows along the crack pieces (the row of the nearest point behind it, for a
-    point between it and the tip), so every row still sums to one; the columns left
+    """The multiplier ``space`` of a crack (2D or 3D) with its :func:`front_points` tied
+    to the others (module notes): the row of P of each is the harmonic extension of the
+    other points' rows over the crack pieces (:func:`end_values`; in 2D the row of the
+    nearest point behind it, for a point between it and the tip; in 3D a mean of the
+    last points behind, weights ≥ 0), so every row still sums to one; the columns left
     without a point are dropped, ``vital``, ``groups`` and ``winners`` follow.  A point
     whose run of pieces reaches no untied point keeps its row; so does a crack with no
     front point.
@@ -273,31 +304,55 @@ def tie_front(space: Space, mesh, geo) -> Space:
     if not tied.any() or tied.all():
         return space
     ends = geo.facets.ravel()
-    held = np.where(np.isin(ends, np.flatnonzero(tied)), -1, ends)
-    nseg = geo.segment_cell.size
-    x = np.transpose(geo.segments, (0, 2, 1)).reshape(-1, 2)
-    sides = np.stack([np.arange(nseg), nseg + np.arange(nseg)])
-    E = harmonic_extension(held, x, sides, ne, 1e-9 * float(geo.segments_length().max()))
+    E = end_values(geo, np.where(np.isin(ends, np.flatnonzero(tied)), -1, ends))
     at = np.full(ne, -1)                          # a piece end at each point
     k = np.flatnonzero(ends >= 0)[::-1]
     at[ends[k]] = k
-    X = sp.lil_matrix(sp.identity(ne, format="csr"))
-    for i in np.flatnonzero(tied & (at >= 0)):
-        row = E[at[i]]
-        if row.nnz and np.isclose(row.sum(), 1.0):   # reached an untied point
-            X[i] = row / row.sum()                    # a lone neighbour's λ exactly
-    P = sp.csr_matrix(X.tocsr() @ space.P)
+    i = np.flatnonzero(tied & (at >= 0))
+    rows = E[at[i]]
+    total = np.asarray(rows.sum(axis=1)).ravel()
+    reached = (rows.getnnz(axis=1) > 0) & np.isclose(total, 1.0)   # an untied point
+    i, rows, total = i[reached], rows[reached], total[reached]
+    own = np.ones(ne, dtype=bool)                 # the points that keep their row
+    own[i] = False
+    put = sp.csr_matrix((np.ones(i.size), (i, np.arange(i.size))), shape=(ne, i.size))
+    X = sp.diags(own.astype(float)) + put @ sp.diags(1 / total) @ rows   # a lone λ exactly
+    P = sp.csr_matrix(X @ space.P)
     P.eliminate_zeros()
     used = np.flatnonzero(np.diff(P.tocsc().indptr) > 0)
     new = np.full(space.size, -1)
     new[used] = np.arange(used.size)
-    own = np.asarray(X.diagonal() == 1.0)         # the points that kept their row
     vital = None if space.vital is None else space.vital & own
     groups = None if space.groups is None else np.where(own & (space.groups >= 0),
                                                         new[space.groups], -1)
     winners = None if space.winners is None else \
         space.winners[used[used < space.winners.size]]   # the winners' columns first
     return Space(space.name, P[:, used].tocsr(), vital, groups, winners)
+
+
+def face_multipliers(law: str, name: str, mesh, geo, fixed=None, per_edge=None) -> Space:
+    """The multiplier space of a crack's faces under ``law`` (2D or 3D, what the crack
+    kinds of Γ use): :func:`crack_multipliers` ``name``, its :func:`front_points` tied
+    to those behind them (:func:`tie_front`) for a contact law (``frictionless``,
+    ``coulomb``, ``adhesive``: the faces pushed together, the points' own multipliers
+    next to the front reading the stress's error there as pressure), not for a tie
+    (``bonded``, ``bilateral``; and ``free``, which :func:`skxfem.lbb.inf_sup` measures
+    as a tie), which holds the jump at every point: tied, it held only their weighted
+    mean, and a crack bonded under tension opened near its front (2D, 21 × 21
+    triangles: K_I 0.0019 → 0.024, the jump 6.5e-4 → 7.2e-3; 3D, 11³ cells: K_I 0.013
+    → 0.071).  ``fixed``, ``per_edge``: as :func:`crack_multipliers`.
+
+    >>> from skfem import MeshTri1
+    >>> from skxfem.crack.geometry import crack_geometry
+    >>> m = MeshTri1.init_tensor(np.linspace(0, 1, 11), np.linspace(0, 1, 11))
+    >>> g = crack_geometry(m, m.p[1] - 0.55, m.p[0] - 0.55)
+    >>> [face_multipliers(law, "naive", m, g).size for law in ("coulomb", "bonded")]
+    [7, 11]
+    """
+    if law not in LAWS:
+        raise ValueError(f"law must be one of {list(LAWS)}, got {law!r}")
+    space = crack_multipliers(name, mesh, geo, fixed=fixed, per_edge=per_edge)
+    return space if LAWS[law].tie else tie_front(space, mesh, geo)
 
 
 def face_traction(geo, traction: np.ndarray, x_rule: np.ndarray):

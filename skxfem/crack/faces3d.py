@@ -40,8 +40,70 @@ traction stays in the space up to the front (the patch test).
 **Vital edges at the front (what the package does; the paper leaves it open).**  The
 edge cover of algo2 runs on the ends of the crossed edges only: no relation reaches
 past the last crossings, and the faces of a front cell between its crossings and the
-front take the extension above.  The inf-sup constant of these spaces near a 3D
+front take the extension above (and the points next to the front the λ behind them,
+below).  The inf-sup constant of these spaces near a 3D
 front is measured by :func:`skxfem.studies.cracks3d.crack_inf_sup_3d`.
+
+**The points next to the front share the λ behind them**
+(:func:`skxfem.crack.faces.tie_front`, the same function as in 2D, which the 3D crack
+kind of Γ applies under a contact law: :meth:`skxfem.crack.kind3d.Crack3D.multipliers`,
+:func:`skxfem.crack.faces.face_multipliers`).  A point on a
+mesh edge with a node within :data:`~skxfem.crack.faces.FRONT_RINGS` (2) rings of cells
+of the front cells carries no multiplier of its own: its row of P is the harmonic
+extension of the others' over the faces' graph (as :func:`vertex_values`), a mean
+(weights ≥ 0, summing to one) of the last untied points behind the band, mostly the
+nearest; vital edges and groups stay on the untied points.  Measured, same run, before
+→ after, on the closed inclined slab (:func:`skxfem.studies.cracks3d.inclined_slab`,
+β = 30°, a = 1/4, nz = 3, the middle points of the two fronts; tests/test_crack_contact_3d.py):
+
+* n = 21 (133 points, 40 → 24 multipliers): frictionless |K_I| 2.0e-3 → 0.29e-3
+  σ√(πa), K_II within 0.06 % either way, the pressure 0.01 % → 0.07 % in the mean and
+  2.3 % at the worst point either way; coulomb μ = 0.3 (sliding) |K_I| 0.94e-3 →
+  0.15e-3, K_II 0.19 % → 0.08 %, the worst point 1.0 % either way; μ = 0.8 (sticking)
+  |K_I| 2.2e-4 → 0.9e-4, |K_II| 0.8e-4 → 0.5e-4, the worst point 0.11 % → 0.02 %;
+* n = 13 (91 points, 24 → 8): frictionless |K_I| 1.4e-3 → 0.72e-3 (3.3e-3 → 0.94e-3
+  at every front point), the worst point 3.5 % → 0.8 %; μ = 0.3 0.97e-3 → 0.65e-3,
+  1.6 % → 0.4 %; μ = 0.8 0.60e-3 → 0.59e-3; K_II within 0.95 % either way;
+* the tilted crack through nodes (tests/test_crack_contact_3d.py, 10 × 10 × 2, five
+  cells long, front x = 1/2 on a node plane) is where it costs: |K_I| 1.5e-3 → 5.1e-3,
+  the faces interpenetrating by 5.1e-3 (not 2.3e-3) at the points that hold the band
+  (the contact holds a weighted mean of the gaps of a point and those tied to it); with
+  its front at x = 0.45, 0.53, 0.55 |K_I| 3.1e-3, 3.2e-3, 3.4e-3 → 4.9e-3, 1.8e-3,
+  0.8e-3; at 20 × 20 × 2 (x = 0.5, 0.515, 0.525, 0.475) 0.85e-3, 2.8e-3, 3.2e-3,
+  2.3e-3 → 0.07e-3, 0.19e-3, 0.16e-3, 0.06e-3 (p√(π x_f)).
+
+Measured before the 3D default zone counted its cells by the front cells' cross-section
+(main's merge of hsize9; the numbers above are with it):
+
+* frictionless slab at n = 15, 17, 19: |K_I| 3.3e-3, 5.8e-3, 2.5e-3 → 0.26e-3, 0.43e-3,
+  0.44e-3; at n = 11 (and nz = 2 at n = 11, the 45° crack at n = 10) every point is
+  within the rings, the space is kept.  One ring: 0.25e-3, 0.21e-3, 2.1e-3, 1.1e-3,
+  1.1e-3 at n = 13, 15, 17, 19, 21 (worse than two from n = 17 on); on the tilted
+  crack 1.4e-3 (two: 4.7e-3);
+* the pressed slabs: |K| unchanged to 2e-6 at n = 11, 21 (x = 1/2), 0.41e-3
+  → 0.29e-3 (n = 7, x = 0.495) and 0.80e-3 → 0.56e-3 (n = 13, x = 0.575), the pressure
+  within 0.09 % → 0.02 % and 0.23 % → 0.05 %; the pressed penny at h = 0.2 has every
+  point within the rings: unchanged, |K_I| 2.7e-3, |K_II| 1.3e-3 p√(πa); at h = 0.125
+  (239 points, 67 → 19 multipliers) |K_I| 0.82e-3 → 0.74e-3, |K_II| 0.33e-3 either
+  way, the pressure within 0.35 % → 0.008 % of p.
+
+What it costs (measured before the cross-section zone): the contact Newton takes more
+iterations where most of a short crack is tied (tests/test_contact_newton.py's
+pressed and sheared Coulomb crack, 2.4 cells long on 4³ cells: 6, 5, 4 per step → 10,
+29, 15; 6³: 6, 8, 5 → 10, 6, 30; 8³: 7, 7, 5 → 14, 13, 4; the 2D tie leaves the 2D
+crack at 3, 2, 2 → 5, 1, 2); the inclined
+slab's solves take the same time (n = 21, μ = 0.3: 19.0 s, 18.7 s in one run).
+
+A tie (``bonded``, ``bilateral``) keeps every point's multiplier
+(:func:`skxfem.crack.faces.face_multipliers`): tied, a crack bonded under tension
+(11³ cells, the front x = 1/2) opened near its front, K_I 0.013 → 0.071, the jump
+4.4e-3 → 4.6e-2.  The inf-sup constant near the front does not fall (before the
+cross-section zone, the setting of
+:func:`skxfem.studies.cracks3d.crack_inf_sup_3d`, its normal multipliers, law
+``frictionless`` for the tied space): vital 0.442, 0.431, 0.428 → 0.443, 0.431, 0.428
+and winner 0.390, 0.373, 0.369 → 0.390, 0.374, 0.369 at n = 11, 15, 21 (24, 32, 44 →
+16, 24, 36 multipliers); with the front 0.01 h past a node (n = 15) vital 0.404 →
+0.431, and a sticking contact there 0.286 → 0.323.
 
 **The faces' rule** (:func:`face_rule`).  On a face r = -φ_h, the distance to the
 front, is linear; the level line of r through its middle vertex splits the face into two
@@ -96,6 +158,10 @@ True
 >>> S = crack_multipliers("vital", m, g)
 >>> S.P.shape[0] == g.edge_ids.size, S.size < g.edge_ids.size
 (True, True)
+>>> from skxfem.crack.faces import tie_front
+>>> T = tie_front(S, m, g)                          # x ≥ 2/7 take the λ of x = 3/14
+>>> bool(np.allclose(T.P.sum(axis=1), 1.0)), T.size < S.size, bool(T.P.min() >= 0)
+(True, True, True)
 """
 from __future__ import annotations
 
@@ -105,7 +171,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.polynomial.legendre import leggauss
 
-from .faces import check_crossed, harmonic_extension
+from .faces import end_values
 from .geometry3d import barycentric
 
 __all__ = ["vertex_values", "FaceRule", "face_rule", "face_functions_3d", "FaceTraction3D",
@@ -122,15 +188,10 @@ def vertex_values(geo) -> sp.csr_matrix:
     A point (a crossing, a node on the crack) is its λ; the other vertices (on the
     front) take the harmonic extension over the faces' sides (module notes,
     :func:`skxfem.crack.faces.harmonic_extension`); a ValueError if the crack has no
-    point (:func:`skxfem.crack.faces.check_crossed`).
+    point (:func:`skxfem.crack.faces.check_crossed`): the 3D rows of
+    :func:`skxfem.crack.faces.end_values`, which serves both.
     """
-    check_crossed(geo)
-    nf = geo.face_cell.size
-    x = np.transpose(geo.faces, (1, 0, 2)).reshape(-1, 3)  # vertex-major, as facets
-    k = np.arange(nf)
-    sides = np.hstack([np.stack([i * nf + k, j * nf + k]) for i, j in ((0, 1), (1, 2), (2, 0))])
-    size = float(np.linalg.norm(np.ptp(x, axis=0))) or 1.0
-    return harmonic_extension(geo.facets.ravel(), x, sides, geo.edge_ids.size, 1e-9 * size)
+    return end_values(geo)
 
 
 @dataclass(frozen=True)

@@ -38,7 +38,7 @@ from skfem import Basis, ElementTetP1, ElementVector
 from ..fem.quadrature import cell_rule
 from ..levelset import unit
 from ..multipliers import InterfaceRule
-from .faces import crack_multipliers
+from .faces import face_multipliers
 from .faces3d import face_functions_3d, face_rule, face_traction_3d
 from .geometry import point_cells
 from .geometry3d import barycentric, crack_geometry_3d, front_chains
@@ -249,11 +249,14 @@ class Crack3D:
         return CrackXSpace3D(space)
 
     def multipliers(self, mesh, cut, fixed=None, per_edge=None):
-        """The interface's multiplier space on the crack's crossed edges, up to the front
-        (:func:`skxfem.crack.faces.crack_multipliers` on its faces' graph,
-        :mod:`skxfem.crack.faces3d`)."""
-        return crack_multipliers(self.interface.space, mesh, cut, fixed=fixed,
-                                 per_edge=per_edge)
+        """The interface's multiplier space on the crack's crossed edges and nodes, up to
+        the front (:func:`skxfem.crack.faces.crack_multipliers` on its faces' graph,
+        :mod:`skxfem.crack.faces3d`), the points on an edge with a node within
+        :data:`~skxfem.crack.faces.FRONT_RINGS` rings of the front cells tied to those
+        behind them under a contact law (:func:`skxfem.crack.faces.face_multipliers`, as
+        in 2D)."""
+        i = self.interface
+        return face_multipliers(i.law, i.space, mesh, cut, fixed=fixed, per_edge=per_edge)
 
     def normals_at(self, points: np.ndarray) -> np.ndarray:
         """∇ψ/|∇ψ| (3, n) at ``points`` on Γ."""
