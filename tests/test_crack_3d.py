@@ -476,11 +476,11 @@ def test_penny_crack_under_tension_coarse():
     angle = np.degrees(np.arctan2(s.points[1], s.points[0]))
     mirror = np.argsort(90 - angle)                      # the symmetry about 45°
     assert np.allclose(np.sort(angle), np.sort(90 - angle), atol=1e-6)
-    # mirror points within 1.04e-3 with the front's segments all oriented along it
-    # (geometry3d.line_segments); 1e-4 with the mixed orientation they had from the
-    # cells' pieces, the same segments to 2e-16 otherwise: K here still depends on the
-    # segments' orientation by up to 6e-4 (not found where)
-    assert np.allclose(K[np.argsort(angle), 0], K[mirror, 0], rtol=1.5e-3)
+    # mirror points within 6.5e-5 (measured): the tangent at a node is taken at its
+    # nearest place on the fitted front (geometry3d.front_fit); on the P1 polyline, the
+    # nodes on the diagonal were as near two chords and took either one's tangent with
+    # round-off: K moved by 7e-4 with the segments' orientation, 1e-3 between mirrors
+    assert np.allclose(K[np.argsort(angle), 0], K[mirror, 0], rtol=3e-4)
 
 
 def test_curvature_terms_make_K_independent_of_the_domain():
@@ -533,11 +533,13 @@ def test_a_small_pennys_domain_stays_off_its_centre(n):
     default domain (R = 0.25, 0.20 at n = 12, 16) reached the centre of curvature, K_I
     0.80 and 0.77 of 2σ√(a/π) (median) against 1.05-1.07 with R ≤ 2a/3 at n = 12, 16, 24;
     R is now clipped to half the radius of curvature (sif3d.domain_reach): measured
-    median 1.055, 1.068, all points within 1.047-1.073 (n = 24: 1.064)."""
+    median 1.055, 1.068, all points within 1.047-1.073 (n = 24: 1.064); 1.039-1.070 at
+    n = 12 since the nodes' tangent is taken on the fitted front (geometry3d.front_fit;
+    a = 2.4 cells there)."""
     from skxfem.solver import solve
     K = solve(_cube_crack(n, _disc(0.2)), linear="auto").front[0]["K_I"] / (
         2 * np.sqrt(0.2 / np.pi))
-    assert np.all((K > 1.04) & (K < 1.08)), K
+    assert np.all((K > 1.03) & (K < 1.08)), K
 
 
 def test_domain_reach_is_half_the_radius_of_curvature_on_a_penny():

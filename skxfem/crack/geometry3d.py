@@ -697,9 +697,13 @@ def front_fit(geometry: CrackGeometry3D, points: np.ndarray, spacing: float,
     arcs over [s - d, s + d] (s the point's nearest place on its chain, d = ``spacing``;
     an open chain's ends clip them) and fitted by a parabola in s, least squares.  The
     fit smooths the kinks of the polyline (the chords of the P1 front cross the cells
-    at any angle): t is its slope, in the direction of the chain's points; the curvature
-    vector its second derivative normal to t, of size 1/ρ (ρ the radius of curvature)
-    towards the centre, zero on a straight stretch.  ``chains``: the front's
+    at any angle): t is its slope at the point's nearest place on the parabola (three
+    Newton steps from s, within a segment's length of it: a point inside a curved front
+    is as near two chords, and the nearest on the polyline jumped between them with
+    round-off), in
+    the direction of the chain's points; the curvature vector its second derivative
+    normal to t, of size 1/ρ (ρ the radius of curvature) towards the centre, zero on a
+    straight stretch.  ``chains``: the front's
     :func:`front_chains`, if they are at hand (default: built here).
 
     >>> from skfem import MeshTet1
@@ -736,7 +740,18 @@ def front_fit(geometry: CrackGeometry3D, points: np.ndarray, spacing: float,
         V = np.stack([np.ones_like(z), z, z * z], axis=2)        # (m, 17, 3)
         c = np.linalg.solve(np.einsum("mqa,mqb->mab", V, V),
                             np.einsum("mqa,imq->mai", V, x))      # (m, 3 terms, 3)
-        slope, second = c[:, 1].T, 2 * c[:, 2].T
+        # the nearest place on the fitted curve x(z) = c₀ + c₁z + c₂z², not on the P1
+        # polyline: a point inside a curved front is as near two chords symmetric about
+        # it (the nearest segment jumped there with round-off, and with it the
+        # tangent: a coarse penny's K moved 7e-4 when its polyline moved 1e-15)
+        zc = np.zeros(points.shape[1])
+        reach = np.diff(s)[j]                 # within a segment of the polyline's place
+        for _ in range(3):                               # Newton on (x(z) - P)·x'(z) = 0
+            r = c[:, 0] + zc[:, None] * c[:, 1] + zc[:, None] ** 2 * c[:, 2] - points.T
+            dx = c[:, 1] + 2 * zc[:, None] * c[:, 2]
+            f, df = (r * dx).sum(axis=1), (dx * dx).sum(axis=1) + 2 * (r * c[:, 2]).sum(axis=1)
+            zc = np.clip(zc - f / np.where(df > 0, df, np.inf), -reach, reach)
+        slope, second = (c[:, 1] + 2 * zc[:, None] * c[:, 2]).T, 2 * c[:, 2].T
         tt = (slope * slope).sum(axis=0)
         kvec = (second - (second * slope).sum(axis=0) / tt * slope) / tt
         near = dist[j, cols] < best
