@@ -65,7 +65,7 @@ __all__ = ["CrackGeometry3D", "crack_geometry_3d", "check_mesh_3d", "front_chain
            "orthonormal_on_front", "orthonormal_at_nodes", "FAR", "front_fit",
            "front_offset",
            "barycentric", "shape_gradients", "cell_gradients", "projected_diameters", "runs",
-           "line_segments", "merged_points",
+           "line_segments", "merged_points", "chain_places",
            "VOLUME_TOL"]
 
 VOLUME_TOL = 1e-12
@@ -690,6 +690,25 @@ def front_chains(geometry: CrackGeometry3D) -> list[tuple[np.ndarray, bool]]:
     return chains
 
 
+def chain_places(chain: np.ndarray, closed: bool, points: np.ndarray) -> tuple:
+    """The nearest place on a chain (``chain`` (3, k), ``closed``) of each of ``points``
+    (3, m): the chain's vertices (3, k or k + 1: a closed one's first again at its end),
+    their arc lengths s, and each point's arc length, segment and distance (m,).
+
+    >>> chain = np.array([[0.0, 1, 1], [0, 0, 1], [0, 0, 0]])          # an L, open
+    >>> _, s, at, j, dist = chain_places(chain, False, np.array([[0.5], [0.2], [0.0]]))
+    >>> s.tolist(), at.tolist(), j.tolist(), dist.round(12).tolist()
+    ([0.0, 1.0, 2.0], [0.5], [0], [0.2])
+    """
+    pts = np.hstack([chain, chain[:, :1]]) if closed else chain
+    seg = np.diff(pts, axis=1)
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(seg, axis=0))])
+    t, _, dist = nearest_on_segments(pts[:, :-1, None], seg[:, :, None], points[:, None])
+    j = np.argmin(dist, axis=0)
+    cols = np.arange(points.shape[1])
+    return pts, s, s[j] + t[j, cols] * (s[j + 1] - s[j]), j, dist[j, cols]
+
+
 def front_fit(geometry: CrackGeometry3D, points: np.ndarray, spacing: float,
               chains: list | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The unit tangents t (3, m) and the curvature vectors d²x/ds² (3, m) of the front
@@ -700,11 +719,10 @@ def front_fit(geometry: CrackGeometry3D, points: np.ndarray, spacing: float,
     at any angle): t is its slope at the point's nearest place on the parabola (three
     Newton steps from s, within a segment's length of it: a point inside a curved front
     is as near two chords, and the nearest on the polyline jumped between them with
-    round-off), in
-    the direction of the chain's points; the curvature vector its second derivative
-    normal to t, of size 1/ρ (ρ the radius of curvature) towards the centre, zero on a
-    straight stretch.  ``chains``: the front's
-    :func:`front_chains`, if they are at hand (default: built here).
+    round-off), in the direction of the chain's points; the curvature vector its second
+    derivative normal to t, of size 1/ρ (ρ the radius of curvature) towards the centre,
+    zero on a straight stretch.  ``chains``: the front's :func:`front_chains`, if they
+    are at hand (default: built here).
 
     >>> from skfem import MeshTet1
     >>> m = MeshTet1.init_tensor(*(np.linspace(-1, 1, 13),) * 3)
@@ -721,17 +739,9 @@ def front_fit(geometry: CrackGeometry3D, points: np.ndarray, spacing: float,
     tangent, curvature = np.zeros(points.shape), np.zeros(points.shape)
     best = np.full(points.shape[1], np.inf)
     sigma = np.linspace(-1.0, 1.0, 17)
-    for pts, closed in front_chains(geometry) if chains is None else chains:
-        if closed:
-            pts = np.hstack([pts, pts[:, :1]])
-        seg = np.diff(pts, axis=1)
-        s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(seg, axis=0))])
+    for chain, closed in front_chains(geometry) if chains is None else chains:
+        pts, s, at, j, dist = chain_places(chain, closed, points)
         total = s[-1]
-        # the nearest place on the chain of each point: its segment and arc length
-        t, _, dist = nearest_on_segments(pts[:, :-1, None], seg[:, :, None], points[:, None])
-        j = np.argmin(dist, axis=0)
-        cols = np.arange(points.shape[1])
-        at = s[j] + t[j, cols] * (s[j + 1] - s[j])
         arcs = at[:, None] + min(d, total / 4) * sigma            # (m, 17)
         arcs = np.mod(arcs, total) if closed else np.clip(arcs, 0, total)
         x = np.stack([np.interp(arcs, s, pts[k]) for k in range(3)])   # (3, m, 17)
@@ -754,10 +764,10 @@ def front_fit(geometry: CrackGeometry3D, points: np.ndarray, spacing: float,
         slope, second = (c[:, 1] + 2 * zc[:, None] * c[:, 2]).T, 2 * c[:, 2].T
         tt = (slope * slope).sum(axis=0)
         kvec = (second - (second * slope).sum(axis=0) / tt * slope) / tt
-        near = dist[j, cols] < best
+        near = dist < best
         tangent[:, near] = (slope / np.sqrt(tt))[:, near]
         curvature[:, near] = kvec[:, near]
-        best = np.minimum(best, dist[j, cols])
+        best = np.minimum(best, dist)
     return tangent, curvature
 
 

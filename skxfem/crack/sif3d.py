@@ -121,6 +121,7 @@ from .geometry import nearest_on_segments
 from .geometry3d import (
     barycentric,
     cell_gradients,
+    chain_places,
     crack_geometry_3d,
     front_chains,
     front_fit,
@@ -529,16 +530,7 @@ def other_fronts(geo, P: np.ndarray, chains: list | None = None) -> np.ndarray:
         at = np.flatnonzero(own == k)
         if at.size == 0 or c.shape[1] < 3:
             continue
-        if closed:
-            c = np.concatenate([c, c[:, :1]], axis=1)
-        step = np.diff(c, axis=1)                        # (3, nseg)
-        s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(step, axis=0))])
-        t = np.einsum("ik,ijk->jk", step, P[:, at, None] - c[:, None, :-1]) / \
-            np.maximum((step * step).sum(axis=0), 1e-300)
-        t = np.clip(t, 0.0, 1.0)                         # P's nearest place on each segment
-        gap = np.linalg.norm(c[:, None, :-1] + t * step[:, None] - P[:, at, None], axis=0)
-        k = np.argmin(gap, axis=1)
-        sP = s[k] + t[np.arange(at.size), k] * (s[k + 1] - s[k])   # P's arc length
+        c, s, sP, _, _ = chain_places(c, closed, P[:, at])     # P's arc length
         d = np.linalg.norm(c[:, None] - P[:, at, None], axis=0)    # (len(at), nv)
         arc = np.abs(s[None] - sP[:, None])
         if closed:
